@@ -1,0 +1,337 @@
+"""The effect model: what an effect file says, as dataclasses that know where they came from.
+
+The parser builds these; validation, selection, lowering and the printer read them. Locations
+never take part in equality, so an effect printed with `Effect.to_source()` and parsed again
+compares equal to the original.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Union
+
+import numpy as np
+
+from .errors import EffectWarning, Location, UNKNOWN_LOCATION
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .caps import CapsProfile
+    from .validate import Validation
+
+
+def _loc() -> Any:
+    return field(default=UNKNOWN_LOCATION, compare=False, repr=False)
+
+
+def values_equal(a: Any, b: Any) -> bool:
+    """Equality that treats numpy arrays by value (dataclass __eq__ cannot)."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return (isinstance(a, np.ndarray) and isinstance(b, np.ndarray)
+                and a.dtype.kind == b.dtype.kind and a.shape == b.shape
+                and bool(np.array_equal(a, b)))
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return type(a) is type(b) and len(a) == len(b) and all(map(values_equal, a, b))
+    return a == b
+
+
+# --------------------------------------------------------------------------------------------
+# Types
+
+
+@dataclass(frozen=True)
+class TypeSpec:
+    """A parameter type. `base` is canonical lower case: bool, int, half, float, dword, string,
+    texture, sampler, vertexshader, pixelshader, or a struct name (then `struct=True`).
+    `rows`/`cols` give the numeric shape (float4 → 1×4, float4x4 → 4×4, scalar 1×1).
+    `dim` is '', '1D', '2D', '3D' or 'CUBE' for textures and samplers. `spelling` is the text
+    the file used (`VECTOR`, `float4`, `matrix`...), kept for printing; it is not compared.
+    """
+
+    base: str
+    rows: int = 1
+    cols: int = 1
+    dim: str = ""
+    struct: bool = False
+    spelling: str = field(default="", compare=False)
+
+    @property
+    def is_numeric(self) -> bool:
+        return self.base in ("bool", "int", "half", "float", "dword")
+
+    @property
+    def is_object(self) -> bool:
+        return self.base in ("string", "texture", "sampler", "vertexshader", "pixelshader")
+
+    @property
+    def components(self) -> int:
+        return self.rows * self.cols
+
+
+# --------------------------------------------------------------------------------------------
+# Values
+
+
+@dataclass
+class Annotation:
+    type: TypeSpec
+    name: str
+    value: Any  # numpy array for numeric annotations, str for strings
+    location: Location = _loc()
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, Annotation) and self.type == other.type
+                and self.name == other.name and values_equal(self.value, other.value))
+
+
+@dataclass(frozen=True)
+class ParamRef:
+    """A reference to a parameter as a state value: `<name>` (DX8, `angle=True`), `(name)` or
+    `name`; `index` for an array element such as `(vsArray[2])`."""
+
+    name: str
+    angle: bool = False
+    index: int | None = None
+    location: Location = _loc()
+
+
+@dataclass(frozen=True)
+class EnumValue:
+    """An enum state value, possibly `|`-combined. `names` are canonical (no D3DTOP_ prefix,
+    upper case) in source order; `value` is the combined integer from the states table (None
+    when the state is unknown and the names could not be resolved)."""
+
+    names: tuple[str, ...]
+    value: int | None = None
+    location: Location = _loc()
+
+
+@dataclass(frozen=True)
+class NullValue:
+    location: Location = _loc()
+
+
+@dataclass(frozen=True)
+class VertexDeclElement:
+    """One line of a DX8 `decl {}` block: `float v0[3];` → ('float', 0, 3) of `stream`."""
+
+    stream: int
+    type: str
+    register: int
+    count: int
+    location: Location = _loc()
+
+
+@dataclass
+class ShaderBlock:
+    """An `asm { ... }` shader. `stage` is 'vertex' or 'pixel'; `version` the canonical
+    profile (`ps_1_1`, `vs_2_0` ...) read from the first token, or None when the text is not
+    Direct3D assembly. `source` is the exact body text between the braces and `location` the
+    position of the first character of that body, so line k of `source` is line
+    `location.line + k` of the file."""
+
+    stage: str
+    version: str | None
+    source: str
+    decl: tuple[VertexDeclElement, ...] | None = None
+    location: Location = _loc()
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, ShaderBlock) and self.stage == other.stage
+                and self.version == other.version and self.source.strip() == other.source.strip()
+                and self.decl == other.decl)
+
+    __hash__ = None  # type: ignore[assignment]
+
+
+@dataclass(frozen=True)
+class CompileShader:
+    """`compile vs_1_1 func(args)`: an HLSL function compiled for a profile (args as source text)."""
+
+    profile: str
+    function: str
+    args: tuple[str, ...] = ()
+    location: Location = _loc()
+
+
+@dataclass(frozen=True)
+class Expression:
+    """A state value we keep as text: a preshader expression such as `Bias * 2`."""
+
+    text: str
+    location: Location = _loc()
+
+
+StateValue = Union[np.ndarray, str, bool, EnumValue, ParamRef, NullValue, ShaderBlock,
+                   CompileShader, Expression, "SamplerState"]
+
+
+@dataclass
+class StateAssignment:
+    """`Name = value;` or `Name[index] = value;`. `name` is the states table's canonical
+    spelling when the state is known (`known=True`), otherwise the text as written."""
+
+    name: str
+    value: Any
+    index: int | None = None
+    known: bool = True
+    location: Location = _loc()
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, StateAssignment) and self.name == other.name
+                and self.index == other.index and self.known == other.known
+                and values_equal(self.value, other.value))
+
+
+@dataclass
+class SamplerState:
+    """`sampler_state { ... }` (also `stateblock_state`)."""
+
+    states: list[StateAssignment] = field(default_factory=list)
+    location: Location = _loc()
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, SamplerState) and self.states == other.states
+
+    def get(self, name: str) -> StateAssignment | None:
+        """The last assignment to `name` (last wins, as in D3DX)."""
+        for s in reversed(self.states):
+            if s.name.lower() == name.lower():
+                return s
+        return None
+
+
+# --------------------------------------------------------------------------------------------
+# Declarations
+
+
+@dataclass
+class Parameter:
+    name: str
+    type: TypeSpec
+    storage: tuple[str, ...] = ()
+    array: tuple[int, ...] = ()
+    semantic: str | None = None
+    annotations: list[Annotation] = field(default_factory=list)
+    # numpy array (numeric), str (string), SamplerState, ShaderBlock, CompileShader, list of
+    # those for arrays of objects, or None when uninitialised
+    value: Any = None
+    location: Location = _loc()
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, Parameter) and self.name == other.name
+                and self.type == other.type and self.storage == other.storage
+                and self.array == other.array and self.semantic == other.semantic
+                and self.annotations == other.annotations
+                and values_equal(self.value, other.value))
+
+    def annotation(self, name: str) -> Annotation | None:
+        return _find_annotation(self.annotations, name)
+
+
+@dataclass
+class Struct:
+    name: str
+    source: str  # exact text of the declaration
+    location: Location = _loc()
+
+
+@dataclass
+class Function:
+    """An HLSL function captured with its exact source text (compiled by a later stage)."""
+
+    name: str
+    return_type: str
+    source: str
+    location: Location = _loc()
+
+
+@dataclass
+class Pass:
+    name: str | None
+    states: list[StateAssignment] = field(default_factory=list)
+    annotations: list[Annotation] = field(default_factory=list)
+    location: Location = _loc()
+
+    def state(self, name: str, index: int | None = None) -> StateAssignment | None:
+        """The effective assignment of a state in this pass (the last one wins)."""
+        key = name.lower()
+        for s in reversed(self.states):
+            if s.name.lower() == key and s.index == index:
+                return s
+        return None
+
+    @property
+    def label(self) -> str:
+        return self.name or f"#{id(self)}"
+
+
+@dataclass
+class Technique:
+    name: str | None
+    passes: list[Pass] = field(default_factory=list)
+    annotations: list[Annotation] = field(default_factory=list)
+    location: Location = _loc()
+
+    def annotation(self, name: str) -> Annotation | None:
+        return _find_annotation(self.annotations, name)
+
+
+@dataclass
+class Effect:
+    path: str
+    parameters: list[Parameter] = field(default_factory=list)
+    techniques: list[Technique] = field(default_factory=list)
+    functions: list[Function] = field(default_factory=list)
+    structs: list[Struct] = field(default_factory=list)
+    warnings: list[EffectWarning] = field(default_factory=list, compare=False)
+    # paths of every file read (the effect and its #includes), for hot reload
+    files: tuple[str, ...] = field(default=(), compare=False)
+
+    # -- lookup ------------------------------------------------------------------------------
+    def technique(self, name: str) -> Technique:
+        for t in self.techniques:
+            if t.name == name:
+                return t
+        from .errors import EffectError
+        known = ", ".join(t.name or "<anonymous>" for t in self.techniques)
+        raise EffectError(f"no technique named '{name}' (the effect has: {known})",
+                          Location(self.path, 1, 1))
+
+    def parameter(self, name: str) -> Parameter | None:
+        for p in self.parameters:
+            if p.name == name:
+                return p
+        return None
+
+    def parameter_by_semantic(self, semantic: str) -> Parameter | None:
+        key = semantic.lower()
+        for p in self.parameters:
+            if p.semantic and p.semantic.lower() == key:
+                return p
+        return None
+
+    # -- the spine ---------------------------------------------------------------------------
+    def validate(self, technique: Technique | str, profile: "CapsProfile") -> "Validation":
+        from .validate import validate_technique
+        if isinstance(technique, str):
+            technique = self.technique(technique)
+        return validate_technique(self, technique, profile)
+
+    def find_valid_technique(self, profile: "CapsProfile", policy: Any = "first") -> Technique | None:
+        from .select import find_valid_technique
+        return find_valid_technique(self, profile, policy)
+
+    def find_next_valid_technique(self, profile: "CapsProfile",
+                                  after: Technique | str | None = None) -> Technique | None:
+        from .select import find_next_valid_technique
+        return find_next_valid_technique(self, profile, after)
+
+    def to_source(self) -> str:
+        from .printer import print_effect
+        return print_effect(self)
+
+
+def _find_annotation(annotations: list[Annotation], name: str) -> Annotation | None:
+    for a in annotations:
+        if a.name.lower() == name.lower():
+            return a
+    return None
