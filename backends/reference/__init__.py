@@ -1,0 +1,1 @@
+"""The NumPy reference back end: the ground truth the GL back end is compared against."""

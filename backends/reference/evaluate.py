@@ -1,0 +1,112 @@
+"""Run an IR program over N vertices or fragments at once with NumPy.
+
+Each instruction's kernel (the `OPS` row in `effects.ir`) runs once over (N, 4) float32 arrays;
+there is no per-row Python loop. Texture sampling is delegated to callbacks the caller supplies
+(the rasteriser, which knows the 2x2 quads needed for derivatives; tests pass fakes).
+
+A sampler callback is called as `sampler(coord, kind=..., bias=..., lod=...)` with coord an
+(N, 4) float32 array, already divided by w for projected reads, and bias / lod an (N,) array or
+None; it returns (N, 4) texels. A sampler index with no callback reads (0, 0, 0, 1), as an
+unbound ps_2_0 sampler does.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Mapping
+
+import numpy as np
+
+from effects.ir import OPS, IRError, Program
+
+SamplerFn = Callable[..., np.ndarray]
+_MISSING_DEFAULT = np.array([0, 0, 0, 1], dtype=np.float32)
+_UNBOUND_TEXEL = np.array([0, 0, 0, 1], dtype=np.float32)
+
+
+@dataclass
+class EvalResult:
+    """`outputs`: name -> (N, 4) float32. `killed`: (N,) bool for fragment programs that kill,
+    else None."""
+
+    outputs: dict[str, np.ndarray]
+    killed: np.ndarray | None
+
+
+class _Context:
+    """The KernelContext of effects.ir: inputs padded to vec4, samplers, the kill mask."""
+
+    def __init__(self, program: Program, inputs: Mapping[str, np.ndarray],
+                 samplers: Mapping[int, SamplerFn], count: int) -> None:
+        self.program = program
+        self.inputs = inputs
+        self.samplers = samplers
+        self.count = count
+        self.killed: np.ndarray | None = None
+
+    def input(self, name: str) -> np.ndarray:
+        return _as_vec4(name, self.inputs[name], self.count)
+
+    def sample(self, index: int, coord: np.ndarray, kind: str, bias: np.ndarray | None,
+               lod: np.ndarray | None) -> np.ndarray:
+        fn = self.samplers.get(index)
+        if fn is None:
+            return np.broadcast_to(_UNBOUND_TEXEL, (self.count, 4))
+        texels = np.asarray(fn(coord, kind=kind, bias=bias, lod=lod), dtype=np.float32)
+        if texels.shape != (self.count, 4):
+            raise IRError(f"sampler {index} returned shape {texels.shape}, "
+                          f"expected {(self.count, 4)}")
+        return texels
+
+    def kill(self, mask: np.ndarray) -> None:
+        self.killed = mask if self.killed is None else self.killed | mask
+
+
+def _as_vec4(name: str, value: np.ndarray, count: int) -> np.ndarray:
+    """(N, k) or (k,) with k <= 4 as (N, 4); missing components read (0, 0, 0, 1)."""
+    array = np.asarray(value, dtype=np.float32)
+    if array.ndim == 1:
+        array = array[None, :]
+    if array.ndim != 2 or not 1 <= array.shape[1] <= 4 or array.shape[0] not in (1, count):
+        raise IRError(f"input {name}: shape {np.shape(value)} is not (N, k) or (k,) with "
+                      f"k <= 4 and N = {count}")
+    if array.shape[1] < 4:
+        padded = np.broadcast_to(_MISSING_DEFAULT, (array.shape[0], 4)).copy()
+        padded[:, :array.shape[1]] = array
+        array = padded
+    return np.broadcast_to(array, (count, 4))
+
+
+def _row_count(program: Program, inputs: Mapping[str, np.ndarray], count: int | None) -> int:
+    counts = {np.shape(inputs[i.name])[0] for i in program.inputs
+              if i.kind != "uniform" and np.ndim(inputs[i.name]) == 2}
+    if count is not None:
+        counts.add(count)
+    if len(counts) > 1:
+        raise IRError(f"inputs disagree on the row count: {sorted(counts)}")
+    if not counts:
+        raise IRError("no per-row input fixes N: pass count=")
+    return counts.pop()
+
+
+def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
+             samplers: Mapping[int, SamplerFn] | None = None, *,
+             count: int | None = None) -> EvalResult:
+    """Evaluate `program` over N rows. `inputs` maps every declared input name to an (N, k)
+    array (varyings, builtins) or a (k,) vector (uniforms, broadcast); `count` gives N when no
+    input is per row."""
+    missing = [i.name for i in program.inputs if i.name not in inputs]
+    if missing:
+        raise IRError(f"missing inputs: {', '.join(missing)}")
+    ctx = _Context(program, inputs, samplers or {}, _row_count(program, inputs, count))
+    values: dict[int, np.ndarray] = {}
+    with np.errstate(all="ignore"):  # inf and NaN are legitimate D3D results (rcp 0, log 0)
+        for instr in program.instrs:
+            result = OPS[instr.op].kernel(ctx, [values[a] for a in instr.args], instr.attr_map)
+            if instr.dest is not None:
+                values[instr.dest] = np.asarray(result, dtype=np.float32)
+    outputs = {name: np.array(values[value], dtype=np.float32)
+               for name, value in program.outputs}
+    killed = ctx.killed
+    if killed is None and any(i.op == "kill" for i in program.instrs):
+        killed = np.zeros(ctx.count, dtype=bool)
+    return EvalResult(outputs, killed)

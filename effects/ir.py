@@ -1,0 +1,761 @@
+"""The IR every shading path lowers to: straight-line SSA over vec4 float values.
+
+Fixed-function texture stages, ps.1.x / ps.2.0 / vs.1.1 assembly and the fixed-function vertex
+pipeline all lower to a `Program`; the NumPy reference (`backends.reference.evaluate`) and the
+GLSL 330 printer consume it. Every op is one row of `OPS` (after Mesa's `nir_opcodes.py`): its
+arity, the components it reads, its NumPy kernel, its GLSL expression and how it behaves under
+fixed-point lowering. Back ends read that row and nothing else; they never look at caps, so
+precision (clamp, quantize) is always explicit in the program.
+
+Conventions
+- Every value is a vec4 of float32; the evaluator holds it as an (N, 4) array over N vertices or
+  fragments. Scalar D3D instructions (rcp, rsq, exp, log, pow) are per component here: lowering
+  replicates the selected component with a swizzle first.
+- Values are produced only by instructions. `input` reads a declared `Input` (varying, uniform or
+  builtin) by name and `const` makes a literal; both are ordinary instructions, so constants are
+  deduplicated like any other value and print inline in GLSL. (A 'constant' input kind is not
+  needed: a constant is a `const` instruction.)
+- `kill` is the one instruction without a result (`dest is None`).
+- GLSL templates format with the GLSL expressions of the arguments. Several templates use an
+  argument more than once, so the printer binds every value to a variable and passes names.
+  Samplers are the uniforms `sampler0`..; inputs keep their names.
+- Malformed IR is a bug in a lowering, not in user input: it raises `IRError` (a ValueError).
+"""
+from __future__ import annotations
+
+import hashlib
+import re
+from dataclasses import dataclass
+from typing import Any, Callable, Iterable, Mapping, Protocol, Sequence
+
+import numpy as np
+
+STAGES = ("vertex", "fragment")
+INPUT_KINDS = ("varying", "uniform", "builtin")
+SAMPLER_KINDS = ("1d", "2d", "3d", "cube")
+# Output names per stage, in the order programs keep and print them. Scalar outputs (depth, fog,
+# psize) take the x component of their value.
+OUTPUTS = {
+    "fragment": ("color0", "color1", "color2", "color3", "depth"),
+    "vertex": ("position", "color0", "color1", *(f"texcoord{i}" for i in range(8)), "fog",
+               "psize"),
+}
+COMPONENTS = "xyzw"
+FLT_MAX = float(np.finfo(np.float32).max)
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+_GLSL_INF = "uintBitsToFloat(0x7F800000u)"  # GLSL 330 has no infinity literal
+
+
+class IRError(ValueError):
+    """Malformed IR: a lowering bug, never a user error (user errors are EffectErrors)."""
+
+
+# --------------------------------------------------------------------------------------------
+# Program representation
+
+
+@dataclass(frozen=True)
+class Input:
+    """A program input. `semantic` is free text for the binder (`TEXCOORD0`, a parameter name);
+    `components` is how many the source supplies; the rest read as (0, 0, 0, 1)."""
+
+    name: str
+    kind: str = "varying"
+    semantic: str = ""
+    components: int = 4
+
+
+@dataclass(frozen=True)
+class SamplerBinding:
+    """A sampler slot a program samples, and the texture kind it expects there."""
+
+    index: int
+    kind: str = "2d"
+
+
+@dataclass(frozen=True)
+class Instr:
+    """`dest = op(args...)` with `attrs` as (name, value) pairs in the op row's order, defaults
+    filled in, so equal instructions compare and hash equal."""
+
+    dest: int | None
+    op: str
+    args: tuple[int, ...] = ()
+    attrs: tuple[tuple[str, Any], ...] = ()
+
+    def attr(self, name: str) -> Any:
+        for key, value in self.attrs:
+            if key == name:
+                return value
+        raise KeyError(f"{self.op} has no attribute {name!r}")
+
+    @property
+    def attr_map(self) -> dict[str, Any]:
+        return dict(self.attrs)
+
+
+@dataclass(frozen=True)
+class Program:
+    """A straight-line program for one stage. Checked on construction (see `check_program`).
+    `outputs` is (name, value id) pairs in the stage's output order."""
+
+    stage: str
+    inputs: tuple[Input, ...] = ()
+    instrs: tuple[Instr, ...] = ()
+    outputs: tuple[tuple[str, int], ...] = ()
+    samplers: tuple[SamplerBinding, ...] = ()
+
+    def __post_init__(self) -> None:
+        check_program(self)
+
+    @property
+    def output_map(self) -> dict[str, int]:
+        return dict(self.outputs)
+
+    def input(self, name: str) -> Input:
+        for item in self.inputs:
+            if item.name == name:
+                return item
+        raise KeyError(name)
+
+    def sampler(self, index: int) -> SamplerBinding:
+        for item in self.samplers:
+            if item.index == index:
+                return item
+        raise KeyError(index)
+
+    def key(self) -> str:
+        """A digest of the printed program, stable across processes (for on-disk caches)."""
+        return hashlib.sha256(format_program(self).encode()).hexdigest()
+
+    def __str__(self) -> str:
+        return format_program(self)
+
+
+# --------------------------------------------------------------------------------------------
+# The op table
+
+
+class KernelContext(Protocol):
+    """What a kernel may ask of the evaluator besides its arguments."""
+
+    count: int
+
+    def input(self, name: str) -> np.ndarray: ...
+
+    def sample(self, index: int, coord: np.ndarray, kind: str, bias: np.ndarray | None,
+               lod: np.ndarray | None) -> np.ndarray: ...
+
+    def kill(self, mask: np.ndarray) -> None: ...
+
+
+Kernel = Callable[[KernelContext, Sequence[np.ndarray], Mapping[str, Any]], "np.ndarray | None"]
+GlslFormat = Callable[[Sequence[str], Mapping[str, Any]], str]
+REQUIRED = object()  # an attribute without a default
+
+# How lowering treats an op's result on fixed-point hardware (ps.1.x): 'arith' results are
+# clamped and quantised by the lowering; 'move' only rearranges existing values; 'source' makes
+# values (inputs, constants); 'precision' is itself a clamp or quantise; 'sample' returns texels
+# (already at the texture's precision); 'effect' has no result.
+PRECISION_CLASSES = ("arith", "move", "source", "precision", "sample", "effect")
+
+
+@dataclass(frozen=True)
+class OpInfo:
+    name: str
+    arity: int
+    kernel: Kernel
+    glsl: str | GlslFormat
+    doc: str
+    precision: str = "arith"
+    attrs: tuple[tuple[str, Any], ...] = ()        # (name, default or REQUIRED)
+    reads: tuple[str, ...] | None = None            # components read per argument; None = all
+    check: Callable[[Mapping[str, Any]], None] | None = None
+    has_result: bool = True
+
+    def format_glsl(self, args: Sequence[str], attrs: Mapping[str, Any] | None = None) -> str:
+        """The GLSL 330 expression (a statement for `kill`) for this op over `args`."""
+        if callable(self.glsl):
+            return self.glsl(args, attrs or {})
+        return self.glsl.format(*args)
+
+
+def glsl_float(value: float) -> str:
+    """A float literal valid in GLSL and in the printer: the shortest float32 round trip."""
+    value = float(value)
+    if not np.isfinite(value):
+        raise IRError(f"non-finite literal {value!r}")
+    text = str(np.float32(value))
+    return text if any(c in text for c in ".e") else text + ".0"
+
+
+def _vec4(values: Iterable[float]) -> str:
+    return "vec4(" + ", ".join(glsl_float(v) for v in values) + ")"
+
+
+def _replicate(x: np.ndarray) -> np.ndarray:
+    return np.repeat(x[:, None], 4, axis=1)
+
+
+def _dot3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    # Explicit left-to-right sum, the order a GPU dot() uses.
+    return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1] + a[:, 2] * b[:, 2]
+
+
+def _nrm(x: np.ndarray) -> np.ndarray:
+    # D3D nrm: a zero-length xyz scales by FLT_MAX instead of dividing by zero (ps/vs docs).
+    f = _dot3(x, x)
+    scale = np.where(f != 0, 1 / np.sqrt(f), np.float32(FLT_MAX)).astype(np.float32)
+    return x * scale[:, None]
+
+
+def _crs(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    out = np.zeros_like(a)
+    out[:, :3] = np.cross(a[:, :3], b[:, :3])
+    return out
+
+
+def _rcp(x: np.ndarray) -> np.ndarray:
+    # D3D rcp: 0 (either sign) gives +inf; IEEE 1/-0 would give -inf.
+    return np.where(x == 0, np.float32(np.inf), 1 / x).astype(np.float32)
+
+
+def _indices(components: str) -> list[int]:
+    return [COMPONENTS.index(c) for c in components]
+
+
+def _merge(old: np.ndarray, new: np.ndarray, mask: str) -> np.ndarray:
+    out = np.array(old, dtype=np.float32, copy=True)
+    idx = _indices(mask)
+    out[:, idx] = new[:, idx]
+    return out
+
+
+def _quantize_params(attrs: Mapping[str, Any]) -> tuple[float, float, float]:
+    """(lo, hi, steps per unit) of the fixed-point grid `quantize` rounds to."""
+    bits, signed, scale = attrs["bits"], attrs["signed"], float(attrs["scale"])
+    levels = 2 ** (bits - 1) - 1 if signed else 2 ** bits - 1
+    return (-scale if signed else 0.0), scale, levels / scale
+
+
+def _quantize(x: np.ndarray, attrs: Mapping[str, Any]) -> np.ndarray:
+    lo, hi, k = _quantize_params(attrs)
+    c = np.clip(x, np.float32(lo), np.float32(hi))
+    k32 = np.float32(k)
+    # Round half away from zero (sign * floor(|x| k + 1/2)); the GLSL template does the same.
+    return (np.sign(c) * np.floor(np.abs(c) * k32 + np.float32(0.5)) / k32).astype(np.float32)
+
+
+def _glsl_quantize(args: Sequence[str], attrs: Mapping[str, Any]) -> str:
+    lo, hi, k = _quantize_params(attrs)
+    c = f"clamp({args[0]}, {glsl_float(lo)}, {glsl_float(hi)})"
+    ks = glsl_float(k)
+    return f"(sign({c}) * floor(abs({c}) * {ks} + 0.5) / {ks})"
+
+
+def _check_quantize(attrs: Mapping[str, Any]) -> None:
+    bits = attrs["bits"]
+    if not isinstance(bits, int) or not (2 if attrs["signed"] else 1) <= bits <= 24:
+        raise IRError(f"quantize bits must be an int in 1..24 (2..24 signed), got {bits!r}")
+    if not float(attrs["scale"]) > 0:
+        raise IRError(f"quantize scale must be positive, got {attrs['scale']!r}")
+
+
+def _check_clamp(attrs: Mapping[str, Any]) -> None:
+    if not float(attrs["lo"]) <= float(attrs["hi"]):
+        raise IRError(f"clamp needs lo <= hi, got {attrs['lo']} > {attrs['hi']}")
+
+
+def _check_pattern(attrs: Mapping[str, Any]) -> None:
+    pattern = attrs["pattern"]
+    if not (isinstance(pattern, str) and len(pattern) == 4 and set(pattern) <= set(COMPONENTS)):
+        raise IRError(f"swizzle pattern must be 4 of 'xyzw', got {pattern!r}")
+
+
+def _check_components(name: str) -> Callable[[Mapping[str, Any]], None]:
+    def check(attrs: Mapping[str, Any]) -> None:
+        mask = attrs[name]
+        if not (isinstance(mask, str) and mask and _is_ordered_subset(mask)):
+            raise IRError(f"{name} must be an ordered subset of 'xyzw', got {mask!r}")
+    return check
+
+
+def _is_ordered_subset(mask: str) -> bool:
+    return all(c in COMPONENTS for c in mask) and list(mask) == sorted(set(mask), key=COMPONENTS.index)
+
+
+def _check_const(attrs: Mapping[str, Any]) -> None:
+    value = attrs["value"]
+    if not (isinstance(value, tuple) and len(value) == 4
+            and all(isinstance(v, float) and np.isfinite(v) for v in value)):
+        raise IRError(f"const value must be 4 finite floats, got {value!r}")
+
+
+def _check_name(attrs: Mapping[str, Any]) -> None:
+    if not isinstance(attrs["name"], str):
+        raise IRError(f"input name must be a string, got {attrs['name']!r}")
+
+
+def _check_sample(attrs: Mapping[str, Any]) -> None:
+    if not isinstance(attrs["sampler"], int) or attrs["sampler"] < 0:
+        raise IRError(f"sampler index must be a non-negative int, got {attrs['sampler']!r}")
+    if attrs["kind"] not in SAMPLER_KINDS:
+        raise IRError(f"sampler kind must be one of {SAMPLER_KINDS}, got {attrs['kind']!r}")
+    if sum(bool(attrs[k]) for k in ("proj", "bias", "lod")) > 1:
+        raise IRError("sample takes at most one of proj, bias, lod (each reads coord.w)")
+
+
+_COORD = {"1d": "x", "2d": "xy", "3d": "xyz", "cube": "xyz"}
+_PROJ_COORD = {"1d": "xw", "2d": "xyw", "3d": "xyzw"}
+
+
+def _sample(ctx: KernelContext, args: Sequence[np.ndarray], attrs: Mapping[str, Any]) -> np.ndarray:
+    coord = np.array(args[0], dtype=np.float32, copy=True)
+    w = coord[:, 3].copy()
+    if attrs["proj"]:
+        coord[:, :3] /= w[:, None]
+        coord[:, 3] = 1
+    return ctx.sample(attrs["sampler"], coord, attrs["kind"], w if attrs["bias"] else None,
+                      w if attrs["lod"] else None)
+
+
+def _glsl_sample(args: Sequence[str], attrs: Mapping[str, Any]) -> str:
+    s, kind, c = f"sampler{attrs['sampler']}", attrs["kind"], args[0]
+    if attrs["proj"]:
+        if kind == "cube":  # GLSL has no textureProj for cube maps
+            return f"texture({s}, {c}.xyz / {c}.w)"
+        swz = _PROJ_COORD[kind]
+        return f"textureProj({s}, {c})" if swz == "xyzw" else f"textureProj({s}, {c}.{swz})"
+    coord = f"{c}.{_COORD[kind]}"
+    if attrs["bias"]:
+        return f"texture({s}, {coord}, {c}.w)"
+    if attrs["lod"]:
+        return f"textureLod({s}, {coord}, {c}.w)"
+    return f"texture({s}, {coord})"
+
+
+def _kill(ctx: KernelContext, args: Sequence[np.ndarray], attrs: Mapping[str, Any]) -> None:
+    ctx.kill(np.any(args[0][:, _indices(attrs["components"])] < 0, axis=1))
+
+
+def _glsl_kill(args: Sequence[str], attrs: Mapping[str, Any]) -> str:
+    mask = attrs["components"]
+    if len(mask) == 1:
+        return f"if ({args[0]}.{mask} < 0.0) discard;"
+    return f"if (any(lessThan({args[0]}.{mask}, vec{len(mask)}(0.0)))) discard;"
+
+
+def _glsl_merge(args: Sequence[str], attrs: Mapping[str, Any]) -> str:
+    old, new = args
+    parts = [f"{new if c in attrs['mask'] else old}.{c}" for c in COMPONENTS]
+    return "vec4(" + ", ".join(parts) + ")"
+
+
+def _elementwise(fn: Callable[..., np.ndarray]) -> Kernel:
+    return lambda ctx, args, attrs: fn(*args)
+
+
+def _with_attrs(fn: Callable[..., np.ndarray]) -> Kernel:
+    return lambda ctx, args, attrs: fn(*args, attrs)
+
+
+def _op(name: str, arity: int, kernel: Kernel, glsl: str | GlslFormat, doc: str,
+        **extra: Any) -> OpInfo:
+    return OpInfo(name, arity, kernel, glsl, doc, **extra)
+
+
+_XYZ2 = ("xyz", "xyz")
+_OP_ROWS = [
+    _op("input", 0, lambda ctx, args, attrs: ctx.input(attrs["name"]),
+        lambda args, attrs: attrs["name"], "the declared input `name`",
+        precision="source", attrs=(("name", REQUIRED),), check=_check_name),
+    _op("const", 0, lambda ctx, args, attrs: np.broadcast_to(
+            np.array(attrs["value"], dtype=np.float32), (ctx.count, 4)),
+        lambda args, attrs: _vec4(attrs["value"]), "a literal vec4",
+        precision="source", attrs=(("value", REQUIRED),), check=_check_const),
+    _op("add", 2, _elementwise(lambda a, b: a + b), "({0} + {1})", "a + b"),
+    _op("sub", 2, _elementwise(lambda a, b: a - b), "({0} - {1})", "a - b"),
+    _op("mul", 2, _elementwise(lambda a, b: a * b), "({0} * {1})", "a * b"),
+    _op("mad", 3, _elementwise(lambda a, b, c: a * b + c), "({0} * {1} + {2})", "a * b + c"),
+    _op("neg", 1, _elementwise(lambda a: -a), "(-{0})", "-a (the source negate modifier)"),
+    _op("dp3", 2, _elementwise(lambda a, b: _replicate(_dot3(a, b))),
+        "vec4(dot({0}.xyz, {1}.xyz))", "a.xyz . b.xyz, replicated to all four", reads=_XYZ2),
+    _op("dp4", 2, _elementwise(lambda a, b: _replicate(_dot3(a, b) + a[:, 3] * b[:, 3])),
+        "vec4(dot({0}, {1}))", "a . b, replicated to all four"),
+    _op("min", 2, _elementwise(np.minimum), "min({0}, {1})", "per-component minimum"),
+    _op("max", 2, _elementwise(np.maximum), "max({0}, {1})", "per-component maximum"),
+    _op("rcp", 1, _elementwise(_rcp),
+        "mix(1.0 / {0}, vec4(" + _GLSL_INF + "), equal({0}, vec4(0.0)))",
+        "1/a per component; 0 -> +inf (D3D rcp)"),
+    _op("rsq", 1, _elementwise(lambda a: 1 / np.sqrt(np.abs(a))),
+        "mix(inversesqrt(abs({0})), vec4(" + _GLSL_INF + "), equal({0}, vec4(0.0)))",
+        "1/sqrt(|a|) per component; 0 -> +inf (D3D rsq)"),
+    _op("exp2", 1, _elementwise(np.exp2), "exp2({0})", "2^a per component (D3D exp)"),
+    _op("log2", 1, _elementwise(lambda a: np.log2(np.abs(a))),
+        "mix(log2(abs({0})), vec4(-" + _GLSL_INF + "), equal({0}, vec4(0.0)))",
+        "log2(|a|) per component; 0 -> -inf (D3D log)"),
+    _op("pow", 2, _elementwise(lambda a, b: np.power(np.abs(a), b)), "pow(abs({0}), {1})",
+        "|a|^b per component (D3D pow). IEEE pow at |a| = 0: 0^0 = 1, 0^-y = +inf; GLSL "
+        "leaves a = 0, b <= 0 undefined"),
+    _op("frc", 1, _elementwise(lambda a: a - np.floor(a)), "fract({0})", "a - floor(a)"),
+    _op("abs", 1, _elementwise(np.abs), "abs({0})", "|a|"),
+    _op("sin", 1, _elementwise(np.sin), "sin({0})", "sin(a) radians (for sincos)"),
+    _op("cos", 1, _elementwise(np.cos), "cos({0})", "cos(a) radians (for sincos)"),
+    _op("cmp", 3, _elementwise(lambda a, b, c: np.where(a >= 0, b, c)),
+        "mix({2}, {1}, greaterThanEqual({0}, vec4(0.0)))", "per component a >= 0 ? b : c"),
+    _op("cnd", 3, _elementwise(lambda a, b, c: np.where(a > 0.5, b, c)),
+        "mix({2}, {1}, greaterThan({0}, vec4(0.5)))",
+        "per component a > 0.5 ? b : c (ps.1.1-1.3 lower r0.a with a 'wwww' swizzle)"),
+    _op("lrp", 3, _elementwise(lambda f, a, b: f * a + (1 - f) * b), "mix({2}, {1}, {0})",
+        "f * a + (1 - f) * b"),
+    _op("nrm", 1, _elementwise(_nrm),
+        "({0} * (dot({0}.xyz, {0}.xyz) != 0.0 ? inversesqrt(dot({0}.xyz, {0}.xyz)) : "
+        + glsl_float(FLT_MAX) + "))",
+        "a * rsq(a.xyz . a.xyz): w is scaled too; zero xyz scales by FLT_MAX (D3D nrm)"),
+    _op("crs", 2, _elementwise(_crs), "vec4(cross({0}.xyz, {1}.xyz), 0.0)",
+        "(a.xyz x b.xyz, 0)", reads=_XYZ2),
+    _op("slt", 2, _elementwise(lambda a, b: (a < b).astype(np.float32)),
+        "vec4(lessThan({0}, {1}))", "per component a < b ? 1 : 0"),
+    _op("sge", 2, _elementwise(lambda a, b: (a >= b).astype(np.float32)),
+        "vec4(greaterThanEqual({0}, {1}))", "per component a >= b ? 1 : 0"),
+    _op("swizzle", 1, _with_attrs(lambda a, attrs: a[:, _indices(attrs["pattern"])]),
+        lambda args, attrs: f"{args[0]}.{attrs['pattern']}", "a.pattern (4 of xyzw)",
+        precision="move", attrs=(("pattern", REQUIRED),), check=_check_pattern),
+    _op("merge", 2, _with_attrs(lambda old, new, attrs: _merge(old, new, attrs["mask"])),
+        _glsl_merge, "write-mask merge: new where `mask` names a component, else old",
+        precision="move", attrs=(("mask", REQUIRED),), check=_check_components("mask")),
+    _op("saturate", 1, _elementwise(lambda a: np.clip(a, np.float32(0), np.float32(1))),
+        "clamp({0}, 0.0, 1.0)", "clamp to [0, 1]", precision="precision"),
+    _op("clamp", 1, _with_attrs(lambda a, attrs: np.clip(
+            a, np.float32(attrs["lo"]), np.float32(attrs["hi"]))),
+        lambda args, attrs: (f"clamp({args[0]}, {glsl_float(attrs['lo'])}, "
+                             f"{glsl_float(attrs['hi'])})"),
+        "clamp to [lo, hi] (register range of fixed-point hardware)", precision="precision",
+        attrs=(("lo", REQUIRED), ("hi", REQUIRED)), check=_check_clamp),
+    _op("quantize", 1, _with_attrs(_quantize), _glsl_quantize,
+        "clamp to [0, scale] (signed: [-scale, scale]) and round, halves away from zero, to "
+        "multiples of scale / L, L = 2^bits - 1 (signed: 2^(bits-1) - 1). bits=8 is UNORM8 "
+        "(0.5 -> 128/255); bits=9 signed is the GeForce3 combiner grid (steps of 1/255)",
+        precision="precision", attrs=(("bits", REQUIRED), ("signed", False), ("scale", 1.0)),
+        check=_check_quantize),
+    _op("sample", 1, _sample, _glsl_sample,
+        "texel of sampler `sampler` (a `kind` texture) at coord. proj: xyz / w first; bias: "
+        "LOD bias coord.w; lod: explicit LOD coord.w. Unbound samplers read (0, 0, 0, 1)",
+        precision="sample", check=_check_sample,
+        attrs=(("sampler", REQUIRED), ("kind", "2d"), ("proj", False), ("bias", False),
+               ("lod", False))),
+    _op("kill", 1, _kill, _glsl_kill,
+        "discard the fragment where any of `components` is < 0 (texkill: ps.1.x tests xyz, "
+        "ps.2.0 xyzw)", precision="effect", attrs=(("components", "xyzw"),),
+        check=_check_components("components"), has_result=False),
+]
+OPS: dict[str, OpInfo] = {row.name: row for row in _OP_ROWS}
+
+
+# --------------------------------------------------------------------------------------------
+# Checking
+
+
+def normalize_attrs(op: str, attrs: Mapping[str, Any]) -> tuple[tuple[str, Any], ...]:
+    """`attrs` in the op row's order with defaults filled in, checked."""
+    info = _op_info(op)
+    known = {name for name, _ in info.attrs}
+    unknown = set(attrs) - known
+    if unknown:
+        raise IRError(f"{op} has no attribute(s) {sorted(unknown)}")
+    pairs = []
+    for name, default in info.attrs:
+        if name in attrs:
+            pairs.append((name, attrs[name]))
+        elif default is REQUIRED:
+            raise IRError(f"{op} needs attribute {name!r}")
+        else:
+            pairs.append((name, default))
+    if info.check is not None:
+        info.check(dict(pairs))
+    return tuple(pairs)
+
+
+def _op_info(op: str) -> OpInfo:
+    try:
+        return OPS[op]
+    except KeyError:
+        raise IRError(f"unknown op {op!r}") from None
+
+
+def check_program(program: Program) -> None:
+    """Raise IRError unless `program` is well formed: SSA (every value defined once, before
+    use), arities and attributes as in OPS, inputs and samplers declared, outputs valid."""
+    if program.stage not in STAGES:
+        raise IRError(f"stage must be one of {STAGES}, got {program.stage!r}")
+    inputs = {}
+    for item in program.inputs:
+        if not _IDENTIFIER.match(item.name) or item.name.startswith("gl_"):
+            raise IRError(f"input name {item.name!r} is not a usable identifier")
+        if item.kind not in INPUT_KINDS:
+            raise IRError(f"input {item.name}: kind must be one of {INPUT_KINDS}")
+        if not 1 <= item.components <= 4:
+            raise IRError(f"input {item.name}: components must be 1..4")
+        if item.name in inputs:
+            raise IRError(f"input {item.name} declared twice")
+        inputs[item.name] = item
+    samplers = {}
+    for binding in program.samplers:
+        if binding.kind not in SAMPLER_KINDS or binding.index in samplers:
+            raise IRError(f"bad or repeated sampler binding {binding}")
+        samplers[binding.index] = binding
+    defined: set[int] = set()
+    for instr in program.instrs:
+        info = _op_info(instr.op)
+        if len(instr.args) != info.arity:
+            raise IRError(f"{instr.op} takes {info.arity} argument(s), got {len(instr.args)}")
+        for arg in instr.args:
+            if arg not in defined:
+                raise IRError(f"{instr.op} uses %{arg} before it is defined")
+        if normalize_attrs(instr.op, instr.attr_map) != instr.attrs:
+            raise IRError(f"{instr.op}: attributes not in canonical form: {instr.attrs}")
+        if instr.op == "input" and instr.attr("name") not in inputs:
+            raise IRError(f"input {instr.attr('name')!r} is not declared")
+        if instr.op == "sample":
+            binding = samplers.get(instr.attr("sampler"))
+            if binding is None or binding.kind != instr.attr("kind"):
+                raise IRError(f"sampler {instr.attr('sampler')} is not declared as "
+                              f"{instr.attr('kind')}")
+        if instr.op == "kill" and program.stage != "fragment":
+            raise IRError("kill is only valid in fragment programs")
+        if info.has_result != (instr.dest is not None):
+            raise IRError(f"{instr.op}: dest must be {'an id' if info.has_result else 'None'}")
+        if instr.dest is not None:
+            if instr.dest in defined:
+                raise IRError(f"%{instr.dest} defined twice")
+            defined.add(instr.dest)
+    allowed = OUTPUTS[program.stage]
+    names = [name for name, _ in program.outputs]
+    if any(name not in allowed for name in names) or len(set(names)) != len(names):
+        raise IRError(f"{program.stage} outputs must be distinct names from {allowed}: {names}")
+    if names != sorted(names, key=allowed.index):
+        raise IRError(f"outputs must be in the order {allowed}")
+    for name, value in program.outputs:
+        if value not in defined:
+            raise IRError(f"output {name} uses undefined %{value}")
+
+
+# --------------------------------------------------------------------------------------------
+# Builder
+
+
+_SWIZZLE_ALIASES = str.maketrans("rgba", "xyzw")
+
+
+def normalize_swizzle(pattern: str) -> str:
+    """'rgba' letters read as xyzw; fewer than 4 components repeat the last (D3D rule)."""
+    pattern = pattern.lower().translate(_SWIZZLE_ALIASES)
+    if not 1 <= len(pattern) <= 4 or not set(pattern) <= set(COMPONENTS):
+        raise IRError(f"bad swizzle {pattern!r}")
+    return pattern + pattern[-1] * (4 - len(pattern))
+
+
+def normalize_mask(mask: str) -> str:
+    mask = mask.lower().translate(_SWIZZLE_ALIASES)
+    if not mask or not _is_ordered_subset(mask):
+        raise IRError(f"bad write mask {mask!r}")
+    return mask
+
+
+class Builder:
+    """Builds a Program one op at a time. Identical pure instructions (equal constants included)
+    are emitted once; identity swizzles and full-mask merges emit nothing."""
+
+    def __init__(self, stage: str) -> None:
+        if stage not in STAGES:
+            raise IRError(f"stage must be one of {STAGES}, got {stage!r}")
+        self.stage = stage
+        self._inputs: dict[str, Input] = {}
+        self._samplers: dict[int, SamplerBinding] = {}
+        self._instrs: list[Instr] = []
+        self._known: dict[tuple, int] = {}
+        self._outputs: dict[str, int] = {}
+
+    # -- the generic entry point
+    def emit(self, op: str, *args: int, **attrs: Any) -> int | None:
+        info = _op_info(op)
+        if len(args) != info.arity:
+            raise IRError(f"{op} takes {info.arity} argument(s), got {len(args)}")
+        for arg in args:
+            if not isinstance(arg, int) or not 0 <= arg < self._next_id():
+                raise IRError(f"{op}: {arg!r} is not a value of this builder")
+        canonical = normalize_attrs(op, attrs)
+        if not info.has_result:
+            self._instrs.append(Instr(None, op, tuple(args), canonical))
+            return None
+        key = (op, tuple(args), canonical)
+        if key not in self._known:
+            self._known[key] = self._next_id()
+            self._instrs.append(Instr(self._known[key], op, tuple(args), canonical))
+        return self._known[key]
+
+    def _next_id(self) -> int:
+        return len(self._known)
+
+    # -- values from outside
+    def input(self, name: str, kind: str = "varying", semantic: str = "",
+              components: int = 4) -> int:
+        declared = Input(name, kind, semantic, components)
+        if self._inputs.setdefault(name, declared) != declared:
+            raise IRError(f"input {name} redeclared as {declared} (was {self._inputs[name]})")
+        return self.emit("input", name=name)
+
+    def varying(self, name: str, semantic: str = "", components: int = 4) -> int:
+        return self.input(name, "varying", semantic, components)
+
+    def uniform(self, name: str, semantic: str = "") -> int:
+        return self.input(name, "uniform", semantic)
+
+    def builtin(self, name: str) -> int:
+        return self.input(name, "builtin")
+
+    def const(self, value: float | Sequence[float]) -> int:
+        values = [value] * 4 if np.isscalar(value) else list(value)
+        if len(values) != 4:
+            raise IRError(f"const needs 1 or 4 components, got {value!r}")
+        # Round to float32 first so values that are equal on the device deduplicate.
+        return self.emit("const", value=tuple(float(np.float32(v)) for v in values))
+
+    # -- arithmetic
+    def add(self, a: int, b: int) -> int: return self.emit("add", a, b)
+    def sub(self, a: int, b: int) -> int: return self.emit("sub", a, b)
+    def mul(self, a: int, b: int) -> int: return self.emit("mul", a, b)
+    def mad(self, a: int, b: int, c: int) -> int: return self.emit("mad", a, b, c)
+    def neg(self, a: int) -> int: return self.emit("neg", a)
+    def dp3(self, a: int, b: int) -> int: return self.emit("dp3", a, b)
+    def dp4(self, a: int, b: int) -> int: return self.emit("dp4", a, b)
+    def min(self, a: int, b: int) -> int: return self.emit("min", a, b)
+    def max(self, a: int, b: int) -> int: return self.emit("max", a, b)
+    def rcp(self, a: int) -> int: return self.emit("rcp", a)
+    def rsq(self, a: int) -> int: return self.emit("rsq", a)
+    def exp2(self, a: int) -> int: return self.emit("exp2", a)
+    def log2(self, a: int) -> int: return self.emit("log2", a)
+    def pow(self, a: int, b: int) -> int: return self.emit("pow", a, b)
+    def frc(self, a: int) -> int: return self.emit("frc", a)
+    def abs(self, a: int) -> int: return self.emit("abs", a)
+    def sin(self, a: int) -> int: return self.emit("sin", a)
+    def cos(self, a: int) -> int: return self.emit("cos", a)
+    def cmp(self, a: int, b: int, c: int) -> int: return self.emit("cmp", a, b, c)
+    def cnd(self, a: int, b: int, c: int) -> int: return self.emit("cnd", a, b, c)
+    def lrp(self, f: int, a: int, b: int) -> int: return self.emit("lrp", f, a, b)
+    def nrm(self, a: int) -> int: return self.emit("nrm", a)
+    def crs(self, a: int, b: int) -> int: return self.emit("crs", a, b)
+    def slt(self, a: int, b: int) -> int: return self.emit("slt", a, b)
+    def sge(self, a: int, b: int) -> int: return self.emit("sge", a, b)
+
+    # -- moves and precision
+    def swizzle(self, a: int, pattern: str) -> int:
+        pattern = normalize_swizzle(pattern)
+        return a if pattern == COMPONENTS else self.emit("swizzle", a, pattern=pattern)
+
+    def merge(self, old: int, new: int, mask: str) -> int:
+        mask = normalize_mask(mask)
+        return new if mask == COMPONENTS else self.emit("merge", old, new, mask=mask)
+
+    def saturate(self, a: int) -> int: return self.emit("saturate", a)
+
+    def clamp(self, a: int, lo: float, hi: float) -> int:
+        return self.emit("clamp", a, lo=float(lo), hi=float(hi))
+
+    def quantize(self, a: int, bits: int, signed: bool = False, scale: float = 1.0) -> int:
+        return self.emit("quantize", a, bits=bits, signed=bool(signed), scale=float(scale))
+
+    # -- textures and effects
+    def sample(self, sampler: int, coord: int, kind: str = "2d", proj: bool = False,
+               bias: bool = False, lod: bool = False) -> int:
+        binding = SamplerBinding(sampler, kind)
+        if self._samplers.setdefault(sampler, binding) != binding:
+            raise IRError(f"sampler {sampler} used as {kind} and {self._samplers[sampler].kind}")
+        return self.emit("sample", coord, sampler=sampler, kind=kind, proj=bool(proj),
+                         bias=bool(bias), lod=bool(lod))
+
+    def kill(self, a: int, components: str = "xyzw") -> None:
+        if self.stage != "fragment":
+            raise IRError("kill is only valid in fragment programs")
+        self.emit("kill", a, components=normalize_mask(components))
+
+    def output(self, name: str, value: int) -> None:
+        if name not in OUTPUTS[self.stage]:
+            raise IRError(f"{name!r} is not a {self.stage} output ({OUTPUTS[self.stage]})")
+        self._outputs[name] = value
+
+    def build(self, prune: bool = True) -> Program:
+        """The program. `prune` drops instructions no output or kill needs (and the inputs and
+        samplers only they used) and renumbers values densely in order."""
+        order = OUTPUTS[self.stage]
+        outputs = sorted(self._outputs.items(), key=lambda item: order.index(item[0]))
+        instrs = self._instrs
+        if prune:
+            instrs, outputs = _prune(instrs, outputs)
+        used_inputs = {i.attr("name") for i in instrs if i.op == "input"}
+        used_samplers = {i.attr("sampler") for i in instrs if i.op == "sample"}
+        return Program(
+            stage=self.stage,
+            inputs=tuple(v for k, v in self._inputs.items() if k in used_inputs),
+            instrs=tuple(instrs),
+            outputs=tuple(outputs),
+            samplers=tuple(self._samplers[i] for i in sorted(used_samplers)))
+
+
+def _prune(instrs: list[Instr], outputs: list[tuple[str, int]]
+           ) -> tuple[list[Instr], list[tuple[str, int]]]:
+    live = {value for _, value in outputs}
+    kept = []
+    for instr in reversed(instrs):
+        if instr.dest is None or instr.dest in live:
+            kept.append(instr)
+            live.update(instr.args)
+    kept.reverse()
+    renumber = {instr.dest: n for n, instr in enumerate(i for i in kept if i.dest is not None)}
+    renumbered = [Instr(None if i.dest is None else renumber[i.dest], i.op,
+                        tuple(renumber[a] for a in i.args), i.attrs) for i in kept]
+    return renumbered, [(name, renumber[value]) for name, value in outputs]
+
+
+# --------------------------------------------------------------------------------------------
+# Printer
+
+
+def _format_attr(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return glsl_float(value)
+    if isinstance(value, tuple):
+        return "(" + ", ".join(_format_attr(v) for v in value) + ")"
+    return str(value)
+
+
+def format_instr(instr: Instr) -> str:
+    """One instruction as text: `%3 = mad %0, %1, %2`, attributes that differ from their
+    defaults after the arguments (`sampler=0 kind=cube`)."""
+    info = _op_info(instr.op)
+    defaults = dict(info.attrs)
+    if instr.op == "input":
+        operands = [instr.attr("name")]
+    elif instr.op == "const":
+        operands = [_format_attr(instr.attr("value"))]
+    else:
+        operands = [", ".join(f"%{a}" for a in instr.args)] if instr.args else []
+        operands += [f"{k}={_format_attr(v)}" for k, v in instr.attrs
+                     if defaults[k] is REQUIRED or v != defaults[k]]
+    text = " ".join([instr.op, *operands])
+    return text if instr.dest is None else f"%{instr.dest} = {text}"
+
+
+def format_program(program: Program) -> str:
+    """Readable, stable text for golden tests: header, declarations, body, outputs."""
+    lines = [f"{program.stage} program"]
+    for item in program.inputs:
+        extra = [f"semantic={item.semantic}"] if item.semantic else []
+        extra += [f"components={item.components}"] if item.components != 4 else []
+        lines.append(" ".join([f"input {item.name}: {item.kind}", *extra]))
+    lines += [f"sampler {s.index}: {s.kind}" for s in program.samplers]
+    lines += [format_instr(instr) for instr in program.instrs]
+    lines += [f"output {name} = %{value}" for name, value in program.outputs]
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,154 @@
+"""What one lowered pass hands to a back end: programs, render state, texture bindings, uniforms.
+
+Every field defaults to Direct3D 9's device default, so `RenderState()` is the state a fresh
+device starts in (D3DRENDERSTATETYPE and D3DSAMPLERSTATETYPE documentation). Enum values are the
+canonical state-value names of the effect files, without prefix (`LESSEQUAL`, `CCW`, `ONE`);
+colours are (r, g, b, a) floats. Back ends map them to GL; they never see a caps profile.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy as np
+
+from .ir import IRError, Program
+
+Color = tuple[float, float, float, float]
+
+
+@dataclass(frozen=True)
+class RenderState:
+    """Raster, depth, stencil, blend and fog state of a pass (D3D9 defaults)."""
+
+    # Depth: D3DZB_TRUE because the framework's device always has a depth buffer
+    # (D3D9 defaults ZENABLE to TRUE when the device is created with an auto depth stencil).
+    z_enable: bool = True
+    z_write_enable: bool = True
+    z_func: str = "LESSEQUAL"
+    depth_bias: float = 0.0
+    slope_scale_depth_bias: float = 0.0
+    # Rasterisation
+    cull_mode: str = "CCW"                 # NONE | CW | CCW (which winding is culled)
+    fill_mode: str = "SOLID"               # POINT | WIREFRAME | SOLID
+    shade_mode: str = "GOURAUD"            # FLAT | GOURAUD
+    scissor_test_enable: bool = False
+    clip_plane_enable: int = 0             # bit i enables user clip plane i
+    # Alpha test: compares the 8-bit output alpha with alpha_ref (0..255)
+    alpha_test_enable: bool = False
+    alpha_func: str = "ALWAYS"
+    alpha_ref: int = 0
+    # Blending
+    alpha_blend_enable: bool = False
+    src_blend: str = "ONE"
+    dest_blend: str = "ZERO"
+    blend_op: str = "ADD"
+    separate_alpha_blend_enable: bool = False
+    src_blend_alpha: str = "ONE"
+    dest_blend_alpha: str = "ZERO"
+    blend_op_alpha: str = "ADD"
+    blend_factor: Color = (1.0, 1.0, 1.0, 1.0)   # 0xFFFFFFFF
+    color_write_enable: int = 0xF                # bits: 1 red, 2 green, 4 blue, 8 alpha
+    dither_enable: bool = False
+    srgb_write_enable: bool = False
+    # Stencil
+    stencil_enable: bool = False
+    stencil_func: str = "ALWAYS"
+    stencil_ref: int = 0
+    stencil_mask: int = 0xFFFFFFFF
+    stencil_write_mask: int = 0xFFFFFFFF
+    stencil_fail: str = "KEEP"
+    stencil_zfail: str = "KEEP"
+    stencil_pass: str = "KEEP"
+    two_sided_stencil_mode: bool = False
+    ccw_stencil_func: str = "ALWAYS"
+    ccw_stencil_fail: str = "KEEP"
+    ccw_stencil_zfail: str = "KEEP"
+    ccw_stencil_pass: str = "KEEP"
+    # Fog (applied after the pixel program for ps < 3.0) and the FF specular add. A lowering
+    # may fold either into the fragment program; then it leaves these at their defaults.
+    fog_enable: bool = False
+    fog_color: Color = (0.0, 0.0, 0.0, 0.0)      # 0x00000000
+    fog_table_mode: str = "NONE"                 # NONE | EXP | EXP2 | LINEAR (per pixel)
+    fog_vertex_mode: str = "NONE"                # per vertex
+    fog_start: float = 0.0
+    fog_end: float = 1.0
+    fog_density: float = 1.0
+    range_fog_enable: bool = False
+    specular_enable: bool = False
+
+
+@dataclass(frozen=True)
+class TextureBinding:
+    """The texture on one sampler slot and that sampler's state (D3DSAMP_* defaults).
+    `texture` names the effect parameter, or a generated texture (normalisation cube map,
+    power table) by a key the lowering chooses; None leaves the slot unbound."""
+
+    sampler: int
+    texture: str | None = None
+    kind: str = "2d"
+    address_u: str = "WRAP"
+    address_v: str = "WRAP"
+    address_w: str = "WRAP"
+    border_color: Color = (0.0, 0.0, 0.0, 0.0)
+    mag_filter: str = "POINT"
+    min_filter: str = "POINT"
+    mip_filter: str = "NONE"
+    mip_lod_bias: float = 0.0
+    max_mip_level: int = 0
+    max_anisotropy: int = 1
+    srgb_texture: bool = False
+
+
+@dataclass(frozen=True)
+class PassProgram:
+    """One pass, lowered. `vertex` None means pre-transformed vertices (XYZRHW): positions
+    arrive in window space and the attributes pass straight to the fragment program.
+    `uniforms` is (name, vec4) pairs: constant registers, one row of a matrix each."""
+
+    fragment: Program
+    vertex: Program | None = None
+    render_state: RenderState = RenderState()
+    textures: tuple[TextureBinding, ...] = ()
+    uniforms: tuple[tuple[str, tuple[float, float, float, float]], ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.fragment.stage != "fragment":
+            raise IRError("PassProgram.fragment must be a fragment program")
+        if self.vertex is not None and self.vertex.stage != "vertex":
+            raise IRError("PassProgram.vertex must be a vertex program")
+        slots = [t.sampler for t in self.textures]
+        if len(set(slots)) != len(slots):
+            raise IRError(f"sampler slots bound twice: {slots}")
+        for binding in self.fragment.samplers:
+            texture = self.texture(binding.index)
+            if texture is not None and texture.kind != binding.kind:
+                raise IRError(f"sampler {binding.index}: program samples {binding.kind}, "
+                              f"texture binding is {texture.kind}")
+        for name, value in self.uniforms:
+            if len(value) != 4:
+                raise IRError(f"uniform {name} must have 4 components")
+
+    def texture(self, sampler: int) -> TextureBinding | None:
+        for binding in self.textures:
+            if binding.sampler == sampler:
+                return binding
+        return None
+
+    def uniform_values(self) -> dict[str, np.ndarray]:
+        """The uniforms as float32 vec4 arrays, ready for `evaluate(..., inputs=)`."""
+        return {name: np.array(value, dtype=np.float32) for name, value in self.uniforms}
+
+    @staticmethod
+    def pack_uniforms(values: Mapping[str, object]) -> tuple[tuple[str, tuple[float, ...]], ...]:
+        """(name, vec4) pairs from a mapping of 1- to 4-component values (missing components
+        read (0, 0, 0, 1), as inputs do), sorted by name for a stable hash."""
+        packed = []
+        for name in sorted(values):
+            v = np.ravel(np.asarray(values[name], dtype=np.float32))
+            if not 1 <= v.size <= 4:
+                raise IRError(f"uniform {name} must have 1 to 4 components, got {v.size}")
+            full = np.array([0, 0, 0, 1], dtype=np.float32)
+            full[:v.size] = v
+            packed.append((name, tuple(float(x) for x in full)))
+        return tuple(packed)
