@@ -1,0 +1,100 @@
+"""The `effects` command line: validate, matrix, render, view, profiles.
+
+Exit codes (DESIGN.md): 0 ok, 1 invalid or not renderable, 2 bad input or usage.
+No Python traceback reaches a user: every `EffectError` is printed located, with its line.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from typing import Sequence
+
+from rich.console import Console
+
+from .errors import EffectError
+
+EXIT_OK, EXIT_INVALID, EXIT_BAD_INPUT = 0, 1, 2
+
+
+class UsageError(Exception):
+    pass
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that reports usage problems as exit code 2 without printing a traceback."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.print_usage(sys.stderr)
+        raise UsageError(f"{self.prog}: error: {message}")
+
+
+def _add_validate(sub) -> None:
+    p = sub.add_parser("validate", help="load an effect and tell which techniques each card can run")
+    p.add_argument("file", help="effect file (.fx)")
+    p.add_argument("--profile", "-p", action="append", default=[], metavar="P",
+                   help="caps profile name or YAML path (repeatable; default: the model summary only)")
+    p.add_argument("--why", action="store_true", help="list every reason, not just the first")
+    p.add_argument("--strict", action="store_true", help="unknown state names are errors")
+    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
+                   help="preprocessor macro")
+    p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
+                   help="include search folder")
+    p.set_defaults(run=_cmd_validate)
+
+
+def _defines(items: Sequence[str]) -> dict[str, str]:
+    out = {}
+    for item in items:
+        name, _, value = item.partition("=")
+        out[name] = value if _ else "1"
+    return out
+
+
+def _load(args):
+    from .loader import load_effect
+    return load_effect(args.file, defines=_defines(getattr(args, "defines", [])),
+                       include_dirs=getattr(args, "include_dirs", []),
+                       strict=getattr(args, "strict", False))
+
+
+def _cmd_validate(args, console: Console) -> int:
+    from .summary import print_effect_summary
+    effect = _load(args)
+    for warning in effect.warnings:
+        console.print(warning.report(), markup=False, highlight=False, style="yellow")
+    print_effect_summary(effect, console)
+    return EXIT_OK
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="effects", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    _add_validate(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    console = Console(highlight=False)
+    err = Console(stderr=True, highlight=False)
+    try:
+        args = build_parser().parse_args(argv)
+        return args.run(args, console)
+    except UsageError as exc:
+        err.print(str(exc), markup=False)
+        return EXIT_BAD_INPUT
+    except EffectError as exc:
+        err.print(exc.report(), markup=False)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        return 130
+    except Exception as exc:  # a bug of ours, not bad input: say so briefly
+        if os.environ.get("EFFECTS_DEBUG"):
+            raise
+        err.print(f"effects: internal error: {type(exc).__name__}: {exc} "
+                  "(set EFFECTS_DEBUG=1 for the traceback)", markup=False)
+        return EXIT_BAD_INPUT
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())
