@@ -1,0 +1,22 @@
+"""Direct3D shader assembly (vs_1_1–vs_3_0, ps_1_0–ps_3_0): parse, table, validate.
+
+    program = assemble(block)        # AsmError at the first syntax error
+    errors = check(program)          # every rule of the version the program breaks
+    program.stats                    # slots, registers, dependent-read depth ... for the caps
+
+`INSTRUCTIONS` is the per-instruction table (instructions.py) and `VERSIONS` the per-version
+limits (versions.py); the lowering reads `Instruction.info` to know what each one computes.
+"""
+from .check import check
+from .instructions import TABLE as INSTRUCTIONS
+from .instructions import InstrInfo, lookup
+from .parser import NOT_ASSEMBLY, assemble
+from .program import AsmProgram, ConstantDef, Declaration, Instruction, Operand, RelativeAddress
+from .stats import AsmStats
+from .versions import VERSIONS, VersionRules, canonical_version
+
+__all__ = [
+    "AsmProgram", "AsmStats", "ConstantDef", "Declaration", "INSTRUCTIONS", "InstrInfo",
+    "Instruction", "NOT_ASSEMBLY", "Operand", "RelativeAddress", "VERSIONS", "VersionRules",
+    "assemble", "canonical_version", "check", "lookup",
+]

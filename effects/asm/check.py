@@ -1,0 +1,731 @@
+"""Validate an assembled program against the rules of its version.
+
+`check(program)` returns every violation as a located AsmError (sorted by position): which
+instructions the version has, register kinds and ranges, read ports, modifiers, swizzles and
+write masks, slot limits, the ps_1_1–1_3 texture-address rules, the ps_1_4 phase rules, the
+ps_2_0 dependent-read limit, uninitialised reads, declarations and the final output write.
+Limits come from versions.py and costs from instructions.py (sources named there).
+"""
+from __future__ import annotations
+
+from ..errors import AsmError, Location
+from .instructions import MATRIX_ROWS, versions_having
+from .program import COMPONENTS, AsmProgram, Instruction, Operand
+from .stats import instruction_slots, texture_read_levels
+from .versions import IDENTITY, KIND_NAMES, PS20_SWIZZLES
+
+_MODIFIER_SYNTAX = {"bias": "_bias", "bx2": "_bx2", "x2": "_x2", "invert": "1-", "dz": "_dz",
+                    "dw": "_dw", "abs": "_abs"}
+_SHIFT_SYNTAX = {1: "_x2", 2: "_x4", 3: "_x8", -1: "_d2", -2: "_d4", -3: "_d8"}
+_PS1_TEXM_FINAL3 = ("texm3x3tex", "texm3x3spec", "texm3x3vspec", "texm3x3")
+_OUTPUT_ONLY = {"o", "oPos", "oD", "oT", "oFog", "oPts", "oC", "oDepth"}
+
+
+def _ordinal(n: int) -> str:
+    suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
+    return f"{n}{suffix}"
+
+
+def _register_range(kind: str, count: int) -> str:
+    if count == 1:
+        return f"{kind}0" if kind not in ("oPos", "oFog", "oPts", "oDepth", "aL", "vPos", "vFace") else kind
+    return f"{kind}0–{kind}{count - 1}"
+
+
+class _Checker:
+    def __init__(self, program: AsmProgram) -> None:
+        self.p = program
+        self.rules = program.rules
+        self.v = program.name
+        self.errors: list[AsmError] = []
+        self.written: set[tuple[str, int | None]] = set()
+        self.written_phase: dict[tuple[str, int | None], int] = {}
+
+    def err(self, message: str, location: Location) -> None:
+        self.errors.append(AsmError(message, location,
+                                    source_line=self.p.source_line(location)))
+
+    # ------------------------------------------------------------------------------------------
+    def run(self) -> list[AsmError]:
+        self._setup_statements()
+        self._instructions()
+        self._slots()
+        if self.rules.is_ps11_13:
+            self._ps11_texture_rules()
+        if self.rules.is_ps14:
+            self._ps14_phase_rules()
+        self._dependent_reads()
+        self._flow_nesting()
+        self._final_output()
+        return sorted(self.errors, key=lambda e: (e.location.line, e.location.column))
+
+    # -- def / dcl -----------------------------------------------------------------------------
+    def _setup_statements(self) -> None:
+        seen: set[tuple[str, int | None]] = set()
+        for cd in self.p.def_statements:
+            reg = cd.register
+            opcode = {"c": "def", "i": "defi", "b": "defb"}.get(reg.kind, "def")
+            if self.v not in _versions_of(opcode):
+                self.err(_not_available(opcode, self.v), cd.location)
+                continue
+            want = 1 if opcode == "defb" else 4
+            if reg.kind not in ("c", "i", "b"):
+                self.err(f"def needs a constant register (c#), not {reg.name}", reg.location)
+                continue
+            if len(cd.values) != want:
+                self.err(f"{opcode} {reg.name} needs {want} value{'s' if want > 1 else ''}; "
+                         f"found {len(cd.values)}", cd.location)
+            self._check_index(reg)
+            if cd.after_code:
+                self.err(f"{opcode} must come before the first instruction", cd.location)
+        for d in self.p.dcls:
+            if d.from_decl:
+                continue
+            reg = d.register
+            if self.v not in _versions_of("dcl"):
+                self.err(_not_available("dcl", self.v), d.location)
+                continue
+            if d.after_code:
+                self.err("declarations must come before the first instruction", d.location)
+            key = (reg.kind, reg.index)
+            if key in seen:
+                self.err(f"{reg.name} is declared twice", d.location)
+            seen.add(key)
+            if not self._check_index(reg):
+                continue
+            self._check_declaration(d)
+
+    def _check_declaration(self, d) -> None:
+        reg, kind = d.register, d.register.kind
+        if kind == "s":
+            if self.p.kind == "vs" and self.rules.major < 3:
+                self.err(f"{self.v} has no samplers to declare", d.location)
+            elif d.sampler_type is None:
+                self.err(f"dcl {reg.name} needs a texture type: dcl_2d, dcl_cube or dcl_volume",
+                         d.location)
+            return
+        if d.sampler_type is not None:
+            self.err(f"dcl_{d.sampler_type} declares a sampler (s#), not {reg.name}", d.location)
+            return
+        if self.p.kind == "vs":
+            if kind not in ("v", "o"):
+                self.err(f"a vertex shader declares inputs (v#) or vs_3_0 outputs (o#), not "
+                         f"{reg.name}", d.location)
+            elif d.usage is None:
+                self.err(f"dcl {reg.name} needs a usage, e.g. dcl_position {reg.name}",
+                         d.location)
+        elif self.rules.major == 2:
+            if kind not in ("t", "v"):
+                self.err(f"{self.v} declares t#, v# and s# registers, not {reg.name}", d.location)
+            elif d.usage is not None:
+                self.err(f"{self.v} declares {reg.name} with plain dcl (usages are for vertex "
+                         "shaders and ps_3_0)", d.location)
+        elif kind not in ("v", "vPos", "vFace"):
+            self.err(f"{self.v} declares v# and s# registers, not {reg.name}", d.location)
+
+    # -- per instruction -----------------------------------------------------------------------
+    def _instructions(self) -> None:
+        prev: Instruction | None = None
+        for ins in self.p.instructions:
+            if self.v not in ins.info.versions:
+                self.err(_not_available(ins.opcode, self.v), ins.location)
+                self._record_write(ins)
+                prev = ins
+                continue
+            if len(ins.operands) != len(ins.info.operands) and not (
+                    ins.opcode in ("if", "break") and ins.comparison):
+                self.err(f"{ins.opcode} takes {len(ins.info.operands)} operands; found "
+                         f"{len(ins.operands)}", ins.location)
+                prev = ins
+                continue
+            self._instruction_modifiers(ins)
+            self._coissue(ins, prev)
+            ok = self._operand_kinds(ins)
+            if ok:
+                self._source_modifiers(ins)
+                self._swizzles(ins)
+                self._write_mask(ins)
+                self._read_ports(ins)
+                self._special(ins)
+                self._reads_initialised(ins)
+            self._record_write(ins)
+            prev = ins
+
+    def _instruction_modifiers(self, ins: Instruction) -> None:
+        r = self.rules
+        if not ins.info.modifiers and (ins.shift or ins.saturate):
+            mod = _SHIFT_SYNTAX.get(ins.shift) or "_sat"
+            self.err(f"{ins.opcode} takes no instruction modifiers ({mod})", ins.location)
+            return
+        if ins.shift not in r.shifts and ins.shift:
+            syntax = _SHIFT_SYNTAX[ins.shift]
+            if r.shifts:
+                allowed = ", ".join(_SHIFT_SYNTAX[s] for s in r.shifts if s)
+                self.err(f"the {syntax} instruction modifier is not available in {self.v} "
+                         f"(it has {allowed})", ins.location)
+            else:
+                self.err(f"{self.v} has no result shift modifiers ({syntax})", ins.location)
+        if ins.saturate and not r.saturate:
+            self.err(f"the _sat modifier is not available in {self.v}", ins.location)
+        if ins.partial_precision and not r.partial_precision:
+            self.err(f"the _pp modifier needs ps_2_0 or later (this program is {self.v})",
+                     ins.location)
+        if ins.predicate is not None and not r.predication:
+            self.err(f"predicated instructions need ps_2_x, ps_2_a, ps_3_0 or vs_2_x "
+                     f"(this program is {self.v})", ins.predicate.location)
+
+    def _coissue(self, ins: Instruction, prev: Instruction | None) -> None:
+        if not ins.coissue:
+            return
+        if not self.rules.coissue:
+            self.err(f"co-issue (+) exists only in ps_1_x, not in {self.v}", ins.location)
+            return
+        if not ins.is_arithmetic or prev is None or not prev.is_arithmetic or prev.coissue:
+            self.err("a co-issued (+) instruction must pair with the arithmetic instruction "
+                     "just before it", ins.location)
+            return
+        masks = {prev.dst.components if prev.dst else (), ins.dst.components if ins.dst else ()}
+        if (3,) not in masks or any(3 in m for m in masks if m != (3,)) or len(masks) != 2:
+            self.err("co-issued instructions must split the work: one writes .rgb (colour), "
+                     "the other .a (alpha)", ins.location)
+
+    def _operand_kinds(self, ins: Instruction) -> bool:
+        ok = True
+        info = ins.info
+        if ins.dst is not None:
+            allowed = info.dst_kinds or tuple(self.rules.writable)
+            if ins.dst.kind not in allowed:
+                self.err(self._kind_message(ins, ins.dst, allowed, write=True),
+                         ins.dst.location)
+                ok = False
+            elif not self._check_index(ins.dst):
+                ok = False
+        roles = info.source_roles if not (ins.opcode in ("if", "break") and ins.comparison) \
+            else "ss"
+        for i, (src, role) in enumerate(zip(ins.srcs, roles)):
+            if role in "sx":
+                allowed = info.src_kind(i) or tuple(self.rules.readable)
+            else:
+                allowed = {"S": ("s",), "l": ("l",), "b": ("b", "p"), "I": ("i",),
+                           "L": ("aL",), "p": ("p",)}.get(role, ())
+            if src.kind == "imm":
+                self.err(f"{ins.opcode} needs a register here, not the number {src.text}",
+                         src.location)
+                ok = False
+            elif src.kind not in allowed:
+                self.err(self._kind_message(ins, src, allowed, write=False), src.location)
+                ok = False
+            elif not self._check_index(src):
+                ok = False
+        return ok
+
+    def _kind_message(self, ins: Instruction, op: Operand, allowed, *, write: bool) -> str:
+        if op.kind not in self.rules.registers and op.kind != "imm":
+            return f"{self.v} has no {op.kind}# registers ({op.name})" if op.index is not None \
+                else f"{self.v} has no {op.kind} register"
+        if not write and op.kind in _OUTPUT_ONLY:
+            return f"{op.name} is an output register; it cannot be read"
+        if write and op.kind not in self.rules.writable and op.kind in self.rules.registers \
+                and not ins.info.dst_kinds:
+            return f"{op.name} is read-only in {self.v}; it cannot be written"
+        names = " or ".join(f"{k}#" if k not in ("aL", "oPos", "oFog", "oPts", "oDepth") else k
+                            for k in sorted(allowed))
+        what = "write" if write else "read"
+        return f"{ins.opcode} cannot {what} {op.name} in {self.v} (it takes {names})"
+
+    def _check_index(self, op: Operand) -> bool:
+        count = self.rules.registers.get(op.kind)
+        if count is None:
+            if op.kind not in ("imm", "l"):
+                self.err(f"{self.v} has no {KIND_NAMES.get(op.kind, op.kind)} registers "
+                         f"({op.name})", op.location)
+                return False
+            return True
+        if op.relative is not None:
+            if op.kind != "c" and not (self.rules.major == 3 and op.kind in ("v", "o")):
+                self.err(f"{op.kind}# registers cannot be indexed relatively", op.location)
+                return False
+            if self.p.kind == "ps" and self.rules.major < 3:
+                self.err(f"relative addressing is not available in {self.v}", op.location)
+                return False
+            if self.rules.major == 1 and (op.relative.kind != "a" or op.relative.component != 0):
+                self.err(f"{self.v} indexes constants only with a0.x", op.location)
+                return False
+        if op.index is not None and op.index >= count:
+            name = KIND_NAMES.get(op.kind, op.kind)
+            plural = "register" if count == 1 else "registers"
+            self.err(f"{op.name} is out of range: {self.v} has {count} {name} {plural} "
+                     f"({_register_range(op.kind, count)})", op.location)
+            return False
+        return True
+
+    def _source_modifiers(self, ins: Instruction) -> None:
+        r = self.rules
+        for i, src in enumerate(ins.srcs):
+            if src.modifier is None and not src.negate:
+                continue
+            if src.negate and src.kind in ("s", "l", "i", "aL") and ins.opcode not in ("if", "callnz", "breakp"):
+                self.err(f"{src.name} cannot be negated", src.location)
+                continue
+            mod = src.modifier
+            if mod is None:
+                if r.is_ps11_13 and ins.is_texture:
+                    self.err(f"texture address instructions take no source modifiers except "
+                             f"_bx2 in {self.v}", src.location)
+                if not r.is_ps1 and ins.opcode.startswith("m") and ins.opcode[1:2] in "34" \
+                        and i == 1 and self.p.kind == "ps":
+                    self.err(f"{ins.opcode} cannot negate its matrix source", src.location)
+                if r.is_ps14 and src.kind == "c":
+                    self.err(f"ps_1_4 allows no source modifiers on constants ({src.text})",
+                             src.location)
+                continue
+            syntax = _MODIFIER_SYNTAX[mod]
+            if mod not in r.src_modifiers:
+                if mod == "x2":
+                    self.err(f"the _x2 source modifier needs ps_1_4 (this program is {self.v})",
+                             src.location)
+                elif mod in ("dz", "dw"):
+                    self.err(f"the {syntax} modifier exists only on ps_1_4 texld and texcrd "
+                             f"sources", src.location)
+                elif mod == "abs":
+                    self.err(f"the _abs source modifier needs a 3_0 shader (this program is "
+                             f"{self.v}); use the abs instruction", src.location)
+                else:
+                    self.err(f"the {syntax} source modifier exists only in ps_1_x, not in "
+                             f"{self.v}", src.location)
+                continue
+            if r.is_ps11_13 and ins.is_texture:
+                if mod != "bx2":
+                    self.err(f"texture address instructions take no source modifiers except "
+                             f"_bx2 in {self.v}", src.location)
+                elif self.v in ("ps_1_0", "ps_1_1") and not ins.opcode.startswith("texm"):
+                    self.err(f"in {self.v} _bx2 is allowed only on texm* sources, not on "
+                             f"{ins.opcode}", src.location)
+                continue
+            if mod in ("dz", "dw"):
+                if ins.opcode not in ("texld", "texcrd"):
+                    self.err(f"the {syntax} modifier exists only on texld and texcrd sources",
+                             src.location)
+                elif mod == "dz" and (ins.opcode != "texld" or src.kind != "r"):
+                    self.err("_dz is allowed only on texld with an r# source (phase 2)",
+                             src.location)
+                continue
+            if r.is_ps14 and src.kind == "c":
+                self.err(f"ps_1_4 allows no source modifiers on constants ({src.text})",
+                         src.location)
+            if r.is_ps14 and ins.opcode in ("texld", "texcrd"):
+                self.err(f"{ins.opcode} takes only the _dz/_dw modifiers on its source",
+                         src.location)
+
+    def _swizzles(self, ins: Instruction) -> None:
+        r = self.rules
+        for i, src in enumerate(ins.srcs):
+            if src.kind in ("imm", "l"):
+                continue
+            role = ins.info.source_roles[i] if i < len(ins.info.source_roles) else "s"
+            text = src.swizzle_text
+            if src.kind == "s" and text and (r.major < 3):
+                self.err(f"a sampler takes no swizzle in {self.v} ({src.name}.{text})",
+                         src.location)
+                continue
+            if r.is_ps11_13:
+                if ins.is_texture:
+                    if text and src.swizzle != IDENTITY:
+                        self.err(f"texture address instructions take no swizzle in {self.v}",
+                                 src.location)
+                    continue
+                if src.swizzle == IDENTITY or src.swizzle == (3, 3, 3, 3):
+                    continue
+                if src.swizzle == (2, 2, 2, 2):
+                    if ins.dst is None or ins.dst.mask != (3,):
+                        self.err(f"the .{text} (blue replicate) selector is allowed in {self.v} "
+                                 "only when the instruction writes .a alone", src.location)
+                    continue
+                self.err(f"{self.v} does not support the swizzle .{text}; sources take only "
+                         f"the .a selector (and .b in alpha-only instructions)", src.location)
+            elif r.is_ps14:
+                if ins.opcode in ("texld", "texcrd"):
+                    if src.swizzle not in (IDENTITY, (0, 1, 2, 2), (0, 1, 3, 3)):
+                        self.err(f"{ins.opcode} takes .xyz or .xyw on its source, not .{text}",
+                                 src.location)
+                    continue
+                if src.swizzle != IDENTITY and not src.is_replicate:
+                    self.err(f"ps_1_4 does not support the swizzle .{text}; sources take only "
+                             "the .r, .g, .b or .a selectors", src.location)
+            elif self.p.kind == "ps":
+                if ins.opcode in ("texld", "texldp", "texldb") and r.major == 2 and text:
+                    self.err(f"{ins.opcode} takes no swizzle on its sources in {self.v}",
+                             src.location)
+                    continue
+                if role == "x" and not src.is_replicate:
+                    shown = f"{src.name}.{text}" if text else src.name
+                    self.err(f"{ins.opcode} reads one component: give {shown} a replicate "
+                             "swizzle (.x, .y, .z or .w)", src.location)
+                    continue
+                if r.swizzles == "ps20" and src.swizzle != IDENTITY and not src.is_replicate \
+                        and src.swizzle not in PS20_SWIZZLES:
+                    self.err(f"{self.v} does not support the swizzle .{text}; arbitrary swizzles "
+                             "need ps_2_x with D3DPS20CAPS_ARBITRARYSWIZZLE, ps_2_a or ps_3_0",
+                             src.location)
+
+    def _write_mask(self, ins: Instruction) -> None:
+        d = ins.dst
+        if d is None:
+            return
+        r = self.rules
+        if r.is_ps11_13:
+            if ins.is_texture:
+                if d.mask is not None:
+                    self.err(f"texture address instructions write all of {d.name}; remove "
+                             f"the write mask .{d.mask_text}", d.location)
+                return
+            if d.mask not in (None, (0, 1, 2), (3,), (0, 1, 2, 3)):
+                self.err(f"{self.v} allows only the write masks .rgba, .rgb and .a; "
+                         f".{d.swizzle_text} is not one of them", d.location)
+            elif ins.opcode == "dp3" and d.mask == (3,):
+                self.err(f"dp3 in {self.v} must write .rgb or .rgba", d.location)
+            return
+        if ins.opcode in ("texld", "texldp", "texldb", "texldd") and r.major == 2 \
+                and d.mask is not None and d.mask != (0, 1, 2, 3):
+            self.err(f"{ins.opcode} writes all four components in {self.v}; remove the write "
+                     f"mask .{d.swizzle_text}", d.location)
+        elif ins.opcode == "sincos" and (d.mask is None or not set(d.mask) <= {0, 1}):
+            self.err("sincos writes .x, .y or .xy only; give it one of those write masks",
+                     d.location)
+        elif ins.opcode == "crs" and 3 in d.components:
+            self.err("crs writes .x, .y and .z only; give it a write mask without .w",
+                     d.location)
+        elif ins.opcode == "frc" and self.v == "vs_1_1" and d.mask not in ((1,), (0, 1)):
+            self.err("frc in vs_1_1 must write .y or .xy", d.location)
+        elif ins.opcode == "bem" and d.mask != (0, 1):
+            self.err("bem must write .rg (.xy)", d.location)
+        if d.kind == "a":
+            if d.mask not in ((0,), None) and r.major == 1:
+                self.err(f"a0 can be written only as a0.x in {self.v}", d.location)
+            elif r.major == 1 and d.mask is None:
+                self.err(f"a0 can be written only as a0.x in {self.v}", d.location)
+            if r.major == 1 and ins.opcode != "mov":
+                self.err(f"a0 can be written only by mov in {self.v}", ins.location)
+            if r.major >= 2 and ins.opcode != "mova":
+                self.err(f"a0 can be written only by mova in {self.v}", ins.location)
+        if d.kind in ("oC", "oDepth") and ins.opcode != "mov":
+            self.err(f"{d.name} can be written only by mov", ins.location)
+
+    def _read_ports(self, ins: Instruction) -> None:
+        seen: dict[str, list[Operand]] = {}
+        for src in ins.srcs:
+            if src.kind not in self.rules.read_ports:
+                continue
+            names = seen.setdefault(src.kind, [])
+            if all(o.name != src.name for o in names):
+                names.append(src)
+        for kind, ops in seen.items():
+            limit = self.rules.read_ports[kind]
+            if len(ops) > limit:
+                name = KIND_NAMES.get(kind, kind)
+                listed = ", ".join(o.name for o in ops)
+                plural = "register" if limit == 1 else "different registers"
+                self.err(f"{self.v} lets one instruction read {limit} {name} {plural}; this "
+                         f"one reads {listed}", ops[limit].location)
+
+    def _special(self, ins: Instruction) -> None:
+        r = self.rules
+        if ins.opcode == "cnd" and r.is_ps11_13:
+            s0 = ins.srcs[0]
+            if s0.kind != "r" or s0.index != 0 or s0.swizzle != (3, 3, 3, 3) or s0.modifier \
+                    or s0.negate:
+                self.err(f"cnd in {self.v} must use r0.a as its first source", s0.location)
+        rows = MATRIX_ROWS.get(ins.opcode)
+        if rows and len(ins.srcs) > 1 and ins.srcs[1].relative is None:
+            m = ins.srcs[1]
+            count = self.rules.registers.get(m.kind, 0)
+            if m.index is not None and m.index + rows > count:
+                last = f"{m.kind}{m.index + rows - 1}"
+                self.err(f"{ins.opcode} reads {m.name}–{last}; {self.v} has "
+                         f"{count} {KIND_NAMES.get(m.kind, m.kind)} registers "
+                         f"({_register_range(m.kind, count)})", m.location)
+        if ins.opcode == "texdepth" and ins.dst is not None and ins.dst.index != 5:
+            self.err("texdepth must write r5", ins.dst.location)
+
+    def _reads_initialised(self, ins: Instruction) -> None:
+        reads = [s for s in ins.srcs if s.kind in ("r", "a")]
+        for s in ins.srcs:
+            if s.relative is not None and s.relative.kind == "a":
+                reads.append(Operand("a", 0, s.location, text="a0"))
+        if ins.opcode in ("texkill", "texdepth") and ins.dst is not None and ins.dst.kind == "r":
+            reads.append(ins.dst)   # they read the register named in the dst slot
+        reported: set[str] = set()
+        for s in reads:
+            key = (s.kind, s.index)
+            if key not in self.written and s.name not in reported:
+                reported.add(s.name)
+                self.err(f"{s.name} is read before it is written", s.location)
+        if self.p.kind == "ps" and self.rules.major >= 2:
+            for s in ins.srcs:
+                if s.kind in ("t", "v", "s") and self.p.declaration(s.kind, s.index) is None \
+                        and s.name not in reported:
+                    reported.add(s.name)
+                    how = "dcl_2d, dcl_cube or dcl_volume" if s.kind == "s" else "dcl"
+                    self.err(f"{s.name} is used but not declared (add {how} {s.name})",
+                             s.location)
+        if self.p.kind == "vs" and (self.p.has_decl_block or any(
+                not d.from_decl for d in self.p.dcls)):
+            for s in ins.srcs:
+                if s.kind == "v" and self.p.declaration("v", s.index) is None \
+                        and s.name not in reported:
+                    reported.add(s.name)
+                    self.err(f"{s.name} is read but not declared (by a dcl_usage or the "
+                             f"decl{{}} block)", s.location)
+
+    def _record_write(self, ins: Instruction) -> None:
+        if ins.dst is None or ins.opcode in ("texkill", "texdepth"):
+            return
+        key = (ins.dst.kind, ins.dst.index)
+        self.written.add(key)
+        if ins.phase is not None:
+            self.written_phase.setdefault(key, ins.phase)
+
+    # -- slots ---------------------------------------------------------------------------------
+    def _slots(self) -> None:
+        r = self.rules
+        totals: dict[tuple[int | None, str], int] = {}
+        reported: set[tuple[int | None, str]] = set()
+        limits = {"texture": r.tex_slots, "arithmetic": r.arith_slots, "total": r.total_slots}
+        for ins in self.p.instructions:
+            if self.v not in ins.info.versions:
+                continue
+            t, a, f = instruction_slots(self.p, ins)
+            phase = ins.phase if r.per_phase else None
+            for what, n in (("texture", t), ("arithmetic", a), ("total", t + a + f)):
+                if not n:
+                    continue
+                key = (phase, what)
+                before = totals.get(key, 0)
+                totals[key] = before + n
+                limit = limits[what]
+                if limit is None or totals[key] <= limit or key in reported:
+                    continue
+                if what == "total" and (r.tex_slots is not None and r.arith_slots is not None):
+                    continue   # tex + arith limits already bound the total
+                reported.add(key)
+                self.err(self._slot_message(ins, what, limit, n, totals[key], phase),
+                         ins.location)
+
+    def _slot_message(self, ins: Instruction, what: str, limit: int, cost: int, total: int,
+                      phase: int | None) -> str:
+        kind = "" if what == "total" else what + " "
+        per = " per phase" if phase is not None else ""
+        where = f" in phase {phase}" if phase is not None else ""
+        if self.rules.is_ps1 and cost == 1:
+            return (f"{self.v} allows {limit} {kind}instructions{per}; this is the "
+                    f"{_ordinal(total)}{where}")
+        if cost == 1:
+            return (f"{self.v} allows {limit} {kind}instruction slots{per}; this instruction "
+                    f"is the {_ordinal(total)}{where}")
+        return (f"{self.v} allows {limit} {kind}instruction slots{per}; this {ins.opcode} takes "
+                f"{cost} and brings the count to {total}{where}")
+
+    # -- ps_1_1-1_3 texture-address rules --------------------------------------------------------
+    def _ps11_texture_rules(self) -> None:
+        instrs = [i for i in self.p.instructions if self.v in i.info.versions]
+        loaded: dict[int, str] = {}        # t index → 'tex' (readable) | 'pad'
+        bem_read: set[int] = set()
+        seen_arith = False
+        for pos, ins in enumerate(instrs):
+            if ins.is_texture:
+                if seen_arith:
+                    self.err(f"{ins.opcode} must come before the arithmetic instructions "
+                             f"(in {self.v} all texture instructions come first)", ins.location)
+                self._ps11_texture_instruction(ins, pos, instrs, loaded, bem_read)
+                continue
+            if ins.is_arithmetic and ins.opcode != "nop":
+                seen_arith = True
+            for s in ins.srcs:
+                if s.kind != "t":
+                    continue
+                if loaded.get(s.index) != "tex":
+                    self.err(f"{s.name} is read but no texture instruction loads it (tex "
+                             f"{s.name}, texcoord {s.name} ...)", s.location)
+                    loaded[s.index] = "tex"   # report once
+                elif s.index in bem_read:
+                    self.err(f"{s.name} was read by texbem/texbeml; no other instruction may "
+                             "read it", s.location)
+            if ins.dst is not None and ins.dst.kind == "t":
+                loaded[ins.dst.index] = "tex"
+
+    def _ps11_texture_instruction(self, ins, pos, instrs, loaded, bem_read) -> None:
+        d = ins.dst
+        if d is None or d.kind != "t":
+            return
+        m = d.index
+        if ins.opcode == "texkill":
+            return
+        if m in loaded:
+            self.err(f"{d.name} is already loaded by an earlier texture instruction; each t "
+                     "register can be written by only one", d.location)
+        for s in ins.srcs[:1]:
+            if s.kind != "t":
+                continue
+            if loaded.get(s.index) != "tex":
+                self.err(f"{ins.opcode} reads {s.name}, which no earlier texture instruction "
+                         "loads", s.location)
+            elif s.index >= m:
+                self.err(f"{ins.opcode} {d.name}, {s.name}: the source must be a lower t "
+                         f"register than the destination", s.location)
+            if ins.opcode in ("texbem", "texbeml"):
+                bem_read.add(s.index)
+        is_pad = ins.opcode in ("texm3x2pad", "texm3x3pad")
+        loaded[m] = "pad" if is_pad else "tex"
+        prev = instrs[pos - 1] if pos > 0 else None
+        nxt = instrs[pos + 1] if pos + 1 < len(instrs) else None
+        op = ins.opcode
+        finals2 = ("texm3x2tex", "texm3x2depth") if self.v == "ps_1_3" else ("texm3x2tex",)
+        if op == "texm3x2pad":
+            if nxt is None or nxt.opcode not in finals2:
+                self.err(f"texm3x2pad must be followed directly by {' or '.join(finals2)}",
+                         ins.location)
+            elif nxt.dst is not None and nxt.dst.index != m + 1:
+                self.err(f"{nxt.opcode} must write t{m + 1}, the register after its "
+                         f"texm3x2pad's {d.name}", nxt.dst.location)
+        elif op in ("texm3x2tex", "texm3x2depth"):
+            if prev is None or prev.opcode != "texm3x2pad":
+                self.err(f"{op} must directly follow texm3x2pad", ins.location)
+        elif op == "texm3x3pad":
+            second = prev is not None and prev.opcode == "texm3x3pad" and (
+                pos < 2 or instrs[pos - 2].opcode != "texm3x3pad")
+            if second:
+                if nxt is None or nxt.opcode not in _PS1_TEXM_FINAL3:
+                    self.err("the second texm3x3pad must be followed directly by texm3x3tex, "
+                             "texm3x3spec, texm3x3vspec or texm3x3", ins.location)
+                elif nxt.dst is not None and nxt.dst.index != m + 1:
+                    self.err(f"{nxt.opcode} must write t{m + 1}, the register after the "
+                             f"texm3x3pad rows", nxt.dst.location)
+            elif nxt is None or nxt.opcode != "texm3x3pad":
+                self.err("texm3x3pad must be followed directly by a second texm3x3pad and then "
+                         "texm3x3tex, texm3x3spec, texm3x3vspec or texm3x3", ins.location)
+            elif nxt.dst is not None and nxt.dst.index != m + 1:
+                self.err(f"the second texm3x3pad must write t{m + 1}", nxt.dst.location)
+        elif op in _PS1_TEXM_FINAL3:
+            if pos < 2 or instrs[pos - 1].opcode != "texm3x3pad" \
+                    or instrs[pos - 2].opcode != "texm3x3pad":
+                self.err(f"{op} must directly follow two texm3x3pad instructions",
+                         ins.location)
+
+    # -- ps_1_4 phases -------------------------------------------------------------------------
+    def _ps14_phase_rules(self) -> None:
+        for extra in self.p.phase_locations[1:]:
+            self.err("ps_1_4 allows only one phase instruction", extra)
+        arith_in_phase: set[int] = set()
+        written_in: dict[tuple[str, int | None], set[int]] = {}
+        for ins in self.p.instructions:
+            if self.v not in ins.info.versions:
+                continue
+            phase = ins.phase or 2
+            if ins.is_texture and phase in arith_in_phase:
+                self.err(f"{ins.opcode} must come before the arithmetic instructions of its "
+                         f"phase (phase {phase})", ins.location)
+            if ins.is_arithmetic and ins.opcode != "nop":
+                arith_in_phase.add(phase)
+            for s in ins.srcs:
+                if s.kind == "v" and phase == 1:
+                    self.err(f"{s.name} cannot be read in phase 1 of ps_1_4; colour registers "
+                             "are available only after the phase instruction", s.location)
+                if s.kind == "t" and ins.is_arithmetic:
+                    self.err(f"{s.name} can be read only by texld and texcrd in ps_1_4",
+                             s.location)
+            if ins.opcode == "texld" and ins.srcs and ins.srcs[0].kind == "r":
+                s = ins.srcs[0]
+                if phase == 1:
+                    self.err(f"texld can take coordinates from {s.name} only in phase 2 (a "
+                             "dependent read)", s.location)
+                elif 1 not in written_in.get((s.kind, s.index), set()):
+                    self.err(f"texld reads coordinates from {s.name}, which phase 1 does not "
+                             "write", s.location)
+            if ins.opcode == "bem" and phase == 2:
+                self.err("bem is allowed only in phase 1 of ps_1_4", ins.location)
+            if ins.opcode == "texdepth" and phase == 1:
+                self.err("texdepth is allowed only in phase 2 of ps_1_4", ins.location)
+            if ins.dst is not None and ins.opcode not in ("texkill", "texdepth"):
+                written_in.setdefault((ins.dst.kind, ins.dst.index), set()).add(phase)
+
+    # -- dependent reads -----------------------------------------------------------------------
+    def _dependent_reads(self) -> None:
+        limit = self.rules.dependent_read_limit
+        if limit is None:
+            return
+        levels = texture_read_levels(self.p)
+        for pos, level in sorted(levels.items()):
+            if level > limit:
+                ins = self.p.instructions[pos]
+                self.err(f"this {ins.opcode} is a {_ordinal(level - 1)}-order dependent read "
+                         f"({level} levels of texture reads); {self.v} allows at most {limit} "
+                         f"levels", ins.location)
+                return
+
+    # -- flow control --------------------------------------------------------------------------
+    def _flow_nesting(self) -> None:
+        closers = {"endif": "if", "endloop": "loop", "endrep": "rep"}
+        stack: list[Instruction] = []
+        for ins in self.p.instructions:
+            if self.v not in ins.info.versions:
+                continue
+            op = ins.opcode
+            if op in ("if", "loop", "rep"):
+                stack.append(ins)
+            elif op == "else":
+                if not stack or stack[-1].opcode != "if":
+                    self.err("else without a matching if", ins.location)
+            elif op in closers:
+                if not stack or stack[-1].opcode != closers[op]:
+                    self.err(f"{op} without a matching {closers[op]}", ins.location)
+                else:
+                    stack.pop()
+            elif op in ("break", "breakp") and not any(s.opcode in ("loop", "rep") for s in stack):
+                self.err(f"{op} outside a loop or rep block", ins.location)
+        for open_ins in stack:
+            end = {"if": "endif", "loop": "endloop", "rep": "endrep"}[open_ins.opcode]
+            self.err(f"{open_ins.opcode} is never closed by {end}", open_ins.location)
+
+    # -- output --------------------------------------------------------------------------------
+    def _final_output(self) -> None:
+        written = {(i.dst.kind, i.dst.index) for i in self.p.instructions
+                   if i.dst is not None and i.opcode not in ("texkill", "texdepth")}
+        if self.p.kind == "ps":
+            if self.rules.is_ps1:
+                if ("r", 0) not in written:
+                    self.err("the shader never writes r0, its output colour", self.p.location)
+            elif ("oC", 0) not in written:
+                self.err("the shader never writes oC0, its output colour", self.p.location)
+            return
+        if self.rules.major < 3:
+            if ("oPos", None) not in written:
+                self.err("the shader never writes oPos, the position output", self.p.location)
+            return
+        pos_regs = [d.register.index for d in self.p.dcls
+                    if d.register.kind == "o" and d.usage == "position"]
+        if not pos_regs:
+            self.err("vs_3_0 needs a position output: declare one with dcl_position o#",
+                     self.p.location)
+        elif not any(("o", i) in written for i in pos_regs):
+            self.err(f"the shader never writes o{pos_regs[0]}, its position output",
+                     self.p.location)
+
+
+def _versions_of(opcode: str):
+    return set(versions_having(opcode))
+
+
+def _not_available(opcode: str, version: str) -> str:
+    having = versions_having(opcode)
+    kind = version[:2]
+    same_kind = [v for v in having if v.startswith(kind)]
+    if not same_kind:
+        other = "vertex" if kind == "ps" else "pixel"
+        return f"{opcode} is not available in {version} (it is a {other} shader instruction)"
+    return f"{opcode} is not available in {version} (it exists in {', '.join(same_kind)})"
+
+
+def check(program: AsmProgram) -> list[AsmError]:
+    """Every rule of the program's version that it breaks, each located at the instruction or
+    operand concerned, in source order. An empty list means the program is valid."""
+    return _Checker(program).run()
