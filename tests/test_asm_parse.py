@@ -679,3 +679,55 @@ def test_stats_dependent_depth_and_ps2x_features():
                        "dsx r1, t0\nmov oC0, r0"))
     assert check(x) == []
     assert x.stats.uses_predication and x.stats.uses_arbitrary_swizzle and x.stats.uses_gradients
+
+
+# -- programs of every version that must validate (no false alarms) ----------------------------
+
+VALID = [
+    ("ps11 co-issue and def", "ps.1.1\ndef c0, 0.5, 0.5, 0.5, 1.0\ntex t0\ntexcoord t1\n"
+     "dp3_sat r0.rgb, t0_bx2, t1_bx2\n+mov r0.a, t0.a\nmul r0, r0, c0"),
+    ("ps13 texm3x3vspec", "ps.1.3\ntex t0\ntexm3x3pad t1, t0_bx2\ntexm3x3pad t2, t0_bx2\n"
+     "texm3x3vspec t3, t0_bx2\nmov r0, t3"),
+    ("ps11 texm3x3spec", "ps.1.1\ntex t0\ntexm3x3pad t1, t0_bx2\ntexm3x3pad t2, t0_bx2\n"
+     "texm3x3spec t3, t0_bx2, c0\nmov r0, t3"),
+    ("ps11 texbem", "ps.1.1\ntex t0\ntexbem t1, t0\nmov r0, t1"),
+    ("ps11 texbeml", "ps.1.1\ntex t0\ntexbeml t1, t0\nmov r0, t1"),
+    ("ps12 texreg", "ps.1.2\ntex t0\ntexreg2ar t1, t0\ntexreg2gb t2, t0\ntexdp3tex t3, t0\n"
+     "mul r0, t1, t2\nmul r0, r0, t3"),
+    ("ps11 cnd and blue selector", "ps.1.1\ntex t0\nmov r0.a, t0.b\nmul r1.rgb, t0, v0\n"
+     "+mul r1.a, t0.a, v0.a\ncnd r0, r0.a, r1, v1"),
+    ("ps14 two phases", "ps.1.4\ntexld r0, t0.xyz\ntexld r1, t1_dw.xyw\ntexcrd r2.rgb, t2\n"
+     "bem r3.rg, r0, r1\nphase\ntexld r3, r3\ncmp r0, r2, r3, r0\ncnd r0.rgb, r1, r0, r3\n"
+     "dp3_x2 r0.a, r0, v0"),
+    ("ps20 instruction mix", "ps_2_0\ndcl t0\ndcl t1.xyz\ndcl v0\ndcl_2d s0\ndcl_cube s1\n"
+     "def c0, 1, 2, 3, 4\ntexldp r0, t0, s0\ntexldb r1, t1, s1\nnrm r2, t1\n"
+     "sincos r3.xy, r0.x, c1, c2\ndp2add r4, r0, r1, c0.x\nlrp r5, r0, r1, v0\n"
+     "max r5, r5, c0\nmin r5, r5, c0\nabs_pp r6, r5\nfrc r6, r6\ncrs r7.xyz, r2, r1\n"
+     "exp r8, r0.x\nlog r8, r8.y\ntexkill t0\nm3x3 r9.xyz, r0, c3\nmul_sat r10, r5, v0.wzyx\n"
+     "mov oC0, r10\nmov oDepth, r0.x"),
+    ("vs11 instruction mix", "vs.1.1\ndcl_position v0\ndcl_normal v3\nm4x4 oPos, v0, c0\n"
+     "expp r0, v0.x\nlogp r1, v0.y\nlit r2, r1\ndst r3, r0, r1\nfrc r4.y, v0\n"
+     "sge r5, v0, c4\nslt r5, v0, c5\nmov a0.x, v3.x\nmov oD0, c[a0.x + 10]\nmov oFog, r0.x\n"
+     "mov oPts, r1.x\nrcp r6.w, r0.x\nrsq r6, r0\nmax r7, r6, v3\nmin r7, r7, v0\nmov oT7, r7"),
+    ("vs20 flow control", "vs_2_0\ndcl_position v0\ndefb b0, true\ndefi i0, 3, 0, 1, 0\n"
+     "mova a0.x, v0.x\nm4x4 oPos, v0, c[a0.x]\nrep i0\nadd r0, v0, c1\nendrep\nif b0\n"
+     "mov oD0, r0\nelse\nmov oD0, c0\nendif\nloop aL, i0\nadd r1, r0, c[aL]\nendloop\n"
+     "sgn r2, r1, r3, r4\ncall l0\nret\nlabel l0\nret"),
+    ("ps30", "ps_3_0\ndcl_texcoord0 v0\ndcl_2d s0\ntexld r0, v0, s0\nmov r1, r0_abs\n"
+     "add r1, -r1_abs, c0\ntexldl r2, v0, s0\nif_gt r0.x, c0.x\nmov r1, c1\nendif\nmov oC0, r1"),
+    ("vs30", "vs_3_0\ndcl_position v0\ndcl_position o0\ndcl_texcoord0 o1\nm4x4 o0, v0, c0\n"
+     "mov o1, v0"),
+]
+
+
+@pytest.mark.parametrize("name,src", VALID, ids=[v[0] for v in VALID])
+def test_valid_programs_of_every_version(name, src):
+    assemble_clean(src, "vertex" if src.startswith("vs") else "pixel")
+
+
+def test_vs11_scalar_and_matrix_semantics_rows():
+    prog = assemble(block("vs.1.1\nm3x3 r0.xyz, v0, c4\nrcp r1, v0\nmov oPos, r0", "vertex"))
+    m3x3, rcp, _ = prog.instructions
+    assert m3x3.info.writes == "xyz" and m3x3.info.slot_cost("vs_1_1") == 3
+    assert rcp.info.operands == "dx" and rcp.info.op == "rcp"
+    assert "1/a" in rcp.info.formula

@@ -221,8 +221,7 @@ class _Checker:
 
     def _kind_message(self, ins: Instruction, op: Operand, allowed, *, write: bool) -> str:
         if op.kind not in self.rules.registers and op.kind != "imm":
-            return f"{self.v} has no {op.kind}# registers ({op.name})" if op.index is not None \
-                else f"{self.v} has no {op.kind} register"
+            return f"{self.v} has no {KIND_NAMES.get(op.kind, op.kind)} registers ({op.name})"
         if not write and op.kind in _OUTPUT_ONLY:
             return f"{op.name} is an output register; it cannot be read"
         if write and op.kind not in self.rules.writable and op.kind in self.rules.registers \
@@ -408,7 +407,7 @@ class _Checker:
                 self.err(f"a0 can be written only by mov in {self.v}", ins.location)
             if r.major >= 2 and ins.opcode != "mova":
                 self.err(f"a0 can be written only by mova in {self.v}", ins.location)
-        if d.kind in ("oC", "oDepth") and ins.opcode != "mov":
+        if d.kind in ("oC", "oDepth") and ins.opcode != "mov" and r.major == 2:
             self.err(f"{d.name} can be written only by mov", ins.location)
 
     def _read_ports(self, ins: Instruction) -> None:
@@ -424,9 +423,10 @@ class _Checker:
             if len(ops) > limit:
                 name = KIND_NAMES.get(kind, kind)
                 listed = ", ".join(o.name for o in ops)
-                plural = "register" if limit == 1 else "different registers"
-                self.err(f"{self.v} lets one instruction read {limit} {name} {plural}; this "
-                         f"one reads {listed}", ops[limit].location)
+                what = f"1 {name} register" if limit == 1 else \
+                    f"{limit} different {name} registers"
+                self.err(f"{self.v} lets one instruction read {what}; this one reads {listed}",
+                         ops[limit].location)
 
     def _special(self, ins: Instruction) -> None:
         r = self.rules
@@ -448,7 +448,9 @@ class _Checker:
             self.err("texdepth must write r5", ins.dst.location)
 
     def _reads_initialised(self, ins: Instruction) -> None:
-        reads = [s for s in ins.srcs if s.kind in ("r", "a")]
+        # sgn's second and third sources are scratch registers it writes, not inputs
+        srcs = ins.srcs[:1] if ins.opcode == "sgn" else ins.srcs
+        reads = [s for s in srcs if s.kind in ("r", "a")]
         for s in ins.srcs:
             if s.relative is not None and s.relative.kind == "a":
                 reads.append(Operand("a", 0, s.location, text="a0"))
@@ -465,9 +467,9 @@ class _Checker:
                 if s.kind in ("t", "v", "s") and self.p.declaration(s.kind, s.index) is None \
                         and s.name not in reported:
                     reported.add(s.name)
-                    how = "dcl_2d, dcl_cube or dcl_volume" if s.kind == "s" else "dcl"
-                    self.err(f"{s.name} is used but not declared (add {how} {s.name})",
-                             s.location)
+                    how = (f"dcl_2d {s.name}, dcl_cube {s.name} or dcl_volume {s.name}"
+                           if s.kind == "s" else f"dcl {s.name}")
+                    self.err(f"{s.name} is used but not declared (add {how})", s.location)
         if self.p.kind == "vs" and (self.p.has_decl_block or any(
                 not d.from_decl for d in self.p.dcls)):
             for s in ins.srcs:
@@ -527,11 +529,16 @@ class _Checker:
 
     # -- ps_1_1-1_3 texture-address rules --------------------------------------------------------
     def _ps11_texture_rules(self) -> None:
-        instrs = [i for i in self.p.instructions if self.v in i.info.versions]
+        instrs = self.p.instructions
         loaded: dict[int, str] = {}        # t index → 'tex' (readable) | 'pad'
         bem_read: set[int] = set()
         seen_arith = False
         for pos, ins in enumerate(instrs):
+            if self.v not in ins.info.versions:
+                # already reported as unavailable; take its write as given (no cascade)
+                if ins.dst is not None and ins.dst.kind == "t":
+                    loaded[ins.dst.index] = "tex"
+                continue
             if ins.is_texture:
                 if seen_arith:
                     self.err(f"{ins.opcode} must come before the arithmetic instructions "
@@ -638,7 +645,7 @@ class _Checker:
                 if phase == 1:
                     self.err(f"texld can take coordinates from {s.name} only in phase 2 (a "
                              "dependent read)", s.location)
-                elif 1 not in written_in.get((s.kind, s.index), set()):
+                elif (s.kind, s.index) in written_in and 1 not in written_in[(s.kind, s.index)]:
                     self.err(f"texld reads coordinates from {s.name}, which phase 1 does not "
                              "write", s.location)
             if ins.opcode == "bem" and phase == 2:
