@@ -24,7 +24,9 @@ class SourceMap:
     texts: dict[str, list[str]] = field(default_factory=dict)
 
     def add_file(self, path: str, text: str) -> None:
-        self.texts[path] = text.splitlines()
+        # split on "\n" only: str.splitlines() also breaks at \x85 and friends, which a stray
+        # latin-1 byte produces, and line numbers must agree with the preprocessor's.
+        self.texts[path] = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
 
     def locate(self, line: int, column: int) -> Location:
         if not self.lines:
