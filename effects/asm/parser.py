@@ -16,7 +16,7 @@ from typing import Iterator
 
 from ..errors import AsmError, Location
 from ..model import ShaderBlock
-from .instructions import COMPARISONS, InstrInfo, is_known, lookup, rows_named
+from .instructions import COMPARISONS, is_known, lookup, rows_named
 from .program import (AsmProgram, ConstantDef, Declaration, Instruction, Operand,
                       RelativeAddress)
 from .versions import IDENTITY, VERSIONS, canonical_version
