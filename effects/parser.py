@@ -17,6 +17,7 @@ Three steps, each with one job:
 """
 from __future__ import annotations
 
+import gc
 import math
 import re
 from bisect import bisect_right
@@ -54,15 +55,18 @@ class _Located(Exception):
 # 1. Lexer
 
 _TOKEN_RE = re.compile(r"""
-  (?P<WS>[ \t\r\n\f\v]+|//[^\n]*|/\*.*?\*/)
-| (?P<NAME>[A-Za-z_][A-Za-z0-9_]*)
+(?:[ \t\r\n\f\v]+|//[^\n]*|/\*.*?\*/)*         # blanks and comments
+(?:
+  (?P<NAME>[A-Za-z_][A-Za-z0-9_]*)
 | (?P<HEX>0[xX][0-9A-Fa-f]+[uUlL]*)
 | (?P<FLOAT>(?:[0-9]+\.[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?[fFhH]?|[0-9]+[eE][+-]?[0-9]+[fFhH]?|[0-9]+[fF])
 | (?P<INT>[0-9]+[uUlL]*)
 | (?P<STRING>"(?:[^"\\\n]|\\.)*")
+| (?P<INDEX>\[[ \t]*(?:0[xX][0-9A-Fa-f]+|[0-9]+)[ \t]*\])
 | (?P<OP2><=|>=|==|!=|&&|\|\||<<|>>)
 | (?P<P>[{}()\[\];,=:<>|+\-*/%&^!~?.])
-""", re.X | re.S)
+| (?P<END>\Z)
+)""", re.X | re.S)
 
 _PUNCT = {
     "{": "LBRACE", "}": "RBRACE", "(": "LPAR", ")": "RPAR", "[": "LSQB", "]": "RSQB",
@@ -87,6 +91,14 @@ _PAREN_SCAN_RE = re.compile(r'[()]|//[^\n]*|/\*.*?(?:\*/|\Z)|"(?:[^"\\\n]|\\.)*"
 _GAP_RE = re.compile(r"(?:\s+|//[^\n]*|/\*.*?\*/)*", re.S)
 
 _OPENERS = {"LBRACE": "RBRACE", "LPAR": "RPAR", "LSQB": "RSQB"}
+_CLOSERS = frozenset(("RBRACE", "RPAR", "RSQB"))
+_HEADERS = frozenset(("TECHNIQUE", "PASS", "SAMPLER_STATE", "STATEBLOCK_STATE"))
+_LIST_OPENERS = frozenset(("EQUAL", "COMMA", "LBRACE", "LPAR"))
+# Token kinds the lexer keeps track of (everything else is just passed on).
+_BOOKKEPT = frozenset(("LBRACE", "LPAR", "LSQB", "RBRACE", "RPAR", "RSQB", "LT", "GT", "EQUAL",
+                       "SEMI", "MINUS", "BANG", "TILDE", "PLUS")) | _HEADERS
+# lark's Token constructor without its keyword-argument shim (older lark: the class itself).
+_make_token = getattr(Token, "_future_new", Token)
 _PREFIX_OPS = frozenset(("MINUS", "BANG", "TILDE", "PLUS"))
 
 
@@ -115,8 +127,9 @@ class EffectLexer:
         self.open: list[_Open] = []
         self.annotation: _Open | None = None  # an annotation block `< ... >` being read
         self.annotation_depth = 0             # len(open) when it started
-        self.popped: _Open | None = None      # the entry the last token closed
-        self.closed_annotation = False        # the last token was the '>' of annotations
+        self.popped: _Open | None = None      # the entry a closer token closed ...
+        self.popped_at = -1                   # ... and that token's offset
+        self.closed_annotation_at = -1        # offset of the '>' that closed annotations
         self.decl_name: str | None = None     # the name declared by the current top-level statement
         self.line_starts = [0] + [m.end() for m in re.finditer("\n", text)]
 
@@ -152,117 +165,117 @@ class EffectLexer:
                        f"opened at line {line}", eline, ecol)
 
     def tokens(self):
-        text, n = self.text, len(self.text)
+        text = self.text
         match = _TOKEN_RE.match
         starts = self.line_starts
-        pos, line, line_start = 0, 1, 0
+        make = _make_token
+        keywords, punct, special = _KEYWORDS, _PUNCT, _BOOKKEPT
+        opened = self.open
+        pos = 0
         prev = prev2 = ""               # types of the two previous tokens
         pending: _Open | None = None    # technique/pass/sampler_state header awaiting its '{'
         stmt_eq = stmt_params = False   # top-level statement state: saw '=', saw '(...)'
         prefix_run = 0
-        opened = self.open
-        while pos < n:
+        while True:
             m = match(text, pos)
             if m is None:
-                raise self._bad_character(pos)
+                raise self._bad_character(_GAP_RE.match(text, pos).end())
             kind = m.lastgroup
+            if kind == "END":
+                return
+            start = m.start(kind)
             end = m.end()
-            if kind == "WS":
-                nl = m.group().rfind("\n")
-                if nl >= 0:
-                    line += m.group().count("\n")
-                    line_start = pos + nl + 1
-                pos = end
-                continue
-            col = pos - line_start + 1
-            value = m.group()
+            value = text[start:end]
+            line = bisect_right(starts, start)
+            col = start - starts[line - 1] + 1
+            multiline = False
             if kind == "NAME":
-                kw = _KEYWORDS.get(value.lower())
+                low = value.lower()
+                kw = keywords.get(low)
                 if kw is not None:
                     kind = kw
-                elif value.lower() in ("asm", "decl"):
+                elif low == "asm" or low == "decl":
                     gap = _GAP_RE.match(text, end).end()
-                    if gap < n and text[gap] == "{":
-                        what = value.lower()
-                        end = self._balanced(gap, _BRACE_SCAN_RE, "{", f"{what} block")
-                        kind, value = what.upper(), text[pos:end]
+                    if text.startswith("{", gap):
+                        end = self._balanced(gap, _BRACE_SCAN_RE, "{", f"{low} block")
+                        kind, value, multiline = low.upper(), text[start:end], True
+                elif not opened and self.annotation is None:
+                    if prev == "NAME" and not stmt_eq and self.decl_name is None:
+                        self.decl_name = value
+                if pending is not None and (prev == "TECHNIQUE" or prev == "PASS"):
+                    pending.name = value
             elif kind == "P":
-                kind = _PUNCT[value]
-            elif kind in ("INT", "HEX", "FLOAT") and len(value) > MAX_LITERAL_LENGTH:
+                kind = punct[value]
+                if kind == "SLASH" and text.startswith("/*", start):
+                    raise _Located("unterminated comment: '/*' has no closing '*/'", line, col)
+            elif kind != "STRING" and kind != "INDEX" and len(value) > MAX_LITERAL_LENGTH:
                 raise _Located(f"number literal is too long ({len(value)} characters)", line, col)
 
-            top = not opened
-            in_ann = self.annotation is not None
-            if kind == "LPAR" and top and not in_ann and not stmt_eq and prev == "NAME" \
-                    and prev2 == "NAME":
-                # `type name(` at top level: an HLSL function's parameter list, kept as text.
-                end = self._balanced(pos, _PAREN_SCAN_RE, "(", "parameter list")
-                kind, value, stmt_params = "PARAMS", text[pos:end], True
-            elif kind == "LBRACE" and top and not in_ann and stmt_params and not stmt_eq \
-                    and prev in ("PARAMS", "NAME", "RPAR"):
-                end = self._balanced(pos, _BRACE_SCAN_RE, "{", "function body")
-                kind, value = "FUNC_BODY", text[pos:end]
-            elif kind == "LBRACE" and prev == "NAME" and prev2 == "STRUCT":
-                end = self._balanced(pos, _BRACE_SCAN_RE, "{", "struct")
-                kind, value = "STRUCT_BODY", text[pos:end]
+            if kind in special:
+                # -- nesting, error context and the opaque-part decisions --
+                top = not opened
+                in_ann = self.annotation is not None
+                if kind == "LPAR" and top and not in_ann and not stmt_eq and prev == "NAME" \
+                        and prev2 == "NAME":
+                    # `type name(` at top level: an HLSL function's parameter list, kept as text.
+                    end = self._balanced(start, _PAREN_SCAN_RE, "(", "parameter list")
+                    kind, value, stmt_params = "PARAMS", text[start:end], True
+                    multiline = True
+                elif kind == "LBRACE" and top and not in_ann and stmt_params and not stmt_eq:
+                    end = self._balanced(start, _BRACE_SCAN_RE, "{", "function body")
+                    kind, value, multiline = "FUNC_BODY", text[start:end], True
+                elif kind == "LBRACE" and prev == "NAME" and prev2 == "STRUCT":
+                    end = self._balanced(start, _BRACE_SCAN_RE, "{", "struct")
+                    kind, value, multiline = "STRUCT_BODY", text[start:end], True
 
-            # -- bookkeeping for nesting, error context and the opaque-part decisions above --
-            self.popped = None
-            self.closed_annotation = False
-            if kind in _OPENERS:
-                if len(opened) >= MAX_NESTING:
-                    raise _Located(f"nesting is too deep (more than {MAX_NESTING} levels of "
-                                   f"braces, parentheses or brackets)", line, col)
-                if kind == "LBRACE" and pending is not None and prev not in (
-                        "EQUAL", "COMMA", "LBRACE", "LPAR"):
-                    entry, pending = pending, None
-                    entry.closer = "RBRACE"
-                else:
-                    k = kind if kind != "LBRACE" else (
-                        "list" if prev in ("EQUAL", "COMMA", "LBRACE", "LPAR") else "block")
-                    entry = _Open(k, None, line, col, _OPENERS[kind])
-                opened.append(entry)
-            elif kind in ("RBRACE", "RPAR", "RSQB"):
-                if opened and opened[-1].closer == kind:
-                    self.popped = opened.pop()
-                    if not opened and kind == "RBRACE" and not in_ann:
+                if kind in _OPENERS:
+                    if len(opened) >= MAX_NESTING:
+                        raise _Located(f"nesting is too deep (more than {MAX_NESTING} levels of "
+                                       f"braces, parentheses or brackets)", line, col)
+                    if kind == "LBRACE" and pending is not None and prev not in _LIST_OPENERS:
+                        entry, pending = pending, None
+                    else:
+                        k = kind if kind != "LBRACE" else (
+                            "list" if prev in _LIST_OPENERS else "block")
+                        entry = _Open(k, None, line, col, _OPENERS[kind])
+                    opened.append(entry)
+                elif kind in _CLOSERS:
+                    if opened and opened[-1].closer == kind:
+                        self.popped, self.popped_at = opened.pop(), start
+                        if not opened and kind == "RBRACE" and not in_ann:
+                            stmt_eq = stmt_params = False
+                            self.decl_name = None
+                elif kind in _HEADERS:
+                    pending = _Open(kind.lower(), None, line, col, "RBRACE")
+                elif kind == "LT":
+                    if not in_ann and not stmt_eq and (top or pending is not None):
+                        self.annotation = _Open("annotation", None, line, col, "GT")
+                        self.annotation_depth = len(opened)
+                elif kind == "GT":
+                    if in_ann and self.annotation_depth == len(opened):
+                        self.annotation = None
+                        self.closed_annotation_at = start
+                if top and not in_ann:
+                    if kind == "EQUAL":
+                        stmt_eq = True
+                    elif kind == "SEMI" or kind == "FUNC_BODY" or kind == "STRUCT_BODY":
                         stmt_eq = stmt_params = False
                         self.decl_name = None
-            elif kind in ("TECHNIQUE", "PASS", "SAMPLER_STATE", "STATEBLOCK_STATE"):
-                pending = _Open(kind.lower(), None, line, col, "RBRACE")
-            elif kind == "NAME" and pending is not None and prev in ("TECHNIQUE", "PASS"):
-                pending.name = value
-            elif kind == "LT" and self.annotation is None and not stmt_eq and (
-                    top or pending is not None):
-                self.annotation = _Open("annotation", None, line, col, "GT")
-                self.annotation_depth = len(opened)
-            elif kind == "GT" and in_ann and self.annotation_depth == len(opened):
-                self.annotation = None
-                self.closed_annotation = True
-            if top and not in_ann:
-                if kind == "EQUAL":
-                    stmt_eq = True
-                elif kind in ("SEMI", "FUNC_BODY", "STRUCT_BODY"):
-                    stmt_eq = stmt_params = False
-                    self.decl_name = None
-                    pending = None
-                elif kind == "NAME" and prev == "NAME" and not stmt_eq and self.decl_name is None:
-                    self.decl_name = value
-            if kind in _PREFIX_OPS:
-                prefix_run += 1
-                if prefix_run > MAX_PREFIX_RUN:
-                    raise _Located("too many operators in a row", line, col)
+                        pending = None
+                if kind in _PREFIX_OPS:
+                    prefix_run += 1
+                    if prefix_run > MAX_PREFIX_RUN:
+                        raise _Located("too many operators in a row", line, col)
+                else:
+                    prefix_run = 0
             else:
                 prefix_run = 0
 
-            if kind in ("ASM", "DECL", "FUNC_BODY", "STRUCT_BODY", "PARAMS", "STRING"):
-                eline = bisect_right(starts, end - 1) if end > pos else line
-                ecol = end - starts[eline - 1] + 1
-            else:
-                eline, ecol = line, col + (end - pos)
-            yield Token(kind, value, pos, line, col, eline, ecol, end)
-            if eline != line:
-                line, line_start = eline, starts[eline - 1]
+            if not multiline:
+                yield make(kind, value, start, line, col, line, col + end - start, end)
+            else:  # a block, possibly spanning lines
+                eline = bisect_right(starts, end - 1)
+                yield make(kind, value, start, line, col, eline, end - starts[eline - 1] + 1, end)
             prev2, prev = prev, kind
             pos = end
 
@@ -342,23 +355,28 @@ _INT_SUFFIX = "uUlL"
 _FLOAT_SUFFIX = "fFhH"
 
 
+def _int_value(text: str) -> int:
+    text = text.strip("[] \t").rstrip(_INT_SUFFIX)
+    return int(text, 16) if text[:2] in ("0x", "0X") else int(text)
+
+
 class _Shapes(Transformer):
     """lark's inline transformer: one small method per grammar shape, no tree is built."""
 
-    def start(self, c): return [x for x in c if x is not None]
-    def empty(self, c): return None
+    def start(self, c): return c[0]
+
+    def items(self, c):
+        if not c:
+            return []
+        if not isinstance(c[1], Token):  # a free-standing ';' adds nothing
+            c[0].append(c[1])
+        return c[0]
+
+    passes = states = items
 
     # -- literals -------------------------------------------------------------------------
-    def int(self, c):
-        tok = c[0]
-        text = tok.value.rstrip(_INT_SUFFIX)
-        value = int(text, 16) if text[:2] in ("0x", "0X") else int(text)
-        return _tok_v("int", value, tok)
-
-    def float(self, c):
-        tok = c[0]
-        return _tok_v("float", float(tok.value.rstrip(_FLOAT_SUFFIX)), tok)
-
+    def int(self, c): return _tok_v("int", _int_value(c[0].value), c[0])
+    def float(self, c): return _tok_v("float", float(c[0].value.rstrip(_FLOAT_SUFFIX)), c[0])
     def string(self, c): return _tok_v("str", _unescape(c[0].value[1:-1]), c[0])
     def true(self, c): return _tok_v("bool", True, c[0])
     def false(self, c): return _tok_v("bool", False, c[0])
@@ -366,6 +384,11 @@ class _Shapes(Transformer):
 
     # -- operands -------------------------------------------------------------------------
     def name(self, c): return _tok_v("name", c[0].value, c[0])
+
+    def const_index(self, c):
+        return _span_v("index", (c[0].value, _tok_v("int", _int_value(c[1].value), c[1])),
+                       c[0], c[1])
+
     def index(self, c): return _span_v("index", (c[0].value, c[2]), c[0], c[3])
     def call(self, c): return _span_v("call", (c[0].value, c[2] or []), c[0], c[3])
     def paren(self, c): return _span_v("paren", c[1], c[0], c[2])
@@ -381,9 +404,7 @@ class _Shapes(Transformer):
 
     def unary(self, c): return _span_v("expr", None, c[0], c[1])
 
-    def expr(self, c):
-        if len(c) == 1:
-            return c[0]
+    def chain(self, c):
         operands = c[::2]
         if all(op.type == "BAR" for op in c[1::2]):
             return _span_v("bar", operands, c[0], c[-1])
@@ -395,29 +416,21 @@ class _Shapes(Transformer):
     def compile(self, c):
         return _span_v("compile", (c[1].value, c[2].value, c[4] or []), c[0], c[5])
 
-    def sampler_state(self, c):
-        return _span_v("sampler", [s for s in c[2:-1] if s is not None], c[0], c[-1])
-
-    def stateblock_state(self, c):
-        return _span_v("stateblock", [s for s in c[2:-1] if s is not None], c[0], c[-1])
+    def sampler_state(self, c): return _span_v("sampler", c[2], c[0], c[3])
+    def stateblock_state(self, c): return _span_v("stateblock", c[2], c[0], c[3])
 
     # -- statements -----------------------------------------------------------------------
-    def state(self, c): return _RawState(c[0], c[1], c[3])
-    def state_index(self, c): return c[1]
-
-    def pass_block(self, c):
-        return _RawBlock(c[0], c[1], c[2] or [], [s for s in c[4:-1] if s is not None])
-
-    def technique(self, c):
-        return _RawBlock(c[0], c[1], c[2] or [], [p for p in c[4:-1] if p is not None])
-
+    def state(self, c): return _RawState(c[0], None, c[2])
+    def indexed_state(self, c): return _RawState(c[0], c[1], c[3])
+    def pass_block(self, c): return _RawBlock(c[0], c[1], c[2] or [], c[4])
+    def technique(self, c): return _RawBlock(c[0], c[1], c[2] or [], c[4])
     def annotations(self, c): return c[1:-1]
     def annotation(self, c): return (c[0], c[1], c[3])
     def initializer(self, c): return c[1]
     def semantic(self, c): return c[1].value
     def register_semantic(self, c): return f"{c[1].value}({c[3].value})"
     def storage(self, c): return c
-    def dims(self, c): return c[1::3]
+    def dims(self, c): return c
 
     def param_decl(self, c):
         return _RawParam(c[0], c[1], c[2], c[3], c[4], c[5] or [], c[6])
@@ -458,7 +471,7 @@ TERMINAL_WORDS = {
     "STATEBLOCK_STATE": "'stateblock_state'", "STRUCT": "'struct'", "NULL": "'NULL'",
     "TRUE": "'true'", "FALSE": "'false'", "ASM": "an asm block", "DECL": "a decl block",
     "FUNC_BODY": "a function body", "STRUCT_BODY": "a struct body",
-    "PARAMS": "a parameter list", "$END": "end of file",
+    "PARAMS": "a parameter list", "$END": "end of file", "INDEX": "an index such as [0]",
     **{v: f"'{k}'" for k, v in _PUNCT.items()}, "OP2": "an operator",
 }
 # Preferred order when several terminals are listed.
@@ -514,9 +527,10 @@ def _syntax_message(exc: UnexpectedToken, lexer: EffectLexer) -> tuple[str, int,
         line, col = tok.line, tok.column
     # lark has already pulled `tok` from the lexer: when it was a closer, the lexer has
     # popped what it closed, which is the context the parser was in.
-    inner = lexer.popped or (lexer.open[-1] if lexer.open else None)
+    popped = lexer.popped if lexer.popped_at == tok.start_pos and not at_end else None
+    inner = popped or (lexer.open[-1] if lexer.open else None)
     ctx = inner.kind if inner else "top"
-    if lexer.closed_annotation or (lexer.annotation is not None
+    if lexer.closed_annotation_at == tok.start_pos or (lexer.annotation is not None
                                    and lexer.annotation_depth == len(lexer.open)):
         ctx = "annotation"
     # LALR merges look-aheads of similar states: drop closers that cannot close anything here.
@@ -622,6 +636,8 @@ class _Builder:
         self.pre, self.text, self.strict = pre, pre.text, strict
         self.smap = pre.source_map
         self.lexer = lexer
+        self.map_lines = self.smap.lines
+        self.nlines = len(self.map_lines)
         self.warnings: list = []
         self.param_names: set[str] = set()
         from . import states  # the states table; imported late so the parser loads without it
@@ -629,7 +645,11 @@ class _Builder:
 
     # -- locations and errors -------------------------------------------------------------
     def loc(self, item: Any) -> Location:
-        return self.smap.locate(item.line, item.column)
+        line = item.line
+        if 0 < line <= self.nlines:  # SourceMap.locate, inlined: this runs for every node
+            path, original = self.map_lines[line - 1]
+            return Location(path, original, item.column)
+        return self.smap.locate(line, item.column)
 
     def error(self, cls: type, message: str, item: Any) -> Exception:
         return self.smap.error_at(cls, message, self.loc(item))
@@ -696,8 +716,7 @@ class _Builder:
                          raw.semantic, self.annotations(raw.annotations), value, self.loc(raw.name))
 
     def small_int(self, tok: Token, what: str) -> int:
-        text = tok.value.rstrip(_INT_SUFFIX)
-        value = int(text, 16) if text[:2] in ("0x", "0X") else int(text)
+        value = _int_value(tok.value)
         if value > 65535:
             raise self.error(ParseError, f"{what} {value} is too large", tok)
         return value
@@ -888,7 +907,7 @@ class _Builder:
             message = f"unknown state '{name}'" + (f" (did you mean '{hint}'?)" if hint else "")
             self.complain(message, where)
             return StateAssignment(name, self.unknown_value(raw.value), index, False, where)
-        self.check_index(info, index, context, raw)
+        self.check_index(info, index, context, raw, where)
         stage = {"vertexshader": "vertex", "pixelshader": "pixel"}.get(info.type)
         value = self.states.coerce_state_value(info, self.state_raw(raw.value, stage),
                                                self.loc(raw.value), self.param_names)
@@ -899,14 +918,18 @@ class _Builder:
             raise self.smap.error_at(StateError, message, where)
         self.warnings.append(self.smap.warning_at(message, where))
 
-    def check_index(self, info: Any, index: int | None, context: str, raw: _RawState) -> None:
+    def check_index(self, info: Any, index: int | None, context: str, raw: _RawState,
+                    where: Location) -> None:
         if context == "sampler":
             if index is not None:
                 raise self.error(StateError, f"{info.name} takes no index inside "
                                  f"sampler_state; remove [{index}]", raw.index)
             return
-        self.states.check_index(info, index, self.loc(raw.index if raw.index is not None
-                                                      else raw.name))
+        if index is None or (info.index != "none" and (info.max_index is None
+                                                       or index <= info.max_index)):
+            self.states.check_index(info, index, where)  # fine, or a missing index
+        else:
+            self.states.check_index(info, index, self.loc(raw.index))
 
     def state_raw(self, v: _V, stage: str | None) -> Any:
         """A state value in the form `states.coerce_state_value` reads."""
@@ -976,6 +999,18 @@ def parse_effect(pre: Preprocessed, *, strict: bool = False) -> Effect:
     Unknown state names become warnings in `effect.warnings` (a `StateError` when `strict`).
     Raises `ParseError` / `StateError` located in the original files for bad input.
     """
+    # Parsing allocates many small objects and frees none of them until the end; the cyclic
+    # collector's passes over them would cost about a tenth of the time, for nothing.
+    collecting = gc.isenabled()
+    gc.disable()
+    try:
+        return _parse(pre, strict)
+    finally:
+        if collecting:
+            gc.enable()
+
+
+def _parse(pre: Preprocessed, strict: bool) -> Effect:
     lexer = EffectLexer(pre.text)
     try:
         items = _lark().parse(lexer)

@@ -396,6 +396,8 @@ def test_effect_files_come_from_the_preprocessor(tmp_path):
 FX_COUNTS = {
     "brdf.fx": [("tec0", [23])],
     "wood.fx": [("Wood_ps20", [2])],
+    "sdk9_style.fx": [("Marble_ps20", [17, 10]), ("Marble_ps11", [18]), ("Marble_dx7", [25]),
+                      ("Marble_dx6", [19])],
     "sdk8_style.fx": [("TPS4", [21]), ("TPS1", [21]), ("TFF7", [38]), ("TDX6", [28]),
                       (None, [17])],
     "hemisphere.fx": [("HemispherePerPixel_ps11", [17]), ("HemisphereVertex_vs11", [20]),
