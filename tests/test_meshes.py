@@ -1,0 +1,219 @@
+"""Meshes: geometry, winding, tangent frames (averaged, continuous across the texture seam) and
+the .obj reader with located errors."""
+import numpy as np
+import pytest
+
+from effects import meshes as M
+from effects.errors import SceneError
+
+
+def face_normals(mesh):
+    p = mesh.positions[mesh.indices].astype(np.float64)
+    return np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), p.mean(axis=1)
+
+
+def signed_volume(mesh):
+    p = mesh.positions[mesh.indices].astype(np.float64)
+    return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6)
+
+
+def unit(v):
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def assert_orthonormal_frames(mesh):
+    for v in (mesh.normals, mesh.tangents, mesh.binormals):
+        assert np.allclose(np.linalg.norm(v, axis=1), 1, atol=1e-5)
+    assert np.abs(np.sum(mesh.normals * mesh.tangents, 1)).max() < 1e-5
+    assert np.abs(np.sum(mesh.normals * mesh.binormals, 1)).max() < 1e-5
+    assert np.abs(np.sum(mesh.tangents * mesh.binormals, 1)).max() < 1e-5
+
+
+def edge_counts(mesh):
+    """How many triangles use each undirected edge, vertices identified by position."""
+    _, pid = np.unique(np.round(mesh.positions, 5), axis=0, return_inverse=True)
+    tri = pid.ravel()[mesh.indices]
+    edges = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
+    _, counts = np.unique(edges, axis=0, return_counts=True)
+    return counts
+
+
+# ---- sphere ------------------------------------------------------------------------------------
+
+def test_sphere_normals_are_unit_positions():
+    s = M.sphere(12, 24)
+    assert s.positions.dtype == np.float32 and s.indices.dtype == np.uint32
+    assert np.allclose(np.linalg.norm(s.positions, axis=1), 1, atol=1e-6)
+    assert np.allclose(s.normals, s.positions, atol=1e-6)
+    assert_orthonormal_frames(s)
+
+
+def test_sphere_winding_is_outward_and_closed():
+    s = M.sphere(12, 24)
+    n, centre = face_normals(s)
+    assert np.all(np.sum(n * centre, axis=1) > 0)
+    assert np.all(edge_counts(s) == 2)
+    # 4/3 pi r^3 is approached from below by the inscribed polyhedron
+    assert 0.95 * 4 / 3 * np.pi < signed_volume(s) < 4 / 3 * np.pi
+
+
+def test_sphere_tangents_follow_u_and_binormals_follow_v():
+    s = M.sphere(24, 48)
+    phi = 2 * np.pi * s.uv[:, 0].astype(np.float64)
+    theta = np.pi * s.uv[:, 1].astype(np.float64)
+    away = (theta > 0.2) & (theta < np.pi - 0.2)              # off the poles
+    dpdu = np.stack([-np.sin(phi), 0 * phi, np.cos(phi)], 1)  # d/du of (sin t cos p, cos t, sin t sin p)
+    dpdv = np.stack([np.cos(theta) * np.cos(phi), -np.sin(theta), np.cos(theta) * np.sin(phi)], 1)
+    assert np.min(np.sum(s.tangents[away] * dpdu[away], 1)) > 0.995
+    assert np.min(np.sum(s.binormals[away] * dpdv[away], 1)) > 0.995
+
+
+def test_sphere_frames_are_continuous_across_the_seam():
+    rings, segments = 12, 24
+    s = M.sphere(rings, segments)
+    grid = np.arange((rings + 1) * (segments + 1)).reshape(rings + 1, segments + 1)
+    left, right = grid[1:-1, 0], grid[1:-1, -1]                # u = 0 and u = 1 columns
+    assert np.all(s.uv[left, 0] == 0) and np.all(s.uv[right, 0] == 1)
+    np.testing.assert_array_equal(s.positions[left], s.positions[right])
+    for attr in ("normals", "tangents", "binormals"):
+        a, b = getattr(s, attr)[left], getattr(s, attr)[right]
+        assert np.allclose(a, b, atol=1e-6), attr
+    # the pooled frame averages both sides: close to the smooth dP/du = +z at u = 0, where
+    # either side alone would lean 7.5 degrees (half a segment) towards its own facets
+    assert np.min(s.tangents[left] @ np.array([0, 0, 1.0])) > 0.998
+
+
+# ---- other shapes ------------------------------------------------------------------------------
+
+def test_cube_faces():
+    c = M.cube()
+    assert (c.vertex_count, c.triangle_count) == (24, 12)
+    assert signed_volume(c) == pytest.approx(1.0)
+    n, _ = face_normals(c)
+    per_triangle_normal = c.normals[c.indices[:, 0]]
+    assert np.allclose(unit(n), per_triangle_normal)
+    assert_orthonormal_frames(c)
+    front = np.all(c.normals == [0, 0, 1], axis=1)               # +Z face: u towards -x, v towards -y
+    assert np.allclose(c.tangents[front], [-1, 0, 0]) and np.allclose(c.binormals[front], [0, -1, 0])
+    assert np.all(edge_counts(c) == 2)
+
+
+def test_torus_closed_outward_and_seamless():
+    t = M.torus(24, 12, radius=0.7, tube=0.3)
+    assert np.all(edge_counts(t) == 2)
+    smooth = 2 * np.pi ** 2 * 0.7 * 0.3 ** 2     # Pappus; the inscribed mesh holds a little less
+    assert 0.9 * smooth < signed_volume(t) < smooth
+    ring = unit(t.positions * np.array([1, 0, 1]))
+    centre_of_tube = 0.7 * ring
+    assert np.allclose(t.normals, unit(t.positions - centre_of_tube), atol=1e-5)
+    assert_orthonormal_frames(t)
+    grid = np.arange(25 * 13).reshape(25, 13)
+    for a, b in ((grid[0], grid[-1]), (grid[:, 0], grid[:, -1])):   # both seams
+        assert np.allclose(t.tangents[a], t.tangents[b], atol=1e-6)
+        assert np.allclose(t.binormals[a], t.binormals[b], atol=1e-6)
+
+
+def test_teapot_faces_out():
+    t = M.teapot(6)
+    assert t.triangle_count > 32 * 6 * 6   # 2 per cell, less the degenerate ones
+    # its volume (lid gap and all) is that of the classic model scaled by 0.3^3
+    assert signed_volume(t) > 0.5
+    n, _ = face_normals(t)
+    agree = np.sum(unit(n) * t.normals[t.indices].mean(axis=1), axis=1)
+    assert np.mean(agree > 0) > 0.99          # winding agrees with the smooth normals
+    assert_orthonormal_frames(t)
+    lowest = np.argmin(t.positions[:, 1])
+    assert t.normals[lowest][1] < -0.9        # the bottom faces down
+    highest = np.argmax(t.positions[:, 1])
+    assert t.normals[highest][1] > 0.9        # the lid knob faces up
+
+
+def test_quad_is_clip_space_full_screen():
+    q = M.quad()
+    assert q.space == "clip"
+    assert q.positions[:, :2].min() == -1 and q.positions[:, :2].max() == 1
+    assert np.all(q.positions[:, 2] == 0.5)
+    top_left = np.argmin(q.positions[:, 0] - q.positions[:, 1])
+    assert q.uv[top_left].tolist() == [0, 0]
+    n, _ = face_normals(q)
+    assert np.all(n[:, 2] < 0)                # towards the viewer of a left-handed view
+    assert np.allclose(q.tangents, [1, 0, 0]) and np.allclose(q.binormals, [0, -1, 0])
+
+
+def test_mirrored_uvs_flip_the_binormal():
+    positions = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
+    plain = M.make_mesh(positions, [[0, 0], [1, 0], [0, 1]], [[0, 1, 2]], name="t")
+    mirrored = M.make_mesh(positions, [[0, 0], [1, 0], [0, -1]], [[0, 1, 2]], name="t")
+    assert np.allclose(plain.normals, [0, 0, 1])
+    assert np.allclose(plain.binormals, [0, 1, 0]) and np.allclose(mirrored.binormals, [0, -1, 0])
+    assert np.allclose(mirrored.tangents, [1, 0, 0])
+
+
+# ---- .obj -------------------------------------------------------------------------------------
+
+OBJ = """# a unit square (quad) and a triangle on top, mixed index forms
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0.5 2 0
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+vn 0 0 1
+f 1/1/1 2/2/1 3/3/1 4/4/1
+f -2//1 -3//1 -1//1
+"""
+
+
+def test_obj_quads_negative_indices_and_flipped_v(tmp_path):
+    path = tmp_path / "m.obj"
+    path.write_text(OBJ)
+    m = M.load_obj(path)
+    assert m.triangle_count == 3
+    assert np.allclose(m.normals, [0, 0, 1])
+    first = m.indices[0]
+    assert m.positions[first].tolist() == [[0, 0, 0], [1, 0, 0], [1, 1, 0]]
+    assert m.uv[first].tolist() == [[0, 1], [1, 1], [1, 0]]    # v flipped to the top-left origin
+    last = m.indices[2]
+    assert m.positions[last].tolist() == [[0, 1, 0], [1, 1, 0], [0.5, 2, 0]]
+    assert np.allclose(m.tangents[first], [1, 0, 0]) and np.allclose(m.binormals[first], [0, -1, 0])
+
+
+def test_obj_without_normals_gets_smooth_ones(tmp_path):
+    path = tmp_path / "tet.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    m = M.load_obj(path)
+    assert signed_volume(m) == pytest.approx(1 / 6)
+    # at (1, 0, 0): area-weighted face normals 0.5 (0, 0, -1) + 0.5 (0, -1, 0) + (sqrt 3 / 2) (1, 1, 1) / sqrt 3
+    # sum to (0.5, 0, 0)
+    corner = m.positions.tolist().index([1, 0, 0])
+    assert np.allclose(m.normals[corner], [1, 0, 0], atol=1e-6)
+
+
+@pytest.mark.parametrize("text, line, column, message", [
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", 4, 7, "vertex index 9 is out of range"),
+    ("v 0 0 0\nv 1 x 0\n", 2, 5, "bad vertex number 'x'"),
+    ("v 0 0 0\nv 1 0 0\nf 1 2\n", 3, 1, "a face needs at least 3 vertices"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/4 2 3\n", 4, 3, "texture coordinate index 4 is out of range"),
+    ("v 0 0 0\n", 1, 1, "no faces"),
+])
+def test_obj_errors_are_located(tmp_path, text, line, column, message):
+    path = tmp_path / "bad.obj"
+    path.write_text(text)
+    with pytest.raises(SceneError) as info:
+        M.load_obj(path)
+    assert message in str(info.value)
+    assert (info.value.line, info.value.column) == (line, column)
+    assert str(info.value).startswith(f"{path}:{line}:{column}: error:")
+
+
+def test_by_name(tmp_path):
+    assert M.by_name("teapot").name == "teapot"
+    (tmp_path / "m.obj").write_text(OBJ)
+    assert M.by_name("m.obj", base_dir=str(tmp_path)).triangle_count == 3
+    with pytest.raises(SceneError, match="unknown mesh 'donut'"):
+        M.by_name("donut")
+    with pytest.raises(SceneError, match="mesh file not found"):
+        M.by_name("gone.obj", base_dir=str(tmp_path))
