@@ -58,12 +58,56 @@ def _load(args):
                        strict=getattr(args, "strict", False))
 
 
+def _profiles(names: Sequence[str]):
+    from .caps import list_profiles, load_profile
+    return [load_profile(n) for n in (names or list_profiles())]
+
+
 def _cmd_validate(args, console: Console) -> int:
+    from .report import print_validation_table
     from .summary import print_effect_summary
     effect = _load(args)
     for warning in effect.warnings:
         console.print(warning.report(), markup=False, highlight=False, style="yellow")
-    print_effect_summary(effect, console)
+    if not args.profile:
+        print_effect_summary(effect, console)
+        return EXIT_OK
+    any_valid = print_validation_table(effect, _profiles(args.profile), console, why=args.why)
+    return EXIT_OK if any_valid else EXIT_INVALID
+
+
+def _add_matrix(sub) -> None:
+    p = sub.add_parser("matrix", help="the technique each card selects, for one or more effects")
+    p.add_argument("files", nargs="+", metavar="FILE.fx")
+    p.add_argument("--profile", "-p", action="append", default=[], metavar="P",
+                   help="caps profile (repeatable; default: every bundled card)")
+    p.add_argument("--policy", default="first", help="selection policy: first, quality, cost, "
+                   "max-passes=N, comma-separated (default: first, as D3DX)")
+    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    p.set_defaults(run=_cmd_matrix)
+
+
+def _cmd_matrix(args, console: Console) -> int:
+    import json
+    from .loader import load_effect
+    from .report import matrix, print_matrix
+    effects = {path: load_effect(path) for path in args.files}
+    result = matrix(effects, _profiles(args.profile), args.policy)
+    if args.json:
+        print(json.dumps(result, indent=2))
+    else:
+        print_matrix(result, console)
+    return EXIT_OK
+
+
+def _add_profiles(sub) -> None:
+    p = sub.add_parser("profiles", help="the simulated cards, by generation, with their key caps")
+    p.set_defaults(run=_cmd_profiles)
+
+
+def _cmd_profiles(args, console: Console) -> int:
+    from .report import print_profiles
+    print_profiles(_profiles(()), console)
     return EXIT_OK
 
 
@@ -71,6 +115,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="effects", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     _add_validate(sub)
+    _add_matrix(sub)
+    _add_profiles(sub)
     return parser
 
 

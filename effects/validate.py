@@ -16,6 +16,7 @@ import numpy as np
 from .caps import CapsProfile
 from .device import MAX_SAMPLERS, MAX_STAGES, DeviceState, pass_states
 from .errors import EffectError, Location
+from . import states as state_table
 from .model import (CompileShader, Effect, EnumValue, NullValue, Parameter, ParamRef, Pass,
                     ShaderBlock, Technique)
 
@@ -209,11 +210,9 @@ class _PassChecker:
             self.need_bit("PrimitiveMiscCaps", "PERSTAGECONSTANT", f"{state_name}[{stage}] = Constant",
                           self.where(state_name, stage), "D3DPMISCCAPS_")
 
-    def _shown(self, name: str, index: int) -> str:
-        a = self.state.assignment(name, index)
-        if a is not None and isinstance(a.value, EnumValue):
-            return " | ".join(n.title() if not n.isdigit() else n for n in a.value.names)
-        return str(self.state.enum_name(name, index) or "default").title()
+    def _shown(self, name: str, index: int | None = None) -> str:
+        """A state's value as the docs spell it ('BumpEnvMap', 'Texture | Complement')."""
+        return spelled(name, self.state.enum_name(name, index) or "default")
 
     # textures and samplers ---------------------------------------------------------------------
     def sampled_units(self, shader: bool) -> list[int]:
@@ -287,7 +286,8 @@ class _PassChecker:
             usages = self.profile.format_usages(fmt.upper())
             for use in wanted:
                 if use not in usages:
-                    what = "as a render target" if use == "rendertarget" else f"as a {use} texture"
+                    what = {"rendertarget": "as a render target", "texture": "for a texture"}.get(
+                        use, f"for a {use} texture")
                     self.fail(param.location, f"{subject} Format = {fmt}", f"format {fmt.upper()} ({use})",
                               "supported usages: " + (", ".join(sorted(usages)) or "none"),
                               f"{subject} uses the format {fmt.upper()} {what}; the {self.card()} "
@@ -300,14 +300,14 @@ class _PassChecker:
                 continue
             bit = _FILTER_BITS.get((name, value))
             if bit:
-                self.need_bit("TextureFilterCaps", bit, f"{name}[{unit}] = {value.title()}",
+                self.need_bit("TextureFilterCaps", bit, f"{name}[{unit}] = {spelled(name, value)}",
                               self.where(name, unit), "D3DPTFILTERCAPS_")
         for name in ("AddressU", "AddressV", "AddressW"):
             if self.state.assignment(name, unit) is None:
                 continue
             value = self.state.enum_name(name, unit)
             if value:
-                self.need_bit("TextureAddressCaps", value, f"{name}[{unit}] = {value.title()}",
+                self.need_bit("TextureAddressCaps", value, f"{name}[{unit}] = {spelled(name, value)}",
                               self.where(name, unit), "D3DPTADDRESSCAPS_")
 
     # frame-buffer operations ---------------------------------------------------------------------
@@ -320,10 +320,10 @@ class _PassChecker:
             for name, caps_field in (("SrcBlend", "SrcBlendCaps"), ("DestBlend", "DestBlendCaps")):
                 value = self.state.enum_name(name)
                 if value:
-                    self.need_bit(caps_field, value, f"{name} = {value.title()}", self.where(name), "D3DPBLENDCAPS_")
+                    self.need_bit(caps_field, value, f"{name} = {spelled(name, value)}", self.where(name), "D3DPBLENDCAPS_")
             op = self.state.enum_name("BlendOp")
             if op and op != "ADD":
-                self.need_bit("PrimitiveMiscCaps", "BLENDOP", f"BlendOp = {op.title()}",
+                self.need_bit("PrimitiveMiscCaps", "BLENDOP", f"BlendOp = {spelled('BlendOp', op)}",
                               self.where("BlendOp"), "D3DPMISCCAPS_")
             if self.enabled("SeparateAlphaBlendEnable"):
                 self.need_bit("PrimitiveMiscCaps", "SEPARATEALPHABLEND", "SeparateAlphaBlendEnable = True",
@@ -337,11 +337,11 @@ class _PassChecker:
         if self.enabled("AlphaTestEnable"):
             value = self.state.enum_name("AlphaFunc")
             if value:
-                self.need_bit("AlphaCmpCaps", value, f"AlphaFunc = {value.title()}", self.where("AlphaFunc"), "D3DPCMPCAPS_")
+                self.need_bit("AlphaCmpCaps", value, f"AlphaFunc = {spelled('AlphaFunc', value)}", self.where("AlphaFunc"), "D3DPCMPCAPS_")
         if self.state.assignment("ZFunc") is not None:
             value = self.state.enum_name("ZFunc")
             if value:
-                self.need_bit("ZCmpCaps", value, f"ZFunc = {value.title()}", self.where("ZFunc"), "D3DPCMPCAPS_")
+                self.need_bit("ZCmpCaps", value, f"ZFunc = {spelled('ZFunc', value)}", self.where("ZFunc"), "D3DPCMPCAPS_")
 
     def check_stencil(self) -> None:
         if not self.enabled("StencilEnable"):
@@ -358,7 +358,7 @@ class _PassChecker:
         for name in names:
             value = self.state.enum_name(name)
             if value and self.state.assignment(name) is not None:
-                self.need_bit("StencilCaps", value, f"{name} = {value.title()}", self.where(name), "D3DSTENCILCAPS_")
+                self.need_bit("StencilCaps", value, f"{name} = {spelled(name, value)}", self.where(name), "D3DSTENCILCAPS_")
 
     # shaders ------------------------------------------------------------------------------------
     def check_pixel_shader(self, shader: tuple[Any, Location]) -> None:
@@ -370,10 +370,12 @@ class _PassChecker:
         self.report.pixel_shader = _version_label("ps", version)
         if version > have:
             label = self.report.pixel_shader
-            self.fail(_block_location(value, loc), f"PixelShader ({label})", f"PixelShaderVersion >= {_version_text(version)}",
+            limit = (f"runs pixel shaders up to {_version_label('ps', have)}" if have > (0, 0)
+                     else "has no pixel shader hardware")
+            self.fail(_block_location(value, loc), f"PixelShader ({label})",
+                      f"PixelShaderVersion >= {_version_text(version)}",
                       f"PixelShaderVersion {_version_text(have)}",
-                      f"PixelShader is {label}; the {self.card()} runs pixel shaders up to "
-                      f"{_version_label('ps', have) if have > (0, 0) else 'none (no pixel shader hardware)'}")
+                      f"PixelShader is {label}; the {self.card()} {limit}")
             return
         self.check_assembly(value, "PixelShader")
 
@@ -388,11 +390,12 @@ class _PassChecker:
         processing = self.profile.vertex_processing
         software_ok = bool(processing & {"software", "mixed"}) and version <= _SOFTWARE_VS_VERSION
         if version > hardware and not software_ok:
-            limit = _version_label("vs", hardware) if hardware > (0, 0) else "none in hardware"
+            limit = (f"runs vertex shaders up to {_version_label('vs', hardware)}" if hardware > (0, 0)
+                     else "has no vertex shader hardware")
             self.fail(_block_location(value, loc), f"VertexShader ({label})",
                       f"VertexShaderVersion >= {_version_text(version)} or software vertex processing",
                       f"VertexShaderVersion {_version_text(hardware)}, processing: {', '.join(sorted(processing))}",
-                      f"VertexShader is {label}; the {self.card()} runs vertex shaders up to {limit} "
+                      f"VertexShader is {label}; the {self.card()} {limit} "
                       f"and offers no software vertex processing")
             return
         self.check_assembly(value, "VertexShader", software=version > hardware)
@@ -400,7 +403,7 @@ class _PassChecker:
     def check_assembly(self, value: Any, state_name: str, software: bool = False) -> None:
         if not isinstance(value, ShaderBlock):
             return
-        from .asm import assemble_cached, check_cached
+        from .asm import assemble_cached, card_limit_violations, check_cached
         try:
             program = assemble_cached(value)
         except EffectError as err:
@@ -408,16 +411,73 @@ class _PassChecker:
             return
         for err in check_cached(program):
             self.fail(err.location, state_name, "valid shader assembly", "assembly error", err.message)
-        from .asm.limits import card_limit_violations
         for loc, subject, requirement, card_value, message in card_limit_violations(
                 program, self.profile, software=software):
             self.fail(loc, subject, requirement, card_value, f"{message}; the {self.card()} has {card_value}")
 
     # card quirks ---------------------------------------------------------------------------------
     def check_quirks(self) -> None:
+        """Driver rules beyond the caps bits (caps.py documents the rule vocabulary). Only
+        rules of severity 'error' (ValidateDevice failed on the card) reject a technique."""
         for quirk in self.profile.quirks:
-            for loc, subject, message in quirk.violations(self.state, self.active_stages()):
-                self.fail(loc, subject, f"quirk {quirk.id}", "driver rule", f"{message} ({self.card()})")
+            rule = _QUIRK_CHECKS.get(quirk.rule)
+            if rule is None or quirk.severity != "error":
+                continue
+            for loc, subject in rule(self, quirk):
+                self.fail(loc, subject, f"driver rule {quirk.id}", quirk.text,
+                          f"{subject}: {quirk.text} ({self.card()})")
+
+    def _quirk_arg_not_texture(self, quirk) -> Iterable[tuple[Location, str]]:
+        if self.shader("PixelShader") is not None:
+            return
+        channel = quirk.get("channel") or "both"
+        prefixes = {"color": [("ColorOp", "ColorArg")], "alpha": [("AlphaOp", "AlphaArg")]}.get(
+            channel, [("ColorOp", "ColorArg"), ("AlphaOp", "AlphaArg")])
+        for stage in self.active_stages():
+            for op_state, arg_prefix in prefixes:
+                if self.state.enum_name(op_state, stage) != quirk.get("op"):
+                    continue
+                arg = f"{arg_prefix}{quirk.get('arg')}"
+                if _ta_select(self.state.get(arg, stage)) == 2:
+                    yield self.where(arg, stage), f"{op_state}[{stage}] = {self._shown(op_state, stage)} with {arg}[{stage}] = Texture"
+
+    def _quirk_textures_need_op(self, quirk) -> Iterable[tuple[Location, str]]:
+        if self.shader("PixelShader") is not None:
+            return
+        units = self.sampled_units(False)
+        if len(units) <= int(quirk.get("max_textures")):
+            return
+        ops = set(quirk.get("ops") or ())
+        if not any(self.state.enum_name("ColorOp", s) in ops for s in self.active_stages()):
+            yield self.where("Texture", units[-1]), f"{len(units)} textures in one pass"
+
+    def _quirk_op_stages(self, quirk) -> Iterable[tuple[Location, str]]:
+        allowed = set(quirk.get("stages") or ())
+        for stage in self.active_stages():
+            for op_state in ("ColorOp", "AlphaOp"):
+                if self.state.enum_name(op_state, stage) == quirk.get("op") and stage not in allowed:
+                    yield self.where(op_state, stage), f"{op_state}[{stage}] = {self._shown(op_state, stage)}"
+
+    def _quirk_max_textures(self, quirk) -> Iterable[tuple[Location, str]]:
+        units = self.sampled_units(self.shader("PixelShader") is not None)
+        if len(units) > int(quirk.get("count")):
+            yield self.where("Texture", units[-1]), f"{len(units)} textures in one pass"
+
+
+_QUIRK_CHECKS: dict[str, Callable[[_PassChecker, Any], Iterable[tuple[Location, str]]]] = {
+    "arg_not_texture": _PassChecker._quirk_arg_not_texture,
+    "textures_need_op": _PassChecker._quirk_textures_need_op,
+    "op_stages": _PassChecker._quirk_op_stages,
+    "max_textures": _PassChecker._quirk_max_textures,
+}
+
+
+def spelled(state_name: str, enum_name: str) -> str:
+    """An enum value of a state as the D3D docs spell it ('BUMPENVMAP' → 'BumpEnvMap')."""
+    info = state_table.lookup_state(state_name)
+    if info is None or info.enum is None:
+        return enum_name
+    return info.enum.spelling(enum_name)
 
 
 def _ta_select(value: Any) -> int | None:
@@ -475,7 +535,7 @@ def _shader_samplers(value: Any) -> list[int] | None:
         return None
     from .asm import assemble_cached
     try:
-        return sorted(assemble_cached(value).stats.samplers)
+        return sorted(assemble_cached(value).stats.samplers_used)
     except EffectError:
         return None
 

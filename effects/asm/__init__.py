@@ -10,6 +10,7 @@ limits (versions.py); the lowering reads `Instruction.info` to know what each on
 from .check import check
 from .instructions import TABLE as INSTRUCTIONS
 from .instructions import InstrInfo, lookup
+from .limits import assemble_cached, card_limit_violations, check_cached
 from .parser import NOT_ASSEMBLY, assemble
 from .program import AsmProgram, ConstantDef, Declaration, Instruction, Operand, RelativeAddress
 from .stats import AsmStats
@@ -18,5 +19,6 @@ from .versions import VERSIONS, VersionRules, canonical_version
 __all__ = [
     "AsmProgram", "AsmStats", "ConstantDef", "Declaration", "INSTRUCTIONS", "InstrInfo",
     "Instruction", "NOT_ASSEMBLY", "Operand", "RelativeAddress", "VERSIONS", "VersionRules",
-    "assemble", "canonical_version", "check", "lookup",
+    "assemble", "assemble_cached", "canonical_version", "card_limit_violations", "check",
+    "check_cached", "lookup",
 ]
