@@ -461,17 +461,26 @@ def checker(size: int = 64, squares: int = 8) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------------------------------
-# The procedural registry: procedural("NAME[:ARG]", size=N)
+# The procedural registry: procedural("NAME[:ARG]", size=N, base_dir=DIR)
+#
+# ARG means what each entry says: a height-field kind or an image path ('height', 'sobel_normals',
+# 'sobel_dudv', 'dudv'), an exponent ('power', 'power_table', 'power1d', 'power_range'), a
+# number of squares ('checker'), or the edge length itself ('normalization_cube', 'sky_cube',
+# 'noise3d', which is how the bundled effect files ask for them: fxfiles/README.md).
 
 
 @dataclass(frozen=True)
 class Procedural:
-    """One named procedural texture: `make(arg, size) -> Texture`, its default size and argument."""
+    """One named procedural texture: `make(arg, size, heights) -> Texture`, its default size and
+    argument; `heights` is the height field the argument names (for the entries that take one).
+    `arg_is_size`: the argument, when given, is the edge length."""
 
-    make: Callable[[str, int], Texture]
+    make: Callable[[str, int, "np.ndarray | None"], Texture]
     size: int
     default_arg: str = ""
     doc: str = ""
+    arg_is_size: bool = False
+    takes_height: bool = False
 
 
 def _freeze(texture: Texture) -> Texture:
@@ -481,64 +490,118 @@ def _freeze(texture: Texture) -> Texture:
 
 
 def _normal_scale(size: int) -> float:
-    # Keep the bump steepness independent of resolution (Sobel sums shrink as 1/size).
+    # Keep the bump steepness of the built-in height fields independent of resolution
+    # (Sobel sums shrink as 1/size); an image's heights are used as they are (scale 1).
     return size / 128.0
 
 
+def _sobel_dudv(heights: np.ndarray, scale: float) -> np.ndarray:
+    """(du, dv) = (n.x, n.y) of the Sobel normal, as V8U8 (fxfiles/README.md 'sobel_dudv')."""
+    n = 2 * sobel_normal_map(heights, scale)[..., :2] - 1
+    return np.concatenate([n, np.ones(n.shape[:-1] + (2,))], axis=-1)
+
+
+def _grey(h: np.ndarray) -> np.ndarray:
+    return _rgba(np.repeat(np.asarray(h)[..., None], 3, -1))
+
+
 PROCEDURAL: dict[str, Procedural] = {
-    "earth": Procedural(lambda a, s: make_texture(earth_base(s), "X8R8G8B8"), 128,
+    "earth": Procedural(lambda a, s, h: make_texture(earth_base(s), "X8R8G8B8"), 128,
                         doc="Earth-like colour map, size x 2*size, X8R8G8B8"),
-    "height": Procedural(lambda a, s: make_texture(_rgba(np.repeat(height_field(s, a)[..., None], 3, -1)), "L8"),
-                         128, "bumps", "height field KIND (bumps|stones|craters|noise), L8"),
-    "height_alpha": Procedural(lambda a, s: make_texture(_rgba(np.zeros((s, s, 3)), height_field(s, a)), "A8"),
-                               128, "bumps", "height field KIND in alpha, A8 (emboss)"),
+    "height": Procedural(lambda a, s, h: make_texture(_grey(h), "L8"), 128, "bumps",
+                         "height field KIND (bumps|stones|craters|noise) or image, L8", takes_height=True),
+    "height_alpha": Procedural(lambda a, s, h: make_texture(_rgba(np.zeros(h.shape + (3,)), h), "A8"),
+                               128, "bumps", "height field in alpha, A8 (emboss)", takes_height=True),
     "sobel_normals": Procedural(
-        lambda a, s: make_texture(sobel_normal_map(height_field(s, a), _normal_scale(s)), "X8R8G8B8", blur=True),
-        128, "bumps", "tangent-space normal map of height field KIND, X8R8G8B8, blurred mips"),
-    "dudv": Procedural(lambda a, s: Texture("2d", "V8U8", [encode(level, "V8U8") for level in
-                                                         mip_chain(bump_map_du_dv(height_field(s, a)))]),
-                       128, "bumps", "EMBM (du, dv) of height field KIND, V8U8"),
-    "gloss": Procedural(lambda a, s: make_texture(gloss_map(s), "L8", blur=True), 128,
+        lambda a, s, h: make_texture(sobel_normal_map(h, 1.0 if _is_path(a) else _normal_scale(s)),
+                                     "X8R8G8B8", blur=True),
+        128, "bumps", "tangent-space normal map of a height field, X8R8G8B8, blurred mips", takes_height=True),
+    "sobel_dudv": Procedural(
+        lambda a, s, h: make_texture(_sobel_dudv(h, 1.0 if _is_path(a) else _normal_scale(s)), "V8U8"),
+        128, "bumps", "EMBM (du, dv) = (n.x, n.y) of the Sobel normal, V8U8", takes_height=True),
+    "dudv": Procedural(lambda a, s, h: Texture("2d", "V8U8", [encode(level, "V8U8") for level in
+                                                            mip_chain(bump_map_du_dv(h))]),
+                       128, "bumps", "EMBM (du, dv) = -0.05 * height gradient, V8U8", takes_height=True),
+    "gloss": Procedural(lambda a, s, h: make_texture(gloss_map(s), "L8", blur=True), 128,
                         doc="gloss map, L8, blurred mips"),
-    "environment": Procedural(lambda a, s: make_texture(environment_cube(s), "X8R8G8B8", kind="cube"), 64,
-                              doc="sky and checkered ground cube map, X8R8G8B8"),
+    "environment": Procedural(lambda a, s, h: make_texture(environment_cube(s), "X8R8G8B8", kind="cube"), 64,
+                              doc="sky and checkered ground cube map, X8R8G8B8", arg_is_size=True),
     "normalization_cube": Procedural(
-        lambda a, s: Texture("cube", "X8R8G8B8", [encode(normalization_cube(s), "X8R8G8B8")]), 32,
-        doc="normalisation cube map, X8R8G8B8, one level"),
-    "power": Procedural(lambda a, s: Texture("2d", "A8R8G8B8", [encode(power_table(s, float(a))[0], "A8R8G8B8")]),
+        lambda a, s, h: Texture("cube", "X8R8G8B8", [encode(normalization_cube(s), "X8R8G8B8")]), 32,
+        doc="normalisation cube map, X8R8G8B8, one level", arg_is_size=True),
+    "power": Procedural(lambda a, s, h: Texture("2d", "A8R8G8B8", [encode(power_table(s, float(a))[0], "A8R8G8B8")]),
                         256, "16", "Boyd-Taylor table: rgb = v^N (rows N.H), alpha = u (N.L); A8R8G8B8"),
-    "power1d": Procedural(lambda a, s: Texture("1d", "L8", [encode(power_table_1d(s, float(a)), "L8")]),
+    "power1d": Procedural(lambda a, s, h: Texture("1d", "L8", [encode(power_table_1d(s, float(a)), "L8")]),
                           256, "16", "1D table rgb = u^N, L8"),
-    "power_range": Procedural(lambda a, s: Texture("2d", "L8", [encode(power_range_table(s, float(a)), "L8")]),
+    "power_range": Procedural(lambda a, s, h: Texture("2d", "L8", [encode(power_range_table(s, float(a)), "L8")]),
                               256, "128", "rgb = u^(v*MAX): columns N.H, rows exponent/MAX; L8"),
-    "noise_volume": Procedural(lambda a, s: make_texture(noise_volume(s), "A8R8G8B8", kind="3d"), 32,
-                               doc="tileable 4-channel noise volume, A8R8G8B8"),
-    "checker": Procedural(lambda a, s: make_texture(checker(s, int(a)), "X8R8G8B8"), 64, "8",
+    "noise_volume": Procedural(lambda a, s, h: make_texture(noise_volume(s), "A8R8G8B8", kind="3d"), 32,
+                               doc="tileable 4-channel noise volume, A8R8G8B8", arg_is_size=True),
+    "noise3d": Procedural(lambda a, s, h: make_texture(_grey(noise_volume(s)[..., 0]), "L8", kind="3d"), 32,
+                          doc="tileable value-noise volume, L8", arg_is_size=True),
+    "checker": Procedural(lambda a, s, h: make_texture(checker(s, int(a)), "X8R8G8B8"), 64, "8",
                           "checkerboard with N squares a side, X8R8G8B8"),
 }
+# The names the bundled effect files use (fxfiles/README.md).
+PROCEDURAL["power_table"] = PROCEDURAL["power"]
+PROCEDURAL["sky_cube"] = PROCEDURAL["environment"]
+
+
+def _is_path(arg: str) -> bool:
+    return "/" in arg or "\\" in arg or "." in os.path.basename(arg)
+
+
+def _height_from_image(path: str, where: Location) -> np.ndarray:
+    from PIL import Image, UnidentifiedImageError
+    if not os.path.isfile(path):
+        raise SceneError(f"height image not found: {path}", where)
+    try:
+        with Image.open(path) as img:
+            return np.asarray(img.convert("L"), np.float32) / 255.0
+    except (OSError, UnidentifiedImageError, ValueError) as exc:
+        raise SceneError(f"cannot read height image {path}: {exc}", where) from None
 
 
 @functools.lru_cache(maxsize=64)
-def _procedural_cached(base: str, arg: str, size: int) -> Texture:
-    texture = PROCEDURAL[base].make(arg, size)
+def _procedural_cached(base: str, arg: str, size: int, path: str, stamp: float) -> Texture:
+    entry = PROCEDURAL[base]
+    heights = None
+    if entry.takes_height:
+        heights = _height_from_image(path, Location(path, 1, 1)) if path else height_field(size, arg)
+    texture = entry.make(arg, size, heights)
     texture.name = f"{base}:{arg}" if arg else base
     return _freeze(texture)
 
 
-def procedural(name: str, *, size: int | None = None, location: Location | None = None) -> Texture:
-    """A procedural texture by name: 'NAME' or 'NAME:ARG' (see `PROCEDURAL`), e.g.
-    'sobel_normals:stones', 'power:32', 'normalization_cube'. `size` overrides the default edge
-    length. Results are cached and read-only. Unknown names raise `SceneError` at `location`."""
+def procedural(name: str, *, size: int | None = None, base_dir: str | None = None,
+               location: Location | None = None) -> Texture:
+    """A procedural texture by name, 'NAME' or 'NAME:ARG' (see `PROCEDURAL` and the table above),
+    e.g. 'sobel_normals:stones', 'sobel_normals:textures/h.png' (an image path, relative to
+    `base_dir`), 'power_table:16', 'normalization_cube:32'. `size` overrides the default edge
+    length (an edge-length argument wins over it). Results are cached (image arguments by file
+    modification time) and read-only. Problems raise `SceneError` at `location`."""
     where = location or Location(f"procedural:{name}", 1, 1)
     base, _, arg = name.partition(":")
     entry = PROCEDURAL.get(base)
     if entry is None:
         raise SceneError(f"unknown procedural texture {base!r} (known: {', '.join(sorted(PROCEDURAL))})", where)
-    size = entry.size if size is None else int(size)
-    if size < 1 or size > 4096:
+    arg = arg.strip() or entry.default_arg
+    size = entry.size if size is None else size
+    if entry.arg_is_size and arg:
+        if not arg.isdigit():
+            raise SceneError(f"bad argument {arg!r} for procedural texture {base!r}: "
+                             "expected an edge length", where)
+        size = int(arg)
+    if not 1 <= int(size) <= 4096:
         raise SceneError(f"procedural texture size {size} is out of range 1..4096", where)
+    path, stamp = "", 0.0
+    if entry.takes_height and _is_path(arg):
+        path = arg if base_dir is None or os.path.isabs(arg) else os.path.join(base_dir, arg)
+        stamp = os.path.getmtime(path) if os.path.isfile(path) else -1.0
     try:
-        return _procedural_cached(base, arg or entry.default_arg, size)
+        return _procedural_cached(base, arg, int(size), path, stamp)
+    except SceneError as exc:
+        raise SceneError(exc.message, where) from None
     except ValueError as exc:
         raise SceneError(f"bad argument {arg!r} for procedural texture {base!r}: {exc}", where) from None
 

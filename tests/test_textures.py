@@ -238,3 +238,35 @@ def test_bad_texture_files(tmp_path, name, content, kind, message):
         T.load_texture(path, kind=kind)
     assert message in str(info.value)
     assert str(info.value).startswith(f"{path}:1:1: error:")
+
+
+def test_effect_file_generator_names(tmp_path):
+    # the names fxfiles/README.md documents: the argument is an image path or an edge length
+    ramp = np.tile(np.arange(16, dtype=np.uint8) * 8, (16, 1))          # height rises along +u
+    (tmp_path / "tex").mkdir()
+    Image.fromarray(ramp, "L").save(tmp_path / "tex" / "h.png")
+    normals = T.procedural("sobel_normals:tex/h.png", base_dir=str(tmp_path))
+    assert (normals.format, normals.width) == ("X8R8G8B8", 16)
+    # interior texel: dX = 8 * (8 / 255), scale 1 for images; n leans towards -u
+    expect = np.array([-64 / 255, 0, 1.0]) / np.hypot(64 / 255, 1.0)
+    assert normals.levels[0][5, 5, :3].tolist() == pytest.approx((0.5 + 0.5 * expect).tolist(), abs=1 / 255)
+    dudv = T.procedural("sobel_dudv:tex/h.png", base_dir=str(tmp_path))
+    assert dudv.format == "V8U8"
+    assert dudv.levels[0][5, 5, :2].tolist() == pytest.approx([round(expect[0] * 127) / 127, 0.0])
+    assert T.procedural("normalization_cube:8").levels[0].shape == (6, 8, 8, 4)
+    sky = T.procedural("sky_cube:16")
+    assert sky.kind == "cube" and sky.width == 16
+    noise = T.procedural("noise3d:8")
+    assert (noise.kind, noise.format, noise.levels[0].shape) == ("3d", "L8", (8, 8, 8, 4))
+    table = T.procedural("power_table:16", size=32)
+    assert table.levels[0][31, 0, 0] == pytest.approx(round((31.5 / 32) ** 16 * 255) / 255)
+
+
+def test_missing_height_image_is_reported_at_the_annotation(tmp_path):
+    from effects.errors import Location
+    where = Location("fx/phong.fx", 94, 5)
+    with pytest.raises(SceneError) as info:
+        T.procedural("sobel_normals:textures/none.png", base_dir=str(tmp_path), location=where)
+    assert str(info.value).startswith("fx/phong.fx:94:5: error: height image not found")
+    with pytest.raises(SceneError, match="expected an edge length"):
+        T.procedural("normalization_cube:big")
