@@ -130,6 +130,7 @@ class EffectLexer:
         self.popped: _Open | None = None      # the entry a closer token closed ...
         self.popped_at = -1                   # ... and that token's offset
         self.closed_annotation_at = -1        # offset of the '>' that closed annotations
+        self.pushed_at = -1                   # offset of the last opener
         self.decl_name: str | None = None     # the name declared by the current top-level statement
         self.line_starts = [0] + [m.end() for m in re.finditer("\n", text)]
 
@@ -239,10 +240,12 @@ class EffectLexer:
                             "list" if prev in _LIST_OPENERS else "block")
                         entry = _Open(k, None, line, col, _OPENERS[kind])
                     opened.append(entry)
+                    self.pushed_at = start
                 elif kind in _CLOSERS:
                     if opened and opened[-1].closer == kind:
-                        self.popped, self.popped_at = opened.pop(), start
-                        if not opened and kind == "RBRACE" and not in_ann:
+                        closed = opened.pop()
+                        self.popped, self.popped_at = closed, start
+                        if not opened and closed.kind == "technique" and not in_ann:
                             stmt_eq = stmt_params = False
                             self.decl_name = None
                 elif kind in _HEADERS:
@@ -528,7 +531,8 @@ def _syntax_message(exc: UnexpectedToken, lexer: EffectLexer) -> tuple[str, int,
     # lark has already pulled `tok` from the lexer: when it was a closer, the lexer has
     # popped what it closed, which is the context the parser was in.
     popped = lexer.popped if lexer.popped_at == tok.start_pos and not at_end else None
-    inner = popped or (lexer.open[-1] if lexer.open else None)
+    open_ = lexer.open[:-1] if lexer.pushed_at == tok.start_pos and not at_end else lexer.open
+    inner = popped or (open_[-1] if open_ else None)
     ctx = inner.kind if inner else "top"
     if lexer.closed_annotation_at == tok.start_pos or (lexer.annotation is not None
                                    and lexer.annotation_depth == len(lexer.open)):
@@ -555,6 +559,8 @@ def _syntax_message(exc: UnexpectedToken, lexer: EffectLexer) -> tuple[str, int,
         return f"expected a declaration or a technique, found {found}", line, col
     if ctx == "annotation" and {"NAME", "GT"} <= expected:
         return f"expected an annotation or '>', found {found}", line, col
+    if tok.type == "LSQB" and "INDEX" in expected:
+        return "a state index must be a constant integer such as [0]", line, col
     if _VALUE_STARTS <= expected:
         return f"expected a value, found {found}", line, col
     names = _ordered(expected - _BINOPS) or _ordered(expected)
