@@ -11,6 +11,7 @@ the parser does not care about declaration order).
 """
 from __future__ import annotations
 
+import re
 from typing import Any
 
 import numpy as np
@@ -22,6 +23,7 @@ from .model import (Annotation, CompileShader, Effect, EnumValue, Expression, Nu
 __all__ = ["print_effect", "format_value", "type_name"]
 
 _INDENT = "    "
+_IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
 def print_effect(effect: Effect) -> str:
@@ -114,7 +116,24 @@ def _pass(p: Pass) -> str:
 
 def _state(s: StateAssignment, level: int) -> str:
     index = f"[{s.index}]" if s.index is not None else ""
-    return f"{_INDENT * level}{s.name}{index} = {format_value(s.value, level)};"
+    value = s.value
+    if isinstance(value, EnumValue) and not all(_IDENT.fullmatch(n) or n.isdigit()
+                                                for n in value.names):
+        text = _prefixed_enum(s.name, value)
+    else:
+        text = format_value(value, level)
+    return f"{_INDENT * level}{s.name}{index} = {text};"
+
+
+def _prefixed_enum(state: str, value: EnumValue) -> str:
+    """Enum names that are not identifiers (`2WEIGHTS`) are written with their D3D prefix
+    (`D3DVBF_2WEIGHTS`), which the states table also reads."""
+    from .states import lookup_state
+    info = lookup_state(state)
+    prefix = info.enum.prefixes[0] if info is not None and info.enum is not None \
+        and info.enum.prefixes else ""
+    return " | ".join(n if n.isdigit() or (_IDENT.fullmatch(n) and not prefix) else prefix + n
+                      for n in value.names)
 
 
 # ---------------------------------------------------------------------------------------------
