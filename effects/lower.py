@@ -265,8 +265,8 @@ def _color(state: DeviceState, name: str, index: int | None = None) -> Color:
 def _vector(state: DeviceState, name: str, index: int | None, size: int) -> tuple[float, ...]:
     value = _value(state, name, index)
     array = np.ravel(np.asarray(value, dtype=np.float64))
-    if array.size == 1 and size > 1:
-        array = np.zeros(size) if array[0] == 0 else array
+    if array.size == 1 and size > 1:  # a scalar (an uninitialised parameter reads 0)
+        array = np.full(size, array[0])
     out = list(array[:size]) + [0.0] * max(0, size - array.size)
     return tuple(float(x) for x in out)
 
