@@ -1,0 +1,282 @@
+"""Hot reload without a window: real file events on a temp folder, real builds.
+
+The effect under test draws a flat TextureFactor colour whose value comes from an #include,
+so each edit's result can be checked on the lowered program's `tfactor` uniform: 0xAARRGGBB
+0xff00ff00 is (r, g, b, a) = (0, 1, 0, 1) by the D3DCOLOR layout.
+"""
+from __future__ import annotations
+
+import os
+import re
+import threading
+import time
+
+import pytest
+
+import effects
+from effects.reload import (Reloader, Watcher, build_effect, content_hash, effect_builder,
+                            referenced_files, watched_files)
+
+EFFECT = """#include "tint.fxh"
+texture Base < string ResourceName = "base.png"; >;
+technique Flat
+{
+    pass P0
+    {
+        Lighting = False;
+        TextureFactor = TINT;
+        ColorOp[0] = SelectArg1;
+        ColorArg1[0] = TFactor;
+        AlphaOp[0] = SelectArg1;
+        AlphaArg1[0] = TFactor;
+    }
+}
+technique Dot3 { pass P0 { Lighting = False; ColorOp[0] = DotProduct3; ColorArg1[0] = TFactor; ColorArg2[0] = Diffuse; } }
+"""
+TIMEOUT = 5.0
+QUIET = 0.4        # long enough for any debounce (25 ms) + polling safety net to have fired
+
+
+def tint(hex_colour: str) -> str:
+    return f"#define TINT {hex_colour}\n"
+
+
+@pytest.fixture
+def folder(tmp_path):
+    (tmp_path / "tint.fxh").write_text(tint("0xffff0000"))
+    (tmp_path / "flat.fx").write_text(EFFECT)
+    (tmp_path / "base.png").write_bytes(b"not really a png, only watched")
+    return tmp_path
+
+
+def tfactor(loaded) -> tuple[float, ...]:
+    return dict(loaded.programs[0].uniforms)["tfactor"]
+
+
+def start_reloader(folder, *, use_watchdog=True, technique=None, card="tnt2"):
+    settings = {"profile": effects.load_profile(card), "technique": technique}
+    path = str(folder / "flat.fx")
+    build = effect_builder(path, lambda: (settings["profile"], settings["technique"]))
+    reloader = Reloader(path, build, use_watchdog=use_watchdog)
+    reloader.start(build(None))
+    time.sleep(0.05)   # let the observer settle before the first edit
+    return reloader, settings
+
+
+def expect_result(reloader):
+    result = reloader.wait(TIMEOUT)
+    assert result is not None, "no reload within the timeout"
+    return result
+
+
+def expect_quiet(reloader):
+    extra = reloader.wait(QUIET)
+    assert extra is None, f"unexpected extra reload: {extra.log_line()}"
+
+
+OK_LINE = re.compile(r"^reload: (?P<path>\S+) ok in (?P<ms>\d+\.\d) ms \(technique (?P<tech>\w+)\)$")
+
+
+def test_initial_build_selects_lowers_and_lists_its_files(folder):
+    loaded = build_effect(str(folder / "flat.fx"), effects.load_profile("tnt2"))
+    assert loaded.technique.name == "Flat"
+    assert [v.ok for v in loaded.validations] == [True, False]
+    assert tfactor(loaded) == (1.0, 0.0, 0.0, 1.0)
+    assert watched_files(loaded.effect) == [str(folder / "flat.fx"), str(folder / "tint.fxh"),
+                                            str(folder / "base.png")]
+
+
+def test_good_edit_of_an_include_reloads_with_the_new_value(folder):
+    reloader, _ = start_reloader(folder)
+    try:
+        (folder / "tint.fxh").write_text(tint("0xff00ff00"))
+        result = expect_result(reloader)
+        assert result.ok and result.kind == "reload"
+        assert result.changed == (str(folder / "tint.fxh"),)
+        m = OK_LINE.match(result.log_line())
+        assert m and m["path"] == str(folder / "flat.fx") and m["tech"] == "Flat"
+        assert tfactor(result.loaded) == (0.0, 1.0, 0.0, 1.0)
+        expect_quiet(reloader)
+    finally:
+        reloader.stop()
+
+
+def test_truncated_write_fails_located_keeps_last_good_then_recovers(folder):
+    reloader, _ = start_reloader(folder)
+    good = reloader.last_good
+    path = folder / "flat.fx"
+    try:
+        cut = EFFECT.index("AlphaOp[0]")      # line 11: the pass and technique are left open
+        path.write_text(EFFECT[:cut])
+        bad = expect_result(reloader)
+        assert not bad.ok and bad.loaded is None
+        line = bad.log_line()
+        assert line.startswith(f"reload: {path} failed: {path}:")
+        assert re.search(r":\d+:\d+: error: ", line), line
+        assert reloader.last_good is good
+        path.write_text(EFFECT.replace("TINT;", "0xff0000ff;"))
+        fixed = expect_result(reloader)
+        assert fixed.ok and tfactor(fixed.loaded) == (0.0, 0.0, 1.0, 1.0)
+        assert reloader.last_good is fixed.loaded
+    finally:
+        reloader.stop()
+
+
+def test_delete_then_recreate(folder):
+    reloader, _ = start_reloader(folder)
+    path = folder / "flat.fx"
+    try:
+        path.unlink()
+        gone = expect_result(reloader)
+        assert gone.log_line() == (f"reload: {path} failed: {path}:1:1: error: cannot read "
+                                   "effect file: No such file or directory")
+        path.write_text(EFFECT.replace("TINT;", "0xff00ffff;"))
+        back = expect_result(reloader)
+        assert back.ok and tfactor(back.loaded) == (0.0, 1.0, 1.0, 1.0)
+        expect_quiet(reloader)
+    finally:
+        reloader.stop()
+
+
+@pytest.mark.parametrize("use_watchdog", [True, False], ids=["watchdog", "polling"])
+def test_rename_into_place_counts_as_a_save(folder, use_watchdog):
+    reloader, _ = start_reloader(folder, use_watchdog=use_watchdog)
+    try:
+        assert reloader.watcher.mode == ("watchdog" if use_watchdog else "polling")
+        tmp = folder / "flat.fx.tmp"
+        tmp.write_text(EFFECT.replace("TINT;", "0xffffff00;"))
+        os.replace(tmp, folder / "flat.fx")
+        result = expect_result(reloader)
+        assert result.ok and tfactor(result.loaded) == (1.0, 1.0, 0.0, 1.0)
+        expect_quiet(reloader)
+    finally:
+        reloader.stop()
+
+
+def test_a_burst_of_writes_is_one_reload_of_the_last_content(folder):
+    reloader, _ = start_reloader(folder)
+    try:
+        for i in range(8):   # an autosaving editor: a write every 5 ms
+            (folder / "tint.fxh").write_text(tint(f"0xff0000{0x10 * (i + 1):02x}"))
+            time.sleep(0.005)
+        result = expect_result(reloader)
+        assert result.ok and tfactor(result.loaded) == pytest.approx((0.0, 0.0, 0x80 / 255, 1.0), abs=1e-6)
+        expect_quiet(reloader)
+    finally:
+        reloader.stop()
+
+
+def test_unchanged_content_does_not_reload(folder):
+    reloader, _ = start_reloader(folder)
+    try:
+        (folder / "flat.fx").write_text(EFFECT)            # saved without edits
+        os.utime(folder / "tint.fxh")                      # touched
+        tmp = folder / "x.tmp"                             # atomic save of the same bytes
+        tmp.write_text(tint("0xffff0000"))
+        os.replace(tmp, folder / "tint.fxh")
+        expect_quiet(reloader)
+    finally:
+        reloader.stop()
+
+
+def test_texture_image_change_reloads(folder):
+    reloader, _ = start_reloader(folder)
+    try:
+        (folder / "base.png").write_bytes(b"other bytes")
+        result = expect_result(reloader)
+        assert result.ok and result.changed == (str(folder / "base.png"),)
+    finally:
+        reloader.stop()
+
+
+def test_new_include_is_watched_after_the_reload_that_added_it(folder):
+    reloader, _ = start_reloader(folder)
+    try:
+        (folder / "more.fxh").write_text("#define OTHER 1\n")
+        (folder / "flat.fx").write_text('#include "more.fxh"\n' + EFFECT)
+        assert expect_result(reloader).ok
+        assert str(folder / "more.fxh") in reloader.watcher.paths
+        (folder / "more.fxh").write_text("#define OTHER 2\n")
+        assert expect_result(reloader).changed == (str(folder / "more.fxh"),)
+    finally:
+        reloader.stop()
+
+
+def test_forced_technique_not_valid_keeps_the_selection_and_carries_reasons(folder):
+    reloader, settings = start_reloader(folder, technique="Dot3")
+    try:
+        first = reloader.last_good
+        assert first.technique.name == "Flat"
+        assert first.forced_rejected is not None
+        assert "D3DTEXOPCAPS_DOTPRODUCT3" in str(first.forced_rejected.reasons[0])
+        # the same technique on a card that has DotProduct3: drawn, without reading the file again
+        settings["profile"] = effects.load_profile("geforce2")
+        (folder / "flat.fx").write_text("broken on disk, but a reselect does not read it")
+        time.sleep(0.2)
+        while reloader.poll() is not None:     # drop the failed file reload
+            pass
+        reloader.reselect()
+        result = expect_result(reloader)
+        assert result.kind == "select" and result.ok
+        assert result.loaded.technique.name == "Dot3" and result.loaded.forced_rejected is None
+    finally:
+        reloader.stop()
+
+
+def test_an_unexpected_exception_in_a_build_is_reported_and_the_worker_survives(tmp_path):
+    path = tmp_path / "a.fx"
+    path.write_text("x")
+    calls = []
+
+    def build(previous):
+        calls.append(previous)
+        if len(calls) == 1:
+            raise ZeroDivisionError("a bug")
+        return "built"
+
+    reloader = Reloader(str(path), build).start()
+    try:
+        first = expect_result(reloader)
+        assert first.log_line() == f"reload: {path} failed: internal error: ZeroDivisionError: a bug"
+        reloader.request()
+        assert expect_result(reloader).loaded == "built"
+    finally:
+        reloader.stop()
+
+
+def test_watcher_reports_only_files_whose_hash_changed(tmp_path):
+    a, b = tmp_path / "a.txt", tmp_path / "b.txt"
+    a.write_text("a")
+    b.write_text("b")
+    seen: list[list[str]] = []
+    got = threading.Event()
+
+    def on_change(paths):
+        seen.append(paths)
+        got.set()
+
+    watcher = Watcher([str(a), str(b)], on_change).start()
+    try:
+        time.sleep(0.05)
+        b.write_text("b")          # same content
+        a.write_text("A")
+        assert got.wait(TIMEOUT)
+        time.sleep(QUIET)
+        assert seen == [[str(a)]]
+    finally:
+        watcher.stop()
+
+
+def test_content_hash_and_referenced_files(folder):
+    assert content_hash(str(folder / "missing")) is None
+    assert content_hash(str(folder / "tint.fxh")) != content_hash(str(folder / "flat.fx"))
+    effect = effects.load_effect(str(folder / "flat.fx"))
+    assert referenced_files(effect) == [str(folder / "base.png")]
+
+
+def test_bundled_effects_watch_their_texture_images():
+    root = os.path.join(os.path.dirname(__file__), "..", "fxfiles")
+    effect = effects.load_effect(os.path.join(root, "specular_bump.fx"))
+    names = sorted(os.path.basename(p) for p in referenced_files(effect))
+    # earth_height.png is named twice (ResourceName and two Sobel generators): listed once
+    assert names == ["earth_base.png", "earth_height.png", "earth_light.png"]
