@@ -1,0 +1,345 @@
+"""Triangle rasterisation as Direct3D 9 defines it, vectorised over 2x2 pixel quads.
+
+- Clip space is D3D's: 0 <= z <= w. Triangles are clipped against the near and far planes and
+  against a guard band in x and y (wide enough that no visible triangle is ever cut by it; it
+  only keeps the fixed-point edge arithmetic inside int64).
+- The viewport maps NDC x in [-1, 1] to [0, W] and y in [1, -1] to [0, H]; pixel (px, py) is
+  sampled at exactly (px, py) (D3D9's pixel centres, no +0.5).
+- Coverage uses edge functions on vertex positions snapped to 1/256 pixel, evaluated in
+  integers, with the top-left rule: a shared edge belongs to exactly one triangle. Each pair of
+  pixel rows of a triangle is solved for its exact covered spans, so the work is proportional to
+  the quads a triangle touches, not to its bounding box.
+- Every covered pixel comes with its whole 2x2 quad (helper pixels included), as GPUs shade,
+  so texture LOD can be taken from quad differences of any value, dependent reads included.
+- Varyings are interpolated perspective-correctly; depth (z/w) linearly in screen space.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+SUBPIXEL_BITS = 8
+_ONE = 1 << SUBPIXEL_BITS
+# Quad pixel order inside a 2x2 quad: (0,0), (1,0), (0,1), (1,1).
+QUAD_DX = np.array([0, 1, 0, 1], dtype=np.int32)
+QUAD_DY = np.array([0, 0, 1, 1], dtype=np.int32)
+# Screen coordinates stay within +-2^16 pixels (so edge products stay below 2^50).
+_GUARD_PIXELS = float(1 << 16)
+CULL_MODES = ("NONE", "CW", "CCW")
+
+
+@dataclass
+class QuadFragments:
+    """The fragments of a draw, one row per pixel, in primitive order (then y, then x).
+
+    With `quads` (the default) rows come as whole 2x2 quads, row = quad*4 + pixel in
+    QUAD_DX/QUAD_DY order, helper pixels included (covered False), so an IR program can take
+    texture LOD from quad differences. Without, rows are the covered pixels only (for programs
+    that need no derivatives). Varyings are (N, k) rows an IR program runs over directly.
+    """
+
+    x: np.ndarray          # (N,) int32 pixel x (helper pixels may lie outside the viewport)
+    y: np.ndarray          # (N,) int32 pixel y
+    covered: np.ndarray    # (N,) bool: inside the triangle and inside the viewport
+    depth: np.ndarray      # (N,) float32 z/w (with the depth bias)
+    prim: np.ndarray       # (N,) int64: index of the source triangle in draw order
+    front: np.ndarray      # (N,) bool: the triangle is front-facing (clockwise on screen)
+    varyings: dict[str, np.ndarray]
+    quads: bool = True
+
+    @property
+    def count(self) -> int:
+        """Number of rows (4 per quad with `quads`)."""
+        return int(self.x.shape[0])
+
+    @staticmethod
+    def empty(names_dims: dict[str, int], quads: bool = True) -> "QuadFragments":
+        z = np.zeros(0, np.int32)
+        return QuadFragments(z, z.copy(), np.zeros(0, bool), np.zeros(0, np.float32),
+                             np.zeros(0, np.int64), np.zeros(0, bool),
+                             {n: np.zeros((0, d), np.float32) for n, d in names_dims.items()},
+                             quads)
+
+
+# ------------------------------------------------------------------------------------------------
+# Clipping: dot(plane[:4], position) + plane[4] >= 0 is inside
+
+def _clip_planes(size: tuple[int, int]) -> np.ndarray:
+    gx = _GUARD_PIXELS / (0.5 * size[0])   # NDC extent of the guard band
+    gy = _GUARD_PIXELS / (0.5 * size[1])
+    return np.array([
+        [0, 0, 1, 0, 0],            # near: z >= 0
+        [0, 0, -1, 1, 0],           # far: z <= w
+        [-1, 0, 0, gx, 0], [1, 0, 0, gx, 0],
+        [0, -1, 0, gy, 0], [0, 1, 0, gy, 0],
+        [0, 0, 0, 1, -1e-30],       # w > 0 (a vertex at w = 0 has no screen position)
+    ], dtype=np.float64)
+
+
+def _clip_polygon(poly: list[np.ndarray], plane: np.ndarray) -> list[np.ndarray]:
+    """Sutherland-Hodgman against one plane. Each vertex is a flat float64 array: 4 position
+    components then every attribute component (interpolated linearly in clip space)."""
+    out: list[np.ndarray] = []
+    if not poly:
+        return out
+    dist = [float(plane[:4] @ v[:4] + plane[4]) for v in poly]
+    for i, v in enumerate(poly):
+        j = (i + 1) % len(poly)
+        di, dj = dist[i], dist[j]
+        if di >= 0:
+            out.append(v)
+        if (di >= 0) != (dj >= 0):
+            t = di / (di - dj)
+            out.append(v + (poly[j] - v) * t)
+    return out
+
+
+def clip_triangles(pos: np.ndarray, attrs: np.ndarray, tris: np.ndarray, size: tuple[int, int]
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Clip triangles to the view volume (near, far, guard band). Returns (pos, attrs, tris,
+    source triangle index), triangles still in draw order; a clipped triangle becomes a fan that
+    keeps its winding."""
+    planes = _clip_planes(size)
+    dist = pos @ planes[:, :4].T + planes[:, 4]          # (V, P)
+    outside = dist < 0
+    tri_out = outside[tris]                               # (T, 3, P)
+    rejected = tri_out.all(axis=1).any(axis=1)           # all three beyond one plane
+    partial = tri_out.any(axis=(1, 2)) & ~rejected
+    keep = ~tri_out.any(axis=(1, 2))
+    source = np.nonzero(keep)[0]
+    if not partial.any():
+        return pos, attrs, tris[keep], source
+    new_pos, new_tris, new_src = [], [], []
+    base = len(pos)
+    flat = np.concatenate([pos, attrs.astype(np.float64)], axis=1)
+    for t in np.nonzero(partial)[0]:
+        poly = [flat[i] for i in tris[t]]
+        for plane in planes:
+            poly = _clip_polygon(poly, plane)
+        if len(poly) < 3:
+            continue
+        first = base + len(new_pos)
+        new_pos.extend(poly)
+        for k in range(1, len(poly) - 1):
+            new_tris.append((first, first + k, first + k + 1))
+            new_src.append(t)
+    if not new_pos:
+        return pos, attrs, tris[keep], source
+    extra = np.array(new_pos)
+    pos = np.concatenate([pos, extra[:, :4]])
+    attrs = np.concatenate([attrs, extra[:, 4:].astype(attrs.dtype)])
+    all_tris = np.concatenate([tris[keep], np.array(new_tris, dtype=tris.dtype)])
+    all_src = np.concatenate([source, np.array(new_src, dtype=np.int64)])
+    order = np.argsort(all_src, kind="stable")
+    return pos, attrs, all_tris[order], all_src[order]
+
+
+# ------------------------------------------------------------------------------------------------
+# Rasterisation
+
+def rasterize(clip_pos: np.ndarray, varyings: dict[str, np.ndarray], triangles: np.ndarray,
+              size: tuple[int, int], cull: str = "CCW", *, flat: tuple[str, ...] = (),
+              depth_bias: float = 0.0, slope_scale_depth_bias: float = 0.0,
+              quads: bool = True) -> QuadFragments:
+    """Rasterise a triangle list.
+
+    `clip_pos` (N, 4) in D3D clip space, `varyings` name -> (N, k), `triangles` (M, 3) vertex
+    indices in draw order, `size` (W, H). `cull` is D3DCULL's NONE, CW or CCW (the default culls
+    counter-clockwise, i.e. back, faces). `flat` names varyings taken from each triangle's first
+    vertex (D3DSHADE_FLAT colours). Depth gets DepthBias + SlopeScaleDepthBias * max slope.
+    `quads` False returns covered pixels only (no helpers), for programs without derivatives.
+    """
+    width, height = size
+    cull = cull.upper()
+    if cull not in CULL_MODES:
+        raise ValueError(f"cull mode must be one of {CULL_MODES}, got {cull!r}")
+    names = list(varyings)
+    dims = {n: int(np.shape(varyings[n])[1]) for n in names}
+    triangles = np.asarray(triangles, np.int64).reshape(-1, 3)
+    if len(triangles) == 0 or width <= 0 or height <= 0:
+        return QuadFragments.empty(dims, quads)
+    attrs = (np.concatenate([np.asarray(varyings[n], np.float32) for n in names], axis=1)
+             if names else np.zeros((len(clip_pos), 0), np.float32))
+    flat_cols = np.zeros(attrs.shape[1], bool)
+    col = 0
+    for n in names:
+        flat_cols[col:col + dims[n]] = n in flat
+        col += dims[n]
+    provoking = attrs[triangles[:, 0]] if flat_cols.any() else None
+    pos, attrs, tris, source = clip_triangles(np.asarray(clip_pos, np.float64), attrs,
+                                              triangles, size)
+    if len(tris) == 0:
+        return QuadFragments.empty(dims, quads)
+
+    inv_w = 1.0 / pos[:, 3]
+    fx = np.rint((pos[:, 0] * inv_w + 1.0) * (0.5 * width * _ONE)).astype(np.int64)
+    fy = np.rint((1.0 - pos[:, 1] * inv_w) * (0.5 * height * _ONE)).astype(np.int64)
+    sz = pos[:, 2] * inv_w
+
+    X, Y = fx[tris], fy[tris]                                       # (T, 3)
+    area = ((X[:, 1] - X[:, 0]) * (Y[:, 2] - Y[:, 0])
+            - (Y[:, 1] - Y[:, 0]) * (X[:, 2] - X[:, 0]))
+    front = area > 0  # clockwise on a y-down screen: D3D's front face
+    visible = area != 0
+    if cull == "CCW":
+        visible &= front
+    elif cull == "CW":
+        visible &= ~front
+    if not visible.all():
+        tris, source, area, front, X, Y = (a[visible] for a in (tris, source, area, front, X, Y))
+    if len(tris) == 0:
+        return QuadFragments.empty(dims, quads)
+    # Orient every triangle clockwise so one inside test serves both windings (vertex 0 stays
+    # first, so it is still the provoking vertex).
+    flip = area < 0
+    if flip.any():
+        tris = tris.copy()
+        tris[flip, 1:] = tris[flip, 2:0:-1]
+        X, Y = fx[tris], fy[tris]
+        area = np.abs(area)
+
+    quad_tri, qx, qy, covered = _cover(X, Y, width, height)
+    if len(quad_tri) == 0:
+        return QuadFragments.empty(dims, quads)
+    return _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs,
+                        source, front, names, dims, flat_cols, provoking,
+                        depth_bias, slope_scale_depth_bias, quads)
+
+
+def _cover(X: np.ndarray, Y: np.ndarray, width: int, height: int):
+    """Exact coverage of clockwise triangles (T, 3) fixed-point vertices, by quad rows.
+
+    For each pair of pixel rows a triangle spans, every edge function E(x) = c - dy*256*x is
+    solved for the range of integer x where E >= bias (bias 0 on top and left edges, 1 on the
+    others: the top-left rule), giving the covered span of each row. Returns the quads (triangle
+    index, quad origin x, y, (Q, 4) coverage) in triangle order, then y, then x.
+    """
+    y_lo = np.maximum(-((-Y.min(axis=1)) // _ONE), 0)          # ceil, clamped to the viewport
+    y_hi = np.minimum(Y.max(axis=1) // _ONE, height - 1)
+    qy0 = y_lo & ~1
+    nrows = np.where(y_hi >= y_lo, (y_hi - qy0) // 2 + 1, 0)
+    total_rows = int(nrows.sum())
+    if total_rows == 0:
+        return np.zeros(0, np.int64), None, None, None
+    row_tri = np.repeat(np.arange(len(X)), nrows)
+    starts = np.cumsum(nrows) - nrows
+    row_qy = qy0[row_tri] + 2 * (np.arange(total_rows) - starts[row_tri])
+
+    # Per edge i (vertex i -> i+1), per triangle: the terms of c(y) = dx*(y*256 - ay) + dy*ax.
+    edges = []
+    for i in range(3):
+        ax, ay, bx, by = X[:, i], Y[:, i], X[:, (i + 1) % 3], Y[:, (i + 1) % 3]
+        dx, dy = bx - ax, by - ay
+        bias = np.where((dy < 0) | ((dy == 0) & (dx > 0)), 0, 1)  # top-left edges own the edge
+        edges.append((dx[row_tri], (dy * ax - dx * ay - bias)[row_tri], (dy * _ONE)[row_tri]))
+    big = np.int64(1) << 40
+    span_lo, span_hi = [], []
+    for r in (0, 1):
+        py = (row_qy + r) * _ONE
+        x_lo = np.zeros(total_rows, np.int64)
+        x_hi = np.full(total_rows, width - 1, np.int64)
+        for dx, c0, slope in edges:
+            c = dx * py + c0                          # E(x) - bias = c - slope * x >= 0
+            safe = np.where(slope == 0, 1, slope)
+            q = c // safe
+            # slope * x <= c: slope < 0 bounds x below by ceil(c / slope), slope > 0 above by
+            # floor(c / slope); a horizontal edge keeps or drops the whole row.
+            np.maximum(x_lo, np.where(slope < 0, -((-c) // safe), np.where(c < 0, big, -big)),
+                       out=x_lo)
+            np.minimum(x_hi, np.where(slope > 0, q, big), out=x_hi)
+        empty = (x_hi < x_lo) | (row_qy + r >= height)
+        span_lo.append(np.where(empty, big, x_lo))
+        span_hi.append(np.where(empty, -big, x_hi))
+    qx_lo = np.minimum(span_lo[0], span_lo[1]) & ~1
+    qx_hi = np.maximum(span_hi[0], span_hi[1])
+    nquads = np.where(qx_hi >= qx_lo, (qx_hi - qx_lo) // 2 + 1, 0)
+    total = int(nquads.sum())
+    if total == 0:
+        return np.zeros(0, np.int64), None, None, None
+    quad_row = np.repeat(np.arange(total_rows), nquads)
+    qstart = np.cumsum(nquads) - nquads
+    qx = (qx_lo[quad_row] + 2 * (np.arange(total) - qstart[quad_row])).astype(np.int32)
+    covered = np.empty((total, 4), bool)
+    for r in (0, 1):
+        lo = np.clip(span_lo[r], -1, width + 1).astype(np.int32)[quad_row]
+        hi = np.clip(span_hi[r], -2, width).astype(np.int32)[quad_row]
+        covered[:, 2 * r] = (qx >= lo) & (qx <= hi)
+        qx1 = qx + 1
+        covered[:, 2 * r + 1] = (qx1 >= lo) & (qx1 <= hi)
+    qy = row_qy.astype(np.int32)[quad_row]
+    tri = row_tri[quad_row]
+    touched = covered.any(axis=1)
+    if not touched.all():  # quads between the spans of a thin sliver's two rows
+        tri, qx, qy, covered = tri[touched], qx[touched], qy[touched], covered[touched]
+    return tri, qx, qy, covered
+
+
+def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs, source, front,
+                 names, dims, flat_cols, provoking, depth_bias, slope_bias,
+                 quads) -> QuadFragments:
+    """Depth and perspective-correct varyings at every row (pixel), from per-triangle plane
+    equations (float64) of the screen-space barycentrics weighted by 1/w, and of z/w.
+    Work is laid out as long 1-D runs (NumPy is slow on tiny trailing axes)."""
+    fxs, fys = X / _ONE, Y / _ONE                                   # snapped, in pixels
+    a2 = area.astype(np.float64) / (_ONE * _ONE)
+    lam = []
+    for j, k in ((1, 2), (2, 0), (0, 1)):
+        ex, ey = fxs[:, k] - fxs[:, j], fys[:, k] - fys[:, j]
+        lam.append((-ey / a2, ex / a2, (ey * fxs[:, j] - ex * fys[:, j]) / a2))
+    planes = [tuple(c * inv_w[tris[:, i]] for c in lam[i]) for i in range(3)]
+    z_plane = [sum(lam[i][c] * sz[tris[:, i]] for i in range(3)) for c in range(3)]
+    if depth_bias or slope_bias:
+        slope = np.maximum(np.abs(z_plane[0]), np.abs(z_plane[1]))
+        z_plane[2] = z_plane[2] + depth_bias + slope_bias * slope
+    planes.append(tuple(z_plane))
+
+    if quads:
+        count = len(quad_tri) * 4
+        x = (qx[:, None] + QUAD_DX).reshape(-1)
+        y = (qy[:, None] + QUAD_DY).reshape(-1)
+        row_tri = np.repeat(quad_tri, 4)
+        covered = covered.reshape(-1)
+    else:
+        q, pixel = np.nonzero(covered)
+        count = len(q)
+        x = qx[q] + QUAD_DX[pixel]
+        y = qy[q] + QUAD_DY[pixel]
+        row_tri = quad_tri[q]
+        covered = np.ones(count, bool)
+    xf, yf = x.astype(np.float64), y.astype(np.float64)
+    values = []
+    for a, b, c in planes:
+        v = a[row_tri] * xf
+        v += b[row_tri] * yf
+        v += c[row_tri]
+        values.append(v)
+    depth = values[3].astype(np.float32)
+
+    rows: dict[str, np.ndarray] = {}
+    if attrs.shape[1]:
+        inv_sum = values[0] + values[1]
+        inv_sum += values[2]
+        np.divide(1.0, inv_sum, out=inv_sum)
+        # Covered pixels lie inside the triangle, so their weights are >= 0 up to rounding:
+        # clamp the noise so a value equal at two vertices is exact along their edge and never
+        # changes sign. Helper pixels keep their extrapolated weights (derivatives need them).
+        floor = np.where(covered, 0.0, -np.inf) if quads else 0.0
+        weights = np.empty((count, 1, 3), np.float32)
+        for i in range(3):
+            wi = values[i]
+            wi *= inv_sum
+            np.maximum(wi, floor, out=wi)
+            weights[:, 0, i] = wi
+        corner = attrs[tris]                                        # (T, 3, K)
+        if provoking is not None:
+            corner[:, :, flat_cols] = provoking[source][:, None, flat_cols]
+        gathered = np.take(corner, row_tri, axis=0)                 # (N, 3, K)
+        everything = np.einsum("nij,njk->nik", weights, gathered).reshape(count, attrs.shape[1])
+        col = 0
+        for n in names:
+            rows[n] = everything[:, col:col + dims[n]]
+            col += dims[n]
+    else:
+        rows = {n: np.zeros((count, 0), np.float32) for n in names}
+    return QuadFragments(x, y, covered, depth, source[row_tri], front[row_tri], rows, quads)

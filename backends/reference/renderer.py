@@ -1,0 +1,330 @@
+"""The NumPy reference back end: the ground truth every other back end is compared with.
+
+A draw runs the vertex program over all vertices at once, rasterises the triangles into 2x2
+quads (`rasterize`), runs the fragment program over every quad row with sampler callbacks that
+see whole quads (`sampler`), and merges the covered, unkilled fragments into the frame's render
+target in draw order (`output`). Work is split into chunks of quads; the chunks are shaded on
+a small thread pool, since NumPy releases the GIL inside its kernels.
+
+Conventions beyond `backends.base`:
+- Vertex colour outputs (color0, color1) are saturated before interpolation (semantics.md
+  section 0); with no vertex program the colour streams are saturated too.
+- A varying the fragment program reads but nothing supplies reads as D3D's vertex defaults:
+  color0 (1, 1, 1, 1), color1 (0, 0, 0, 0), anything else (0, 0, 0, 1). The same defaults fill
+  vertex-program inputs missing from `streams`.
+- Fragment builtins: 'vpos' (pixel x, y, 0, 1; D3D9 pixel centres are integers) and 'vface'
+  (+1 front, -1 back, replicated).
+- Fog (FogEnable): per-pixel table fog on the depth z when FogTableMode is set, else the
+  interpolated vertex 'fog' output as the factor, when the vertex program writes one.
+  SpecularEnable adds the interpolated color1.rgb before fog. A lowering that folds either into
+  the fragment program leaves these states at their defaults.
+- The fragment 'depth' output (oDepth) replaces the interpolated depth, saturated.
+"""
+from __future__ import annotations
+
+import ctypes
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from typing import Mapping
+
+import numpy as np
+
+from effects.ir import Program
+from effects.passprogram import PassProgram, RenderState, TextureBinding
+
+from ..base import DrawError, register_backend, triangle_list
+from . import output
+from .evaluate import evaluate
+from .rasterize import QuadFragments, rasterize
+from .sampler import SamplerSettings, sample
+
+_COLOR_VARYINGS = ("color0", "color1")
+_DEFAULTS = {"color0": np.ones(4, np.float32), "color1": np.zeros(4, np.float32)}
+_DEFAULT_VALUE = np.array([0, 0, 0, 1], np.float32)
+_CHUNK_ROWS = 4 * 8192       # rows shaded per chunk, whole quads (temporaries stay small)
+
+
+def sampler_settings(binding: TextureBinding) -> SamplerSettings:
+    """The lookup settings of a texture binding's sampler states."""
+    return SamplerSettings(binding.address_u, binding.address_v, binding.address_w,
+                           tuple(binding.border_color), binding.min_filter, binding.mag_filter,
+                           binding.mip_filter, binding.mip_lod_bias, binding.max_mip_level)
+
+
+def sampler_callbacks(program: PassProgram, textures: Mapping[str, object]) -> dict:
+    """Sampler index -> callback(coord, kind=, bias=, lod=) for every bound slot the fragment
+    program samples. The texture's own kind decides the lookup; unbound slots get no callback
+    (the evaluator reads (0, 0, 0, 1) there)."""
+    callbacks = {}
+    for used in program.fragment.samplers:
+        binding = program.texture(used.index)
+        if binding is None or binding.texture is None or binding.texture not in textures:
+            continue
+        texture = textures[binding.texture]
+        levels = [np.asarray(level, np.float32) for level in texture.levels]
+        if binding.srgb_texture:
+            levels = [_srgb_levels(level) for level in levels]
+        callbacks[used.index] = _make_callback(texture.kind, levels, sampler_settings(binding))
+    return callbacks
+
+
+def _srgb_levels(level: np.ndarray) -> np.ndarray:
+    out = level.copy()
+    out[..., :3] = output.srgb_to_linear(np.clip(level[..., :3], 0, 1))
+    return out
+
+
+def _make_callback(texture_kind: str, levels: list[np.ndarray], settings: SamplerSettings):
+    def callback(coord: np.ndarray, *, kind: str | None = None, bias=None, lod=None):
+        # `kind` is what the program declared; PassProgram checks it against the binding, and
+        # the texture itself decides how it is addressed.
+        return sample(texture_kind, levels, coord, settings, bias, lod)
+    return callback
+
+
+_M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3     # glibc mallopt parameters (malloc.h)
+_malloc_tuned = False
+
+
+def keep_heap_memory() -> None:
+    """Ask glibc to keep freed memory for reuse instead of unmapping it. A frame allocates
+    hundreds of multi-megabyte temporaries; unmapping and re-faulting them page by page costs
+    more than the arithmetic (measured: a third of the rasteriser's time). Process-wide, so
+    done once, and only where glibc is the allocator."""
+    global _malloc_tuned
+    if _malloc_tuned or not sys.platform.startswith("linux"):
+        return
+    _malloc_tuned = True
+    try:
+        libc = ctypes.CDLL("libc.so.6")
+        libc.mallopt(_M_MMAP_THRESHOLD, 32 << 20)
+        libc.mallopt(_M_TRIM_THRESHOLD, 512 << 20)
+    except (OSError, AttributeError):
+        pass
+
+
+class ReferenceBackend:
+    """The NumPy renderer. `threads`: fragment shading workers (1 shades inline);
+    `tune_malloc`: call `keep_heap_memory` (faster frames, memory is kept for reuse)."""
+
+    name = "numpy"
+
+    def __init__(self, threads: int = 2, tune_malloc: bool = True) -> None:
+        self.threads = max(1, int(threads))
+        if tune_malloc:
+            keep_heap_memory()
+        self._pool: ThreadPoolExecutor | None = None
+        self.framebuffer: output.Framebuffer | None = None
+
+    # -- frame
+    def begin_frame(self, size: tuple[int, int], clear_color=(0.0, 0.0, 0.0, 0.0),
+                    clear_depth: float = 1.0, clear_stencil: int = 0, *,
+                    format: str = "A8R8G8B8") -> None:
+        self.framebuffer = output.Framebuffer.create(tuple(int(v) for v in size), format,
+                                                     clear_color, clear_depth, clear_stencil)
+
+    def end_frame(self) -> np.ndarray:
+        fb = self._target()
+        self.framebuffer = None
+        return fb.image()
+
+    def _target(self) -> output.Framebuffer:
+        if self.framebuffer is None:
+            raise DrawError("no frame: call begin_frame first")
+        return self.framebuffer
+
+    # -- drawing
+    def draw(self, program: PassProgram, streams: Mapping[str, np.ndarray], indices: np.ndarray,
+             primitive: str, textures: Mapping[str, object]) -> None:
+        fb = self._target()
+        state = program.render_state
+        tris = triangle_list(indices, primitive)
+        uniforms = program.uniform_values()
+        count = _vertex_count(streams)
+        if len(tris) and (tris.min() < 0 or tris.max() >= count):
+            raise DrawError(f"indices out of range for {count} vertices")
+        clip, varyings = _vertex_stage(program.vertex, streams, uniforms, count)
+        needed = _needed_varyings(program.fragment, state, varyings)
+        flat = _COLOR_VARYINGS if state.shade_mode == "FLAT" else ()
+        # Helper pixels are shaded only when a texture lookup needs quad derivatives.
+        quads = any(instr.op == "sample" for instr in program.fragment.instrs)
+        frags = rasterize(clip, needed, tris, fb.size, state.cull_mode, flat=flat,
+                          depth_bias=state.depth_bias,
+                          slope_scale_depth_bias=state.slope_scale_depth_bias, quads=quads)
+        if frags.count == 0:
+            return
+        callbacks = sampler_callbacks(program, textures)
+        result = self._shade(program.fragment, frags, uniforms, varyings, callbacks)
+        colour, colour2, depth_out, killed = result
+        keep = frags.covered
+        if killed is not None:
+            keep = keep & ~killed
+        if keep.all():
+            rows = slice(None)
+        else:
+            rows = np.nonzero(keep)[0]
+            if len(rows) == 0:
+                return
+        color = colour[rows]
+        if state.specular_enable and "color1" in needed:
+            color = color.copy()
+            color[:, :3] += _vec4_rows(frags, "color1")[rows, :3]
+        depth = frags.depth[rows] if depth_out is None else np.clip(depth_out[rows], 0, 1)
+        if state.fog_enable:
+            color = _fog(state, color, frags, rows, depth)
+        width = fb.size[0]
+        pixels = frags.y[rows].astype(np.int64) * width + frags.x[rows]
+        output.merge(fb, state, pixels, color, depth, frags.front[rows],
+                     None if colour2 is None else colour2[rows])
+
+    def _shade(self, fragment: Program, frags: QuadFragments, uniforms: dict, varyings: dict,
+               callbacks: dict):
+        """Run the fragment program over every quad row, in chunks (threaded where allowed)."""
+        step = _CHUNK_ROWS
+        chunks = [(s, min(s + step, frags.count)) for s in range(0, frags.count, step)]
+
+        def run(bounds):
+            start, stop = bounds
+            inputs = _fragment_inputs(fragment, frags, start, stop, uniforms, varyings)
+            return evaluate(fragment, inputs, callbacks, count=stop - start)
+
+        if self.threads > 1 and len(chunks) > 1:
+            if self._pool is None:
+                self._pool = ThreadPoolExecutor(self.threads)
+            results = list(self._pool.map(run, chunks))
+        else:
+            results = [run(c) for c in chunks]
+        outputs = fragment.output_map
+
+        def gather(name):
+            if name not in outputs:
+                return None
+            parts = [r.outputs[name] for r in results]
+            return parts[0] if len(parts) == 1 else np.concatenate(parts)
+
+        colour = gather("color0")
+        if colour is None:
+            colour = np.zeros((frags.count, 4), np.float32)
+        depth = gather("depth")
+        killed = None
+        if any(r.killed is not None for r in results):
+            killed = np.concatenate([r.killed if r.killed is not None else
+                                     np.zeros(len(r.outputs.get("color0", ())), bool)
+                                     for r in results])
+        return colour, gather("color1"), None if depth is None else depth[:, 0], killed
+
+    def close(self) -> None:
+        if self._pool is not None:
+            self._pool.shutdown()
+            self._pool = None
+
+
+def _vec4_rows(frags: QuadFragments, name: str) -> np.ndarray:
+    value = frags.varyings[name]
+    if value.shape[1] < 4:
+        full = np.broadcast_to(_DEFAULTS.get(name, _DEFAULT_VALUE), (len(value), 4)).copy()
+        full[:, :value.shape[1]] = value
+        return full
+    return value
+
+
+def _vertex_count(streams: Mapping[str, np.ndarray]) -> int:
+    if "position" not in streams:
+        raise DrawError("streams need a 'position'")
+    counts = {name: len(np.asarray(v)) for name, v in streams.items() if np.ndim(v) == 2}
+    if len(set(counts.values())) > 1:
+        raise DrawError(f"streams disagree on the vertex count: {counts}")
+    return counts["position"]
+
+
+def _vertex_stage(vertex: Program | None, streams: Mapping[str, np.ndarray], uniforms: dict,
+                  count: int) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """Clip-space positions (N, 4) and the varyings (name -> (N, k) float32)."""
+    if vertex is None:
+        outputs = {name: np.asarray(v, np.float32) for name, v in streams.items()}
+    else:
+        inputs: dict[str, np.ndarray] = {}
+        for item in vertex.inputs:
+            if item.kind == "uniform":
+                inputs[item.name] = uniforms.get(item.name, np.zeros(4, np.float32))
+            elif item.name in streams:
+                inputs[item.name] = streams[item.name]
+            else:
+                inputs[item.name] = _DEFAULTS.get(item.name, _DEFAULT_VALUE)
+        outputs = evaluate(vertex, inputs, count=count).outputs
+        if "position" not in outputs:
+            raise DrawError("the vertex program writes no position")
+    position = np.asarray(outputs["position"], np.float64)
+    if position.ndim != 2 or not 2 <= position.shape[1] <= 4:
+        raise DrawError(f"positions must be (N, 2..4), got {position.shape}")
+    if position.shape[1] < 4:
+        full = np.zeros((len(position), 4))
+        full[:, 3] = 1
+        full[:, :position.shape[1]] = position
+        position = full
+    varyings = {}
+    for name, value in outputs.items():
+        if name in ("position", "psize"):
+            continue
+        value = np.asarray(value, np.float32)
+        if value.ndim == 1:
+            value = value[:, None]
+        if name in _COLOR_VARYINGS:
+            value = np.clip(value, 0, 1)
+        varyings[name] = value
+    return position, varyings
+
+
+def _needed_varyings(fragment: Program, state: RenderState,
+                     varyings: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    names = {i.name for i in fragment.inputs if i.kind == "varying"}
+    if state.specular_enable:
+        names.add("color1")
+    if state.fog_enable and state.fog_table_mode == "NONE":
+        names.add("fog")
+    return {n: varyings[n] for n in sorted(names) if n in varyings}
+
+
+def _fragment_inputs(fragment: Program, frags: QuadFragments, start: int, stop: int,
+                     uniforms: dict, varyings: dict) -> dict[str, np.ndarray]:
+    rows = slice(start, stop)
+    inputs: dict[str, np.ndarray] = {}
+    for item in fragment.inputs:
+        if item.kind == "uniform":
+            inputs[item.name] = uniforms.get(item.name, np.zeros(4, np.float32))
+        elif item.kind == "builtin":
+            inputs[item.name] = _builtin(item.name, frags, start, stop)
+        elif item.name in frags.varyings:
+            inputs[item.name] = frags.varyings[item.name][rows]
+        else:
+            inputs[item.name] = _DEFAULTS.get(item.name, _DEFAULT_VALUE)
+    return inputs
+
+
+def _builtin(name: str, frags: QuadFragments, start: int, stop: int) -> np.ndarray:
+    if name == "vpos":
+        out = np.zeros((stop - start, 4), np.float32)
+        out[:, 0] = frags.x[start:stop]
+        out[:, 1] = frags.y[start:stop]
+        out[:, 3] = 1
+        return out
+    if name == "vface":
+        sign = np.where(frags.front[start:stop], 1.0, -1.0).astype(np.float32)
+        return np.repeat(sign[:, None], 4, axis=1)
+    raise DrawError(f"unknown fragment builtin {name!r} (known: vpos, vface)")
+
+
+def _fog(state: RenderState, color: np.ndarray, frags: QuadFragments, rows: np.ndarray,
+         depth: np.ndarray) -> np.ndarray:
+    if state.fog_table_mode != "NONE":
+        factor = output.fog_factor(state.fog_table_mode, depth, state.fog_start, state.fog_end,
+                                   state.fog_density)
+    elif "fog" in frags.varyings:
+        factor = np.clip(frags.varyings["fog"][rows, 0], 0, 1)
+    else:
+        return color
+    return output.apply_fog(color, factor, state.fog_color)
+
+
+register_backend("numpy", ReferenceBackend)
+register_backend("reference", ReferenceBackend)

@@ -1,0 +1,317 @@
+"""Texture sampling as Direct3D 9 hardware does it, vectorised over 2x2 quads.
+
+Coordinates arrive as rows of quads (row = quad*4 + pixel, pixels in (0,0),(1,0),(0,1),(1,1)
+order), so the level of detail comes from quad differences, as on hardware: one LOD per quad.
+Texel values are already decoded floats (see effects.textures.Texture); signed bump formats
+are filtered like any other (their values are simply in [-1, 1]).
+
+Conventions:
+- Texel i of a level of size N covers [i/N, (i+1)/N); linear filtering mixes the texels whose
+  centres surround u*N - 0.5.
+- LOD = log2(max(|d(uv*size)/dx|, |d(uv*size)/dy|)) + MipMapLODBias + the texldb bias; LOD <= 0
+  magnifies (MagFilter), > 0 minifies (MinFilter); MipFilter NONE uses the base level, POINT
+  the nearest level, LINEAR blends the two nearest. MaxMipLevel names the largest (most
+  detailed) level used, 0 = the full image. An explicit LOD (texldl) replaces the computed one.
+- ANISOTROPIC (and the quad filters) are filtered as LINEAR (a documented approximation; both
+  back ends do the same).
+- 1D textures are (1, W, 4) levels sampled at v = 0.5.
+- Cube faces in D3D order +X, -X, +Y, -Y, +Z, -Z, with the face (s, t) table of the D3D9
+  docs (the same as OpenGL's, and effects.textures.cube_face_uv); addressing clamps within a
+  face (D3D9 cube maps are not seamless). The LOD of a quad is taken on the face its first
+  pixel selects, so quads straddling a face edge get no spurious minification.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+ADDRESS_MODES = ("WRAP", "MIRROR", "CLAMP", "BORDER", "MIRRORONCE")
+_POINT_FILTERS = ("POINT", "NONE")
+
+
+@dataclass(frozen=True)
+class SamplerSettings:
+    """The D3DSAMP_* states a lookup needs (names as the states table spells the enums)."""
+
+    address_u: str = "WRAP"
+    address_v: str = "WRAP"
+    address_w: str = "WRAP"
+    border: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
+    min_filter: str = "POINT"
+    mag_filter: str = "POINT"
+    mip_filter: str = "NONE"
+    lod_bias: float = 0.0
+    max_mip_level: int = 0
+
+
+# ------------------------------------------------------------------------------------------------
+# Addressing and fetching
+
+def _address(i: np.ndarray, n: int, mode: str) -> tuple[np.ndarray, np.ndarray | None]:
+    """Integer texel indices folded into [0, n) by the address mode; for BORDER also a mask
+    of the indices that fall outside (they read the border colour)."""
+    if mode == "WRAP":
+        return (i & (n - 1) if n & (n - 1) == 0 else np.mod(i, n)), None
+    if mode == "MIRROR":
+        period = np.mod(i, 2 * n)
+        return np.where(period < n, period, 2 * n - 1 - period), None
+    if mode == "MIRRORONCE":
+        return np.minimum(np.where(i < 0, -i - 1, i), n - 1), None
+    if mode == "BORDER":
+        outside = (i < 0) | (i >= n)
+        return np.clip(i, 0, n - 1), outside
+    return np.clip(i, 0, n - 1), None  # CLAMP
+
+
+def _fetch(flat: np.ndarray, index: np.ndarray, outside: list, border: np.ndarray) -> np.ndarray:
+    texels = np.take(flat, index, axis=0)
+    masks = [m for m in outside if m is not None]
+    if masks:
+        out = masks[0] if len(masks) == 1 else np.logical_or.reduce(masks)
+        if out.any():
+            texels[out] = border
+    return texels
+
+
+class _Level:
+    """One mip level ((D,) H, W, 4) flattened for fast row gathers."""
+
+    def __init__(self, texels: np.ndarray) -> None:
+        self.shape = texels.shape[:-1]
+        self.flat = np.ascontiguousarray(texels, np.float32).reshape(-1, 4)
+
+
+def _lookup(level: _Level, coords: Sequence[np.ndarray], linear: bool, modes: Sequence[str],
+            border: np.ndarray) -> np.ndarray:
+    """Point or (bi/tri)linear lookup of `coords` (u, v[, w] float arrays) in one level."""
+    dims = level.shape[::-1]                   # (W, H[, D])
+    if not linear:
+        index = 0
+        outside = []
+        stride = 1
+        for c, n, mode in zip(coords, dims, modes):
+            i, out = _address(np.floor(c * np.float32(n)).astype(np.int32), n, mode)
+            index = index + i * stride
+            outside.append(out)
+            stride *= n
+        return _fetch(level.flat, index, outside, border)
+    axes = []
+    for c, n, mode in zip(coords, dims, modes):
+        t = c * np.float32(n) - np.float32(0.5)
+        f = np.floor(t)
+        i = f.astype(np.int32)
+        axes.append((_address(i, n, mode), _address(i + 1, n, mode),
+                     (t - f).astype(np.float32)[:, None]))
+    out = None
+    for corner in range(1 << len(axes)):       # 4 (or 8) surrounding texels, weighted
+        index = 0
+        outside = []
+        weight = None
+        stride = 1
+        for k, ((i0, o0), (i1, o1), frac) in enumerate(axes):
+            hi = (corner >> k) & 1
+            index = index + (i1 if hi else i0) * stride
+            outside.append(o1 if hi else o0)
+            w = frac if hi else 1 - frac
+            weight = w if weight is None else weight * w
+            stride *= dims[k]
+        term = _fetch(level.flat, index, outside, border) * weight
+        out = term if out is None else out + term
+    return out
+
+
+# ------------------------------------------------------------------------------------------------
+# Level of detail and mip selection
+
+def quad_lod(coords: Sequence[np.ndarray], sizes: Sequence[int]) -> np.ndarray:
+    """Per-quad LOD (one value per 4 rows) from quad differences of the coordinate arrays
+    scaled by the level-0 `sizes`: log2 of the longer of the d/dx and d/dy texel vectors."""
+    rho_x = rho_y = 0.0
+    for c, n in zip(coords, sizes):
+        q = c.reshape(-1, 4)
+        ddx = (q[:, 1] - q[:, 0]) * np.float32(n)
+        ddy = (q[:, 2] - q[:, 0]) * np.float32(n)
+        rho_x = rho_x + ddx * ddx
+        rho_y = rho_y + ddy * ddy
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return (0.5 * np.log2(np.maximum(rho_x, rho_y))).astype(np.float32)
+
+
+def _lod(coords: Sequence[np.ndarray], sizes: Sequence[int], count: int, s: SamplerSettings,
+         bias: np.ndarray | float | None, lod: np.ndarray | None) -> np.ndarray:
+    if lod is not None:
+        return np.asarray(lod, np.float32) + np.float32(s.lod_bias)
+    if count % 4:
+        raise ValueError("texture LOD needs whole 2x2 quads (rows in multiples of 4)")
+    per_row = np.repeat(quad_lod(coords, sizes), 4)
+    per_row += np.float32(s.lod_bias)
+    if bias is not None:
+        per_row += np.asarray(bias, np.float32)
+    return per_row
+
+
+def _mip_sample(levels: list[_Level], coords: list[np.ndarray], lod: np.ndarray,
+                s: SamplerSettings, modes: Sequence[str], border: np.ndarray) -> np.ndarray:
+    """Choose min/mag filtering and mip levels from per-row `lod` and look up every row."""
+    count = len(coords[0])
+    base = min(max(int(s.max_mip_level), 0), len(levels) - 1)
+    minify = lod > 0
+    min_linear = s.min_filter not in _POINT_FILTERS
+    mag_linear = s.mag_filter not in _POINT_FILTERS
+    top = len(levels) - 1
+    if s.mip_filter == "NONE" or top == base:
+        return _by_filter(levels[base], coords, minify, min_linear, mag_linear, modes, border)
+    d = np.clip(np.where(minify, lod, np.float32(0)), 0, top - base)
+    if s.mip_filter == "POINT":
+        # nearest level: level k serves lod in (k - 0.5, k + 0.5]
+        lo = np.ceil(d - np.float32(0.5)).astype(np.int32)
+        frac = None
+    else:
+        lo = np.floor(d).astype(np.int32)
+        frac = (d - lo).astype(np.float32)
+    out = np.empty((count, 4), np.float32)
+    for k in np.unique(lo):
+        rows = np.nonzero(lo == k)[0]
+        sub = [c[rows] for c in coords]
+        a = _by_filter(levels[base + k], sub, minify[rows], min_linear, mag_linear, modes, border)
+        if frac is not None and base + k < top:
+            f = frac[rows]
+            if f.any():
+                b = _by_filter(levels[base + k + 1], sub, minify[rows], min_linear, mag_linear,
+                               modes, border)
+                a = a + (b - a) * f[:, None]
+        out[rows] = a
+    return out
+
+
+def _by_filter(level: _Level, coords: list[np.ndarray], minify: np.ndarray, min_linear: bool,
+               mag_linear: bool, modes, border) -> np.ndarray:
+    if min_linear == mag_linear:
+        return _lookup(level, coords, min_linear, modes, border)
+    linear = minify if min_linear else ~minify
+    out = _lookup(level, coords, False, modes, border)
+    if linear.any():
+        rows = np.nonzero(linear)[0]
+        out[rows] = _lookup(level, [c[rows] for c in coords], True, modes, border)
+    return out
+
+
+def _levels(levels: Sequence[np.ndarray]) -> list[_Level]:
+    return [lvl if isinstance(lvl, _Level) else _Level(lvl) for lvl in levels]
+
+
+# ------------------------------------------------------------------------------------------------
+# Public lookups
+
+def sample_2d(levels: Sequence[np.ndarray], uv: np.ndarray, s: SamplerSettings,
+              bias: np.ndarray | float | None = None, lod: np.ndarray | None = None
+              ) -> np.ndarray:
+    """Sample a 2D texture (list of (H, W, 4) levels) at rows of (u, v)."""
+    lv = _levels(levels)
+    h, w = lv[0].shape
+    coords = [np.asarray(uv[:, 0], np.float32), np.asarray(uv[:, 1], np.float32)]
+    per_row = _lod(coords, (w, h), len(uv), s, bias, lod)
+    return _mip_sample(lv, coords, per_row, s, (s.address_u, s.address_v),
+                       np.asarray(s.border, np.float32))
+
+
+def sample_1d(levels: Sequence[np.ndarray], u: np.ndarray, s: SamplerSettings,
+              bias: np.ndarray | float | None = None, lod: np.ndarray | None = None
+              ) -> np.ndarray:
+    """Sample a 1D texture (levels of (1, W, 4)) at rows of u (the first column)."""
+    lv = _levels(levels)
+    coords = [np.asarray(np.reshape(u, (len(u), -1))[:, 0], np.float32)]
+    coords.append(np.full(len(u), 0.5, np.float32))
+    per_row = _lod(coords[:1], (lv[0].shape[1],), len(u), s, bias, lod)
+    return _mip_sample(lv, coords, per_row, s, (s.address_u, "CLAMP"),
+                       np.asarray(s.border, np.float32))
+
+
+def sample_3d(levels: Sequence[np.ndarray], uvw: np.ndarray, s: SamplerSettings,
+              bias: np.ndarray | float | None = None, lod: np.ndarray | None = None
+              ) -> np.ndarray:
+    """Sample a volume texture (levels of (D, H, W, 4)) at rows of (u, v, w)."""
+    lv = _levels(levels)
+    d, h, w = lv[0].shape
+    coords = [np.asarray(uvw[:, i], np.float32) for i in range(3)]
+    per_row = _lod(coords, (w, h, d), len(uvw), s, bias, lod)
+    return _mip_sample(lv, coords, per_row, s, (s.address_u, s.address_v, s.address_w),
+                       np.asarray(s.border, np.float32))
+
+
+# Per face: (major axis, sign, s axis and sign, t axis and sign), from the D3D9 cube table.
+_FACE_AXES = ((0, (2, -1), (1, -1)), (0, (2, 1), (1, -1)),
+              (1, (0, 1), (2, 1)), (1, (0, 1), (2, -1)),
+              (2, (0, 1), (1, -1)), (2, (0, -1), (1, -1)))
+
+
+def cube_face(d: np.ndarray) -> np.ndarray:
+    """Face index (D3DCUBEMAP_FACES order) for direction rows (x, y, z); ties go to x, then y."""
+    x, y, z = d[:, 0], d[:, 1], d[:, 2]
+    ax, ay, az = np.abs(x), np.abs(y), np.abs(z)
+    return np.where((ax >= ay) & (ax >= az), np.where(x >= 0, 0, 1),
+                    np.where(ay >= az, np.where(y >= 0, 2, 3), np.where(z >= 0, 4, 5)))
+
+
+def _face_uv(d: np.ndarray, face: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(u, v) of directions projected on the given faces (one per row)."""
+    u = np.empty(len(d), np.float32)
+    v = np.empty(len(d), np.float32)
+    for f, (major, (sa, ss), (ta, ts)) in enumerate(_FACE_AXES):
+        rows = face == f
+        if not rows.any():
+            continue
+        sub = d[rows]
+        ma = np.abs(sub[:, major])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inv = np.where(ma > 0, np.float32(0.5) / ma, np.float32(0))
+        u[rows] = ss * sub[:, sa] * inv + np.float32(0.5)
+        v[rows] = ts * sub[:, ta] * inv + np.float32(0.5)
+    return u, v
+
+
+def cube_face_coords(d: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Face index and (u, v) in [0, 1] for direction rows (x, y, z)."""
+    d = np.asarray(d[:, :3], np.float32)
+    face = cube_face(d)
+    u, v = _face_uv(d, face)
+    return face, u, v
+
+
+def sample_cube(levels: Sequence[np.ndarray], direction: np.ndarray, s: SamplerSettings,
+                bias: np.ndarray | float | None = None, lod: np.ndarray | None = None
+                ) -> np.ndarray:
+    """Sample a cube map (levels of (6, H, W, 4)) along direction rows (x, y, z)."""
+    d = np.asarray(direction[:, :3], np.float32)
+    face = cube_face(d)
+    u, v = _face_uv(d, face)
+    size = levels[0].shape[1]
+    if lod is None and len(d) % 4 == 0:
+        quad_face = np.repeat(face.reshape(-1, 4)[:, 0], 4)
+        du, dv = _face_uv(d, quad_face)
+        per_row = _lod([du, dv], (size, size), len(d), s, bias, None)
+    else:
+        per_row = _lod([u, v], (size, size), len(d), s, bias, lod)
+    clamp = ("CLAMP", "CLAMP")
+    border = np.asarray(s.border, np.float32)
+    out = np.empty((len(d), 4), np.float32)
+    for f in np.unique(face):
+        rows = np.nonzero(face == f)[0]
+        face_levels = [_Level(np.asarray(lvl)[f]) for lvl in levels]
+        out[rows] = _mip_sample(face_levels, [u[rows], v[rows]], per_row[rows], s, clamp, border)
+    return out
+
+
+SAMPLE_BY_KIND = {"1d": sample_1d, "2d": sample_2d, "3d": sample_3d, "cube": sample_cube}
+
+
+def sample(kind: str, levels: Sequence[np.ndarray], coord: np.ndarray, s: SamplerSettings,
+           bias: np.ndarray | float | None = None, lod: np.ndarray | None = None) -> np.ndarray:
+    """Sample a texture of `kind` ('1d', '2d', '3d', 'cube') at coordinate rows (N, >= 1..3)."""
+    try:
+        fn = SAMPLE_BY_KIND[kind]
+    except KeyError:
+        raise ValueError(f"texture kind must be one of {tuple(SAMPLE_BY_KIND)}, got {kind!r}")
+    return fn(levels, coord, s, bias, lod)
