@@ -362,13 +362,16 @@ def error_text(error: BaseException | None) -> str:
 
 
 def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = None,
-                 policy: Any = "first", lower: bool = True, previous: "Effect | None" = None,
-                 **load_options: Any) -> LoadedEffect:
-    """Load (unless `previous` is given), validate every technique, select, lower.
+                 policy: Any = "first", scene: Any = None, lower: bool = True,
+                 previous: "Effect | None" = None, **load_options: Any) -> LoadedEffect:
+    """Load (unless `previous` is given), validate every technique, select, and prepare the
+    chosen one for drawing in `scene` (a Scene, mapping, YAML path or None for the defaults):
+    lower its passes with the scene's parameter values, load the textures they sample (into
+    the shared cache, so the render thread finds them loaded) and build the vertex streams.
 
     A forced `technique` is drawn when valid on the card; otherwise the card's selection is
     drawn and `forced_rejected` carries the forced one's reasons. Raises EffectError (located)
-    for a broken file or a pass that cannot be lowered."""
+    for a broken file, a missing texture, or a pass that cannot be lowered."""
     from .loader import load_effect
     from .select import find_valid_technique
     from .validate import validate_technique
@@ -381,7 +384,7 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
             forced = effect.technique(technique)
         except (KeyError, EffectError):
             raise EffectError(f"no technique named '{technique}' (the effect has: "
-                              f"{', '.join(t.name for t in effect.techniques)})",
+                              f"{', '.join(t.name or '<anonymous>' for t in effect.techniques)})",
                               Location(path, 1, 1)) from None
         v = next(v for v in validations if v.technique is forced)
         if v.ok:
@@ -392,10 +395,26 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
         chosen = find_valid_technique(effect, profile, policy)
     programs = None
     if chosen is not None and lower:
-        from .lower import lower_technique
-        programs = lower_technique(effect, chosen, profile)
+        programs = prepare(effect, chosen, profile, scene)
     return LoadedEffect(path, effect, profile, validations, chosen, programs, technique,
                         forced_rejected, watched_files(effect))
+
+
+def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
+            scene: Any = None) -> list["PassProgram"]:
+    """Everything that can fail before a technique draws, done now (off the render thread):
+    bind the scene, lower every pass, load the textures the passes sample, build the streams."""
+    from .lower import lower_pass
+    from .runtime import Runtime
+    runtime = Runtime(effect, profile, scene=scene, backend=None)
+    programs = [lower_pass(runtime.effect, technique, i, profile)
+                for i in range(len(technique.passes))]
+    for program in programs:
+        for binding in program.textures:
+            if binding.texture is not None:
+                runtime.texture(binding.texture)
+    runtime.geometry()
+    return programs
 
 
 # ---------------------------------------------------------------------------------------------
@@ -512,11 +531,22 @@ class Reloader:
             self.results.put(ReloadResult(self.path, kind, loaded, error, elapsed, changed, requested))
 
 
-def effect_builder(path: str, settings: Callable[[], tuple["CapsProfile", str | None]],
-                   **load_options: Any) -> Build:
-    """The viewer's build: `settings()` gives the current (profile, forced technique name) when
-    the build runs, so a reload after a card change uses the new card."""
+@dataclass
+class BuildSettings:
+    """What a build depends on besides the files: the card, a forced technique name, the
+    selection policy, and the scene the effect will be drawn in."""
+
+    profile: "CapsProfile"
+    technique: str | None = None
+    policy: Any = "first"
+    scene: Any = None
+
+
+def effect_builder(path: str, settings: Callable[[], BuildSettings], **load_options: Any) -> Build:
+    """The viewer's build: `settings()` is read when the build runs, so a reload after a card
+    change uses the new card."""
     def build(previous: "Effect | None") -> LoadedEffect:
-        profile, technique = settings()
-        return build_effect(path, profile, technique=technique, previous=previous, **load_options)
+        s = settings()
+        return build_effect(path, s.profile, technique=s.technique, policy=s.policy,
+                            scene=s.scene, previous=previous, **load_options)
     return build

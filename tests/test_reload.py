@@ -12,9 +12,10 @@ import threading
 import time
 
 import pytest
+from PIL import Image
 
 import effects
-from effects.reload import (Reloader, Watcher, build_effect, content_hash, effect_builder,
+from effects.reload import (BuildSettings, Reloader, Watcher, build_effect, content_hash, effect_builder,
                             referenced_files, watched_files)
 
 EFFECT = """#include "tint.fxh"
@@ -45,8 +46,12 @@ def tint(hex_colour: str) -> str:
 def folder(tmp_path):
     (tmp_path / "tint.fxh").write_text(tint("0xffff0000"))
     (tmp_path / "flat.fx").write_text(EFFECT)
-    (tmp_path / "base.png").write_bytes(b"not really a png, only watched")
+    write_png(tmp_path / "base.png", (255, 0, 0))
     return tmp_path
+
+
+def write_png(path, rgb):
+    Image.new("RGB", (4, 4), rgb).save(path)
 
 
 def tfactor(loaded) -> tuple[float, ...]:
@@ -54,9 +59,9 @@ def tfactor(loaded) -> tuple[float, ...]:
 
 
 def start_reloader(folder, *, use_watchdog=True, technique=None, card="tnt2"):
-    settings = {"profile": effects.load_profile(card), "technique": technique}
+    settings = BuildSettings(effects.load_profile(card), technique)
     path = str(folder / "flat.fx")
-    build = effect_builder(path, lambda: (settings["profile"], settings["technique"]))
+    build = effect_builder(path, lambda: settings)
     reloader = Reloader(path, build, use_watchdog=use_watchdog)
     reloader.start(build(None))
     time.sleep(0.05)   # let the observer settle before the first edit
@@ -182,9 +187,14 @@ def test_unchanged_content_does_not_reload(folder):
 def test_texture_image_change_reloads(folder):
     reloader, _ = start_reloader(folder)
     try:
-        (folder / "base.png").write_bytes(b"other bytes")
+        write_png(folder / "base.png", (0, 0, 255))
         result = expect_result(reloader)
         assert result.ok and result.changed == (str(folder / "base.png"),)
+        (folder / "base.png").write_bytes(b"a truncated image")
+        bad = expect_result(reloader)
+        assert bad.log_line().startswith(f"reload: {folder / 'flat.fx'} failed: {folder / 'flat.fx'}:2:")
+        assert "cannot read image" in bad.log_line()
+        assert reloader.last_good is result.loaded
     finally:
         reloader.stop()
 
@@ -210,7 +220,7 @@ def test_forced_technique_not_valid_keeps_the_selection_and_carries_reasons(fold
         assert first.forced_rejected is not None
         assert "D3DTEXOPCAPS_DOTPRODUCT3" in str(first.forced_rejected.reasons[0])
         # the same technique on a card that has DotProduct3: drawn, without reading the file again
-        settings["profile"] = effects.load_profile("geforce2")
+        settings.profile = effects.load_profile("geforce2")
         (folder / "flat.fx").write_text("broken on disk, but a reselect does not read it")
         time.sleep(0.2)
         while reloader.poll() is not None:     # drop the failed file reload
