@@ -163,7 +163,8 @@ def _mip_sample(levels: list[_Level], coords: list[np.ndarray], lod: np.ndarray,
     top = len(levels) - 1
     if s.mip_filter == "NONE" or top == base:
         return _by_filter(levels[base], coords, minify, min_linear, mag_linear, modes, border)
-    d = np.clip(np.where(minify, lod, np.float32(0)), 0, top - base)
+    # MaxMipLevel clamps the level index itself: levels finer than `base` are never used.
+    d = np.clip(np.where(minify, lod, np.float32(0)), base, top)
     if s.mip_filter == "POINT":
         # nearest level: level k serves lod in (k - 0.5, k + 0.5]
         lo = np.ceil(d - np.float32(0.5)).astype(np.int32)
@@ -172,14 +173,15 @@ def _mip_sample(levels: list[_Level], coords: list[np.ndarray], lod: np.ndarray,
         lo = np.floor(d).astype(np.int32)
         frac = (d - lo).astype(np.float32)
     out = np.empty((count, 4), np.float32)
-    for k in np.unique(lo):
-        rows = np.nonzero(lo == k)[0]
+    used = np.unique(lo)
+    for k in used:
+        rows = slice(None) if len(used) == 1 else np.nonzero(lo == k)[0]
         sub = [c[rows] for c in coords]
-        a = _by_filter(levels[base + k], sub, minify[rows], min_linear, mag_linear, modes, border)
-        if frac is not None and base + k < top:
+        a = _by_filter(levels[k], sub, minify[rows], min_linear, mag_linear, modes, border)
+        if frac is not None and k < top:
             f = frac[rows]
             if f.any():
-                b = _by_filter(levels[base + k + 1], sub, minify[rows], min_linear, mag_linear,
+                b = _by_filter(levels[k + 1], sub, minify[rows], min_linear, mag_linear,
                                modes, border)
                 a = a + (b - a) * f[:, None]
         out[rows] = a
