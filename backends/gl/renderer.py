@@ -1,0 +1,340 @@
+"""The GL back end: lowered passes drawn with moderngl into an offscreen framebuffer.
+
+Each draw prints the pass's IR as GLSL (`glsl`), compiles it once per (vertex key, fragment
+key, fixed-function epilogue, stream set) so that changed uniforms never recompile, binds
+textures and sampler objects (`textures`, `state`), sets the render state and draws the
+triangles in `backends.base.triangle_list` order (so flat shading takes the same provoking
+vertex as the reference). The frame is a framebuffer object with a packed 32-bit float depth
+and 8-bit stencil buffer; `end_frame` reads it back, row 0 at the top, without a flip (the
+vertex shader renders upside down; see `glsl`).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping
+
+import moderngl
+import numpy as np
+
+from effects.passprogram import PassProgram, RenderState
+
+from ..base import TARGET_FORMATS, DrawError, register_backend, triangle_list
+from . import glsl
+from . import rawgl as G
+from .context import headless_context
+from .rawgl import raw_gl
+from .state import apply_render_state, create_sampler, reset_for_clear, sampler_key
+from .textures import TextureCache, TextureKindError
+
+# Render-target format -> (GL internal format, read-back type, numpy dtype)
+TARGET_GL_FORMATS = {
+    "A8R8G8B8": (G.RGBA8, G.UNSIGNED_BYTE, np.uint8),
+    "X8R8G8B8": (G.RGB8, G.UNSIGNED_BYTE, np.uint8),
+    "R32F": (G.R32F, G.FLOAT, np.float32),
+    "G32R32F": (G.RG32F, G.FLOAT, np.float32),
+    "A16B16G16R16F": (G.RGBA16F, G.FLOAT, np.float32),
+    "A32B32G32R32F": (G.RGBA32F, G.FLOAT, np.float32),
+}
+
+
+class GLShaderError(RuntimeError):
+    """Printed GLSL that the driver rejected: a bug in this back end, shown with its source."""
+
+
+@dataclass
+class _Target:
+    """An offscreen render target: colour texture, depth-stencil renderbuffer, framebuffer."""
+
+    size: tuple[int, int]
+    format: str
+    color: int
+    depth_stencil: int
+    framebuffer: int
+
+
+class GLBackend:
+    """The moderngl renderer. `context`: a moderngl context to draw with (the viewer passes
+    its window's, see `context.window_context`); by default the process's headless EGL one."""
+
+    name = "gl"
+
+    def __init__(self, context: moderngl.Context | None = None) -> None:
+        self.ctx = context if context is not None else headless_context()
+        self.gl = raw_gl()
+        self.textures = TextureCache(self.gl)
+        self._programs: dict[tuple, moderngl.Program] = {}
+        self._samplers: dict = {}
+        self._targets: dict[tuple[tuple[int, int], str], _Target] = {}
+        self._frame: _Target | None = None
+        self.compiles = 0
+
+    # -- frame
+    def begin_frame(self, size: tuple[int, int], clear_color=(0.0, 0.0, 0.0, 0.0),
+                    clear_depth: float = 1.0, clear_stencil: int = 0, *,
+                    format: str = "A8R8G8B8") -> None:
+        size = (int(size[0]), int(size[1]))
+        if format not in TARGET_GL_FORMATS:
+            raise DrawError(f"render-target format must be one of {tuple(TARGET_GL_FORMATS)}, "
+                            f"got {format!r}")
+        if size[0] <= 0 or size[1] <= 0:
+            raise DrawError(f"render-target size must be positive, got {size}")
+        gl = self.gl
+        with self.ctx:
+            target = self._target(size, format)
+            gl.glBindFramebuffer(G.FRAMEBUFFER, target.framebuffer)
+            gl.glViewport(0, 0, *size)
+            reset_for_clear(gl)
+            gl.glClearColor(*(float(c) for c in clear_color))
+            gl.glClearDepth(float(clear_depth))
+            gl.glClearStencil(int(clear_stencil) & 0xFF)
+            gl.glClear(G.COLOR_BUFFER_BIT | G.DEPTH_BUFFER_BIT | G.STENCIL_BUFFER_BIT)
+            gl.check("clearing the frame")
+        self._frame = target
+
+    def end_frame(self) -> np.ndarray:
+        """The frame: uint8 RGBA for the 8-bit formats, float32 RGBA for the float ones
+        (channels the format lacks read 1), row 0 at the top."""
+        target = self._require_frame()
+        width, height = target.size
+        _, read_type, dtype = TARGET_GL_FORMATS[target.format]
+        image = np.empty((height, width, 4), dtype)
+        with self.ctx:
+            self.gl.glBindFramebuffer(G.FRAMEBUFFER, target.framebuffer)
+            self.gl.glPixelStorei(G.PACK_ALIGNMENT, 4)
+            self.gl.glReadPixels(0, 0, width, height, G.RGBA, read_type, image.ctypes.data)
+            self.gl.check("reading the frame back")
+        is_float, channels = TARGET_FORMATS[target.format]
+        if is_float:
+            image[..., channels:] = 1  # GL reads absent channels as 0 (alpha 1); D3D as 1
+        self._frame = None
+        return image
+
+    def _require_frame(self) -> _Target:
+        if self._frame is None:
+            raise DrawError("no frame: call begin_frame first")
+        return self._frame
+
+    def _target(self, size: tuple[int, int], format: str) -> _Target:
+        key = (size, format)
+        if key not in self._targets:
+            self._targets[key] = self._create_target(size, format)
+        return self._targets[key]
+
+    def _create_target(self, size: tuple[int, int], format: str) -> _Target:
+        gl = self.gl
+        width, height = size
+        color = gl.gen("Textures")
+        gl.glBindTexture(G.TEXTURE_2D, color)
+        gl.glTexImage2D(G.TEXTURE_2D, 0, TARGET_GL_FORMATS[format][0], width, height, 0, G.RGBA,
+                        G.FLOAT, None)
+        gl.glTexParameteri(G.TEXTURE_2D, G.TEXTURE_MAX_LEVEL, 0)
+        depth = gl.gen("Renderbuffers")
+        gl.glBindRenderbuffer(G.RENDERBUFFER, depth)
+        gl.glRenderbufferStorage(G.RENDERBUFFER, G.DEPTH32F_STENCIL8, width, height)
+        framebuffer = gl.gen("Framebuffers")
+        gl.glBindFramebuffer(G.FRAMEBUFFER, framebuffer)
+        gl.glFramebufferTexture2D(G.FRAMEBUFFER, G.COLOR_ATTACHMENT0, G.TEXTURE_2D, color, 0)
+        gl.glFramebufferRenderbuffer(G.FRAMEBUFFER, G.DEPTH_STENCIL_ATTACHMENT, G.RENDERBUFFER,
+                                     depth)
+        status = gl.glCheckFramebufferStatus(G.FRAMEBUFFER)
+        if status != G.FRAMEBUFFER_COMPLETE:
+            raise RuntimeError(f"a {format} {width}x{height} framebuffer is incomplete on this "
+                               f"GL (status 0x{status:04X})")
+        gl.check("creating a render target")
+        return _Target(size, format, color, depth, framebuffer)
+
+    # -- drawing
+    def draw(self, program: PassProgram, streams: Mapping[str, np.ndarray], indices: np.ndarray,
+             primitive: str, textures: Mapping[str, object]) -> None:
+        target = self._require_frame()
+        tris = triangle_list(indices, primitive)
+        count = _vertex_count(streams)
+        if len(tris) and (tris.min() < 0 or tris.max() >= count):
+            raise DrawError(f"indices out of range for {count} vertices")
+        if len(tris) == 0:
+            return
+        state = program.render_state
+        options = fragment_options(program, streams, TARGET_FORMATS[target.format][0])
+        varyings = glsl.fragment_varyings(program.fragment, options)
+        attributes = _attributes(program, varyings)
+        present = frozenset(a for a in attributes if a in streams)
+        with self.ctx:
+            shader = self._program(program, options, varyings, present)
+            self._set_uniforms(shader, program, target, options)
+            self._bind_textures(shader, program, textures)
+            buffers = [self.ctx.buffer(_stream_array(streams[a])) for a in sorted(present)]
+            content = [(buf, f"{_stream_array(streams[a]).shape[1]}f", glsl.attribute_name(a))
+                       for buf, a in zip(buffers, sorted(present))]
+            index_buffer = self.ctx.buffer(tris.astype(np.uint32).tobytes())
+            vao = self.ctx.vertex_array(shader, content, index_buffer=index_buffer,
+                                        index_element_size=4, skip_errors=True)
+            try:
+                gl = self.gl
+                gl.glBindFramebuffer(G.FRAMEBUFFER, target.framebuffer)
+                gl.glViewport(0, 0, *target.size)
+                gl.glProvokingVertex(G.FIRST_VERTEX_CONVENTION)
+                gl.glDisable(G.TEXTURE_CUBE_MAP_SEAMLESS)  # D3D9 cube maps are not seamless
+                apply_render_state(gl, state)
+                vao.render(moderngl.TRIANGLES, vertices=tris.size)
+                gl.check("drawing")
+            finally:
+                vao.release()
+                index_buffer.release()
+                for buf in buffers:
+                    buf.release()
+
+    def _program(self, program: PassProgram, options: glsl.FragmentOptions,
+                 varyings: tuple[str, ...], present: frozenset) -> moderngl.Program:
+        vertex = program.vertex
+        key = (None if vertex is None else vertex.key(), program.fragment.key(), options,
+               varyings, present)
+        shader = self._programs.get(key)
+        if shader is None:
+            vertex_text = glsl.vertex_shader(vertex, varyings, present, options.flat_colors)
+            fragment_text = glsl.fragment_shader(program.fragment, options)
+            try:
+                shader = self.ctx.program(vertex_shader=vertex_text,
+                                          fragment_shader=fragment_text)
+            except moderngl.Error as exc:
+                raise GLShaderError(f"{exc}\n--- vertex shader ---\n{_numbered(vertex_text)}"
+                                    f"--- fragment shader ---\n{_numbered(fragment_text)}") from exc
+            self._programs[key] = shader
+            self.compiles += 1
+        return shader
+
+    def _set_uniforms(self, shader: moderngl.Program, program: PassProgram, target: _Target,
+                      options: glsl.FragmentOptions) -> None:
+        values = dict(program.uniforms)
+        state = program.render_state
+        settings: dict[str, object] = {
+            "d3d_pixel_size": (2.0 / target.size[0], 2.0 / target.size[1]),
+            "d3d_depth_bias": (float(state.depth_bias), float(state.slope_scale_depth_bias)),
+            "d3d_fog_color": tuple(float(c) for c in state.fog_color),
+            "d3d_fog": (float(state.fog_start), float(state.fog_end), float(state.fog_density), 0.0),
+            "d3d_alpha_ref": int(state.alpha_ref) & 0xFF,
+        }
+        if options.alpha_test:
+            settings["d3d_alpha_func"] = _compare_index(state)
+        for name in glsl.uniforms_of(program.vertex, program.fragment):
+            # A uniform the pass does not supply reads 0, as in the reference back end.
+            settings[glsl.uniform_name(name)] = tuple(float(v) for v in
+                                                      values.get(name, (0.0, 0.0, 0.0, 0.0)))
+        for name, value in settings.items():
+            uniform = shader.get(name, None)
+            if uniform is not None:
+                uniform.value = value
+
+    def _bind_textures(self, shader: moderngl.Program, program: PassProgram,
+                       textures: Mapping[str, object]) -> None:
+        gl = self.gl
+        used = {s.index: s.kind for p in (program.vertex, program.fragment) if p is not None
+                for s in p.samplers}
+        for index, kind in sorted(used.items()):
+            binding = program.texture(index)
+            texture = None
+            if binding is not None and binding.texture is not None:
+                texture = textures.get(binding.texture)
+            try:
+                if texture is None:
+                    gl_texture = self.textures.unbound(kind)
+                    binding = None
+                else:
+                    gl_texture = self.textures.get(texture, kind, binding.srgb_texture)
+            except TextureKindError as exc:
+                raise DrawError(f"sampler {index}: {exc}") from None
+            key = sampler_key(binding, kind, gl_texture.level_count)
+            sampler = self._samplers.get(key)
+            if sampler is None:
+                sampler = self._samplers[key] = create_sampler(gl, key)
+            gl.glActiveTexture(G.TEXTURE0 + index)
+            gl.glBindTexture(gl_texture.target, gl_texture.name)
+            gl.glTexParameteri(gl_texture.target, G.TEXTURE_BASE_LEVEL, key.base_level)
+            gl.glBindSampler(index, sampler)
+            uniform = shader.get(f"sampler{index}", None)
+            if uniform is not None:
+                uniform.value = index
+        gl.glActiveTexture(G.TEXTURE0)
+
+    # -- lifetime
+    def close(self) -> None:
+        """Release every GL object this back end made (the context stays)."""
+        gl = self.gl
+        with self.ctx:
+            for shader in self._programs.values():
+                shader.release()
+            for sampler in self._samplers.values():
+                gl.delete("Samplers", sampler)
+            for target in self._targets.values():
+                gl.delete("Framebuffers", target.framebuffer)
+                gl.delete("Renderbuffers", target.depth_stencil)
+                gl.delete("Textures", target.color)
+            self.textures.release()
+        self._programs.clear()
+        self._samplers.clear()
+        self._targets.clear()
+        self._frame = None
+
+
+def fragment_options(program: PassProgram, streams: Mapping[str, np.ndarray],
+                     float_target: bool) -> glsl.FragmentOptions:
+    """The fixed-function epilogue a pass needs, from its render state and what the vertex
+    stage supplies (the reference back end's rules: the specular add and vertex fog need
+    their varyings; sRGB writes apply to 8-bit targets)."""
+    state: RenderState = program.render_state
+    if program.vertex is None:
+        supplied = set(streams) - {"position"}
+    else:
+        supplied = {name for name, _ in program.vertex.outputs} - {"position", "psize"}
+    fog = "NONE"
+    if state.fog_enable:
+        if state.fog_table_mode != "NONE":
+            fog = state.fog_table_mode
+        elif "fog" in supplied:
+            fog = "VERTEX"
+    return glsl.FragmentOptions(
+        flat_colors=state.shade_mode == "FLAT",
+        specular_add=bool(state.specular_enable and "color1" in supplied),
+        fog=fog,
+        alpha_test=bool(state.alpha_test_enable),
+        depth_bias=bool(state.depth_bias or state.slope_scale_depth_bias),
+        srgb_write=bool(state.srgb_write_enable and not float_target))
+
+
+def _compare_index(state: RenderState) -> int:
+    try:
+        return glsl.COMPARE_FUNCS.index(state.alpha_func)
+    except ValueError:
+        raise DrawError(f"AlphaFunc must be one of {glsl.COMPARE_FUNCS}, "
+                        f"got {state.alpha_func!r}") from None
+
+
+def _attributes(program: PassProgram, varyings: tuple[str, ...]) -> list[str]:
+    """The vertex streams the vertex shader reads."""
+    if program.vertex is None:
+        return ["position", *(n for n in varyings if n != "position")]
+    return [i.name for i in program.vertex.inputs if i.kind == "varying"]
+
+
+def _vertex_count(streams: Mapping[str, np.ndarray]) -> int:
+    if "position" not in streams:
+        raise DrawError("streams need a 'position'")
+    counts = {name: len(np.asarray(v)) for name, v in streams.items()}
+    if len(set(counts.values())) > 1:
+        raise DrawError(f"streams disagree on the vertex count: {counts}")
+    return counts["position"]
+
+
+def _stream_array(value: np.ndarray) -> np.ndarray:
+    a = np.asarray(value, np.float32)
+    if a.ndim == 1:
+        a = a[:, None]
+    if a.ndim != 2 or not 1 <= a.shape[1] <= 4:
+        raise DrawError(f"a vertex stream must be (N, 1..4), got {np.shape(value)}")
+    return np.ascontiguousarray(a)
+
+
+def _numbered(text: str) -> str:
+    return "".join(f"{n:4d}  {line}\n" for n, line in enumerate(text.splitlines(), 1))
+
+
+register_backend("gl", GLBackend)
