@@ -83,11 +83,13 @@ texture EarthTexture
     string Type = "2D";
 >;
 
+// No Format annotation: the emboss technique works with whatever RGB format the card has
+// (the DX6 cards list no L8; the Voodoo3 only 16-bit formats), as the chapter's emboss needs
+// only two texture units and a subtract.
 texture HeightMap
 <
     string ResourceName = "textures/earth_height.png";
     string Type = "2D";
-    string Format = "L8";
 >;
 
 texture NormalMap

@@ -85,7 +85,22 @@ def card_limit_violations(program: AsmProgram, profile, *, software: bool = Fals
             if used and program.version < (3, 0) and flag not in flags:
                 yield (first, program.name, f"D3DPS20CAPS_{flag}", "not in PS20Caps.Caps",
                        f"the pixel shader uses {what}")
+    if program.kind == "ps":
+        outputs = stats.highest.get("oC", 0) + 1
+        rts = profile.get("NumSimultaneousRTs", 1) or 1
+        if outputs > rts:
+            yield (first, program.name, f"NumSimultaneousRTs >= {outputs}",
+                   f"NumSimultaneousRTs {rts}",
+                   f"the pixel shader writes oC{outputs - 1}, so {outputs} render targets at once")
+        if program.version >= (3, 0):
+            yield from _slot_limit(program, profile, "MaxPixelShader30InstructionSlots", "pixel", first)
     if program.kind == "vs":
+        if program.version >= (3, 0) and not software:
+            yield from _slot_limit(program, profile, "MaxVertexShader30InstructionSlots", "vertex", first)
+        if (program.version >= (2, 0) and program.version < (3, 0) and not software
+                and stats.uses_predication and "PREDICATION" not in _caps_flags(profile, "VS20Caps")):
+            yield (first, program.name, "D3DVS20CAPS_PREDICATION", "not in VS20Caps.Caps",
+                   "the vertex shader uses predication")
         limit = SOFTWARE_VS_CONSTANTS if software else profile.get("MaxVertexShaderConst")
         highest_c = stats.highest.get("c", -1) + 1
         if limit is not None and highest_c > limit:
@@ -99,3 +114,11 @@ def card_limit_violations(program: AsmProgram, profile, *, software: bool = Fals
             if temps is not None and highest_r > temps:
                 yield (first, program.name, f"VS20Caps.NumTemps >= {highest_r}", f"NumTemps {temps}",
                        f"the vertex shader uses temporaries up to r{highest_r - 1}")
+
+
+def _slot_limit(program: AsmProgram, profile, field: str, what: str,
+                first: Location) -> Iterator[Violation]:
+    slots = profile.get(field)
+    if slots is not None and program.stats.total_slots > slots:
+        yield (first, program.name, f"{field} >= {program.stats.total_slots}", f"{field} {slots}",
+               f"the {what} shader takes {program.stats.total_slots} instruction slots")
