@@ -111,11 +111,73 @@ def _cmd_profiles(args, console: Console) -> int:
     return EXIT_OK
 
 
+def _add_render(sub) -> None:
+    p = sub.add_parser("render", help="render an effect on a simulated card into a PNG")
+    p.add_argument("file", help="effect file (.fx)")
+    p.add_argument("--profile", "-p", required=True, metavar="P", help="caps profile name or YAML path")
+    p.add_argument("--technique", "-t", metavar="T",
+                   help="render this technique, valid on the card or not (default: the card's choice)")
+    p.add_argument("--backend", "-b", default="numpy", metavar="NAME",
+                   help="numpy (the reference rasteriser, default) or gl")
+    p.add_argument("--scene", "-s", metavar="SCENE.yaml", help="mesh, camera, light, params ...")
+    p.add_argument("--size", metavar="WxH", help="frame size, e.g. 320x240 (wins over the scene's)")
+    p.add_argument("--set", dest="assignments", action="append", default=[], metavar="NAME=VALUE",
+                   help="a parameter value: number, vector '1,0.5,0.25,1', true/false, "
+                        "0xAARRGGBB, or an image path for a texture (repeatable)")
+    p.add_argument("--policy", default="first", help="selection policy (see matrix)")
+    p.add_argument("-o", "--output", required=True, metavar="OUT.png", help="the PNG to write")
+    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
+                   help="preprocessor macro")
+    p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
+                   help="include search folder")
+    p.set_defaults(run=_cmd_render)
+
+
+def _parse_size(text: str | None) -> tuple[int, int] | None:
+    if text is None:
+        return None
+    w, x, h = text.lower().partition("x")
+    if not x or not w.strip().isdigit() or not h.strip().isdigit():
+        raise UsageError(f"effects render: error: --size {text!r}: expected WxH, e.g. 320x240")
+    return int(w), int(h)
+
+
+def _cmd_render(args, console: Console) -> int:
+    import time
+    from PIL import Image
+    from .errors import NoValidTechnique
+    from .runtime import render_frame
+    from .semantics import parse_assignments
+    size = _parse_size(args.size)
+    params = parse_assignments(args.assignments)
+    effect = _load(args)
+    profile = _profiles([args.profile])[0]
+    start = time.perf_counter()
+    try:
+        frame = render_frame(effect, profile, technique=args.technique, backend=args.backend,
+                             scene=args.scene, size=size, params=params, policy=args.policy)
+    except NoValidTechnique as exc:
+        Console(stderr=True, highlight=False).print(str(exc), markup=False)
+        return EXIT_INVALID
+    ms = (time.perf_counter() - start) * 1000.0
+    try:
+        Image.fromarray(frame.image, "RGBA").save(args.output)
+    except (OSError, ValueError) as exc:
+        from .errors import Location, SceneError
+        raise SceneError(f"cannot write the image: {exc}", Location(args.output, 1, 1)) from None
+    card = profile.display_name or profile.name
+    print(f"rendered {frame.technique.name or '<anonymous>'} on {card} ({frame.passes} "
+          f"pass{'es' if frame.passes != 1 else ''}) with {frame.backend} in {ms:.1f} ms "
+          f"-> {args.output}")
+    return EXIT_OK
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="effects", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     _add_validate(sub)
     _add_matrix(sub)
+    _add_render(sub)
     _add_profiles(sub)
     return parser
 

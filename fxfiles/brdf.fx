@@ -22,6 +22,12 @@
 //   * the EffectEdit strings `BCLR` (background colour) and `XFile` (model to load).
 // BRDFTexture1-3 are cube maps (see "set up clamping for cube maps"); ObjectTexture is 2D.
 // DX8 effect files have no annotations, so the file itself cannot say so.
+// One addition, the only line not in the printed text: the `VertexStreams` string just below.
+
+// Not in the printed file: it stands in for the application code that built the DX8 vertex
+// buffer, which put each vertex's tangent in TEXCOORD1 (register v8 of the declaration).
+// effects.assets reads it to feed the tangent into the texcoord1 stream.
+string VertexStreams = "texcoord1=tangent";
 
 /////////////////////////////////////////////////////////////////////////////
 // BRDF Effect File
