@@ -49,7 +49,13 @@ def get_backend(backend: Any) -> Any:
         return backend
     if backend not in _BACKENDS:
         from backends.base import create_backend
-        _BACKENDS[backend] = create_backend(backend)
+        try:
+            _BACKENDS[backend] = create_backend(backend)
+        except EffectError:
+            raise
+        except Exception as exc:  # no GL context, a missing driver: the user's choice failed
+            raise EffectError(f"cannot start the {backend!r} back end: {type(exc).__name__}: {exc}",
+                              Location("<backend>", 1, 1)) from None
     return _BACKENDS[backend]
 
 

@@ -15,6 +15,8 @@ from effects.assets import TextureCache, geometry, scene_mesh
 from effects.runtime import Runtime, render_frame
 from effects.scene import load_scene
 
+# One suite, every back end: the contract tests run on both.
+BACKENDS = pytest.mark.parametrize("backend", ["numpy", "gl"])
 RED, GREEN, BLUE, WHITE = (255, 0, 0, 255), (0, 255, 0, 255), (0, 0, 255, 255), (255, 255, 255, 255)
 
 # Draws the vertex diffuse colour: no lighting, stage 0 selects DIFFUSE for colour and alpha.
@@ -42,12 +44,13 @@ def full_screen(diffuse="0xffffffff"):
 # The contract
 
 
-def test_render_returns_h_w_4_uint8_rgba_with_row_0_at_the_top():
+@BACKENDS
+def test_render_returns_h_w_4_uint8_rgba_with_row_0_at_the_top(backend):
     # A red rectangle over the top half (clip y from 0 to 1 is the upper half of the screen)
     # on a blue clear.
     scene = {"mesh": strip(-1, 0, 1, 1, "0xffff0000"), "clear": {"color": "0xff0000ff"}}
     image = effects.render(load_effect(DIFFUSE_EFFECT), load_profile("geforce2"), scene=scene,
-                           size=(8, 6))
+                           size=(8, 6), backend=backend)
     assert image.shape == (6, 8, 4) and image.dtype == np.uint8
     assert (image[:3] == RED).all(), image[:, :, 0]
     assert (image[3:] == BLUE).all(), image[:, :, 2]
@@ -102,13 +105,14 @@ def test_an_effect_without_techniques_has_nothing_to_render():
         effects.render(load_effect("float4 C;\n"), "tnt2")
 
 
-def test_a_named_technique_renders_as_asked_even_when_invalid():
+@BACKENDS
+def test_a_named_technique_renders_as_asked_even_when_invalid(backend):
     # DOTPRODUCT3 of red with itself: 4 * ((1-.5)^2 + (0-.5)^2 + (0-.5)^2) = 3, saturated to 1
     # and replicated to every channel: white, which no TNT2 could draw.
     effect = load_effect(PS20_THEN_DOT3)
     assert not effect.validate("Dot3", load_profile("tnt2")).ok
     image = effects.render(effect, "tnt2", technique="Dot3",
-                           scene={"mesh": full_screen("0xffff0000")}, size=(2, 2))
+                           scene={"mesh": full_screen("0xffff0000")}, size=(2, 2), backend=backend)
     assert (image == WHITE).all()
 
 
@@ -137,19 +141,22 @@ technique Plain {{ pass P {{ {DIFFUSE_PASS} }} }}
 """
 
 
-def test_each_render_starts_from_the_default_device_state():
+@BACKENDS
+def test_each_render_starts_from_the_default_device_state(backend):
     effect = load_effect(STATEFUL)
     scene = {"mesh": full_screen("0xffff0000"), "clear": {"color": "0xff0000ff"}}
-    runtime = Runtime(effect, "geforce2", scene=scene, size=(4, 4))
+    runtime = Runtime(effect, "geforce2", scene=scene, size=(4, 4), backend=backend)
     first = runtime.render("Invisible").image
     assert (first == BLUE).all()            # blending (0, 1) left the clear colour
     second = runtime.render("Plain").image
     assert (second == RED).all()            # none of the first render's states leaked
-    again = effects.render(effect, "geforce2", technique="Plain", scene=scene, size=(4, 4))
+    again = effects.render(effect, "geforce2", technique="Plain", scene=scene, size=(4, 4),
+                           backend=backend)
     assert (again == RED).all()
 
 
-def test_states_set_by_a_pass_persist_into_the_following_passes():
+@BACKENDS
+def test_states_set_by_a_pass_persist_into_the_following_passes(backend):
     # Pass 0 draws red and turns on additive blending; pass 1 only switches the colour source
     # to TFACTOR (green). Blending persists, so the result is red + green = yellow; ColorOp
     # SelectArg1 persists too.
@@ -158,7 +165,8 @@ def test_states_set_by_a_pass_persist_into_the_following_passes():
             pass P0 {{ {DIFFUSE_PASS} AlphaBlendEnable = True; SrcBlend = One; DestBlend = One; }}
             pass P1 {{ TextureFactor = 0xff00ff00; ColorArg1[0] = TFactor; }}
         }}""")
-    frame = render_frame(effect, "geforce2", scene={"mesh": full_screen("0xffff0000")}, size=(3, 3))
+    frame = render_frame(effect, "geforce2", scene={"mesh": full_screen("0xffff0000")}, size=(3, 3),
+                         backend=backend)
     assert frame.passes == 2
     assert (frame.image == (255, 255, 0, 255)).all()
 
@@ -256,8 +264,10 @@ def quads(image, a, b, c, d):
             and (image[2:, :2] == c).all() and (image[2:, 2:] == d).all())
 
 
-def test_resource_name_loads_relative_to_the_effect_file(textured):
-    image = effects.render(load_effect(str(textured)), "tnt2", scene={"mesh": "quad"}, size=(4, 4))
+@BACKENDS
+def test_resource_name_loads_relative_to_the_effect_file(textured, backend):
+    image = effects.render(load_effect(str(textured)), "tnt2", scene={"mesh": "quad"}, size=(4, 4),
+                           backend=backend)
     assert quads(image, RED, GREEN, BLUE, WHITE), image
 
 
