@@ -226,7 +226,7 @@ class _Lowering:
             return self.texcoord(index)
         if kind in ("r", "t", "a"):
             value = reads.get((kind, index))
-            return self.b.const(ZERO) if value is None else value
+            return self.e.const(ZERO) if value is None else value
         raise AsmError(f"reading {op.name} is not lowered yet", op.location)
 
     def constant(self, index: int) -> int:
@@ -235,7 +235,7 @@ class _Lowering:
             values = self.p.defs[index]
             if limit is not None:
                 values = tuple(min(max(v, -limit), limit) for v in values)
-            return self.b.const(values)
+            return self.e.const(values)
         value = self.b.uniform(f"c{index}")
         return self.b.clamp(value, -limit, limit) if limit is not None else value
 
@@ -246,12 +246,12 @@ class _Lowering:
         if rel.kind != "a":
             raise AsmError("aL-relative addressing is not lowered yet", op.location)
         a0 = reads.get(("a", 0))
-        address = self.e.swizzle(self.b.const(ZERO) if a0 is None else a0,
+        address = self.e.swizzle(self.e.const(ZERO) if a0 is None else a0,
                                  COMPONENTS[rel.component] * 4)
-        address = self.b.add(address, self.b.const(float(op.index)))
-        result = self.b.const(ZERO)
+        address = self.b.add(address, self.e.const(float(op.index)))
+        result = self.e.const(ZERO)
         for k in range(_relative_range(self.p)):
-            off = self.b.neg(self.b.abs(self.b.sub(address, self.b.const(float(k)))))
+            off = self.b.neg(self.b.abs(self.b.sub(address, self.e.const(float(k)))))
             result = self.b.cmp(off, self.constant(k), result)   # -|addr - k| >= 0 iff equal
         return result
 
@@ -315,9 +315,9 @@ class _Lowering:
         old = self.regs.get(key)
         if old is None:
             if key[0] in ("r", "t", "a", "oC"):
-                old = self.b.const(ZERO)
+                old = self.e.const(ZERO)
             else:
-                old = self.b.const(OUTPUT_DEFAULTS.get(self.output_name(dst), DEFAULT_VARYING))
+                old = self.e.const(OUTPUT_DEFAULTS.get(self.output_name(dst), DEFAULT_VARYING))
                 self.written.append(key)
         self.regs[key] = self.b.merge(old, value, mask)
 
@@ -391,7 +391,7 @@ class _Lowering:
             return
         if self.rules.is_ps1:
             r0 = self.regs.get(("r", 0))
-            b.output("color0", b.saturate(b.const(ZERO) if r0 is None else r0))
+            b.output("color0", b.saturate(self.e.const(ZERO) if r0 is None else r0))
         else:
             for (kind, index), value in self.regs.items():
                 if kind == "oC":
@@ -483,7 +483,7 @@ def _tex(lo: _Lowering, instr: Instruction, reads: dict) -> None:
 @_texture("texcoord")
 def _texcoord(lo: _Lowering, instr: Instruction, reads: dict) -> None:
     tc = lo.b.saturate(lo.texcoord(instr.dst.index))
-    lo.write(instr, lo.b.merge(lo.b.const(ONE), tc, "xyz"))
+    lo.write(instr, lo.b.merge(lo.e.const(ONE), tc, "xyz"))
 
 
 @_texture("texkill")
@@ -501,7 +501,7 @@ def _bumped(lo: _Lowering, instr: Instruction, reads: dict) -> tuple[int, int]:
     m = instr.dst.index
     src = lo.source(instr.srcs[0], reads)
     bumpenv = lo.b.uniform(f"bumpenv{m}")
-    offset = lo.e.emit(INSTRUCTIONS["bem"], {"a": lo.b.const(ZERO), "b": src,
+    offset = lo.e.emit(INSTRUCTIONS["bem"], {"a": lo.e.const(ZERO), "b": src,
                                              "bumpenv": bumpenv})
     tc = lo.projected_coord(m)
     coord = lo.b.merge(tc, lo.b.add(tc, offset), "xy")
@@ -561,7 +561,7 @@ def _texm3x2depth(lo: _Lowering, instr: Instruction, reads: dict) -> None:
     (u,) = _rows(lo, instr, 1)
     w = _dot_row(lo, instr, reads)
     ratio = lo.b.saturate(lo.b.mul(u, lo.b.rcp(w)))
-    lo.depth = lo.b.cmp(lo.b.neg(lo.b.abs(w)), lo.b.const(ONE), ratio)   # w == 0 gives 1
+    lo.depth = lo.b.cmp(lo.b.neg(lo.b.abs(w)), lo.e.const(ONE), ratio)   # w == 0 gives 1
 
 
 @_texture("texm3x3tex", "texm3x3", "texm3x3spec", "texm3x3vspec")
@@ -571,7 +571,7 @@ def _texm3x3(lo: _Lowering, instr: Instruction, reads: dict) -> None:
     m = instr.dst.index
     op = instr.info.op
     if op == "texm3x3":
-        lo.write(instr, lo.b.merge(n, lo.b.const(ONE), "w"))
+        lo.write(instr, lo.b.merge(n, lo.e.const(ONE), "w"))
         return
     if op == "texm3x3tex":
         lo.write(instr, lo.sample(m, n, "cube"), computed=False)
@@ -582,7 +582,7 @@ def _texm3x3(lo: _Lowering, instr: Instruction, reads: dict) -> None:
         eye = _xyz(lo, *(lo.e.swizzle(lo.texcoord(m - 2 + k), "wwww") for k in range(3)))
     # R = 2 N (N.E) / (N.N) - E
     b = lo.b
-    factor = b.mul(b.const(2.0), b.mul(b.dp3(n, eye), b.rcp(b.dp3(n, n))))
+    factor = b.mul(lo.e.const(2.0), b.mul(b.dp3(n, eye), b.rcp(b.dp3(n, n))))
     lo.write(instr, lo.sample(m, b.sub(b.mul(n, factor), eye), "cube"), computed=False)
 
 
@@ -593,7 +593,7 @@ def _texdp3(lo: _Lowering, instr: Instruction, reads: dict) -> None:
 
 @_texture("texdp3tex")
 def _texdp3tex(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    coord = lo.b.merge(lo.b.const(ZERO), _dot_row(lo, instr, reads), "x")
+    coord = lo.b.merge(lo.e.const(ZERO), _dot_row(lo, instr, reads), "x")
     lo.write(instr, lo.sample(instr.dst.index, coord), computed=False)
 
 
@@ -602,8 +602,8 @@ def _texdepth(lo: _Lowering, instr: Instruction, reads: dict) -> None:
     # depth = sat(r5.r / min(r5.g, 1)); g == 0 gives 1 (semantics.md 2.6, Wine's formula)
     b, r5 = lo.b, lo.source(instr.dst, reads)
     g = lo.e.swizzle(r5, "yyyy")
-    ratio = b.saturate(b.mul(lo.e.swizzle(r5, "xxxx"), b.rcp(b.min(g, b.const(ONE)))))
-    lo.depth = b.cmp(b.neg(b.abs(g)), b.const(ONE), ratio)
+    ratio = b.saturate(b.mul(lo.e.swizzle(r5, "xxxx"), b.rcp(b.min(g, lo.e.const(ONE)))))
+    lo.depth = b.cmp(b.neg(b.abs(g)), lo.e.const(ONE), ratio)
 
 
 @_texture("texcrd")

@@ -144,13 +144,24 @@ MATRIX_MACROS: dict[str, tuple[str, int]] = {
 
 class Emitter:
     """Emits rewrite trees into a Builder. Swizzles of swizzles compose into one, so a
-    replicate selector followed by a scalar pick stays a single swizzle."""
+    replicate selector followed by a scalar pick stays a single swizzle; a swizzle of a
+    literal is a literal (`def c0` then `c0.x`)."""
 
     def __init__(self, builder: Builder) -> None:
         self.b = builder
         self._swizzled: dict[int, tuple[int, str]] = {}
+        self._literals: dict[int, tuple[float, ...]] = {}
+
+    def const(self, value: float | tuple[float, ...]) -> int:
+        values = (float(value),) * 4 if isinstance(value, (int, float)) else tuple(value)
+        result = self.b.const(values)
+        self._literals[result] = values
+        return result
 
     def swizzle(self, value: int, pattern: str) -> int:
+        if value in self._literals:
+            values = self._literals[value]
+            return self.const(tuple(values[COMPONENTS.index(c)] for c in pattern))
         if value in self._swizzled:
             source, inner = self._swizzled[value]
             value, pattern = source, "".join(inner[COMPONENTS.index(c)] for c in pattern)
@@ -162,12 +173,12 @@ class Emitter:
     def emit(self, tree: Tree, env: Mapping[str, Any]) -> int:
         if isinstance(tree, str):
             value = env[tree]
-            return self.b.const(float(value)) if isinstance(value, float) else value
+            return self.const(value) if isinstance(value, float) else value
         if isinstance(tree, (int, float)):
-            return self.b.const(float(tree))
+            return self.const(float(tree))
         head, *rest = tree
         if head == "vec":
-            return self.b.const(tuple(float(v) for v in rest))
+            return self.const(tuple(float(v) for v in rest))
         if head == "swz":
             return self.swizzle(self.emit(rest[1], env), rest[0])
         if head == "merge":
