@@ -21,7 +21,7 @@ from effects.asm.lower import (ShaderContext, constant_registers, lower_pixel_sh
 from effects.errors import AsmError, EffectError, Location
 from effects.model import ShaderBlock, VertexDeclElement
 from effects.precision import LoweringOptions
-from test_asm_parse import BRDF_DECL, SEEDS
+from test_asm_parse import SEEDS, VALID
 
 FLOAT = LoweringOptions()
 GEFORCE3 = LoweringOptions(ps1x_bits=8, ps1x_range=1.0, ps14_bits=8, ps14_range=1.0)
@@ -649,3 +649,22 @@ def test_boyd_specular_on_the_geforce3_shows_banding():
     got = out(prog, {"texcoord0": (0, 0, 0, 1), "texcoord1": (0, 0, 0, 1), "color1": v1},
               {0: constant_sampler((1, 1, 1, 1)), 1: constant_sampler((1.0, 0.5, 0.5, 1.0))})
     assert got[:3] == approx((48 / 255,) * 3, rel=0, abs=1e-6)
+
+
+def test_predication_and_relative_inputs_are_located_errors():
+    pred = assemble_valid("ps_2_x\ndcl t0\nsetp_gt p0, t0, c0\n(p0) mov r0, t0\nmov oC0, r0")
+    with pytest.raises(AsmError, match="not lowered yet"):
+        lower_pixel_shader(pred, ShaderContext(FLOAT))
+
+
+@pytest.mark.parametrize("name,src", VALID, ids=[v[0] for v in VALID])
+def test_every_valid_program_lowers_or_says_what_is_not_lowered(name, src):
+    stage = "vertex" if src.startswith("vs") else "pixel"
+    prog = assemble_valid(src, stage)
+    lower = lower_vertex_shader if stage == "vertex" else lower_pixel_shader
+    try:
+        program = lower(prog, ShaderContext(GEFORCE3))
+    except AsmError as err:
+        assert "not lowered yet" in str(err) and err.location.line > 1
+        return
+    assert program.outputs            # a program that writes nothing would be a lowering bug
