@@ -22,7 +22,7 @@ def blended(**state):
     fb = Framebuffer.create((1, 1), clear_color=DST)
     rs = RenderState(alpha_blend_enable=True, blend_factor=FACTOR, **state)
     merge(fb, rs, np.array([0]), SRC[None], np.array([0.5], np.float32), np.array([True]))
-    return fb.color[0, 0]
+    return fb.values()[0, 0]
 
 
 def unorm(x):
@@ -106,7 +106,7 @@ def test_unorm_source_is_saturated_before_blending():
     merge(fb, rs, np.array([0]), np.array([[3.0, -2.0, 0.25, 0.25]], np.float32),
           np.array([0.5], np.float32), np.array([True]))
     half = 128 / 255
-    np.testing.assert_allclose(fb.color[0, 0], unorm([0, half, half - 0.25, half - 0.25]),
+    np.testing.assert_allclose(fb.values()[0, 0], unorm([0, half, half - 0.25, half - 0.25]),
                                atol=1e-6)
 
 
@@ -145,11 +145,11 @@ def test_colour_write_mask():
     merge(fb, RenderState(color_write_enable=0b0101), np.array([0]), SRC[None],
           np.array([0.5], np.float32), np.array([True]))
     # red (bit 0) and blue (bit 2) written; green and alpha keep the destination
-    np.testing.assert_allclose(fb.color[0, 0], unorm([s_r, d_g, s_b, d_a]), atol=1e-6)
+    np.testing.assert_allclose(fb.values()[0, 0], unorm([s_r, d_g, s_b, d_a]), atol=1e-6)
     fb = Framebuffer.create((1, 1), clear_color=DST)
     merge(fb, RenderState(color_write_enable=0), np.array([0]), SRC[None],
           np.array([0.5], np.float32), np.array([True]))
-    np.testing.assert_allclose(fb.color[0, 0], DST, atol=1e-6)
+    np.testing.assert_allclose(fb.values()[0, 0], DST, atol=1e-6)
 
 
 def draw_depth(fb, rs, value, z):
@@ -251,8 +251,8 @@ def test_fragments_overlapping_in_one_draw_merge_in_draw_order():
     # pixel 0: r = 0.8 -> 0.8*0.5 + 0 = 0.4 -> 0.2 + 0.2 = 0.4; g = 0.8*0.5 = 0.4
     r = unorm(0.2 + unorm(unorm(0.8) * 0.5) * 0.5)
     g = unorm(unorm(0.8) * 0.5)
-    np.testing.assert_allclose(fb.color[0, 0, :2], [r, g], atol=1e-6)
-    np.testing.assert_allclose(fb.color[0, 1, 2], unorm(0.4), atol=1e-6)
+    np.testing.assert_allclose(fb.values()[0, 0, :2], [r, g], atol=1e-6)
+    np.testing.assert_allclose(fb.values()[0, 1, 2], unorm(0.4), atol=1e-6)
 
 
 def test_layers_split_by_pixel_occurrence():

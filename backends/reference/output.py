@@ -39,8 +39,9 @@ BLEND_FACTORS = ("ZERO", "ONE", "SRCCOLOR", "INVSRCCOLOR", "SRCALPHA", "INVSRCAL
 
 @dataclass
 class Framebuffer:
-    """Colour (H, W, 4) float32 holding exactly what the target stores (k/255 for 8-bit
-    formats; channels the format lacks read 1), depth (H, W) float32, stencil (H, W) uint8."""
+    """The render target of a frame: colour (H, W, 4) as the format stores it (uint8 for the
+    8-bit formats, float32 for the float ones; channels the format lacks read 1), depth (H, W)
+    float32, stencil (H, W) uint8."""
 
     format: str
     color: np.ndarray
@@ -56,8 +57,9 @@ class Framebuffer:
         width, height = size
         if width <= 0 or height <= 0:
             raise DrawError(f"render-target size must be positive, got {size}")
-        color = np.empty((height, width, 4), np.float32)
-        color[...] = store_values(np.asarray(clear_color, np.float32)[None], format)[0]
+        clear = encode(np.asarray(clear_color, np.float32).reshape(1, 4), format)[0]
+        color = np.empty((height, width, 4), clear.dtype)
+        color[...] = clear
         return Framebuffer(format, color,
                            np.full((height, width), np.float32(clear_depth), np.float32),
                            np.full((height, width), int(clear_stencil) & 0xFF, np.uint8))
@@ -70,23 +72,39 @@ class Framebuffer:
     def is_float(self) -> bool:
         return TARGET_FORMATS[self.format][0]
 
+    def values(self) -> np.ndarray:
+        """The stored colours as float32 (H, W, 4): k/255 for the 8-bit formats."""
+        return decode(self.color)
+
     def image(self) -> np.ndarray:
         """uint8 RGBA for 8-bit formats, float32 RGBA for float formats; row 0 at the top."""
-        if self.is_float:
-            return self.color.copy()
-        return np.rint(self.color * 255).astype(np.uint8)
+        return self.color.copy()
 
 
-def store_values(values: np.ndarray, format: str) -> np.ndarray:
-    """(N, 4) colours as a target of `format` stores and reads them back."""
+def encode(values: np.ndarray, format: str) -> np.ndarray:
+    """(N, 4) float colours as a target of `format` stores them: the UNORM8 write
+    round(sat(x) * 255) as uint8, or float32 (float16-rounded for the half formats)."""
     is_float, channels = TARGET_FORMATS[format]
-    out = np.array(values, np.float32)
-    if not is_float:
-        out = np.rint(np.clip(out, 0, 1) * 255) / np.float32(255)
-    elif format == "A16B16G16R16F":
-        out = out.astype(np.float16).astype(np.float32)
-    out[:, channels:] = 1
+    if is_float:
+        out = np.array(values, np.float32)
+        if format == "A16B16G16R16F":
+            out = out.astype(np.float16).astype(np.float32)
+        out[:, channels:] = 1
+        return out
+    out = np.minimum(values, np.float32(1))
+    np.maximum(out, 0, out=out)
+    out *= np.float32(255)
+    np.rint(out, out=out)
+    out = out.astype(np.uint8)
+    out[:, channels:] = 255
     return out
+
+
+def decode(stored: np.ndarray) -> np.ndarray:
+    """Stored colours back as float32 (k/255 for uint8 storage)."""
+    if stored.dtype == np.uint8:
+        return stored.astype(np.float32) / np.float32(255)
+    return np.array(stored, np.float32)
 
 
 # ------------------------------------------------------------------------------------------------
@@ -344,8 +362,8 @@ def _write_color(fb: Framebuffer, state: RenderState, pix: np.ndarray, color: np
         src[:, :3] = linear_to_srgb(src[:, :3])
     if state.alpha_blend_enable:
         src2 = None if color2 is None else (color2 if fb.is_float else np.clip(color2, 0, 1))
-        src = blend(state, src, target[pix], src2)
-    stored = store_values(src, fb.format)
+        src = blend(state, src, decode(target[pix]), src2)
+    stored = encode(src, fb.format)
     if mask == 0xF:
         target[pix] = stored
     else:
