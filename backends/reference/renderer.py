@@ -42,6 +42,7 @@ _COLOR_VARYINGS = ("color0", "color1")
 _DEFAULTS = {"color0": np.ones(4, np.float32), "color1": np.zeros(4, np.float32)}
 _DEFAULT_VALUE = np.array([0, 0, 0, 1], np.float32)
 _CHUNK_ROWS = 4 * 8192       # rows shaded per chunk, whole quads (temporaries stay small)
+_TRIANGLES_PER_CHUNK = 1024  # fewest triangles worth a parallel rasterise-and-shade task
 
 
 def sampler_settings(binding: TextureBinding) -> SamplerSettings:
@@ -144,18 +145,59 @@ class ReferenceBackend:
         if len(tris) and (tris.min() < 0 or tris.max() >= count):
             raise DrawError(f"indices out of range for {count} vertices")
         clip, varyings = _vertex_stage(program.vertex, streams, uniforms, count)
-        needed = _needed_varyings(program.fragment, state, varyings)
-        flat = _COLOR_VARYINGS if state.shade_mode == "FLAT" else ()
+        stage = _FragmentStage(program, clip, _needed_varyings(program.fragment, state, varyings),
+                               uniforms, sampler_callbacks(program, textures), fb.size)
+        # Triangles in consecutive chunks, rasterised and shaded in parallel, merged in order
+        # (all of a chunk's fragments precede the next chunk's, so draw order is kept).
+        pieces = max(1, min(2 * self.threads, len(tris) // _TRIANGLES_PER_CHUNK))
+        if self.threads > 1 and pieces > 1:
+            bounds = np.linspace(0, len(tris), pieces + 1).astype(int)
+            chunks = [tris[bounds[i]:bounds[i + 1]] for i in range(pieces)]
+            results = list(self._executor().map(lambda t: stage.run(t, None), chunks))
+        else:
+            results = [stage.run(tris, self._executor() if self.threads > 1 else None)]
+        for result in results:
+            if result is not None:
+                output.merge(fb, state, *result)
+
+    def _executor(self) -> ThreadPoolExecutor:
+        if self._pool is None:
+            self._pool = ThreadPoolExecutor(self.threads)
+        return self._pool
+
+    def close(self) -> None:
+        if self._pool is not None:
+            self._pool.shutdown()
+            self._pool = None
+
+
+class _FragmentStage:
+    """Rasterisation, the fragment program and per-fragment fixed function (specular add, fog)
+    for the triangles of one draw; `run` returns what the output merger needs."""
+
+    def __init__(self, program: PassProgram, clip: np.ndarray, needed: dict, uniforms: dict,
+                 callbacks: dict, size: tuple[int, int]) -> None:
+        self.program = program
+        self.clip = clip
+        self.state = program.render_state
+        self.needed = needed
+        self.uniforms = uniforms
+        self.callbacks = callbacks
+        self.size = size
         # Helper pixels are shaded only when a texture lookup needs quad derivatives.
-        quads = any(instr.op == "sample" for instr in program.fragment.instrs)
-        frags = rasterize(clip, needed, tris, fb.size, state.cull_mode, flat=flat,
+        self.quads = any(instr.op == "sample" for instr in program.fragment.instrs)
+
+    def run(self, tris: np.ndarray, pool: ThreadPoolExecutor | None):
+        """(pixels, colour, depth, front, colour2) of the covered, unkilled fragments of
+        `tris` in draw order, or None."""
+        state = self.state
+        flat = _COLOR_VARYINGS if state.shade_mode == "FLAT" else ()
+        frags = rasterize(self.clip, self.needed, tris, self.size, state.cull_mode, flat=flat,
                           depth_bias=state.depth_bias,
-                          slope_scale_depth_bias=state.slope_scale_depth_bias, quads=quads)
+                          slope_scale_depth_bias=state.slope_scale_depth_bias, quads=self.quads)
         if frags.count == 0:
-            return
-        callbacks = sampler_callbacks(program, textures)
-        result = self._shade(program.fragment, frags, uniforms, varyings, callbacks)
-        colour, colour2, depth_out, killed = result
+            return None
+        colour, colour2, depth_out, killed = self._shade(frags, pool)
         keep = frags.covered
         if killed is not None:
             keep = keep & ~killed
@@ -164,34 +206,32 @@ class ReferenceBackend:
         else:
             rows = np.nonzero(keep)[0]
             if len(rows) == 0:
-                return
+                return None
         color = colour[rows]
-        if state.specular_enable and "color1" in needed:
+        if state.specular_enable and "color1" in frags.varyings:
             color = color.copy()
             color[:, :3] += _vec4_rows(frags, "color1")[rows, :3]
         depth = frags.depth[rows] if depth_out is None else np.clip(depth_out[rows], 0, 1)
         if state.fog_enable:
             color = _fog(state, color, frags, rows, depth)
-        width = fb.size[0]
-        pixels = frags.y[rows].astype(np.int64) * width + frags.x[rows]
-        output.merge(fb, state, pixels, color, depth, frags.front[rows],
-                     None if colour2 is None else colour2[rows])
+        pixels = frags.y[rows].astype(np.int64) * self.size[0] + frags.x[rows]
+        return (pixels, color, depth, frags.front[rows],
+                None if colour2 is None else colour2[rows])
 
-    def _shade(self, fragment: Program, frags: QuadFragments, uniforms: dict, varyings: dict,
-               callbacks: dict):
-        """Run the fragment program over every quad row, in chunks (threaded where allowed)."""
-        step = _CHUNK_ROWS
-        chunks = [(s, min(s + step, frags.count)) for s in range(0, frags.count, step)]
+    def _shade(self, frags: QuadFragments, pool: ThreadPoolExecutor | None):
+        """Run the fragment program over every row in chunks of whole quads (on `pool` when
+        given). Returns colour0, colour1 or None, the depth output or None, killed or None."""
+        fragment = self.program.fragment
+        chunks = [(s, min(s + _CHUNK_ROWS, frags.count))
+                  for s in range(0, frags.count, _CHUNK_ROWS)]
 
         def run(bounds):
             start, stop = bounds
-            inputs = _fragment_inputs(fragment, frags, start, stop, uniforms, varyings)
-            return evaluate(fragment, inputs, callbacks, count=stop - start)
+            inputs = _fragment_inputs(fragment, frags, start, stop, self.uniforms)
+            return evaluate(fragment, inputs, self.callbacks, count=stop - start)
 
-        if self.threads > 1 and len(chunks) > 1:
-            if self._pool is None:
-                self._pool = ThreadPoolExecutor(self.threads)
-            results = list(self._pool.map(run, chunks))
+        if pool is not None and len(chunks) > 1:
+            results = list(pool.map(run, chunks))
         else:
             results = [run(c) for c in chunks]
         outputs = fragment.output_map
@@ -208,15 +248,9 @@ class ReferenceBackend:
         depth = gather("depth")
         killed = None
         if any(r.killed is not None for r in results):
-            killed = np.concatenate([r.killed if r.killed is not None else
-                                     np.zeros(len(r.outputs.get("color0", ())), bool)
-                                     for r in results])
+            killed = np.concatenate([np.zeros(b - a, bool) if r.killed is None else r.killed
+                                     for r, (a, b) in zip(results, chunks)])
         return colour, gather("color1"), None if depth is None else depth[:, 0], killed
-
-    def close(self) -> None:
-        if self._pool is not None:
-            self._pool.shutdown()
-            self._pool = None
 
 
 def _vec4_rows(frags: QuadFragments, name: str) -> np.ndarray:
@@ -286,7 +320,7 @@ def _needed_varyings(fragment: Program, state: RenderState,
 
 
 def _fragment_inputs(fragment: Program, frags: QuadFragments, start: int, stop: int,
-                     uniforms: dict, varyings: dict) -> dict[str, np.ndarray]:
+                     uniforms: dict) -> dict[str, np.ndarray]:
     rows = slice(start, stop)
     inputs: dict[str, np.ndarray] = {}
     for item in fragment.inputs:
