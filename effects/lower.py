@@ -17,17 +17,13 @@ Decisions both back ends rely on:
   (`PassProgram.uniforms`); the names are documented in `lower_stages` and `lower_vertex`.
 - An uninitialised parameter reads as zero, as in D3DX.
 
-Shader passes call, once `effects/asm/lower.py` exists:
-    lower_pixel_shader(block, state, profile, ctx: ShaderContext) -> int
-        emit the shader into ctx.builder (a fragment Builder); return the value id of the
-        final colour (r0 / oC0). This module then applies fog and writes output color0. The
-        shader may write `depth` itself.
-    lower_vertex_shader(block, state, profile, ctx: ShaderContext) -> None
-        emit the shader into ctx.builder (a vertex Builder), writing every output (position,
-        color0 / color1 saturated, texcoord<n>, fog: the oFog value for vertex fog or the fog
-        distance when ctx.fog.source == 'table').
-Both add the values of the uniforms they declare to ctx.uniforms and read the precision from
-ctx.options.
+Passes with shaders assemble them (`effects.asm`) and lower them with `effects.asm.lower`;
+this module supplies what the pass state says: the constant registers c# (from
+VertexShaderConstant[n] / PixelShaderConstant[n]; a matrix parameter fills four registers with
+its columns, i.e. transposed, so `m4x4 oPos, v0, c4` computes the row-vector product p·M that
+the DX8 files expect), the bump-environment state of each stage (uniforms `bumpenv<n>` and
+`bumpenvl<n>`), the kind of texture bound to each sampler, and TTFF_PROJECTED per stage.
+Fixed-function fog after a pixel shader is not lowered yet (a clear error, not a wrong picture).
 """
 from __future__ import annotations
 
@@ -39,6 +35,8 @@ import numpy as np
 from . import states as state_table
 from .device import DeviceState, pass_states
 from .errors import EffectError, Location
+from .asm import assemble_cached
+from .asm import lower as asm_lower
 from .ir import Builder, Program
 from .lower_stages import (MAX_STAGES, FogSetup, FragmentInputs, StageSetup, apply_fog,
                            lower_cascade)
@@ -49,27 +47,11 @@ from .passprogram import PassProgram, RenderState, TextureBinding
 from .precision import LoweringOptions, lowering_options
 
 if TYPE_CHECKING:  # pragma: no cover
+    from .asm import AsmProgram
     from .caps import CapsProfile
 
 Color = tuple[float, float, float, float]
 CACHE_SIZE = 256
-
-
-@dataclass
-class ShaderContext:
-    """What the shader-assembly lowering gets besides the block, the state and the profile."""
-
-    effect: Effect
-    state: DeviceState
-    profile: "CapsProfile"
-    options: LoweringOptions
-    builder: Builder
-    uniforms: dict[str, tuple[float, ...]]
-    fog: FogSetup
-
-    def texture_kind(self, sampler: int) -> str | None:
-        """'2d', 'cube' or '3d' for the texture bound to sampler `sampler`; None if unbound."""
-        return _texture_kind(self.effect, self.state, sampler)
 
 
 # --------------------------------------------------------------------------------------------
@@ -144,28 +126,40 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile") -> PassPr
     pixel_shader = _shader(state, "PixelShader")
     vertex_shader = _shader(state, "VertexShader")
 
-    fb = Builder("fragment")
     if pixel_shader is None:
+        fb = Builder("fragment")
         stages = read_stages(effect, state)
         inputs = FragmentInputs(tfactor=_color(state, "TextureFactor"),
                                 specular_enable=_bool(state, "SpecularEnable"),
                                 uniforms=uniforms)
         color = lower_cascade(fb, stages, inputs, options)
+        fb.output("color0", apply_fog(fb, color, fog, uniforms, options))
+        fragment = fb.build()
     else:
-        ctx = ShaderContext(effect, state, profile, options, fb, uniforms, fog)
-        color = _call_asm("lower_pixel_shader", pixel_shader, state, profile, ctx)
-    fb.output("color0", apply_fog(fb, color, fog, uniforms, options))
-    fragment = fb.build()
+        if fog.source != "none":
+            raise EffectError("fog after a pixel shader is not lowered yet",
+                              _where(state, "FogEnable"))
+        program = _assemble(pixel_shader, "pixel")
+        ctx = asm_lower.ShaderContext(
+            options, sampler_kinds={s: k for s in range(MAX_STAGES)
+                                    if (k := _texture_kind(effect, state, s))},
+            projected={s: bool(_int(state, "TextureTransformFlags", s) & _TTFF_PROJECTED)
+                       for s in range(MAX_STAGES)})
+        fragment = asm_lower.lower_pixel_shader(program, ctx)
+        uniforms.update(_shader_constants(state, "PixelShaderConstant",
+                                          asm_lower.constant_registers(program)))
+        uniforms.update(_bump_uniforms(state))
 
     needed = sorted(int(i.name[len("texcoord"):]) for i in fragment.inputs
                     if i.kind == "varying" and i.name.startswith("texcoord"))
     if vertex_shader is None:
         vertex = lower_vertex(read_vertex(effect, state, needed, fog), uniforms)
     else:
-        vb = Builder("vertex")
-        ctx = ShaderContext(effect, state, profile, options, vb, uniforms, fog)
-        _call_asm("lower_vertex_shader", vertex_shader, state, profile, ctx)
-        vertex = vb.build()
+        program = _assemble(vertex_shader, "vertex")
+        ctx = asm_lower.ShaderContext(options, decl=getattr(vertex_shader, "decl", None))
+        vertex = asm_lower.lower_vertex_shader(program, ctx)
+        uniforms.update(_shader_constants(state, "VertexShaderConstant",
+                                          asm_lower.constant_registers(program)))
 
     declared = {i.name for prog in (fragment, vertex) for i in prog.inputs if i.kind == "uniform"}
     textures = tuple(texture_binding(effect, state, s.index, s.kind) for s in fragment.samplers)
@@ -188,22 +182,69 @@ def _shader(state: DeviceState, name: str) -> Any:
     return value
 
 
-def _call_asm(function: str, shader: Any, state: DeviceState, profile: "CapsProfile",
-              ctx: ShaderContext) -> Any:
-    location = getattr(shader, "location", None) or Location(ctx.effect.path, 1, 1)
+def _assemble(shader: Any, stage: str) -> "AsmProgram":
+    """The assembled program of a shader value; HLSL is compiled by a later stage."""
+    location = getattr(shader, "location", None) or Location("<effect>", 1, 1)
     if isinstance(shader, CompileShader):
         raise EffectError(f"lowering of HLSL (compile {shader.profile} {shader.function}) is "
                           "not available yet", location)
     if not isinstance(shader, ShaderBlock):
-        raise EffectError(f"cannot lower a shader given as {type(shader).__name__}", location)
-    what = shader.version or f"{shader.stage} shader"
-    try:
-        from .asm import lower as asm_lower  # written by the shader-assembly helper
-        entry: Callable[..., Any] = getattr(asm_lower, function)
-    except (ImportError, AttributeError):
-        raise EffectError(f"lowering of {what} assembly is not available yet",
-                          location) from None
-    return entry(shader, state, profile, ctx)
+        raise EffectError(f"cannot lower a {stage} shader given as {type(shader).__name__}",
+                          location)
+    return assemble_cached(shader)
+
+
+_TTFF_PROJECTED = 256
+_CONSTANT_FAMILIES = {"VertexShaderConstant": ("VertexShaderConstant", "VertexShaderConstantF",
+                                               "VertexShaderConstant1", "VertexShaderConstant2",
+                                               "VertexShaderConstant3", "VertexShaderConstant4"),
+                      "PixelShaderConstant": ("PixelShaderConstant", "PixelShaderConstantF",
+                                              "PixelShaderConstant1", "PixelShaderConstant2",
+                                              "PixelShaderConstant3", "PixelShaderConstant4")}
+
+
+def constant_rows(value: Any) -> np.ndarray:
+    """A constant-register value as rows of 4 floats. A 4x4 (or 4x3...) matrix goes in by
+    columns (transposed), as shader constants expect; shorter vectors pad with zeros."""
+    v = np.asarray(value, dtype=np.float32)
+    if v.ndim >= 2 and v.shape[-2:] in ((4, 4), (4, 3), (3, 4), (3, 3)):
+        v = np.swapaxes(v, -1, -2)
+    flat = v.reshape(-1)
+    rows = -(-flat.size // 4)
+    out = np.zeros(rows * 4, np.float32)
+    out[:flat.size] = flat
+    return out.reshape(rows, 4)
+
+
+def _shader_constants(state: DeviceState, family: str, needed: set[int]) -> dict[str, tuple[float, ...]]:
+    """Uniforms `c<n>` from the pass's constant-register assignments (later ones win, as the
+    device applies them in order); a register no assignment sets reads zero, as D3DX leaves it."""
+    names = {state_table.lookup_state(n).name for n in _CONSTANT_FAMILIES[family]
+             if state_table.lookup_state(n) is not None}
+    registers: dict[int, tuple[float, ...]] = {}
+    for (name, index), assignment in state.items():
+        if name not in names or index is None:
+            continue
+        value = state.resolve(assignment.value)
+        if isinstance(value, (ParamRef, NullValue)) or value is None:
+            continue
+        try:
+            rows = constant_rows(value)
+        except (TypeError, ValueError):
+            raise EffectError(f"{name}[{index}] needs numbers, not {type(value).__name__}",
+                              assignment.location) from None
+        for k, row in enumerate(rows):
+            registers[index + k] = tuple(float(x) for x in row)
+    return {f"c{n}": registers.get(n, (0.0, 0.0, 0.0, 0.0)) for n in sorted(needed)}
+
+
+def _bump_uniforms(state: DeviceState) -> dict[str, tuple[float, ...]]:
+    """Each stage's bump-environment matrix and luminance scale/offset (texbem, texbeml, bem)."""
+    out = {}
+    for n in range(MAX_STAGES):
+        out[f"bumpenv{n}"] = tuple(_float(state, f"BumpEnvMat{ij}", n) for ij in ("00", "01", "10", "11"))
+        out[f"bumpenvl{n}"] = (_float(state, "BumpEnvLScale", n), _float(state, "BumpEnvLOffset", n), 0.0, 0.0)
+    return out
 
 
 # --------------------------------------------------------------------------------------------

@@ -351,10 +351,28 @@ def test_state_persists_from_earlier_passes():
 
 # -- shaders, errors, cache -----------------------------------------------------------------------
 
-def test_shader_pass_without_the_asm_lowering_is_a_clear_error(monkeypatch):
-    monkeypatch.setitem(sys.modules, "effects.asm.lower", None)  # import fails
-    with pytest.raises(EffectError, match="lowering of ps_1_1 assembly is not available yet"):
-        lower("PixelShader = asm { ps_1_1 tex t0 mov r0, t0 };", technique="ps")
+def test_shader_pass_gets_its_constants_from_the_pass_state():
+    # c0 from a float4 parameter, c1..c4 from a matrix parameter put in by columns; c5 unset.
+    effect = effects.load_effect("""float4 Tint = {0.5, 0.25, 1.0, 1.0};
+        float4x4 M = {1, 2, 3, 4,  5, 6, 7, 8,  9, 10, 11, 12,  13, 14, 15, 16};
+        technique t { pass p {
+            PixelShaderConstant[0] = <Tint>;
+            VertexShaderConstant[1] = <M>;
+            PixelShader = asm { ps_2_0 mov oC0, c0 };
+            VertexShader = asm { vs_1_1 dcl_position v0 m4x4 oPos, v0, c1 mov oD0, c5 };
+        } }""")
+    pp = lower_pass(effect, effect.techniques[0], 0, load_profile("modern"))
+    uniforms = dict(pp.uniforms)
+    assert uniforms["c0"] == (0.5, 0.25, 1.0, 1.0)
+    assert uniforms["c1"] == (1.0, 5.0, 9.0, 13.0)       # first column of M
+    assert uniforms["c4"] == (4.0, 8.0, 12.0, 16.0)
+    assert uniforms["c5"] == (0.0, 0.0, 0.0, 0.0)
+    close(shade(pp), (0.5, 0.25, 1.0, 1.0))
+
+
+def test_hlsl_compile_is_a_clear_error_until_hlsl_is_compiled():
+    with pytest.raises(EffectError, match=r"lowering of HLSL \(compile ps_2_0 f\) is not available yet"):
+        lower("PixelShader = compile ps_2_0 f();", technique="ps")
 
 
 def test_bad_stage_op_value_is_located():
