@@ -135,7 +135,7 @@ def _body(program: Program, attribute_inputs: bool) -> list[str]:
             text = f"vec4 {value_name(instr.dest)} = {text};"
         lines.append(f"    {text}  // {format_instr(instr)}")
     for name, value in program.outputs:
-        lines.append(f"    vec4 out_{name} = {value_name(value)};  // output {name}")
+        lines.append(f"    vec4 out_{name} = {value_name(value)};  // output {name} = %{value}")
     return lines
 
 
@@ -176,7 +176,7 @@ def vertex_shader(vertex: Program | None, varyings: Sequence[str], streams: Iter
     lines = _header("vertex", vertex)
     if vertex is None:
         attributes = ["position", *(n for n in varyings if n != "position")]
-        outputs: dict[str, str] = {n: attribute_name(n) for n in varyings if n in streams}
+        outputs: dict[str, str] = {n: attribute_name(n) for n in varyings}
         position = attribute_name("position")
     else:
         attributes = [i.name for i in vertex.inputs if i.kind == "varying"]

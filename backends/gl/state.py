@@ -124,13 +124,15 @@ def reset_for_clear(gl: RawGL) -> None:
 
 @dataclass(frozen=True)
 class SamplerKey:
-    """The GL sampler-object parameters of one TextureBinding (a cache key)."""
+    """The GL sampler-object parameters of one TextureBinding (a cache key), and the base
+    level to set on the texture it samples."""
 
     kind: str
     wrap: tuple[int, int, int]
     min_filter: int
     mag_filter: int
     lod_bias: float
+    min_lod: float
     border: tuple[float, float, float, float]
     base_level: int
 
@@ -138,25 +140,29 @@ class SamplerKey:
 def sampler_key(binding: TextureBinding | None, kind: str, level_count: int) -> SamplerKey:
     """GL sampler parameters for a binding (None: D3D's default sampler states).
 
-    MaxMipLevel k is the texture's base level; the LOD stays measured on level 0 as the
-    reference sampler does, so the bias grows by k (GL measures it on the base level)."""
+    MaxMipLevel k (as the reference sampler reads it): the LOD is measured on level 0 and the
+    level index is clamped to >= k. With a mip filter that is GL's TEXTURE_MIN_LOD = k. Without
+    one, level k is sampled: it becomes the texture's base level, and since GL measures the LOD
+    on the base level, the bias grows by k so the magnify/minify choice stays on level 0."""
     b = binding or TextureBinding(sampler=0, kind=kind)
     if kind == "cube":
         wrap = (G.CLAMP_TO_EDGE,) * 3      # D3D9 cube maps clamp within a face
     else:
         wrap = tuple(_lookup(ADDRESS_MODES, m, "AddressU/V/W")
                      for m in (b.address_u, b.address_v, b.address_w))
-    base = min(max(int(b.max_mip_level), 0), max(level_count - 1, 0))
+    k = min(max(int(b.max_mip_level), 0), max(level_count - 1, 0))
     min_linear = b.min_filter not in _POINT_FILTERS
-    if b.mip_filter == "NONE" or level_count - base <= 1:
+    mag_filter = G.NEAREST if b.mag_filter in _POINT_FILTERS else G.LINEAR
+    bias = float(b.mip_lod_bias)
+    border = tuple(float(c) for c in b.border_color)
+    if b.mip_filter == "NONE" or level_count - k <= 1:
         min_filter = G.LINEAR if min_linear else G.NEAREST
-    elif b.mip_filter == "POINT":
+        return SamplerKey(kind, wrap, min_filter, mag_filter, bias + k, -1000.0, border, k)
+    if b.mip_filter == "POINT":
         min_filter = G.LINEAR_MIPMAP_NEAREST if min_linear else G.NEAREST_MIPMAP_NEAREST
     else:
         min_filter = G.LINEAR_MIPMAP_LINEAR if min_linear else G.NEAREST_MIPMAP_LINEAR
-    mag_filter = G.NEAREST if b.mag_filter in _POINT_FILTERS else G.LINEAR
-    return SamplerKey(kind, wrap, min_filter, mag_filter, float(b.mip_lod_bias) + base,
-                      tuple(float(c) for c in b.border_color), base)
+    return SamplerKey(kind, wrap, min_filter, mag_filter, bias, float(k), border, 0)
 
 
 def create_sampler(gl: RawGL, key: SamplerKey) -> int:
@@ -167,6 +173,7 @@ def create_sampler(gl: RawGL, key: SamplerKey) -> int:
     gl.glSamplerParameteri(sampler, G.TEXTURE_MIN_FILTER, key.min_filter)
     gl.glSamplerParameteri(sampler, G.TEXTURE_MAG_FILTER, key.mag_filter)
     gl.glSamplerParameterf(sampler, G.TEXTURE_LOD_BIAS, key.lod_bias)
+    gl.glSamplerParameterf(sampler, G.TEXTURE_MIN_LOD, key.min_lod)
     # The maximum anisotropy stays at GL's default of 1: ANISOTROPIC filters as LINEAR, as in
     # the reference back end.
     gl.sampler_color(sampler, G.TEXTURE_BORDER_COLOR, key.border)
