@@ -172,6 +172,51 @@ def _cmd_render(args, console: Console) -> int:
     return EXIT_OK
 
 
+def _add_view(sub) -> None:
+    p = sub.add_parser("view", help="the viewer: an effect on a card, hot-reloaded as you edit it")
+    p.add_argument("file", help="effect file (.fx)")
+    p.add_argument("--profile", "-p", metavar="P", default=None,
+                   help="caps profile to start on (default: radeon9700)")
+    p.add_argument("--technique", "-t", metavar="NAME", default=None,
+                   help="force a technique (drawn if the card can run it; else its reasons are shown)")
+    p.add_argument("--mesh", default="sphere",
+                   help="sphere, torus, cube, teapot, quad or FILE.obj (default: sphere)")
+    p.add_argument("--view", default="gl", choices=("gl", "reference", "difference"),
+                   help="what the window shows first (default: gl)")
+    p.add_argument("--exit-after", type=float, metavar="SECONDS", default=None,
+                   help="close after this many seconds of running")
+    p.add_argument("--screenshot", metavar="OUT.png", default=None,
+                   help="save the window to this PNG when the viewer closes")
+    p.add_argument("--tour", action="store_true",
+                   help="draw every card once, starting at --profile, then exit")
+    p.add_argument("--size", default=None, metavar="WxH", help="window size (default: 1040x600)")
+    p.add_argument("--poll", action="store_true",
+                   help="watch files by polling (for file systems without change events)")
+    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
+                   help="preprocessor macro")
+    p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
+                   help="include search folder")
+    p.set_defaults(run=_cmd_view)
+
+
+def _cmd_view(args, console: Console) -> int:
+    from .viewer import WINDOW_SIZE, ViewerOptions, run_viewer
+    size = WINDOW_SIZE
+    if args.size:
+        w, _, h = args.size.lower().partition("x")
+        if not (w.isdigit() and h.isdigit() and 200 <= int(w) <= 8192 and 100 <= int(h) <= 8192):
+            raise UsageError(f"effects view: error: --size {args.size!r} is not WxH "
+                             "(at least 200x100)")
+        size = (int(w), int(h))
+    if args.exit_after is not None and args.exit_after < 0:
+        raise UsageError("effects view: error: --exit-after must not be negative")
+    return run_viewer(ViewerOptions(
+        args.file, profile=args.profile, technique=args.technique, mesh=args.mesh,
+        view=args.view, exit_after=args.exit_after, screenshot=args.screenshot, size=size,
+        tour=args.tour, polling=args.poll, defines=_defines(args.defines),
+        include_dirs=args.include_dirs))
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="effects", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
@@ -179,6 +224,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_matrix(sub)
     _add_render(sub)
     _add_profiles(sub)
+    _add_view(sub)
     return parser
 
 

@@ -317,6 +317,7 @@ class LoadedEffect:
     forced: str | None = None
     forced_rejected: "Validation | None" = None
     files: list[str] = field(default_factory=list)
+    prepare_error: Exception | None = None   # the chosen technique cannot be drawn (kept, not raised)
 
     @property
     def selected(self) -> "Validation | None":
@@ -363,7 +364,8 @@ def error_text(error: BaseException | None) -> str:
 
 def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = None,
                  policy: Any = "first", scene: Any = None, lower: bool = True,
-                 previous: "Effect | None" = None, **load_options: Any) -> LoadedEffect:
+                 previous: "Effect | None" = None, keep_prepare_error: bool = False,
+                 **load_options: Any) -> LoadedEffect:
     """Load (unless `previous` is given), validate every technique, select, and prepare the
     chosen one for drawing in `scene` (a Scene, mapping, YAML path or None for the defaults):
     lower its passes with the scene's parameter values, load the textures they sample (into
@@ -371,7 +373,9 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
 
     A forced `technique` is drawn when valid on the card; otherwise the card's selection is
     drawn and `forced_rejected` carries the forced one's reasons. Raises EffectError (located)
-    for a broken file, a missing texture, or a pass that cannot be lowered."""
+    for a broken file, a missing texture, or a pass that cannot be lowered -- the last two are
+    kept in `prepare_error` instead with `keep_prepare_error` (a card change: the file is fine,
+    the panel shows why this card cannot draw it)."""
     from .loader import load_effect
     from .select import find_valid_technique
     from .validate import validate_technique
@@ -394,10 +398,16 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     if chosen is None:
         chosen = find_valid_technique(effect, profile, policy)
     programs = None
+    prepare_error = None
     if chosen is not None and lower:
-        programs = prepare(effect, chosen, profile, scene)
+        try:
+            programs = prepare(effect, chosen, profile, scene)
+        except Exception as exc:  # noqa: BLE001 - a bug of ours must not close the viewer either
+            if not keep_prepare_error:
+                raise
+            prepare_error = exc
     return LoadedEffect(path, effect, profile, validations, chosen, programs, technique,
-                        forced_rejected, watched_files(effect))
+                        forced_rejected, watched_files(effect), prepare_error)
 
 
 def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
@@ -453,16 +463,17 @@ class Reloader:
     def last_good(self) -> LoadedEffect | None:
         return self._good
 
-    def start(self, initial: LoadedEffect | None = None) -> "Reloader":
+    def start(self, initial: LoadedEffect | None = None, *, build_now: bool = True) -> "Reloader":
         """Start watching. `initial`: the build the caller already made (its files are watched);
-        without it a first build is queued at once."""
+        without it a first build is queued at once, unless `build_now` is False (the caller
+        tried and failed: the next change builds)."""
         if initial is not None:
             self._good = initial
             self.watcher.set_paths([os.path.abspath(self.path), *initial.files])
         self.watcher.start()
         self._worker.start()
         self._started = True
-        if initial is None:
+        if initial is None and build_now:
             self.request()
         return self
 
@@ -544,9 +555,11 @@ class BuildSettings:
 
 def effect_builder(path: str, settings: Callable[[], BuildSettings], **load_options: Any) -> Build:
     """The viewer's build: `settings()` is read when the build runs, so a reload after a card
-    change uses the new card."""
+    change uses the new card. A reload whose technique cannot be prepared fails (the last good
+    effect stays); a re-selection keeps the error to show it."""
     def build(previous: "Effect | None") -> LoadedEffect:
         s = settings()
         return build_effect(path, s.profile, technique=s.technique, policy=s.policy,
-                            scene=s.scene, previous=previous, **load_options)
+                            scene=s.scene, previous=previous,
+                            keep_prepare_error=previous is not None, **load_options)
     return build
