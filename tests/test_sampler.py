@@ -147,16 +147,18 @@ def test_min_and_mag_filters_are_chosen_by_the_lod():
     assert red(sample_2d([ramp()], quad(0.3, 0.125, 0.5, 0.5), s))[0] == pytest.approx(0.7)
 
 
-def test_signed_bump_texels_filter_to_signed_values():
+@pytest.mark.parametrize("format", ["V8U8", "L6V5U5", "X8L8V8U8"])
+def test_signed_bump_texels_filter_to_signed_values(format):
     values = np.zeros((2, 2, 4), np.float32)
     values[..., 0] = [[-1, 1], [-1, 1]]
-    tex = make_texture(values, "V8U8", mips=False)
+    values[..., 2] = 1                          # the luminance channel of the L formats
+    tex = make_texture(values, format, mips=False)
     s = SamplerSettings(address_u="CLAMP", address_v="CLAMP", min_filter="LINEAR",
                         mag_filter="LINEAR")
     # u = 0.375: x = 0.25 -> 0.75 * (-1) + 0.25 * 1 = -0.5
     out = sample_2d(tex.levels, quad(0.375, 0.5), s)
     assert out[0, 0] == pytest.approx(-0.5, abs=1e-6)
-    assert out[0, 2] == 1 and out[0, 3] == 1   # V8U8 reads (U, V, 1, 1)
+    assert out[0, 2] == 1 and out[0, 3] == 1   # (U, V, 1, 1) and (U, V, L = 1, 1)
 
 
 def test_1d_lookup():

@@ -325,17 +325,20 @@ def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs, 
         # clamp the noise so a value equal at two vertices is exact along their edge and never
         # changes sign. Helper pixels keep their extrapolated weights (derivatives need them).
         floor = np.where(covered, 0.0, -np.inf) if quads else 0.0
-        weights = np.empty((count, 1, 3), np.float32)
+        everything = None
         for i in range(3):
             wi = values[i]
             wi *= inv_sum
             np.maximum(wi, floor, out=wi)
-            weights[:, 0, i] = wi
-        corner = attrs[tris]                                        # (T, 3, K)
-        if provoking is not None:
-            corner[:, :, flat_cols] = provoking[source][:, None, flat_cols]
-        gathered = np.take(corner, row_tri, axis=0)                 # (N, 3, K)
-        everything = np.einsum("nij,njk->nik", weights, gathered).reshape(count, attrs.shape[1])
+            corner = attrs[tris[:, i]]                              # (T, K) at vertex i
+            if provoking is not None:   # flat: every corner holds the provoking value
+                corner[:, flat_cols] = provoking[source][:, flat_cols]
+            term = np.take(corner, row_tri, axis=0)                 # (N, K)
+            term *= wi.astype(np.float32)[:, None]
+            if everything is None:
+                everything = term
+            else:
+                everything += term
         col = 0
         for n in names:
             rows[n] = everything[:, col:col + dims[n]]
