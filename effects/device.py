@@ -8,6 +8,7 @@ D3DX restoring state only at End). Validation and lowering both read state throu
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Any, Iterator
 
 import numpy as np
@@ -39,7 +40,7 @@ class DeviceState:
         if not assignment.known:
             return
         index = assignment.index if index_override is None else index_override
-        info = state_table.lookup_state(assignment.name)
+        info = _info(assignment.name)
         if info is not None and info.kind == "sampler_object":
             # `Sampler[n] = <s>`: the sampler_state's own assignments land on sampler n.
             sampler = self.resolve_object(assignment.value)
@@ -58,7 +59,7 @@ class DeviceState:
         """The value in force: an assignment's value (parameters resolved) or the default."""
         a = self.assignment(name, index)
         if a is None:
-            info = state_table.lookup_state(name)
+            info = _info(name)
             return state_table.default_value(info, index) if info else None
         return self.resolve(a.value)
 
@@ -69,7 +70,7 @@ class DeviceState:
             if value.names and not value.names[0].isdigit():
                 return value.names[0]
             value = value.value
-        info = state_table.lookup_state(name)
+        info = _info(name)
         if info is not None and info.enum is not None and isinstance(value, (int, np.integer)):
             for enum_name, v in info.enum.values.items():
                 if v == int(value):
@@ -97,10 +98,17 @@ class DeviceState:
         return iter(self.values.items())
 
 
+@lru_cache(maxsize=None)
+def _info(name: str) -> state_table.StateInfo | None:
+    """The states-table row of a name (cached: validation asks for the same few names often)."""
+    return state_table.lookup_state(name)
+
+
+@lru_cache(maxsize=4096)
 def _key(name: str, index: int | None) -> tuple[str, int | None]:
     """The canonical state name, and index 0 for an indexed state written without one
     (`MinFilter = Linear` in a pass means sampler 0, as D3DX reads it)."""
-    info = state_table.lookup_state(name)
+    info = _info(name)
     if info is None:
         return name, index
     if index is None and info.index != "none":

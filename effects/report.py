@@ -41,7 +41,7 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
     technique each card selects; with `why`, then every reason, warning and note. Returns
     whether every named card can run some technique."""
     if not effect.techniques:
-        console.print(Text(f"{effect.path}: the effect has no techniques, so no card can render it"))
+        console.print(Text(f"{effect.path}: the effect has no techniques, so no card can render it"), soft_wrap=True)
         return False
     pol = as_policy(policy)
     results = {p.name: validate_all(effect, p) for p in profiles}
@@ -81,11 +81,11 @@ def _print_details(effect: Effect, profiles: Sequence[CapsProfile],
             else:
                 console.print(Text.assemble("  ", ("✗", "red"), f" {name}:"))
             for r in v.reasons:
-                console.print(Text(f"      {r}"))
+                console.print(Text(f"      {r}"), soft_wrap=True)
             for w in v.warnings:
-                console.print(Text(f"      warning: {w}", style="yellow"))
+                console.print(Text(f"      warning: {w}", style="yellow"), soft_wrap=True)
             for n in v.notes:
-                console.print(Text(f"      note: {n}", style="dim"))
+                console.print(Text(f"      note: {n}", style="dim"), soft_wrap=True)
 
 
 def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],

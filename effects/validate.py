@@ -151,6 +151,11 @@ _STATE_BITS: tuple[tuple[str, Callable[[Any], bool], str, str, str], ...] = (
 )
 # D3DTSS_TEXTURETRANSFORMFLAGS: D3DTTFF_PROJECTED.
 _TTFF_PROJECTED = 0x100
+# D3DTSS_TCI_CAMERASPACENORMAL / POSITION / REFLECTIONVECTOR (value >> 16): with three
+# coordinates (D3DTTFF_COUNT3) they are the cube-map lookups of the fixed-function pipeline.
+_CAMERA_SPACE_TEXGEN = (1, 2, 3)
+# ps_1_1-1_3 instructions that look up a cube map (the ps_1_x instruction pages).
+_CUBE_LOOKUPS_PS1 = frozenset({"texm3x3tex", "texm3x3spec", "texm3x3vspec"})
 
 
 def _version(text: str | None) -> tuple[int, int]:
@@ -399,9 +404,33 @@ class _PassChecker:
         for unit in units:
             param = self.texture_parameter(unit)
             kind = texture_kind(param, self.effect) if param is not None else None
+            how = ""
+            if kind is None:
+                kind, how = self.kind_from_use(unit, shader)
             if param is not None:
-                self.check_texture_resource(unit, param, kind)
+                self.check_texture_resource(unit, param, kind, how)
             self.check_sampler_states(unit, kind)
+
+    def kind_from_use(self, unit: int, shader: bool) -> tuple[str | None, str]:
+        """The kind a texture must be, from how the pass samples it, for a texture that does
+        not declare its own (DX8 files cannot): ('CUBE', 'sampled by dcl_cube s0') or (None, '')."""
+        if shader:
+            ps = self.shader("PixelShader")
+            program = _assembled(ps[0]) if ps else None
+            if program is None:
+                return None, ""
+            for d in program.dcls:
+                if d.register.kind == "s" and d.register.index == unit and d.sampler_type in ("cube", "volume"):
+                    return ("CUBE" if d.sampler_type == "cube" else "3D"), f"declared by dcl_{d.sampler_type} s{unit}"
+            for ins in program.instructions:
+                if ins.opcode in _CUBE_LOOKUPS_PS1 and ins.dst is not None and ins.dst.index == unit:
+                    return "CUBE", f"read by {ins.opcode} t{unit}"
+            return None, ""
+        tci = _int_value(self.state.get("TexCoordIndex", unit)) or 0
+        flags = _int_value(self.state.get("TextureTransformFlags", unit)) or 0
+        if (tci >> 16) in _CAMERA_SPACE_TEXGEN and flags & 0xFF == 3 and not flags & _TTFF_PROJECTED:
+            return "CUBE", "looked up with 3-component camera-space texture coordinates"
+        return None, ""
 
     def texture_parameter(self, unit: int) -> Parameter | None:
         a = self.state.assignment("Texture", unit)
@@ -409,13 +438,15 @@ class _PassChecker:
             return None
         return self.effect.parameter(a.value.name)
 
-    def check_texture_resource(self, unit: int, param: Parameter, kind: str | None) -> None:
+    def check_texture_resource(self, unit: int, param: Parameter, kind: str | None, how: str = "") -> None:
         loc = self.where("Texture", unit)
         subject = f"Texture[{unit}] = <{param.name}>"
+        because = f", {how}" if how else ""
         if kind == "CUBE":
-            self.need_bit("TextureCaps", "CUBEMAP", subject + " (a cube map)", loc, "D3DPTEXTURECAPS_")
+            self.need_bit("TextureCaps", "CUBEMAP", f"{subject} (a cube map{because})", loc, "D3DPTEXTURECAPS_")
         elif kind == "3D":
-            self.need_bit("TextureCaps", "VOLUMEMAP", subject + " (a volume texture)", loc, "D3DPTEXTURECAPS_")
+            self.need_bit("TextureCaps", "VOLUMEMAP", f"{subject} (a volume texture{because})", loc,
+                          "D3DPTEXTURECAPS_")
         self.check_texture_size(unit, param, kind, subject)
         self.check_texture_format(unit, param, kind, subject)
         flags = _int_value(self.state.get("TextureTransformFlags", unit))
@@ -913,14 +944,20 @@ def _block_location(value: Any, fallback: Location) -> Location:
     return loc
 
 
-def _shader_samplers(value: Any) -> list[int] | None:
+def _assembled(value: Any):
+    """The assembled program of an asm shader, or None (not asm, or it does not assemble)."""
     if not isinstance(value, ShaderBlock):
         return None
     from .asm import assemble_cached
     try:
-        return sorted(assemble_cached(value).stats.samplers_used)
+        return assemble_cached(value)
     except EffectError:
         return None
+
+
+def _shader_samplers(value: Any) -> list[int] | None:
+    program = _assembled(value)
+    return None if program is None else sorted(program.stats.samplers_used)
 
 
 def validate_technique(effect: Effect, technique: Technique, profile: CapsProfile) -> Validation:
