@@ -285,3 +285,11 @@ def test_regular_grid_with_edges_through_pixel_centres_hits_once(cells):
     tris = np.concatenate([np.stack([i, i + cells + 1, i + cells + 2], 1),
                            np.stack([i, i + cells + 2, i + 1], 1)])
     assert (hits(rasterize(clip_xy(pts), {}, tris, (16, 16)), (16, 16)) == 1).all()
+
+
+def test_non_finite_vertices_drop_their_triangles():
+    pos = QUAD.copy()
+    pos[3, 0] = np.nan
+    frags = rasterize(pos, {}, QUAD_TRIS, (8, 8))
+    expected = hits(rasterize(QUAD, {}, QUAD_TRIS[:1], (8, 8)), (8, 8))
+    np.testing.assert_array_equal(hits(frags, (8, 8)), expected)

@@ -105,8 +105,9 @@ def clip_triangles(pos: np.ndarray, attrs: np.ndarray, tris: np.ndarray, size: t
     outside = dist < 0
     tri_out = outside[tris]                               # (T, 3, P)
     rejected = tri_out.all(axis=1).any(axis=1)           # all three beyond one plane
+    rejected |= ~np.isfinite(pos).all(axis=1)[tris].any(axis=1)   # NaN/inf: nowhere to draw
     partial = tri_out.any(axis=(1, 2)) & ~rejected
-    keep = ~tri_out.any(axis=(1, 2))
+    keep = ~tri_out.any(axis=(1, 2)) & ~rejected
     source = np.nonzero(keep)[0]
     if not partial.any():
         return pos, attrs, tris[keep], source
@@ -172,10 +173,12 @@ def rasterize(clip_pos: np.ndarray, varyings: dict[str, np.ndarray], triangles: 
     if len(tris) == 0:
         return QuadFragments.empty(dims, quads)
 
-    inv_w = 1.0 / pos[:, 3]
-    fx = np.rint((pos[:, 0] * inv_w + 1.0) * (0.5 * width * _ONE)).astype(np.int64)
-    fy = np.rint((1.0 - pos[:, 1] * inv_w) * (0.5 * height * _ONE)).astype(np.int64)
-    sz = pos[:, 2] * inv_w
+    # Vertices no remaining triangle uses may lie anywhere (w = 0, NaN): their garbage is unused.
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        inv_w = 1.0 / pos[:, 3]
+        fx = np.rint((pos[:, 0] * inv_w + 1.0) * (0.5 * width * _ONE)).astype(np.int64)
+        fy = np.rint((1.0 - pos[:, 1] * inv_w) * (0.5 * height * _ONE)).astype(np.int64)
+        sz = pos[:, 2] * inv_w
 
     X, Y = fx[tris], fy[tris]                                       # (T, 3)
     area = ((X[:, 1] - X[:, 0]) * (Y[:, 2] - Y[:, 0])
@@ -314,7 +317,8 @@ def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs, 
         v += b[row_tri] * yf
         v += c[row_tri]
         values.append(v)
-    depth = values[3].astype(np.float32)
+    # D3D clamps depth to the viewport's [MinZ, MaxZ] = [0, 1] (bias and helpers can leave it)
+    depth = np.clip(values[3], 0.0, 1.0).astype(np.float32)
 
     rows: dict[str, np.ndarray] = {}
     if attrs.shape[1]:
