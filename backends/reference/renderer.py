@@ -3,8 +3,10 @@
 A draw runs the vertex program over all vertices at once, rasterises the triangles into 2x2
 quads (`rasterize`), runs the fragment program over every quad row with sampler callbacks that
 see whole quads (`sampler`), and merges the covered, unkilled fragments into the frame's render
-target in draw order (`output`). Work is split into chunks of quads; the chunks are shaded on
-a small thread pool, since NumPy releases the GIL inside its kernels.
+target in draw order (`output`). Big draws are cut into consecutive triangle chunks that are
+rasterised and shaded on a small thread pool (NumPy releases the GIL inside its kernels) and
+merged in order; a draw of a few large triangles is instead shaded in parallel chunks of rows.
+Helper pixels are shaded only when the fragment program samples a texture.
 
 Conventions beyond `backends.base`:
 - Vertex colour outputs (color0, color1) are saturated before interpolation (semantics.md
