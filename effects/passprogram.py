@@ -102,8 +102,9 @@ class TextureBinding:
 
 @dataclass(frozen=True)
 class PassProgram:
-    """One pass, lowered. `vertex` None means pre-transformed vertices (XYZRHW): positions
-    arrive in window space and the attributes pass straight to the fragment program.
+    """One pass, lowered. `vertex` None means the positions stream is already in D3D clip
+    space and every stream passes straight to the fragment program as the varying of the same
+    name (what back-end tests use; lowering always produces a vertex program).
     `uniforms` is (name, vec4) pairs: constant registers, one row of a matrix each."""
 
     fragment: Program
