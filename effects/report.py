@@ -41,7 +41,8 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
     technique each card selects; with `why`, then every reason, warning and note. Returns
     whether every named card can run some technique."""
     if not effect.techniques:
-        console.print(Text(f"{effect.path}: the effect has no techniques, so no card can render it"), soft_wrap=True)
+        console.print(Text(f"{effect.path}: the effect has no techniques, so no card can render it"),
+                      soft_wrap=True)
         return False
     pol = as_policy(policy)
     results = {p.name: validate_all(effect, p) for p in profiles}

@@ -13,7 +13,10 @@ What is checked, and what is not:
   without modifiers, and the last active stage writes Current). The argument modifiers
   Complement and AlphaReplicate have no caps bit in D3DCAPS9: every card accepts them.
 - Textures read in a pass: how many (MaxSimultaneousTextures, fixed function only: a pixel
-  shader's version sets its own sampler count), the kind (cube, volume) against TextureCaps,
+  shader's version sets its own sampler count), the kind (cube, volume) against TextureCaps
+  (declared by `string Type`, the texture or sampler type, or, for DX8 files that cannot
+  declare it, implied by the lookup: `dcl_cube`, texm3x3tex/spec/vspec, or 3-component
+  camera-space texture coordinates in a fixed-function stage),
   `int Width/Height/Depth` against the size limits, power-of-two and square rules, `string
   Format` (and `bool RenderTarget`) against the formats the card lists, and each sampler's
   filters, mip filter, anisotropy and address modes.
@@ -22,7 +25,8 @@ What is checked, and what is not:
 - Shaders: the version (a vertex shader newer than the hardware's runs when the card offers
   software or mixed vertex processing, up to the runtime's software version), every
   assembly rule of that version, and the card's own limits (instruction slots, temporaries,
-  constants, dependent reads, render-target outputs). An HLSL `compile ps_2_0 f()` is checked
+  constants, dependent reads, render-target outputs; a vertex shader over the hardware's
+  limits runs in software where the card offers it). An HLSL `compile ps_2_0 f()` is checked
   by its profile only until the HLSL is compiled: each such pass carries a note saying so.
 - Card quirks (caps.py's vocabulary): severity `error` rejects, `warning` is reported in
   `Validation.warnings` and rejects nothing.

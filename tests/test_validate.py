@@ -724,3 +724,46 @@ def test_an_op_stages_quirk_rejects_the_op_at_other_stages(tmp_path):
     assert validate("ColorOp[0] = Modulate;\nColorOp[1] = BumpEnvMap;", p)[0].ok
     v, _ = validate("ColorOp[0] = BumpEnvMap;", p)
     assert [r.message for r in v.reasons] == ["ColorOp[0] = BumpEnvMap: BumpEnvMap only at stage 1 (Radeon 7500)"]
+
+
+# --- a texture kind implied by the lookup (DX8 files cannot declare it) -------------------------------
+
+REFLECTION = ("ColorOp[0] = SelectArg1;\nColorArg1[0] = Texture;\nTexture[0] = <E>;\n"
+              "TexCoordIndex[0] = CameraSpaceReflectionVector;\nTextureTransformFlags[0] = Count3;")
+
+
+@pytest.mark.parametrize("name", CARDS)
+def test_camera_space_3d_coordinates_imply_a_cube_map(name):
+    p = card(name)
+    v, _ = validate(REFLECTION, p, "texture E;")
+    if p.has("TextureCaps", "CUBEMAP"):
+        assert v.ok, v.reasons
+    else:
+        assert [r.subject for r in v.reasons] == [
+            "Texture[0] = <E> (a cube map, looked up with 3-component camera-space texture coordinates)"]
+    # two coordinates (or a declared 2D texture) are an ordinary 2D lookup
+    flat, _ = validate(REFLECTION.replace("Count3", "Count2"), p, "texture E;")
+    declared, _ = validate(REFLECTION, p, 'texture E < string Type = "2D"; >;')
+    assert flat.ok and declared.ok
+
+
+def no_cube_profile(tmp_path: Path, parent: str):
+    base = card(parent)
+    bits = sorted(b for b in ("PERSPECTIVE", "POW2", "ALPHA", "MIPMAP", "PROJECTED", "VOLUMEMAP")
+                  if base.has("TextureCaps", b))
+    path = tmp_path / f"{parent}_nocube.yaml"
+    path.write_text(f"inherit: {parent}\nname: {parent}_nocube\nTextureCaps: [{', '.join(bits)}]\n")
+    return load_profile(str(path))
+
+
+def test_texm3x3_lookups_and_dcl_cube_imply_a_cube_map(tmp_path):
+    ps11 = ("PixelShader = asm\n{\nps_1_1\n tex t0\n texm3x3pad t1, t0\n texm3x3pad t2, t0\n"
+            " texm3x3tex t3, t0\n mov r0, t3\n};\nTexture[3] = <E>;")
+    assert validate(ps11, card("geforce3"), "texture E;")[0].ok
+    v, _ = validate(ps11, no_cube_profile(tmp_path, "geforce3"), "texture E;")
+    assert [r.subject for r in v.reasons] == ["Texture[3] = <E> (a cube map, read by texm3x3tex t3)"]
+    ps20 = ("PixelShader = asm\n{\nps_2_0\n dcl t0\n dcl_cube s1\n texld r0, t0, s1\n mov oC0, r0\n};\n"
+            "Texture[1] = <E>;")
+    assert validate(ps20, card("radeon9700"), "texture E;")[0].ok
+    v, _ = validate(ps20, no_cube_profile(tmp_path, "radeon9700"), "texture E;")
+    assert [r.subject for r in v.reasons] == ["Texture[1] = <E> (a cube map, declared by dcl_cube s1)"]
