@@ -461,6 +461,22 @@ def test_1d_texture_and_projected_lookup(gl):
     assert image[0, 0, 0] == pytest.approx(0.6)
 
 
+def test_several_new_textures_in_one_draw_each_reach_their_sampler(gl):
+    """Three textures first seen in the same draw (each upload binds a texture, which must
+    not displace the ones already bound to other units)."""
+    b = Builder("fragment")
+    coord = b.varying("texcoord0")
+    red, green, blue = (b.sample(i, coord) for i in (0, 2, 5))
+    b.output("color0", b.merge(b.merge(red, green, "y"), blue, "zw"))
+    names = {0: "red", 2: "green", 5: "blue"}
+    program = PassProgram(b.build(), render_state=NO_CULL,
+                          textures=tuple(TextureBinding(i, n) for i, n in names.items()))
+    textures = {n: Texture("2d", "A32B32G32R32F", [np.full((2, 2, 4), v, np.float32)])
+                for n, v in (("red", 0.25), ("green", 0.5), ("blue", 0.75))}
+    image = render(gl, [(program, quad())], size=(2, 2), format=FLOAT, textures=textures)
+    np.testing.assert_allclose(image[0, 0], [0.25, 0.5, 0.75, 0.75])
+
+
 def test_unbound_sampler_reads_0001(gl):
     b = Builder("fragment")
     b.output("color0", b.sample(3, b.varying("texcoord0")))
@@ -575,6 +591,12 @@ def test_cube_faces_render_into_six_frames(gl):
 
 # --------------------------------------------------------------------------------------------
 # No GL: a clear error
+
+
+def test_gl_backend_is_registered_and_follows_the_protocol(gl):
+    from backends.base import Backend
+    assert isinstance(gl, Backend) and gl.name == "gl"
+    assert isinstance(create_backend("gl"), GLBackend)
 
 
 def test_no_gl_is_a_clear_error(monkeypatch):

@@ -229,20 +229,11 @@ class GLBackend:
         gl = self.gl
         used = {s.index: s.kind for p in (program.vertex, program.fragment) if p is not None
                 for s in p.samplers}
-        for index, kind in sorted(used.items()):
-            binding = program.texture(index)
-            texture = None
-            if binding is not None and binding.texture is not None:
-                texture = textures.get(binding.texture)
-            try:
-                if texture is None:
-                    gl_texture = self.textures.unbound(kind)
-                    binding = None
-                else:
-                    gl_texture = self.textures.get(texture, kind, binding.srgb_texture)
-            except TextureKindError as exc:
-                raise DrawError(f"sampler {index}: {exc}") from None
-            key = sampler_key(binding, kind, gl_texture.level_count)
+        # Upload first: an upload binds its texture, which must not displace the ones bound
+        # to the units below.
+        resolved = [(index, *self._texture_for(program, index, kind, textures))
+                    for index, kind in sorted(used.items())]
+        for index, gl_texture, key in resolved:
             sampler = self._samplers.get(key)
             if sampler is None:
                 sampler = self._samplers[key] = create_sampler(gl, key)
@@ -254,6 +245,24 @@ class GLBackend:
             if uniform is not None:
                 uniform.value = index
         gl.glActiveTexture(G.TEXTURE0)
+
+    def _texture_for(self, program: PassProgram, index: int, kind: str,
+                     textures: Mapping[str, object]):
+        """(GL texture, sampler key) for a sampler slot: the bound texture, or the (0, 0, 0, 1)
+        texture of an empty slot with the default sampler states."""
+        binding = program.texture(index)
+        texture = None
+        if binding is not None and binding.texture is not None:
+            texture = textures.get(binding.texture)
+        try:
+            if texture is None:
+                gl_texture = self.textures.unbound(kind)
+                binding = None
+            else:
+                gl_texture = self.textures.get(texture, kind, binding.srgb_texture)
+        except TextureKindError as exc:
+            raise DrawError(f"sampler {index}: {exc}") from None
+        return gl_texture, sampler_key(binding, kind, gl_texture.level_count)
 
     # -- lifetime
     def close(self) -> None:
