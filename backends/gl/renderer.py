@@ -54,7 +54,9 @@ class _Target:
 
 class GLBackend:
     """The moderngl renderer. `context`: a moderngl context to draw with (the viewer passes
-    its window's, see `context.window_context`); by default the process's headless EGL one."""
+    its window's, see `context.window_context`); by default the process's headless EGL one.
+    Calls must come from the thread on which that context is current (the headless one is
+    made current on its thread when created)."""
 
     name = "gl"
 
@@ -79,16 +81,15 @@ class GLBackend:
         if size[0] <= 0 or size[1] <= 0:
             raise DrawError(f"render-target size must be positive, got {size}")
         gl = self.gl
-        with self.ctx:
-            target = self._target(size, format)
-            gl.glBindFramebuffer(G.FRAMEBUFFER, target.framebuffer)
-            gl.glViewport(0, 0, *size)
-            reset_for_clear(gl)
-            gl.glClearColor(*(float(c) for c in clear_color))
-            gl.glClearDepth(float(clear_depth))
-            gl.glClearStencil(int(clear_stencil) & 0xFF)
-            gl.glClear(G.COLOR_BUFFER_BIT | G.DEPTH_BUFFER_BIT | G.STENCIL_BUFFER_BIT)
-            gl.check("clearing the frame")
+        target = self._target(size, format)
+        gl.glBindFramebuffer(G.FRAMEBUFFER, target.framebuffer)
+        gl.glViewport(0, 0, *size)
+        reset_for_clear(gl)
+        gl.glClearColor(*(float(c) for c in clear_color))
+        gl.glClearDepth(float(clear_depth))
+        gl.glClearStencil(int(clear_stencil) & 0xFF)
+        gl.glClear(G.COLOR_BUFFER_BIT | G.DEPTH_BUFFER_BIT | G.STENCIL_BUFFER_BIT)
+        gl.check("clearing the frame")
         self._frame = target
 
     def end_frame(self) -> np.ndarray:
@@ -98,11 +99,10 @@ class GLBackend:
         width, height = target.size
         _, read_type, dtype = TARGET_GL_FORMATS[target.format]
         image = np.empty((height, width, 4), dtype)
-        with self.ctx:
-            self.gl.glBindFramebuffer(G.FRAMEBUFFER, target.framebuffer)
-            self.gl.glPixelStorei(G.PACK_ALIGNMENT, 4)
-            self.gl.glReadPixels(0, 0, width, height, G.RGBA, read_type, image.ctypes.data)
-            self.gl.check("reading the frame back")
+        self.gl.glBindFramebuffer(G.FRAMEBUFFER, target.framebuffer)
+        self.gl.glPixelStorei(G.PACK_ALIGNMENT, 4)
+        self.gl.glReadPixels(0, 0, width, height, G.RGBA, read_type, image.ctypes.data)
+        self.gl.check("reading the frame back")
         is_float, channels = TARGET_FORMATS[target.format]
         if is_float:
             image[..., channels:] = 1  # GL reads absent channels as 0 (alpha 1); D3D as 1
@@ -158,30 +158,29 @@ class GLBackend:
         varyings = glsl.fragment_varyings(program.fragment, options)
         attributes = _attributes(program, varyings)
         present = frozenset(a for a in attributes if a in streams)
-        with self.ctx:
-            shader = self._program(program, options, varyings, present)
-            self._set_uniforms(shader, program, target, options)
-            self._bind_textures(shader, program, textures)
-            buffers = [self.ctx.buffer(_stream_array(streams[a])) for a in sorted(present)]
-            content = [(buf, f"{_stream_array(streams[a]).shape[1]}f", glsl.attribute_name(a))
-                       for buf, a in zip(buffers, sorted(present))]
-            index_buffer = self.ctx.buffer(tris.astype(np.uint32).tobytes())
-            vao = self.ctx.vertex_array(shader, content, index_buffer=index_buffer,
-                                        index_element_size=4, skip_errors=True)
-            try:
-                gl = self.gl
-                gl.glBindFramebuffer(G.FRAMEBUFFER, target.framebuffer)
-                gl.glViewport(0, 0, *target.size)
-                gl.glProvokingVertex(G.FIRST_VERTEX_CONVENTION)
-                gl.glDisable(G.TEXTURE_CUBE_MAP_SEAMLESS)  # D3D9 cube maps are not seamless
-                apply_render_state(gl, state)
-                vao.render(moderngl.TRIANGLES, vertices=tris.size)
-                gl.check("drawing")
-            finally:
-                vao.release()
-                index_buffer.release()
-                for buf in buffers:
-                    buf.release()
+        shader = self._program(program, options, varyings, present)
+        self._set_uniforms(shader, program, target, options)
+        self._bind_textures(shader, program, textures)
+        buffers = [self.ctx.buffer(_stream_array(streams[a])) for a in sorted(present)]
+        content = [(buf, f"{_stream_array(streams[a]).shape[1]}f", glsl.attribute_name(a))
+                   for buf, a in zip(buffers, sorted(present))]
+        index_buffer = self.ctx.buffer(tris.astype(np.uint32).tobytes())
+        vao = self.ctx.vertex_array(shader, content, index_buffer=index_buffer,
+                                    index_element_size=4, skip_errors=True)
+        try:
+            gl = self.gl
+            gl.glBindFramebuffer(G.FRAMEBUFFER, target.framebuffer)
+            gl.glViewport(0, 0, *target.size)
+            gl.glProvokingVertex(G.FIRST_VERTEX_CONVENTION)
+            gl.glDisable(G.TEXTURE_CUBE_MAP_SEAMLESS)  # D3D9 cube maps are not seamless
+            apply_render_state(gl, state)
+            vao.render(moderngl.TRIANGLES, vertices=tris.size)
+            gl.check("drawing")
+        finally:
+            vao.release()
+            index_buffer.release()
+            for buf in buffers:
+                buf.release()
 
     def _program(self, program: PassProgram, options: glsl.FragmentOptions,
                  varyings: tuple[str, ...], present: frozenset) -> moderngl.Program:
@@ -268,16 +267,15 @@ class GLBackend:
     def close(self) -> None:
         """Release every GL object this back end made (the context stays)."""
         gl = self.gl
-        with self.ctx:
-            for shader in self._programs.values():
-                shader.release()
-            for sampler in self._samplers.values():
-                gl.delete("Samplers", sampler)
-            for target in self._targets.values():
-                gl.delete("Framebuffers", target.framebuffer)
-                gl.delete("Renderbuffers", target.depth_stencil)
-                gl.delete("Textures", target.color)
-            self.textures.release()
+        for shader in self._programs.values():
+            shader.release()
+        for sampler in self._samplers.values():
+            gl.delete("Samplers", sampler)
+        for target in self._targets.values():
+            gl.delete("Framebuffers", target.framebuffer)
+            gl.delete("Renderbuffers", target.depth_stencil)
+            gl.delete("Textures", target.color)
+        self.textures.release()
         self._programs.clear()
         self._samplers.clear()
         self._targets.clear()
