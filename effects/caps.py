@@ -747,7 +747,9 @@ def _read(path: Path) -> tuple[dict, dict[str, Location], dict[str, Location]]:
         raise ProfileError(f"cannot read profile: {exc}", Location(str(path), 1, 1)) from None
     reader = _Reader(path, text)
     try:
-        root = yaml.compose(text, Loader=yaml.SafeLoader)
+        # libyaml's loader when PyYAML was built with it: the pure-Python one is most of the
+        # time `effects matrix` takes; both give the same nodes and marks.
+        root = yaml.compose(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         where = Location(str(path), mark.line + 1, mark.column + 1) if mark else \

@@ -72,8 +72,8 @@ def _cmd_validate(args, console: Console) -> int:
     if not args.profile:
         print_effect_summary(effect, console)
         return EXIT_OK
-    any_valid = print_validation_table(effect, _profiles(args.profile), console, why=args.why)
-    return EXIT_OK if any_valid else EXIT_INVALID
+    every_card_runs_it = print_validation_table(effect, _profiles(args.profile), console, why=args.why)
+    return EXIT_OK if every_card_runs_it else EXIT_INVALID
 
 
 def _add_matrix(sub) -> None:
@@ -238,7 +238,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         err.print(str(exc), markup=False)
         return EXIT_BAD_INPUT
     except EffectError as exc:
-        err.print(exc.report(), markup=False)
+        err.print(exc.report(), markup=False, soft_wrap=True)
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:
         return 130
