@@ -161,9 +161,10 @@ class GLBackend:
         shader = self._program(program, options, varyings, present)
         self._set_uniforms(shader, program, target, options)
         self._bind_textures(shader, program, textures)
-        buffers = [self.ctx.buffer(_stream_array(streams[a])) for a in sorted(present)]
-        content = [(buf, f"{_stream_array(streams[a]).shape[1]}f", glsl.attribute_name(a))
-                   for buf, a in zip(buffers, sorted(present))]
+        arrays = {a: _stream_array(streams[a]) for a in sorted(present)}
+        buffers = [self.ctx.buffer(array) for array in arrays.values()]
+        content = [(buf, f"{array.shape[1]}f", glsl.attribute_name(a))
+                   for buf, (a, array) in zip(buffers, arrays.items())]
         index_buffer = self.ctx.buffer(tris.astype(np.uint32).tobytes())
         vao = self.ctx.vertex_array(shader, content, index_buffer=index_buffer,
                                     index_element_size=4, skip_errors=True)
@@ -177,10 +178,27 @@ class GLBackend:
             vao.render(moderngl.TRIANGLES, vertices=tris.size)
             gl.check("drawing")
         finally:
+            self._leave_state(sorted(_sampler_units(program)))
             vao.release()
             index_buffer.release()
             for buf in buffers:
                 buf.release()
+
+    def _leave_state(self, units: list[int]) -> None:
+        """Put back what moderngl does not track, so a shared (window) context draws on as
+        before: no sampler objects on the units used, stencil off, solid fill, full masks,
+        and moderngl's current framebuffer bound again. Depth, blend and cull stay as the
+        pass set them (moderngl's `enable`/`enable_only` set those)."""
+        gl = self.gl
+        for unit in units:
+            gl.glBindSampler(unit, 0)
+        gl.glActiveTexture(G.TEXTURE0)
+        gl.glDisable(G.STENCIL_TEST)
+        gl.glPolygonMode(G.FRONT_AND_BACK, G.FILL)
+        gl.glColorMask(True, True, True, True)
+        gl.glDepthMask(True)
+        if self.ctx.fbo is not None:
+            self.ctx.fbo.use()
 
     def _program(self, program: PassProgram, options: glsl.FragmentOptions,
                  varyings: tuple[str, ...], present: frozenset) -> moderngl.Program:
@@ -305,6 +323,11 @@ def fragment_options(program: PassProgram, streams: Mapping[str, np.ndarray],
         alpha_test=bool(state.alpha_test_enable),
         depth_bias=bool(state.depth_bias or state.slope_scale_depth_bias),
         srgb_write=bool(state.srgb_write_enable and not float_target))
+
+
+def _sampler_units(program: PassProgram) -> set[int]:
+    return {s.index for p in (program.vertex, program.fragment) if p is not None
+            for s in p.samplers}
 
 
 def _compare_index(state: RenderState) -> int:
