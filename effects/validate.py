@@ -27,7 +27,8 @@ What is checked, and what is not:
   assembly rule of that version, and the card's own limits (instruction slots, temporaries,
   constants, dependent reads, render-target outputs; a vertex shader over the hardware's
   limits runs in software where the card offers it). An HLSL `compile ps_2_0 f()` is checked
-  by its profile only until the HLSL is compiled: each such pass carries a note saying so.
+  by its profile, and then rejected: the framework cannot compile HLSL yet, and D3DX rejects
+  a technique whose shader fails to create.
 - Card quirks (caps.py's vocabulary): severity `error` rejects, `warning` is reported in
   `Validation.warnings` and rejects nothing.
 A state whose value is a parameter without a value (or a preshader expression) cannot be
@@ -753,9 +754,14 @@ class _PassChecker:
             True for _ in card_limit_violations(program, self.profile, software=software))
 
     def note_hlsl(self, state_name: str, value: CompileShader) -> None:
-        self.note(f"{state_name} = compile {value.profile} {value.function}(): HLSL is checked by its "
-                  f"profile ({value.profile}) only; instruction, register and sampler limits are "
-                  "checked once the HLSL is compiled")
+        # D3DX rejects a technique whose shader fails to create (Wine's ValidateTechnique);
+        # this framework captures HLSL functions but cannot compile them yet, so it cannot
+        # create the shader on any card. Saying so beats selecting a technique nothing can draw.
+        self.fail(value.location, f"{state_name} = compile {value.profile} {value.function}()",
+                  "an HLSL compiler", "none in this framework yet",
+                  f"{state_name} = compile {value.profile} {value.function}() needs HLSL "
+                  "compilation, which this framework does not do yet, so the shader cannot be "
+                  "created")
 
     def check_assembly(self, value: Any, state_name: str, software: bool = False) -> None:
         if not isinstance(value, ShaderBlock):
