@@ -239,7 +239,8 @@ bool d3d_compare(int func, int a, int b) {  // D3DCMPFUNC, numbered as COMPARE_F
 _SRGB_FUNCTION = """\
 vec3 d3d_linear_to_srgb(vec3 x) {  // IEC 61966-2-1
     x = clamp(x, 0.0, 1.0);
-    return mix(1.055 * pow(x, vec3(1.0 / 2.4)) - 0.055, 12.92 * x, lessThanEqual(x, vec3(0.0031308)));
+    return mix(1.055 * pow(x, vec3(1.0 / 2.4)) - 0.055, 12.92 * x,
+               lessThanEqual(x, vec3(0.0031308)));
 }"""
 
 _FOG_FACTORS = {
@@ -299,8 +300,9 @@ def _fragment_epilogue(outputs: dict[str, int], options: FragmentOptions) -> lis
         lines.append("    gl_FragDepth = clamp(out_depth.x, 0.0, 1.0);  // oDepth, saturated")
         depth = "gl_FragDepth"
     elif options.depth_bias:
-        lines += ["    float z_slope = max(abs(dFdx(gl_FragCoord.z)), abs(dFdy(gl_FragCoord.z)));",
-                  "    gl_FragDepth = gl_FragCoord.z + d3d_depth_bias.x + d3d_depth_bias.y * z_slope;"]
+        lines += [
+            "    float z_slope = max(abs(dFdx(gl_FragCoord.z)), abs(dFdy(gl_FragCoord.z)));",
+            "    gl_FragDepth = gl_FragCoord.z + d3d_depth_bias.x + d3d_depth_bias.y * z_slope;"]
         depth = "gl_FragDepth"
     if options.specular_add:
         lines.append(f"    color.rgb += {varying_name('color1')}.rgb;  // SpecularEnable")

@@ -227,7 +227,8 @@ class GLBackend:
             "d3d_pixel_size": (2.0 / target.size[0], 2.0 / target.size[1]),
             "d3d_depth_bias": (float(state.depth_bias), float(state.slope_scale_depth_bias)),
             "d3d_fog_color": tuple(float(c) for c in state.fog_color),
-            "d3d_fog": (float(state.fog_start), float(state.fog_end), float(state.fog_density), 0.0),
+            "d3d_fog": (float(state.fog_start), float(state.fog_end), float(state.fog_density),
+                        0.0),
             "d3d_alpha_ref": int(state.alpha_ref) & 0xFF,
         }
         if options.alpha_test:

@@ -22,7 +22,8 @@ bool d3d_compare(int func, int a, int b) {  // D3DCMPFUNC, numbered as COMPARE_F
 }
 vec3 d3d_linear_to_srgb(vec3 x) {  // IEC 61966-2-1
     x = clamp(x, 0.0, 1.0);
-    return mix(1.055 * pow(x, vec3(1.0 / 2.4)) - 0.055, 12.92 * x, lessThanEqual(x, vec3(0.0031308)));
+    return mix(1.055 * pow(x, vec3(1.0 / 2.4)) - 0.055, 12.92 * x,
+               lessThanEqual(x, vec3(0.0031308)));
 }
 
 void main() {
