@@ -394,9 +394,11 @@ _OP_ROWS = [
     _op("log2", 1, _elementwise(lambda a: np.log2(np.abs(a))),
         "mix(log2(abs({0})), vec4(-" + _GLSL_INF + "), equal({0}, vec4(0.0)))",
         "log2(|a|) per component; 0 -> -inf (D3D log)"),
-    _op("pow", 2, _elementwise(lambda a, b: np.power(np.abs(a), b)), "pow(abs({0}), {1})",
-        "|a|^b per component (D3D pow). IEEE pow at |a| = 0: 0^0 = 1, 0^-y = +inf; GLSL "
-        "leaves a = 0, b <= 0 undefined"),
+    _op("pow", 2, _elementwise(lambda a, b: np.power(np.abs(a), b)),
+        # GLSL leaves pow(0, b <= 0) undefined: spell out IEEE's 0^0 = 1 and 0^-y = +inf.
+        "mix(pow(abs({0}), {1}), mix(vec4(" + _GLSL_INF + "), vec4(1.0), equal({1}, vec4(0.0))), "
+        "bvec4(vec4(lessThanEqual({1}, vec4(0.0))) * vec4(equal({0}, vec4(0.0)))))",
+        "|a|^b per component (D3D pow). IEEE pow at |a| = 0: 0^0 = 1, 0^-y = +inf"),
     _op("frc", 1, _elementwise(lambda a: a - np.floor(a)), "fract({0})", "a - floor(a)"),
     _op("abs", 1, _elementwise(np.abs), "abs({0})", "|a|"),
     _op("sin", 1, _elementwise(np.sin), "sin({0})", "sin(a) radians (for sincos)"),

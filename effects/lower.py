@@ -21,7 +21,8 @@ Passes with shaders assemble them (`effects.asm`) and lower them with `effects.a
 this module supplies what the pass state says: the constant registers c# (from
 VertexShaderConstant[n] / PixelShaderConstant[n]; a matrix parameter fills four registers with
 its columns, i.e. transposed, so `m4x4 oPos, v0, c4` computes the row-vector product p·M that
-the DX8 files expect), the bump-environment state of each stage (uniforms `bumpenv<n>` and
+the DX8 files expect; uniforms `vs_c<n>` and `ps_c<n>`, as the two shaders have separate
+constant files), the bump-environment state of each stage (uniforms `bumpenv<n>` and
 `bumpenvl<n>`), the kind of texture bound to each sampler, and TTFF_PROJECTED per stage.
 Fixed-function fog after a pixel shader is not lowered yet (a clear error, not a wrong picture).
 """
@@ -144,10 +145,12 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile") -> PassPr
             options, sampler_kinds={s: k for s in range(MAX_STAGES)
                                     if (k := _texture_kind(effect, state, s))},
             projected={s: bool(_int(state, "TextureTransformFlags", s) & _TTFF_PROJECTED)
-                       for s in range(MAX_STAGES)})
+                       for s in range(MAX_STAGES)},
+            constant_prefix=PIXEL_CONSTANT_PREFIX)
         fragment = asm_lower.lower_pixel_shader(program, ctx)
         uniforms.update(_shader_constants(state, "PixelShaderConstant",
-                                          asm_lower.constant_registers(program)))
+                                          asm_lower.constant_registers(program),
+                                          PIXEL_CONSTANT_PREFIX))
         uniforms.update(_bump_uniforms(state))
 
     needed = sorted(int(i.name[len("texcoord"):]) for i in fragment.inputs
@@ -156,10 +159,12 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile") -> PassPr
         vertex = lower_vertex(read_vertex(effect, state, needed, fog), uniforms)
     else:
         program = _assemble(vertex_shader, "vertex")
-        ctx = asm_lower.ShaderContext(options, decl=getattr(vertex_shader, "decl", None))
+        ctx = asm_lower.ShaderContext(options, decl=getattr(vertex_shader, "decl", None),
+                                      constant_prefix=VERTEX_CONSTANT_PREFIX)
         vertex = asm_lower.lower_vertex_shader(program, ctx)
         uniforms.update(_shader_constants(state, "VertexShaderConstant",
-                                          asm_lower.constant_registers(program)))
+                                          asm_lower.constant_registers(program),
+                                          VERTEX_CONSTANT_PREFIX))
 
     declared = {i.name for prog in (fragment, vertex) for i in prog.inputs if i.kind == "uniform"}
     textures = tuple(texture_binding(effect, state, s.index, s.kind) for s in fragment.samplers)
@@ -216,7 +221,12 @@ def constant_rows(value: Any) -> np.ndarray:
     return out.reshape(rows, 4)
 
 
-def _shader_constants(state: DeviceState, family: str, needed: set[int]) -> dict[str, tuple[float, ...]]:
+# Vertex and pixel shaders have separate constant files: uniforms vs_c<n> and ps_c<n>.
+VERTEX_CONSTANT_PREFIX, PIXEL_CONSTANT_PREFIX = "vs_c", "ps_c"
+
+
+def _shader_constants(state: DeviceState, family: str, needed: set[int],
+                      prefix: str) -> dict[str, tuple[float, ...]]:
     """Uniforms `c<n>` from the pass's constant-register assignments (later ones win, as the
     device applies them in order); a register no assignment sets reads zero, as D3DX leaves it."""
     names = {state_table.lookup_state(n).name for n in _CONSTANT_FAMILIES[family]
@@ -235,7 +245,7 @@ def _shader_constants(state: DeviceState, family: str, needed: set[int]) -> dict
                               assignment.location) from None
         for k, row in enumerate(rows):
             registers[index + k] = tuple(float(x) for x in row)
-    return {f"c{n}": registers.get(n, (0.0, 0.0, 0.0, 0.0)) for n in sorted(needed)}
+    return {f"{prefix}{n}": registers.get(n, (0.0, 0.0, 0.0, 0.0)) for n in sorted(needed)}
 
 
 def _bump_uniforms(state: DeviceState) -> dict[str, tuple[float, ...]]:

@@ -363,10 +363,11 @@ def test_shader_pass_gets_its_constants_from_the_pass_state():
         } }""")
     pp = lower_pass(effect, effect.techniques[0], 0, load_profile("modern"))
     uniforms = dict(pp.uniforms)
-    assert uniforms["c0"] == (0.5, 0.25, 1.0, 1.0)
-    assert uniforms["c1"] == (1.0, 5.0, 9.0, 13.0)       # first column of M
-    assert uniforms["c4"] == (4.0, 8.0, 12.0, 16.0)
-    assert uniforms["c5"] == (0.0, 0.0, 0.0, 0.0)
+    assert uniforms["ps_c0"] == (0.5, 0.25, 1.0, 1.0)
+    assert uniforms["vs_c1"] == (1.0, 5.0, 9.0, 13.0)       # first column of M
+    assert uniforms["vs_c4"] == (4.0, 8.0, 12.0, 16.0)
+    assert uniforms["vs_c5"] == (0.0, 0.0, 0.0, 0.0)
+    assert "vs_c0" not in uniforms and "ps_c1" not in uniforms
     close(shade(pp), (0.5, 0.25, 1.0, 1.0))
 
 

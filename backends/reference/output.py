@@ -93,6 +93,7 @@ def encode(values: np.ndarray, format: str) -> np.ndarray:
         return out
     out = np.minimum(values, np.float32(1))
     np.maximum(out, 0, out=out)
+    out[np.isnan(out)] = 0  # NaN writes 0 to UNORM targets, as GL does
     out *= np.float32(255)
     np.rint(out, out=out)
     out = out.astype(np.uint8)

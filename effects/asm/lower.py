@@ -85,6 +85,9 @@ class ShaderContext:
     sampler_kinds: Mapping[int, str] = field(default_factory=dict)  # stage -> 2d|cube|3d
     projected: Mapping[int, bool] = field(default_factory=dict)     # ps_1_x TTFF_PROJECTED
     decl: tuple[VertexDeclElement, ...] | None = None               # DX8 decl{} elements
+    # Uniform name of constant register n is f"{constant_prefix}{n}". A pass lowering both a
+    # vertex and a pixel shader gives them different prefixes: their c# are separate files.
+    constant_prefix: str = "c"
 
 
 def lower_pixel_shader(program: AsmProgram, ctx: ShaderContext) -> Program:
@@ -236,7 +239,7 @@ class _Lowering:
             if limit is not None:
                 values = tuple(min(max(v, -limit), limit) for v in values)
             return self.e.const(values)
-        value = self.b.uniform(f"c{index}")
+        value = self.b.uniform(f"{self.ctx.constant_prefix}{index}")
         return self.b.clamp(value, -limit, limit) if limit is not None else value
 
     def relative_constant(self, op: Operand, reads: dict) -> int:
