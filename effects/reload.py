@@ -38,7 +38,11 @@ if TYPE_CHECKING:  # pragma: no cover
     from .passprogram import PassProgram
     from .validate import Validation
 
-DEBOUNCE_S = 0.025        # quiet time before a change counts (a burst of writes is one change)
+# Quiet time before a change counts. One save's events (truncate, write, close; or create a temp
+# file, write, rename) arrive within a millisecond or two, so 10 ms groups them while keeping
+# the edit-to-picture latency low; a writer slower than that shows as a failed reload followed
+# by a good one (the last good effect stays on screen meanwhile).
+DEBOUNCE_S = 0.010
 MAX_DELAY_S = 0.25        # ... but never wait longer than this after the first event
 POLL_ONLY_S = 0.1         # polling interval when watchdog is not available
 POLL_SAFETY_S = 1.0       # polling interval as a safety net beside watchdog
@@ -318,6 +322,8 @@ class LoadedEffect:
     forced_rejected: "Validation | None" = None
     files: list[str] = field(default_factory=list)
     prepare_error: Exception | None = None   # the chosen technique cannot be drawn (kept, not raised)
+    runtime: Any = None        # the effects.runtime.Runtime that prepared it (no back end yet)
+    scene_key: Any = None      # BuildSettings.scene_key of the scene it was prepared for
 
     @property
     def selected(self) -> "Validation | None":
@@ -365,7 +371,7 @@ def error_text(error: BaseException | None) -> str:
 def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = None,
                  policy: Any = "first", scene: Any = None, lower: bool = True,
                  previous: "Effect | None" = None, keep_prepare_error: bool = False,
-                 **load_options: Any) -> LoadedEffect:
+                 scene_key: Any = None, **load_options: Any) -> LoadedEffect:
     """Load (unless `previous` is given), validate every technique, select, and prepare the
     chosen one for drawing in `scene` (a Scene, mapping, YAML path or None for the defaults):
     lower its passes with the scene's parameter values, load the textures they sample (into
@@ -399,21 +405,24 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
         chosen = find_valid_technique(effect, profile, policy)
     programs = None
     prepare_error = None
+    runtime = None
     if chosen is not None and lower:
         try:
-            programs = prepare(effect, chosen, profile, scene)
+            runtime, programs = prepare(effect, chosen, profile, scene)
         except Exception as exc:  # noqa: BLE001 - a bug of ours must not close the viewer either
             if not keep_prepare_error:
                 raise
             prepare_error = exc
     return LoadedEffect(path, effect, profile, validations, chosen, programs, technique,
-                        forced_rejected, watched_files(effect), prepare_error)
+                        forced_rejected, watched_files(effect), prepare_error, runtime, scene_key)
 
 
 def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
-            scene: Any = None) -> list["PassProgram"]:
+            scene: Any = None) -> tuple[Any, list["PassProgram"]]:
     """Everything that can fail before a technique draws, done now (off the render thread):
-    bind the scene, lower every pass, load the textures the passes sample, build the streams."""
+    bind the scene, lower every pass, load the textures the passes sample, build the streams.
+    Returns the Runtime that did it (its lowered passes cached, its textures and streams
+    loaded; it has no back end) and the lowered passes."""
     from .lower import lower_pass
     from .runtime import Runtime
     runtime = Runtime(effect, profile, scene=scene, backend=None)
@@ -424,7 +433,7 @@ def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
             if binding.texture is not None:
                 runtime.texture(binding.texture)
     runtime.geometry()
-    return programs
+    return runtime, programs
 
 
 # ---------------------------------------------------------------------------------------------
@@ -551,6 +560,7 @@ class BuildSettings:
     technique: str | None = None
     policy: Any = "first"
     scene: Any = None
+    scene_key: Any = None      # equal keys: the same scene (lets the viewer reuse the Runtime)
 
 
 def effect_builder(path: str, settings: Callable[[], BuildSettings], **load_options: Any) -> Build:
@@ -560,6 +570,6 @@ def effect_builder(path: str, settings: Callable[[], BuildSettings], **load_opti
     def build(previous: "Effect | None") -> LoadedEffect:
         s = settings()
         return build_effect(path, s.profile, technique=s.technique, policy=s.policy,
-                            scene=s.scene, previous=previous,
+                            scene=s.scene, previous=previous, scene_key=s.scene_key,
                             keep_prepare_error=previous is not None, **load_options)
     return build

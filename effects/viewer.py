@@ -34,7 +34,7 @@ from .viewer_state import DIFFERENCE_SCALE, MESHES, VIEWS, ViewerState
 DEFAULT_CARD = "radeon9700"
 WINDOW_SIZE = (1040, 600)
 PANEL_WIDTH = 440
-IDLE_WAIT_S = 0.012          # how long an idle frame waits for a reload result
+IDLE_WAIT_S = 0.03           # an idle frame waits this long for a reload (returns at once on one)
 
 
 @dataclass
@@ -61,6 +61,7 @@ class FrameEvent:
     time: float                      # time.perf_counter() after the swap
     effect_generation: int           # increments each time a new build is swapped in
     result: ReloadResult | None      # the build first drawn in this frame, if any
+    render_ms: float | None = None   # the effect's GL render in this frame (None: not redrawn)
 
 
 def say(line: str) -> None:
@@ -91,6 +92,7 @@ class Viewer:
         self._image: np.ndarray | None = None
         self._reference: tuple[object, np.ndarray] | None = None
         self._fresh_result: ReloadResult | None = None
+        self._runtime: tuple | None = None     # (LoadedEffect, scene key, Runtime) last drawn
         self._screenshot_requested = False
         self._shots = 0
         self._selection_seen = self.state.selection_generation
@@ -105,6 +107,7 @@ class Viewer:
             loaded = build_effect(self.options.path, self.state.profile,
                                   technique=self.state.technique,
                                   scene=self.state.scene(self.effect_size()),
+                                  scene_key=self.state.scene_key(self.effect_size()),
                                   keep_prepare_error=True, **self._load_options)
         except EffectError as exc:
             self.status.error = exc.report()
@@ -182,6 +185,7 @@ class Viewer:
                 if self.state.selection_generation != self._selection_seen:
                     self._selection_seen = self.state.selection_generation
                     self.reloader.reselect()
+                self._rendered_ms = None
                 self._draw_frame()
                 if self._screenshot_requested:
                     self._screenshot_requested = False
@@ -192,7 +196,8 @@ class Viewer:
                     self.say(f"view: {self.options.path} on {self._selection_text()}")
                 fresh, self._fresh_result = self._fresh_result, None
                 if self.on_frame is not None:
-                    self.on_frame(FrameEvent(frame, time.perf_counter(), self.effect_generation, fresh))
+                    self.on_frame(FrameEvent(frame, time.perf_counter(), self.effect_generation, fresh,
+                                             self._rendered_ms))
                 if tour is not None and self._tour_step(tour):
                     break
             # at exit: anything already rebuilt is drawn, so the screenshot shows the last effect
@@ -206,6 +211,7 @@ class Viewer:
         finally:
             self.reloader.stop()
             self.reference.stop()
+            self.window.destroy()
         return 0
 
     def _idle(self) -> bool:
@@ -287,16 +293,27 @@ class Viewer:
             self.blitter.upload(self._image)
             return
         scene = self.state.scene(size)
+        scene_key = self.state.scene_key(size)
+        runtime = None
+        if (self._runtime is not None and self._runtime[0] is loaded
+                and self._runtime[1] == scene_key):
+            runtime = self._runtime[2]
+        elif loaded.runtime is not None and loaded.scene_key == scene_key:
+            runtime = loaded.runtime       # prepared by the reload worker for this very scene
         start = time.perf_counter()
         try:
-            image = render_effect(loaded, scene, self.backend)
+            from .runtime import Runtime
+            if runtime is None:
+                runtime = Runtime(loaded.effect, loaded.profile, scene=scene, backend=self.backend)
+            self._runtime = (loaded, scene_key, runtime)
+            image = render_effect(loaded, scene, self.backend, runtime)
         except Exception as exc:  # noqa: BLE001 - shown; the previous picture stays
             self.status.render_error = error_text(exc)
             self.say(f"render: {self.options.path} failed: {error_text(exc)}")
             return
         finally:
             reset_gl_state()
-        self.status.gl_ms = (time.perf_counter() - start) * 1000.0
+        self.status.gl_ms = self._rendered_ms = (time.perf_counter() - start) * 1000.0
         self._image = image
         if self.state.view == "gl":
             self.blitter.upload(image)
@@ -355,6 +372,7 @@ class Viewer:
         self.ctx.enable_only(moderngl.NOTHING)
 
     _last_view = "gl"
+    _rendered_ms: float | None = None
 
     # -- actions ----------------------------------------------------------------------------
     def request_reload(self) -> None:

@@ -40,10 +40,15 @@ void main() { color = vec4(texture(image, uv).rgb, 1.0); }
 """
 
 
-def render_effect(loaded: "LoadedEffect", scene: "Scene", backend: Any) -> np.ndarray:
-    """One frame of the loaded effect's technique in `scene`: H x W x 4 uint8 RGBA, top row first."""
+def render_effect(loaded: "LoadedEffect", scene: "Scene", backend: Any,
+                  runtime: Any = None) -> np.ndarray:
+    """One frame of the loaded effect's technique in `scene`: H x W x 4 uint8 RGBA, top row
+    first. `runtime`: a Runtime already bound to this effect and scene (its lowered passes,
+    textures and streams are reused), else a new one is made."""
     from .runtime import Runtime
-    runtime = Runtime(loaded.effect, loaded.profile, scene=scene, backend=backend)
+    if runtime is None:
+        runtime = Runtime(loaded.effect, loaded.profile, scene=scene, backend=backend)
+    runtime.backend = backend
     return runtime.render(loaded.technique).image
 
 

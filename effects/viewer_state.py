@@ -151,7 +151,13 @@ class ViewerState:
         return scene
 
     def build_settings(self, size: tuple[int, int] = (256, 256)) -> BuildSettings:
-        return BuildSettings(self.profile, self.technique, "first", self.scene(size))
+        return BuildSettings(self.profile, self.technique, "first", self.scene(size),
+                             self.scene_key(size))
+
+    def scene_key(self, size: tuple[int, int]) -> tuple:
+        """Equal keys, equal scenes: what a prepared Runtime may be reused for."""
+        return (self.mesh, tuple(size), round(self.orbit.yaw, 9), round(self.orbit.pitch, 9),
+                round(self.orbit.distance, 9), round(self.light.angle, 9))
 
     def camera_key(self) -> tuple:
         """Everything a picture depends on besides the effect (for the reference view's cache)."""

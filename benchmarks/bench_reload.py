@@ -1,0 +1,163 @@
+"""Reload latency of the viewer: an edit written to disk -> the first frame drawn with it.
+
+    xvfb-run -a -s "-screen 0 1280x800x24" python benchmarks/bench_reload.py [--edits 15]
+        [--card radeon9700] [--effect fxfiles/phong.fx]...
+
+For each bundled effect (a copy in a temporary folder, textures included) a viewer runs in a
+child process. A thread in it edits the effect `--edits` times -- alternately an in-place
+write and an editor's atomic save (write a temp file, rename it onto the effect) -- each
+edit changing a comment at the end, so the whole rebuild runs (read, preprocess, parse,
+validate, select, lower, textures, draw). The time from just before the write to the return
+of the swap of the first frame drawn with the rebuilt effect is one sample; the next edit
+waits until the viewer is idle again. Printed: per effect the median and the worst sample
+and the median build time in the worker, then the median over all samples. Goal: 50 ms.
+The watcher's debounce (effects.reload.DEBOUNCE_S) is part of every sample.
+"""
+from __future__ import annotations
+
+import argparse
+import glob
+import json
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+GOAL_MS = 50.0
+
+
+def measure_one(path: str, card: str, edits: int) -> dict:
+    """Run a viewer on `path` in this process and time `edits` edits."""
+    from effects.reload import DEBOUNCE_S
+    from effects.viewer import FrameEvent, Viewer, ViewerOptions
+
+    text = open(path, encoding="utf-8").read()
+    frames: list[FrameEvent] = []
+    new_frame = threading.Condition()
+    samples: list[float] = []
+    builds: list[float] = []
+    after_debounce: list[float] = []
+    done = threading.Event()
+
+    def on_frame(event: FrameEvent) -> None:
+        with new_frame:
+            frames.append(event)
+            new_frame.notify_all()
+        if done.is_set():
+            viewer.window.close()
+
+    def wait_for(predicate, timeout: float = 10.0) -> FrameEvent:
+        deadline = time.perf_counter() + timeout
+        with new_frame:
+            while True:
+                hit = next((f for f in reversed(frames) if predicate(f)), None)
+                if hit is not None:
+                    return hit
+                left = deadline - time.perf_counter()
+                if left <= 0:
+                    raise TimeoutError("the viewer drew no frame with the edit")
+                new_frame.wait(left)
+
+    def editor() -> None:
+        try:
+            wait_for(lambda f: f.number >= 3, 30.0)
+            for i in range(edits):
+                time.sleep(0.15)                       # idle: the last frame is long drawn
+                generation = frames[-1].effect_generation
+                body = text + f"\n// edit {i}\n"
+                start = time.perf_counter()
+                if i % 2:
+                    tmp = path + ".tmp"
+                    with open(tmp, "w", encoding="utf-8") as f:
+                        f.write(body)
+                    os.replace(tmp, path)
+                else:
+                    with open(path, "w", encoding="utf-8") as f:
+                        f.write(body)
+                frame = wait_for(lambda f: f.effect_generation > generation)
+                samples.append((frame.time - start) * 1000.0)
+                if frame.result is not None:
+                    builds.append(frame.result.build_ms)
+                    after_debounce.append((frame.time - frame.result.requested_at) * 1000.0)
+        finally:
+            done.set()
+
+    viewer = Viewer(ViewerOptions(path, profile=card, exit_after=120.0), on_frame=on_frame,
+                    output=lambda line: None)
+    threading.Thread(target=editor, daemon=True).start()
+    viewer.run()
+    return {"effect": os.path.basename(path), "card": card, "samples_ms": samples,
+            "build_ms": builds, "after_debounce_ms": after_debounce,
+            "debounce_ms": DEBOUNCE_S * 1000.0}
+
+
+def drawable_card(path: str, preferred: str) -> str | None:
+    """`preferred` if its technique for the effect can be prepared, else the most capable card
+    whose can (a reload that cannot be drawn is a failed reload: nothing to time)."""
+    import effects
+    from effects.reload import build_effect
+    cards = [preferred] + [c for c in reversed(effects.list_profiles()) if c != preferred]
+    for card in cards:
+        loaded = build_effect(path, effects.load_profile(card), keep_prepare_error=True)
+        if loaded.technique is not None and loaded.prepare_error is None:
+            return card
+    return None
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--edits", type=int, default=15)
+    parser.add_argument("--card", default="radeon9700")
+    parser.add_argument("--effect", action="append", default=[], help="default: every fxfiles/*.fx")
+    parser.add_argument("--one", help=argparse.SUPPRESS)     # child mode: one effect, JSON out
+    args = parser.parse_args(argv)
+    if args.one:
+        if os.path.abspath(args.one).startswith(ROOT + os.sep):
+            parser.error("--one edits the file it is given: pass a copy outside the project")
+        print(json.dumps(measure_one(args.one, args.card, args.edits)), flush=True)
+        return 0
+
+    effects_ = args.effect or sorted(glob.glob(os.path.join(ROOT, "fxfiles", "*.fx")))
+    all_samples: list[float] = []
+    with tempfile.TemporaryDirectory() as tmp:
+        shutil.copytree(os.path.join(ROOT, "fxfiles"), os.path.join(tmp, "fxfiles"))
+        print(f"{'effect':<20} {'card':<14} {'median':>9} {'worst':>9} {'build':>9} "
+              f"{'debounce->frame':>16}")
+        for source in effects_:
+            copy = os.path.join(tmp, "fxfiles", os.path.basename(source))
+            if not os.path.exists(copy):
+                shutil.copy(source, copy)
+            card = drawable_card(copy, args.card)
+            if card is None:
+                print(f"{os.path.basename(source):<20} no card can draw it: skipped")
+                continue
+            out = subprocess.run([sys.executable, __file__, "--one", copy, "--card", card,
+                                  "--edits", str(args.edits)], capture_output=True, text=True,
+                                 cwd=ROOT)
+            line = out.stdout.strip().splitlines()[-1] if out.stdout.strip() else ""
+            if out.returncode != 0 or not line.startswith("{"):
+                print(f"{os.path.basename(source)}: failed\n{out.stdout}{out.stderr}")
+                return 1
+            result = json.loads(line)
+            samples = result["samples_ms"]
+            if not samples:
+                print(f"{os.path.basename(source)}: no edit was drawn\n{out.stdout}{out.stderr}")
+                return 1
+            all_samples += samples
+            build = statistics.median(result["build_ms"])
+            rest = statistics.median(result["after_debounce_ms"])
+            print(f"{result['effect']:<20} {card:<14} {statistics.median(samples):7.1f}ms "
+                  f"{max(samples):7.1f}ms {build:7.1f}ms {rest:14.1f}ms")
+    median = statistics.median(all_samples)
+    print(f"median write -> first frame with the edit: {median:.1f} ms over {len(all_samples)} "
+          f"edits (goal {GOAL_MS:.0f} ms; debounce {result['debounce_ms']:.0f} ms included)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
