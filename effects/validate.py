@@ -45,6 +45,7 @@ from .caps import FIELDS, FORMATS, CapsProfile, Quirk
 from .device import MAX_SAMPLERS, MAX_STAGES, DeviceState, pass_states
 from .errors import EffectError, Location
 from . import states as state_table
+from .lower_stages import STAGE_OPS, StageOp
 from .model import (CompileShader, Effect, EnumValue, Expression, NullValue, Parameter, ParamRef,
                     Pass, SamplerState, ShaderBlock, Technique)
 
@@ -134,10 +135,18 @@ _BLEND_BITS = {"INVBLENDFACTOR": "BLENDFACTOR"}
 _TA_SELECT_MASK, _TA_COMPLEMENT, _TA_ALPHAREPLICATE = 0x0F, 0x10, 0x20
 _TA_CURRENT, _TA_TEXTURE, _TA_TEMP, _TA_CONSTANT = 1, 2, 5, 6
 # Which arguments each op reads (D3DTEXTUREOP docs): most read 1 and 2.
-_ARGS_READ = {"SELECTARG1": (1,), "SELECTARG2": (2,), "MULTIPLYADD": (0, 1, 2), "LERP": (0, 1, 2),
-              "DISABLE": ()}
-# Ops that read the stage's texture whatever their arguments say.
-_OPS_SAMPLING_WITHOUT_ARG = {"BLENDTEXTUREALPHA", "BLENDTEXTUREALPHAPM", "BUMPENVMAP", "BUMPENVMAPLUMINANCE"}
+
+
+def _stage_op(op: str) -> StageOp | None:
+    """The lowering's row for a D3DTOP: the caps bit it needs, the arguments it reads, and
+    whether it samples its texture without a TEXTURE argument. Validation reads the same
+    table the lowering runs, so "valid" and "what runs" cannot drift apart."""
+    return STAGE_OPS.get(op)
+
+
+def _args_read(op: str) -> tuple[int, ...]:
+    row = _stage_op(op)
+    return row.args if row is not None else ((1, 2) if op != "DISABLE" else ())
 _STENCIL_OP_STATES = ("StencilFail", "StencilZFail", "StencilPass")
 _CCW_STENCIL_OP_STATES = ("CCW_StencilFail", "CCW_StencilZFail", "CCW_StencilPass")
 
@@ -317,9 +326,11 @@ class _PassChecker:
             if op is None or (op_state == "AlphaOp" and op == "DISABLE"):
                 continue
             shown = self._shown(op_state, stage)
-            self.need_bit("TextureOpCaps", op, f"{op_state}[{stage}] = {shown}",
-                          self.where(op_state, stage), "D3DTEXOPCAPS_")
-            for n in _ARGS_READ.get(op, (1, 2)):
+            row = _stage_op(op)
+            self.need_bit("TextureOpCaps", row.cap if row is not None else op,
+                          f"{op_state}[{stage}] = {shown}", self.where(op_state, stage),
+                          "D3DTEXOPCAPS_")
+            for n in _args_read(op):
                 self.check_arg(f"{arg_prefix}{n}", stage)
 
     def check_arg(self, state_name: str, stage: int) -> None:
@@ -388,9 +399,10 @@ class _PassChecker:
             op = self.state.enum_name(op_state, stage)
             if op is None:
                 return True   # unknown op: assume it reads what is bound
-            if op in _OPS_SAMPLING_WITHOUT_ARG:
+            row = _stage_op(op)
+            if row is not None and row.samples:
                 return True
-            for n in _ARGS_READ.get(op, (1, 2)):
+            for n in _args_read(op):
                 value = self.state.get(f"{arg_prefix}{n}", stage)
                 if isinstance(value, (ParamRef, Expression)) or _ta_select(value) == _TA_TEXTURE:
                     return True
