@@ -291,3 +291,20 @@ def test_bundled_effects_watch_their_texture_images():
     names = sorted(os.path.basename(p) for p in referenced_files(effect))
     # earth_height.png is named twice (ResourceName and two Sobel generators): listed once
     assert names == ["earth_base.png", "earth_height.png", "earth_light.png"]
+
+
+def test_unchanged_textures_are_not_read_again_and_a_changed_one_is(folder):
+    """The rebuilt effect gets the very Texture object it had (so the GL back end's upload,
+    keyed on it, stays); only an image whose file changed is read again."""
+    reloader, _ = start_reloader(folder)
+    try:
+        before = reloader.last_good.runtime.texture("Base")
+        (folder / "tint.fxh").write_text(tint("0xff00ff00"))
+        after_edit = expect_result(reloader).loaded.runtime.texture("Base")
+        assert after_edit is before
+        write_png(folder / "base.png", (0, 0, 255))
+        after_image = expect_result(reloader).loaded.runtime.texture("Base")
+        assert after_image is not before
+        assert after_image.levels[0][0, 0, :3] == pytest.approx((0.0, 0.0, 1.0))
+    finally:
+        reloader.stop()
