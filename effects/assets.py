@@ -27,6 +27,8 @@ specular, and for inline scene vertices also tex0..tex7.
 """
 from __future__ import annotations
 
+import threading
+
 import os
 from dataclasses import dataclass
 from typing import Any, Mapping
@@ -73,6 +75,7 @@ class TextureCache:
     def __init__(self, limit: int = 64) -> None:
         self.limit = limit
         self._entries: dict[tuple, Texture] = {}
+        self._lock = threading.Lock()
         self.loads = 0   # files actually read (tests and the viewer's log use it)
 
     def load(self, path: str, kind: str | None, at: Location) -> Texture:
@@ -91,9 +94,10 @@ class TextureCache:
             # Say which parameter wanted it: the error's own location is the image file.
             raise SceneError(f"{exc.message} ({full})", at) from None
         self.loads += 1
-        if len(self._entries) >= self.limit:
-            self._entries.pop(next(iter(self._entries)))
-        self._entries[key] = texture
+        with self._lock:  # loads happen on the viewer's worker and render threads
+            if len(self._entries) >= self.limit:
+                self._entries.pop(next(iter(self._entries)))
+            self._entries[key] = texture
         return texture
 
 

@@ -28,6 +28,7 @@ Fixed-function fog after a pixel shader is not lowered yet (a clear error, not a
 """
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Any, Callable
 
@@ -75,9 +76,10 @@ def lower_pass(effect: Effect, technique: Technique, pass_index: int,
             state = s
             break
     program = _lower(effect, state, profile)  # type: ignore[arg-type]
-    if len(_CACHE) >= CACHE_SIZE:
-        _CACHE.pop(next(iter(_CACHE)))
-    _CACHE[key] = (effect, program)
+    with _CACHE_LOCK:  # the viewer lowers on a worker thread and on the render thread
+        if len(_CACHE) >= CACHE_SIZE:
+            _CACHE.pop(next(iter(_CACHE)))
+        _CACHE[key] = (effect, program)
     return program
 
 
@@ -88,10 +90,12 @@ def lower_technique(effect: Effect, technique: Technique,
 
 
 def clear_cache() -> None:
-    _CACHE.clear()
+    with _CACHE_LOCK:
+        _CACHE.clear()
 
 
 _CACHE: dict[tuple, tuple[Effect, PassProgram]] = {}
+_CACHE_LOCK = threading.Lock()
 
 
 def _cache_key(effect: Effect, technique: Technique, pass_index: int,
