@@ -66,6 +66,8 @@ _TOKEN_RE = re.compile(r"""
 | (?P<OP2><=|>=|==|!=|&&|\|\||<<|>>)
 | (?P<P>[{}()\[\];,=:<>|+\-*/%&^!~?.])
 | (?P<END>\Z)
+| (?P<BAD>.)    # so that the token part never fails: a failure would make the blank-skipping
+                # loop above backtrack, which takes exponential time on long runs of blanks
 )""", re.X | re.S)
 
 _PUNCT = {
@@ -179,11 +181,11 @@ class EffectLexer:
         prefix_run = 0
         while True:
             m = match(text, pos)
-            if m is None:
-                raise self._bad_character(_GAP_RE.match(text, pos).end())
             kind = m.lastgroup
             if kind == "END":
                 return
+            if kind == "BAD":
+                raise self._bad_character(m.start(kind))
             start = m.start(kind)
             end = m.end()
             value = text[start:end]
@@ -589,8 +591,8 @@ _OBJECT_TYPES = {
 }
 _INT32 = (-(2 ** 31), 2 ** 31 - 1)
 _INT64 = (-(2 ** 63), 2 ** 63 - 1)
-_VERSION_RE = re.compile(r"(?:\s+|//[^\n]*|;[^\n]*|/\*.*?\*/)*(vs|ps)[._]([0-9])[._]([0-9a-z]+)\b",
-                         re.S | re.I)
+_ASM_GAP_RE = re.compile(r"(?:\s+|//[^\n]*|;[^\n]*|/\*.*?\*/)*", re.S)
+_VERSION_RE = re.compile(r"(vs|ps)[._]([0-9])[._]([0-9a-z]+)\b", re.I)
 _DECL_TYPES = {"float": 1, "d3dcolor": 4, "ubyte": 4, "short": 2}
 
 
@@ -839,7 +841,7 @@ class _Builder:
         line, col = self.lexer.position(tok.start_pos + brace + 1)
         version = None
         stage = stage_hint or "pixel"
-        m = _VERSION_RE.match(body)
+        m = _VERSION_RE.match(body, _ASM_GAP_RE.match(body).end())
         if m:
             kind = m.group(1).lower()
             version = f"{kind}_{m.group(2)}_{m.group(3).lower()}"

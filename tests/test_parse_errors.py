@@ -231,8 +231,12 @@ def _random_line(size: int) -> str:
      "unexpected end of file: missing '}' to close asm block opened at line 1"),
     ("float x = 1; // " + _random_line(1_000_000), None),
     (_random_line(1_000_000), "<string>:1:"),
+    ("float x;" + " " * 50_000 + "\u00bc", "1:50009: error: unexpected character '\u00bc'"),
+    ("technique T { pass P { PixelShader = asm {" + " \n" * 50_000 + "!!ARBfp1.0\nEND }; } }",
+     None),
 ], ids=["200k {", "100k (", "100k-term expression", "1M-digit literal", "500k names",
-        "unbalanced asm", "1 MB comment line", "1 MB junk line"])
+        "unbalanced asm", "1 MB comment line", "1 MB junk line", "50k blanks then junk",
+        "50k blank lines in asm"])
 def test_pathological_input_ends_quickly(source, outcome):
     start = time.perf_counter()
     try:
