@@ -14,6 +14,12 @@ Three steps, each with one job:
 
 `parse_effect` is the only public entry; every problem becomes a located `ParseError` /
 `StateError`, never a lark exception or a Python traceback.
+
+Parameter values: numeric parameters are numpy arrays shaped (array dims) + () for a scalar,
+(n,) for a vector, (r, c) for a matrix; float/half/double are float32, bool is bool, and
+int/uint/dword are int32, or int64 when a value does not fit in int32 (hex colours such as
+0xff202060 in a DWORD); a value beyond 64 bits is an error. A non-constant initializer is kept
+as an `Expression`.
 """
 from __future__ import annotations
 
@@ -381,7 +387,13 @@ class _Shapes(Transformer):
 
     # -- literals -------------------------------------------------------------------------
     def int(self, c): return _tok_v("int", _int_value(c[0].value), c[0])
-    def float(self, c): return _tok_v("float", float(c[0].value.rstrip(_FLOAT_SUFFIX)), c[0])
+    def float(self, c):
+        tok = c[0]
+        value = float(tok.value.rstrip(_FLOAT_SUFFIX))
+        if math.isinf(value):
+            raise _Located(f"number {tok.value} is out of range", tok.line, tok.column)
+        return _tok_v("float", value, tok)
+
     def string(self, c): return _tok_v("str", _unescape(c[0].value[1:-1]), c[0])
     def true(self, c): return _tok_v("bool", True, c[0])
     def false(self, c): return _tok_v("bool", False, c[0])
@@ -667,7 +679,9 @@ class _Builder:
 
     # -- the effect -----------------------------------------------------------------------
     def build(self, items: list) -> Effect:
-        effect = Effect(self.smap.lines[0][0] if self.smap.lines else "<string>")
+        path = self.pre.files[0] if self.pre.files else (
+            self.smap.lines[0][0] if self.smap.lines else "<string>")
+        effect = Effect(path)
         structs: set[str] = set()
         first_param: dict[str, Any] = {}
         for item in items:
@@ -807,7 +821,11 @@ class _Builder:
                 raise self.error(ParseError, f"a value for '{name}' is out of range for "
                                  f"{spec.spelling}", v)
             return arr.reshape(shape)
-        ints = [int(x) for x in flat]
+        try:
+            ints = [int(x) for x in flat]
+        except (OverflowError, ValueError):
+            raise self.error(ParseError, f"a value for '{name}' is out of range for "
+                             f"{spec.spelling}", v) from None
         lo, hi = min(ints), max(ints)
         if _INT32[0] <= lo and hi <= _INT32[1]:
             dtype = np.int32

@@ -90,6 +90,10 @@ CASES = [
      ParseError, "1:11", "number literal is too long (1000 characters)"),
     ("float out of range", "float x = 1e39;",
      ParseError, "1:11", "a value for 'x' is out of range for float"),
+    ("literal beyond double range", "technique T { pass P {\n  FogStart = 1e999;\n} }",
+     ParseError, "2:14", "number 1e999 is out of range"),
+    ("float literal for an int beyond 64 bits", "int x = 1e30;",
+     ParseError, "1:9", "a value for 'x' does not fit in 64 bits"),
     ("int beyond 64 bits", "int x = 100000000000000000000;",
      ParseError, "1:9", "a value for 'x' does not fit in 64 bits"),
     # -- structure ------------------------------------------------------------------------------

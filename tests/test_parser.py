@@ -387,6 +387,8 @@ def test_effect_files_come_from_the_preprocessor(tmp_path):
     e = load_effect(str(main))
     assert [p.name for p in e.parameters] == ["a", "b"]
     assert sorted(Path(f).name for f in e.files) == ["inc.fx", "main.fx"]
+    assert Path(e.path).name == "main.fx"
+    assert Path(e.parameters[0].location.path).name == "inc.fx"
 
 
 # ---------------------------------------------------------------------------------------------
