@@ -157,11 +157,15 @@ def _check_kind(param: Parameter, texture: Texture, kind: str | None, at: Locati
 
 @dataclass
 class Geometry:
-    """A draw's vertex data: `streams` by usage name, `indices`, and the primitive type."""
+    """A draw's vertex data: `streams` by usage name, `indices`, and the primitive type.
+    `has_diffuse` says whether the vertices really carry a diffuse colour (inline vertices,
+    a mesh with colours, a scene `vertex` key); the color0 stream of one that does not holds
+    D3D's default white, and fixed-function lighting then uses the material's colours."""
 
     streams: dict[str, np.ndarray]
     indices: np.ndarray
     primitive: str
+    has_diffuse: bool = True
 
 
 _MESH_CACHE: dict[tuple, Mesh] = {}
@@ -229,9 +233,11 @@ def geometry(scene: Scene, effect: Effect, mesh: Mesh | InlineMesh | None = None
         count = mesh.vertex_count
         indices = np.arange(count, dtype=np.int64)
         primitive = mesh.primitive
+        has_diffuse = True
     else:
         attributes = _mesh_attributes(mesh, scene)
         indices, primitive = np.asarray(mesh.indices), "list"
+        has_diffuse = mesh.colors is not None or _scene_gives_colors(scene)
     streams = {name: attributes[source] for name, source in _default_sources(attributes).items()}
     for target, source in overrides.items():
         if source not in attributes:
@@ -239,7 +245,13 @@ def geometry(scene: Scene, effect: Effect, mesh: Mesh | InlineMesh | None = None
                              scene.location(f"streams.{target}") if target in scene.streams
                              else _vertex_streams_location(effect))
         streams[target] = attributes[source]
-    return Geometry(streams, indices, primitive)
+    return Geometry(streams, indices, primitive, has_diffuse)
+
+
+def _scene_gives_colors(scene: Scene) -> bool:
+    """The scene writes per-vertex colours (its `vertex` key, or values set in code)."""
+    return ("vertex" in scene.locations or tuple(scene.vertex_diffuse) != (1.0, 1.0, 1.0, 1.0)
+            or tuple(scene.vertex_specular) != (0.0, 0.0, 0.0, 0.0))
 
 
 def _vertex_streams_location(effect: Effect) -> Location:

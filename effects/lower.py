@@ -61,9 +61,13 @@ CACHE_SIZE = 256
 
 
 def lower_pass(effect: Effect, technique: Technique, pass_index: int,
-               profile: "CapsProfile") -> PassProgram:
-    """Lower pass `pass_index` of `technique` for `profile` (cached; see `_cache_key`)."""
-    key = _cache_key(effect, technique, pass_index, profile)
+               profile: "CapsProfile", *, vertex_colors: bool = True) -> PassProgram:
+    """Lower pass `pass_index` of `technique` for `profile` (cached; see `_cache_key`).
+    `vertex_colors`: whether the vertices drawn carry a diffuse colour. Without one, the
+    fixed-function lighting takes every colour from the material, whatever ColorVertex and
+    the *MaterialSource states say (D3D's rule for a vertex format without the colour; Wine's
+    wined3d_ffp_get_vs_settings does the same)."""
+    key = _cache_key(effect, technique, pass_index, profile) + (vertex_colors,)
     hit = _CACHE.get(key)
     if hit is not None and hit[0] is effect:
         return hit[1]
@@ -75,7 +79,7 @@ def lower_pass(effect: Effect, technique: Technique, pass_index: int,
         if i == pass_index:
             state = s
             break
-    program = _lower(effect, state, profile)  # type: ignore[arg-type]
+    program = _lower(effect, state, profile, vertex_colors)  # type: ignore[arg-type]
     with _CACHE_LOCK:  # the viewer lowers on a worker thread and on the render thread
         if len(_CACHE) >= CACHE_SIZE:
             _CACHE.pop(next(iter(_CACHE)))
@@ -124,7 +128,8 @@ def _parameter_digest(parameters: list[Parameter]) -> tuple:
 # The dispatcher
 
 
-def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile") -> PassProgram:
+def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
+           vertex_colors: bool = True) -> PassProgram:
     options = lowering_options(profile)
     uniforms: dict[str, tuple[float, ...]] = {}
     fog = read_fog(state)
@@ -160,7 +165,7 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile") -> PassPr
     needed = sorted(int(i.name[len("texcoord"):]) for i in fragment.inputs
                     if i.kind == "varying" and i.name.startswith("texcoord"))
     if vertex_shader is None:
-        vertex = lower_vertex(read_vertex(effect, state, needed, fog), uniforms)
+        vertex = lower_vertex(read_vertex(effect, state, needed, fog, vertex_colors), uniforms)
     else:
         program = _assemble(vertex_shader, "vertex")
         ctx = asm_lower.ShaderContext(options, decl=getattr(vertex_shader, "decl", None),
@@ -415,9 +420,9 @@ def _enabled_lights(state: DeviceState) -> list[int]:
 
 
 def read_vertex(effect: Effect, state: DeviceState, stages: list[int],
-                fog: FogSetup) -> VertexSetup:
+                fog: FogSetup, vertex_colors: bool = True) -> VertexSetup:
     """The fixed-function vertex state; `stages` are the stages whose coordinates the
-    fragment program reads."""
+    fragment program reads; without `vertex_colors` the material sources are forced."""
     lights = tuple(LightSetup(
         index=i, type=_enum(state, "LightType", i),
         diffuse=_vector(state, "LightDiffuse", i, 4),  # type: ignore[arg-type]
@@ -449,7 +454,7 @@ def read_vertex(effect: Effect, state: DeviceState, stages: list[int],
         material_specular=_vector(state, "MaterialSpecular", None, 4),  # type: ignore[arg-type]
         material_emissive=_vector(state, "MaterialEmissive", None, 4),  # type: ignore[arg-type]
         material_power=_float(state, "MaterialPower"), ambient=_color(state, "Ambient"),
-        color_vertex=_bool(state, "ColorVertex"),
+        color_vertex=_bool(state, "ColorVertex") and vertex_colors,
         diffuse_source=_enum(state, "DiffuseMaterialSource"),
         specular_source=_enum(state, "SpecularMaterialSource"),
         ambient_source=_enum(state, "AmbientMaterialSource"),

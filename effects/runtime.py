@@ -228,7 +228,8 @@ class Runtime:
         from .lower import lower_pass
         if self._pass is None or self.technique is None:
             raise RuntimeError("commit_changes outside begin_pass/end_pass")
-        self._program = lower_pass(self.effect, self.technique, self._pass, self.profile)
+        self._program = lower_pass(self.effect, self.technique, self._pass, self.profile,
+                                   vertex_colors=self.geometry().has_diffuse)
 
     def geometry(self) -> Geometry:
         """The scene's vertex streams for this effect (built once)."""
