@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from effects import EffectError, ParseError, StateError, load_effect
+from effects import StateError, load_effect
 from effects.model import (CompileShader, EnumValue, Expression, NullValue, ParamRef,
                            SamplerState, ShaderBlock, TypeSpec, VertexDeclElement)
 
