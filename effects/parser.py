@@ -787,7 +787,9 @@ class _Builder:
                 return self.shader_block(v, "vertex" if spec.base == "vertexshader" else "pixel")
             if v.kind == "compile":
                 return self.compile_shader(v)
-            if v.kind in ("ref", "paren", "name", "index"):
+            if v.kind == "name":
+                return ParamRef(v.data, False, None, self.loc(v))
+            if v.kind in ("ref", "paren", "index"):
                 return self.state_raw(v, None)
         elif spec.base == "texture":
             return Expression(self.text_of(v), self.loc(v))

@@ -142,8 +142,11 @@ def test_shader_parameters_asm_compile_and_arrays():
             texld r0, t0 };
         VertexShader vs[2] = { compile vs_1_1 VS(1, 2 + 3), compile vs_2_0 VS(2) };
         PixelShader none = NULL;
+        PixelShader alias = ps14;
     """)
-    ps, vs, none = e.parameters
+    ps, vs, none, alias = e.parameters
+    assert alias.value == ParamRef("ps14")
+    assert load_effect(e.to_source()).parameters == e.parameters
     assert isinstance(ps.value, ShaderBlock)
     assert (ps.value.stage, ps.value.version) == ("pixel", "ps_1_4")
     assert vs.array == (2,)
