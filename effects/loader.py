@@ -11,7 +11,8 @@ IncludeHandler = Callable[[str, str], "str | None"]
 
 
 def _looks_like_path(source: str) -> bool:
-    return "\n" not in source and "{" not in source and len(source) < 4096
+    """One line with no braces or semicolons names a file; anything else is effect text."""
+    return not any(c in source for c in "\n{;") and len(source) < 4096
 
 
 def read_source_file(path: str) -> str:
