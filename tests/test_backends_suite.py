@@ -768,3 +768,29 @@ def test_bad_draw_calls_are_draw_errors(backend):
         backend.end_frame()
     with pytest.raises(DrawError):
         backend.begin_frame((4, 4), format="P8")
+
+
+# --------------------------------------------------------------------------------------------
+# GL only: what a repeated draw costs
+
+
+def test_gl_redraws_of_a_pass_do_not_print_its_ir_again(monkeypatch):
+    """The program cache is keyed by the IR's digest; a pass drawn again (lowering hands back
+    the same Program objects) must not print and hash its IR again each draw."""
+    from backends.gl import GLBackend
+    from effects import ir
+    gl = GLBackend()
+    try:
+        v = Builder("vertex")
+        v.output("position", v.varying("position", "POSITION", 3))
+        v.output("texcoord0", v.varying("texcoord0", "TEXCOORD0", 2))
+        program = PassProgram(show("texcoord0").fragment, vertex=v.build(), render_state=NO_CULL)
+        first = render(gl, [(program, quad())])
+        calls = []
+        original = ir.Program.key
+        monkeypatch.setattr(ir.Program, "key", lambda self: calls.append(self) or original(self))
+        again = render(gl, [(program, quad())])
+        assert calls == []
+        np.testing.assert_array_equal(first, again)
+    finally:
+        gl.close()

@@ -65,6 +65,9 @@ class GLBackend:
         self.gl = raw_gl()
         self.textures = TextureCache(self.gl)
         self._programs: dict[tuple, moderngl.Program] = {}
+        # Program.key() prints and hashes the whole IR: remember it per Program object (kept
+        # alive here, so its id is not reused; lowering hands back the same objects).
+        self._ir_keys: dict[int, tuple[object, str]] = {}
         self._samplers: dict = {}
         self._targets: dict[tuple[tuple[int, int], str], _Target] = {}
         self._frame: _Target | None = None
@@ -203,8 +206,8 @@ class GLBackend:
     def _program(self, program: PassProgram, options: glsl.FragmentOptions,
                  varyings: tuple[str, ...], present: frozenset) -> moderngl.Program:
         vertex = program.vertex
-        key = (None if vertex is None else vertex.key(), program.fragment.key(), options,
-               varyings, present)
+        key = (None if vertex is None else self._ir_key(vertex), self._ir_key(program.fragment),
+               options, varyings, present)
         shader = self._programs.get(key)
         if shader is None:
             vertex_text = glsl.vertex_shader(vertex, varyings, present, options.flat_colors)
@@ -218,6 +221,14 @@ class GLBackend:
             self._programs[key] = shader
             self.compiles += 1
         return shader
+
+    def _ir_key(self, ir: object) -> str:
+        found = self._ir_keys.get(id(ir))
+        if found is None:
+            if len(self._ir_keys) > 4096:   # bounded: a viewer edits for hours
+                self._ir_keys.clear()
+            found = self._ir_keys[id(ir)] = (ir, ir.key())
+        return found[1]
 
     def _set_uniforms(self, shader: moderngl.Program, program: PassProgram, target: _Target,
                       options: glsl.FragmentOptions) -> None:
@@ -296,6 +307,7 @@ class GLBackend:
             gl.delete("Textures", target.color)
         self.textures.release()
         self._programs.clear()
+        self._ir_keys.clear()
         self._samplers.clear()
         self._targets.clear()
         self._frame = None
