@@ -1,0 +1,108 @@
+"""Make the README's thumbnails: every technique of the bundled effects on a card that runs
+it, drawn by the NumPy reference back end on the default scene (the unit sphere seen from
+(0, 0, 3)) at 256 x 256 and reduced to 128 x 128 (Lanczos), plus the specular-only close-ups
+of the banding comparison. Deterministic; run from anywhere:
+
+    python docs/thumbs/make_thumbs.py
+"""
+from __future__ import annotations
+
+import os
+
+import numpy as np
+from PIL import Image
+
+import effects
+from effects.textures import fill_cube_texture, load_texture, make_texture, procedural
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+FX = os.path.join(ROOT, "fxfiles")
+TEXTURES = os.path.join(FX, "textures")
+
+
+def solid(rgb) -> effects.textures.Texture:
+    return make_texture(np.broadcast_to(np.array([*rgb, 1.0], np.float32), (4, 4, 4)).copy(),
+                        "X8R8G8B8")
+
+
+def cosine_lobe_cube(size: int = 32) -> effects.textures.Texture:
+    """A cube map holding max(0, z) of each direction (tangent-space N.L for a flat surface)."""
+    def fn(d: np.ndarray) -> np.ndarray:
+        z = np.clip(d[..., 2:3] / np.linalg.norm(d, axis=-1, keepdims=True), 0.0, 1.0)
+        return np.concatenate([z, z, z, np.ones_like(z)], axis=-1)
+    return make_texture(fill_cube_texture(fn, size), "X8R8G8B8", kind="cube", mips=False)
+
+
+def white_cube() -> effects.textures.Texture:
+    return make_texture(np.ones((6, 4, 4, 4), np.float32), "X8R8G8B8", kind="cube", mips=False)
+
+
+# DX8 files carry no texture annotations: their textures come from the caller.
+gloss = load_texture(os.path.join(TEXTURES, "stones_gloss.png")).levels[0]
+DIRT = make_texture(np.concatenate([1.0 - gloss[..., :3], gloss[..., 3:]], axis=-1), "X8R8G8B8")
+SDK8 = {"tBas": os.path.join(TEXTURES, "stones_base.png"),
+        "tNrm": procedural("sobel_normals:textures/stones_height.png", base_dir=FX),
+        "tEnv": procedural("sky_cube:64"), "tDrt": DIRT}
+# The chapter's BRDF factor cube maps are not published: stand-ins (white, N.L, white).
+BRDF = {"BRDFTexture1": white_cube(), "BRDFTexture2": cosine_lobe_cube(),
+        "BRDFTexture3": white_cube(), "ObjectTexture": os.path.join(TEXTURES, "earth_base.png"),
+        "MaterialColor": [1.0, 1.0, 1.0, 1.0]}
+
+# (effect, technique, card, policy, params): technique None = the one the card selects.
+THUMBS = [
+    ("phong", "PerPixelPhong_ps20", "radeon9700", None),
+    ("phong", "PerPixelPhong_ps11", "geforce3", None),
+    ("phong", "Dot3_dx7", "geforce2", None),
+    ("phong", "SingleTexture", "tnt2", None),
+    ("specular_bump", "Specular_ps20", "radeon9700", None),
+    ("specular_bump", "SpecularTable_ps11", "geforce3", None),
+    ("specular_bump", "SpecularMultiply_ps11", "geforce3", None),
+    ("specular_bump", "Dot3_dx7", "geforce2", None),
+    ("specular_bump", "BumpEnvMap_dx6", "g400", None),
+    ("specular_bump", "Emboss_dx6", "tnt2", None),
+    ("specular_bump", "SingleTexture", "tnt2", None),
+    ("hemisphere", "HemispherePerPixel_ps11", "geforce3", None),
+    ("hemisphere", "HemisphereVertex_vs11", "tnt2", None),
+    ("sdk8_style", "TPS4", "radeon8500", SDK8),
+    ("sdk8_style", "TPS1", "geforce3", SDK8),
+    ("sdk8_style", "TFF7", "geforce2", SDK8),
+    ("sdk8_style", "TDX6", "tnt2", SDK8),
+    ("sdk9_style", "Marble_ps11", "geforce3", None),
+    ("sdk9_style", "Marble_dx7", "geforce2", None),
+    ("sdk9_style", "Marble_dx6", "tnt2", None),
+    ("brdf", "tec0", "geforce3", BRDF),
+]
+
+# The banding close-ups: the specular term alone (black Earth, flat normal map, white
+# specular colour), the 32 x 32 pixels around the highlight of a 128 x 128 render, enlarged
+# four times without filtering so each pixel shows.
+SPECULAR_ONLY = {"NormalMap": solid((0.5, 0.5, 1.0)), "EarthTexture": solid((0.0, 0.0, 0.0)),
+                 "SpecularColor": [1.0, 1.0, 1.0, 1.0]}
+CLOSE_UPS = [("SpecularMultiply_ps11", "geforce3"), ("SpecularTable_ps11", "geforce3"),
+             ("Specular_ps20", "radeon9700"), ("SpecularMultiply_ps11", "modern")]
+
+
+def save(image: np.ndarray, name: str) -> None:
+    Image.fromarray(np.ascontiguousarray(image[..., :3])).save(
+        os.path.join(HERE, name), optimize=True)
+
+
+def main() -> None:
+    for effect, technique, card, params in THUMBS:
+        fx = effects.load_effect(os.path.join(FX, f"{effect}.fx"))
+        image = effects.render(fx, card, technique=technique, size=(256, 256), params=params)
+        small = Image.fromarray(image[..., :3]).resize((128, 128), Image.LANCZOS)
+        save(np.asarray(small), f"{effect}_{technique}_{card}.png")
+    fx = effects.load_effect(os.path.join(FX, "specular_bump.fx"))
+    for technique, card in CLOSE_UPS:
+        image = effects.render(fx, card, technique=technique, size=(128, 128),
+                               params=SPECULAR_ONLY)
+        y, x = np.unravel_index(np.argmax(image[..., 1]), image.shape[:2])
+        y0, x0 = int(np.clip(y - 16, 0, 96)), int(np.clip(x - 16, 0, 96))
+        crop = image[y0:y0 + 32, x0:x0 + 32]
+        save(np.repeat(np.repeat(crop, 4, axis=0), 4, axis=1), f"highlight_{technique}_{card}.png")
+
+
+if __name__ == "__main__":
+    main()
