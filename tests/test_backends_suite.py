@@ -794,3 +794,37 @@ def test_gl_redraws_of_a_pass_do_not_print_its_ir_again(monkeypatch):
         np.testing.assert_array_equal(first, again)
     finally:
         gl.close()
+
+
+def test_gl_redraws_reuse_buffers_and_keep_each_passes_uniforms(monkeypatch):
+    """A frame drawn again makes no new GL buffers or vertex arrays; passes that share a
+    shader but not their uniform values (A, B, A in one frame) each draw with their own."""
+    from backends.gl import GLBackend
+    gl = GLBackend()
+    try:
+        b = Builder("fragment")
+        b.output("color0", b.uniform("Tint"))
+        fragment = b.build()
+
+        def tinted(colour):
+            return PassProgram(fragment, render_state=NO_CULL,
+                               uniforms=PassProgram.pack_uniforms({"Tint": colour}))
+
+        red, blue = tinted((1.0, 0.0, 0.0, 1.0)), tinted((0.0, 0.0, 1.0, 1.0))
+        draws = [(red, quad(-1, -1, -0.5, 1)), (blue, quad(-0.5, -1, 0.5, 1)),
+                 (red, quad(0.5, -1, 1, 1))]
+        first = render(gl, draws)
+        made = []
+        for name in ("buffer", "vertex_array"):
+            def counted(*args, _original=getattr(gl.ctx, name), **kwargs):
+                made.append(args)
+                return _original(*args, **kwargs)
+            monkeypatch.setattr(gl.ctx, name, counted)
+        again = render(gl, draws)
+        assert made == []
+        np.testing.assert_array_equal(first, again)
+        assert first[0, 0].tolist() == [255, 0, 0, 255]       # x < 2: the first red quad
+        assert first[0, 4].tolist() == [0, 0, 255, 255]       # the blue one
+        assert first[0, 7].tolist() == [255, 0, 0, 255]       # red again, after blue
+    finally:
+        gl.close()

@@ -68,6 +68,13 @@ class GLBackend:
         # Program.key() prints and hashes the whole IR: remember it per Program object (kept
         # alive here, so its id is not reused; lowering hands back the same objects).
         self._ir_keys: dict[int, tuple[object, str]] = {}
+        # Per-draw work that repeats frame after frame, kept between draws:
+        # uniform values per (pass, shader, target size), and which ones a shader last got;
+        self._uniform_plans: dict[tuple, tuple[PassProgram, list]] = {}
+        self._uniforms_in: dict[int, list] = {}
+        # vertex and index buffers per stream name (refilled each draw), and vertex arrays.
+        self._buffers: dict[str, moderngl.Buffer] = {}
+        self._vaos: dict[tuple, moderngl.VertexArray] = {}
         self._samplers: dict = {}
         self._targets: dict[tuple[tuple[int, int], str], _Target] = {}
         self._frame: _Target | None = None
@@ -165,12 +172,15 @@ class GLBackend:
         self._set_uniforms(shader, program, target, options)
         self._bind_textures(shader, program, textures)
         arrays = {a: _stream_array(streams[a]) for a in sorted(present)}
-        buffers = [self.ctx.buffer(array) for array in arrays.values()]
-        content = [(buf, f"{array.shape[1]}f", glsl.attribute_name(a))
-                   for buf, (a, array) in zip(buffers, arrays.items())]
-        index_buffer = self.ctx.buffer(tris.astype(np.uint32).tobytes())
-        vao = self.ctx.vertex_array(shader, content, index_buffer=index_buffer,
-                                    index_element_size=4, skip_errors=True)
+        content = [(self._fill(a, array), f"{array.shape[1]}f", glsl.attribute_name(a))
+                   for a, array in arrays.items()]
+        index_buffer = self._fill(" indices", tris.astype(np.uint32))
+        vao_key = (shader.glo, index_buffer.glo, tuple((b.glo, f, n) for b, f, n in content))
+        vao = self._vaos.get(vao_key)
+        if vao is None:
+            vao = self._vaos[vao_key] = self.ctx.vertex_array(
+                shader, content, index_buffer=index_buffer, index_element_size=4,
+                skip_errors=True)
         try:
             gl = self.gl
             gl.glBindFramebuffer(G.FRAMEBUFFER, target.framebuffer)
@@ -182,10 +192,27 @@ class GLBackend:
             gl.check("drawing")
         finally:
             self._leave_state(sorted(_sampler_units(program)))
-            vao.release()
-            index_buffer.release()
-            for buf in buffers:
-                buf.release()
+
+    def _fill(self, name: str, array: np.ndarray) -> moderngl.Buffer:
+        """The buffer kept for `name`, given fresh storage (orphaned, so a draw still using
+        the old contents never waits) holding `array`; a new one when the size changes."""
+        data = np.ascontiguousarray(array)
+        buffer = self._buffers.get(name)
+        if buffer is None or buffer.size != data.nbytes:
+            if buffer is not None:
+                self._release_vaos(buffer.glo)
+                buffer.release()
+            buffer = self._buffers[name] = self.ctx.buffer(data)
+        else:
+            buffer.orphan()
+            buffer.write(data)
+        return buffer
+
+    def _release_vaos(self, glo: int | None = None) -> None:
+        """Release the vertex arrays that use buffer or program `glo` (all when None)."""
+        for key in [k for k in self._vaos if glo is None or glo == k[0] or glo == k[1]
+                    or any(glo == b for b, _, _ in k[2])]:
+            self._vaos.pop(key).release()
 
     def _leave_state(self, units: list[int]) -> None:
         """Put back what moderngl does not track, so a shared (window) context draws on as
@@ -232,6 +259,24 @@ class GLBackend:
 
     def _set_uniforms(self, shader: moderngl.Program, program: PassProgram, target: _Target,
                       options: glsl.FragmentOptions) -> None:
+        key = (id(program), shader.glo, target.size, options)
+        found = self._uniform_plans.get(key)
+        if found is None or found[0] is not program:
+            if len(self._uniform_plans) > 4096:
+                self._uniform_plans.clear()
+            found = self._uniform_plans[key] = (program, self._uniform_plan(shader, program,
+                                                                            target, options))
+        plan = found[1]
+        if self._uniforms_in.get(shader.glo) is plan:
+            return  # this shader already holds exactly these values
+        for uniform, value in plan:
+            uniform.value = value
+        self._uniforms_in[shader.glo] = plan
+
+    @staticmethod
+    def _uniform_plan(shader: moderngl.Program, program: PassProgram, target: _Target,
+                      options: glsl.FragmentOptions) -> list:
+        """(moderngl uniform, value) for every uniform the shader declares."""
         values = dict(program.uniforms)
         state = program.render_state
         settings: dict[str, object] = {
@@ -248,10 +293,8 @@ class GLBackend:
             # A uniform the pass does not supply reads 0, as in the reference back end.
             settings[glsl.uniform_name(name)] = tuple(float(v) for v in
                                                       values.get(name, (0.0, 0.0, 0.0, 0.0)))
-        for name, value in settings.items():
-            uniform = shader.get(name, None)
-            if uniform is not None:
-                uniform.value = value
+        return [(shader.get(name, None), value) for name, value in settings.items()
+                if shader.get(name, None) is not None]
 
     def _bind_textures(self, shader: moderngl.Program, program: PassProgram,
                        textures: Mapping[str, object]) -> None:
@@ -297,6 +340,10 @@ class GLBackend:
     def close(self) -> None:
         """Release every GL object this back end made (the context stays)."""
         gl = self.gl
+        self._release_vaos()
+        for buffer in self._buffers.values():
+            buffer.release()
+        self._buffers.clear()
         for shader in self._programs.values():
             shader.release()
         for sampler in self._samplers.values():
@@ -308,6 +355,8 @@ class GLBackend:
         self.textures.release()
         self._programs.clear()
         self._ir_keys.clear()
+        self._uniform_plans.clear()
+        self._uniforms_in.clear()
         self._samplers.clear()
         self._targets.clear()
         self._frame = None
