@@ -426,7 +426,8 @@ def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
     from .lower import lower_pass
     from .runtime import Runtime
     runtime = Runtime(effect, profile, scene=scene, backend=None)
-    programs = [lower_pass(runtime.effect, technique, i, profile)
+    has_diffuse = runtime.geometry().has_diffuse   # lowered as the Runtime will draw them
+    programs = [lower_pass(runtime.effect, technique, i, profile, vertex_colors=has_diffuse)
                 for i in range(len(technique.passes))]
     for program in programs:
         for binding in program.textures:
