@@ -194,7 +194,15 @@ def _vec4(values: Iterable[float]) -> str:
 
 
 def _replicate(x: np.ndarray) -> np.ndarray:
-    return np.repeat(x[:, None], 4, axis=1)
+    return np.repeat(x, 4).reshape(-1, 4)
+
+
+def _swizzle(a: np.ndarray, pattern: str) -> np.ndarray:
+    # np.take / np.repeat, not a[:, idx]: fancy indexing returns a column-major array, and
+    # NumPy's arithmetic on a mix of orders runs about four times slower.
+    if len(set(pattern)) == 1:
+        return _replicate(a[:, COMPONENTS.index(pattern[0])])
+    return np.take(a, _indices(pattern), axis=1)
 
 
 def _dot3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -226,8 +234,8 @@ def _indices(components: str) -> list[int]:
 
 def _merge(old: np.ndarray, new: np.ndarray, mask: str) -> np.ndarray:
     out = np.array(old, dtype=np.float32, copy=True)
-    idx = _indices(mask)
-    out[:, idx] = new[:, idx]
+    for i in _indices(mask):       # column copies: faster than one fancy-indexed assignment
+        out[:, i] = new[:, i]
     return out
 
 
@@ -420,7 +428,7 @@ _OP_ROWS = [
         "vec4(lessThan({0}, {1}))", "per component a < b ? 1 : 0"),
     _op("sge", 2, _elementwise(lambda a, b: (a >= b).astype(np.float32)),
         "vec4(greaterThanEqual({0}, {1}))", "per component a >= b ? 1 : 0"),
-    _op("swizzle", 1, _with_attrs(lambda a, attrs: a[:, _indices(attrs["pattern"])]),
+    _op("swizzle", 1, _with_attrs(lambda a, attrs: _swizzle(a, attrs["pattern"])),
         lambda args, attrs: f"{args[0]}.{attrs['pattern']}", "a.pattern (4 of xyzw)",
         precision="move", attrs=(("pattern", REQUIRED),), check=_check_pattern),
     _op("merge", 2, _with_attrs(lambda old, new, attrs: _merge(old, new, attrs["mask"])),

@@ -828,3 +828,90 @@ def test_gl_redraws_reuse_buffers_and_keep_each_passes_uniforms(monkeypatch):
         assert first[0, 7].tolist() == [255, 0, 0, 255]       # red again, after blue
     finally:
         gl.close()
+
+
+# --------------------------------------------------------------------------------------------
+# Reference only: the fast paths of its sampler and evaluator give the plain formulas' values
+
+
+def _bilinear_by_hand(level: np.ndarray, u: float, v: float, mode: str) -> np.ndarray:
+    """One bilinear lookup written out from the sampler's conventions (texel i covers
+    [i/N, (i+1)/N); the four texels around (u N - 1/2, v N - 1/2))."""
+    h, w = level.shape[:2]
+
+    def fold(i, n):
+        if mode == "WRAP":
+            return i % n, True
+        if mode == "MIRROR":
+            p = i % (2 * n)
+            return (p if p < n else 2 * n - 1 - p), True
+        if mode == "BORDER":
+            return min(max(i, 0), n - 1), 0 <= i < n
+        return min(max(i, 0), n - 1), True          # CLAMP
+
+    x, y = u * w - 0.5, v * h - 0.5
+    x0, y0 = math.floor(x), math.floor(y)
+    fx, fy = x - x0, y - y0
+    total = np.zeros(4)
+    for dy, wy in ((0, 1 - fy), (1, fy)):
+        for dx, wx in ((0, 1 - fx), (1, fx)):
+            (i, in_x), (j, in_y) = fold(x0 + dx, w), fold(y0 + dy, h)
+            texel = level[j, i] if in_x and in_y else np.full(4, 0.25)
+            total += wx * wy * texel
+    return total
+
+
+@pytest.mark.parametrize("mode", ["WRAP", "CLAMP", "MIRROR", "BORDER"])
+def test_trilinear_rows_at_many_levels_match_the_formula(mode):
+    """Quads at different LODs (levels 0..3 and between) in one call: each row is the blend
+    of two bilinear lookups at floor(LOD) and the next level, as written out by hand."""
+    from backends.reference.sampler import SamplerSettings, sample_2d
+    rng = np.random.default_rng(5)
+    levels = [rng.uniform(0, 1, (16 >> k, 16 >> k, 4)).astype(np.float32) for k in range(5)]
+    quads = 200
+    centre = rng.uniform(-0.5, 1.5, (quads, 2))
+    step = 2.0 ** rng.uniform(-5, -1, quads) # texels per pixel from 1/2 to 8 on level 0
+    offsets = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], np.float64)
+    uv = (centre[:, None, :] + offsets[None] * step[:, None, None]).reshape(-1, 2)
+    uv = uv.astype(np.float32)
+    settings = SamplerSettings(address_u=mode, address_v=mode, border=(0.25,) * 4,
+                               min_filter="LINEAR", mag_filter="LINEAR", mip_filter="LINEAR")
+    got = sample_2d(levels, uv, settings)
+    for q in range(quads):
+        lod = max(math.log2(float(step[q]) * 16), 0.0)
+        lod = min(lod, 4.0)
+        k = min(int(math.floor(lod)), 4)
+        frac = lod - k
+        for p in range(4):
+            row = 4 * q + p
+            u, v = float(uv[row, 0]), float(uv[row, 1])
+            a = _bilinear_by_hand(levels[k], u, v, mode)
+            if frac > 0:
+                a = a + (_bilinear_by_hand(levels[k + 1], u, v, mode) - a) * frac
+            np.testing.assert_allclose(got[row], a, atol=2e-5, err_msg=f"quad {q}, lod {lod}")
+
+
+def test_swizzles_and_replicated_results_are_row_major():
+    """Kernel results are C-ordered (N, 4): NumPy arithmetic mixing orders is several times
+    slower, which is why swizzle must not return a fancy-indexed (column-major) array."""
+    from effects.ir import OPS
+    a = np.arange(40, dtype=np.float32).reshape(10, 4)
+    for pattern in ("xxxx", "yzxw", "wwzz"):
+        out = OPS["swizzle"].kernel(None, [a], {"pattern": pattern})
+        assert out.flags.c_contiguous
+        np.testing.assert_array_equal(out, a[:, ["xyzw".index(c) for c in pattern]])
+    dp3 = OPS["dp3"].kernel(None, [a, a], {})
+    assert dp3.flags.c_contiguous
+    np.testing.assert_array_equal(dp3[:, 2], (a[:, :3] ** 2).sum(axis=1))
+
+
+def test_uniform_operands_are_expanded_to_dense_rows():
+    from backends.reference.evaluate import _dense
+    u = np.array([1, 2, 3, 4], np.float32)
+    view = np.broadcast_to(u, (6, 4))
+    dense = _dense(view)
+    assert dense.flags.c_contiguous and dense.strides[0] != 0
+    np.testing.assert_array_equal(dense, view)
+    column = np.broadcast_to(np.arange(6, dtype=np.float32)[:, None], (6, 4))
+    np.testing.assert_array_equal(_dense(column), column)
+    assert _dense(column).flags.c_contiguous

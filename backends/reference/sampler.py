@@ -79,8 +79,109 @@ class _Level:
     """One mip level ((D,) H, W, 4) flattened for fast row gathers."""
 
     def __init__(self, texels: np.ndarray) -> None:
+        self.texels = texels
         self.shape = texels.shape[:-1]
         self.flat = np.ascontiguousarray(texels, np.float32).reshape(-1, 4)
+
+
+class _Pyramid:
+    """Every level of a mip chain in one channel-major (4, M) texel array, so that rows
+    reading different levels are looked up together, and a filter's weights multiply whole
+    channel rows (NumPy is slow on (N, 4) arrays scaled row by row)."""
+
+    def __init__(self, levels: Sequence[_Level]) -> None:
+        sizes = np.array([lv.shape[::-1] for lv in levels], np.int32)         # W, H[, D]
+        self.sizes = [np.ascontiguousarray(sizes[:, axis]) for axis in range(sizes.shape[1])]
+        self.float_sizes = [n.astype(np.float32) for n in self.sizes]
+        counts = [len(lv.flat) for lv in levels]
+        self.offsets = (np.cumsum(counts) - counts).astype(np.int32)
+        self.planar = np.ascontiguousarray(np.concatenate([lv.flat for lv in levels]).T)
+        self.pow2 = bool(((sizes & (sizes - 1)) == 0).all())
+
+
+_PYRAMIDS: dict[tuple, tuple[list, _Pyramid]] = {}
+
+
+def _pyramid(levels: Sequence[_Level]) -> _Pyramid:
+    """The pyramid of a mip chain, kept while its level arrays are the same objects (a
+    texture's levels are, frame after frame)."""
+    key = tuple(id(lv.texels) for lv in levels)
+    found = _PYRAMIDS.get(key)
+    if found is not None and all(a is lv.texels for a, lv in zip(found[0], levels)):
+        return found[1]
+    if len(_PYRAMIDS) >= 64:
+        _PYRAMIDS.clear()
+    pyramid = _Pyramid(levels)
+    _PYRAMIDS[key] = ([lv.texels for lv in levels], pyramid)
+    return pyramid
+
+
+def _address_rows(i: np.ndarray, n: np.ndarray, mode: str, pow2: bool
+                  ) -> tuple[np.ndarray, np.ndarray | None]:
+    """`_address` with a size per row."""
+    if mode == "WRAP":
+        return (i & (n - 1) if pow2 else np.mod(i, n)), None
+    if mode == "MIRROR":
+        period = np.mod(i, 2 * n)
+        return np.where(period < n, period, 2 * n - 1 - period), None
+    if mode == "MIRRORONCE":
+        return np.minimum(np.where(i < 0, -i - 1, i), n - 1), None
+    if mode == "BORDER":
+        outside = (i < 0) | (i >= n)
+        return np.minimum(np.maximum(i, 0), n - 1), outside
+    return np.minimum(np.maximum(i, 0), n - 1), None  # CLAMP
+
+
+def _lookup_rows(pyramid: _Pyramid, level: np.ndarray, coords: Sequence[np.ndarray],
+                 linear: bool, modes: Sequence[str], border: np.ndarray) -> np.ndarray:
+    """`_lookup` with a level per row, in the pyramid: (4, N) channel-major texels. The same
+    arithmetic, in the same order, as `_lookup`."""
+    offset = np.take(pyramid.offsets, level)
+    planar = pyramid.planar
+    if not linear:
+        index, stride, outside = offset, 1, []
+        for axis, (c, mode) in enumerate(zip(coords, modes)):
+            n = np.take(pyramid.sizes[axis], level)
+            nf = np.take(pyramid.float_sizes[axis], level)
+            i, out = _address_rows(np.floor(c * nf).astype(np.int32), n, mode, pyramid.pow2)
+            index = index + i * stride
+            outside.append(out)
+            stride = stride * n
+        return _fetch_planar(planar, index, outside, border)
+    axes = []
+    for axis, (c, mode) in enumerate(zip(coords, modes)):
+        n = np.take(pyramid.sizes[axis], level)
+        t = c * np.take(pyramid.float_sizes[axis], level) - np.float32(0.5)
+        f = np.floor(t)
+        i = f.astype(np.int32)
+        axes.append((_address_rows(i, n, mode, pyramid.pow2),
+                     _address_rows(i + 1, n, mode, pyramid.pow2),
+                     (t - f).astype(np.float32), n))
+    out = None
+    for corner in range(1 << len(axes)):       # 4 (or 8) surrounding texels, weighted
+        index, stride, outside, weight = offset, 1, [], None
+        for k, ((i0, o0), (i1, o1), frac, n) in enumerate(axes):
+            hi = (corner >> k) & 1
+            index = index + (i1 if hi else i0) * stride
+            outside.append(o1 if hi else o0)
+            w = frac if hi else 1 - frac
+            weight = w if weight is None else weight * w
+            stride = stride * n
+        term = _fetch_planar(planar, index, outside, border)
+        term *= weight
+        out = term if out is None else np.add(out, term, out=out)
+    return out
+
+
+def _fetch_planar(planar: np.ndarray, index: np.ndarray, outside: list,
+                  border: np.ndarray) -> np.ndarray:
+    texels = np.take(planar, index, axis=1)
+    masks = [m for m in outside if m is not None]
+    if masks:
+        out = masks[0] if len(masks) == 1 else np.logical_or.reduce(masks)
+        if out.any():
+            texels[:, out] = border[:, None]
+    return texels
 
 
 def _lookup(level: _Level, coords: Sequence[np.ndarray], linear: bool, modes: Sequence[str],
@@ -172,6 +273,19 @@ def _mip_sample(levels: list[_Level], coords: list[np.ndarray], lod: np.ndarray,
     else:
         lo = np.floor(d).astype(np.int32)
         frac = (d - lo).astype(np.float32)
+    if min_linear == mag_linear:
+        # Every row at its own level in one pass; only rows between two levels read a second.
+        pyramid = _pyramid(levels)
+        out = np.ascontiguousarray(_lookup_rows(pyramid, lo, coords, min_linear, modes,
+                                                border).T)
+        if frac is not None:
+            blend = np.nonzero(frac)[0]
+            if len(blend):
+                b = _lookup_rows(pyramid, lo[blend] + 1, [c[blend] for c in coords],
+                                 min_linear, modes, border).T
+                a = out[blend]
+                out[blend] = a + (b - a) * frac[blend, None]
+        return out
     out = np.empty((count, 4), np.float32)
     used = np.unique(lo)
     for k in used:
@@ -180,10 +294,17 @@ def _mip_sample(levels: list[_Level], coords: list[np.ndarray], lod: np.ndarray,
         a = _by_filter(levels[k], sub, minify[rows], min_linear, mag_linear, modes, border)
         if frac is not None and k < top:
             f = frac[rows]
-            if f.any():
-                b = _by_filter(levels[k + 1], sub, minify[rows], min_linear, mag_linear,
-                               modes, border)
-                a = a + (b - a) * f[:, None]
+            # Only rows between two levels read the next one (magnified rows have f = 0).
+            blend = np.nonzero(f)[0]
+            if len(blend):
+                whole = len(blend) == len(f)
+                part = sub if whole else [c[blend] for c in sub]
+                b = _by_filter(levels[k + 1], part, minify[rows][blend], min_linear,
+                               mag_linear, modes, border)
+                if whole:
+                    a = a + (b - a) * f[:, None]
+                else:
+                    a[blend] = a[blend] + (b - a[blend]) * f[blend, None]
         out[rows] = a
     return out
 
