@@ -915,3 +915,25 @@ def test_uniform_operands_are_expanded_to_dense_rows():
     column = np.broadcast_to(np.arange(6, dtype=np.float32)[:, None], (6, 4))
     np.testing.assert_array_equal(_dense(column), column)
     assert _dense(column).flags.c_contiguous
+
+
+def test_replicated_scalar_ops_run_on_one_column_with_the_same_values():
+    """pow(dp3, c.xxxx) is replicated: the evaluator computes it once per row; the values are
+    those of the per-component formula, and a non-replicated pow is left alone."""
+    from backends.reference.evaluate import _scalar_instructions, evaluate
+    b = Builder("fragment")
+    t = b.varying("texcoord0")
+    ndl = b.dp3(t, t)
+    replicated = b.pow(b.saturate(ndl), b.swizzle(b.uniform("k"), "xxxx"))
+    mixed = b.pow(b.abs(t), b.const(3.0))
+    b.output("color0", b.add(replicated, mixed))
+    program = b.build()
+    pow_indices = [i for i, ins in enumerate(program.instrs) if ins.op == "pow"]
+    assert _scalar_instructions(program) == {pow_indices[0]}
+    rng = np.random.default_rng(3)
+    coords = rng.uniform(-1, 1, (64, 4)).astype(np.float32)
+    k = np.array([5.0, 1.0, 2.0, 3.0], np.float32)
+    out = evaluate(program, {"texcoord0": coords, "k": k}).outputs["color0"]
+    d = np.clip((coords[:, :3] ** 2).sum(axis=1), 0, 1)
+    expected = d[:, None] ** 5.0 + np.abs(coords) ** 3.0
+    np.testing.assert_allclose(out, expected, rtol=2e-6)

@@ -90,6 +90,47 @@ def _dense(value: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(array)
 
 
+# Per-component ops whose result is replicated when every argument is; the costly ones are
+# then run on one column (D3D's scalar rsq, rcp, pow, exp, log reach the IR replicated).
+_PER_COMPONENT = frozenset({"add", "sub", "mul", "mad", "neg", "min", "max", "rcp", "rsq",
+                            "exp2", "log2", "pow", "frc", "abs", "sin", "cos", "cmp", "cnd",
+                            "lrp", "slt", "sge", "saturate", "clamp", "quantize"})
+_WORTH_ONE_COLUMN = frozenset({"rcp", "rsq", "exp2", "log2", "pow", "sin", "cos"})
+_SCALAR_CACHE: dict[int, tuple[Program, frozenset]] = {}
+
+
+def _scalar_instructions(program: Program) -> frozenset:
+    """Indices of the costly per-component instructions whose arguments are all replicated
+    (dp3/dp4 results, one-component swizzles, constants with four equal values, and
+    per-component results of those)."""
+    found = _SCALAR_CACHE.get(id(program))
+    if found is not None and found[0] is program:
+        return found[1]
+    replicated: set[int] = set()
+    scalar = set()
+    for index, instr in enumerate(program.instrs):
+        attrs = instr.attr_map
+        if instr.op in ("dp3", "dp4"):
+            same = True
+        elif instr.op == "swizzle":
+            same = len(set(attrs["pattern"])) == 1 or instr.args[0] in replicated
+        elif instr.op == "const":
+            same = len(set(attrs["value"])) == 1
+        elif instr.op in _PER_COMPONENT:
+            same = all(a in replicated for a in instr.args)
+            if same and instr.op in _WORTH_ONE_COLUMN:
+                scalar.add(index)
+        else:
+            same = False
+        if same and instr.dest is not None:
+            replicated.add(instr.dest)
+    if len(_SCALAR_CACHE) > 1024:
+        _SCALAR_CACHE.clear()
+    result = frozenset(scalar)
+    _SCALAR_CACHE[id(program)] = (program, result)
+    return result
+
+
 def _row_count(program: Program, inputs: Mapping[str, np.ndarray], count: int | None) -> int:
     counts = {np.shape(inputs[i.name])[0] for i in program.inputs
               if i.kind != "uniform" and np.ndim(inputs[i.name]) == 2}
@@ -113,9 +154,15 @@ def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
         raise IRError(f"missing inputs: {', '.join(missing)}")
     ctx = _Context(program, inputs, samplers or {}, _row_count(program, inputs, count))
     values: dict[int, np.ndarray] = {}
+    scalar = _scalar_instructions(program)
     with np.errstate(all="ignore"):  # inf and NaN are legitimate D3D results (rcp 0, log 0)
-        for instr in program.instrs:
-            result = OPS[instr.op].kernel(ctx, [values[a] for a in instr.args], instr.attr_map)
+        for index, instr in enumerate(program.instrs):
+            args = [values[a] for a in instr.args]
+            if index in scalar:      # one column does: every component is the same
+                args = [a[:, :1] for a in args]
+                result = np.repeat(OPS[instr.op].kernel(ctx, args, instr.attr_map), 4, axis=1)
+            else:
+                result = OPS[instr.op].kernel(ctx, args, instr.attr_map)
             if instr.dest is not None:
                 values[instr.dest] = _dense(result)
     outputs = {name: np.array(values[value], dtype=np.float32)
