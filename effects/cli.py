@@ -71,6 +71,9 @@ def _cmd_validate(args, console: Console) -> int:
         console.print(warning.report(), markup=False, highlight=False, style="yellow")
     if not args.profile:
         print_effect_summary(effect, console)
+        console.print("Name cards with --profile P (see `effects profiles`) to see which can run "
+                      "each technique and why not; `effects matrix` shows every card's choice.",
+                      markup=False)
         return EXIT_OK
     every_card_runs_it = print_validation_table(effect, _profiles(args.profile), console, why=args.why)
     return EXIT_OK if every_card_runs_it else EXIT_INVALID
