@@ -160,7 +160,7 @@ def _cmd_render(args, console: Console) -> int:
         frame = render_frame(effect, profile, technique=args.technique, backend=args.backend,
                              scene=args.scene, size=size, params=params, policy=args.policy)
     except NoValidTechnique as exc:
-        Console(stderr=True, highlight=False).print(str(exc), markup=False)
+        Console(stderr=True, highlight=False).print(str(exc), markup=False, soft_wrap=True)
         return EXIT_INVALID
     ms = (time.perf_counter() - start) * 1000.0
     try:
