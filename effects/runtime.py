@@ -94,7 +94,8 @@ def no_valid_technique(effect: Effect, profile: "CapsProfile", policy: Any = "fi
         name = validation.technique.name or "<anonymous>"
         reasons[name] = list(validation.reasons)
         why = [str(r) for r in validation.reasons] or ["not chosen by the selection policy"]
-        lines.append(f"  {name}: " + "; ".join(why))
+        lines.append(f"  {name}:")
+        lines.extend(f"    {line}" for line in why)
     card = profile.display_name or profile.name
     if not effect.techniques:
         message = f"the effect has no techniques, so {card} has nothing to render"
