@@ -81,7 +81,9 @@ class EnumTable:
         match = difflib.get_close_matches(key, pool, n=1, cutoff=0.6)
         if not match:
             return None
-        return self.spelling(self.aliases.get(match[0], match[0]))
+        spelled = self.spelling(self.aliases.get(match[0], match[0]))
+        # A name such as 2WEIGHTS can only be written with its prefix (D3DVBF_2WEIGHTS).
+        return spelled if spelled[:1].isalpha() or spelled[:1] == "_" else self.prefixes[0] + match[0]
 
 
 def _table(name: str, prefixes: Iterable[str], entries: Iterable[tuple[str, int]], *,

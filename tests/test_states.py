@@ -418,3 +418,9 @@ def test_index_checks():
         check_index(lookup_state("VertexShaderConstant"), None, LOC)
     with pytest.raises(StateError, match=r"MinFilter\[100\]"):
         check_index(lookup_state("MinFilter"), 100, LOC)
+
+
+def test_a_suggested_name_that_starts_with_a_digit_keeps_its_prefix():
+    # `VertexBlend = VBF_2WEIGHT` must suggest something a file can contain.
+    table = next(t for t in ENUMS.values() if t.name == "D3DVERTEXBLENDFLAGS")
+    assert table.suggest("VBF_2WEIGHT") == "D3DVBF_2WEIGHTS"
