@@ -39,7 +39,7 @@ from .errors import Location, SceneError
 from .meshes import Mesh, by_name
 from .model import Effect, Parameter
 from .scene import InlineMesh, Scene
-from .textures import Texture, load_texture, procedural
+from .textures import PROCEDURAL, Texture, load_texture, procedural
 
 STREAM_NAMES = ("position", "normal", "tangent", "binormal", "color0", "color1",
                 *(f"texcoord{i}" for i in range(8)))
@@ -122,6 +122,10 @@ def resolve_texture(param: Parameter, effect: Effect, given: TextureSource | Non
     if given is not None:
         if isinstance(given.value, Texture):
             texture = given.value
+        elif _names_procedural(given.value):
+            # 'sobel_normals:textures/h.png', 'sky_cube:64': a generator, as the annotation
+            # `string Procedural = "..."` names one (fxfiles/README.md)
+            texture = procedural(given.value, base_dir=given.base_dir, location=given.location)
         else:
             path = given.value if os.path.isabs(given.value) else os.path.join(given.base_dir, given.value)
             texture = cache.load(path, kind, given.location)
@@ -143,6 +147,13 @@ def resolve_texture(param: Parameter, effect: Effect, given: TextureSource | Non
         _check_kind(param, texture, kind, generator.location)
         return texture
     return None
+
+
+def _names_procedural(value: str) -> bool:
+    """Whether a given texture value names a generator ('NAME' or 'NAME:ARG') rather than a
+    file: its part before the first ':' is a known generator (a Windows drive letter is not)."""
+    head = value.split(":", 1)[0]
+    return head in PROCEDURAL and (":" in value or not os.path.splitext(value)[1])
 
 
 def _check_kind(param: Parameter, texture: Texture, kind: str | None, at: Location) -> None:

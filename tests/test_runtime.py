@@ -10,6 +10,8 @@ import pytest
 from PIL import Image
 
 import effects
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 from effects import NoValidTechnique, SceneError, load_effect, load_profile
 from effects.assets import TextureCache, geometry, scene_mesh
 from effects.runtime import Runtime, render_frame
@@ -429,3 +431,21 @@ def test_bundled_effects_render_a_lit_textured_sphere(name, card):
     assert centre[:3].sum() > 30                          # the sphere is lit where it faces us
     inside = image[20:44, 20:44, :3].reshape(-1, 3)
     assert inside.std(axis=0).max() > 4                   # and textured, not flat
+
+
+def test_a_scene_param_may_name_a_texture_generator():
+    # DX8 files cannot annotate their textures; the bundled scene for sdk8_style.fx gives them,
+    # two of them by generator ('sobel_normals:<image>', 'sky_cube:64') rather than by file.
+    from effects.assets import resolve_texture, TextureSource
+    from effects.errors import Location
+    effect = load_effect(os.path.join(ROOT, "fxfiles", "sdk8_style.fx"))
+    at = Location("scene.yaml", 1, 1)
+    fx_dir = os.path.join(ROOT, "fxfiles")
+    env = resolve_texture(effect.parameter("tEnv"), effect, TextureSource("sky_cube:16", fx_dir, at))
+    assert env.kind == "cube" and env.width == 16
+    normals = resolve_texture(effect.parameter("tNrm"), effect,
+                              TextureSource("sobel_normals:textures/stones_height.png", fx_dir, at))
+    assert normals.kind == "2d" and normals.levels[0][..., 2].min() > 0.5   # z of 0.5 + 0.5 n
+    image = effects.render(effect, load_profile("geforce3"), size=(32, 32),
+                           scene=os.path.join(ROOT, "fxfiles", "sdk8_style.yaml"))
+    assert image[..., :3].std() > 10   # textured, not black
