@@ -205,16 +205,28 @@ def _swizzle(a: np.ndarray, pattern: str) -> np.ndarray:
     return np.take(a, _indices(pattern), axis=1)
 
 
+def dot3_columns(a: Sequence[np.ndarray], b: Sequence[np.ndarray]) -> np.ndarray:
+    """a.xyz . b.xyz from component columns (a[0] is x). Explicit left-to-right sum, the
+    order a GPU dot() uses; the evaluator's column form shares it, so values agree bit for bit."""
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def nrm_scale(f: np.ndarray) -> np.ndarray:
+    """The factor nrm scales by, from f = xyz . xyz. D3D nrm: a zero-length xyz scales by
+    FLT_MAX instead of dividing by zero (ps/vs docs)."""
+    return np.where(f != 0, 1 / np.sqrt(f), np.float32(FLT_MAX)).astype(np.float32)
+
+
+def _columns(a: np.ndarray) -> tuple[np.ndarray, ...]:
+    return tuple(a[:, i] for i in range(a.shape[1]))
+
+
 def _dot3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    # Explicit left-to-right sum, the order a GPU dot() uses.
-    return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1] + a[:, 2] * b[:, 2]
+    return dot3_columns(_columns(a), _columns(b))
 
 
 def _nrm(x: np.ndarray) -> np.ndarray:
-    # D3D nrm: a zero-length xyz scales by FLT_MAX instead of dividing by zero (ps/vs docs).
-    f = _dot3(x, x)
-    scale = np.where(f != 0, 1 / np.sqrt(f), np.float32(FLT_MAX)).astype(np.float32)
-    return x * scale[:, None]
+    return x * nrm_scale(_dot3(x, x))[:, None]
 
 
 def _crs(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -1,26 +1,36 @@
 """Run an IR program over N vertices or fragments at once with NumPy.
 
-Each instruction's kernel (the `OPS` row in `effects.ir`) runs once over (N, 4) float32 arrays;
-there is no per-row Python loop. Texture sampling is delegated to callbacks the caller supplies
-(the rasteriser, which knows the 2x2 quads needed for derivatives; tests pass fakes).
+Every value is held as four component columns, each an (N,) float32 array, or a (1,) array
+when it is the same on every row (uniforms, constants and what is computed from them only).
+Swizzles and write-mask merges then only rearrange columns, a dp3 result is one column shared
+by all four components, and a per-component op runs its `OPS` kernel (`effects.ir`) once per
+distinct column of its arguments, so replicated scalars (rsq, pow of a dp3) cost one column.
+Only the components some later instruction or output reads are computed. There is no per-row
+Python loop; ops without a column form (sample, crs, kill, ...) run their kernel on (N, 4).
+The values are those of the kernels on (N, 4) rows: the same float32 formula per element.
 
-A sampler callback is called as `sampler(coord, kind=..., bias=..., lod=...)` with coord an
-(N, 4) float32 array, already divided by w for projected reads, and bias / lod an (N,) array or
-None; it returns (N, 4) texels. A sampler index with no callback reads (0, 0, 0, 1), as an
-unbound ps_2_0 sampler does.
+Texture sampling is delegated to callbacks the caller supplies (the rasteriser, which knows the
+2x2 quads needed for derivatives; tests pass fakes). A sampler callback is called as
+`sampler(coord, kind=..., bias=..., lod=...)` with coord an (N, 4) float32 array, already
+divided by w for projected reads, and bias / lod an (N,) array or None; it returns (N, 4)
+texels (any memory order). A sampler index with no callback reads (0, 0, 0, 1), as an unbound
+ps_2_0 sampler does.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, Mapping
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from effects.ir import OPS, IRError, Program
+from effects.ir import COMPONENTS, OPS, IRError, Instr, Program, dot3_columns, nrm_scale
 
 SamplerFn = Callable[..., np.ndarray]
+Columns = list  # four entries: (N,) or (1,) float32 arrays, None where nothing reads them
 _MISSING_DEFAULT = np.array([0, 0, 0, 1], dtype=np.float32)
 _UNBOUND_TEXEL = np.array([0, 0, 0, 1], dtype=np.float32)
+_ALL = frozenset(range(4))
+_XYZ = frozenset(range(3))
 
 
 @dataclass
@@ -61,19 +71,34 @@ class _Context:
         self.killed = mask if self.killed is None else self.killed | mask
 
 
-def _as_vec4(name: str, value: np.ndarray, count: int) -> np.ndarray:
-    """(N, k) or (k,) with k <= 4 as (N, 4); missing components read (0, 0, 0, 1)."""
+def _checked_input(name: str, value: np.ndarray, count: int) -> np.ndarray:
+    """(N, k) or (1, k) float32 with k <= 4, or IRError."""
     array = np.asarray(value, dtype=np.float32)
     if array.ndim == 1:
         array = array[None, :]
     if array.ndim != 2 or not 1 <= array.shape[1] <= 4 or array.shape[0] not in (1, count):
         raise IRError(f"input {name}: shape {np.shape(value)} is not (N, k) or (k,) with "
                       f"k <= 4 and N = {count}")
+    return array
+
+
+def _as_vec4(name: str, value: np.ndarray, count: int) -> np.ndarray:
+    """(N, k) or (k,) with k <= 4 as (N, 4); missing components read (0, 0, 0, 1)."""
+    array = _checked_input(name, value, count)
     if array.shape[1] < 4:
         padded = np.repeat(_MISSING_DEFAULT[None, :], array.shape[0], axis=0)
         padded[:, :array.shape[1]] = array
         array = padded
     return _dense(np.broadcast_to(array, (count, 4)))
+
+
+def _input_columns(name: str, value: np.ndarray, count: int) -> Columns:
+    """An input's four columns: contiguous (N,) per-row columns, (1,) where one row serves
+    all (uniforms), missing components (0, 0, 0, 1)."""
+    array = _checked_input(name, value, count)
+    columns = [np.ascontiguousarray(array[:, i]) for i in range(array.shape[1])]
+    columns += [_MISSING_DEFAULT[i:i + 1] for i in range(array.shape[1], 4)]
+    return columns
 
 
 def _dense(value: np.ndarray) -> np.ndarray:
@@ -90,19 +115,19 @@ def _dense(value: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(array)
 
 
-# Per-component ops whose result is replicated when every argument is; the costly ones are
-# then run on one column (D3D's scalar rsq, rcp, pow, exp, log reach the IR replicated).
+# Per-component ops: component i of the result depends on component i of the arguments only.
 _PER_COMPONENT = frozenset({"add", "sub", "mul", "mad", "neg", "min", "max", "rcp", "rsq",
                             "exp2", "log2", "pow", "frc", "abs", "sin", "cos", "cmp", "cnd",
                             "lrp", "slt", "sge", "saturate", "clamp", "quantize"})
 _WORTH_ONE_COLUMN = frozenset({"rcp", "rsq", "exp2", "log2", "pow", "sin", "cos"})
 _SCALAR_CACHE: dict[int, tuple[Program, frozenset]] = {}
+_DEMAND_CACHE: dict[int, tuple[Program, list]] = {}
 
 
 def _scalar_instructions(program: Program) -> frozenset:
     """Indices of the costly per-component instructions whose arguments are all replicated
     (dp3/dp4 results, one-component swizzles, constants with four equal values, and
-    per-component results of those)."""
+    per-component results of those): the ones the column form computes once per row."""
     found = _SCALAR_CACHE.get(id(program))
     if found is not None and found[0] is program:
         return found[1]
@@ -131,6 +156,115 @@ def _scalar_instructions(program: Program) -> frozenset:
     return result
 
 
+# ------------------------------------------------------------------------------------------------
+# Which components are read
+
+def _arg_demand(instr: Instr, wanted: frozenset) -> list[frozenset]:
+    """The components of each argument that `instr` reads to produce `wanted` of its result."""
+    op, attrs = instr.op, instr.attr_map
+    if op in _PER_COMPONENT:
+        return [wanted] * len(instr.args)
+    if op == "swizzle":
+        return [frozenset(COMPONENTS.index(attrs["pattern"][i]) for i in wanted)]
+    if op == "merge":
+        mask = frozenset(COMPONENTS.index(c) for c in attrs["mask"])
+        return [wanted - mask, wanted & mask]
+    if op == "dp3":
+        return [_XYZ, _XYZ] if wanted else [frozenset(), frozenset()]
+    if op == "nrm":
+        return [_XYZ | wanted] if wanted else [frozenset()]
+    return [_ALL] * len(instr.args)   # sample, dp4, crs, kill, ...: the whole vec4
+
+
+def _demand(program: Program) -> list[frozenset]:
+    """Per instruction, the components of its result that some instruction or output reads
+    (kill and other effects count as reading what they read)."""
+    found = _DEMAND_CACHE.get(id(program))
+    if found is not None and found[0] is program:
+        return found[1]
+    need: dict[int, frozenset] = {}
+    for _, value in program.outputs:
+        need[value] = _ALL
+    per_instr = [frozenset()] * len(program.instrs)
+    for index in range(len(program.instrs) - 1, -1, -1):
+        instr = program.instrs[index]
+        wanted = _ALL if instr.dest is None else need.get(instr.dest, frozenset())
+        per_instr[index] = wanted
+        if not wanted:
+            continue
+        for arg, arg_need in zip(instr.args, _arg_demand(instr, wanted)):
+            need[arg] = need.get(arg, frozenset()) | arg_need
+    if len(_DEMAND_CACHE) > 1024:
+        _DEMAND_CACHE.clear()
+    _DEMAND_CACHE[id(program)] = (program, per_instr)
+    return per_instr
+
+
+# ------------------------------------------------------------------------------------------------
+# Running instructions on columns
+
+def _per_component(instr: Instr, args: Sequence[Columns], wanted: frozenset) -> Columns:
+    """The op's kernel on each wanted column; columns whose arguments are the same arrays as
+    another's (replicated values) share its result instead of recomputing it."""
+    kernel, attrs = OPS[instr.op].kernel, instr.attr_map
+    out: Columns = [None] * 4
+    done: dict[tuple, np.ndarray] = {}
+    for i in sorted(wanted):
+        column_args = [a[i] for a in args]
+        key = tuple(id(c) for c in column_args)
+        if key not in done:
+            done[key] = np.asarray(kernel(None, column_args, attrs), np.float32)
+        out[i] = done[key]
+    return out
+
+
+def _const_columns(value: tuple) -> Columns:
+    shared: dict[float, np.ndarray] = {}
+    return [shared.setdefault(v, np.array([v], np.float32)) for v in value]
+
+
+def _as_rows(columns: Columns, count: int) -> np.ndarray:
+    """Columns as an (N, 4) C-ordered array; unread (None) columns hold 0."""
+    rows = np.empty((count, 4), np.float32)
+    for i, column in enumerate(columns):
+        rows[:, i] = 0 if column is None else column
+    return rows
+
+
+def _from_rows(rows: np.ndarray) -> Columns:
+    """An (N, 4) kernel result as contiguous columns (free for a column-major result)."""
+    planar = np.ascontiguousarray(np.asarray(rows, np.float32).T)
+    return list(planar)
+
+
+def _run(ctx: _Context, instr: Instr, args: Sequence[Columns], wanted: frozenset) -> Columns:
+    op = instr.op
+    if op == "input":
+        name = instr.attr("name")
+        return _input_columns(name, ctx.inputs[name], ctx.count)
+    if op == "const":
+        return _const_columns(instr.attr("value"))
+    if op == "swizzle":
+        return [args[0][COMPONENTS.index(c)] for c in instr.attr("pattern")]
+    if op == "merge":
+        mask = instr.attr("mask")
+        return [args[1][i] if c in mask else args[0][i] for i, c in enumerate(COMPONENTS)]
+    if op in _PER_COMPONENT:
+        return _per_component(instr, args, wanted)
+    if op in ("dp3", "dp4"):
+        dot = dot3_columns(args[0], args[1])
+        if op == "dp4":
+            dot = dot + args[0][3] * args[1][3]
+        return [dot] * 4
+    if op == "nrm":
+        x = args[0]
+        scale = nrm_scale(dot3_columns(x, x))
+        return [x[i] * scale if i in wanted else None for i in range(4)]
+    # No column form: the op's kernel on whole (N, 4) rows.
+    result = OPS[op].kernel(ctx, [_as_rows(a, ctx.count) for a in args], instr.attr_map)
+    return None if result is None else _from_rows(result)
+
+
 def _row_count(program: Program, inputs: Mapping[str, np.ndarray], count: int | None) -> int:
     counts = {np.shape(inputs[i.name])[0] for i in program.inputs
               if i.kind != "uniform" and np.ndim(inputs[i.name]) == 2}
@@ -153,20 +287,17 @@ def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
     if missing:
         raise IRError(f"missing inputs: {', '.join(missing)}")
     ctx = _Context(program, inputs, samplers or {}, _row_count(program, inputs, count))
-    values: dict[int, np.ndarray] = {}
-    scalar = _scalar_instructions(program)
+    values: dict[int, Columns] = {}
+    demand = _demand(program)
     with np.errstate(all="ignore"):  # inf and NaN are legitimate D3D results (rcp 0, log 0)
-        for index, instr in enumerate(program.instrs):
-            args = [values[a] for a in instr.args]
-            if index in scalar:      # one column does: every component is the same
-                args = [a[:, :1] for a in args]
-                result = np.repeat(OPS[instr.op].kernel(ctx, args, instr.attr_map), 4, axis=1)
-            else:
-                result = OPS[instr.op].kernel(ctx, args, instr.attr_map)
+        for instr, wanted in zip(program.instrs, demand):
+            if not wanted:           # nothing reads it
+                values[instr.dest] = [None] * 4
+                continue
+            result = _run(ctx, instr, [values[a] for a in instr.args], wanted)
             if instr.dest is not None:
-                values[instr.dest] = _dense(result)
-    outputs = {name: np.array(values[value], dtype=np.float32)
-               for name, value in program.outputs}
+                values[instr.dest] = result
+    outputs = {name: _as_rows(values[value], ctx.count) for name, value in program.outputs}
     killed = ctx.killed
     if killed is None and any(i.op == "kill" for i in program.instrs):
         killed = np.zeros(ctx.count, dtype=bool)
