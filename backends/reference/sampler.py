@@ -22,6 +22,7 @@ Conventions:
 """
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 from typing import Sequence
 
@@ -97,6 +98,7 @@ class _Pyramid:
         self.offsets = (np.cumsum(counts) - counts).astype(np.int32)
         self.planar = np.ascontiguousarray(np.concatenate([lv.flat for lv in levels]).T)
         self.pow2 = bool(((sizes & (sizes - 1)) == 0).all())
+        self.shapes = [lv.shape for lv in levels]
 
 
 _PYRAMIDS: dict[tuple, tuple[list, _Pyramid]] = {}
@@ -132,45 +134,88 @@ def _address_rows(i: np.ndarray, n: np.ndarray, mode: str, pow2: bool
     return np.minimum(np.maximum(i, 0), n - 1), None  # CLAMP
 
 
-def _lookup_rows(pyramid: _Pyramid, level: np.ndarray, coords: Sequence[np.ndarray],
-                 linear: bool, modes: Sequence[str], border: np.ndarray) -> np.ndarray:
-    """`_lookup` with a level per row, in the pyramid: (4, N) channel-major texels. The same
-    arithmetic, in the same order, as `_lookup`."""
-    offset = np.take(pyramid.offsets, level)
-    planar = pyramid.planar
+@dataclass
+class _Taps:
+    """Where a lookup reads in a pyramid and how it weights what it reads: per tap (1 for
+    point filtering, 4 or 8 for linear) the texel indices (intp, so `take` converts nothing),
+    the rows outside a BORDER texture (or None) and the float32 weight (None for point)."""
+
+    indices: list
+    outside: list
+    weights: list
+
+
+def _taps_rows(pyramid: _Pyramid, level: np.ndarray, coords: Sequence[np.ndarray],
+               linear: bool, modes: Sequence[str]) -> _Taps:
+    """The taps of a point or (bi/tri)linear lookup with a level per row. Texel i of a level
+    of size n covers [i/n, (i+1)/n); linear mixes the texels whose centres surround
+    u*n - 0.5, with weights frac or 1 - frac per axis multiplied in axis order."""
+    offset = np.take(pyramid.offsets, level).astype(np.intp)
     if not linear:
         index, stride, outside = offset, 1, []
         for axis, (c, mode) in enumerate(zip(coords, modes)):
             n = np.take(pyramid.sizes[axis], level)
             nf = np.take(pyramid.float_sizes[axis], level)
             i, out = _address_rows(np.floor(c * nf).astype(np.int32), n, mode, pyramid.pow2)
-            index = index + i * stride
+            index = index + i * stride if axis else index + i
             outside.append(out)
             stride = stride * n
-        return _fetch_planar(planar, index, outside, border)
+        return _Taps([index], [_any_outside(outside)], [None])
     axes = []
     for axis, (c, mode) in enumerate(zip(coords, modes)):
         n = np.take(pyramid.sizes[axis], level)
         t = c * np.take(pyramid.float_sizes[axis], level) - np.float32(0.5)
         f = np.floor(t)
         i = f.astype(np.int32)
+        frac = t - f
         axes.append((_address_rows(i, n, mode, pyramid.pow2),
                      _address_rows(i + 1, n, mode, pyramid.pow2),
-                     (t - f).astype(np.float32), n))
-    out = None
-    for corner in range(1 << len(axes)):       # 4 (or 8) surrounding texels, weighted
-        index, stride, outside, weight = offset, 1, [], None
-        for k, ((i0, o0), (i1, o1), frac, n) in enumerate(axes):
-            hi = (corner >> k) & 1
-            index = index + (i1 if hi else i0) * stride
-            outside.append(o1 if hi else o0)
-            w = frac if hi else 1 - frac
+                     (1 - frac, frac), n))
+    # Partial sums of the index axis by axis, so each tap adds one term (integers: exact).
+    # Taps in corner order, the first axis varying fastest: the texels are summed in that order.
+    bases = [(offset, [])]
+    stride = None
+    for (i0, o0), (i1, o1), _, n in axes:
+        bases = [(base + (i if stride is None else i * stride), outside + [o])
+                 for i, o in ((i0, o0), (i1, o1)) for base, outside in bases]
+        stride = n if stride is None else stride * n
+    taps = _Taps([], [], [])
+    for corner, (index, outside) in enumerate(bases):
+        weight = None
+        for k, axis in enumerate(axes):
+            w = axis[2][(corner >> k) & 1]
             weight = w if weight is None else weight * w
-            stride = stride * n
-        term = _fetch_planar(planar, index, outside, border)
-        term *= weight
+        taps.indices.append(index)
+        taps.outside.append(_any_outside(outside))
+        taps.weights.append(weight)
+    return taps
+
+
+def _any_outside(masks: list) -> np.ndarray | None:
+    masks = [m for m in masks if m is not None]
+    if not masks:
+        return None
+    return masks[0] if len(masks) == 1 else np.logical_or.reduce(masks)
+
+
+def _apply_taps(planar: np.ndarray, taps: _Taps, border: np.ndarray) -> np.ndarray:
+    """The weighted sum of the taps' texels, (4, N) channel-major, taps added in order."""
+    out = None
+    for index, outside, weight in zip(taps.indices, taps.outside, taps.weights):
+        term = np.take(planar, index, axis=1)
+        if outside is not None and outside.any():
+            term[:, outside] = border[:, None]
+        if weight is not None:
+            term *= weight
         out = term if out is None else np.add(out, term, out=out)
     return out
+
+
+def _lookup_rows(pyramid: _Pyramid, level: np.ndarray, coords: Sequence[np.ndarray],
+                 linear: bool, modes: Sequence[str], border: np.ndarray) -> np.ndarray:
+    """`_lookup` with a level per row, in the pyramid: (4, N) channel-major texels. The same
+    arithmetic, in the same order, as `_lookup`."""
+    return _apply_taps(pyramid.planar, _taps_rows(pyramid, level, coords, linear, modes), border)
 
 
 def _fetch_planar(planar: np.ndarray, index: np.ndarray, outside: list,
@@ -264,28 +309,12 @@ def _mip_sample(levels: list[_Level], coords: list[np.ndarray], lod: np.ndarray,
     top = len(levels) - 1
     if s.mip_filter == "NONE" or top == base:
         return _by_filter(levels[base], coords, minify, min_linear, mag_linear, modes, border)
-    # MaxMipLevel clamps the level index itself: levels finer than `base` are never used.
-    d = np.clip(np.where(minify, lod, np.float32(0)), base, top)
-    if s.mip_filter == "POINT":
-        # nearest level: level k serves lod in (k - 0.5, k + 0.5]
-        lo = np.ceil(d - np.float32(0.5)).astype(np.int32)
-        frac = None
-    else:
-        lo = np.floor(d).astype(np.int32)
-        frac = (d - lo).astype(np.float32)
     if min_linear == mag_linear:
         # Every row at its own level in one pass; only rows between two levels read a second.
         pyramid = _pyramid(levels)
-        out = np.ascontiguousarray(_lookup_rows(pyramid, lo, coords, min_linear, modes,
-                                                border).T)
-        if frac is not None:
-            blend = np.nonzero(frac)[0]
-            if len(blend):
-                b = _lookup_rows(pyramid, lo[blend] + 1, [c[blend] for c in coords],
-                                 min_linear, modes, border).T
-                a = out[blend]
-                out[blend] = a + (b - a) * frac[blend, None]
-        return out
+        plan = _cached_plan(pyramid, coords, lod, s, min_linear, modes)
+        return _apply_plan(pyramid.planar, plan, border).T
+    lo, frac = _mip_levels(lod, minify, s, base, top)
     out = np.empty((count, 4), np.float32)
     used = np.unique(lo)
     for k in used:
@@ -306,6 +335,79 @@ def _mip_sample(levels: list[_Level], coords: list[np.ndarray], lod: np.ndarray,
                 else:
                     a[blend] = a[blend] + (b - a[blend]) * f[blend, None]
         out[rows] = a
+    return out
+
+
+def _mip_levels(lod: np.ndarray, minify: np.ndarray, s: SamplerSettings, base: int, top: int
+                ) -> tuple[np.ndarray, np.ndarray | None]:
+    """Per row the (finer) mip level and, for MipFilter LINEAR, the blend towards the next."""
+    # MaxMipLevel clamps the level index itself: levels finer than `base` are never used.
+    d = np.clip(np.where(minify, lod, np.float32(0)), base, top)
+    if s.mip_filter == "POINT":
+        # nearest level: level k serves lod in (k - 0.5, k + 0.5]
+        return np.ceil(d - np.float32(0.5)).astype(np.int32), None
+    lo = np.floor(d).astype(np.int32)
+    return lo, (d - lo).astype(np.float32)
+
+
+@dataclass
+class _MipPlan:
+    """The taps of a mipmapped lookup: every row at its level `lo`, and the rows `blend`
+    that also read the next level, mixed by `frac` (None: no second level)."""
+
+    lo: _Taps
+    blend: np.ndarray | None = None
+    hi: _Taps | None = None
+    frac: np.ndarray | None = None
+
+
+def _mip_plan(pyramid: _Pyramid, coords: Sequence[np.ndarray], lod: np.ndarray,
+              s: SamplerSettings, linear: bool, modes: Sequence[str]) -> _MipPlan:
+    top = len(pyramid.offsets) - 1
+    base = min(max(int(s.max_mip_level), 0), top)
+    lo, frac = _mip_levels(lod, lod > 0, s, base, top)
+    plan = _MipPlan(_taps_rows(pyramid, lo, coords, linear, modes))
+    if frac is not None:
+        blend = np.nonzero(frac)[0]
+        if len(blend) == len(frac):
+            plan.blend, plan.frac = slice(None), frac
+            plan.hi = _taps_rows(pyramid, lo + 1, coords, linear, modes)
+        elif len(blend):
+            plan.blend, plan.frac = blend, frac[blend]
+            plan.hi = _taps_rows(pyramid, lo[blend] + 1, [c[blend] for c in coords], linear,
+                                 modes)
+    return plan
+
+
+_recent = threading.local()
+
+
+def _cached_plan(pyramid: _Pyramid, coords: Sequence[np.ndarray], lod: np.ndarray,
+                 s: SamplerSettings, linear: bool, modes: Sequence[str]) -> _MipPlan:
+    """`_mip_plan`, reused when the previous lookup on this thread had equal coordinates, LOD,
+    settings and level sizes: a program reading several same-sized textures at the same
+    coordinates (base, normal and gloss maps) then computes the addresses and weights once."""
+    key = (tuple(pyramid.shapes), s, linear, tuple(modes))
+    last = getattr(_recent, "plan", None)
+    if (last is not None and last[0] == key and len(last[1]) == len(coords)
+            and all(np.array_equal(a, b) for a, b in zip(last[1], coords))
+            and np.array_equal(last[2], lod)):
+        return last[3]
+    plan = _mip_plan(pyramid, coords, lod, s, linear, modes)
+    _recent.plan = (key, [np.array(c) for c in coords], np.array(lod), plan)
+    return plan
+
+
+def _apply_plan(planar: np.ndarray, plan: _MipPlan, border: np.ndarray) -> np.ndarray:
+    """(4, N) texels of a plan: a + (b - a) * frac where a second level is read."""
+    out = _apply_taps(planar, plan.lo, border)
+    if plan.hi is not None:
+        b = _apply_taps(planar, plan.hi, border)
+        a = out[:, plan.blend]
+        b -= a
+        b *= plan.frac
+        b += a
+        out[:, plan.blend] = b
     return out
 
 
