@@ -310,12 +310,19 @@ def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs, 
         y = qy[q] + QUAD_DY[pixel]
         row_tri = quad_tri[q]
         covered = np.ones(count, bool)
+    # Rows come grouped by triangle in triangle order (see `_cover`), so a per-triangle value
+    # reaches its rows by a repeat: the same values as a gather by `row_tri`, faster.
+    counts = np.bincount(row_tri, minlength=len(tris))
+
+    def per_row(values: np.ndarray) -> np.ndarray:
+        return np.repeat(values, counts, axis=-1)
+
     xf, yf = x.astype(np.float64), y.astype(np.float64)
     values = []
     for a, b, c in planes:
-        v = a[row_tri] * xf
-        v += b[row_tri] * yf
-        v += c[row_tri]
+        v = per_row(a) * xf
+        v += per_row(b) * yf
+        v += per_row(c)
         values.append(v)
     # D3D clamps depth to the viewport's [MinZ, MaxZ] = [0, 1] (bias and helpers can leave it)
     depth = np.clip(values[3], 0.0, 1.0).astype(np.float32)
@@ -337,16 +344,18 @@ def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs, 
             corner = attrs[tris[:, i]]                              # (T, K) at vertex i
             if provoking is not None:   # flat: every corner holds the provoking value
                 corner[:, flat_cols] = provoking[source][:, flat_cols]
-            term = np.take(corner, row_tri, axis=0)                 # (N, K)
-            term *= wi.astype(np.float32)[:, None]
+            # Component-major (K, N): the weight scales whole rows (NumPy is slow on (N, K)
+            # arrays scaled row by row), and each varying component is a contiguous column.
+            term = per_row(np.ascontiguousarray(corner.T))
+            term *= wi.astype(np.float32)
             if everything is None:
                 everything = term
             else:
                 everything += term
         col = 0
         for n in names:
-            rows[n] = everything[:, col:col + dims[n]]
+            rows[n] = everything[col:col + dims[n]].T                 # (N, k) views
             col += dims[n]
     else:
         rows = {n: np.zeros((count, 0), np.float32) for n in names}
-    return QuadFragments(x, y, covered, depth, source[row_tri], front[row_tri], rows, quads)
+    return QuadFragments(x, y, covered, depth, per_row(source), per_row(front), rows, quads)
