@@ -8,8 +8,9 @@ test, colour write mask, stencil, cull modes and vface, flat shading, colour sat
 point/bilinear/mip-mapped texture filtering with every address mode, cube faces (sampling and
 rendering into), volume, 1D and projected lookups, sRGB textures, kill, vpos, vertex
 programs, fog and specular add, float targets, multipass accumulation, and a lit surface
-against the lighting formula. The expectations come from tests/test_gl_renderer.py and
-tests/test_reference_renderer.py, where each was first written for one back end.
+against the lighting formula, the registry and bad draw calls. What only one back end has
+(GL's program cache and buffer reuse; the reference's threads and fast paths) is tested in
+tests/test_gl_renderer.py and tests/test_reference_renderer.py.
 
 GL is required: without a context the gl cases fail with GLUnavailable; nothing is skipped.
 """
@@ -20,7 +21,11 @@ import math
 import numpy as np
 import pytest
 
-from backends.base import create_backend, render_cube_faces
+from backends.base import (Backend, DrawError, UnknownBackend, available_backends,
+                           create_backend, render_cube_faces)
+from backends.gl import GLBackend
+from backends.reference.renderer import ReferenceBackend
+from effects.errors import EffectError
 from effects.ir import Builder
 from effects.passprogram import PassProgram, RenderState, TextureBinding
 from effects.textures import Texture
@@ -216,6 +221,11 @@ def test_colour_varyings_are_saturated_before_interpolation(backend):
     image = render(backend, [(PassProgram(b.build(), render_state=NO_CULL), (streams, idx, prim))],
                    size=(2, 2), format=FLOAT)
     np.testing.assert_allclose(image[0, 0, :2], [0.25, 0.5])  # colour clamped to 1, texcoord not
+    # red 2 on the left edge, 0 on the right: sat(2) = 1 interpolated is 1 - u = 1 - px/8
+    # (interpolating first, then saturating, would give min(2 - 2u, 1): 1 up to px = 4)
+    red_left = np.array([[2, 0, 0, 1], [0, 0, 0, 1], [2, 0, 0, 1], [0, 0, 0, 1]])
+    image = render(backend, [(show("color0"), quad(color0=red_left))])
+    assert_unorm(image[0, :, 0], 1 - np.arange(8) / 8)
 
 
 # --------------------------------------------------------------------------------------------
@@ -369,6 +379,13 @@ def test_point_sampling_picks_the_texel_under_the_pixel_centre(backend):
     # u = px/8 falls in texel floor(u*4) = px // 2
     np.testing.assert_allclose(image[0, :, 0], (px // 2) * 0.25 + 0.1, atol=1e-6)
     np.testing.assert_allclose(image[:, 0, 1], (px // 2) * 0.25 + 0.1, atol=1e-6)
+    # Inside the quad, even pixels lie exactly on texel edges (u * 4 = px / 2), where the
+    # interpolated u may fall either side; odd pixels sample texel centres: there every
+    # pixel reads texel (py // 2, px // 2), red by column and green by row.
+    odd = image[1::2, 1::2]
+    texel = (px[1::2] // 2) * 0.25 + 0.1
+    np.testing.assert_allclose(odd[..., 0], np.broadcast_to(texel, (4, 4)), atol=1e-6)
+    np.testing.assert_allclose(odd[..., 1], np.broadcast_to(texel[:, None], (4, 4)), atol=1e-6)
 
 
 @pytest.mark.parametrize("mode, left_neighbour", [
@@ -483,12 +500,13 @@ def test_several_new_textures_in_one_draw_each_reach_their_sampler(backend):
     np.testing.assert_allclose(image[0, 0], [0.25, 0.5, 0.75, 0.75])
 
 
-def test_unbound_sampler_reads_0001(backend):
+@pytest.mark.parametrize("unit", [0, 3])
+def test_unbound_sampler_reads_0001(backend, unit):
     b = Builder("fragment")
-    b.output("color0", b.sample(3, b.varying("texcoord0")))
+    b.output("color0", b.sample(unit, b.varying("texcoord0")))
     image = render(backend, [(PassProgram(b.build(), render_state=NO_CULL), quad())], size=(2, 2),
                    clear=(0.5, 0.5, 0.5, 0.5))
-    np.testing.assert_array_equal(image[0, 0], [0, 0, 0, 255])
+    np.testing.assert_array_equal(image, np.broadcast_to([0, 0, 0, 255], (2, 2, 4)))
 
 
 def test_srgb_texture_is_linearised(backend):
@@ -510,7 +528,22 @@ def test_kill_discards_where_a_component_is_negative(backend):
     b.kill(b.sub(coord, b.const(0.5)), "x")   # u < 0.5: the left half
     b.output("color0", b.const(1.0))
     image = render(backend, [(PassProgram(b.build(), render_state=NO_CULL), quad())], size=(4, 2))
-    np.testing.assert_array_equal(image[..., 0], [[0, 0, 255, 255]] * 2)
+    expected = np.zeros((2, 4, 4), int)
+    expected[:, 2:] = 255                     # the clear (0, 0, 0, 0) on the left, white right
+    np.testing.assert_array_equal(image, expected)
+
+
+def test_uniforms_reach_the_pass_and_unsupplied_ones_read_zero(backend):
+    b = Builder("fragment")
+    b.output("color0", b.uniform("Tint"))
+    fragment = b.build()
+    for value in ((1.0, 0.0, 0.0, 1.0), (0.0, 0.0, 1.0, 1.0)):
+        program = PassProgram(fragment, render_state=NO_CULL,
+                              uniforms=PassProgram.pack_uniforms({"Tint": value}))
+        image = render(backend, [(program, quad())], size=(2, 2))
+        np.testing.assert_array_equal(image[0, 0], u8(value))
+    image = render(backend, [(PassProgram(fragment, render_state=NO_CULL), quad())], size=(2, 2))
+    np.testing.assert_array_equal(image[0, 0], [0, 0, 0, 0])
 
 
 def test_vertex_program_transforms_positions(backend):
@@ -554,6 +587,18 @@ def test_fog_blends_towards_the_fog_colour(backend, states, fog_stream, factor):
     assert_close_u8(image[0, 0], u8([factor, 0, 1 - factor, 1]))
 
 
+def test_specular_is_added_before_fog(backend):
+    """Colour 0.5 grey + specular 0.25 red = (0.75, 0.5, 0.5); table fog at z = 0.5 keeps
+    half of that and adds half of the blue fog colour: (0.375, 0.25, 0.75)."""
+    state = RenderState(cull_mode="NONE", specular_enable=True, fog_enable=True,
+                        fog_table_mode="LINEAR", fog_start=0.0, fog_end=1.0, fog_color=(0, 0, 1, 0))
+    streams, idx, prim = quad(color0=np.tile([0.5, 0.5, 0.5, 1], (4, 1)),
+                              color1=np.tile([0.25, 0, 0, 0], (4, 1)))
+    image = render(backend, [(show("color0", state), (streams, idx, prim))], size=(8, 8))
+    # 95.6, 63.75, 191.25 and 255: no value near a half step, so exact
+    np.testing.assert_array_equal(image, np.broadcast_to([96, 64, 191, 255], (8, 8, 4)))
+
+
 # --------------------------------------------------------------------------------------------
 # Targets
 
@@ -573,10 +618,12 @@ def test_float_target_formats_read_missing_channels_as_one(backend):
 
 def test_cube_faces_render_into_six_frames(backend):
     def draw_face(face):
-        backend.draw(constant((face, 0, 0, 1)), *quad(), {})
-    faces = render_cube_faces(backend, 4, draw_face)
-    assert faces.shape == (6, 4, 4, 4)
-    np.testing.assert_array_equal(faces[:, 0, 0, 0], np.arange(6))
+        backend.draw(constant((10.0 * face + 0.5, 0, 0, 0)), *quad(), {})
+    faces = render_cube_faces(backend, 4, draw_face, format="R32F")
+    assert faces.shape == (6, 4, 4, 4) and faces.dtype == np.float32
+    expected = np.ones((6, 4, 4, 4), np.float32)      # R32F reads G, B and A as 1
+    expected[..., 0] = (10.0 * np.arange(6) + 0.5)[:, None, None]
+    np.testing.assert_array_equal(faces, expected)
 
 
 
@@ -644,6 +691,11 @@ def test_depth_order_of_overlapping_rectangles_in_both_draw_orders(backend):
     np.testing.assert_array_equal(a, b)
     assert a[4, 4].tolist() == [255, 0, 0, 255]        # NDC (0, 0): inside both, near wins
     assert a[1, 7].tolist() == [0, 255, 0, 255]        # only the far rectangle
+    # ZEnable off: the last drawn wins
+    z_off = RenderState(cull_mode="NONE", z_enable=False)
+    near_off, far_off = (constant(RED, z_off), near[1]), (constant(GREEN, z_off), far[1])
+    assert render(backend, [near_off, far_off])[4, 4].tolist() == [0, 255, 0, 255]
+    assert render(backend, [far_off, near_off])[4, 4].tolist() == [255, 0, 0, 255]
 
 
 def test_multipass_accumulates_into_one_frame(backend):
@@ -754,9 +806,10 @@ def test_lit_surface_matches_the_lighting_formula(backend):
 
 
 def test_bad_draw_calls_are_draw_errors(backend):
-    from backends.base import DrawError
-    backend.begin_frame((4, 4))
     program = constant((1, 1, 1, 1))
+    with pytest.raises(DrawError):                      # no frame begun
+        backend.draw(program, {"position": CLIP_QUAD}, CLIP_QUAD_INDICES, "list", {})
+    backend.begin_frame((4, 4))
     try:
         with pytest.raises(DrawError):
             backend.draw(program, {"position": CLIP_QUAD}, np.array([0, 1, 7]), "list", {})
@@ -770,170 +823,34 @@ def test_bad_draw_calls_are_draw_errors(backend):
         backend.begin_frame((4, 4), format="P8")
 
 
-# --------------------------------------------------------------------------------------------
-# GL only: what a repeated draw costs
-
-
-def test_gl_redraws_of_a_pass_do_not_print_its_ir_again(monkeypatch):
-    """The program cache is keyed by the IR's digest; a pass drawn again (lowering hands back
-    the same Program objects) must not print and hash its IR again each draw."""
-    from backends.gl import GLBackend
-    from effects import ir
-    gl = GLBackend()
-    try:
-        v = Builder("vertex")
-        v.output("position", v.varying("position", "POSITION", 3))
-        v.output("texcoord0", v.varying("texcoord0", "TEXCOORD0", 2))
-        program = PassProgram(show("texcoord0").fragment, vertex=v.build(), render_state=NO_CULL)
-        first = render(gl, [(program, quad())])
-        calls = []
-        original = ir.Program.key
-        monkeypatch.setattr(ir.Program, "key", lambda self: calls.append(self) or original(self))
-        again = render(gl, [(program, quad())])
-        assert calls == []
-        np.testing.assert_array_equal(first, again)
-    finally:
-        gl.close()
-
-
-def test_gl_redraws_reuse_buffers_and_keep_each_passes_uniforms(monkeypatch):
-    """A frame drawn again makes no new GL buffers or vertex arrays; passes that share a
-    shader but not their uniform values (A, B, A in one frame) each draw with their own."""
-    from backends.gl import GLBackend
-    gl = GLBackend()
-    try:
-        b = Builder("fragment")
-        b.output("color0", b.uniform("Tint"))
-        fragment = b.build()
-
-        def tinted(colour):
-            return PassProgram(fragment, render_state=NO_CULL,
-                               uniforms=PassProgram.pack_uniforms({"Tint": colour}))
-
-        red, blue = tinted((1.0, 0.0, 0.0, 1.0)), tinted((0.0, 0.0, 1.0, 1.0))
-        draws = [(red, quad(-1, -1, -0.5, 1)), (blue, quad(-0.5, -1, 0.5, 1)),
-                 (red, quad(0.5, -1, 1, 1))]
-        first = render(gl, draws)
-        made = []
-        for name in ("buffer", "vertex_array"):
-            def counted(*args, _original=getattr(gl.ctx, name), **kwargs):
-                made.append(args)
-                return _original(*args, **kwargs)
-            monkeypatch.setattr(gl.ctx, name, counted)
-        again = render(gl, draws)
-        assert made == []
-        np.testing.assert_array_equal(first, again)
-        assert first[0, 0].tolist() == [255, 0, 0, 255]       # x < 2: the first red quad
-        assert first[0, 4].tolist() == [0, 0, 255, 255]       # the blue one
-        assert first[0, 7].tolist() == [255, 0, 0, 255]       # red again, after blue
-    finally:
-        gl.close()
+def test_clear_colour_and_the_frame_read_back(backend):
+    """An 8-bit frame reads back as (height, width, 4) uint8 with the clear colour rounded."""
+    image = render(backend, [], size=(3, 2), clear=(1, 0.5, 0, 0.25))
+    assert image.shape == (2, 3, 4) and image.dtype == np.uint8
+    np.testing.assert_array_equal(image[..., [0, 2]], np.broadcast_to([255, 0], (2, 3, 2)))
+    assert_unorm(image[..., 1].ravel(), np.full(6, 0.5))       # 127.5: 127 or 128
+    assert_unorm(image[..., 3].ravel(), np.full(6, 0.25))      # 63.75: 64
 
 
 # --------------------------------------------------------------------------------------------
-# Reference only: the fast paths of its sampler and evaluator give the plain formulas' values
+# The registry
 
 
-def _bilinear_by_hand(level: np.ndarray, u: float, v: float, mode: str) -> np.ndarray:
-    """One bilinear lookup written out from the sampler's conventions (texel i covers
-    [i/N, (i+1)/N); the four texels around (u N - 1/2, v N - 1/2))."""
-    h, w = level.shape[:2]
-
-    def fold(i, n):
-        if mode == "WRAP":
-            return i % n, True
-        if mode == "MIRROR":
-            p = i % (2 * n)
-            return (p if p < n else 2 * n - 1 - p), True
-        if mode == "BORDER":
-            return min(max(i, 0), n - 1), 0 <= i < n
-        return min(max(i, 0), n - 1), True          # CLAMP
-
-    x, y = u * w - 0.5, v * h - 0.5
-    x0, y0 = math.floor(x), math.floor(y)
-    fx, fy = x - x0, y - y0
-    total = np.zeros(4)
-    for dy, wy in ((0, 1 - fy), (1, fy)):
-        for dx, wx in ((0, 1 - fx), (1, fx)):
-            (i, in_x), (j, in_y) = fold(x0 + dx, w), fold(y0 + dy, h)
-            texel = level[j, i] if in_x and in_y else np.full(4, 0.25)
-            total += wx * wy * texel
-    return total
+BACKEND_CLASSES = {"numpy": ReferenceBackend, "gl": GLBackend}
 
 
-@pytest.mark.parametrize("mode", ["WRAP", "CLAMP", "MIRROR", "BORDER"])
-def test_trilinear_rows_at_many_levels_match_the_formula(mode):
-    """Quads at different LODs (levels 0..3 and between) in one call: each row is the blend
-    of two bilinear lookups at floor(LOD) and the next level, as written out by hand."""
-    from backends.reference.sampler import SamplerSettings, sample_2d
-    rng = np.random.default_rng(5)
-    levels = [rng.uniform(0, 1, (16 >> k, 16 >> k, 4)).astype(np.float32) for k in range(5)]
-    quads = 200
-    centre = rng.uniform(-0.5, 1.5, (quads, 2))
-    step = 2.0 ** rng.uniform(-5, -1, quads) # texels per pixel from 1/2 to 8 on level 0
-    offsets = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], np.float64)
-    uv = (centre[:, None, :] + offsets[None] * step[:, None, None]).reshape(-1, 2)
-    uv = uv.astype(np.float32)
-    settings = SamplerSettings(address_u=mode, address_v=mode, border=(0.25,) * 4,
-                               min_filter="LINEAR", mag_filter="LINEAR", mip_filter="LINEAR")
-    got = sample_2d(levels, uv, settings)
-    for q in range(quads):
-        lod = max(math.log2(float(step[q]) * 16), 0.0)
-        lod = min(lod, 4.0)
-        k = min(int(math.floor(lod)), 4)
-        frac = lod - k
-        for p in range(4):
-            row = 4 * q + p
-            u, v = float(uv[row, 0]), float(uv[row, 1])
-            a = _bilinear_by_hand(levels[k], u, v, mode)
-            if frac > 0:
-                a = a + (_bilinear_by_hand(levels[k + 1], u, v, mode) - a) * frac
-            np.testing.assert_allclose(got[row], a, atol=2e-5, err_msg=f"quad {q}, lod {lod}")
+def test_backend_is_registered_and_follows_the_protocol(backend):
+    assert isinstance(backend, Backend) and isinstance(backend, BACKEND_CLASSES[backend.name])
+    assert backend.name in available_backends()
+    made = create_backend(backend.name)
+    try:
+        assert type(made) is type(backend)
+    finally:
+        made.close()
 
 
-def test_swizzles_and_replicated_results_are_row_major():
-    """Kernel results are C-ordered (N, 4): NumPy arithmetic mixing orders is several times
-    slower, which is why swizzle must not return a fancy-indexed (column-major) array."""
-    from effects.ir import OPS
-    a = np.arange(40, dtype=np.float32).reshape(10, 4)
-    for pattern in ("xxxx", "yzxw", "wwzz"):
-        out = OPS["swizzle"].kernel(None, [a], {"pattern": pattern})
-        assert out.flags.c_contiguous
-        np.testing.assert_array_equal(out, a[:, ["xyzw".index(c) for c in pattern]])
-    dp3 = OPS["dp3"].kernel(None, [a, a], {})
-    assert dp3.flags.c_contiguous
-    np.testing.assert_array_equal(dp3[:, 2], (a[:, :3] ** 2).sum(axis=1))
-
-
-def test_uniform_operands_are_expanded_to_dense_rows():
-    from backends.reference.evaluate import _dense
-    u = np.array([1, 2, 3, 4], np.float32)
-    view = np.broadcast_to(u, (6, 4))
-    dense = _dense(view)
-    assert dense.flags.c_contiguous and dense.strides[0] != 0
-    np.testing.assert_array_equal(dense, view)
-    column = np.broadcast_to(np.arange(6, dtype=np.float32)[:, None], (6, 4))
-    np.testing.assert_array_equal(_dense(column), column)
-    assert _dense(column).flags.c_contiguous
-
-
-def test_replicated_scalar_ops_run_on_one_column_with_the_same_values():
-    """pow(dp3, c.xxxx) is replicated: the evaluator computes it once per row; the values are
-    those of the per-component formula, and a non-replicated pow is left alone."""
-    from backends.reference.evaluate import _scalar_instructions, evaluate
-    b = Builder("fragment")
-    t = b.varying("texcoord0")
-    ndl = b.dp3(t, t)
-    replicated = b.pow(b.saturate(ndl), b.swizzle(b.uniform("k"), "xxxx"))
-    mixed = b.pow(b.abs(t), b.const(3.0))
-    b.output("color0", b.add(replicated, mixed))
-    program = b.build()
-    pow_indices = [i for i, ins in enumerate(program.instrs) if ins.op == "pow"]
-    assert _scalar_instructions(program) == {pow_indices[0]}
-    rng = np.random.default_rng(3)
-    coords = rng.uniform(-1, 1, (64, 4)).astype(np.float32)
-    k = np.array([5.0, 1.0, 2.0, 3.0], np.float32)
-    out = evaluate(program, {"texcoord0": coords, "k": k}).outputs["color0"]
-    d = np.clip((coords[:, :3] ** 2).sum(axis=1), 0, 1)
-    expected = d[:, None] ** 5.0 + np.abs(coords) ** 3.0
-    np.testing.assert_allclose(out, expected, rtol=2e-6)
+def test_unknown_backend_is_an_effect_error_naming_it():
+    assert set(BACKEND_CLASSES) <= set(available_backends())
+    with pytest.raises(UnknownBackend) as err:
+        create_backend("vulkan")
+    assert isinstance(err.value, EffectError) and "vulkan" in str(err.value)

@@ -48,8 +48,6 @@ import numpy as np
 import pytest
 
 import backends.reference.sampler as reference_sampler
-from backends.base import create_backend
-from backends.gl import GLBackend
 from effects.caps import list_profiles, load_profile
 from effects.errors import NoValidTechnique
 from effects.loader import load_effect
@@ -150,6 +148,7 @@ def fast_log2(x: np.ndarray) -> np.ndarray:
 def llvmpipe_quad_lod(coords, sizes) -> np.ndarray:
     """`backends.reference.sampler.quad_lod` as llvmpipe computes it: the same squared scale
     factor, then 0.5 * fast_log2 instead of 0.5 * log2 (lp_build_lod_selector)."""
+    # Duplicates quad_lod but for the log: to be partial(quad_lod, log2=fast_log2) (requested).
     rho_x = rho_y = 0.0
     for c, n in zip(coords, sizes):
         q = c.reshape(-1, 4)
@@ -183,20 +182,6 @@ class Renders:
     reference_llvmpipe_lod: np.ndarray
     gl: np.ndarray
     cards: list
-
-
-@pytest.fixture(scope="module")
-def gl():
-    backend = GLBackend()
-    yield backend
-    backend.close()
-
-
-@pytest.fixture(scope="module")
-def ref():
-    backend = create_backend("numpy")
-    yield backend
-    backend.close()
 
 
 @pytest.fixture(scope="module")

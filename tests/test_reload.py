@@ -18,22 +18,6 @@ import effects
 from effects.reload import (BuildSettings, Reloader, Watcher, build_effect, content_hash, effect_builder,
                             referenced_files, watched_files)
 
-EFFECT = """#include "tint.fxh"
-texture Base < string ResourceName = "base.png"; >;
-technique Flat
-{
-    pass P0
-    {
-        Lighting = False;
-        TextureFactor = TINT;
-        ColorOp[0] = SelectArg1;
-        ColorArg1[0] = TFactor;
-        AlphaOp[0] = SelectArg1;
-        AlphaArg1[0] = TFactor;
-    }
-}
-technique Dot3 { pass P0 { Lighting = False; ColorOp[0] = DotProduct3; ColorArg1[0] = TFactor; ColorArg2[0] = Diffuse; } }
-"""
 TIMEOUT = 5.0
 QUIET = 0.4        # long enough for any debounce (25 ms) + polling safety net to have fired
 
@@ -43,11 +27,9 @@ def tint(hex_colour: str) -> str:
 
 
 @pytest.fixture
-def folder(tmp_path):
-    (tmp_path / "tint.fxh").write_text(tint("0xffff0000"))
-    (tmp_path / "flat.fx").write_text(EFFECT)
-    write_png(tmp_path / "base.png", (255, 0, 0))
-    return tmp_path
+def folder(tinted_effect):
+    """The folder of conftest's tinted effect: flat.fx, tint.fxh (red) and base.png."""
+    return tinted_effect.parent
 
 
 def write_png(path, rgb):
@@ -110,16 +92,17 @@ def test_truncated_write_fails_located_keeps_last_good_then_recovers(folder):
     reloader, _ = start_reloader(folder)
     good = reloader.last_good
     path = folder / "flat.fx"
+    effect = path.read_text()
     try:
-        cut = EFFECT.index("AlphaOp[0]")      # line 11: the pass and technique are left open
-        path.write_text(EFFECT[:cut])
+        cut = effect.index("AlphaOp[0]")      # line 11: the pass and technique are left open
+        path.write_text(effect[:cut])
         bad = expect_result(reloader)
         assert not bad.ok and bad.loaded is None
         line = bad.log_line()
         assert line.startswith(f"reload: {path} failed: {path}:")
         assert re.search(r":\d+:\d+: error: ", line), line
         assert reloader.last_good is good
-        path.write_text(EFFECT.replace("TINT;", "0xff0000ff;"))
+        path.write_text(effect.replace("TINT;", "0xff0000ff;"))
         fixed = expect_result(reloader)
         assert fixed.ok and tfactor(fixed.loaded) == (0.0, 0.0, 1.0, 1.0)
         assert reloader.last_good is fixed.loaded
@@ -130,12 +113,13 @@ def test_truncated_write_fails_located_keeps_last_good_then_recovers(folder):
 def test_delete_then_recreate(folder):
     reloader, _ = start_reloader(folder)
     path = folder / "flat.fx"
+    effect = path.read_text()
     try:
         path.unlink()
         gone = expect_result(reloader)
         assert gone.log_line() == (f"reload: {path} failed: {path}:1:1: error: cannot read "
                                    "effect file: No such file or directory")
-        path.write_text(EFFECT.replace("TINT;", "0xff00ffff;"))
+        path.write_text(effect.replace("TINT;", "0xff00ffff;"))
         back = expect_result(reloader)
         assert back.ok and tfactor(back.loaded) == (0.0, 1.0, 1.0, 1.0)
         expect_quiet(reloader)
@@ -149,7 +133,7 @@ def test_rename_into_place_counts_as_a_save(folder, use_watchdog):
     try:
         assert reloader.watcher.mode == ("watchdog" if use_watchdog else "polling")
         tmp = folder / "flat.fx.tmp"
-        tmp.write_text(EFFECT.replace("TINT;", "0xffffff00;"))
+        tmp.write_text((folder / "flat.fx").read_text().replace("TINT;", "0xffffff00;"))
         os.replace(tmp, folder / "flat.fx")
         result = expect_result(reloader)
         assert result.ok and tfactor(result.loaded) == (1.0, 1.0, 0.0, 1.0)
@@ -175,7 +159,8 @@ def test_a_burst_of_writes_is_one_reload_of_the_last_content(folder):
 def test_unchanged_content_does_not_reload(folder):
     reloader, _ = start_reloader(folder)
     try:
-        (folder / "flat.fx").write_text(EFFECT)            # saved without edits
+        path = folder / "flat.fx"
+        path.write_text(path.read_text())                  # saved without edits
         os.utime(folder / "tint.fxh")                      # touched
         tmp = folder / "x.tmp"                             # atomic save of the same bytes
         tmp.write_text(tint("0xffff0000"))
@@ -204,7 +189,8 @@ def test_new_include_is_watched_after_the_reload_that_added_it(folder):
     reloader, _ = start_reloader(folder)
     try:
         (folder / "more.fxh").write_text("#define OTHER 1\n")
-        (folder / "flat.fx").write_text('#include "more.fxh"\n' + EFFECT)
+        path = folder / "flat.fx"
+        path.write_text('#include "more.fxh"\n' + path.read_text())
         assert expect_result(reloader).ok
         assert str(folder / "more.fxh") in reloader.watcher.paths
         (folder / "more.fxh").write_text("#define OTHER 2\n")

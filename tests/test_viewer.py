@@ -31,26 +31,6 @@ CARDS = effects.list_profiles()
 SIZE = "800x360"
 SIDE = 360
 
-FLAT = """#include "tint.fxh"
-technique Flat
-{
-    pass P0
-    {
-        Lighting = False;
-        TextureFactor = TINT;
-        ColorOp[0] = SelectArg1;
-        ColorArg1[0] = TFactor;
-        AlphaOp[0] = SelectArg1;
-        AlphaArg1[0] = TFactor;
-    }
-}
-technique Dot3 { pass P0 { Lighting = False; ColorOp[0] = DotProduct3; ColorArg1[0] = TFactor; ColorArg2[0] = Diffuse; } }
-"""
-
-
-def tint(colour: str) -> str:
-    return f"#define TINT {colour}\n"
-
 
 def xvfb_run() -> str:
     path = shutil.which("xvfb-run")
@@ -154,14 +134,14 @@ def test_viewer_starts_on_every_effect_and_shows_every_card(path, tmp_path):
 
 
 @pytest.fixture
-def flat(tmp_path):
-    (tmp_path / "tint.fxh").write_text(tint("0xffff0000"))
-    (tmp_path / "flat.fx").write_text(FLAT)
-    return tmp_path
+def flat(tinted_effect):
+    """The folder of conftest's tinted effect: flat.fx, tint.fxh (red) and base.png."""
+    return tinted_effect.parent
 
 
 def test_edits_while_running_reload_fail_recover_and_end_on_the_last_effect(flat):
     path = flat / "flat.fx"
+    effect = path.read_text()
     shot = flat / "final.png"
     viewer = ViewerProcess(str(path), "--profile", "tnt2", "--mesh", "quad", "--size", SIZE,
                            "--exit-after", "5", "--screenshot", str(shot))
@@ -170,12 +150,12 @@ def test_edits_while_running_reload_fail_recover_and_end_on_the_last_effect(flat
     failed = f"reload: {path} failed: "
 
     # 1. a good edit of the #include: green
-    (flat / "tint.fxh").write_text(tint("0xff00ff00"))
+    (flat / "tint.fxh").write_text("#define TINT 0xff00ff00\n")
     line = viewer.expect(lambda l: l.startswith("reload:"), "after a good edit")
     assert line.startswith(ok) and line.endswith(" ms (technique Flat)"), line
 
     # 2. a truncated write: the located error, and the viewer goes on
-    path.write_text(FLAT[:FLAT.index("AlphaOp[0]")])
+    path.write_text(effect[:effect.index("AlphaOp[0]")])
     line = viewer.expect(lambda l: l.startswith("reload:"), "after a truncated write")
     assert line.startswith(failed + f"{path}:"), line
     assert ": error: " in line
@@ -184,13 +164,13 @@ def test_edits_while_running_reload_fail_recover_and_end_on_the_last_effect(flat
     path.unlink()
     line = viewer.expect(lambda l: l.startswith("reload:"), "after a delete")
     assert line == failed + f"{path}:1:1: error: cannot read effect file: No such file or directory"
-    path.write_text(FLAT.replace("TINT;", "0xff0000ff;"))
+    path.write_text(effect.replace("TINT;", "0xff0000ff;"))
     line = viewer.expect(lambda l: l.startswith("reload:"), "after re-creating the file")
     assert line.startswith(ok), line
 
     # 4. an editor's atomic save: write a temp file, rename it onto the effect (yellow)
     tmp = flat / ".flat.fx.swp"
-    tmp.write_text(FLAT.replace("TINT;", "0xffffff00;"))
+    tmp.write_text(effect.replace("TINT;", "0xffffff00;"))
     os.replace(tmp, path)
     line = viewer.expect(lambda l: l.startswith("reload:"), "after a rename into place")
     assert line.startswith(ok), line
@@ -205,14 +185,15 @@ def test_edits_while_running_reload_fail_recover_and_end_on_the_last_effect(flat
 
 def test_a_broken_file_at_start_opens_with_its_error_and_loads_once_fixed(flat):
     path = flat / "flat.fx"
-    path.write_text(FLAT.replace("technique Flat", "technique Flat oops"))
+    effect = path.read_text()
+    path.write_text(effect.replace("technique Flat", "technique Flat oops"))
     shot = flat / "fixed.png"
     viewer = ViewerProcess(str(path), "--profile", "tnt2", "--mesh", "quad", "--size", SIZE,
                            "--exit-after", "2.5", "--screenshot", str(shot))
     line = viewer.expect(lambda l: l.startswith("view:"), "view: ... failed")
-    assert line.startswith(f"view: {path} failed: {path}:2:"), line
+    assert line.startswith(f"view: {path} failed: {path}:3:"), line
     time.sleep(0.3)
-    path.write_text(FLAT.replace("TINT;", "0xff00ffff;"))
+    path.write_text(effect.replace("TINT;", "0xff00ffff;"))
     line = viewer.expect(lambda l: l.startswith("reload:"), "after the fix")
     assert line.startswith(f"reload: {path} ok in "), line
     assert viewer.finish() == 0
@@ -224,7 +205,7 @@ def test_forced_technique_the_card_cannot_run_shows_its_reason(flat):
                            "--mesh", "quad", "--size", SIZE, "--exit-after", "0.5")
     line = viewer.expect(lambda l: l.startswith("view:"), "view: ...")
     assert line == (f"view: {flat / 'flat.fx'} on tnt2: technique Flat (1 pass); forced Dot3 is "
-                    "not valid here: pass P0 (line 14): ColorOp[0] = DotProduct3 needs "
+                    "not valid here: pass P0 (line 15): ColorOp[0] = DotProduct3 needs "
                     "D3DTEXOPCAPS_DOTPRODUCT3; the RIVA TNT2 does not have it")
     assert viewer.finish() == 0
 
