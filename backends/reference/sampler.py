@@ -312,7 +312,7 @@ def _mip_sample(levels: list[_Level], coords: list[np.ndarray], lod: np.ndarray,
     if min_linear == mag_linear:
         # Every row at its own level in one pass; only rows between two levels read a second.
         pyramid = _pyramid(levels)
-        plan = _cached_plan(pyramid, coords, lod, s, min_linear, modes)
+        plan = _mip_plan(pyramid, coords, lod, s, min_linear, modes)
         return _apply_plan(pyramid.planar, plan, border).T
     lo, frac = _mip_levels(lod, minify, s, base, top)
     out = np.empty((count, 4), np.float32)
@@ -382,20 +382,42 @@ def _mip_plan(pyramid: _Pyramid, coords: Sequence[np.ndarray], lod: np.ndarray,
 _recent = threading.local()
 
 
-def _cached_plan(pyramid: _Pyramid, coords: Sequence[np.ndarray], lod: np.ndarray,
-                 s: SamplerSettings, linear: bool, modes: Sequence[str]) -> _MipPlan:
-    """`_mip_plan`, reused when the previous lookup on this thread had equal coordinates, LOD,
-    settings and level sizes: a program reading several same-sized textures at the same
-    coordinates (base, normal and gloss maps) then computes the addresses and weights once."""
-    key = (tuple(pyramid.shapes), s, linear, tuple(modes))
+def _one_pyramid_pass(levels: list[_Level], s: SamplerSettings) -> bool:
+    """Whether `_mip_sample` reads these levels through one mipmapped pyramid pass."""
+    top = len(levels) - 1
+    base = min(max(int(s.max_mip_level), 0), top)
+    return (s.mip_filter != "NONE" and top != base
+            and (s.min_filter in _POINT_FILTERS) == (s.mag_filter in _POINT_FILTERS))
+
+
+def _same_bits(a: np.ndarray, b: np.ndarray) -> bool:
+    """Equal float32 arrays bit for bit (so -0.0 and 0.0 differ, and NaN equals its copy)."""
+    return a.shape == b.shape and np.array_equal(a.view(np.uint32), b.view(np.uint32))
+
+
+def _sample_levels(levels: list[_Level], coords: list[np.ndarray], sizes: tuple[int, ...],
+                   s: SamplerSettings, bias, lod, modes: Sequence[str]) -> np.ndarray:
+    """LOD from the first len(sizes) coordinates, then the filtered lookup. A mipmapped lookup
+    with a computed LOD reuses the previous lookup's plan on this thread when the coordinates,
+    settings and level sizes are equal (the LOD, levels, addresses and weights are then equal
+    too): a program reading several same-sized textures at one coordinate (base, normal and
+    gloss maps) computes them once."""
+    border = np.asarray(s.border, np.float32)
+    if bias is not None or lod is not None or not _one_pyramid_pass(levels, s):
+        per_row = _lod(coords[:len(sizes)], sizes, len(coords[0]), s, bias, lod)
+        return _mip_sample(levels, coords, per_row, s, modes, border)
+    pyramid = _pyramid(levels)
+    # quad_lod is part of the key: tests substitute another LOD rule.
+    key = (quad_lod, tuple(pyramid.shapes), sizes, s, tuple(modes))
     last = getattr(_recent, "plan", None)
     if (last is not None and last[0] == key and len(last[1]) == len(coords)
-            and all(np.array_equal(a, b) for a, b in zip(last[1], coords))
-            and np.array_equal(last[2], lod)):
-        return last[3]
-    plan = _mip_plan(pyramid, coords, lod, s, linear, modes)
-    _recent.plan = (key, [np.array(c) for c in coords], np.array(lod), plan)
-    return plan
+            and all(_same_bits(a, b) for a, b in zip(last[1], coords))):
+        plan = last[2]
+    else:
+        per_row = _lod(coords[:len(sizes)], sizes, len(coords[0]), s, None, None)
+        plan = _mip_plan(pyramid, coords, per_row, s, s.min_filter not in _POINT_FILTERS, modes)
+        _recent.plan = (key, [np.array(c) for c in coords], plan)
+    return _apply_plan(pyramid.planar, plan, border).T
 
 
 def _apply_plan(planar: np.ndarray, plan: _MipPlan, border: np.ndarray) -> np.ndarray:
@@ -436,10 +458,8 @@ def sample_2d(levels: Sequence[np.ndarray], uv: np.ndarray, s: SamplerSettings,
     """Sample a 2D texture (list of (H, W, 4) levels) at rows of (u, v)."""
     lv = _levels(levels)
     h, w = lv[0].shape
-    coords = [np.asarray(uv[:, 0], np.float32), np.asarray(uv[:, 1], np.float32)]
-    per_row = _lod(coords, (w, h), len(uv), s, bias, lod)
-    return _mip_sample(lv, coords, per_row, s, (s.address_u, s.address_v),
-                       np.asarray(s.border, np.float32))
+    coords = [np.ascontiguousarray(uv[:, i], np.float32) for i in range(2)]
+    return _sample_levels(lv, coords, (w, h), s, bias, lod, (s.address_u, s.address_v))
 
 
 def sample_1d(levels: Sequence[np.ndarray], u: np.ndarray, s: SamplerSettings,
@@ -449,9 +469,7 @@ def sample_1d(levels: Sequence[np.ndarray], u: np.ndarray, s: SamplerSettings,
     lv = _levels(levels)
     coords = [np.asarray(np.reshape(u, (len(u), -1))[:, 0], np.float32)]
     coords.append(np.full(len(u), 0.5, np.float32))
-    per_row = _lod(coords[:1], (lv[0].shape[1],), len(u), s, bias, lod)
-    return _mip_sample(lv, coords, per_row, s, (s.address_u, "CLAMP"),
-                       np.asarray(s.border, np.float32))
+    return _sample_levels(lv, coords, (lv[0].shape[1],), s, bias, lod, (s.address_u, "CLAMP"))
 
 
 def sample_3d(levels: Sequence[np.ndarray], uvw: np.ndarray, s: SamplerSettings,
@@ -460,10 +478,9 @@ def sample_3d(levels: Sequence[np.ndarray], uvw: np.ndarray, s: SamplerSettings,
     """Sample a volume texture (levels of (D, H, W, 4)) at rows of (u, v, w)."""
     lv = _levels(levels)
     d, h, w = lv[0].shape
-    coords = [np.asarray(uvw[:, i], np.float32) for i in range(3)]
-    per_row = _lod(coords, (w, h, d), len(uvw), s, bias, lod)
-    return _mip_sample(lv, coords, per_row, s, (s.address_u, s.address_v, s.address_w),
-                       np.asarray(s.border, np.float32))
+    coords = [np.ascontiguousarray(uvw[:, i], np.float32) for i in range(3)]
+    return _sample_levels(lv, coords, (w, h, d), s, bias, lod,
+                          (s.address_u, s.address_v, s.address_w))
 
 
 # Per face: (major axis, sign, s axis and sign, t axis and sign), from the D3D9 cube table.
