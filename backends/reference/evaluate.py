@@ -52,6 +52,16 @@ class _Context:
         self.samplers = samplers
         self.count = count
         self.killed: np.ndarray | None = None
+        self.rows: dict[tuple, tuple] = {}
+
+    def as_rows(self, columns: Columns) -> np.ndarray:
+        """`_as_rows`, built once per distinct set of columns (several texture reads at one
+        coordinate share it; kernels never write to their arguments)."""
+        key = tuple(map(id, columns))
+        found = self.rows.get(key)
+        if found is None:   # the entry keeps the columns alive, so their ids stay theirs
+            found = self.rows[key] = (list(columns), _as_rows(columns, self.count))
+        return found[1]
 
     def input(self, name: str) -> np.ndarray:
         return _as_vec4(name, self.inputs[name], self.count)
@@ -261,7 +271,7 @@ def _run(ctx: _Context, instr: Instr, args: Sequence[Columns], wanted: frozenset
         scale = nrm_scale(dot3_columns(x, x))
         return [x[i] * scale if i in wanted else None for i in range(4)]
     # No column form: the op's kernel on whole (N, 4) rows.
-    result = OPS[op].kernel(ctx, [_as_rows(a, ctx.count) for a in args], instr.attr_map)
+    result = OPS[op].kernel(ctx, [ctx.as_rows(a) for a in args], instr.attr_map)
     return None if result is None else _from_rows(result)
 
 
