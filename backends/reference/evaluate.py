@@ -169,9 +169,11 @@ def _scalar_instructions(program: Program) -> frozenset:
 # ------------------------------------------------------------------------------------------------
 # Which components are read
 
-def _arg_demand(instr: Instr, wanted: frozenset) -> list[frozenset]:
+def _arg_demand(instr: Instr, wanted: frozenset, sample_reads=None) -> list[frozenset]:
     """The components of each argument that `instr` reads to produce `wanted` of its result."""
     op, attrs = instr.op, instr.attr_map
+    if op == "sample" and sample_reads is not None:
+        return [sample_reads(instr)]
     if op in _PER_COMPONENT:
         return [wanted] * len(instr.args)
     if op == "swizzle":
@@ -186,10 +188,12 @@ def _arg_demand(instr: Instr, wanted: frozenset) -> list[frozenset]:
     return [_ALL] * len(instr.args)   # sample, dp4, crs, kill, ...: the whole vec4
 
 
-def _demand(program: Program) -> list[frozenset]:
+def _demand(program: Program, sample_reads: Callable[[Instr], frozenset] | None = None
+            ) -> list[frozenset]:
     """Per instruction, the components of its result that some instruction or output reads
-    (kill and other effects count as reading what they read)."""
-    found = _DEMAND_CACHE.get(id(program))
+    (kill and other effects count as reading what they read; a sample reads its whole
+    coordinate unless `sample_reads` says otherwise)."""
+    found = _DEMAND_CACHE.get((id(program), sample_reads))
     if found is not None and found[0] is program:
         return found[1]
     need: dict[int, frozenset] = {}
@@ -202,12 +206,26 @@ def _demand(program: Program) -> list[frozenset]:
         per_instr[index] = wanted
         if not wanted:
             continue
-        for arg, arg_need in zip(instr.args, _arg_demand(instr, wanted)):
+        for arg, arg_need in zip(instr.args, _arg_demand(instr, wanted, sample_reads)):
             need[arg] = need.get(arg, frozenset()) | arg_need
     if len(_DEMAND_CACHE) > 1024:
         _DEMAND_CACHE.clear()
-    _DEMAND_CACHE[id(program)] = (program, per_instr)
+    _DEMAND_CACHE[(id(program), sample_reads)] = (program, per_instr)
     return per_instr
+
+
+def input_components(program: Program,
+                     sample_reads: Callable[[Instr], frozenset] | None = None
+                     ) -> dict[str, frozenset]:
+    """Input name -> the components (0 = x) the program's outputs and effects depend on.
+    `sample_reads(instr)` gives the coordinate components a sample instruction's callback
+    reads (default: all four, since a callback sees the whole vec4)."""
+    reads: dict[str, frozenset] = {}
+    for instr, wanted in zip(program.instrs, _demand(program, sample_reads)):
+        if instr.op == "input":
+            name = instr.attr("name")
+            reads[name] = reads.get(name, frozenset()) | wanted
+    return reads
 
 
 # ------------------------------------------------------------------------------------------------

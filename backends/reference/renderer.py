@@ -36,7 +36,7 @@ from effects.passprogram import PassProgram, RenderState, TextureBinding
 
 from ..base import DrawError, register_backend, triangle_list
 from . import output
-from .evaluate import evaluate
+from .evaluate import evaluate, input_components
 from .rasterize import QuadFragments, rasterize
 from .sampler import SamplerSettings, sample
 
@@ -311,14 +311,32 @@ def _vertex_stage(vertex: Program | None, streams: Mapping[str, np.ndarray], uni
     return position, varyings
 
 
+_COORDINATES = {"1d": 1, "2d": 2, "3d": 3, "cube": 3}
+
+
+def _sampler_reads(instr) -> frozenset:
+    """The coordinate components `sample` reads for this back end's samplers: the texture
+    kind's coordinates, and w where it projects, biases or sets the LOD."""
+    attrs = instr.attr_map
+    reads = set(range(_COORDINATES[attrs["kind"]]))
+    if attrs["proj"] or attrs["bias"] or attrs["lod"]:
+        reads.add(3)
+    return frozenset(reads)
+
+
 def _needed_varyings(fragment: Program, state: RenderState,
                      varyings: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    names = {i.name for i in fragment.inputs if i.kind == "varying"}
+    """The varyings to interpolate: those the fragment program reads, cut after the last
+    component it reads (the rest would read as defaults, never used), and those the fixed
+    function after it needs (whole)."""
+    reads = input_components(fragment, _sampler_reads)
+    needed = {i.name: max(reads.get(i.name, ()), default=0) + 1
+              for i in fragment.inputs if i.kind == "varying"}
     if state.specular_enable:
-        names.add("color1")
+        needed["color1"] = 4
     if state.fog_enable and state.fog_table_mode == "NONE":
-        names.add("fog")
-    return {n: varyings[n] for n in sorted(names) if n in varyings}
+        needed["fog"] = 4
+    return {n: varyings[n][:, :needed[n]] for n in sorted(needed) if n in varyings}
 
 
 def _fragment_inputs(fragment: Program, frags: QuadFragments, start: int, stop: int,
