@@ -176,8 +176,8 @@ def _taps_rows(pyramid: _Pyramid, level: np.ndarray, coords: Sequence[np.ndarray
     bases = [(offset, [])]
     stride = None
     for (i0, o0), (i1, o1), _, n in axes:
-        bases = [(base + (i if stride is None else i * stride), outside + [o])
-                 for i, o in ((i0, o0), (i1, o1)) for base, outside in bases]
+        scaled = [(i if stride is None else i * stride, o) for i, o in ((i0, o0), (i1, o1))]
+        bases = [(base + i, outside + [o]) for i, o in scaled for base, outside in bases]
         stride = n if stride is None else stride * n
     taps = _Taps([], [], [])
     for corner, (index, outside) in enumerate(bases):
