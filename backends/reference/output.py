@@ -302,7 +302,11 @@ def merge(fb: Framebuffer, state: RenderState, pixels: np.ndarray, color: np.nda
     if len(pixels) == 0:
         return
     width, height = fb.size
-    for rows in layers(pixels, width * height):
+    split = layers(pixels, width * height)
+    if len(split) == 1:   # no pixel hit twice: one layer holding every row, in order
+        _merge_layer(fb, state, pixels, color, depth, front, color2)
+        return
+    for rows in split:
         _merge_layer(fb, state, pixels[rows], color[rows], depth[rows], front[rows],
                      None if color2 is None else color2[rows])
 
