@@ -211,24 +211,6 @@ def _apply_taps(planar: np.ndarray, taps: _Taps, border: np.ndarray) -> np.ndarr
     return out
 
 
-def _lookup_rows(pyramid: _Pyramid, level: np.ndarray, coords: Sequence[np.ndarray],
-                 linear: bool, modes: Sequence[str], border: np.ndarray) -> np.ndarray:
-    """`_lookup` with a level per row, in the pyramid: (4, N) channel-major texels. The same
-    arithmetic, in the same order, as `_lookup`."""
-    return _apply_taps(pyramid.planar, _taps_rows(pyramid, level, coords, linear, modes), border)
-
-
-def _fetch_planar(planar: np.ndarray, index: np.ndarray, outside: list,
-                  border: np.ndarray) -> np.ndarray:
-    texels = np.take(planar, index, axis=1)
-    masks = [m for m in outside if m is not None]
-    if masks:
-        out = masks[0] if len(masks) == 1 else np.logical_or.reduce(masks)
-        if out.any():
-            texels[:, out] = border[:, None]
-    return texels
-
-
 def _lookup(level: _Level, coords: Sequence[np.ndarray], linear: bool, modes: Sequence[str],
             border: np.ndarray) -> np.ndarray:
     """Point or (bi/tri)linear lookup of `coords` (u, v[, w] float arrays) in one level."""
