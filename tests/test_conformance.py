@@ -38,6 +38,7 @@ key is the full list of PassPrograms).
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from functools import lru_cache
@@ -145,19 +146,9 @@ def fast_log2(x: np.ndarray) -> np.ndarray:
     return (exponent - 1) + (2 * mantissa - 1)
 
 
-def llvmpipe_quad_lod(coords, sizes) -> np.ndarray:
-    """`backends.reference.sampler.quad_lod` as llvmpipe computes it: the same squared scale
-    factor, then 0.5 * fast_log2 instead of 0.5 * log2 (lp_build_lod_selector)."""
-    # Duplicates quad_lod but for the log: to be partial(quad_lod, log2=fast_log2) (requested).
-    rho_x = rho_y = 0.0
-    for c, n in zip(coords, sizes):
-        q = c.reshape(-1, 4)
-        ddx = (q[:, 1] - q[:, 0]) * np.float32(n)
-        ddy = (q[:, 2] - q[:, 0]) * np.float32(n)
-        rho_x = rho_x + ddx * ddx
-        rho_y = rho_y + ddy * ddy
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return (0.5 * fast_log2(np.maximum(rho_x, rho_y))).astype(np.float32)
+# `backends.reference.sampler.quad_lod` as llvmpipe computes it: the same squared scale
+# factor, then 0.5 * fast_log2 instead of 0.5 * log2 (lp_build_lod_selector).
+llvmpipe_quad_lod = functools.partial(reference_sampler.quad_lod, log2=fast_log2)
 
 
 def psnr(a: np.ndarray, b: np.ndarray) -> float:

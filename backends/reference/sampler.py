@@ -253,9 +253,10 @@ def _lookup(level: _Level, coords: Sequence[np.ndarray], linear: bool, modes: Se
 # ------------------------------------------------------------------------------------------------
 # Level of detail and mip selection
 
-def quad_lod(coords: Sequence[np.ndarray], sizes: Sequence[int]) -> np.ndarray:
+def quad_lod(coords: Sequence[np.ndarray], sizes: Sequence[int], log2=np.log2) -> np.ndarray:
     """Per-quad LOD (one value per 4 rows) from quad differences of the coordinate arrays
-    scaled by the level-0 `sizes`: log2 of the longer of the d/dx and d/dy texel vectors."""
+    scaled by the level-0 `sizes`: log2 of the longer of the d/dx and d/dy texel vectors.
+    `log2` lets a test substitute a GPU's approximation (llvmpipe's, in test_conformance)."""
     rho_x = rho_y = 0.0
     for c, n in zip(coords, sizes):
         q = c.reshape(-1, 4)
@@ -264,7 +265,7 @@ def quad_lod(coords: Sequence[np.ndarray], sizes: Sequence[int]) -> np.ndarray:
         rho_x = rho_x + ddx * ddx
         rho_y = rho_y + ddy * ddy
     with np.errstate(divide="ignore", invalid="ignore"):
-        return (0.5 * np.log2(np.maximum(rho_x, rho_y))).astype(np.float32)
+        return (0.5 * log2(np.maximum(rho_x, rho_y))).astype(np.float32)
 
 
 def _lod(coords: Sequence[np.ndarray], sizes: Sequence[int], count: int, s: SamplerSettings,
