@@ -129,45 +129,8 @@ def _dense(value: np.ndarray) -> np.ndarray:
 _PER_COMPONENT = frozenset({"add", "sub", "mul", "mad", "neg", "min", "max", "rcp", "rsq",
                             "exp2", "log2", "pow", "frc", "abs", "sin", "cos", "cmp", "cnd",
                             "lrp", "slt", "sge", "saturate", "clamp", "quantize"})
-_WORTH_ONE_COLUMN = frozenset({"rcp", "rsq", "exp2", "log2", "pow", "sin", "cos"})
-_SCALAR_CACHE: dict[int, tuple[Program, frozenset]] = {}
 _DEMAND_CACHE: dict[int, tuple[Program, list]] = {}
 
-
-def _scalar_instructions(program: Program) -> frozenset:
-    """Indices of the costly per-component instructions whose arguments are all replicated
-    (dp3/dp4 results, one-component swizzles, constants with four equal values, and
-    per-component results of those): the ones the column form computes once per row."""
-    found = _SCALAR_CACHE.get(id(program))
-    if found is not None and found[0] is program:
-        return found[1]
-    replicated: set[int] = set()
-    scalar = set()
-    for index, instr in enumerate(program.instrs):
-        attrs = instr.attr_map
-        if instr.op in ("dp3", "dp4"):
-            same = True
-        elif instr.op == "swizzle":
-            same = len(set(attrs["pattern"])) == 1 or instr.args[0] in replicated
-        elif instr.op == "const":
-            same = len(set(attrs["value"])) == 1
-        elif instr.op in _PER_COMPONENT:
-            same = all(a in replicated for a in instr.args)
-            if same and instr.op in _WORTH_ONE_COLUMN:
-                scalar.add(index)
-        else:
-            same = False
-        if same and instr.dest is not None:
-            replicated.add(instr.dest)
-    if len(_SCALAR_CACHE) > 1024:
-        _SCALAR_CACHE.clear()
-    result = frozenset(scalar)
-    _SCALAR_CACHE[id(program)] = (program, result)
-    return result
-
-
-# ------------------------------------------------------------------------------------------------
-# Which components are read
 
 def _arg_demand(instr: Instr, wanted: frozenset, sample_reads=None) -> list[frozenset]:
     """The components of each argument that `instr` reads to produce `wanted` of its result."""
