@@ -53,17 +53,7 @@ class SamplerSettings:
 def _address(i: np.ndarray, n: int, mode: str) -> tuple[np.ndarray, np.ndarray | None]:
     """Integer texel indices folded into [0, n) by the address mode; for BORDER also a mask
     of the indices that fall outside (they read the border colour)."""
-    if mode == "WRAP":
-        return (i & (n - 1) if n & (n - 1) == 0 else np.mod(i, n)), None
-    if mode == "MIRROR":
-        period = np.mod(i, 2 * n)
-        return np.where(period < n, period, 2 * n - 1 - period), None
-    if mode == "MIRRORONCE":
-        return np.minimum(np.where(i < 0, -i - 1, i), n - 1), None
-    if mode == "BORDER":
-        outside = (i < 0) | (i >= n)
-        return np.clip(i, 0, n - 1), outside
-    return np.clip(i, 0, n - 1), None  # CLAMP
+    return _address_rows(i, n, mode, n & (n - 1) == 0)
 
 
 def _fetch(flat: np.ndarray, index: np.ndarray, outside: list, border: np.ndarray) -> np.ndarray:
@@ -120,7 +110,8 @@ def _pyramid(levels: Sequence[_Level]) -> _Pyramid:
 
 def _address_rows(i: np.ndarray, n: np.ndarray, mode: str, pow2: bool
                   ) -> tuple[np.ndarray, np.ndarray | None]:
-    """`_address` with a size per row."""
+    """`_address` with `n` a size per row (or one size); `pow2` when every size is a power
+    of two, so WRAP is a mask."""
     if mode == "WRAP":
         return (i & (n - 1) if pow2 else np.mod(i, n)), None
     if mode == "MIRROR":
