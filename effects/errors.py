@@ -20,10 +20,6 @@ class Location:
     def __str__(self) -> str:
         return f"{self.path}:{self.line}:{self.column}"
 
-    def shifted(self, lines: int = 0, column: int | None = None) -> "Location":
-        """The location `lines` further down, at `column` if given (used inside asm blocks)."""
-        return Location(self.path, self.line + lines, self.column if column is None else column)
-
 
 UNKNOWN_LOCATION = Location("<unknown>", 0, 0)
 

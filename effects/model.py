@@ -259,10 +259,6 @@ class Pass:
                 return s
         return None
 
-    @property
-    def label(self) -> str:
-        return self.name or f"#{id(self)}"
-
 
 @dataclass
 class Technique:

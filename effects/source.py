@@ -31,10 +31,8 @@ class SourceMap:
     def locate(self, line: int, column: int) -> Location:
         if not self.lines:
             return Location("<string>", line, column)
-        index = min(max(line, 1), len(self.lines)) - 1
-        path, original = self.lines[index]
-        if line > len(self.lines):  # past the end: the last line, one past its end
-            return Location(path, original, column)
+        # past the end (an error at end of file): the last line
+        path, original = self.lines[min(max(line, 1), len(self.lines)) - 1]
         return Location(path, original, column)
 
     def source_line(self, location: Location) -> str | None:
