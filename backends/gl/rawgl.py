@@ -13,6 +13,8 @@ import ctypes.util
 from ctypes import POINTER, c_float, c_int, c_uint, c_void_p
 from typing import Any
 
+from effects.errors import EffectError, Location
+
 # Enum values from the OpenGL 4.5 core registry (gl.xml).
 ZERO, ONE = 0, 1
 NEVER, LESS, EQUAL, LEQUAL, GREATER, NOTEQUAL, GEQUAL, ALWAYS = range(0x0200, 0x0208)
@@ -89,8 +91,14 @@ _RETURNS = {"glCheckFramebufferStatus": _u, "glGetError": _u}
 _LIBRARIES = ("libOpenGL.so.0", "libGL.so.1", "OpenGL", "GL")
 
 
-class RawGLUnavailable(RuntimeError):
-    """No GL library with the needed entry points could be loaded."""
+class RawGLUnavailable(EffectError):
+    """No GL library with the needed entry points could be loaded (a user-facing error: it
+    names the package that provides the library)."""
+
+    def __init__(self, message: str) -> None:
+        super().__init__(f"{message}; the GL back end needs GLVND's libOpenGL (Debian/Ubuntu: "
+                         "apt-get install libopengl0), or use the numpy back end",
+                         Location("<gl>", 0, 0))
 
 
 def _load_library() -> ctypes.CDLL:
