@@ -479,11 +479,3 @@ def test_deep_expression_nesting_is_a_located_error():
     assert error("#if " + "(" * 100 + "1" + ")" * 100 + "\n#endif") == (
         "<string>:1:69: error: #if expression nests too deeply")
 
-
-def test_thousand_line_effect_preprocesses_in_milliseconds():
-    line = "    float4 c = tex2D(s0, uv) * diffuse + specular; // lighting\n"
-    text = line * 1000
-    best = min(_result_or_error(text) for _ in range(5))
-    assert best < 0.02  # measured about 0.7 ms; the whole load has a 30 ms budget
-    best = min(_result_or_error(text, defines={"PS_TARGET": "ps_2_0"}) for _ in range(5))
-    assert best < 0.02  # measured about 1.3 ms
