@@ -45,7 +45,6 @@ STREAM_NAMES = ("position", "normal", "tangent", "binormal", "color0", "color1",
                 *(f"texcoord{i}" for i in range(8)))
 ATTRIBUTES = ("position", "normal", "tangent", "binormal", "uv", "diffuse", "specular",
               *(f"tex{i}" for i in range(8)))
-_KIND_NAMES = {"2D": "2d", "1D": "1d", "CUBE": "cube", "3D": "3d", "VOLUME": "3d"}
 
 
 # ------------------------------------------------------------------------------------------------
@@ -55,11 +54,7 @@ _KIND_NAMES = {"2D": "2d", "1D": "1d", "CUBE": "cube", "3D": "3d", "VOLUME": "3d
 def declared_kind(param: Parameter) -> str | None:
     """'2d', 'cube', '3d' or '1d' as the parameter's type or `Type` annotation says; None
     for an untyped `texture` without annotation."""
-    for key in ("Type", "TextureType"):
-        ann = param.annotation(key)
-        if ann is not None and isinstance(ann.value, str) and ann.value.upper() in _KIND_NAMES:
-            return _KIND_NAMES[ann.value.upper()]
-    return _KIND_NAMES.get(param.type.dim.upper()) if param.type.dim else None
+    return param.declared_texture_kind
 
 
 def effect_dir(effect: Effect) -> str:

@@ -43,7 +43,7 @@ class DeviceState:
         info = _info(assignment.name)
         if info is not None and info.kind == "sampler_object":
             # `Sampler[n] = <s>`: the sampler_state's own assignments land on sampler n.
-            sampler = self.resolve_object(assignment.value)
+            sampler = self.resolve(assignment.value)
             if isinstance(sampler, SamplerState):
                 for inner in sampler.states:
                     self.apply(inner, index_override=index or 0)
@@ -90,9 +90,6 @@ class DeviceState:
                 return v.item()
             return v if v is not None else value
         return value
-
-    def resolve_object(self, value: Any) -> Any:
-        return self.resolve(value)
 
     def items(self) -> Iterator[tuple[tuple[str, int | None], StateAssignment]]:
         return iter(self.values.items())

@@ -370,13 +370,8 @@ def _texture_kind(effect: Effect, state: DeviceState, sampler: int) -> str | Non
     param = _texture_param(effect, state, sampler)
     if param is None:
         return None
-    kind = param.type.dim
-    for key in ("Type", "TextureType"):
-        ann = param.annotation(key)
-        if ann is not None and isinstance(ann.value, str):
-            kind = ann.value
-            break
-    return {"CUBE": "cube", "3D": "3d", "VOLUME": "3d"}.get(kind.upper(), "2d")
+    # 1D textures sample as 2D rows here; an untyped texture is 2D until a file says otherwise
+    return {"cube": "cube", "3d": "3d"}.get(param.declared_texture_kind or "", "2d")
 
 
 def read_stages(effect: Effect, state: DeviceState) -> list[StageSetup]:

@@ -226,6 +226,20 @@ class Parameter:
     def annotation(self, name: str) -> Annotation | None:
         return _find_annotation(self.annotations, name)
 
+    @property
+    def declared_texture_kind(self) -> str | None:
+        """'2d', '1d', 'cube' or '3d' as a texture parameter's `string Type` (or `TextureType`)
+        annotation or its type (textureCUBE) says; None for an untyped `texture`."""
+        for key in ("Type", "TextureType"):
+            ann = self.annotation(key)
+            if ann is not None and isinstance(ann.value, str) and ann.value.upper() in TEXTURE_KINDS:
+                return TEXTURE_KINDS[ann.value.upper()]
+        return TEXTURE_KINDS.get(self.type.dim.upper()) if self.type.dim else None
+
+
+# Texture kinds as annotations and type suffixes spell them -> the IR's sampler kinds.
+TEXTURE_KINDS = {"2D": "2d", "1D": "1d", "CUBE": "cube", "3D": "3d", "VOLUME": "3d"}
+
 
 @dataclass
 class Struct:
