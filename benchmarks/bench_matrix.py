@@ -3,7 +3,7 @@
     python benchmarks/bench_matrix.py [--runs 7] [--json] [--profile]
 
 Three numbers:
-- in-process, first run: the command as `effects.cli.main` runs it in a fresh interpreter that
+- in-process, first run: the command as `effects.cli.main.main` runs it in a fresh interpreter that
   has imported the package (loads the 19 profiles, parses the 7 effects, validates 7 effects ×
   19 cards, prints the table);
 - in-process, median of --runs: the same after the first, with the profile cache cleared before
@@ -31,7 +31,7 @@ def _files() -> list[str]:
 
 
 def _in_process(argv: list[str]) -> float:
-    from effects import cli
+    from effects.cli import main as cli
     start = time.perf_counter()
     with contextlib.redirect_stdout(io.StringIO()):
         code = cli.main(argv)
@@ -63,7 +63,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
 
     command = ["matrix", *_files()] + (["--json"] if args.json else [])
-    import effects.cli  # noqa: F401  (imports are part of the subprocess figure, not these)
+    import effects.cli.main  # noqa: F401  (imports are part of the subprocess figure, not these)
     from effects import caps
 
     first = _in_process(command)

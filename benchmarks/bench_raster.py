@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from backends.base import create_backend
+from effects.backend import create_backend
 from effects.ir import Builder
 from effects.passprogram import PassProgram
 

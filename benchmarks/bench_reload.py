@@ -11,7 +11,7 @@ validate, select, lower, textures, draw). The time from just before the write to
 of the swap of the first frame drawn with the rebuilt effect is one sample; the next edit
 waits until the viewer is idle again. Printed: per effect the median and the worst sample
 and the median build time in the worker, then the median over all samples. Goal: 50 ms.
-The watcher's debounce (effects.reload.DEBOUNCE_S) is part of every sample.
+The watcher's debounce (effects.viewer.reload.DEBOUNCE_S) is part of every sample.
 """
 from __future__ import annotations
 
@@ -33,8 +33,8 @@ GOAL_MS = 50.0
 
 def measure_one(path: str, card: str, edits: int) -> dict:
     """Run a viewer on `path` in this process and time `edits` edits."""
-    from effects.reload import DEBOUNCE_S
-    from effects.viewer import FrameEvent, Viewer, ViewerOptions
+    from effects.viewer.reload import DEBOUNCE_S
+    from effects.viewer.app import FrameEvent, Viewer, ViewerOptions
 
     text = open(path, encoding="utf-8").read()
     frames: list[FrameEvent] = []
@@ -100,7 +100,7 @@ def drawable_card(path: str, preferred: str) -> str | None:
     """`preferred` if its technique for the effect can be prepared, else the most capable card
     whose can (a reload that cannot be drawn is a failed reload: nothing to time)."""
     import effects
-    from effects.reload import build_effect
+    from effects.viewer.reload import build_effect
     cards = [preferred] + [c for c in reversed(effects.list_profiles()) if c != preferred]
     for card in cards:
         loaded = build_effect(path, effects.load_profile(card), keep_prepare_error=True)

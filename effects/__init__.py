@@ -4,10 +4,10 @@
     card = effects.load_profile("geforce3")
     tech = effect.find_valid_technique(card)
 """
-from .errors import (AsmError, EffectError, EffectWarning, Location, NoValidTechnique, ParseError,
+from effects.errors import (AsmError, EffectError, EffectWarning, Location, NoValidTechnique, ParseError,
                      PreprocessError, ProfileError, SceneError, StateError)
-from .loader import load_effect
-from .model import Effect, Parameter, Pass, StateAssignment, Technique
+from effects.frontend.loader import load_effect
+from effects.model import Effect, Parameter, Pass, StateAssignment, Technique
 
 __all__ = [
     "AsmError", "Effect", "EffectError", "EffectWarning", "Location", "NoValidTechnique",
@@ -19,17 +19,17 @@ __all__ = [
 
 def load_profile(name_or_path: str):
     """Load a caps profile by name (`geforce3`) or path; see `effects.caps`."""
-    from .caps import load_profile as _load
+    from effects.caps import load_profile as _load
     return _load(name_or_path)
 
 
 def list_profiles() -> list[str]:
     """The names of the bundled caps profiles."""
-    from .caps import list_profiles as _list
+    from effects.caps import list_profiles as _list
     return _list()
 
 
 def render(effect, profile, **kwargs):
-    """Render an effect on a simulated card; see `effects.runtime.render`."""
-    from .runtime import render as _render
+    """Render an effect on a simulated card; see `effects.host.runtime.render`."""
+    from effects.host.runtime import render as _render
     return _render(effect, profile, **kwargs)

@@ -54,7 +54,7 @@ from typing import Any, Callable, Mapping
 
 import yaml
 
-from .errors import Location, ProfileError
+from effects.errors import Location, ProfileError
 
 PROFILE_DIR = Path(__file__).resolve().parent.parent / "caps_profiles"
 

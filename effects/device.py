@@ -13,8 +13,8 @@ from typing import Any, Iterator
 
 import numpy as np
 
-from .model import Effect, EnumValue, ParamRef, Pass, SamplerState, StateAssignment
-from . import states as state_table
+from effects.model import Effect, EnumValue, ParamRef, Pass, SamplerState, StateAssignment
+from effects import states as state_table
 
 # How many units each indexed kind has on a D3D9 device (stages, samplers, lights).
 MAX_STAGES = 8

@@ -11,11 +11,11 @@ from typing import TYPE_CHECKING, Any, Union
 
 import numpy as np
 
-from .errors import EffectWarning, Location, UNKNOWN_LOCATION
+from effects.errors import EffectWarning, Location, UNKNOWN_LOCATION
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .caps import CapsProfile
-    from .validate import Validation
+    from effects.caps import CapsProfile
+    from effects.validate.technique import Validation
 
 
 def _loc() -> Any:
@@ -301,7 +301,7 @@ class Effect:
         for t in self.techniques:
             if t.name == name:
                 return t
-        from .errors import EffectError
+        from effects.errors import EffectError
         known = ", ".join(t.name or "<anonymous>" for t in self.techniques)
         raise EffectError(f"no technique named '{name}' (the effect has: {known})",
                           Location(self.path, 1, 1))
@@ -321,22 +321,22 @@ class Effect:
 
     # -- the spine ---------------------------------------------------------------------------
     def validate(self, technique: Technique | str, profile: "CapsProfile") -> "Validation":
-        from .validate import validate_technique
+        from effects.validate.technique import validate_technique
         if isinstance(technique, str):
             technique = self.technique(technique)
         return validate_technique(self, technique, profile)
 
     def find_valid_technique(self, profile: "CapsProfile", policy: Any = "first") -> Technique | None:
-        from .select import find_valid_technique
+        from effects.validate.select import find_valid_technique
         return find_valid_technique(self, profile, policy)
 
     def find_next_valid_technique(self, profile: "CapsProfile",
                                   after: Technique | str | None = None) -> Technique | None:
-        from .select import find_next_valid_technique
+        from effects.validate.select import find_next_valid_technique
         return find_next_valid_technique(self, profile, after)
 
     def to_source(self) -> str:
-        from .printer import print_effect
+        from effects.frontend.printer import print_effect
         return print_effect(self)
 
 

@@ -28,8 +28,8 @@ from typing import Any
 
 import numpy as np
 
-from .errors import Location, StateError
-from .model import (CompileShader, EnumValue, Expression, NullValue, ParamRef, SamplerState,
+from effects.errors import Location, StateError
+from effects.model import (CompileShader, EnumValue, Expression, NullValue, ParamRef, SamplerState,
                     ShaderBlock)
 
 DWORD_MASK = 0xFFFFFFFF

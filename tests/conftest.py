@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
-from backends.base import create_backend
+from effects.backend import create_backend
 from backends.gl import GLBackend
 
 

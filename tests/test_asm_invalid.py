@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from effects.asm import NOT_ASSEMBLY, assemble, check
+from effects.shaders.asm import NOT_ASSEMBLY, assemble, check
 from effects.errors import AsmError, Location
 from effects.model import ShaderBlock, VertexDeclElement
 

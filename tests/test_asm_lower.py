@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 
 from backends.reference.evaluate import evaluate
-from effects.asm import assemble, check
-from effects.asm.lower import (ShaderContext, constant_registers, lower_pixel_shader,
+from effects.shaders.asm import assemble, check
+from effects.shaders.asm.lower import (ShaderContext, constant_registers, lower_pixel_shader,
                                lower_vertex_shader)
 from effects.errors import AsmError, EffectError, Location
 from effects.model import ShaderBlock, VertexDeclElement

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import pytest
 
-from effects.asm import INSTRUCTIONS, VERSIONS, assemble, check, lookup
+from effects.shaders.asm import INSTRUCTIONS, VERSIONS, assemble, check, lookup
 from effects.errors import Location
 from effects.model import ShaderBlock, VertexDeclElement
 

@@ -21,14 +21,14 @@ import math
 import numpy as np
 import pytest
 
-from backends.base import (Backend, DrawError, UnknownBackend, available_backends,
+from effects.backend import (Backend, DrawError, UnknownBackend, available_backends,
                            create_backend, render_cube_faces)
 from backends.gl import GLBackend
 from backends.reference.renderer import ReferenceBackend
 from effects.errors import EffectError
 from effects.ir import Builder
 from effects.passprogram import PassProgram, RenderState, TextureBinding
-from effects.textures import Texture
+from effects.host.textures import Texture
 
 BACKENDS = ("numpy", "gl")
 

@@ -32,14 +32,14 @@ import numpy as np
 import pytest
 
 import effects
-from effects.textures import make_texture
+from effects.host.textures import make_texture
 
 FX = os.path.join(os.path.dirname(__file__), "..", "fxfiles", "specular_bump.fx")
 SIZE = 128
 HALF = 128            # the highlight region: where the float picture is at least half bright
 
 
-def solid(rgb) -> "effects.textures.Texture":
+def solid(rgb) -> "effects.host.textures.Texture":
     return make_texture(np.broadcast_to(np.array([*rgb, 1.0], np.float32), (4, 4, 4)).copy(),
                         "X8R8G8B8")
 

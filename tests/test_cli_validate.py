@@ -11,9 +11,10 @@ from pathlib import Path
 import pytest
 
 import effects
-from effects import caps, cli
+from effects import caps
+from effects.cli import main as cli
 from effects.caps import list_profiles, load_profile
-from effects.report import matrix
+from effects.cli.report import matrix
 
 ROOT = Path(__file__).resolve().parent.parent
 PHONG = str(ROOT / "fxfiles" / "phong.fx")

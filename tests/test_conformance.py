@@ -51,11 +51,11 @@ import pytest
 import backends.reference.sampler as reference_sampler
 from effects.caps import list_profiles, load_profile
 from effects.errors import NoValidTechnique
-from effects.loader import load_effect
-from effects.lower import lower_pass
+from effects.frontend.loader import load_effect
+from effects.lower.passes import lower_pass
 from effects.model import Effect
-from effects.runtime import Runtime, render
-from effects.textures import fill_cube_texture, make_texture, procedural
+from effects.host.runtime import Runtime, render
+from effects.host.textures import fill_cube_texture, make_texture, procedural
 
 FXFILES = Path(__file__).resolve().parent.parent / "fxfiles"
 EFFECTS = sorted(p.name for p in FXFILES.glob("*.fx"))

@@ -5,9 +5,9 @@ import struct
 import numpy as np
 import pytest
 
-from effects import dds
+from effects.host import dds
 from effects.errors import SceneError
-from effects.textures import Texture, encode, mip_chain
+from effects.host.textures import Texture, encode, mip_chain
 
 
 def decode_words(fmt: str, words, nbytes: int) -> np.ndarray:

@@ -30,15 +30,15 @@ import numpy as np
 import pytest
 
 import effects
-import effects.textures
-from effects.textures import Texture, make_texture, procedural
+import effects.host.textures
+from effects.host.textures import Texture, make_texture, procedural
 
 FXFILES = os.path.join(os.path.dirname(__file__), "..", "fxfiles")
 SIZE = 128
 CLEAR = (255, 0, 255)        # magenta: no bundled texture or lighting result can be exactly this
 SCENE = {"clear": {"color": "0xffff00ff"}}
 
-# Default scene (effects.scene): eye (0, 0, 3) looking at the origin, up +y, fov 45, LH.
+# Default scene (effects.host.scene): eye (0, 0, 3) looking at the origin, up +y, fov 45, LH.
 EYE = np.array([0.0, 0.0, 3.0])
 FOV = math.radians(45.0)
 # The effects' own light defaults (the default scene has no `light` key, so they stand).
@@ -90,7 +90,7 @@ def sphere_hits(size: int = SIZE) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def sphere_uv(p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(u, v) of effects.meshes.sphere's mapping, whose point at (u, v) is
+    """(u, v) of effects.host.meshes.sphere's mapping, whose point at (u, v) is
     (sin(pi v) cos(2 pi u), cos(pi v), sin(pi v) sin(2 pi u))."""
     u = np.mod(np.arctan2(p[..., 2], p[..., 0]) / (2 * np.pi), 1.0)
     v = np.arccos(np.clip(p[..., 1], -1, 1)) / np.pi
@@ -206,7 +206,7 @@ def normal_map(effect: str) -> Texture:
 
 def base_texture(effect: str) -> Texture:
     name = "stones_base.png" if effect == "phong" else "earth_base.png"
-    return effects.textures.load_texture(os.path.join(FXFILES, "textures", name))
+    return effects.host.textures.load_texture(os.path.join(FXFILES, "textures", name))
 
 
 def base_key(effect: str) -> str:

@@ -16,7 +16,7 @@ from backends.gl import GLBackend, GLUnavailable, context
 from effects import ir
 from effects.ir import Builder
 from effects.passprogram import PassProgram, RenderState, TextureBinding
-from effects.textures import Texture
+from effects.host.textures import Texture
 from test_backends_suite import NO_CULL, quad, render, show, u8
 from test_conformance import psnr
 
@@ -155,7 +155,7 @@ def _n_dot_l_sphere():
     """A lit sphere: vertex program scales the unit sphere into clip space; the fragment
     program normalises the interpolated normal, dots it with the light and adds a specular
     power, all in float."""
-    from effects.meshes import sphere
+    from effects.host.meshes import sphere
     mesh = sphere(12, 24)
     v = Builder("vertex")
     p = v.varying("position", "POSITION", 3)

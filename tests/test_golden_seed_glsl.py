@@ -20,9 +20,9 @@ import pytest
 from backends.gl import glsl
 from backends.gl.renderer import fragment_options
 from effects.caps import list_profiles, load_profile
-from effects.loader import load_effect
-from effects.lower import lower_pass
-from effects.runtime import Runtime
+from effects.frontend.loader import load_effect
+from effects.lower.passes import lower_pass
+from effects.host.runtime import Runtime
 
 ROOT = Path(__file__).resolve().parent.parent
 GOLDEN_DIR = Path(__file__).parent / "golden" / "glsl" / "seeds"

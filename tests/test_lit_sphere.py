@@ -30,11 +30,11 @@ import numpy as np
 import pytest
 
 import effects
-from effects.assets import geometry
-from effects.meshes import sphere
-from effects.runtime import Runtime
-from effects.scene import load_scene
-from effects.textures import make_texture
+from effects.host.assets import geometry
+from effects.host.meshes import sphere
+from effects.host.runtime import Runtime
+from effects.host.scene import load_scene
+from effects.host.textures import make_texture
 
 SIZE = 128
 RINGS, SEGMENTS = 128, 256

@@ -13,7 +13,7 @@ import effects
 from backends.reference.evaluate import evaluate
 from effects.caps import load_profile
 from effects.errors import EffectError
-from effects.lower import clear_cache, lower_pass
+from effects.lower.passes import clear_cache, lower_pass
 
 GOLDEN_DIR = Path(__file__).parent / "golden" / "ir"
 UPDATE_GOLDEN = os.environ.get("EFFECTS_UPDATE_GOLDEN") == "1"

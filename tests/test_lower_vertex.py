@@ -10,7 +10,7 @@ import pytest
 import effects
 from backends.reference.evaluate import evaluate
 from effects.caps import load_profile
-from effects.lower import lower_pass
+from effects.lower.passes import lower_pass
 
 
 def lower(states: str, params: str = ""):

@@ -9,8 +9,8 @@ import pytest
 
 import effects
 from effects.caps import list_profiles, load_profile
-from effects.report import matrix, validate_all
-from effects.select import find_valid_technique
+from effects.cli.report import matrix, validate_all
+from effects.validate.select import find_valid_technique
 
 ROOT = Path(__file__).resolve().parent.parent
 FX = {p.stem: str(p.relative_to(ROOT)) for p in sorted((ROOT / "fxfiles").glob("*.fx"))}

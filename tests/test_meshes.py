@@ -3,7 +3,7 @@ the .obj reader with located errors."""
 import numpy as np
 import pytest
 
-from effects import meshes as M
+from effects.host import meshes as M
 from effects.errors import SceneError
 
 

@@ -6,7 +6,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from backends.base import DrawError
+from effects.backend import DrawError
 from backends.reference.output import Framebuffer, alpha_test, layers, merge
 from effects.passprogram import RenderState
 

@@ -8,7 +8,7 @@ import time
 import pytest
 
 from effects.errors import PreprocessError
-from effects.preprocess import preprocess
+from effects.frontend.preprocess import preprocess
 
 
 def out(text: str, **kwargs) -> str:

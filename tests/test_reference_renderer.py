@@ -8,12 +8,12 @@ import math
 import numpy as np
 import pytest
 
-from backends.base import create_backend
+from effects.backend import create_backend
 from backends.reference.evaluate import _dense, evaluate
 from backends.reference.sampler import SamplerSettings, sample_2d
 from effects.ir import OPS, Builder
 from effects.passprogram import PassProgram, RenderState, TextureBinding
-from effects.textures import Texture
+from effects.host.textures import Texture
 
 
 def test_threaded_chunks_give_the_same_image():

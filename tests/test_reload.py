@@ -15,7 +15,7 @@ import pytest
 from PIL import Image
 
 import effects
-from effects.reload import (BuildSettings, Reloader, Watcher, build_effect, content_hash, effect_builder,
+from effects.viewer.reload import (BuildSettings, Reloader, Watcher, build_effect, content_hash, effect_builder,
                             referenced_files, watched_files)
 
 TIMEOUT = 5.0

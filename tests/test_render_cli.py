@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from effects.cli import main
+from effects.cli.main import main
 
 # Draws the TFACTOR colour (a DWORD parameter) on whatever the scene gives.
 EFFECT = """

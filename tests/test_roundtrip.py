@@ -18,8 +18,8 @@ from effects.errors import Location, StateError
 from effects.model import (Annotation, CompileShader, Effect, EnumValue, Expression, Function,
                            NullValue, Parameter, ParamRef, Pass, SamplerState, ShaderBlock,
                            StateAssignment, Struct, Technique, TypeSpec, VertexDeclElement)
-from effects.parser import resolve_type
-from effects.printer import print_effect
+from effects.frontend.parser import resolve_type
+from effects.frontend.printer import print_effect
 from effects.states import STATES, coerce_state_value, lookup_state
 
 FXFILES = Path(__file__).resolve().parent.parent / "fxfiles"
@@ -94,7 +94,7 @@ def type_spec(spelling: str) -> TypeSpec:
 
 
 def shape_of(spelling: str) -> tuple[int, ...]:
-    from effects.parser import type_shape
+    from effects.frontend.parser import type_shape
     return type_shape(type_spec(spelling))
 
 

@@ -13,9 +13,9 @@ import effects
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 from effects import NoValidTechnique, SceneError, load_effect, load_profile
-from effects.assets import TextureCache, geometry, scene_mesh
-from effects.runtime import Runtime, render_frame
-from effects.scene import load_scene
+from effects.host.assets import TextureCache, geometry, scene_mesh
+from effects.host.runtime import Runtime, render_frame
+from effects.host.scene import load_scene
 
 # One suite, every back end: the contract tests run on both.
 BACKENDS = pytest.mark.parametrize("backend", ["numpy", "gl"])
@@ -436,7 +436,7 @@ def test_bundled_effects_render_a_lit_textured_sphere(name, card):
 def test_a_scene_param_may_name_a_texture_generator():
     # DX8 files cannot annotate their textures; the bundled scene for sdk8_style.fx gives them,
     # two of them by generator ('sobel_normals:<image>', 'sky_cube:64') rather than by file.
-    from effects.assets import resolve_texture, TextureSource
+    from effects.host.assets import resolve_texture, TextureSource
     from effects.errors import Location
     effect = load_effect(os.path.join(ROOT, "fxfiles", "sdk8_style.fx"))
     at = Location("scene.yaml", 1, 1)

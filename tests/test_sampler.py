@@ -10,7 +10,7 @@ from backends.reference.sampler import (SamplerSettings, cube_face_coords, sampl
                                         sample_2d, sample_3d, sample_cube)
 from effects.ir import Builder
 from effects.passprogram import PassProgram, TextureBinding
-from effects.textures import Texture, cube_face_uv, make_texture
+from effects.host.textures import Texture, cube_face_uv, make_texture
 
 LINEAR = SamplerSettings(min_filter="LINEAR", mag_filter="LINEAR")
 

@@ -9,8 +9,8 @@ import pytest
 
 from effects import load_effect
 from effects.errors import SceneError
-from effects.scene import InlineMesh, Scene, load_scene, look_at_lh, perspective_fov_lh
-from effects.semantics import bind_scene, coerce_value, parse_assignments
+from effects.host.scene import InlineMesh, Scene, load_scene, look_at_lh, perspective_fov_lh
+from effects.host.semantics import bind_scene, coerce_value, parse_assignments
 
 
 def write(tmp_path, text: str, name: str = "scene.yaml") -> str:

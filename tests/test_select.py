@@ -6,7 +6,7 @@ import pytest
 import effects
 from effects import EffectError
 from effects.caps import load_profile
-from effects.select import (Policy, find_next_valid_technique, find_valid_technique, rank,
+from effects.validate.select import (Policy, find_next_valid_technique, find_valid_technique, rank,
                             technique_cost, technique_quality)
 
 # Five techniques; on a TNT2 (no dot3, no pixel shaders) the ones marked * are valid.

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from effects import textures as T
+from effects.host import textures as T
 from effects.errors import SceneError
 
 
@@ -212,7 +212,7 @@ def test_npy_cube_volume_and_luminance(tmp_path):
 
 
 def test_dds_through_load_texture(tmp_path):
-    from effects.dds import write_dds
+    from effects.host.dds import write_dds
     tex = T.make_texture(np.zeros((6, 4, 4, 4)), "X8R8G8B8", kind="cube")
     write_dds(tmp_path / "c.dds", tex)
     back = T.load_texture(tmp_path / "c.dds", kind="cube")

@@ -14,7 +14,7 @@ import pytest
 
 import effects
 from effects.caps import BLENDCAPS, FORMATS, TEXOPCAPS, list_profiles, load_profile
-from effects.validate import spelled, validate_technique
+from effects.validate.technique import spelled, validate_technique
 
 CARDS = list_profiles()
 PROFILES = {name: load_profile(name) for name in CARDS}

@@ -21,7 +21,7 @@ import pytest
 from PIL import Image
 
 import effects
-from effects.viewer_state import Orbit, ViewerState
+from effects.viewer.state import Orbit, ViewerState
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FXFILES = sorted(glob.glob(os.path.join(ROOT, "fxfiles", "*.fx")))

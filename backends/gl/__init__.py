@@ -1,6 +1,6 @@
 """The GPU back end: IR printed as GLSL 330, Direct3D 9 state set through moderngl.
 
-    from backends.base import create_backend
+    from effects.backend import create_backend
     backend = create_backend("gl")             # headless EGL context
     backend = GLBackend(window_context())      # the viewer's window context
 
@@ -8,7 +8,7 @@ Modules: `glsl` (the printer), `state` (render and sampler states), `textures` (
 `context` (contexts and the GLUnavailable error), `rawgl` (GL calls moderngl lacks),
 `renderer` (the back end, registered as "gl").
 """
-from .context import GLUnavailable, headless_context, window_context
-from .renderer import GLBackend, GLShaderError
+from backends.gl.context import GLUnavailable, headless_context, window_context
+from backends.gl.renderer import GLBackend, GLShaderError
 
 __all__ = ["GLBackend", "GLShaderError", "GLUnavailable", "headless_context", "window_context"]

@@ -3,7 +3,7 @@
 Each draw prints the pass's IR as GLSL (`glsl`), compiles it once per (vertex key, fragment
 key, fixed-function epilogue, stream set) so that changed uniforms never recompile, binds
 textures and sampler objects (`textures`, `state`), sets the render state and draws the
-triangles in `backends.base.triangle_list` order (so flat shading takes the same provoking
+triangles in `effects.backend.triangle_list` order (so flat shading takes the same provoking
 vertex as the reference). The frame is a framebuffer object with a packed 32-bit float depth
 and 8-bit stencil buffer; `end_frame` reads it back, row 0 at the top, without a flip (the
 vertex shader renders upside down; see `glsl`).
@@ -18,13 +18,13 @@ import numpy as np
 
 from effects.passprogram import PassProgram, RenderState
 
-from ..base import TARGET_FORMATS, DrawError, register_backend, triangle_list
-from . import glsl
-from . import rawgl as G
-from .context import headless_context
-from .rawgl import raw_gl
-from .state import apply_render_state, create_sampler, reset_for_clear, sampler_key
-from .textures import TextureCache, TextureKindError
+from effects.backend import TARGET_FORMATS, DrawError, register_backend, triangle_list
+from backends.gl import glsl
+from backends.gl import rawgl as G
+from backends.gl.context import headless_context
+from backends.gl.rawgl import raw_gl
+from backends.gl.state import apply_render_state, create_sampler, reset_for_clear, sampler_key
+from backends.gl.textures import TextureCache, TextureKindError
 
 # Render-target format -> (GL internal format, read-back type, numpy dtype)
 TARGET_GL_FORMATS = {
@@ -101,6 +101,21 @@ class GLBackend:
         gl.glClear(G.COLOR_BUFFER_BIT | G.DEPTH_BUFFER_BIT | G.STENCIL_BUFFER_BIT)
         gl.check("clearing the frame")
         self._frame = target
+
+    def reset_shared_state(self) -> None:
+        """Undo what a draw leaves bound that moderngl does not track, for a caller that draws
+        with the same context (the viewer's panel and blit): sampler objects on the texture
+        units (they would override the caller's sampling), stencil, scissor, polygon mode and
+        write masks. Depth, blend and cull are moderngl's own (`ctx.enable_only`)."""
+        gl = self.gl
+        for unit in range(16):
+            gl.glBindSampler(unit, 0)
+        gl.glDisable(G.STENCIL_TEST)
+        gl.glDisable(G.SCISSOR_TEST)
+        gl.glPolygonMode(G.FRONT_AND_BACK, G.FILL)
+        gl.glColorMask(True, True, True, True)
+        gl.glDepthMask(True)
+        gl.glActiveTexture(G.TEXTURE0)
 
     def end_frame(self) -> np.ndarray:
         """The frame: uint8 RGBA for the 8-bit formats, float32 RGBA for the float ones

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 from effects.passprogram import RenderState, TextureBinding
 
-from . import rawgl as G
-from .rawgl import RawGL
+from backends.gl import rawgl as G
+from backends.gl.rawgl import RawGL
 
 BLEND_FACTORS = {
     "ZERO": G.ZERO, "ONE": G.ONE,

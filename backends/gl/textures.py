@@ -1,4 +1,4 @@
-"""`effects.textures.Texture`s as GL textures: float32 RGBA texels, every mip level.
+"""`effects.host.textures.Texture`s as GL textures: float32 RGBA texels, every mip level.
 
 A Texture holds decoded texel values (signed bump formats already in [-1, 1], DXT already
 decompressed), so every format uploads as RGBA32F and the GL sampler returns exactly the
@@ -13,8 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import rawgl as G
-from .rawgl import RawGL
+from backends.gl import rawgl as G
+from backends.gl.rawgl import RawGL
 
 TARGETS = {"1d": G.TEXTURE_1D, "2d": G.TEXTURE_2D, "3d": G.TEXTURE_3D, "cube": G.TEXTURE_CUBE_MAP}
 _UNBOUND_TEXEL = np.array([0.0, 0.0, 0.0, 1.0], np.float32)  # an unbound sampler reads this

@@ -22,7 +22,7 @@ import numpy as np
 
 from effects.passprogram import RenderState
 
-from ..base import TARGET_FORMATS, DrawError
+from effects.backend import TARGET_FORMATS, DrawError
 
 COMPARE_FUNCS = ("NEVER", "LESS", "EQUAL", "LESSEQUAL", "GREATER", "NOTEQUAL", "GREATEREQUAL",
                  "ALWAYS")

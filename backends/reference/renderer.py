@@ -8,7 +8,7 @@ rasterised and shaded on a small thread pool (NumPy releases the GIL inside its 
 merged in order; a draw of a few large triangles is instead shaded in parallel chunks of rows.
 Helper pixels are shaded only when the fragment program samples a texture.
 
-Conventions beyond `backends.base`:
+Conventions beyond `effects.backend`:
 - Vertex colour outputs (color0, color1) are saturated before interpolation (semantics.md
   section 0); with no vertex program the colour streams are saturated too.
 - A varying the fragment program reads but nothing supplies reads as D3D's vertex defaults:
@@ -34,11 +34,11 @@ import numpy as np
 from effects.ir import Program
 from effects.passprogram import PassProgram, RenderState, TextureBinding
 
-from ..base import DrawError, register_backend, triangle_list
-from . import output
-from .evaluate import evaluate, input_components
-from .rasterize import QuadFragments, rasterize
-from .sampler import SamplerSettings, sample
+from effects.backend import DrawError, register_backend, triangle_list
+from backends.reference import output
+from backends.reference.evaluate import evaluate, input_components
+from backends.reference.rasterize import QuadFragments, rasterize
+from backends.reference.sampler import SamplerSettings, sample
 
 _COLOR_VARYINGS = ("color0", "color1")
 _DEFAULTS = {"color0": np.ones(4, np.float32), "color1": np.zeros(4, np.float32)}
@@ -125,6 +125,9 @@ class ReferenceBackend:
                     format: str = "A8R8G8B8") -> None:
         self.framebuffer = output.Framebuffer.create(tuple(int(v) for v in size), format,
                                                      clear_color, clear_depth, clear_stencil)
+
+    def reset_shared_state(self) -> None:
+        """Nothing to undo: the reference back end shares no device context."""
 
     def end_frame(self) -> np.ndarray:
         fb = self._target()

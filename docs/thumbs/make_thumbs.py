@@ -13,7 +13,7 @@ import numpy as np
 from PIL import Image
 
 import effects
-from effects.textures import fill_cube_texture, load_texture, make_texture, procedural
+from effects.host.textures import fill_cube_texture, load_texture, make_texture, procedural
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -21,12 +21,12 @@ FX = os.path.join(ROOT, "fxfiles")
 TEXTURES = os.path.join(FX, "textures")
 
 
-def solid(rgb) -> effects.textures.Texture:
+def solid(rgb) -> effects.host.textures.Texture:
     return make_texture(np.broadcast_to(np.array([*rgb, 1.0], np.float32), (4, 4, 4)).copy(),
                         "X8R8G8B8")
 
 
-def cosine_lobe_cube(size: int = 32) -> effects.textures.Texture:
+def cosine_lobe_cube(size: int = 32) -> effects.host.textures.Texture:
     """A cube map holding max(0, z) of each direction (tangent-space N.L for a flat surface)."""
     def fn(d: np.ndarray) -> np.ndarray:
         z = np.clip(d[..., 2:3] / np.linalg.norm(d, axis=-1, keepdims=True), 0.0, 1.0)
@@ -34,7 +34,7 @@ def cosine_lobe_cube(size: int = 32) -> effects.textures.Texture:
     return make_texture(fill_cube_texture(fn, size), "X8R8G8B8", kind="cube", mips=False)
 
 
-def white_cube() -> effects.textures.Texture:
+def white_cube() -> effects.host.textures.Texture:
     return make_texture(np.ones((6, 4, 4, 4), np.float32), "X8R8G8B8", kind="cube", mips=False)
 
 

@@ -1,0 +1,257 @@
+"""The `effects` command line: validate, matrix, render, view, profiles.
+
+Exit codes (DESIGN.md): 0 ok, 1 invalid or not renderable, 2 bad input or usage.
+No Python traceback reaches a user: every `EffectError` is printed located, with its line.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from typing import Sequence
+
+from rich.console import Console
+
+from effects.errors import EffectError
+
+EXIT_OK, EXIT_INVALID, EXIT_BAD_INPUT = 0, 1, 2
+
+
+class UsageError(Exception):
+    pass
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that reports usage problems as exit code 2 without printing a traceback."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.print_usage(sys.stderr)
+        raise UsageError(f"{self.prog}: error: {message}")
+
+
+def _add_validate(sub) -> None:
+    p = sub.add_parser("validate", help="load an effect and tell which techniques each card can run")
+    p.add_argument("file", help="effect file (.fx)")
+    p.add_argument("--profile", "-p", action="append", default=[], metavar="P",
+                   help="caps profile name or YAML path (repeatable; default: the model summary only)")
+    p.add_argument("--why", action="store_true", help="list every reason, not just the first")
+    p.add_argument("--strict", action="store_true", help="unknown state names are errors")
+    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
+                   help="preprocessor macro")
+    p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
+                   help="include search folder")
+    p.set_defaults(run=_cmd_validate)
+
+
+def _defines(items: Sequence[str]) -> dict[str, str]:
+    out = {}
+    for item in items:
+        name, _, value = item.partition("=")
+        out[name] = value if _ else "1"
+    return out
+
+
+def _load(args):
+    from effects.frontend.loader import load_effect
+    return load_effect(args.file, defines=_defines(getattr(args, "defines", [])),
+                       include_dirs=getattr(args, "include_dirs", []),
+                       strict=getattr(args, "strict", False))
+
+
+def _profiles(names: Sequence[str]):
+    from effects.caps import list_profiles, load_profile
+    return [load_profile(n) for n in (names or list_profiles())]
+
+
+def _cmd_validate(args, console: Console) -> int:
+    from effects.cli.report import print_validation_table
+    from effects.cli.summary import print_effect_summary
+    effect = _load(args)
+    for warning in effect.warnings:
+        console.print(warning.report(), markup=False, highlight=False, style="yellow")
+    if not args.profile:
+        print_effect_summary(effect, console)
+        console.print("Name cards with --profile P (see `effects profiles`) to see which can run "
+                      "each technique and why not; `effects matrix` shows every card's choice.",
+                      markup=False)
+        return EXIT_OK
+    every_card_runs_it = print_validation_table(effect, _profiles(args.profile), console, why=args.why)
+    return EXIT_OK if every_card_runs_it else EXIT_INVALID
+
+
+def _add_matrix(sub) -> None:
+    p = sub.add_parser("matrix", help="the technique each card selects, for one or more effects")
+    p.add_argument("files", nargs="+", metavar="FILE.fx")
+    p.add_argument("--profile", "-p", action="append", default=[], metavar="P",
+                   help="caps profile (repeatable; default: every bundled card)")
+    p.add_argument("--policy", default="first", help="selection policy: first, quality, cost, "
+                   "max-passes=N, comma-separated (default: first, as D3DX)")
+    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    p.set_defaults(run=_cmd_matrix)
+
+
+def _cmd_matrix(args, console: Console) -> int:
+    import json
+    from effects.frontend.loader import load_effect
+    from effects.cli.report import matrix, print_matrix
+    effects = {path: load_effect(path) for path in args.files}
+    result = matrix(effects, _profiles(args.profile), args.policy)
+    if args.json:
+        print(json.dumps(result, indent=2))
+    else:
+        print_matrix(result, console)
+    return EXIT_OK
+
+
+def _add_profiles(sub) -> None:
+    p = sub.add_parser("profiles", help="the simulated cards, by generation, with their key caps")
+    p.set_defaults(run=_cmd_profiles)
+
+
+def _cmd_profiles(args, console: Console) -> int:
+    from effects.cli.report import print_profiles
+    print_profiles(_profiles(()), console)
+    return EXIT_OK
+
+
+def _add_render(sub) -> None:
+    p = sub.add_parser("render", help="render an effect on a simulated card into a PNG")
+    p.add_argument("file", help="effect file (.fx)")
+    p.add_argument("--profile", "-p", required=True, metavar="P", help="caps profile name or YAML path")
+    p.add_argument("--technique", "-t", metavar="T",
+                   help="render this technique, valid on the card or not (default: the card's choice)")
+    p.add_argument("--backend", "-b", default="numpy", metavar="NAME",
+                   help="numpy (the reference rasteriser, default) or gl")
+    p.add_argument("--scene", "-s", metavar="SCENE.yaml", help="mesh, camera, light, params ...")
+    p.add_argument("--size", metavar="WxH", help="frame size, e.g. 320x240 (wins over the scene's)")
+    p.add_argument("--set", dest="assignments", action="append", default=[], metavar="NAME=VALUE",
+                   help="a parameter value: number, vector '1,0.5,0.25,1', true/false, "
+                        "0xAARRGGBB, or an image path for a texture (repeatable)")
+    p.add_argument("--policy", default="first", help="selection policy (see matrix)")
+    p.add_argument("-o", "--output", required=True, metavar="OUT.png", help="the PNG to write")
+    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
+                   help="preprocessor macro")
+    p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
+                   help="include search folder")
+    p.set_defaults(run=_cmd_render)
+
+
+def _parse_size(text: str | None) -> tuple[int, int] | None:
+    if text is None:
+        return None
+    w, x, h = text.lower().partition("x")
+    if not x or not w.strip().isdigit() or not h.strip().isdigit():
+        raise UsageError(f"effects render: error: --size {text!r}: expected WxH, e.g. 320x240")
+    return int(w), int(h)
+
+
+def _cmd_render(args, console: Console) -> int:
+    import time
+    from PIL import Image
+    from effects.errors import NoValidTechnique
+    from effects.host.runtime import render_frame
+    from effects.host.semantics import parse_assignments
+    size = _parse_size(args.size)
+    params = parse_assignments(args.assignments)
+    effect = _load(args)
+    profile = _profiles([args.profile])[0]
+    start = time.perf_counter()
+    try:
+        frame = render_frame(effect, profile, technique=args.technique, backend=args.backend,
+                             scene=args.scene, size=size, params=params, policy=args.policy)
+    except NoValidTechnique as exc:
+        Console(stderr=True, highlight=False).print(str(exc), markup=False, soft_wrap=True)
+        return EXIT_INVALID
+    ms = (time.perf_counter() - start) * 1000.0
+    try:
+        Image.fromarray(frame.image, "RGBA").save(args.output)
+    except (OSError, ValueError) as exc:
+        from effects.errors import Location, SceneError
+        raise SceneError(f"cannot write the image: {exc}", Location(args.output, 1, 1)) from None
+    card = profile.display_name or profile.name
+    print(f"rendered {frame.technique.name or '<anonymous>'} on {card} ({frame.passes} "
+          f"pass{'es' if frame.passes != 1 else ''}) with {frame.backend} in {ms:.1f} ms "
+          f"-> {args.output}")
+    return EXIT_OK
+
+
+def _add_view(sub) -> None:
+    p = sub.add_parser("view", help="the viewer: an effect on a card, hot-reloaded as you edit it")
+    p.add_argument("file", help="effect file (.fx)")
+    p.add_argument("--profile", "-p", metavar="P", default=None,
+                   help="caps profile to start on (default: radeon9700)")
+    p.add_argument("--technique", "-t", metavar="NAME", default=None,
+                   help="force a technique (drawn if the card can run it; else its reasons are shown)")
+    p.add_argument("--mesh", default="sphere",
+                   help="sphere, torus, cube, teapot, quad or FILE.obj (default: sphere)")
+    p.add_argument("--view", default="gl", choices=("gl", "reference", "difference"),
+                   help="what the window shows first (default: gl)")
+    p.add_argument("--exit-after", type=float, metavar="SECONDS", default=None,
+                   help="close after this many seconds of running")
+    p.add_argument("--screenshot", metavar="OUT.png", default=None,
+                   help="save the window to this PNG when the viewer closes")
+    p.add_argument("--tour", action="store_true",
+                   help="draw every card once, starting at --profile, then exit")
+    p.add_argument("--size", default=None, metavar="WxH", help="window size (default: 1040x600)")
+    p.add_argument("--poll", action="store_true",
+                   help="watch files by polling (for file systems without change events)")
+    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
+                   help="preprocessor macro")
+    p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
+                   help="include search folder")
+    p.set_defaults(run=_cmd_view)
+
+
+def _cmd_view(args, console: Console) -> int:
+    from effects.viewer.app import WINDOW_SIZE, ViewerOptions, run_viewer
+    size = WINDOW_SIZE
+    if args.size:
+        w, _, h = args.size.lower().partition("x")
+        if not (w.isdigit() and h.isdigit() and 200 <= int(w) <= 8192 and 100 <= int(h) <= 8192):
+            raise UsageError(f"effects view: error: --size {args.size!r} is not WxH "
+                             "(at least 200x100)")
+        size = (int(w), int(h))
+    if args.exit_after is not None and args.exit_after < 0:
+        raise UsageError("effects view: error: --exit-after must not be negative")
+    return run_viewer(ViewerOptions(
+        args.file, profile=args.profile, technique=args.technique, mesh=args.mesh,
+        view=args.view, exit_after=args.exit_after, screenshot=args.screenshot, size=size,
+        tour=args.tour, polling=args.poll, defines=_defines(args.defines),
+        include_dirs=args.include_dirs))
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="effects", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    _add_validate(sub)
+    _add_matrix(sub)
+    _add_render(sub)
+    _add_profiles(sub)
+    _add_view(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    console = Console(highlight=False)
+    err = Console(stderr=True, highlight=False)
+    try:
+        args = build_parser().parse_args(argv)
+        return args.run(args, console)
+    except UsageError as exc:
+        err.print(str(exc), markup=False)
+        return EXIT_BAD_INPUT
+    except EffectError as exc:
+        err.print(exc.report(), markup=False, soft_wrap=True)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        return 130
+    except Exception as exc:  # a bug of ours, not bad input: say so briefly
+        if os.environ.get("EFFECTS_DEBUG"):
+            raise
+        err.print(f"effects: internal error: {type(exc).__name__}: {exc} "
+                  "(set EFFECTS_DEBUG=1 for the traceback)", markup=False)
+        return EXIT_BAD_INPUT
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())

@@ -1,0 +1,186 @@
+"""Tables a person reads: techniques × cards with reasons, the selection matrix, the cards.
+
+`matrix()` is also the JSON the command line prints (DESIGN.md's shape):
+    {effect: {profile: {"technique": name|null, "passes": n, "rejected": {technique: [reason, ...]}}}}
+"rejected" lists every technique the card cannot run, with all its reasons, and each valid
+technique the policy refused (max-passes, max-cost), with the policy's reason.
+"""
+from __future__ import annotations
+
+from typing import Mapping, Sequence
+
+from rich import box
+from rich.console import Console
+from rich.table import Table
+from rich.text import Text
+
+from effects.caps import GENERATIONS, CapsProfile
+from effects.model import Effect, Technique
+from effects.validate.select import PolicyLike, as_policy, choose
+from effects.validate.technique import Validation, software_vs_version, validate_technique
+
+
+def technique_name(tech: Technique | None) -> str:
+    if tech is None:
+        return "none"
+    return tech.name or "<anonymous>"
+
+
+def validate_all(effect: Effect, profile: CapsProfile) -> list[Validation]:
+    """Every technique of `effect` validated on `profile`, in file order."""
+    return [validate_technique(effect, t, profile) for t in effect.techniques]
+
+
+def _passes(n: int) -> str:
+    return f"{n} pass{'es' if n != 1 else ''}"
+
+
+def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], console: Console,
+                           *, why: bool = False, policy: PolicyLike = "first") -> bool:
+    """Print techniques × cards (✓ with the pass count, ✗ with the first reason) and the
+    technique each card selects; with `why`, then every reason, warning and note. Returns
+    whether every named card can run some technique."""
+    if not effect.techniques:
+        console.print(Text(f"{effect.path}: the effect has no techniques, so no card can render it"),
+                      soft_wrap=True)
+        return False
+    pol = as_policy(policy)
+    results = {p.name: validate_all(effect, p) for p in profiles}
+    table = Table(title=effect.path, show_lines=True, header_style="bold")
+    table.add_column("technique", overflow="fold")
+    for p in profiles:
+        table.add_column(p.name, overflow="fold")
+    for i, tech in enumerate(effect.techniques):
+        row = [technique_name(tech)]
+        for profile in profiles:
+            v = results[profile.name][i]
+            if v.ok:
+                row.append(Text.assemble(("✓", "green"), f" {_passes(v.passes)}"))
+            else:
+                row.append(Text.assemble(("✗", "red"), f" {v.reasons[0]}"))
+        table.add_row(*row)
+    chosen = {p.name: choose(results[p.name], pol) for p in profiles}
+    table.add_row(Text("selected", style="bold"),
+                  *[Text(technique_name(c.technique)) if c else Text("none", style="red")
+                    for c in chosen.values()])
+    console.print(table)
+    if why:
+        _print_details(effect, profiles, results, console)
+    return all(c is not None for c in chosen.values())
+
+
+def _print_details(effect: Effect, profiles: Sequence[CapsProfile],
+                   results: Mapping[str, list[Validation]], console: Console) -> None:
+    """Every reason, warning and note, one line each, grouped by card and technique."""
+    for profile in profiles:
+        console.print(Text(f"{profile.name} ({profile.display_name or profile.name}, {profile.generation})",
+                           style="bold"))
+        for v in results[profile.name]:
+            name = technique_name(v.technique)
+            if v.ok:
+                console.print(Text.assemble("  ", ("✓", "green"), f" {name}: {_passes(v.passes)}"))
+            else:
+                console.print(Text.assemble("  ", ("✗", "red"), f" {name}:"))
+            for r in v.reasons:
+                console.print(Text(f"      {r}"), soft_wrap=True)
+            for w in v.warnings:
+                console.print(Text(f"      warning: {w}", style="yellow"), soft_wrap=True)
+            for n in v.notes:
+                console.print(Text(f"      note: {n}", style="dim"), soft_wrap=True)
+
+
+def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
+           policy: PolicyLike = "first") -> dict:
+    """{effect: {profile: {"technique": name|None, "passes": n, "rejected": {tech: [reason...]}}}}"""
+    pol = as_policy(policy)
+    out: dict = {}
+    for path, effect in effects.items():
+        per_card: dict = {}
+        for profile in profiles:
+            results = validate_all(effect, profile)
+            chosen = choose(results, pol)
+            rejected: dict[str, list[str]] = {}
+            for v in results:
+                if not v.ok:
+                    rejected[technique_name(v.technique)] = [str(r) for r in v.reasons]
+                elif pol.refusal(v) is not None:
+                    rejected[technique_name(v.technique)] = [f"policy {pol}: {pol.refusal(v)}"]
+            per_card[profile.name] = {
+                "technique": technique_name(chosen.technique) if chosen else None,
+                "passes": chosen.passes if chosen else 0,
+                "rejected": rejected,
+            }
+        out[path] = per_card
+    return out
+
+
+def print_matrix(result: dict, console: Console) -> None:
+    """Cards down, effects across: the chosen technique and its pass count."""
+    profiles = list(next(iter(result.values())).keys()) if result else []
+    table = Table(header_style="bold", show_lines=False)
+    table.add_column("card", overflow="fold")
+    for path in result:
+        table.add_column(_short(path), overflow="fold")
+    for name in profiles:
+        row = [name]
+        for path in result:
+            cell = result[path][name]
+            row.append(Text(f"{cell['technique']} ({cell['passes']})") if cell["technique"]
+                       else Text("none", style="red"))
+        table.add_row(*row)
+    console.print(table)
+
+
+def _short(path: str) -> str:
+    """An effect's column title: its file name without folders or the .fx suffix."""
+    name = path.replace("\\", "/").rsplit("/", 1)[-1]
+    return name[:-3] if name.lower().endswith(".fx") else name
+
+
+def _version(v: tuple[int, int]) -> str:
+    return f"{v[0]}.{v[1]}" if v > (0, 0) else "-"
+
+
+def profile_row(p: CapsProfile) -> dict[str, str]:
+    """The key caps of a card, as `effects profiles` shows them."""
+    bump = [label for bit, label in (("BUMPENVMAP", "EMBM"), ("DOTPRODUCT3", "dot3"))
+            if p.has("TextureOpCaps", bit)]
+    maps = [label for bit, label in (("CUBEMAP", "cube"), ("VOLUMEMAP", "3D"))
+            if p.has("TextureCaps", bit)]
+    hw_vs, sw_vs = p.vertex_shader_version, software_vs_version(p)
+    vs = _version(hw_vs) if hw_vs > (0, 0) else ("sw" if sw_vs > (0, 0) else "-")
+    return {
+        "card": p.name,
+        "name": p.display_name or p.name,
+        "st/tx": f"{p.get('MaxTextureBlendStages')}/{p.get('MaxSimultaneousTextures')}",
+        "bump": " ".join(bump) or "-",
+        "maps": " ".join(maps) or "-",
+        "size": str(p.get("MaxTextureWidth", "?")),
+        "ps": _version(p.pixel_shader_version),
+        "vs": vs,
+    }
+
+
+def print_profiles(profiles: Sequence[CapsProfile], console: Console) -> None:
+    """The cards grouped by generation (dx6 → dx9c), with their key caps: `st/tx` texture
+    stages / textures per pass, `bump` EMBM and dot3 ops, `maps` cube and volume textures,
+    `size` the largest texture side, `ps` and `vs` shader versions. `vs` is the
+    hardware vertex shader version, or `sw` when vertex shaders run only in software (where
+    software or mixed vertex processing is offered, it runs up to vs_3_0 on every card)."""
+    ordered = sorted(profiles, key=lambda p: (GENERATIONS.index(p.generation), p.name))
+    rows = [profile_row(p) for p in ordered]
+    table = Table(header_style="bold", box=box.SIMPLE_HEAD, pad_edge=False)
+    for col in (rows[0].keys() if rows else ()):
+        if col == "name":
+            table.add_column(col, min_width=12, ratio=1)
+        else:
+            table.add_column(col, no_wrap=True)
+    previous = None
+    for p, row in zip(ordered, rows):
+        if p.generation != previous:   # a heading row per generation
+            if previous is not None:
+                table.add_section()
+            table.add_row(Text(p.generation, style="bold"), *[""] * (len(row) - 1))
+        table.add_row(*row.values())
+        previous = p.generation
+    console.print(table)

@@ -1,0 +1,1 @@
+"""What a host application supplies around an effect: runtime, scene, bindings, assets."""

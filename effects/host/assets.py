@@ -1,0 +1,294 @@
+"""What a render loads: textures for the effect's texture parameters, and vertex streams.
+
+Texture parameters, first source that applies wins:
+  1. a value the user gives (`render(params=)`, `--set Name=path` relative to the current
+     folder, the scene's `params` relative to the scene file), a path or a `Texture`;
+  2. `string ResourceName = "file"`, relative to the effect file;
+  3. `string Procedural = "generator:argument"` (`effects.host.textures.procedural`; an `int Width`
+     annotation gives the size of generators that take one);
+  4. nothing: the parameter stays unbound (shaders sample (0, 0, 0, 1) there; fixed-function
+     stages follow the missing-texture rule).
+The kind comes from the parameter's type (`textureCUBE`) or its `string Type` annotation
+("2D", "CUBE", "3D"/"VOLUME"); a file of another kind is an error. An untyped DX8 `texture`
+takes the kind of what was loaded. Loaded files are cached by (path, modification time), so a
+viewer reload does not read unchanged images again.
+
+Vertex streams from a mesh (names as in `effects.backend`): position, normal, tangent,
+binormal; color0 = the scene's vertex diffuse (default opaque white) and color1 = its vertex
+specular (default 0), as a D3D9 vertex without those components reads; texcoord0..7 = the
+mesh's uv. Which attribute feeds a stream can be changed:
+  - by the effect, with a top-level `string VertexStreams = "texcoord1=tangent"` parameter
+    (comma- or space-separated `stream=attribute` pairs): the part of the application that
+    built the vertex buffer for a DX8 vertex shader (fxfiles/brdf.fx reads its tangent from
+    v8, the TEXCOORD1 register of a DX8 declaration);
+  - by the scene, with `streams: {texcoord1: tangent}`, which wins over the effect.
+Attributes: position, normal, tangent, binormal, uv (texture coordinates), diffuse,
+specular, and for inline scene vertices also tex0..tex7.
+"""
+from __future__ import annotations
+
+import threading
+
+import os
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+import numpy as np
+
+from effects.errors import Location, SceneError
+from effects.host.meshes import Mesh, by_name
+from effects.model import Effect, Parameter
+from effects.host.scene import InlineMesh, Scene
+from effects.host.textures import PROCEDURAL, Texture, load_texture, procedural
+
+STREAM_NAMES = ("position", "normal", "tangent", "binormal", "color0", "color1",
+                *(f"texcoord{i}" for i in range(8)))
+ATTRIBUTES = ("position", "normal", "tangent", "binormal", "uv", "diffuse", "specular",
+              *(f"tex{i}" for i in range(8)))
+
+
+# ------------------------------------------------------------------------------------------------
+# Textures
+
+
+def declared_kind(param: Parameter) -> str | None:
+    """'2d', 'cube', '3d' or '1d' as the parameter's type or `Type` annotation says; None
+    for an untyped `texture` without annotation."""
+    return param.declared_texture_kind
+
+
+def effect_dir(effect: Effect) -> str:
+    """The folder the effect's relative paths resolve against (the cwd for text effects)."""
+    if effect.path and os.path.isfile(effect.path):
+        return os.path.dirname(os.path.abspath(effect.path))
+    return os.getcwd()
+
+
+class TextureCache:
+    """Texture files by (absolute path, modification time, kind): a changed file reloads."""
+
+    def __init__(self, limit: int = 64) -> None:
+        self.limit = limit
+        self._entries: dict[tuple, Texture] = {}
+        self._lock = threading.Lock()
+        self.loads = 0   # files actually read (tests and the viewer's log use it)
+
+    def load(self, path: str, kind: str | None, at: Location) -> Texture:
+        full = os.path.abspath(path)
+        try:
+            stamp = os.stat(full).st_mtime_ns
+        except OSError:
+            raise SceneError(f"texture file not found: {path}", at) from None
+        key = (full, stamp, kind)
+        hit = self._entries.get(key)
+        if hit is not None:
+            return hit
+        try:
+            texture = load_texture(full, kind=kind)
+        except SceneError as exc:
+            # Say which parameter wanted it: the error's own location is the image file.
+            raise SceneError(f"{exc.message} ({full})", at) from None
+        self.loads += 1
+        with self._lock:  # loads happen on the viewer's worker and render threads
+            if len(self._entries) >= self.limit:
+                self._entries.pop(next(iter(self._entries)))
+            self._entries[key] = texture
+        return texture
+
+
+DEFAULT_TEXTURE_CACHE = TextureCache()
+
+
+@dataclass(frozen=True)
+class TextureSource:
+    """A user's value for a texture parameter: a path (relative to `base_dir`) or a Texture,
+    and where it was written (for errors)."""
+
+    value: str | Texture
+    base_dir: str
+    location: Location
+
+
+def resolve_texture(param: Parameter, effect: Effect, given: TextureSource | None = None,
+                    cache: TextureCache | None = None) -> Texture | None:
+    """The texture for one texture parameter (module docstring order), or None if unbound."""
+    cache = cache or DEFAULT_TEXTURE_CACHE
+    kind = declared_kind(param)
+    if given is not None:
+        if isinstance(given.value, Texture):
+            texture = given.value
+        elif _names_procedural(given.value):
+            # 'sobel_normals:textures/h.png', 'sky_cube:64': a generator, as the annotation
+            # `string Procedural = "..."` names one (fxfiles/README.md)
+            texture = procedural(given.value, base_dir=given.base_dir, location=given.location)
+        else:
+            path = given.value if os.path.isabs(given.value) else os.path.join(given.base_dir, given.value)
+            texture = cache.load(path, kind, given.location)
+        _check_kind(param, texture, kind, given.location)
+        return texture
+    base = effect_dir(effect)
+    resource = param.annotation("ResourceName")
+    if resource is not None and isinstance(resource.value, str) and resource.value.strip():
+        name = resource.value.strip()
+        return cache.load(name if os.path.isabs(name) else os.path.join(base, name), kind,
+                          resource.location)
+    generator = param.annotation("Procedural")
+    if generator is not None and isinstance(generator.value, str):
+        width = param.annotation("Width")
+        size = None
+        if width is not None and not isinstance(width.value, str):
+            size = int(np.asarray(width.value).reshape(-1)[0])
+        texture = procedural(generator.value, size=size, base_dir=base, location=generator.location)
+        _check_kind(param, texture, kind, generator.location)
+        return texture
+    return None
+
+
+def _names_procedural(value: str) -> bool:
+    """Whether a given texture value names a generator ('NAME' or 'NAME:ARG') rather than a
+    file: its part before the first ':' is a known generator (a Windows drive letter is not)."""
+    head = value.split(":", 1)[0]
+    return head in PROCEDURAL and (":" in value or not os.path.splitext(value)[1])
+
+
+def _check_kind(param: Parameter, texture: Texture, kind: str | None, at: Location) -> None:
+    if kind is not None and texture.kind != kind:
+        raise SceneError(f"texture parameter {param.name} (declared at {param.location}) needs a "
+                         f"{kind} texture; {texture.name or 'the texture'} is {texture.kind}", at)
+
+
+# ------------------------------------------------------------------------------------------------
+# Meshes and vertex streams
+
+
+@dataclass
+class Geometry:
+    """A draw's vertex data: `streams` by usage name, `indices`, and the primitive type.
+    `has_diffuse` says whether the vertices really carry a diffuse colour (inline vertices,
+    a mesh with colours, a scene `vertex` key); the color0 stream of one that does not holds
+    D3D's default white, and fixed-function lighting then uses the material's colours."""
+
+    streams: dict[str, np.ndarray]
+    indices: np.ndarray
+    primitive: str
+    has_diffuse: bool = True
+
+
+_MESH_CACHE: dict[tuple, Mesh] = {}
+
+
+def scene_mesh(scene: Scene) -> Mesh | InlineMesh:
+    """The scene's mesh, built or loaded (built-in meshes and .obj files are cached; a file
+    by its modification time)."""
+    if isinstance(scene.mesh, InlineMesh):
+        return scene.mesh
+    name = scene.mesh
+    at = scene.location("mesh")
+    key: tuple = (name,)
+    if name.lower().endswith(".obj"):
+        path = name if os.path.isabs(name) else os.path.join(scene.base_dir, name)
+        try:
+            key = (os.path.abspath(path), os.stat(path).st_mtime_ns)
+        except OSError:
+            raise SceneError(f"mesh file not found: {path}", at) from None
+    mesh = _MESH_CACHE.get(key)
+    if mesh is None:
+        mesh = by_name(name, base_dir=scene.base_dir, location=at)
+        if len(_MESH_CACHE) > 16:
+            _MESH_CACHE.pop(next(iter(_MESH_CACHE)))
+        _MESH_CACHE[key] = mesh
+    return mesh
+
+
+def parse_stream_map(text: str, at: Location) -> dict[str, str]:
+    """'texcoord1=tangent, texcoord2=binormal' as {stream: attribute}."""
+    out = {}
+    for item in text.replace(",", " ").replace(";", " ").split():
+        target, eq, source = item.partition("=")
+        if not eq:
+            raise SceneError(f"VertexStreams entry {item!r} is not STREAM=ATTRIBUTE", at)
+        out[target.strip()] = source.strip()
+    return out
+
+
+def stream_map(effect: Effect, scene: Scene) -> dict[str, str]:
+    """stream -> attribute overrides: the effect's `VertexStreams`, then the scene's `streams`
+    (each checked, errors at the place that wrote them)."""
+    merged: dict[str, tuple[str, Location]] = {}
+    param = effect.parameter("VertexStreams")
+    if param is not None and param.type.base == "string" and isinstance(param.value, str):
+        for target, source in parse_stream_map(param.value, param.location).items():
+            merged[target] = (source, param.location)
+    for target, source in scene.streams.items():
+        merged[target] = (source, scene.location(f"streams.{target}"))
+    for target, (source, at) in merged.items():
+        if target not in STREAM_NAMES:
+            raise SceneError(f"unknown vertex stream {target!r} (streams: {', '.join(STREAM_NAMES)})", at)
+        if source not in ATTRIBUTES:
+            raise SceneError(f"unknown vertex attribute {source!r} for stream {target} "
+                             f"(attributes: {', '.join(ATTRIBUTES)})", at)
+    return {target: source for target, (source, _) in merged.items()}
+
+
+def geometry(scene: Scene, effect: Effect, mesh: Mesh | InlineMesh | None = None) -> Geometry:
+    """Vertex streams, indices and primitive for drawing the scene's mesh with `effect`."""
+    mesh = scene_mesh(scene) if mesh is None else mesh
+    overrides = stream_map(effect, scene)
+    if isinstance(mesh, InlineMesh):
+        attributes = _inline_attributes(mesh)
+        count = mesh.vertex_count
+        indices = np.arange(count, dtype=np.int64)
+        primitive = mesh.primitive
+        has_diffuse = True
+    else:
+        attributes = _mesh_attributes(mesh, scene)
+        indices, primitive = np.asarray(mesh.indices), "list"
+        has_diffuse = mesh.colors is not None or _scene_gives_colors(scene)
+    streams = {name: attributes[source] for name, source in _default_sources(attributes).items()}
+    for target, source in overrides.items():
+        if source not in attributes:
+            raise SceneError(f"stream {target} = {source}: the mesh has no {source}",
+                             scene.location(f"streams.{target}") if target in scene.streams
+                             else _vertex_streams_location(effect))
+        streams[target] = attributes[source]
+    return Geometry(streams, indices, primitive, has_diffuse)
+
+
+def _scene_gives_colors(scene: Scene) -> bool:
+    """The scene writes per-vertex colours (its `vertex` key, or values set in code)."""
+    return ("vertex" in scene.locations or tuple(scene.vertex_diffuse) != (1.0, 1.0, 1.0, 1.0)
+            or tuple(scene.vertex_specular) != (0.0, 0.0, 0.0, 0.0))
+
+
+def _vertex_streams_location(effect: Effect) -> Location:
+    param = effect.parameter("VertexStreams")
+    return param.location if param is not None else Location(effect.path, 1, 1)
+
+
+def _default_sources(attributes: Mapping[str, Any]) -> dict[str, str]:
+    sources = {"position": "position", "color0": "diffuse", "color1": "specular"}
+    for name in ("normal", "tangent", "binormal"):
+        if name in attributes:
+            sources[name] = name
+    for i in range(8):
+        if f"tex{i}" in attributes:
+            sources[f"texcoord{i}"] = f"tex{i}"
+        elif "uv" in attributes:
+            sources[f"texcoord{i}"] = "uv"
+    return sources
+
+
+def _mesh_attributes(mesh: Mesh, scene: Scene) -> dict[str, np.ndarray]:
+    n = mesh.vertex_count
+    diffuse = mesh.colors if mesh.colors is not None else np.tile(
+        np.asarray(scene.vertex_diffuse, np.float32), (n, 1))
+    return {"position": mesh.positions, "normal": mesh.normals, "tangent": mesh.tangents,
+            "binormal": mesh.binormals, "uv": mesh.uv, "diffuse": np.asarray(diffuse, np.float32),
+            "specular": np.tile(np.asarray(scene.vertex_specular, np.float32), (n, 1))}
+
+
+def _inline_attributes(mesh: InlineMesh) -> dict[str, np.ndarray]:
+    attributes = dict(mesh.attributes)
+    if "tex0" in attributes:
+        attributes["uv"] = attributes["tex0"]
+    return attributes

@@ -1,0 +1,291 @@
+"""Rendering an effect on a simulated card: `render()` and a D3DX-like begin/pass/end object.
+
+    image = effects.render(effect, "geforce3", scene="scene.yaml", size=(320, 240))
+
+The spine, per render:
+  1. the parameters are copied (the caller's Effect is never changed) and given their values:
+     the effect's own initialisers, then what the scene supplies by semantic
+     (`effects.host.semantics.bind_scene`), then the scene's `params`, then `params=` (the command
+     line's --set), each later source winning;
+  2. the technique: the one named, rendered as asked whether or not the card can run it, or
+     the one the card selects (`find_valid_technique`, policy as named); none is
+     `NoValidTechnique` carrying every technique's reasons;
+  3. every pass is lowered (`effects.lower.passes.lower_pass`) from Direct3D 9's default device state,
+     states set by a pass persisting into the following passes, and drawn into one frame;
+  4. the frame comes back as H x W x 4 uint8 RGBA, row 0 at the top.
+
+`Runtime` exposes the same steps as ID3DXEffect does: `begin()` (returns the pass count),
+`begin_pass(i)`, `set_value()` + `commit_changes()`, `draw()`, `end_pass()`, `end()`. It keeps
+its back end, textures and geometry between frames, which a viewer wants.
+"""
+from __future__ import annotations
+
+import dataclasses
+import os
+import time
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Mapping
+
+import numpy as np
+
+from effects.host.assets import (DEFAULT_TEXTURE_CACHE, Geometry, TextureCache, TextureSource, declared_kind,
+                     geometry, resolve_texture)
+from effects.errors import EffectError, Location, NoValidTechnique, SceneError
+from effects.model import Effect, Parameter, Technique
+from effects.host.scene import MAX_SIZE, Scene, load_scene
+from effects.host.semantics import bind_scene, coerce_value, lookup_parameter
+from effects.host.textures import Texture
+
+if TYPE_CHECKING:  # pragma: no cover
+    from effects.caps import CapsProfile
+    from effects.passprogram import PassProgram
+
+_BACKENDS: dict[str, Any] = {}   # back ends by name, made once (a GL context is costly)
+
+
+def get_backend(backend: Any) -> Any:
+    """A back end instance: `backend` itself, or the shared one registered under that name."""
+    if not isinstance(backend, str):
+        return backend
+    if backend not in _BACKENDS:
+        from effects.backend import create_backend
+        try:
+            _BACKENDS[backend] = create_backend(backend)
+        except EffectError:
+            raise
+        except Exception as exc:  # no GL context, a missing driver: the user's choice failed
+            raise EffectError(f"cannot start the {backend!r} back end: {type(exc).__name__}: {exc}",
+                              Location("<backend>", 1, 1)) from None
+    return _BACKENDS[backend]
+
+
+def _as_effect(effect: Effect | str | os.PathLike) -> Effect:
+    if isinstance(effect, Effect):
+        return effect
+    from effects.frontend.loader import load_effect
+    return load_effect(effect)
+
+
+def _as_profile(profile: Any) -> "CapsProfile":
+    if isinstance(profile, (str, os.PathLike)):
+        from effects.caps import load_profile
+        return load_profile(os.fspath(profile))
+    return profile
+
+
+def _check_size(size: Any) -> tuple[int, int]:
+    try:
+        w, h = (int(v) for v in size)
+        ok = (w, h) == tuple(size) and 1 <= w <= MAX_SIZE and 1 <= h <= MAX_SIZE
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise SceneError(f"size {size!r} must be (width, height), whole numbers from 1 to {MAX_SIZE}",
+                         Location("<size>", 1, 1))
+    return w, h
+
+
+def no_valid_technique(effect: Effect, profile: "CapsProfile", policy: Any = "first") -> NoValidTechnique:
+    """The error for a card that runs none of the effect's techniques, with every reason."""
+    from effects.validate.select import rank
+    reasons = {}
+    lines = []
+    for validation in rank(effect, profile, policy):
+        name = validation.technique.name or "<anonymous>"
+        reasons[name] = list(validation.reasons)
+        why = [str(r) for r in validation.reasons] or ["not chosen by the selection policy"]
+        lines.append(f"  {name}:")
+        lines.extend(f"    {line}" for line in why)
+    card = profile.display_name or profile.name
+    if not effect.techniques:
+        message = f"the effect has no techniques, so {card} has nothing to render"
+    else:
+        message = f"no technique is valid on {card}:\n" + "\n".join(lines)
+    return NoValidTechnique(message, Location(effect.path, 1, 1), reasons=reasons)
+
+
+@dataclass
+class Frame:
+    """A finished render and what made it."""
+
+    image: np.ndarray          # H x W x 4 uint8 RGBA, row 0 at the top
+    technique: Technique
+    passes: int
+    backend: str
+    profile: "CapsProfile"
+
+
+class Runtime:
+    """One effect bound to a card, a scene and parameter values, drawn D3DX-style.
+
+    `params` maps parameter names to values (numbers, lists, arrays, strings as `--set`
+    writes them; for textures a path relative to the current folder or a `Texture`).
+    """
+
+    def __init__(self, effect: Effect | str, profile: Any, *, scene: Any = None,
+                 size: tuple[int, int] | None = None, params: Mapping[str, Any] | None = None,
+                 backend: Any = "numpy", textures: TextureCache | None = None) -> None:
+        self.source_effect = _as_effect(effect)
+        self.profile = _as_profile(profile)
+        self.scene: Scene = load_scene(scene)
+        self.size = _check_size(size if size is not None else self.scene.size)
+        self.backend = get_backend(backend)
+        self.texture_cache = textures or DEFAULT_TEXTURE_CACHE
+        # A copy of the parameter list (and of each Parameter): lowering reads Parameter.value.
+        self.effect: Effect = dataclasses.replace(
+            self.source_effect, parameters=[dataclasses.replace(p) for p in self.source_effect.parameters])
+        self._given: dict[str, TextureSource] = {}
+        self._textures: dict[str, Texture | None] = {}
+        self._geometry: Geometry | None = None
+        self._bind(params or {})
+        self.technique: Technique | None = None
+        self._programs: list["PassProgram"] = []
+        self._pass: int | None = None
+        self._program: "PassProgram | None" = None
+        self.technique_drawn: Technique | None = None
+
+    # -- parameter values ------------------------------------------------------------------
+    def _param(self, name: str) -> Parameter:
+        return self.effect.parameter(name)  # type: ignore[return-value]
+
+    def _bind(self, params: Mapping[str, Any]) -> None:
+        for name, value in bind_scene(self.effect, self.scene, self.size).items():
+            self._param(name).value = value
+        for name, value in self.scene.params.items():
+            at = self.scene.location(f"params.{name}")
+            self._set(lookup_parameter(self.effect, name, at, "scene params:"), value, at,
+                      self.scene.base_dir, "scene params")
+        for name, value in params.items():
+            param = lookup_parameter(self.effect, name, None, "--set")
+            self._set(param, value, param.location, os.getcwd(), "--set")
+        # Untyped DX8 textures take the kind of what is bound, so lowering samples them right.
+        for param in self.effect.parameters:
+            if param.type.base == "texture" and declared_kind(param) is None:
+                texture = self.texture(param.name)
+                if texture is not None:
+                    param.type = dataclasses.replace(param.type, dim=texture.kind.upper())
+
+    def _set(self, param: Parameter, value: Any, at: Location, base_dir: str,
+             source: str = "") -> None:
+        coerced = coerce_value(param, value, at, source)
+        if param.type.base == "texture":
+            self._given[param.name] = TextureSource(coerced, base_dir, at)
+            self._textures.pop(param.name, None)
+        else:
+            param.value = coerced
+
+    def set_value(self, name: str, value: Any) -> None:
+        """ID3DXEffect::SetValue: a parameter's value (as `params=` takes it); takes effect
+        at the next begin_pass or commit_changes."""
+        param = lookup_parameter(self.effect, name, None, "set_value")
+        if param.type.base == "texture" and declared_kind(param) is None:
+            raise SceneError(f"texture parameter {name} has no declared kind; set it before "
+                             "the runtime is made (params=)", param.location)
+        self._set(param, value, param.location, os.getcwd(), "set_value")
+
+    def texture(self, name: str) -> Texture | None:
+        """The texture bound to texture parameter `name` (loaded on first use), or None."""
+        if name not in self._textures:
+            param = self._param(name)
+            if param is None or param.type.base != "texture":
+                self._textures[name] = None
+            else:
+                self._textures[name] = resolve_texture(param, self.effect, self._given.get(name),
+                                                       self.texture_cache)
+        return self._textures[name]
+
+    # -- technique -------------------------------------------------------------------------
+    def select(self, technique: Technique | str | None = None, policy: Any = "first") -> Technique:
+        """The named technique (valid or not), or the one the card selects."""
+        if isinstance(technique, Technique):
+            return technique
+        if technique is not None:
+            return self.effect.technique(technique)
+        chosen = self.effect.find_valid_technique(self.profile, policy)
+        if chosen is None:
+            raise no_valid_technique(self.effect, self.profile, policy)
+        return chosen
+
+    # -- ID3DXEffect-like drawing ----------------------------------------------------------
+    def begin(self, technique: Technique | str | None = None, policy: Any = "first") -> int:
+        """Start a frame (cleared as the scene says) with a technique; returns its pass count."""
+        self.technique = self.select(technique, policy)
+        self._programs = []
+        self.backend.begin_frame(self.size, self.scene.clear_color, self.scene.clear_depth,
+                                 self.scene.clear_stencil)
+        return len(self.technique.passes)
+
+    def begin_pass(self, index: int) -> None:
+        if self.technique is None:
+            raise RuntimeError("begin_pass before begin")
+        if not 0 <= index < len(self.technique.passes):
+            raise EffectError(f"technique {self.technique.name} has no pass {index}",
+                              self.technique.location)
+        self._pass = index
+        self.commit_changes()
+
+    def commit_changes(self) -> None:
+        """Lower the current pass with the parameter values now set."""
+        from effects.lower.passes import lower_pass
+        if self._pass is None or self.technique is None:
+            raise RuntimeError("commit_changes outside begin_pass/end_pass")
+        self._program = lower_pass(self.effect, self.technique, self._pass, self.profile,
+                                   vertex_colors=self.geometry().has_diffuse)
+
+    def geometry(self) -> Geometry:
+        """The scene's vertex streams for this effect (built once)."""
+        if self._geometry is None:
+            self._geometry = geometry(self.scene, self.effect)
+        return self._geometry
+
+    def draw(self, geo: Geometry | None = None) -> None:
+        """Draw the scene's mesh (or `geo`) with the current pass."""
+        if self._program is None:
+            raise RuntimeError("draw outside begin_pass/end_pass")
+        geo = geo or self.geometry()
+        textures = {b.texture: t for b in self._program.textures if b.texture is not None
+                    for t in [self.texture(b.texture)] if t is not None}
+        self.backend.draw(self._program, geo.streams, geo.indices, geo.primitive, textures)
+
+    def end_pass(self) -> None:
+        self._pass, self._program = None, None
+
+    def end(self) -> np.ndarray:
+        """Finish the frame: H x W x 4 uint8 RGBA, row 0 at the top."""
+        self.technique_drawn, self.technique = self.technique, None
+        return self.backend.end_frame()
+
+    def render(self, technique: Technique | str | None = None, policy: Any = "first") -> Frame:
+        """A whole frame: every pass of the technique, drawn once each."""
+        passes = self.begin(technique, policy)
+        tech = self.technique
+        try:
+            for i in range(passes):
+                self.begin_pass(i)
+                self.draw()
+                self.end_pass()
+        except BaseException:
+            self.end_pass()
+            self.end()          # leave the back end ready for the next frame
+            raise
+        image = self.end()
+        return Frame(image, tech, passes, getattr(self.backend, "name", str(self.backend)), self.profile)
+
+
+def render_frame(effect: Effect | str, profile: Any, *, technique: Technique | str | None = None,
+                 backend: Any = "numpy", scene: Any = None, size: tuple[int, int] | None = None,
+                 params: Mapping[str, Any] | None = None, policy: Any = "first") -> Frame:
+    """`render`, returning the Frame (image, technique, pass count) the command line reports."""
+    runtime = Runtime(effect, profile, scene=scene, size=size, params=params, backend=backend)
+    return runtime.render(technique, policy)
+
+
+def render(effect: Effect | str, profile: Any, *, technique: Technique | str | None = None,
+           backend: Any = "numpy", scene: Any = None, size: tuple[int, int] | None = None,
+           params: Mapping[str, Any] | None = None, policy: Any = "first") -> np.ndarray:
+    """Render `effect` on the card `profile` (a CapsProfile or a name): H x W x 4 uint8 RGBA
+    of an A8R8G8B8 target, row 0 at the top. See the module docstring for the steps;
+    `scene` is a YAML path, a mapping or a Scene; an explicit `size` (w, h) wins over the
+    scene's."""
+    return render_frame(effect, profile, technique=technique, backend=backend, scene=scene,
+                        size=size, params=params, policy=policy).image

@@ -1,0 +1,259 @@
+"""Parameter values: what the scene supplies by semantic, and values a user writes.
+
+Scene binding (as DXSAS-aware hosts did): `float4x4 WorldViewProj : WORLDVIEWPROJECTION;`
+receives world·view·projection of the scene, `: WORLDINVERSETRANSPOSE` its inverse transpose,
+`: CAMERAPOSITION` the eye, and so on. DX8 files carry no semantics; for them a short table of
+the parameter names the DirectX 8 SDK samples (and the bundled DX8 files) used stands in.
+Matrices are stored in Direct3D's row-vector convention (p' = p · M), exactly what the
+application would pass to SetMatrix; how they reach constant registers is the lowering's job.
+The light semantics are bound only when the scene has a `light` key or the parameter has no
+initial value, so an effect's own light defaults show in a scene that does not place a light.
+
+User values (`--set NAME=VALUE`, the scene's `params`, `render(params=...)`) go through
+`coerce_value`: numbers, vectors ('1,0.5,0.25,1' or '[1, 0.5, 0.25, 1]'), booleans,
+D3DCOLOR '0xAARRGGBB' (a colour for float3/float4, an integer for int/DWORD), strings, and
+for texture parameters a path or a `Texture`. A value that does not fit is a `SceneError`
+naming the parameter and where the effect declares it.
+"""
+from __future__ import annotations
+
+import math
+import re
+from typing import Any, Callable, Iterable
+
+import numpy as np
+
+from effects.errors import Location, SceneError
+from effects.model import Effect, Parameter
+from effects.host.scene import Scene, d3dcolor
+
+_BASE = ("WORLDVIEWPROJECTION", "WORLDVIEW", "VIEWPROJECTION", "WORLD", "VIEW", "PROJECTION")
+
+# Names, not semantics, that DirectX 8-era effects (the SDK samples, the chapter's BRDF effect,
+# fxfiles/sdk8_style.fx) used for what the application set every frame.
+DX8_NAME_SEMANTICS = {
+    "mwld": "WORLD", "mworld": "WORLD", "mview": "VIEW", "mviw": "VIEW", "mproj": "PROJECTION",
+    "mprj": "PROJECTION", "mtot": "WORLDVIEWPROJECTION", "mwvp": "WORLDVIEWPROJECTION",
+    "mworldviewproj": "WORLDVIEWPROJECTION", "mvin": "VIEWINVERSE",
+    "lhtr": "LIGHTDIRECTION", "vlightdir": "LIGHTDIRECTION", "vlgt": "LIGHTDIRECTION",
+    "veye": "CAMERAPOSITION",
+}
+_LIGHT_SEMANTICS = {"LIGHTPOSITION", "LIGHT0POSITION", "LIGHTDIRECTION", "LIGHT0DIRECTION",
+                    "LIGHTCOLOR", "LIGHTDIFFUSE", "LIGHT0COLOR"}
+
+
+def _matrix_for(semantic: str, m: dict[str, np.ndarray]) -> np.ndarray | None:
+    key = semantic.upper()
+    for base in _BASE:
+        if key.startswith(base):
+            rest = key[len(base):]
+            if rest not in ("", "INVERSE", "TRANSPOSE", "INVERSETRANSPOSE"):
+                continue
+            value = {"WORLD": m["world"], "VIEW": m["view"], "PROJECTION": m["projection"],
+                     "WORLDVIEW": m["world"] @ m["view"],
+                     "VIEWPROJECTION": m["view"] @ m["projection"],
+                     "WORLDVIEWPROJECTION": m["world"] @ m["view"] @ m["projection"]}[base]
+            if "INVERSE" in rest:
+                value = np.linalg.inv(value)
+            if "TRANSPOSE" in rest:
+                value = value.T
+            return value
+    return None
+
+
+def _fit(value: Any, param: Parameter) -> np.ndarray:
+    """Shape a vector to the parameter's components (float3 takes xyz, float4 xyzw)."""
+    n = param.type.components
+    flat = np.asarray(value, np.float32).reshape(-1)
+    v = np.zeros(n, np.float32)
+    v[:min(n, flat.size)] = flat[:n]
+    if param.type.rows > 1:
+        return v.reshape(param.type.rows, param.type.cols)
+    return v if n > 1 else v.reshape(())
+
+
+def scene_values(scene: Scene, size: tuple[int, int] | None = None
+                 ) -> tuple[dict[str, Callable[[Parameter], Any]], dict[str, np.ndarray]]:
+    """Semantic (upper case) -> function giving that parameter's value in this scene, and the
+    scene's world/view/projection matrices for a frame of `size`."""
+    m = scene.matrices(size)
+    eye = np.array([*scene.camera.eye, 1.0])
+    light = np.array([*scene.light.position, 1.0])
+    direction = np.array([*scene.light_direction(), 0.0])
+    color = np.array(scene.light.color)
+    frame = np.array(size or scene.size, np.float32)
+    values: dict[str, Callable[[Parameter], Any]] = {
+        "CAMERAPOSITION": lambda p: _fit(eye, p),
+        "VIEWPOSITION": lambda p: _fit(eye, p),
+        "EYEPOSITION": lambda p: _fit(eye, p),
+        "LIGHTPOSITION": lambda p: _fit(light, p),
+        "LIGHT0POSITION": lambda p: _fit(light, p),
+        "LIGHTDIRECTION": lambda p: _fit(direction, p),
+        "LIGHT0DIRECTION": lambda p: _fit(direction, p),
+        "LIGHTCOLOR": lambda p: _fit(color, p),
+        "LIGHT0COLOR": lambda p: _fit(color, p),
+        "LIGHTDIFFUSE": lambda p: _fit(color, p),
+        "TIME": lambda p: _fit(scene.time, p),
+        "VIEWPORTPIXELSIZE": lambda p: _fit(frame, p),
+    }
+    return values, m
+
+
+def parameter_semantic(param: Parameter) -> str:
+    """The parameter's semantic, or for DX8 files the one its conventional name stands for."""
+    return (param.semantic or DX8_NAME_SEMANTICS.get(param.name.lower(), "")).upper()
+
+
+def bind_scene(effect: Effect, scene: Scene, size: tuple[int, int] | None = None) -> dict[str, Any]:
+    """Values for every parameter the scene supplies: by semantic, or for DX8 files by the
+    conventional names above. Returns name -> value (matrices as float32 4x4)."""
+    values, m = scene_values(scene, size)
+    bound: dict[str, Any] = {}
+    for param in effect.parameters:
+        semantic = parameter_semantic(param)
+        if not semantic or param.array:
+            continue
+        matrix = _matrix_for(semantic, m)
+        if matrix is not None:
+            if param.type.rows == 4 and param.type.cols == 4:
+                bound[param.name] = matrix.astype(np.float32)
+        elif semantic in values and param.type.is_numeric:
+            if semantic in _LIGHT_SEMANTICS and not scene.light_given and param.value is not None:
+                continue
+            bound[param.name] = values[semantic](param)
+    return bound
+
+
+# ------------------------------------------------------------------------------------------------
+# Values a user writes
+
+
+def describe(param: Parameter, at: Location | None = None) -> str:
+    """'float4 LightColor (declared at fxfiles/phong.fx:51:8)': the parameter, and where the
+    effect declares it unless the error is reported there anyway (`at`)."""
+    spelling = param.type.spelling or param.type.base
+    array = "".join(f"[{n}]" for n in param.array)
+    declared = "" if at == param.location else f" (declared at {param.location})"
+    return f"{spelling} {param.name}{array}{declared}"
+
+
+def parse_assignments(items: Iterable[str]) -> dict[str, str]:
+    """`NAME=VALUE` strings (the command line's --set) as name -> value text."""
+    out: dict[str, str] = {}
+    for item in items:
+        name, eq, value = item.partition("=")
+        if not eq or not name.strip():
+            raise SceneError(f"--set {item!r}: expected NAME=VALUE", Location("--set", 1, 1))
+        out[name.strip()] = value.strip()
+    return out
+
+
+_BOOL_WORDS = {"true": True, "false": False, "yes": True, "no": False, "on": True, "off": False}
+_SPLIT = re.compile(r"[,\s]+")
+
+
+def _text_numbers(text: str) -> list[Any]:
+    body = text.strip()
+    if body.startswith(("[", "(", "{")) and body.endswith(("]", ")", "}")):
+        body = body[1:-1]
+    parts = [p for p in _SPLIT.split(body.strip()) if p]
+    out: list[Any] = []
+    for part in parts:
+        low = part.lower()
+        if low in _BOOL_WORDS:
+            out.append(_BOOL_WORDS[low])
+        elif low.startswith("0x"):
+            out.append(int(low, 16))  # ValueError reaches the caller
+        elif re.fullmatch(r"[-+]?\d+", low):
+            out.append(int(low))
+        else:
+            out.append(float(low[:-1] if low.endswith("f") else low))  # '1.0f', as in effect files
+    return out
+
+
+def coerce_value(param: Parameter, value: Any, at: Location | None = None, source: str = "") -> Any:
+    """A user's value as the parameter holds it: a numpy array shaped like the parameter's
+    type (float32 for float/half, int32 int, int64 DWORD, bool bool), a str for strings, and
+    for textures the value unchanged (a path or a Texture; `effects.host.assets` loads it).
+    A value that does not fit raises SceneError at `at` (default: the declaration), its
+    message starting with `source` ('--set', 'scene params') when given."""
+    at = at or param.location
+    base = param.type.base
+    prefix = f"{source} {param.name}={value!r}: " if source else ""
+
+    def fail(why: str) -> SceneError:
+        return SceneError(f"{prefix}{describe(param, at)}: {why}", at)
+
+    if base == "texture":
+        from effects.host.textures import Texture
+        if isinstance(value, Texture) or (isinstance(value, str) and value.strip()):
+            return value.strip() if isinstance(value, str) else value
+        raise fail(f"a texture parameter takes an image path, not {value!r}")
+    if base == "string":
+        if isinstance(value, str):
+            return value
+        raise fail(f"a string parameter takes text, not {value!r}")
+    if not param.type.is_numeric:
+        raise fail(f"a {base} parameter cannot be set from a scene or the command line")
+    return _coerce_numeric(param, value, fail)
+
+
+def _coerce_numeric(param: Parameter, value: Any, fail: Callable[[str], SceneError]) -> np.ndarray:
+    base = param.type.base
+    components = param.type.components
+    count = components * int(np.prod(param.array or (1,)))
+    colour = param.type.rows == 1 and param.type.cols in (3, 4) and not param.array
+    if isinstance(value, str):
+        text = value.strip()
+        if colour and re.fullmatch(r"0[xX][0-9a-fA-F]{1,8}", text):
+            items: list[Any] = list(d3dcolor(int(text, 16)))[:param.type.cols]
+        else:
+            try:
+                items = _text_numbers(text)
+            except ValueError:
+                raise fail(f"{value!r} is not a number or a list of numbers") from None
+    elif isinstance(value, np.ndarray):
+        items = list(value.reshape(-1))
+    elif isinstance(value, (list, tuple)):
+        items = list(np.asarray(value, dtype=object).reshape(-1)) if value else []
+    else:
+        items = [value]
+    if colour and param.type.cols == 4 and len(items) == 3:
+        items = [*items, 1.0]  # [r, g, b] is an opaque colour, as in the scene's colours
+    if len(items) != count:
+        shape = "a number" if count == 1 else f"{count} numbers"
+        raise fail(f"takes {shape}, got {len(items)} ({value!r})")
+    numbers = []
+    for item in items:
+        if isinstance(item, (bool, np.bool_)):
+            numbers.append(float(item))
+        elif isinstance(item, (int, float, np.integer, np.floating)) and math.isfinite(float(item)):
+            numbers.append(item)
+        else:
+            raise fail(f"{item!r} is not a finite number")
+    shape = (*param.array, *((param.type.rows, param.type.cols) if param.type.rows > 1 else
+                             (param.type.cols,) if param.type.cols > 1 else ()))
+    if base in ("float", "half"):
+        return np.asarray(numbers, np.float32).reshape(shape)
+    if base == "bool":
+        return (np.asarray(numbers, np.float64) != 0).reshape(shape)
+    if any(float(n) != int(n) for n in numbers):
+        raise fail(f"an {base} parameter takes whole numbers, got {value!r}")
+    if base == "dword":
+        if any(not 0 <= int(n) <= 0xFFFFFFFF for n in numbers):
+            raise fail(f"a DWORD is 0..0xFFFFFFFF, got {value!r}")
+        return np.asarray([int(n) for n in numbers], np.int64).reshape(shape)
+    if any(not -2**31 <= int(n) < 2**31 for n in numbers):
+        raise fail(f"an int is 32 bits, got {value!r}")
+    return np.asarray([int(n) for n in numbers], np.int32).reshape(shape)
+
+
+def lookup_parameter(effect: Effect, name: str, at: Location | None = None,
+                     source: str = "parameter") -> Parameter:
+    """The effect's parameter `name`, or a SceneError listing the ones a user can set."""
+    param = effect.parameter(name)
+    if param is not None:
+        return param
+    settable = [p.name for p in effect.parameters if p.type.is_numeric or p.type.base in ("texture", "string")]
+    raise SceneError(f"{source} {name!r}: {effect.path} has no parameter of that name "
+                     f"(settable: {', '.join(settable) or 'none'})", at or Location(effect.path, 1, 1))

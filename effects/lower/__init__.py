@@ -1,0 +1,1 @@
+"""Lowering: a validated pass to a PassProgram (texture stages, vertex pipeline, shaders, precision)."""

@@ -1,0 +1,1 @@
+"""Shader languages: Direct3D assembly (asm/) and HLSL."""

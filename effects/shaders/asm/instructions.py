@@ -1,0 +1,280 @@
+"""The instruction table: one row per Direct3D shader instruction (per version family).
+
+Each row says which versions have the instruction, its operands (roles, and which register
+kinds they may name where the instruction narrows the version's rules), its slot cost, whether
+it is a texture or an arithmetic instruction, and what it computes: `op` is the key a lowering
+dispatches on and `formula` a short statement of the result (a, b, c = the sources after
+swizzle and modifiers; d = the destination). The checker, the stats and the lowering all read
+these rows, so what validates and what runs come from one place.
+
+Sources: DirectX 9 assembly reference instruction tables (ps_1_x, ps_2_0, ps_2_x, vs_1_1,
+vs_2_0: slot counts; footnote "cmp/dp4: 2 slots in ps_1_2 and ps_1_3"; texbeml "1 + 1"),
+the instruction pages (texld ps_1_4 / ps_2_0, texbem, texm3x2pad ...), and
+../shared/reference/semantics.md §2–4 for the formulas.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from effects.shaders.asm.versions import (PS1, PS10_13, PS12_13, PS13, PS14, PS2, PS20, PS2X, PS3, VS, VS1, VS2,
+                       VS3, Group)
+
+# Operand roles, in order (dst first when the instruction has one):
+#   d  destination register          s  vector source         x  scalar source (one component)
+#   S  sampler s#                    f  float literal         n  integer literal
+#   B  boolean literal               l  label l#              b  boolean register b# or p0
+#   I  integer register i#           L  loop counter aL       p  predicate register p0
+SOURCE_ROLES = frozenset("sx")
+REGISTER_ROLES = frozenset("dsxSlbILp")
+
+
+@dataclass(frozen=True)
+class InstrInfo:
+    name: str
+    versions: Group
+    operands: str                  # roles, e.g. "dss" for add d, a, b
+    category: str                  # 'arith' | 'tex' | 'flow' | 'setup'
+    op: str                        # lowering key
+    formula: str
+    slots: int = 1
+    slot_overrides: tuple[tuple[str, int], ...] = ()   # (version, slots) where it differs
+    extra_arith: int = 0           # texbeml: 1 texture slot plus 1 arithmetic slot
+    dst_kinds: tuple[str, ...] | None = None           # narrows the version's writable kinds
+    src_kinds: tuple[tuple[str, ...] | None, ...] = ()  # per source; None = version default
+    writes: str = ""               # components written when fixed ('xyz' for m3x3); '' = mask
+    modifiers: bool = True         # takes instruction modifiers (_sat, _x2 ...)
+
+    @property
+    def has_dst(self) -> bool:
+        return self.operands.startswith("d")
+
+    @property
+    def source_roles(self) -> str:
+        return self.operands[1:] if self.has_dst else self.operands
+
+    @property
+    def is_texture(self) -> bool:
+        return self.category == "tex"
+
+    def slot_cost(self, version: str) -> int:
+        for name, n in self.slot_overrides:
+            if name == version:
+                return n
+        return self.slots
+
+    def src_kind(self, i: int) -> tuple[str, ...] | None:
+        return self.src_kinds[i] if i < len(self.src_kinds) else None
+
+
+def _row(name, versions, operands, category, formula, *, op=None, **kw) -> InstrInfo:
+    return InstrInfo(name, versions, operands, category, op or name, formula, **kw)
+
+
+PS_ALL = PS1 | PS2 | PS3
+PS2UP = PS2 | PS3
+VS2UP = VS2 | VS3
+FLOW_VERSIONS = VS2UP | PS2X | PS3
+T = ("t",)
+R = ("r",)
+TR = ("t", "r")
+C = ("c",)
+S = ("s",)
+
+_ARITH = [
+    _row("add", PS_ALL | VS, "dss", "arith", "d = a + b"),
+    _row("sub", PS_ALL | VS, "dss", "arith", "d = a - b"),
+    _row("mul", PS_ALL | VS, "dss", "arith", "d = a * b"),
+    _row("mad", PS_ALL | VS, "dsss", "arith", "d = a * b + c"),
+    _row("mov", PS_ALL | VS, "ds", "arith", "d = a"),
+    _row("nop", PS_ALL | VS, "", "arith", "nothing", slot_overrides=tuple(
+        (v, 0) for v in sorted(PS1.names))),
+    _row("dp3", PS_ALL | VS, "dss", "arith", "d = a.x*b.x + a.y*b.y + a.z*b.z (replicated)"),
+    _row("dp4", PS12_13 | PS14 | PS2UP | VS, "dss", "arith",
+         "d = a.x*b.x + a.y*b.y + a.z*b.z + a.w*b.w (replicated)",
+         slot_overrides=(("ps_1_2", 2), ("ps_1_3", 2))),
+    _row("lrp", PS1 | PS2UP | VS2UP, "dsss", "arith", "d = a*b + (1-a)*c",
+         slots=2, slot_overrides=tuple((v, 1) for v in sorted(PS1.names))),
+    _row("cnd", PS1, "dsss", "arith",
+         "ps_1_1-1_3: d = (r0.a > 0.5) ? b : c for all components; ps_1_4: per component "
+         "d = (a > 0.5) ? b : c"),
+    _row("cmp", PS12_13 | PS14 | PS2UP, "dsss", "arith", "d = (a >= 0) ? b : c per component",
+         slot_overrides=(("ps_1_2", 2), ("ps_1_3", 2))),
+    _row("bem", PS14, "dss", "arith",
+         "d.r = a.r + M00(n)*b.r + M10(n)*b.g; d.g = a.g + M01(n)*b.r + M11(n)*b.g "
+         "(n = destination register number, M = D3DTSS_BUMPENVMAT of stage n)",
+         slots=2, dst_kinds=R, writes="xy"),
+    _row("min", PS2UP | VS, "dss", "arith", "d = min(a, b) per component"),
+    _row("max", PS2UP | VS, "dss", "arith", "d = max(a, b) per component"),
+    _row("sge", VS, "dss", "arith", "d = (a >= b) ? 1 : 0 per component"),
+    _row("slt", VS, "dss", "arith", "d = (a < b) ? 1 : 0 per component"),
+    _row("rcp", PS2UP | VS, "dx", "arith", "d = 1/a (replicated; 1/0 = +inf)"),
+    _row("rsq", PS2UP | VS, "dx", "arith", "d = 1/sqrt(|a|) (replicated)"),
+    _row("exp", PS2UP | VS, "dx", "arith", "d = 2^a (full precision, replicated)",
+         slot_overrides=(("vs_1_1", 10),)),
+    _row("log", PS2UP | VS, "dx", "arith", "d = log2(|a|) (full precision, replicated)",
+         slot_overrides=(("vs_1_1", 10),)),
+    _row("expp", VS, "dx", "arith",
+         "vs_1_1: d = (2^floor(a), a - floor(a), 2^a approx, 1); vs_2_0+: d = 2^a partial"),
+    _row("logp", VS, "dx", "arith",
+         "vs_1_1: v = |a|; d = (floor(log2 v), v / 2^floor(log2 v), log2 v approx, 1)"),
+    _row("frc", PS2UP | VS, "ds", "arith", "d = a - floor(a)",
+         slot_overrides=(("vs_1_1", 3),)),
+    _row("lit", VS, "ds", "arith",
+         "d = (1, max(a.x, 0), a.x > 0 ? max(a.y, 0)^clamp(a.w, -128, 128) : 0, 1)",
+         slot_overrides=(("vs_2_0", 3), ("vs_2_x", 3), ("vs_2_a", 3), ("vs_3_0", 3))),
+    _row("dst", VS, "dss", "arith", "d = (1, a.y*b.y, a.z, b.w)"),
+    _row("m3x2", PS2UP | VS, "dss", "arith", "d.x = dp3(a, b[0]); d.y = dp3(a, b[1])",
+         slots=2, writes="xy"),
+    _row("m3x3", PS2UP | VS, "dss", "arith", "d.i = dp3(a, b[i]) for i = 0..2 (b[i] = b + i)",
+         slots=3, writes="xyz"),
+    _row("m3x4", PS2UP | VS, "dss", "arith", "d.i = dp3(a, b[i]) for i = 0..3", slots=4,
+         writes="xyzw"),
+    _row("m4x3", PS2UP | VS, "dss", "arith", "d.i = dp4(a, b[i]) for i = 0..2", slots=3,
+         writes="xyz"),
+    _row("m4x4", PS2UP | VS, "dss", "arith", "d.i = dp4(a, b[i]) for i = 0..3", slots=4,
+         writes="xyzw"),
+    _row("abs", PS2UP | VS2UP, "ds", "arith", "d = |a|"),
+    _row("crs", PS2UP | VS2UP, "dss", "arith", "d.xyz = cross(a.xyz, b.xyz)", slots=2),
+    _row("nrm", PS2UP | VS2UP, "ds", "arith", "d = a / length(a.xyz)", slots=3),
+    _row("pow", PS2UP | VS2UP, "dxx", "arith", "d = |a|^b (replicated)", slots=3),
+    _row("sgn", VS2UP, "dsss", "arith", "d = sign(a) per component (b, c: scratch temps)",
+         slots=3),
+    _row("sincos", PS2 | VS2, "dxss", "arith",
+         "d.x = cos(a), d.y = sin(a) (b, c = D3DSINCOSCONST1/2)", slots=8, op="sincos"),
+    _row("sincos", PS3 | VS3, "dx", "arith", "d.x = cos(a), d.y = sin(a)", slots=8),
+    _row("dp2add", PS2UP, "dssx", "arith", "d = a.x*b.x + a.y*b.y + c (replicated)", slots=2),
+    _row("mova", VS2UP, "ds", "arith", "a0 = round_half_away_from_zero(a)",
+         dst_kinds=("a",)),
+    _row("dsx", PS2X | PS3, "ds", "arith", "d = d(a)/dx (screen-space gradient)", slots=2),
+    _row("dsy", PS2X | PS3, "ds", "arith", "d = d(a)/dy (screen-space gradient)", slots=2),
+    _row("setp", PS2X | PS3 | VS2UP, "dss", "flow", "p0 = a <cmp> b per component",
+         dst_kinds=("p",)),
+]
+
+# ps_1_1-1_3 texture-address instructions: dst t(m), source t(n) with n < m (semantics.md §2.5).
+_PS1_TEX = dict(dst_kinds=T, src_kinds=(T,), modifiers=False)
+_TEXTURE = [
+    _row("tex", PS10_13, "d", "tex", "t(m) = sample(stage m, texcoord m)", dst_kinds=T,
+         modifiers=False),
+    _row("texcoord", PS10_13, "d", "tex", "t(m) = (sat(tc.x), sat(tc.y), sat(tc.z), 1)",
+         dst_kinds=T, modifiers=False),
+    _row("texbem", PS10_13, "ds", "tex",
+         "t(m) = sample(m, tc(m).uv + M(m) * t(n).rg)", **_PS1_TEX),
+    _row("texbeml", PS10_13, "ds", "tex",
+         "texbem, then t(m) *= sat(t(n).b * LSCALE(m) + LOFFSET(m))", extra_arith=1,
+         **_PS1_TEX),
+    _row("texreg2ar", PS10_13, "ds", "tex", "t(m) = sample(m, (t(n).a, t(n).r))", **_PS1_TEX),
+    _row("texreg2gb", PS10_13, "ds", "tex", "t(m) = sample(m, (t(n).g, t(n).b))", **_PS1_TEX),
+    _row("texreg2rgb", PS12_13, "ds", "tex", "t(m) = sample(m, t(n).rgb)", **_PS1_TEX),
+    _row("texm3x2pad", PS10_13, "ds", "tex", "u = tc(m).xyz . t(n).rgb (no write)",
+         **_PS1_TEX),
+    _row("texm3x2tex", PS10_13, "ds", "tex",
+         "v = tc(m+1).xyz . t(n).rgb; t(m+1) = sample(m+1, (u, v))", **_PS1_TEX),
+    _row("texm3x2depth", PS13, "ds", "tex",
+         "w = tc(m+1).xyz . t(n).rgb; depth = (w == 0) ? 1 : sat(u / w)", **_PS1_TEX),
+    _row("texm3x3pad", PS10_13, "ds", "tex", "row k of a 3x3: tc(m).xyz . t(n).rgb (no write)",
+         **_PS1_TEX),
+    _row("texm3x3tex", PS10_13, "ds", "tex",
+         "w = tc(m+2).xyz . t(n).rgb; t(m+2) = sample(m+2, (u, v, w))", **_PS1_TEX),
+    _row("texm3x3", PS12_13, "ds", "tex", "t(m+2) = (u, v, w, 1)", **_PS1_TEX),
+    _row("texm3x3spec", PS10_13, "dss", "tex",
+         "N = (u, v, w), E = c.xyz; t(m+2) = sample(m+2, 2 N (N.E)/(N.N) - E)",
+         dst_kinds=T, src_kinds=(T, C), modifiers=False),
+    _row("texm3x3vspec", PS10_13, "ds", "tex",
+         "as texm3x3spec with E = (tc(m).w, tc(m+1).w, tc(m+2).w)", **_PS1_TEX),
+    _row("texdp3", PS12_13, "ds", "tex", "t(m) = tc(m).xyz . t(n).rgb (replicated)",
+         **_PS1_TEX),
+    _row("texdp3tex", PS12_13, "ds", "tex",
+         "t(m) = sample(m, (tc(m).xyz . t(n).rgb, 0))", **_PS1_TEX),
+    _row("texkill", PS10_13, "d", "tex", "discard if any of tc(m).xyz < 0", op="texkill",
+         dst_kinds=T, modifiers=False),
+    _row("texkill", PS14, "d", "tex", "discard if any of a.xyz < 0", dst_kinds=TR,
+         modifiers=False),
+    _row("texkill", PS2, "s", "tex", "discard if any of a.xyzw < 0", src_kinds=(TR,),
+         modifiers=False),
+    _row("texkill", PS3, "s", "tex", "discard if any of a.xyzw < 0", modifiers=False),
+    _row("texld", PS14, "ds", "tex",
+         "r(n) = sample(stage n, a.xyz) (a = t# coordinates or, in phase 2, r# dependent)",
+         dst_kinds=R, src_kinds=(TR,), modifiers=False),
+    _row("texcrd", PS14, "ds", "tex", "r(n) = texcoord a (unclamped; .w undefined)",
+         dst_kinds=R, src_kinds=(T,)),
+    _row("texdepth", PS14, "d", "tex", "depth = (r5.g == 0) ? 1 : sat(r5.r / r5.g)",
+         dst_kinds=R, modifiers=False),
+    *[_row(name, versions, "dsS", "tex", formula, dst_kinds=R, src_kinds=(coords, S))
+      # ps_2_x reads coordinates from t# or r#; ps_3_0 from any readable register (v#, r# ...)
+      for versions, coords in ((PS2, TR), (PS3, None))
+      for name, formula in (("texld", "d = sample(sampler b, a)"),
+                            ("texldp", "d = sample(sampler b, a.xyz / a.w)"),
+                            ("texldb", "d = sample(sampler b, a.xyz, lod bias a.w)"))],
+    _row("texldd", PS2X | PS3, "dsSss", "tex", "d = sample(sampler b, a, ddx = c, ddy = e)",
+         slots=3, dst_kinds=R, src_kinds=(None, S)),
+    _row("texldl", PS3 | VS3, "dsS", "tex", "d = sample(sampler b, a.xyz, lod a.w)", slots=2,
+         src_kinds=(None, S)),
+]
+
+_FLOW = [
+    _row("call", FLOW_VERSIONS, "l", "flow", "call subroutine l", slots=2),
+    _row("callnz", FLOW_VERSIONS, "lb", "flow", "call subroutine l if b", slots=3),
+    _row("ret", FLOW_VERSIONS, "", "flow", "return", slots=1),
+    _row("label", FLOW_VERSIONS, "l", "flow", "subroutine entry", slots=0),
+    _row("loop", FLOW_VERSIONS, "LI", "flow", "loop i.x times, aL from i.y step i.z", slots=3),
+    _row("endloop", FLOW_VERSIONS, "", "flow", "end of loop", slots=2),
+    _row("rep", FLOW_VERSIONS, "I", "flow", "repeat i.x times", slots=3),
+    _row("endrep", FLOW_VERSIONS, "", "flow", "end of rep", slots=2),
+    _row("if", FLOW_VERSIONS, "b", "flow", "if b (or if_cmp a, b)", slots=3),
+    _row("else", FLOW_VERSIONS, "", "flow", "else", slots=1),
+    _row("endif", FLOW_VERSIONS, "", "flow", "end of if", slots=1),
+    _row("break", FLOW_VERSIONS, "", "flow", "leave the loop (break_cmp a, b: if a <cmp> b)",
+         slots=1),
+    _row("breakp", FLOW_VERSIONS, "p", "flow", "leave the loop if p0", slots=3),
+]
+
+# Instructions that are no instruction: the version token, constants, declarations, phase.
+_SETUP = [
+    _row("def", PS_ALL | VS, "dffff", "setup", "c# = (x, y, z, w)", slots=0, dst_kinds=C),
+    _row("defi", PS2X | PS3 | VS2UP, "dnnnn", "setup", "i# = (x, y, z, w)", slots=0,
+         dst_kinds=("i",)),
+    _row("defb", PS2X | PS3 | VS2UP, "dB", "setup", "b# = value", slots=0, dst_kinds=("b",)),
+    _row("dcl", PS2UP | VS, "d", "setup", "declare an input, output or sampler", slots=0),
+    _row("phase", PS14, "", "setup", "ends phase 1 of a ps_1_4 shader", slots=0),
+]
+
+TABLE: tuple[InstrInfo, ...] = tuple(_ARITH + _TEXTURE + _FLOW + _SETUP)
+
+# Matrix instructions read consecutive registers from their second source: m4x4 r0, v0, c4
+# reads c4..c7.
+MATRIX_ROWS = {"m3x2": 2, "m3x3": 3, "m3x4": 4, "m4x3": 3, "m4x4": 4}
+
+# Comparison suffixes of if_cmp / break_cmp / setp_cmp.
+COMPARISONS = ("gt", "lt", "ge", "le", "eq", "ne")
+# Opcodes that take a comparison suffix; if_cmp/break_cmp take two sources instead of b/none.
+COMPARING = {"if": "ss", "break": "ss", "setp": None}
+
+_BY_NAME: dict[str, list[InstrInfo]] = {}
+for _info in TABLE:
+    _BY_NAME.setdefault(_info.name, []).append(_info)
+
+
+def rows_named(name: str) -> list[InstrInfo]:
+    """Every row for an opcode (texld has one for ps_1_4 and one for ps_2_0+)."""
+    return list(_BY_NAME.get(name, ()))
+
+
+def lookup(name: str, version: str) -> InstrInfo | None:
+    """The row for `name` in `version`, or None when the version lacks the instruction."""
+    for info in _BY_NAME.get(name, ()):
+        if version in info.versions:
+            return info
+    return None
+
+
+def is_known(name: str) -> bool:
+    return name in _BY_NAME
+
+
+def versions_having(name: str) -> list[str]:
+    from effects.shaders.asm.versions import VERSION_ORDER
+    names: set[str] = set()
+    for info in _BY_NAME.get(name, ()):
+        names |= info.versions.names
+    return [v for v in VERSION_ORDER if v in names]

@@ -1,0 +1,124 @@
+"""What a card adds to a shader version's own rules: its PS20Caps/VS20Caps and constant count.
+
+`check()` enforces what every card of a version guarantees; this compares an assembled program's
+resource use with one card's values (the caps validator turns each violation into a Reason).
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import Iterator
+
+from effects.errors import AsmError, Location
+from effects.model import ShaderBlock
+from effects.shaders.asm.check import check
+from effects.shaders.asm.parser import assemble
+from effects.shaders.asm.program import AsmProgram
+
+Violation = tuple[Location, str, str, str, str]  # location, subject, requirement, card value, message
+
+# D3DCAPS9.MaxVertexShaderConst under software vertex processing (the runtime's emulation).
+SOFTWARE_VS_CONSTANTS = 8192
+
+
+@lru_cache(maxsize=512)
+def _assemble_key(stage: str, version: str | None, source: str, path: str, line: int,
+                  column: int) -> AsmProgram | AsmError:
+    block = ShaderBlock(stage, version, source, location=Location(path, line, column))
+    try:
+        return assemble(block)
+    except AsmError as err:
+        return err
+
+
+def assemble_cached(block: ShaderBlock) -> AsmProgram:
+    """`assemble`, memoised on the block's text and position (validation runs per card)."""
+    loc = block.location
+    result = _assemble_key(block.stage, block.version, block.source, loc.path, loc.line, loc.column)
+    if isinstance(result, AsmError):
+        raise result
+    return result
+
+
+_checked: dict[int, tuple[AsmProgram, list[AsmError]]] = {}
+
+
+def check_cached(program: AsmProgram) -> list[AsmError]:
+    """`check`, memoised per assembled program object."""
+    hit = _checked.get(id(program))
+    if hit is None or hit[0] is not program:
+        hit = (program, check(program))
+        _checked[id(program)] = hit
+    return hit[1]
+
+
+def _caps_flags(profile, field: str) -> set[str]:
+    caps = profile.get(field) or {}
+    return {str(c).upper() for c in caps.get("Caps", [])}
+
+
+def card_limit_violations(program: AsmProgram, profile, *, software: bool = False) -> Iterator[Violation]:
+    """Ways `program` exceeds this card's shader caps (beyond the version's own limits)."""
+    stats = program.stats
+    first = program.instructions[0].location if program.instructions else Location("<asm>", 0, 0)
+    if program.kind == "ps" and program.version >= (2, 0):
+        caps = profile.get("PS20Caps") or {}
+        flags = _caps_flags(profile, "PS20Caps")
+        slots = caps.get("NumInstructionSlots")
+        if slots is not None and stats.total_slots > slots:
+            yield (first, program.name, f"PS20Caps.NumInstructionSlots >= {stats.total_slots}",
+                   f"NumInstructionSlots {slots}",
+                   f"the pixel shader takes {stats.total_slots} instruction slots")
+        temps = caps.get("NumTemps")
+        highest_r = stats.highest.get("r", -1) + 1
+        if temps is not None and highest_r > temps:
+            yield (first, program.name, f"PS20Caps.NumTemps >= {highest_r}", f"NumTemps {temps}",
+                   f"the pixel shader uses temporaries up to r{highest_r - 1}")
+        depth = caps.get("DependentReadDepth")
+        if (depth is not None and "NODEPENDENTREADLIMIT" not in flags
+                and stats.dependent_read_depth > depth):
+            yield (first, program.name, f"DependentReadDepth >= {stats.dependent_read_depth}",
+                   f"DependentReadDepth {depth}",
+                   f"the pixel shader has {stats.dependent_read_depth} levels of dependent texture reads")
+        for used, flag, what in ((stats.uses_arbitrary_swizzle, "ARBITRARYSWIZZLE", "an arbitrary swizzle"),
+                                 (stats.uses_predication, "PREDICATION", "predication"),
+                                 (stats.uses_gradients, "GRADIENTINSTRUCTIONS", "gradient instructions")):
+            if used and program.version < (3, 0) and flag not in flags:
+                yield (first, program.name, f"D3DPS20CAPS_{flag}", "not in PS20Caps.Caps",
+                       f"the pixel shader uses {what}")
+    if program.kind == "ps":
+        outputs = stats.highest.get("oC", 0) + 1
+        rts = profile.get("NumSimultaneousRTs", 1) or 1
+        if outputs > rts:
+            yield (first, program.name, f"NumSimultaneousRTs >= {outputs}",
+                   f"NumSimultaneousRTs {rts}",
+                   f"the pixel shader writes oC{outputs - 1}, so {outputs} render targets at once")
+        if program.version >= (3, 0):
+            yield from _slot_limit(program, profile, "MaxPixelShader30InstructionSlots", "pixel", first)
+    if program.kind == "vs":
+        if program.version >= (3, 0) and not software:
+            yield from _slot_limit(program, profile, "MaxVertexShader30InstructionSlots", "vertex", first)
+        if (program.version >= (2, 0) and program.version < (3, 0) and not software
+                and stats.uses_predication and "PREDICATION" not in _caps_flags(profile, "VS20Caps")):
+            yield (first, program.name, "D3DVS20CAPS_PREDICATION", "not in VS20Caps.Caps",
+                   "the vertex shader uses predication")
+        limit = SOFTWARE_VS_CONSTANTS if software else profile.get("MaxVertexShaderConst")
+        highest_c = stats.highest.get("c", -1) + 1
+        if limit is not None and highest_c > limit:
+            yield (first, program.name, f"MaxVertexShaderConst >= {highest_c}",
+                   f"MaxVertexShaderConst {limit}",
+                   f"the vertex shader reads constants up to c{highest_c - 1}")
+        if program.version >= (2, 0) and not software:
+            caps = profile.get("VS20Caps") or {}
+            temps = caps.get("NumTemps")
+            highest_r = stats.highest.get("r", -1) + 1
+            if temps is not None and highest_r > temps:
+                yield (first, program.name, f"VS20Caps.NumTemps >= {highest_r}", f"NumTemps {temps}",
+                       f"the vertex shader uses temporaries up to r{highest_r - 1}")
+
+
+def _slot_limit(program: AsmProgram, profile, field: str, what: str,
+                first: Location) -> Iterator[Violation]:
+    slots = profile.get(field)
+    if slots is not None and program.stats.total_slots > slots:
+        yield (first, program.name, f"{field} >= {program.stats.total_slots}", f"{field} {slots}",
+               f"the {what} shader takes {program.stats.total_slots} instruction slots")

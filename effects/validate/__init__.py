@@ -1,0 +1,1 @@
+"""Validation: a technique against a caps profile, with every reason; selection."""

@@ -1,0 +1,161 @@
+"""Shader checks: the version against the card (a vertex shader newer than the hardware's runs
+in software vertex processing where the card offers it), every assembly rule of that version,
+the card's own limits, and HLSL `compile` shaders, which are rejected until the framework can
+compile them.
+
+A mixin of `validate._PassChecker`: it uses the checker's state, profile, report
+and reason helpers (fail, need_bit, where, unknown ...)."""
+from __future__ import annotations
+
+from typing import Any
+
+from effects.caps import CapsProfile
+from effects.errors import EffectError, Location
+from effects.model import CompileShader, ShaderBlock
+
+
+def _version(text: str | None) -> tuple[int, int]:
+    if not text:
+        return (0, 0)
+    digits = [int(p) for p in text.replace("_", ".").split(".") if p.isdigit()]
+    return (digits + [0, 0])[0], (digits + [0, 0])[1]
+
+
+def _version_text(v: tuple[int, int]) -> str:
+    return f"{v[0]}.{v[1]}"
+
+
+def software_vs_version(profile: CapsProfile) -> tuple[int, int]:
+    """The vertex shader version the runtime runs on the CPU for this card ((0, 0): none).
+    Software and mixed devices both offer it (mixed switches between the two pipelines)."""
+    if not profile.vertex_processing & {"software", "mixed"}:
+        return (0, 0)
+    return _version(profile.get("SoftwareVertexShaderVersion", "3.0"))
+
+
+class ShaderChecks:
+    """The pixel and vertex shader checks of a pass."""
+
+    def check_pixel_shader(self, shader: tuple[Any, Location]) -> None:
+        value, loc = shader
+        have = self.profile.pixel_shader_version
+        version = _shader_version(value)
+        if version is None:
+            return
+        self.report.pixel_shader = _version_label("ps", version)
+        if version > have:
+            label = self.report.pixel_shader
+            limit = (f"runs pixel shaders up to {_version_label('ps', have)}" if have > (0, 0)
+                     else "has no pixel shader hardware")
+            self.fail(_block_location(value, loc), f"PixelShader ({label})",
+                      f"PixelShaderVersion >= {_version_text(version)}",
+                      f"PixelShaderVersion {_version_text(have)}",
+                      f"PixelShader is {label}; the {self.card()} {limit}")
+            return
+        if isinstance(value, CompileShader):
+            self.note_hlsl("PixelShader", value)
+            return
+        self.check_assembly(value, "PixelShader")
+
+    def check_vertex_shader(self, shader: tuple[Any, Location]) -> None:
+        value, loc = shader
+        version = _shader_version(value)
+        if version is None:
+            return
+        label = _version_label("vs", version)
+        self.report.vertex_shader = label
+        hardware = self.profile.vertex_shader_version
+        software = software_vs_version(self.profile)
+        if version > hardware and version > software:
+            limit = (f"runs vertex shaders up to {_version_label('vs', hardware)}" if hardware > (0, 0)
+                     else "has no vertex shader hardware")
+            offer = (f"its software vertex processing runs up to {_version_label('vs', software)}"
+                     if software > (0, 0) else "it offers no software vertex processing")
+            self.fail(_block_location(value, loc), f"VertexShader ({label})",
+                      f"VertexShaderVersion >= {_version_text(version)} or software vertex processing",
+                      f"VertexShaderVersion {_version_text(hardware)}, processing: "
+                      f"{', '.join(sorted(self.profile.vertex_processing))}",
+                      f"VertexShader is {label}; the {self.card()} {limit} and {offer}")
+            return
+        in_software = version > hardware
+        if isinstance(value, CompileShader):
+            self.report.software_vertex_processing = in_software
+            self.note_hlsl("VertexShader", value)
+            return
+        if not in_software and software >= version and self.assembly_problems(value, software=False):
+            # over the hardware's limits (constants, temporaries): software processing runs it
+            if not self.assembly_problems(value, software=True):
+                in_software = True
+                self.note("the vertex shader exceeds the hardware's limits and runs in software "
+                          "vertex processing")
+        self.report.software_vertex_processing = in_software
+        self.check_assembly(value, "VertexShader", software=in_software)
+
+    def assembly_problems(self, value: Any, software: bool) -> bool:
+        """Whether an asm shader breaks its version's rules or the card's limits."""
+        if not isinstance(value, ShaderBlock):
+            return False
+        from effects.shaders.asm import assemble_cached, card_limit_violations, check_cached
+        try:
+            program = assemble_cached(value)
+        except EffectError:
+            return True
+        return bool(check_cached(program)) or any(
+            True for _ in card_limit_violations(program, self.profile, software=software))
+
+    def note_hlsl(self, state_name: str, value: CompileShader) -> None:
+        # D3DX rejects a technique whose shader fails to create (Wine's ValidateTechnique);
+        # this framework captures HLSL functions but cannot compile them yet, so it cannot
+        # create the shader on any card. Saying so beats selecting a technique nothing can draw.
+        self.fail(value.location, f"{state_name} = compile {value.profile} {value.function}()",
+                  "an HLSL compiler", "none in this framework yet",
+                  f"{state_name} = compile {value.profile} {value.function}() needs HLSL "
+                  "compilation, which this framework does not do yet, so the shader cannot be "
+                  "created")
+
+    def check_assembly(self, value: Any, state_name: str, software: bool = False) -> None:
+        if not isinstance(value, ShaderBlock):
+            return
+        from effects.shaders.asm import assemble_cached, card_limit_violations, check_cached
+        try:
+            program = assemble_cached(value)
+        except EffectError as err:
+            self.fail(err.location, state_name, "valid shader assembly", "assembly error", err.message)
+            return
+        for err in check_cached(program):
+            self.fail(err.location, state_name, "valid shader assembly", "assembly error", err.message)
+        if program.kind == "ps":
+            self.report.render_targets = max(1, program.stats.highest.get("oC", 0) + 1)
+        for loc, subject, requirement, card_value, message in card_limit_violations(
+                program, self.profile, software=software):
+            self.fail(loc, subject, requirement, card_value, f"{message}; the {self.card()} has {card_value}")
+
+
+def _shader_version(value: Any) -> tuple[int, int] | None:
+    if isinstance(value, ShaderBlock):
+        return _version(value.version) if value.version else None
+    if isinstance(value, CompileShader):
+        return _version(value.profile)
+    return None
+
+
+def _version_label(kind: str, version: tuple[int, int]) -> str:
+    return f"{kind}_{version[0]}_{version[1]}"
+
+
+def _block_location(value: Any, fallback: Location) -> Location:
+    """Where a shader's version is written (the first token of an asm block), else where the
+    shader is (a `compile` expression), else the assignment."""
+    loc = getattr(value, "location", None)
+    if loc is None or not loc.line:
+        return fallback
+    if isinstance(value, ShaderBlock):
+        text = value.source
+        start = len(text) - len(text.lstrip())
+        if start < len(text):
+            before = text[:start]
+            lines = before.count("\n")
+            if lines == 0:
+                return Location(loc.path, loc.line, loc.column + start)
+            return Location(loc.path, loc.line + lines, start - before.rfind("\n"))
+    return loc

@@ -1,0 +1,101 @@
+"""Fixed-function texture stage checks: the number of stages, each ColorOp/AlphaOp against
+TextureOpCaps, Temp/Constant arguments and ResultArg against PrimitiveMiscCaps, and the
+ResultArg rules every card shares.
+
+A mixin of `validate._PassChecker`: it uses the checker's state, profile, report
+and reason helpers (fail, need_bit, where, unknown ...)."""
+from __future__ import annotations
+
+from effects.device import MAX_STAGES
+from effects.stage_ops import STAGE_OPS, StageOp
+from effects.validate.values import (_TA_ALPHAREPLICATE, _TA_COMPLEMENT, _TA_CONSTANT, _TA_CURRENT,
+                              _TA_SELECT_MASK, _TA_TEMP, _int_value, _ta_select)
+
+def _stage_op(op: str) -> StageOp | None:
+    """The lowering's row for a D3DTOP: the caps bit it needs, the arguments it reads, and
+    whether it samples its texture without a TEXTURE argument. Validation reads the same
+    table the lowering runs, so "valid" and "what runs" cannot drift apart."""
+    return STAGE_OPS.get(op)
+
+
+# Which arguments each op reads (D3DTEXTUREOP docs): most read 1 and 2.
+def _args_read(op: str) -> tuple[int, ...]:
+    row = _stage_op(op)
+    return row.args if row is not None else ((1, 2) if op != "DISABLE" else ())
+
+
+class StageChecks:
+    """The fixed-function texture stage checks of a pass (used when it has no pixel shader)."""
+
+    def active_stages(self) -> list[int]:
+        """Stages up to the first disabled one (an unknown op counts as enabled)."""
+        stages = []
+        for stage in range(MAX_STAGES):
+            if self.state.enum_name("ColorOp", stage) == "DISABLE":
+                break
+            stages.append(stage)
+        return stages
+
+    def check_texture_stages(self) -> None:
+        stages = self.active_stages()
+        self.report.stages = len(stages)
+        limit = int(self.profile.get("MaxTextureBlendStages", 0))
+        if stages and len(stages) > limit:
+            top = stages[-1]
+            self.fail(self.where("ColorOp", top), f"ColorOp[{top}]",
+                      f"MaxTextureBlendStages >= {len(stages)}", f"MaxTextureBlendStages {limit}",
+                      f"ColorOp[{top}] enables texture stage {top}, so {len(stages)} stages are "
+                      f"needed; the {self.card()} has {limit}")
+        for stage in stages:
+            self.check_stage(stage)
+        if stages:
+            self.check_result_args(stages)
+
+    def check_stage(self, stage: int) -> None:
+        for op_state, arg_prefix in (("ColorOp", "ColorArg"), ("AlphaOp", "AlphaArg")):
+            if self.unknown(op_state, stage):
+                continue
+            op = self.state.enum_name(op_state, stage)
+            if op is None or (op_state == "AlphaOp" and op == "DISABLE"):
+                continue
+            shown = self._shown(op_state, stage)
+            row = _stage_op(op)
+            self.need_bit("TextureOpCaps", row.cap if row is not None else op,
+                          f"{op_state}[{stage}] = {shown}", self.where(op_state, stage),
+                          "D3DTEXOPCAPS_")
+            for n in _args_read(op):
+                self.check_arg(f"{arg_prefix}{n}", stage)
+
+    def check_arg(self, state_name: str, stage: int) -> None:
+        if self.unknown(state_name, stage):
+            return
+        select = _ta_select(self.state.get(state_name, stage))
+        if select == _TA_TEMP:
+            self.need_bit("PrimitiveMiscCaps", "TSSARGTEMP", f"{state_name}[{stage}] = Temp",
+                          self.where(state_name, stage), "D3DPMISCCAPS_")
+        elif select == _TA_CONSTANT:
+            self.need_bit("PrimitiveMiscCaps", "PERSTAGECONSTANT", f"{state_name}[{stage}] = Constant",
+                          self.where(state_name, stage), "D3DPMISCCAPS_")
+
+    def check_result_args(self, stages: list[int]) -> None:
+        """ResultArg is Current (default) or Temp, never modified, and the last stage writes
+        Current, which is what reaches the frame buffer (D3DTSS_RESULTARG docs)."""
+        for stage in stages:
+            if self.state.assignment("ResultArg", stage) is None or self.unknown("ResultArg", stage):
+                continue
+            value = _int_value(self.state.get("ResultArg", stage))
+            if value is None:
+                continue
+            subject = f"ResultArg[{stage}] = {self._shown_flags('ResultArg', stage)}"
+            loc = self.where("ResultArg", stage)
+            if value & (_TA_COMPLEMENT | _TA_ALPHAREPLICATE) or (value & _TA_SELECT_MASK) not in (_TA_CURRENT, _TA_TEMP):
+                self.fail(loc, subject, "D3DTA_CURRENT or D3DTA_TEMP", "any card",
+                          f"{subject}: a stage writes its result to Current or Temp only, without "
+                          "modifiers; no card accepts this")
+                continue
+            if value == _TA_TEMP:
+                self.need_bit("PrimitiveMiscCaps", "TSSARGTEMP", subject, loc, "D3DPMISCCAPS_")
+                if stage == stages[-1]:
+                    self.fail(loc, subject, "D3DTA_CURRENT on the last active stage", "any card",
+                              f"{subject} on the last active stage: its result never reaches the "
+                              "frame buffer, which takes Current; no card accepts this")

@@ -1,0 +1,310 @@
+"""Technique validation against a caps profile, collecting every reason a card cannot run it.
+
+This plays the part of D3DX's ValidateTechnique + the driver's ValidateDevice: for each pass,
+with the device state as the technique leaves it (earlier passes persist), every stage op,
+argument, texture, filter, blend, compare, stencil op, render target, shader version, shader
+limit and card quirk is checked, and each failure becomes a `Reason` that names the pass, the
+state or instruction, where it is, what it needs and what the card has.
+
+What is checked, and what is not:
+- Fixed-function stages: the highest enabled stage against MaxTextureBlendStages, each
+  ColorOp/AlphaOp against TextureOpCaps, Temp/Constant arguments and ResultArg against
+  PrimitiveMiscCaps, and the argument rules every card shares (ResultArg is Current or Temp,
+  without modifiers, and the last active stage writes Current). The argument modifiers
+  Complement and AlphaReplicate have no caps bit in D3DCAPS9: every card accepts them.
+- Textures read in a pass: how many (MaxSimultaneousTextures, fixed function only: a pixel
+  shader's version sets its own sampler count), the kind (cube, volume) against TextureCaps
+  (declared by `string Type`, the texture or sampler type, or, for DX8 files that cannot
+  declare it, implied by the lookup: `dcl_cube`, texm3x3tex/spec/vspec, or 3-component
+  camera-space texture coordinates in a fixed-function stage),
+  `int Width/Height/Depth` against the size limits, power-of-two and square rules, `string
+  Format` (and `bool RenderTarget`) against the formats the card lists, and each sampler's
+  filters, mip filter, anisotropy and address modes.
+- Frame-buffer states a pass assigns: blend factors and ops, separate alpha blending, write
+  masks, alpha test, depth test, stencil, culling, depth bias, scissor, table fog.
+- Shaders: the version (a vertex shader newer than the hardware's runs when the card offers
+  software or mixed vertex processing, up to the runtime's software version), every
+  assembly rule of that version, and the card's own limits (instruction slots, temporaries,
+  constants, dependent reads, render-target outputs; a vertex shader over the hardware's
+  limits runs in software where the card offers it). An HLSL `compile ps_2_0 f()` is checked
+  by its profile, and then rejected: the framework cannot compile HLSL yet, and D3DX rejects
+  a technique whose shader fails to create.
+- Card quirks (caps.py's vocabulary): severity `error` rejects, `warning` is reported in
+  `Validation.warnings` and rejects nothing.
+A state whose value is a parameter without a value (or a preshader expression) cannot be
+checked before the application sets it: it is skipped with a note, never a crash.
+
+The checks live in one module per job, each a mixin of the pass checker here:
+validate_stages (fixed-function stages), validate_textures (textures, samplers, formats),
+validate_framebuffer (blend, compare, stencil, render states), validate_shaders (shader
+versions, assembly, limits); validate_values reads and spells state values. This module holds
+the answer types, the pass checker's helpers and run order, and the card quirk rules.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable, Iterable
+
+from effects.caps import FIELDS, CapsProfile, Quirk
+from effects.device import DeviceState, pass_states
+from effects.errors import Location
+from effects.model import Effect, EnumValue, Expression, NullValue, ParamRef, Pass, Technique
+from effects.validate.framebuffer import FrameBufferChecks
+from effects.validate.shaders import ShaderChecks, software_vs_version
+from effects.validate.stages import StageChecks
+from effects.validate.textures import TextureChecks, texture_kind
+from effects.validate.values import _TA_TEXTURE, _is_indexed, _ta_select, spelled
+
+__all__ = ["PassReport", "Reason", "Validation", "software_vs_version", "spelled", "texture_kind",
+           "validate_technique"]
+
+
+@dataclass(frozen=True)
+class Reason:
+    """Why a card cannot run a technique (or, as a warning, what misbehaves): one requirement, located."""
+
+    technique: str | None
+    pass_name: str
+    location: Location
+    subject: str       # what asked for it: "ColorOp[1] = BumpEnvMap", "PixelShader (ps_1_4)"
+    requirement: str   # what it needs: "D3DTEXOPCAPS_BUMPENVMAP"
+    card_value: str    # what the card has: "not in TextureOpCaps", "PixelShaderVersion 1.1"
+    message: str       # one plain sentence
+
+    def __str__(self) -> str:
+        return f"pass {self.pass_name} (line {self.location.line}): {self.message}"
+
+
+@dataclass
+class PassReport:
+    """One pass on one card: its reasons and the resources it uses."""
+
+    name: str
+    index: int
+    location: Location
+    reasons: list[Reason] = field(default_factory=list)
+    warnings: list[Reason] = field(default_factory=list)   # quirks of severity 'warning'
+    notes: list[str] = field(default_factory=list)         # what could not be checked, and why
+    stages: int = 0             # fixed-function texture stages in use
+    textures: int = 0           # textures read at once
+    render_targets: int = 1     # colour outputs written (oC0..oC3)
+    pixel_shader: str | None = None     # 'ps_1_1', ...
+    vertex_shader: str | None = None    # 'vs_1_1', ...
+    software_vertex_processing: bool = False   # the vertex shader runs on the CPU
+
+    @property
+    def ok(self) -> bool:
+        return not self.reasons
+
+
+@dataclass
+class Validation:
+    """The validator's answer for one technique on one card (naga's ModuleInfo, in spirit)."""
+
+    technique: Technique
+    profile: CapsProfile
+    pass_reports: list[PassReport]
+
+    @property
+    def ok(self) -> bool:
+        return all(p.ok for p in self.pass_reports)
+
+    @property
+    def passes(self) -> int:
+        """The pass count: what D3DX's Begin() returns."""
+        return len(self.pass_reports)
+
+    @property
+    def reasons(self) -> list[Reason]:
+        return [r for p in self.pass_reports for r in p.reasons]
+
+    @property
+    def warnings(self) -> list[Reason]:
+        return [r for p in self.pass_reports for r in p.warnings]
+
+    @property
+    def notes(self) -> list[str]:
+        return [f"pass {p.name}: {n}" for p in self.pass_reports for n in p.notes]
+
+
+class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
+    """Runs every check for one pass and collects its reasons."""
+
+    def __init__(self, effect: Effect, technique: Technique, p: Pass, index: int,
+                 state: DeviceState, profile: CapsProfile) -> None:
+        self.effect, self.technique, self.pass_, self.state, self.profile = effect, technique, p, state, profile
+        self.report = PassReport(p.name or str(index), index, p.location)
+        # quirks that make a reported caps bit or format unusable: (field, bit) / (format, usage)
+        self.unreliable_bits = {(q.get("field"), q.get("bit")): q for q in profile.quirks
+                                if q.rule == "cap_unreliable"}
+        self.unreliable_formats = {(q.get("format"), q.get("usage")): q for q in profile.quirks
+                                   if q.rule == "format_unreliable"}
+
+    # -- reason helpers ---------------------------------------------------------------------
+    def fail(self, location: Location, subject: str, requirement: str, card_value: str,
+             message: str) -> None:
+        self.report.reasons.append(Reason(self.technique.name, self.report.name, location,
+                                          subject, requirement, card_value, message))
+
+    def warn(self, location: Location, subject: str, quirk: Quirk) -> None:
+        reason = Reason(self.technique.name, self.report.name, location, subject,
+                        f"driver rule {quirk.id}", quirk.text, f"{subject}: {quirk.text} ({self.card()})")
+        if reason not in self.report.warnings:
+            self.report.warnings.append(reason)
+
+    def note(self, text: str) -> None:
+        if text not in self.report.notes:
+            self.report.notes.append(text)
+
+    def where(self, name: str, index: int | None = None) -> Location:
+        a = self.state.assignment(name, index)
+        return a.location if a is not None else self.pass_.location
+
+    def card(self) -> str:
+        return self.profile.display_name or self.profile.name
+
+    def need_bit(self, caps_field: str, bit: str, subject: str, location: Location,
+                 prefix: str) -> None:
+        """Fail unless the card reports `bit` in `caps_field` and no error quirk disowns it."""
+        table = FIELDS[caps_field].table or {}
+        if bit not in table:  # a value no caps bit covers (Direct3D 9Ex additions ...)
+            self.fail(location, subject, f"{prefix}{bit}", f"not in {caps_field}",
+                      f"{subject} needs {prefix}{bit}, which no Direct3D 9 caps report; "
+                      f"the {self.card()} does not have it")
+            return
+        if not self.profile.has(caps_field, bit):
+            self.fail(location, subject, f"{prefix}{bit}", f"not in {caps_field}",
+                      f"{subject} needs {prefix}{bit}; the {self.card()} does not have it")
+            return
+        quirk = self.unreliable_bits.get((caps_field, bit))
+        if quirk is not None:
+            self.quirk_hit(quirk, location, subject)
+
+    def quirk_hit(self, quirk: Quirk, location: Location, subject: str) -> None:
+        if quirk.severity == "error":
+            self.fail(location, subject, f"driver rule {quirk.id}", quirk.text,
+                      f"{subject}: {quirk.text} ({self.card()})")
+        else:
+            self.warn(location, subject, quirk)
+
+    def unknown(self, name: str, index: int | None = None) -> bool:
+        """True (with a note) when the value in force cannot be known before the application
+        sets it: an uninitialised parameter or a preshader expression."""
+        value = self.state.get(name, index)
+        if not isinstance(value, (ParamRef, Expression)):
+            return False
+        shown = f"{name}[{index}]" if index is not None and _is_indexed(name) else name
+        what = (f"parameter {value.name}, which has no value" if isinstance(value, ParamRef)
+                else f"the expression '{value.text}'")
+        self.note(f"{shown} is set from {what}: not checked until the application sets it")
+        return True
+
+    # -- the checks -------------------------------------------------------------------------
+    def run(self) -> PassReport:
+        ps = self.shader("PixelShader")
+        vs = self.shader("VertexShader")
+        if ps is None:
+            self.check_texture_stages()
+        else:
+            self.check_pixel_shader(ps)
+        if vs is not None:
+            self.check_vertex_shader(vs)
+        self.check_textures(ps is not None)
+        self.check_blending()
+        self.check_compares()
+        self.check_stencil()
+        self.check_state_bits()
+        self.check_quirks()
+        return self.report
+
+    def shader(self, name: str) -> tuple[Any, Location] | None:
+        """The shader in force (None for the fixed-function pipeline), with its location."""
+        a = self.state.assignment(name)
+        if a is None:
+            return None
+        value = self.state.resolve(a.value)
+        if isinstance(value, (NullValue, type(None))):
+            return None
+        if isinstance(value, (ParamRef, Expression)):
+            self.unknown(name)
+        return value, a.location
+
+
+    # -- values as the docs spell them (every check's messages use these) ----------------------
+    def _shown(self, name: str, index: int | None = None) -> str:
+        """A state's value as the docs spell it ('BumpEnvMap')."""
+        return spelled(name, self.state.enum_name(name, index) or "default")
+
+    def _shown_flags(self, name: str, index: int | None = None) -> str:
+        value = self.state.get(name, index)
+        if isinstance(value, EnumValue) and value.names:
+            return " | ".join(spelled(name, n) for n in value.names)
+        return self._shown(name, index)
+
+
+    # card quirks ---------------------------------------------------------------------------------
+    def check_quirks(self) -> None:
+        """Driver rules beyond the caps bits (caps.py documents the rule vocabulary). Rules of
+        severity 'error' (ValidateDevice failed on the card) reject a technique; 'warning'
+        rules are reported as warnings. cap_unreliable and format_unreliable are applied where
+        the bit or format is checked."""
+        for quirk in self.profile.quirks:
+            rule = _QUIRK_CHECKS.get(quirk.rule)
+            if rule is None:
+                continue
+            for loc, subject in rule(self, quirk):
+                self.quirk_hit(quirk, loc, subject)
+
+    def _quirk_arg_not_texture(self, quirk: Quirk) -> Iterable[tuple[Location, str]]:
+        if self.shader("PixelShader") is not None:
+            return
+        channel = quirk.get("channel") or "both"
+        prefixes = {"color": [("ColorOp", "ColorArg")], "alpha": [("AlphaOp", "AlphaArg")]}.get(
+            channel, [("ColorOp", "ColorArg"), ("AlphaOp", "AlphaArg")])
+        for stage in self.active_stages():
+            for op_state, arg_prefix in prefixes:
+                if self.state.enum_name(op_state, stage) != quirk.get("op"):
+                    continue
+                arg = f"{arg_prefix}{quirk.get('arg')}"
+                if _ta_select(self.state.get(arg, stage)) == _TA_TEXTURE:
+                    yield (self.where(arg, stage),
+                           f"{op_state}[{stage}] = {self._shown(op_state, stage)} with {arg}[{stage}] = Texture")
+
+    def _quirk_textures_need_op(self, quirk: Quirk) -> Iterable[tuple[Location, str]]:
+        if self.shader("PixelShader") is not None:
+            return
+        units = self.sampled_units(False)
+        if len(units) <= int(quirk.get("max_textures")):
+            return
+        ops = set(quirk.get("ops") or ())
+        if not any(self.state.enum_name("ColorOp", s) in ops for s in self.active_stages()):
+            yield self.where("Texture", units[-1]), f"{len(units)} textures in one pass"
+
+    def _quirk_op_stages(self, quirk: Quirk) -> Iterable[tuple[Location, str]]:
+        if self.shader("PixelShader") is not None:
+            return
+        allowed = set(quirk.get("stages") or ())
+        for stage in self.active_stages():
+            for op_state in ("ColorOp", "AlphaOp"):
+                if self.state.enum_name(op_state, stage) == quirk.get("op") and stage not in allowed:
+                    yield self.where(op_state, stage), f"{op_state}[{stage}] = {self._shown(op_state, stage)}"
+
+    def _quirk_max_textures(self, quirk: Quirk) -> Iterable[tuple[Location, str]]:
+        units = self.sampled_units(self.shader("PixelShader") is not None)
+        if len(units) > int(quirk.get("count")):
+            yield self.where("Texture", units[-1]), f"{len(units)} textures in one pass"
+
+
+_QUIRK_CHECKS: dict[str, Callable[[_PassChecker, Quirk], Iterable[tuple[Location, str]]]] = {
+    "arg_not_texture": _PassChecker._quirk_arg_not_texture,
+    "textures_need_op": _PassChecker._quirk_textures_need_op,
+    "op_stages": _PassChecker._quirk_op_stages,
+    "max_textures": _PassChecker._quirk_max_textures,
+}
+
+
+def validate_technique(effect: Effect, technique: Technique, profile: CapsProfile) -> Validation:
+    """Validate every pass of `technique` on `profile`, collecting all reasons."""
+    reports = [_PassChecker(effect, technique, p, i, state, profile).run()
+               for i, (p, state) in enumerate(pass_states(effect, technique.passes))]
+    return Validation(technique, profile, reports)

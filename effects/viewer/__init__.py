@@ -1,0 +1,1 @@
+"""The viewer: window, panel, state, drawing, hot reload."""

@@ -1,0 +1,205 @@
+"""The viewer's on-screen panel, drawn with imgui (imgui-bundle 1.6 through moderngl-window's
+integration): card, technique and pass count, every other technique with its first reason
+(expand for all), render times, the last reload and its error, and the controls.
+
+The panel only reads `Status` and calls `ViewerState` methods; the keys do the same things
+(`KEYS`, listed in the panel's help).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Callable
+
+from imgui_bundle import imgui
+
+from effects.viewer.reload import error_text
+from effects.viewer.state import DIFFERENCE_SCALE, MESHES, VIEW_TITLES, VIEWS, ViewerState
+
+if TYPE_CHECKING:  # pragma: no cover
+    from effects.viewer.reload import LoadedEffect
+    from effects.viewer.draw import DifferenceStats
+
+KEYS = (
+    ("N / P", "next / previous card"),
+    ("T / shift+T", "force the next / previous technique (first: the card's choice)"),
+    ("V or 1 2 3", "view: GL, NumPy reference, difference"),
+    ("M", "next mesh"),
+    ("L", "animate the light; right-drag moves it"),
+    ("left-drag, wheel", "orbit, zoom"),
+    ("R", "reload now"),
+    ("S", "screenshot"),
+    ("Esc", "quit"),
+)
+RED = imgui.ImVec4(1.0, 0.45, 0.4, 1.0)
+GREEN = imgui.ImVec4(0.5, 0.9, 0.5, 1.0)
+GREY = imgui.ImVec4(0.65, 0.65, 0.65, 1.0)
+YELLOW = imgui.ImVec4(1.0, 0.85, 0.4, 1.0)
+
+
+@dataclass
+class Status:
+    """What the viewer knows besides the user's choices."""
+
+    path: str
+    loaded: "LoadedEffect | None" = None
+    error: str | None = None              # the located error report of the last failed build
+    render_error: str | None = None
+    last_reload: str = ""
+    gl_ms: float | None = None
+    reference_ms: float | None = None
+    reference_busy: bool = False
+    reference_error: str | None = None
+    difference: "DifferenceStats | None" = None
+    messages: list[str] = field(default_factory=list)
+
+
+@dataclass
+class Actions:
+    reload: Callable[[], None]
+    screenshot: Callable[[], None]
+
+
+def draw_panel(state: ViewerState, status: Status, actions: Actions,
+               rect: tuple[float, float, float, float]) -> None:
+    """Draw the panel in rect = (x, y, w, h), window coordinates from the top left."""
+    x, y, w, h = rect
+    imgui.set_next_window_pos(imgui.ImVec2(x, y), imgui.Cond_.always)
+    imgui.set_next_window_size(imgui.ImVec2(w, h), imgui.Cond_.always)
+    flags = (imgui.WindowFlags_.no_move | imgui.WindowFlags_.no_resize
+             | imgui.WindowFlags_.no_collapse | imgui.WindowFlags_.no_saved_settings)
+    imgui.begin("effects view", None, flags)
+    imgui.text_wrapped(status.path)
+    _card(state)
+    _techniques(state, status)
+    imgui.separator()
+    _view(state, status)
+    imgui.separator()
+    _reload(status, actions)
+    if imgui.collapsing_header("Keys"):
+        for key, what in KEYS:
+            imgui.text_colored(GREY, f"{key:>16}")
+            imgui.same_line()
+            imgui.text(what)
+    imgui.end()
+
+
+def _card(state: ViewerState) -> None:
+    profile = state.profile
+    name = getattr(profile, "display_name", None) or state.card
+    if imgui.button("<"):
+        state.next_card(-1)
+    imgui.same_line()
+    if imgui.button(">"):
+        state.next_card(1)
+    imgui.same_line()
+    imgui.set_next_item_width(-1)
+    changed, index = imgui.combo("##card", state.card_index, state.cards)
+    if changed:
+        state.set_card(index)
+    imgui.text(f"Card: {name}")
+
+
+def _techniques(state: ViewerState, status: Status) -> None:
+    loaded = status.loaded
+    if loaded is None:
+        imgui.text_colored(RED, "no effect loaded")
+        return
+    names = [t.name or "<anonymous>" for t in loaded.effect.techniques]
+    options = ["(the card's choice)", *names]
+    current = options.index(state.technique) if state.technique in options else 0
+    imgui.set_next_item_width(-1)
+    changed, index = imgui.combo("##technique", current, options)
+    if changed:
+        state.force_technique(None if index == 0 else options[index])
+    selected = loaded.selected
+    if selected is None:
+        imgui.text_colored(RED, "No technique is valid on this card: nothing to draw.")
+    else:
+        how = "forced" if loaded.forced and loaded.technique.name == loaded.forced else "selected"
+        imgui.text_colored(GREEN, f"Drawing {selected.technique.name or '<anonymous>'} "
+                                  f"({how}), {selected.passes} pass{'es' if selected.passes != 1 else ''}")
+    if loaded.prepare_error is not None:
+        imgui.text_colored(RED, "...but it cannot be drawn:")
+        imgui.text_wrapped(error_text(loaded.prepare_error))
+    if loaded.forced_rejected is not None:
+        v = loaded.forced_rejected
+        imgui.text_colored(YELLOW, f"Forced {v.technique.name} is not valid on this card:")
+        for reason in v.reasons:
+            imgui.bullet()
+            imgui.text_wrapped(str(reason))
+    imgui.text("Other techniques:")
+    for v in loaded.validations:
+        if selected is not None and v.technique is selected.technique:
+            continue
+        label = v.technique.name or "<anonymous>"
+        if v.ok:
+            imgui.bullet()
+            imgui.text_wrapped(f"{label}: valid, {v.passes} pass{'es' if v.passes != 1 else ''} "
+                               "(not first in file order)")
+            continue
+        reasons = [str(r) for r in v.reasons] or ["not valid"]
+        more = len(reasons) - 1
+        opened = False
+        if more > 0:
+            opened = imgui.tree_node(f"{label}  (+{more} more reason{'s' if more > 1 else ''})##{label}")
+        else:
+            imgui.bullet()
+            imgui.text(label)
+        imgui.indent()
+        for reason in reasons[:1 + more * opened]:
+            imgui.text_wrapped(reason)
+        imgui.unindent()
+        if opened:
+            imgui.tree_pop()
+
+
+def _view(state: ViewerState, status: Status) -> None:
+    for view in VIEWS:
+        if imgui.radio_button(view, state.view == view):
+            state.set_view(view)
+        imgui.same_line()
+    imgui.new_line()
+    imgui.text(VIEW_TITLES[state.view].format(scale=DIFFERENCE_SCALE))
+    imgui.set_next_item_width(140)
+    mesh_index = MESHES.index(state.mesh) if state.mesh in MESHES else 0
+    changed, index = imgui.combo("mesh", mesh_index, list(MESHES))
+    if changed:
+        state.set_mesh(MESHES[index])
+    imgui.same_line()
+    changed, animate = imgui.checkbox("move light", state.light.animate)
+    if changed:
+        state.light.animate = animate
+    gl = f"{status.gl_ms:.1f} ms" if status.gl_ms is not None else "-"
+    ref = f"{status.reference_ms:.0f} ms" if status.reference_ms is not None else "-"
+    imgui.text(f"Render time: GL {gl}   reference {ref}")
+    if state.view != "gl":
+        if status.reference_busy:
+            imgui.text_colored(YELLOW, "reference: rendering...")
+        if status.reference_error:
+            imgui.text_colored(RED, "reference failed:")
+            imgui.text_wrapped(status.reference_error)
+        if state.view == "difference" and status.difference is not None:
+            d = status.difference
+            imgui.text(f"|GL - ref|: max {d.max}, mean {d.mean:.2f}, "
+                       f"{100 * d.over_2:.1f}% of pixels off by > 2")
+    if status.render_error:
+        imgui.text_colored(RED, "render failed:")
+        imgui.text_wrapped(status.render_error)
+
+
+def _reload(status: Status, actions: Actions) -> None:
+    if imgui.button("Reload (R)"):
+        actions.reload()
+    imgui.same_line()
+    if imgui.button("Screenshot (S)"):
+        actions.screenshot()
+    if status.last_reload:
+        imgui.text_wrapped(status.last_reload)
+    if status.error:
+        imgui.text_colored(RED, "Last reload failed; still drawing the last good effect:")
+        first, *rest = status.error.splitlines()
+        imgui.text_wrapped(first)
+        for line in rest:          # the source line and its caret: unwrapped, so they align
+            imgui.text(line)
+    for message in status.messages[-3:]:
+        imgui.text_colored(GREY, message)

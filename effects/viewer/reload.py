@@ -1,0 +1,355 @@
+"""Hot reload: rebuild an effect off the render thread when the files it was built from change.
+
+The habit (STYLE.md 11, after glslViewer's file-watcher thread): watch + debounce + content
+hash + build in a worker + swap on the render thread + keep the last good effect. Watching,
+debouncing and hashing are `effects.viewer.watch` (its names are re-exported here); this module is
+the rest:
+
+- `watched_files` lists what a reload depends on: the effect, its #includes, its images.
+- `Reloader` owns a Watcher and a worker thread. The worker runs a `build` (for the viewer:
+  load, validate, select, lower; see `build_effect`) and puts a `ReloadResult` -- the new
+  effect and its selection, or the located error -- on a queue. The render thread calls
+  `poll()` each frame, swaps in a good result, keeps drawing the last good effect after a
+  failed one, and prints `result.log_line()`:
+      reload: PATH ok in 12.3 ms (technique NAME)
+      reload: PATH failed: ERROR
+Nothing here opens a window, so all of it is tested without a display.
+"""
+from __future__ import annotations
+
+import os
+import queue
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Callable
+
+from effects.errors import EffectError, Location
+# Re-exported: the viewer, tests and benchmarks import the watcher's names from here.
+from effects.viewer.watch import (DEBOUNCE_S, MAX_DELAY_S, POLL_ONLY_S, POLL_SAFETY_S,  # noqa: F401
+                    Watcher, content_hash)
+
+if TYPE_CHECKING:  # pragma: no cover
+    from effects.caps import CapsProfile
+    from effects.model import Effect, Technique
+    from effects.passprogram import PassProgram
+    from effects.validate.technique import Validation
+
+# ---------------------------------------------------------------------------------------------
+# Which files an effect depends on
+
+
+def _annotation_text(param: Any, name: str) -> str | None:
+    a = param.annotation(name)
+    return a.value if a is not None and isinstance(a.value, str) else None
+
+
+def referenced_files(effect: "Effect") -> list[str]:
+    """Image files the effect's texture parameters name, resolved against the effect's folder:
+    `string ResourceName = "file"` and the image argument of `string Procedural = "gen:file"`.
+    Missing files are listed too (creating one is a change worth seeing)."""
+    from effects.host.textures import PROCEDURAL, _is_path
+    base = os.path.dirname(os.path.abspath(effect.files[0])) if effect.files else os.getcwd()
+    found: list[str] = []
+    for param in effect.parameters:
+        name = _annotation_text(param, "ResourceName")
+        if name:
+            found.append(name)
+        proc = _annotation_text(param, "Procedural")
+        if proc:
+            gen, _, arg = proc.partition(":")
+            entry = PROCEDURAL.get(gen.strip())
+            if entry is not None and entry.takes_height and _is_path(arg.strip()):
+                found.append(arg.strip())
+    out: list[str] = []
+    for name in found:
+        path = os.path.normpath(name if os.path.isabs(name) else os.path.join(base, name))
+        if path not in out:
+            out.append(path)
+    return out
+
+
+def watched_files(effect: "Effect") -> list[str]:
+    """Every file a reload depends on: the effect, each #include it read, its texture images."""
+    paths = [os.path.abspath(p) for p in effect.files if not p.startswith("<")]
+    for p in referenced_files(effect):
+        if p not in paths:
+            paths.append(p)
+    return paths
+
+
+# ---------------------------------------------------------------------------------------------
+# What a build produces
+
+
+@dataclass
+class LoadedEffect:
+    """An effect ready to draw on one card: what the render thread swaps in.
+
+    `technique` is what is drawn: the forced one when it is valid on the card, else the one
+    the card selects (None when no technique is valid). `validations` holds every technique's
+    answer in file order. `programs` are the lowered passes of `technique` (None when there is
+    nothing to draw); `forced_rejected` is set when a forced technique is not valid here."""
+
+    path: str
+    effect: "Effect"
+    profile: "CapsProfile"
+    validations: list["Validation"]
+    technique: "Technique | None"
+    programs: list["PassProgram"] | None
+    forced: str | None = None
+    forced_rejected: "Validation | None" = None
+    files: list[str] = field(default_factory=list)
+    prepare_error: Exception | None = None   # the chosen technique cannot be drawn (kept, not raised)
+    runtime: Any = None        # the effects.host.runtime.Runtime that prepared it (no back end yet)
+    scene_key: Any = None      # BuildSettings.scene_key of the scene it was prepared for
+
+    @property
+    def selected(self) -> "Validation | None":
+        if self.technique is None:
+            return None
+        return next(v for v in self.validations if v.technique is self.technique)
+
+
+@dataclass
+class ReloadResult:
+    """One finished build. `kind` is 'reload' (files changed, or asked for) or 'select' (the
+    card or forced technique changed; the effect was not read again)."""
+
+    path: str
+    kind: str
+    loaded: LoadedEffect | None
+    error: BaseException | None
+    build_ms: float
+    changed: tuple[str, ...] = ()
+    requested_at: float = 0.0          # time.perf_counter() of the first event seen (or request)
+
+    @property
+    def ok(self) -> bool:
+        return self.error is None
+
+    def log_line(self) -> str:
+        """The one line each reload prints."""
+        if self.ok:
+            assert self.loaded is not None
+            tech = self.loaded.technique.name if self.loaded.technique is not None else "none valid"
+            return f"reload: {self.path} ok in {self.build_ms:.1f} ms (technique {tech})"
+        return f"reload: {self.path} failed: {error_text(self.error)}"
+
+
+def error_text(error: BaseException | None) -> str:
+    """A located one-line description: EffectErrors as `PATH:LINE:COL: error: MESSAGE`; a bug of
+    ours named as such (the viewer must survive it, and say what it was)."""
+    if error is None:
+        return ""
+    if isinstance(error, EffectError):
+        return str(error)
+    return f"internal error: {type(error).__name__}: {error}"
+
+
+def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = None,
+                 policy: Any = "first", scene: Any = None, lower: bool = True,
+                 previous: "Effect | None" = None, keep_prepare_error: bool = False,
+                 scene_key: Any = None, **load_options: Any) -> LoadedEffect:
+    """Load (unless `previous` is given), validate every technique, select, and prepare the
+    chosen one for drawing in `scene` (a Scene, mapping, YAML path or None for the defaults):
+    lower its passes with the scene's parameter values, load the textures they sample (into
+    the shared cache, so the render thread finds them loaded) and build the vertex streams.
+
+    A forced `technique` is drawn when valid on the card; otherwise the card's selection is
+    drawn and `forced_rejected` carries the forced one's reasons. Raises EffectError (located)
+    for a broken file, a missing texture, or a pass that cannot be lowered -- the last two are
+    kept in `prepare_error` instead with `keep_prepare_error` (a card change: the file is fine,
+    the panel shows why this card cannot draw it)."""
+    from effects.frontend.loader import load_effect
+    from effects.validate.select import find_valid_technique
+    from effects.validate.technique import validate_technique
+    effect = previous if previous is not None else load_effect(path, **load_options)
+    validations = [validate_technique(effect, t, profile) for t in effect.techniques]
+    chosen = None
+    forced_rejected = None
+    if technique:
+        try:
+            forced = effect.technique(technique)
+        except (KeyError, EffectError):
+            raise EffectError(f"no technique named '{technique}' (the effect has: "
+                              f"{', '.join(t.name or '<anonymous>' for t in effect.techniques)})",
+                              Location(path, 1, 1)) from None
+        v = next(v for v in validations if v.technique is forced)
+        if v.ok:
+            chosen = forced
+        else:
+            forced_rejected = v
+    if chosen is None:
+        chosen = find_valid_technique(effect, profile, policy)
+    programs = None
+    prepare_error = None
+    runtime = None
+    if chosen is not None and lower:
+        try:
+            runtime, programs = prepare(effect, chosen, profile, scene)
+        except Exception as exc:  # noqa: BLE001 - a bug of ours must not close the viewer either
+            if not keep_prepare_error:
+                raise
+            prepare_error = exc
+    return LoadedEffect(path, effect, profile, validations, chosen, programs, technique,
+                        forced_rejected, watched_files(effect), prepare_error, runtime, scene_key)
+
+
+def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
+            scene: Any = None) -> tuple[Any, list["PassProgram"]]:
+    """Everything that can fail before a technique draws, done now (off the render thread):
+    bind the scene, lower every pass, load the textures the passes sample, build the streams.
+    Returns the Runtime that did it (its lowered passes cached, its textures and streams
+    loaded; it has no back end) and the lowered passes."""
+    from effects.lower.passes import lower_pass
+    from effects.host.runtime import Runtime
+    runtime = Runtime(effect, profile, scene=scene, backend=None)
+    has_diffuse = runtime.geometry().has_diffuse   # lowered as the Runtime will draw them
+    programs = [lower_pass(runtime.effect, technique, i, profile, vertex_colors=has_diffuse)
+                for i in range(len(technique.passes))]
+    for program in programs:
+        for binding in program.textures:
+            if binding.texture is not None:
+                runtime.texture(binding.texture)
+    runtime.geometry()
+    return runtime, programs
+
+
+# ---------------------------------------------------------------------------------------------
+# Reloader
+
+
+Build = Callable[["Effect | None"], LoadedEffect]
+
+
+class Reloader:
+    """Rebuild in a worker thread when watched files change; hand results to the render thread.
+
+    `build(previous)` makes a LoadedEffect: with `previous` None it reads the files (a reload),
+    with an Effect it only re-selects (after `reselect()`). The render thread calls `poll()`
+    (never blocks) and swaps in what it gets. The watcher follows the files of the last good
+    build, so a new #include or texture is watched from the next good reload on.
+    """
+
+    def __init__(self, path: str, build: Build, *, use_watchdog: bool = True,
+                 debounce: float = DEBOUNCE_S, max_delay: float = MAX_DELAY_S,
+                 poll_interval: float | None = None) -> None:
+        self.path = path
+        self._build = build
+        self.results: "queue.Queue[ReloadResult]" = queue.Queue()
+        self._jobs: "queue.Queue[tuple[str, tuple[str, ...], float] | None]" = queue.Queue()
+        self._good: LoadedEffect | None = None
+        self._pending_since: float | None = None
+        self._pending_lock = threading.Lock()
+        self.watcher = Watcher([os.path.abspath(path)], self._files_changed, debounce=debounce,
+                               max_delay=max_delay, use_watchdog=use_watchdog,
+                               poll_interval=poll_interval)
+        self._worker = threading.Thread(target=self._work, name="effects-reload", daemon=True)
+        self._started = False
+
+    @property
+    def last_good(self) -> LoadedEffect | None:
+        return self._good
+
+    def start(self, initial: LoadedEffect | None = None, *, build_now: bool = True) -> "Reloader":
+        """Start watching. `initial`: the build the caller already made (its files are watched);
+        without it a first build is queued at once, unless `build_now` is False (the caller
+        tried and failed: the next change builds)."""
+        if initial is not None:
+            self._good = initial
+            self.watcher.set_paths([os.path.abspath(self.path), *initial.files])
+        self.watcher.start()
+        self._worker.start()
+        self._started = True
+        if initial is None and build_now:
+            self.request()
+        return self
+
+    def stop(self) -> None:
+        self.watcher.stop()
+        self._jobs.put(None)
+        if self._started:
+            self._worker.join(timeout=5)
+
+    def request(self) -> None:
+        """Reload now (the viewer's reload key), whether or not the files changed."""
+        self._jobs.put(("reload", (), time.perf_counter()))
+
+    def reselect(self) -> None:
+        """Select and lower again for the current settings without reading the files (the
+        viewer changed card or forced technique)."""
+        self._jobs.put(("select", (), time.perf_counter()))
+
+    def poll(self) -> ReloadResult | None:
+        """The next finished build, or None. For the render thread; never blocks."""
+        try:
+            return self.results.get_nowait()
+        except queue.Empty:
+            return None
+
+    def wait(self, timeout: float) -> ReloadResult | None:
+        """Block up to `timeout` seconds for the next finished build (tests, idle render loops)."""
+        try:
+            return self.results.get(timeout=timeout)
+        except queue.Empty:
+            return None
+
+    # -- threads
+
+    def _files_changed(self, paths: list[str]) -> None:
+        self._jobs.put(("reload", tuple(paths), time.perf_counter()))
+
+    def _work(self) -> None:
+        while True:
+            job = self._jobs.get()
+            if job is None:
+                return
+            kind, changed, requested = job
+            # Coalesce: if more reload jobs queued up meanwhile, one build reads the newest files.
+            while True:
+                try:
+                    nxt = self._jobs.get_nowait()
+                except queue.Empty:
+                    break
+                if nxt is None:
+                    return
+                if nxt[0] == "reload" or kind == "reload":
+                    kind = "reload"
+                changed = tuple(sorted(set(changed) | set(nxt[1])))
+            previous = self._good.effect if (kind == "select" and self._good is not None) else None
+            start = time.perf_counter()
+            try:
+                loaded = self._build(previous)
+                error = None
+            except BaseException as exc:  # noqa: BLE001 - reported, and the last good stays
+                loaded, error = None, exc
+            elapsed = (time.perf_counter() - start) * 1000.0
+            if loaded is not None:
+                self._good = loaded
+                self.watcher.set_paths([os.path.abspath(self.path), *getattr(loaded, 'files', ())])
+            self.results.put(ReloadResult(self.path, kind, loaded, error, elapsed, changed, requested))
+
+
+@dataclass
+class BuildSettings:
+    """What a build depends on besides the files: the card, a forced technique name, the
+    selection policy, and the scene the effect will be drawn in."""
+
+    profile: "CapsProfile"
+    technique: str | None = None
+    policy: Any = "first"
+    scene: Any = None
+    scene_key: Any = None      # equal keys: the same scene (lets the viewer reuse the Runtime)
+
+
+def effect_builder(path: str, settings: Callable[[], BuildSettings], **load_options: Any) -> Build:
+    """The viewer's build: `settings()` is read when the build runs, so a reload after a card
+    change uses the new card. A reload whose technique cannot be prepared fails (the last good
+    effect stays); a re-selection keeps the error to show it."""
+    def build(previous: "Effect | None") -> LoadedEffect:
+        s = settings()
+        return build_effect(path, s.profile, technique=s.technique, policy=s.policy,
+                            scene=s.scene, previous=previous, scene_key=s.scene_key,
+                            keep_prepare_error=previous is not None, **load_options)
+    return build
