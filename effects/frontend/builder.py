@@ -1,0 +1,407 @@
+"""Raw records → the `Effect` model.
+
+`Builder` resolves types, types parameter values as numpy arrays, coerces state values through
+`effects.states` and reports unknown states (warnings, or errors when strict).
+
+Parameter values: numeric parameters are numpy arrays shaped (array dims) + () for a scalar,
+(n,) for a vector, (r, c) for a matrix; float/half/double are float32, bool is bool, and
+int/uint/dword are int32, or int64 when a value does not fit in int32 (hex colours such as
+0xff202060 in a DWORD); a value beyond 64 bits is an error. A non-constant initializer is kept
+as an `Expression`.
+"""
+from __future__ import annotations
+
+import math
+import re
+from typing import Any
+
+import numpy as np
+from lark import Token
+
+from effects.errors import Location, ParseError, StateError
+from effects.model import (Annotation, CompileShader, Effect, Expression, Function, NullValue,
+                           Parameter, ParamRef, Pass, SamplerState, ShaderBlock, StateAssignment,
+                           Struct, Technique, TypeSpec, VertexDeclElement)
+from effects.frontend.lexer import EffectLexer
+from effects.frontend.shapes import RawBlock, RawParam, RawState, V, int_value
+from effects.frontend.source import Preprocessed
+from effects.frontend.types import resolve_type, type_shape
+
+__all__ = ["Builder"]
+
+_INT32 = (-(2 ** 31), 2 ** 31 - 1)
+_INT64 = (-(2 ** 63), 2 ** 63 - 1)
+_ASM_GAP_RE = re.compile(r"(?:\s+|//[^\n]*|;[^\n]*|/\*.*?\*/)*", re.S)
+_VERSION_RE = re.compile(r"(vs|ps)[._]([0-9])[._]([0-9a-z]+)\b", re.I)
+_DECL_TYPES = {"float": 1, "d3dcolor": 4, "ubyte": 4, "short": 2}
+
+
+class _NotConstant(Exception):
+    """A value is an expression, not a constant the parser can evaluate."""
+
+
+class Builder:
+    def __init__(self, pre: Preprocessed, lexer: EffectLexer, strict: bool) -> None:
+        self.pre, self.text, self.strict = pre, pre.text, strict
+        self.smap = pre.source_map
+        self.lexer = lexer
+        self.map_lines = self.smap.lines
+        self.nlines = len(self.map_lines)
+        self.warnings: list = []
+        self.param_names: set[str] = set()
+        from effects import states  # the states table; imported late so the parser loads without it
+        self.states = states
+
+    # -- locations and errors -------------------------------------------------------------
+    def loc(self, item: Any) -> Location:
+        line = item.line
+        if 0 < line <= self.nlines:  # SourceMap.locate, inlined: this runs for every node
+            path, original = self.map_lines[line - 1]
+            return Location(path, original, item.column)
+        return self.smap.locate(line, item.column)
+
+    def error(self, cls: type, message: str, item: Any) -> Exception:
+        return self.smap.error_at(cls, message, self.loc(item))
+
+    def text_of(self, v: V) -> str:
+        return self.text[v.start:v.end]
+
+    # -- the effect -----------------------------------------------------------------------
+    def build(self, items: list) -> Effect:
+        path = self.pre.files[0] if self.pre.files else (
+            self.smap.lines[0][0] if self.smap.lines else "<string>")
+        effect = Effect(path)
+        structs: set[str] = set()
+        first_param: dict[str, Any] = {}
+        for item in items:
+            if isinstance(item, RawParam):
+                prior = first_param.get(item.name.value)
+                if prior is not None:
+                    raise self.error(ParseError, f"duplicate parameter '{item.name.value}' "
+                                     f"(first declared at line {self.loc(prior).line})", item.name)
+                first_param[item.name.value] = item.name
+        self.param_names = set(first_param)
+        seen_tech: dict[str, Token] = {}
+        for item in items:
+            if isinstance(item, RawParam):
+                effect.parameters.append(self.parameter(item, structs))
+            elif isinstance(item, RawBlock):
+                if item.name is not None:
+                    prior = seen_tech.get(item.name.value)
+                    if prior is not None:
+                        raise self.error(ParseError, f"duplicate technique '{item.name.value}' "
+                                         f"(first declared at line {self.loc(prior).line})",
+                                         item.name)
+                    seen_tech[item.name.value] = item.name
+                effect.techniques.append(self.technique(item))
+            elif item[0] == "struct":
+                c = item[1]
+                structs.add(c[1].value)
+                effect.structs.append(Struct(c[1].value, self.text[c[0].start_pos:c[3].end_pos],
+                                             self.loc(c[0])))
+            else:
+                c = item[1]
+                first = c[0][0] if c[0] else c[1]
+                effect.functions.append(Function(c[2].value, c[1].value,
+                                                 self.text[first.start_pos:c[5].end_pos],
+                                                 self.loc(first)))
+        effect.warnings = self.warnings
+        effect.files = tuple(self.pre.files)
+        return effect
+
+    # -- parameters -----------------------------------------------------------------------
+    def type_of(self, tok: Token, structs: set[str]) -> TypeSpec:
+        spec = resolve_type(tok.value, structs)
+        if spec is None:
+            raise self.error(ParseError, f"unknown type '{tok.value}'", tok)
+        return spec
+
+    def parameter(self, raw: RawParam, structs: set[str]) -> Parameter:
+        spec = self.type_of(raw.type, structs)
+        dims = tuple(self.small_int(t, "array size") for t in raw.dims)
+        if any(d == 0 for d in dims):
+            raise self.error(ParseError, "array size must be at least 1", raw.dims[0])
+        name = raw.name.value
+        value = None if raw.value is None else self.param_value(spec, dims, raw.value, name)
+        return Parameter(name, spec, tuple(t.value.lower() for t in raw.storage), dims,
+                         raw.semantic, self.annotations(raw.annotations), value, self.loc(raw.name))
+
+    def small_int(self, tok: Token, what: str) -> int:
+        value = int_value(tok.value)
+        if value > 65535:
+            raise self.error(ParseError, f"{what} {value} is too large", tok)
+        return value
+
+    def annotations(self, raws: list) -> list[Annotation]:
+        out = []
+        for type_tok, name_tok, v in raws:
+            spec = self.type_of(type_tok, set())
+            out.append(Annotation(spec, name_tok.value,
+                                  self.param_value(spec, (), v, name_tok.value),
+                                  self.loc(name_tok)))
+        return out
+
+    def param_value(self, spec: TypeSpec, dims: tuple[int, ...], v: V, name: str) -> Any:
+        if spec.struct:
+            return Expression(self.text_of(v), self.loc(v))
+        if spec.is_numeric:
+            return self.numeric(spec, dims, v, name)
+        if spec.base == "string":
+            if v.kind != "str":
+                raise self.error(ParseError, f"'{name}' is a string: expected a string literal, "
+                                 f"found '{self.text_of(v)[:40]}'", v)
+            return v.data
+        if dims:
+            if v.kind != "list":
+                raise self.error(ParseError, f"'{name}' is an array: expected '{{' with "
+                                 f"{math.prod(dims)} values", v)
+            if len(v.data) != math.prod(dims):
+                raise self.error(ParseError, f"'{name}' has {math.prod(dims)} elements, "
+                                 f"the initializer gives {len(v.data)}", v)
+            return [self.object_value(spec, item, name) for item in v.data]
+        return self.object_value(spec, v, name)
+
+    def object_value(self, spec: TypeSpec, v: V, name: str) -> Any:
+        if v.kind == "null":
+            return NullValue(self.loc(v))
+        if spec.base == "sampler":
+            if v.kind == "sampler":
+                return SamplerState([self.state(s, "sampler") for s in v.data], self.loc(v))
+        elif spec.base == "stateblock":
+            if v.kind in ("stateblock", "sampler"):
+                return SamplerState([self.state(s, "pass") for s in v.data], self.loc(v))
+        elif spec.base in ("vertexshader", "pixelshader"):
+            if v.kind == "asm":
+                return self.shader_block(v, "vertex" if spec.base == "vertexshader" else "pixel")
+            if v.kind == "compile":
+                return self.compile_shader(v)
+            if v.kind == "name":
+                return ParamRef(v.data, False, None, self.loc(v))
+            if v.kind in ("ref", "paren", "index"):
+                return self.state_raw(v, None)
+        elif spec.base == "texture":
+            return Expression(self.text_of(v), self.loc(v))
+        raise self.error(ParseError, f"'{name}' ({spec.spelling}) cannot be initialised with "
+                         f"'{self.text_of(v)[:40]}'", v)
+
+    def numeric(self, spec: TypeSpec, dims: tuple[int, ...], v: V, name: str) -> Any:
+        try:
+            flat = self.flatten(v, [])
+        except _NotConstant:
+            return Expression(self.text_of(v), self.loc(v))
+        shape = dims + type_shape(spec)
+        need = math.prod(shape)
+        if len(flat) == 1 and need > 1 and not dims:
+            flat = flat * need  # a scalar initialises every component (HLSL promotion)
+        if len(flat) != need:
+            raise self.error(ParseError, f"'{name}' ({spec.spelling}"
+                             f"{''.join(f'[{d}]' for d in dims)}) needs {need} "
+                             f"value{'s' if need != 1 else ''}, the initializer gives {len(flat)}",
+                             v)
+        base = spec.base
+        if base == "bool":
+            return np.array([bool(x) for x in flat], dtype=bool).reshape(shape)
+        if base in ("float", "half"):
+            try:
+                values = [float(x) for x in flat]
+            except OverflowError:
+                values = [math.inf]
+            with np.errstate(over="ignore"):
+                arr = np.array(values, dtype=np.float32)
+            if not np.all(np.isfinite(arr)):
+                raise self.error(ParseError, f"a value for '{name}' is out of range for "
+                                 f"{spec.spelling}", v)
+            return arr.reshape(shape)
+        try:
+            ints = [int(x) for x in flat]
+        except (OverflowError, ValueError):
+            raise self.error(ParseError, f"a value for '{name}' is out of range for "
+                             f"{spec.spelling}", v) from None
+        lo, hi = min(ints), max(ints)
+        if _INT32[0] <= lo and hi <= _INT32[1]:
+            dtype = np.int32
+        elif _INT64[0] <= lo and hi <= _INT64[1]:
+            dtype = np.int64  # hex colours such as 0xff202060 do not fit in int32
+        else:
+            raise self.error(ParseError, f"a value for '{name}' does not fit in 64 bits", v)
+        return np.array(ints, dtype=dtype).reshape(shape)
+
+    def flatten(self, v: V, out: list) -> list:
+        """Numbers of a constant initializer in order; raises _NotConstant otherwise."""
+        kind = v.kind
+        if kind in ("int", "float", "bool"):
+            out.append(v.data)
+        elif kind in ("list", "paren"):
+            for item in v.data:
+                self.flatten(item, out)
+        elif kind == "call" and resolve_type(v.data[0]) is not None \
+                and resolve_type(v.data[0]).is_numeric:
+            for item in v.data[1]:
+                self.flatten(item, out)
+        else:
+            raise _NotConstant
+        return out
+
+    # -- shaders --------------------------------------------------------------------------
+    def shader_block(self, v: V, stage_hint: str | None) -> ShaderBlock:
+        tok, decl_tok = v.data
+        brace = tok.value.index("{")
+        body = tok.value[brace + 1:-1]
+        line, col = self.lexer.position(tok.start_pos + brace + 1)
+        version = None
+        stage = stage_hint or "pixel"
+        m = _VERSION_RE.match(body, _ASM_GAP_RE.match(body).end())
+        if m:
+            kind = m.group(1).lower()
+            version = f"{kind}_{m.group(2)}_{m.group(3).lower()}"
+            stage = "vertex" if kind == "vs" else "pixel"
+        decl = self.vertex_decl(decl_tok) if decl_tok is not None else None
+        return ShaderBlock(stage, version, body, decl, self.smap.locate(line, col))
+
+    def vertex_decl(self, tok: Token) -> tuple[VertexDeclElement, ...]:
+        """DX8 `decl { stream 0; float v0[3]; D3DCOLOR v5; skip 2; }` (a skip is an element
+        of type 'skip', register -1, `count` DWORDs)."""
+        brace = tok.value.index("{")
+        body = tok.value[brace + 1:-1]
+        base = tok.start_pos + brace + 1
+        clean = re.sub(r"//[^\n]*|/\*.*?\*/", lambda m: " " * len(m.group()), body, flags=re.S)
+        elements: list[VertexDeclElement] = []
+        stream = 0
+        offset = 0
+        for stmt in clean.split(";"):
+            words = stmt.split()
+            start = offset + len(stmt) - len(stmt.lstrip())
+            offset += len(stmt) + 1
+            if not words:
+                continue
+            line, col = self.lexer.position(base + start)
+            where = self.smap.locate(line, col)
+            head = words[0].lower()
+            m = None
+            if head in ("stream", "skip") and len(words) == 2 and words[1].isdigit():
+                if head == "stream":
+                    stream = int(words[1])
+                else:
+                    elements.append(VertexDeclElement(stream, "skip", -1, int(words[1]), where))
+                continue
+            if head in _DECL_TYPES and len(words) >= 2:
+                m = re.fullmatch(r"[vV]([0-9]{1,2})(?:\[([1-4])\])?", "".join(words[1:]))
+            if m is None:
+                raise self.smap.error_at(ParseError, f"cannot read vertex declaration "
+                                         f"'{' '.join(words)[:40]}' (expected 'stream N', "
+                                         f"'skip N' or 'TYPE vN[count]')", where)
+            count = int(m.group(2)) if m.group(2) else _DECL_TYPES[head]
+            elements.append(VertexDeclElement(stream, head, int(m.group(1)), count, where))
+        return tuple(elements)
+
+    def compile_shader(self, v: V) -> CompileShader:
+        profile, function, args = v.data
+        return CompileShader(profile.lower(), function, tuple(self.text_of(a) for a in args),
+                             self.loc(v))
+
+    # -- techniques, passes, states -------------------------------------------------------
+    def technique(self, raw: RawBlock) -> Technique:
+        passes = []
+        for p in raw.items:
+            passes.append(Pass(p.name.value if p.name is not None else None,
+                               [self.state(s, "pass") for s in p.items],
+                               self.annotations(p.annotations), self.loc(p.keyword)))
+        return Technique(raw.name.value if raw.name is not None else None, passes,
+                         self.annotations(raw.annotations), self.loc(raw.keyword))
+
+    def state(self, raw: RawState, context: str) -> StateAssignment:
+        name_tok = raw.name
+        name = name_tok.value
+        index = None if raw.index is None else self.small_int(raw.index, "state index")
+        where = self.loc(name_tok)
+        info = self.states.lookup_state(name)
+        if info is not None and context == "sampler" and info.kind not in ("sampler", "texture"):
+            self.complain(f"state '{info.name}' cannot be set inside sampler_state "
+                          f"(only sampler states and Texture)", where)
+            return StateAssignment(name, self.unknown_value(raw.value), index, False, where)
+        if info is None:
+            hint = self.states.suggest_state(name)
+            message = f"unknown state '{name}'" + (f" (did you mean '{hint}'?)" if hint else "")
+            self.complain(message, where)
+            return StateAssignment(name, self.unknown_value(raw.value), index, False, where)
+        self.check_index(info, index, context, raw, where)
+        stage = {"vertexshader": "vertex", "pixelshader": "pixel"}.get(info.type)
+        value = self.states.coerce_state_value(info, self.state_raw(raw.value, stage),
+                                               self.loc(raw.value), self.param_names)
+        return StateAssignment(info.name, value, index, True, where)
+
+    def complain(self, message: str, where: Location) -> None:
+        if self.strict:
+            raise self.smap.error_at(StateError, message, where)
+        self.warnings.append(self.smap.warning_at(message, where))
+
+    def check_index(self, info: Any, index: int | None, context: str, raw: RawState,
+                    where: Location) -> None:
+        if context == "sampler":
+            if index is not None:
+                raise self.error(StateError, f"{info.name} takes no index inside "
+                                 f"sampler_state; remove [{index}]", raw.index)
+            return
+        if index is None or (info.index != "none" and (info.max_index is None
+                                                       or index <= info.max_index)):
+            self.states.check_index(info, index, where)  # fine, or a missing index
+        else:
+            self.states.check_index(info, index, self.loc(raw.index))
+
+    def state_raw(self, v: V, stage: str | None) -> Any:
+        """A state value in the form `states.coerce_state_value` reads."""
+        kind = v.kind
+        if kind in ("int", "float", "bool", "str"):
+            return v.data
+        if kind == "null":
+            return NullValue(self.loc(v))
+        if kind == "name":
+            return [v.data]
+        if kind == "bar":
+            if all(o.kind in ("name", "int") for o in v.data):
+                return [o.data for o in v.data]
+        elif kind == "ref":
+            return ParamRef(v.data, True, None, self.loc(v))
+        elif kind == "index":
+            name, idx = v.data
+            if idx.kind == "int":
+                return ParamRef(name, False, idx.data, self.loc(v))
+        elif kind == "paren":
+            if len(v.data) == 1:
+                inner = v.data[0]
+                if inner.kind in ("name", "index"):
+                    ref = self.state_raw(inner, stage)
+                    if isinstance(ref, list):
+                        return ParamRef(inner.data, False, None, self.loc(v))
+                    if isinstance(ref, ParamRef):
+                        return ref
+                if inner.kind in ("int", "float", "bool", "str", "paren", "ref", "null"):
+                    return self.state_raw(inner, stage)
+            else:
+                try:
+                    return tuple(self.flatten(v, []))
+                except _NotConstant:
+                    pass
+        elif kind in ("list", "call"):
+            try:
+                return tuple(self.flatten(v, []))
+            except _NotConstant:
+                pass
+        elif kind == "asm":
+            return self.shader_block(v, stage)
+        elif kind == "compile":
+            return self.compile_shader(v)
+        elif kind == "sampler":
+            return SamplerState([self.state(s, "sampler") for s in v.data], self.loc(v))
+        elif kind == "stateblock":
+            return SamplerState([self.state(s, "pass") for s in v.data], self.loc(v))
+        return Expression(self.text_of(v), self.loc(v))
+
+    def unknown_value(self, v: V) -> Any:
+        """The value of an assignment to an unknown state, kept in model form."""
+        from effects.model import EnumValue
+        raw = self.state_raw(v, None)
+        if isinstance(raw, list):
+            return EnumValue(tuple(str(x).upper() for x in raw), None, self.loc(v))
+        return raw
+

@@ -1,0 +1,284 @@
+"""The effect-file lexer: text → lark tokens.
+
+Hand-written (lark drives it as a custom lexer, `LexerAdapter`) because parts of an effect are
+opaque and balanced: `asm { ... }` and `decl { ... }` bodies, HLSL function parameter lists and
+bodies, struct bodies. It also matches keywords case-insensitively, limits nesting depth, and
+remembers which braces are open so a syntax error can say "missing '}' to close pass 'P0'
+opened at line 4" (the messages are in `effects.frontend.parser`).
+"""
+from __future__ import annotations
+
+import re
+from bisect import bisect_right
+from typing import Any
+
+from lark import Token
+from lark.lexer import Lexer as _LarkLexer
+
+__all__ = ["EffectLexer", "LexerAdapter", "Located", "MAX_NESTING", "PUNCT", "STORAGE_CLASSES"]
+
+MAX_NESTING = 64          # braces/parentheses/brackets open at once
+MAX_PREFIX_RUN = 64       # `- - - - x`: more unary operators in a row than anyone writes
+MAX_LITERAL_LENGTH = 400  # characters in one number literal
+
+
+class Located(Exception):
+    """Raised inside the lexer/transformer with a position in the preprocessed text; turned
+    into a `ParseError` at the original location by `parse_effect`."""
+
+    def __init__(self, message: str, line: int, column: int) -> None:
+        super().__init__(message)
+        self.message, self.line, self.column = message, line, column
+
+
+_TOKEN_RE = re.compile(r"""
+(?:[ \t\r\n\f\v]+|//[^\n]*|/\*.*?\*/)*         # blanks and comments
+(?:
+  (?P<NAME>[A-Za-z_][A-Za-z0-9_]*)
+| (?P<HEX>0[xX][0-9A-Fa-f]+[uUlL]*)
+| (?P<FLOAT>(?:[0-9]+\.[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?[fFhH]?|[0-9]+[eE][+-]?[0-9]+[fFhH]?|[0-9]+[fF])
+| (?P<INT>[0-9]+[uUlL]*)
+| (?P<STRING>"(?:[^"\\\n]|\\.)*")
+| (?P<INDEX>\[[ \t]*(?:0[xX][0-9A-Fa-f]+|[0-9]+)[ \t]*\])
+| (?P<OP2><=|>=|==|!=|&&|\|\||<<|>>)
+| (?P<P>[{}()\[\];,=:<>|+\-*/%&^!~?.])
+| (?P<END>\Z)
+| (?P<BAD>.)    # so that the token part never fails: a failure would make the blank-skipping
+                # loop above backtrack, which takes exponential time on long runs of blanks
+)""", re.X | re.S)
+
+PUNCT = {
+    "{": "LBRACE", "}": "RBRACE", "(": "LPAR", ")": "RPAR", "[": "LSQB", "]": "RSQB",
+    "<": "LT", ">": "GT", ";": "SEMI", ",": "COMMA", "=": "EQUAL", ":": "COLON",
+    "-": "MINUS", "+": "PLUS", "*": "STAR", "/": "SLASH", "%": "PERCENT", "|": "BAR",
+    "&": "AMP", "^": "CARET", "!": "BANG", "~": "TILDE", "?": "QMARK", ".": "DOT",
+}
+
+# Effect keywords are case-insensitive in non-strict fxc (effect_format.md §7).
+_KEYWORDS = {
+    "technique": "TECHNIQUE", "pass": "PASS", "compile": "COMPILE",
+    "sampler_state": "SAMPLER_STATE", "stateblock_state": "STATEBLOCK_STATE",
+    "struct": "STRUCT", "null": "NULL", "true": "TRUE", "false": "FALSE",
+}
+STORAGE_CLASSES = ("shared", "static", "uniform", "const", "extern", "volatile",
+                   "row_major", "column_major", "inline")
+_KEYWORDS.update({s: "STORAGE" for s in STORAGE_CLASSES})
+
+# What a brace-scan skips so that a brace inside a comment or string does not count.
+_BRACE_SCAN_RE = re.compile(r'[{}]|//[^\n]*|/\*.*?(?:\*/|\Z)|"(?:[^"\\\n]|\\.)*"', re.S)
+_PAREN_SCAN_RE = re.compile(r'[()]|//[^\n]*|/\*.*?(?:\*/|\Z)|"(?:[^"\\\n]|\\.)*"', re.S)
+_GAP_RE = re.compile(r"(?:\s+|//[^\n]*|/\*.*?\*/)*", re.S)
+
+_OPENERS = {"LBRACE": "RBRACE", "LPAR": "RPAR", "LSQB": "RSQB"}
+_CLOSERS = frozenset(("RBRACE", "RPAR", "RSQB"))
+_HEADERS = frozenset(("TECHNIQUE", "PASS", "SAMPLER_STATE", "STATEBLOCK_STATE"))
+_LIST_OPENERS = frozenset(("EQUAL", "COMMA", "LBRACE", "LPAR"))
+# Token kinds the lexer keeps track of (everything else is just passed on).
+_BOOKKEPT = frozenset(("LBRACE", "LPAR", "LSQB", "RBRACE", "RPAR", "RSQB", "LT", "GT", "EQUAL",
+                       "SEMI", "MINUS", "BANG", "TILDE", "PLUS")) | _HEADERS
+# lark's Token constructor without its keyword-argument shim (older lark: the class itself).
+_make_token = getattr(Token, "_future_new", Token)
+_PREFIX_OPS = frozenset(("MINUS", "BANG", "TILDE", "PLUS"))
+
+
+class _Open:
+    """An open brace/parenthesis/bracket: what it belongs to, for error messages."""
+
+    __slots__ = ("kind", "name", "line", "column", "closer")
+
+    def __init__(self, kind: str, name: str | None, line: int, column: int, closer: str) -> None:
+        self.kind, self.name, self.line, self.column, self.closer = kind, name, line, column, closer
+
+    def describe(self) -> str:
+        if self.kind in ("technique", "pass"):
+            return f"{self.kind} '{self.name}'" if self.name else self.kind
+        return {"sampler_state": "sampler_state", "stateblock_state": "stateblock_state",
+                "list": "initializer list", "block": "block", "LPAR": "'('",
+                "LSQB": "'['"}.get(self.kind, self.kind)
+
+
+class EffectLexer:
+    """Tokens of an effect text, produced lazily (lark pulls them one at a time, so when the
+    parser fails, `open` still describes the braces open at the failing token)."""
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.open: list[_Open] = []
+        self.annotation: _Open | None = None  # an annotation block `< ... >` being read
+        self.annotation_depth = 0             # len(open) when it started
+        self.popped: _Open | None = None      # the entry a closer token closed ...
+        self.popped_at = -1                   # ... and that token's offset
+        self.closed_annotation_at = -1        # offset of the '>' that closed annotations
+        self.pushed_at = -1                   # offset of the last opener
+        self.decl_name: str | None = None     # the name declared by the current top-level statement
+        self.line_starts = [0] + [m.end() for m in re.finditer("\n", text)]
+
+    # -- positions ------------------------------------------------------------------------
+    def position(self, offset: int) -> tuple[int, int]:
+        """1-based (line, column) of a character offset."""
+        line = bisect_right(self.line_starts, offset)
+        return line, offset - self.line_starts[line - 1] + 1
+
+    def end_position(self) -> tuple[int, int]:
+        """Where 'end of file' is reported: just after the last non-blank character."""
+        stripped = self.text.rstrip()
+        if not stripped:
+            return 1, 1
+        return self.position(len(stripped))
+
+    # -- scanning -------------------------------------------------------------------------
+    def _balanced(self, start: int, scan: re.Pattern, opener: str, what: str) -> int:
+        """Offset just past the closer matching the opener at `start`."""
+        depth = 0
+        for m in scan.finditer(self.text, start):
+            ch = m.group()
+            if ch == opener:
+                depth += 1
+            elif len(ch) == 1 and ch != opener:
+                depth -= 1
+                if depth == 0:
+                    return m.end()
+        line, col = self.position(start)
+        eline, ecol = self.end_position()
+        closer = "}" if opener == "{" else ")"
+        raise Located(f"unexpected end of file: missing '{closer}' to close {what} "
+                       f"opened at line {line}", eline, ecol)
+
+    def tokens(self):
+        text = self.text
+        match = _TOKEN_RE.match
+        starts = self.line_starts
+        make = _make_token
+        keywords, punct, special = _KEYWORDS, PUNCT, _BOOKKEPT
+        opened = self.open
+        pos = 0
+        prev = prev2 = ""               # types of the two previous tokens
+        pending: _Open | None = None    # technique/pass/sampler_state header awaiting its '{'
+        stmt_eq = stmt_params = False   # top-level statement state: saw '=', saw '(...)'
+        prefix_run = 0
+        while True:
+            m = match(text, pos)
+            kind = m.lastgroup
+            if kind == "END":
+                return
+            if kind == "BAD":
+                raise self._bad_character(m.start(kind))
+            start = m.start(kind)
+            end = m.end()
+            value = text[start:end]
+            line = bisect_right(starts, start)
+            col = start - starts[line - 1] + 1
+            multiline = False
+            if kind == "NAME":
+                low = value.lower()
+                kw = keywords.get(low)
+                if kw is not None:
+                    kind = kw
+                elif low == "asm" or low == "decl":
+                    gap = _GAP_RE.match(text, end).end()
+                    if text.startswith("{", gap):
+                        end = self._balanced(gap, _BRACE_SCAN_RE, "{", f"{low} block")
+                        kind, value, multiline = low.upper(), text[start:end], True
+                elif not opened and self.annotation is None:
+                    if prev == "NAME" and not stmt_eq and self.decl_name is None:
+                        self.decl_name = value
+                if pending is not None and (prev == "TECHNIQUE" or prev == "PASS"):
+                    pending.name = value
+            elif kind == "P":
+                kind = punct[value]
+                if kind == "SLASH" and text.startswith("/*", start):
+                    raise Located("unterminated comment: '/*' has no closing '*/'", line, col)
+            elif kind != "STRING" and kind != "INDEX" and len(value) > MAX_LITERAL_LENGTH:
+                raise Located(f"number literal is too long ({len(value)} characters)", line, col)
+
+            if kind in special:
+                # -- nesting, error context and the opaque-part decisions --
+                top = not opened
+                in_ann = self.annotation is not None
+                if kind == "LPAR" and top and not in_ann and not stmt_eq and prev == "NAME" \
+                        and prev2 == "NAME":
+                    # `type name(` at top level: an HLSL function's parameter list, kept as text.
+                    end = self._balanced(start, _PAREN_SCAN_RE, "(", "parameter list")
+                    kind, value, stmt_params = "PARAMS", text[start:end], True
+                    multiline = True
+                elif kind == "LBRACE" and top and not in_ann and stmt_params and not stmt_eq:
+                    end = self._balanced(start, _BRACE_SCAN_RE, "{", "function body")
+                    kind, value, multiline = "FUNC_BODY", text[start:end], True
+                elif kind == "LBRACE" and prev == "NAME" and prev2 == "STRUCT":
+                    end = self._balanced(start, _BRACE_SCAN_RE, "{", "struct")
+                    kind, value, multiline = "STRUCT_BODY", text[start:end], True
+
+                if kind in _OPENERS:
+                    if len(opened) >= MAX_NESTING:
+                        raise Located(f"nesting is too deep (more than {MAX_NESTING} levels of "
+                                       f"braces, parentheses or brackets)", line, col)
+                    if kind == "LBRACE" and pending is not None and prev not in _LIST_OPENERS:
+                        entry, pending = pending, None
+                    else:
+                        k = kind if kind != "LBRACE" else (
+                            "list" if prev in _LIST_OPENERS else "block")
+                        entry = _Open(k, None, line, col, _OPENERS[kind])
+                    opened.append(entry)
+                    self.pushed_at = start
+                elif kind in _CLOSERS:
+                    if opened and opened[-1].closer == kind:
+                        closed = opened.pop()
+                        self.popped, self.popped_at = closed, start
+                        if not opened and closed.kind == "technique" and not in_ann:
+                            stmt_eq = stmt_params = False
+                            self.decl_name = None
+                elif kind in _HEADERS:
+                    pending = _Open(kind.lower(), None, line, col, "RBRACE")
+                elif kind == "LT":
+                    if not in_ann and not stmt_eq and (top or pending is not None):
+                        self.annotation = _Open("annotation", None, line, col, "GT")
+                        self.annotation_depth = len(opened)
+                elif kind == "GT":
+                    if in_ann and self.annotation_depth == len(opened):
+                        self.annotation = None
+                        self.closed_annotation_at = start
+                if top and not in_ann:
+                    if kind == "EQUAL":
+                        stmt_eq = True
+                    elif kind == "SEMI" or kind == "FUNC_BODY" or kind == "STRUCT_BODY":
+                        stmt_eq = stmt_params = False
+                        self.decl_name = None
+                        pending = None
+                if kind in _PREFIX_OPS:
+                    prefix_run += 1
+                    if prefix_run > MAX_PREFIX_RUN:
+                        raise Located("too many operators in a row", line, col)
+                else:
+                    prefix_run = 0
+            else:
+                prefix_run = 0
+
+            if not multiline:
+                yield make(kind, value, start, line, col, line, col + end - start, end)
+            else:  # a block, possibly spanning lines
+                eline = bisect_right(starts, end - 1)
+                yield make(kind, value, start, line, col, eline, end - starts[eline - 1] + 1, end)
+            prev2, prev = prev, kind
+            pos = end
+
+    def _bad_character(self, pos: int) -> Located:
+        line, col = self.position(pos)
+        ch = self.text[pos]
+        if self.text.startswith("/*", pos):
+            return Located("unterminated comment: '/*' has no closing '*/'", line, col)
+        if ch == '"':
+            return Located("unterminated string literal", line, col)
+        shown = f"'{ch}'" if ch.isprintable() and not ch.isspace() else f"U+{ord(ch):04X}"
+        return Located(f"unexpected character {shown}", line, col)
+
+
+class LexerAdapter(_LarkLexer):
+    """Lets lark pull tokens from an `EffectLexer` passed as the parse input."""
+
+    __future_interface__ = 2
+
+    def __init__(self, lexer_conf: Any) -> None:
+        pass
+
+    def lex(self, lexer_state: Any, parser_state: Any):
+        return lexer_state.text.tokens()
