@@ -19,7 +19,9 @@ Color = tuple[float, float, float, float]
 
 @dataclass(frozen=True)
 class RenderState:
-    """Raster, depth, stencil, blend and fog state of a pass (D3D9 defaults)."""
+    """Raster, depth, stencil and blend state of a pass (D3D9 defaults). Fog and the
+    fixed-function specular add are not here: lowering folds both into the programs
+    (`effects.lower.passes`), so back ends have one implementation of each, the IR's."""
 
     # Depth: D3DZB_TRUE because the framework's device always has a depth buffer
     # (D3D9 defaults ZENABLE to TRUE when the device is created with an auto depth stencil).
@@ -65,17 +67,6 @@ class RenderState:
     ccw_stencil_fail: str = "KEEP"
     ccw_stencil_zfail: str = "KEEP"
     ccw_stencil_pass: str = "KEEP"
-    # Fog (applied after the pixel program for ps < 3.0) and the FF specular add. A lowering
-    # may fold either into the fragment program; then it leaves these at their defaults.
-    fog_enable: bool = False
-    fog_color: Color = (0.0, 0.0, 0.0, 0.0)      # 0x00000000
-    fog_table_mode: str = "NONE"                 # NONE | EXP | EXP2 | LINEAR (per pixel)
-    fog_vertex_mode: str = "NONE"                # per vertex
-    fog_start: float = 0.0
-    fog_end: float = 1.0
-    fog_density: float = 1.0
-    range_fog_enable: bool = False
-    specular_enable: bool = False
 
 
 @dataclass(frozen=True)

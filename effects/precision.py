@@ -10,9 +10,10 @@ Derivation (`lowering_options`):
   wins: `{format: fixed, bits: N, range: R}` quantises to N bits in [-R, R] ([0, R] when
   unsigned); fp16 / fp24 / fp32 is float.
 - Otherwise the generation decides: dx6 to dx8.1 cards hold fixed-function stage results at
-  8 bits (the 8-bit colour combiners of the period); dx9 cards, `refrast` and `modern` compute
-  in float. Shader models without an entry run in float with no clamp (semantics.md 2.1
-  decision: fp32, Wine and DXVK behaviour).
+  8 bits (the 8-bit colour combiners of the period); dx9 cards compute in float. Shader models
+  without an entry run in float with no clamp (semantics.md 2.1 decision: fp32, Wine and DXVK
+  behaviour). Nothing here looks at a profile's name: exact float pipelines (`refrast`,
+  `modern`) say fp32 in their own Precision entries.
 """
 from __future__ import annotations
 
@@ -25,8 +26,6 @@ if TYPE_CHECKING:  # pragma: no cover
 
 # Generations whose fixed-function colour path is fixed point (stage results at 8 bits).
 FIXED_POINT_GENERATIONS = ("dx6", "dx7", "dx8", "dx8.1")
-# Profiles that model exact float pipelines whatever their generation says.
-FLOAT_PROFILES = ("refrast", "modern")
 DEFAULT_STAGE_BITS = 8
 
 
@@ -40,6 +39,7 @@ class LoweringOptions:
                     Stage results are saturated to [0, 1] by the op table either way.
     ps1x_bits       ps_1_1-1_3: fraction bits each instruction result is held at.
     ps1x_signed     whether that grid is signed ([-range, range]) or unsigned ([0, range]).
+    ps14_signed     as ps1x_signed, for ps_1_4.
     ps1x_range      ps_1_1-1_3 register range: results clamp to [-range, range] after each
                     instruction. None = no clamp (float pipeline).
     ps14_bits       as ps1x_bits, for ps_1_4.
@@ -56,6 +56,7 @@ class LoweringOptions:
     ps1x_range: float | None = None
     ps14_bits: int | None = None
     ps14_range: float | None = None
+    ps14_signed: bool = True
     ps20_float: str = "fp32"
     constant_range: float = 1.0
 
@@ -63,20 +64,19 @@ class LoweringOptions:
     def stage_is_fixed(self) -> bool:
         return self.stage_bits is not None
 
-    def shader_quantize(self, model: str) -> dict | None:
-        """Keyword arguments for `Builder.quantize` that hold a `ps_1_x` or `ps_1_4` result on
-        the card's grid, or None for float. `*_bits` are fraction bits; the IR's signed grid
-        needs the sign and the integer bits too: bits = fraction + ceil(log2(range)) + sign,
-        so GeForce3's 8 fraction bits in [-1, 1] give quantize(bits=9, signed=True)."""
-        bits, rng = {"ps_1_x": (self.ps1x_bits, self.ps1x_range),
-                     "ps_1_4": (self.ps14_bits, self.ps14_range)}[model]
+    def register_grid(self, model: str) -> tuple[float | None, tuple[int, bool, float] | None]:
+        """Where a `ps_1_x` or `ps_1_4` register write lands: (range, grid). `range` is the
+        clamp bound (None: no clamp); `grid` is `Builder.quantize`'s (bits, signed, scale), or
+        None for float. `*_bits` are fraction bits; the IR's grid needs the sign and the
+        integer bits too: bits = fraction + ceil(log2(range)) + sign, so GeForce3's 8 fraction
+        bits in [-1, 1] give quantize(bits=9, signed=True, scale=1)."""
+        bits, rng, signed = {"ps_1_x": (self.ps1x_bits, self.ps1x_range, self.ps1x_signed),
+                             "ps_1_4": (self.ps14_bits, self.ps14_range, self.ps14_signed)}[model]
         if bits is None:
-            return None
-        rng = rng or 1.0
-        integer_bits = max(0, math.ceil(math.log2(rng)))
-        signed = self.ps1x_signed
-        return {"bits": bits + integer_bits + (1 if signed else 0), "signed": signed,
-                "scale": float(rng)}
+            return rng, None
+        scale = rng or 1.0
+        integer_bits = max(0, math.ceil(math.log2(scale)))
+        return rng, (bits + integer_bits + (1 if signed else 0), bool(signed), float(scale))
 
 
 FLOAT_OPTIONS = LoweringOptions()
@@ -84,8 +84,6 @@ FLOAT_OPTIONS = LoweringOptions()
 
 def lowering_options(profile: "CapsProfile") -> LoweringOptions:
     """The lowering options a profile implies (see the module docstring)."""
-    if profile.name in FLOAT_PROFILES:
-        return FLOAT_OPTIONS
     ff = _precision(profile, "fixed_function")
     if ff is not None:
         stage_bits = None if ff.is_float else (ff.bits or DEFAULT_STAGE_BITS)
@@ -101,6 +99,7 @@ def lowering_options(profile: "CapsProfile") -> LoweringOptions:
         ps1x_range=_fixed_range(ps1x),
         ps14_bits=_fixed_bits(ps14),
         ps14_range=_fixed_range(ps14),
+        ps14_signed=True if ps14 is None else bool(ps14.signed),
         ps20_float=ps20.format if ps20 is not None and ps20.is_float else "fp32",
     )
 

@@ -21,11 +21,14 @@ import math
 import numpy as np
 import pytest
 
+import effects
 from effects.backend import (Backend, DrawError, UnknownBackend, available_backends,
                            create_backend, render_cube_faces)
 from backends.gl import GLBackend
 from backends.reference.renderer import ReferenceBackend
+from effects.caps import load_profile
 from effects.errors import EffectError
+from effects.lower.passes import lower_pass
 from effects.ir import Builder
 from effects.passprogram import PassProgram, RenderState, TextureBinding
 from effects.host.textures import Texture
@@ -565,36 +568,48 @@ def test_vertex_program_transforms_positions(backend):
     np.testing.assert_array_equal(image[..., 0], expected)
 
 
-def test_specular_enable_adds_color1(backend):
-    state = RenderState(cull_mode="NONE", specular_enable=True)
+# Fog and the specular add are lowered into the programs (effects.lower.passes): a back end
+# only runs the IR. These render a lowered pass on every back end; the formulas themselves are
+# tested at the IR level in tests/test_lower_stages.py.
+FOG_PASS = """technique t {{ pass p {{ Lighting = FALSE; CullMode = None; {states}
+    ColorOp[0] = SelectArg1; ColorArg1[0] = Diffuse; AlphaOp[0] = SelectArg1; AlphaArg1[0] = Diffuse;
+}} }}"""
+
+
+def lowered(states: str) -> PassProgram:
+    effect = effects.load_effect(FOG_PASS.format(states=states))
+    return lower_pass(effect, effect.techniques[0], 0, load_profile("modern"))
+
+
+def test_lowered_specular_add_renders_alike(backend):
+    program = lowered("SpecularEnable = TRUE;")
     streams, idx, prim = quad(color0=np.tile([0.5, 0.25, 0, 1], (4, 1)),
                               color1=np.tile([0.25, 0.25, 0.5, 0.9], (4, 1)))
-    image = render(backend, [(show("color0", state), (streams, idx, prim))], size=(2, 2))
+    image = render(backend, [(program, (streams, idx, prim))], size=(2, 2))
     assert_close_u8(image[0, 0], u8([0.75, 0.5, 0.5, 1.0]))
 
 
-@pytest.mark.parametrize("states, fog_stream, factor", [
-    (dict(fog_table_mode="LINEAR", fog_start=0.0, fog_end=1.0), None, 0.5),  # z = 0.5
-    (dict(fog_table_mode="EXP", fog_density=2.0), None, math.exp(-1.0)),
-    (dict(fog_table_mode="EXP2", fog_density=2.0), None, math.exp(-1.0)),
-    (dict(), 0.25, 0.25),                                                   # vertex fog
+@pytest.mark.parametrize("states, factor", [
+    ("FogTableMode = Linear; FogStart = 0.0; FogEnd = 1.0;", 0.5),   # distance z = 0.5
+    ("FogTableMode = Exp; FogDensity = 2.0;", math.exp(-1.0)),
+    ("FogTableMode = Exp2; FogDensity = 2.0;", math.exp(-1.0)),
+    ("FogVertexMode = Linear; FogStart = 0.0; FogEnd = 2.0;", 0.75),  # per vertex
 ])
-def test_fog_blends_towards_the_fog_colour(backend, states, fog_stream, factor):
-    state = RenderState(cull_mode="NONE", fog_enable=True, fog_color=(0, 0, 1, 0), **states)
-    extra = {} if fog_stream is None else {"fog": np.full((4, 1), fog_stream)}
-    streams, idx, prim = quad(z=0.5, **extra)
-    image = render(backend, [(constant((1, 0, 0, 1), state), (streams, idx, prim))], size=(2, 2))
+def test_lowered_fog_renders_alike(backend, states, factor):
+    program = lowered("FogEnable = TRUE; FogColor = 0x000000ff; " + states)
+    streams, idx, prim = quad(z=0.5, color0=np.tile([1, 0, 0, 1], (4, 1)))
+    image = render(backend, [(program, (streams, idx, prim))], size=(2, 2))
     assert_close_u8(image[0, 0], u8([factor, 0, 1 - factor, 1]))
 
 
-def test_specular_is_added_before_fog(backend):
+def test_lowered_specular_is_added_before_fog(backend):
     """Colour 0.5 grey + specular 0.25 red = (0.75, 0.5, 0.5); table fog at z = 0.5 keeps
     half of that and adds half of the blue fog colour: (0.375, 0.25, 0.75)."""
-    state = RenderState(cull_mode="NONE", specular_enable=True, fog_enable=True,
-                        fog_table_mode="LINEAR", fog_start=0.0, fog_end=1.0, fog_color=(0, 0, 1, 0))
+    program = lowered("SpecularEnable = TRUE; FogEnable = TRUE; FogTableMode = Linear;"
+                      "FogStart = 0.0; FogEnd = 1.0; FogColor = 0x000000ff;")
     streams, idx, prim = quad(color0=np.tile([0.5, 0.5, 0.5, 1], (4, 1)),
                               color1=np.tile([0.25, 0, 0, 0], (4, 1)))
-    image = render(backend, [(show("color0", state), (streams, idx, prim))], size=(8, 8))
+    image = render(backend, [(program, (streams, idx, prim))], size=(8, 8))
     # 95.6, 63.75, 191.25 and 255: no value near a half step, so exact
     np.testing.assert_array_equal(image, np.broadcast_to([96, 64, 191, 255], (8, 8, 4)))
 

@@ -91,8 +91,8 @@ def vertex_transform() -> Program:
     return b.build()
 
 
-FULL_EPILOGUE = glsl.FragmentOptions(flat_colors=True, specular_add=True, fog="LINEAR",
-                                     alpha_test=True, depth_bias=True, srgb_write=True)
+FULL_EPILOGUE = glsl.FragmentOptions(flat_colors=True, alpha_test=True, depth_bias=True,
+                                     srgb_write=True)
 
 
 def _shaders() -> dict[str, str]:
@@ -193,11 +193,6 @@ def test_vertex_program_without_position_is_an_ir_error():
     b.output("color0", b.const(1.0))
     with pytest.raises(IRError, match="writes no position"):
         glsl.vertex_shader(b.build(), ("color0",), set())
-
-
-def test_bad_fog_mode_is_an_ir_error():
-    with pytest.raises(IRError, match="fog mode"):
-        glsl.FragmentOptions(fog="LINEARISH")
 
 
 # --------------------------------------------------------------------------------------------

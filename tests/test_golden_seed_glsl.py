@@ -61,7 +61,7 @@ def shader_texts(effect_name: str, technique_name: str) -> tuple[str, str, str]:
     vertex_parts, fragment_parts = [], []
     for index, pass_ in enumerate(technique.passes):
         program = lower_pass(runtime.effect, technique, index, profile)
-        options = fragment_options(program, streams, float_target=False)
+        options = fragment_options(program, float_target=False)
         varyings = glsl.fragment_varyings(program.fragment, options)
         present = {n for n in streams if program.vertex is None
                    or any(i.name == n and i.kind == "varying" for i in program.vertex.inputs)}

@@ -320,8 +320,6 @@ def test_render_state_defaults_are_the_d3d9_device_defaults():
     assert rs.color_write_enable == 0xF
     assert (rs.stencil_enable, rs.stencil_func, rs.stencil_mask, rs.stencil_pass) == \
         (False, "ALWAYS", 0xFFFFFFFF, "KEEP")
-    assert (rs.fog_enable, rs.fog_start, rs.fog_end, rs.fog_density) == (False, 0.0, 1.0, 1.0)
-    assert rs.specular_enable is False
     t = TextureBinding(0, "BaseTexture")
     assert (t.address_u, t.address_v, t.address_w) == ("WRAP", "WRAP", "WRAP")
     assert (t.min_filter, t.mag_filter, t.mip_filter) == ("POINT", "POINT", "NONE")

@@ -213,7 +213,7 @@ def test_specular_add_after_the_cascade_leaves_alpha():
                "AlphaOp[0] = SelectArg1; AlphaArg1[0] = Diffuse;")
     close(shade(pp, diffuse=(0.5, 0.25, 0, 0.5), specular=(0.75, 0.25, 0.5, 1)),
           (1, 0.5, 0.5, 0.5))
-    assert pp.render_state.specular_enable is False  # folded into the program
+    assert any(i.name == "color1" for i in pp.fragment.inputs)  # folded into the program
     # Specular as a stage argument
     pp = lower("ColorOp[0] = SelectArg1; ColorArg1[0] = Specular;")
     close(shade(pp, specular=(0.1, 0.2, 0.3, 0.4))[:3], (0.1, 0.2, 0.3))
@@ -307,7 +307,7 @@ def test_vertex_fog_blends_towards_the_fog_colour_and_keeps_alpha():
                "AlphaOp[0] = SelectArg1; AlphaArg1[0] = Diffuse;")
     out = shade(pp, diffuse=(1, 0.5, 0, 0.5), fog=0.25)
     close(out, (0.25, 0.125, 0.75, 0.5))  # f c + (1 - f) fog colour
-    assert pp.render_state.fog_enable is False
+    assert dict(pp.uniforms)["fog_color"] == (0.0, 0.0, 1.0, 0.0)  # folded into the program
 
 
 def test_table_fog_computes_the_factor_per_pixel():
@@ -317,6 +317,46 @@ def test_table_fog_computes_the_factor_per_pixel():
     pp = lower("FogEnable = TRUE; FogTableMode = Exp; FogDensity = 0.5;"
                "FogColor = 0x00ffffff; ColorOp[0] = SelectArg1; ColorArg1[0] = Diffuse;")
     close(shade(pp, diffuse=(0, 0, 0, 1), fog=2.0)[:3], [1 - np.exp(-1.0)] * 3, atol=1e-5)
+    pp = lower("FogEnable = TRUE; FogTableMode = Exp2; FogDensity = 0.5;"
+               "FogColor = 0x00ffffff; ColorOp[0] = SelectArg1; ColorArg1[0] = Diffuse;")
+    # f = e^-((2 * 0.5)^2) = e^-1
+    close(shade(pp, diffuse=(0, 0, 0, 1), fog=2.0)[:3], [1 - np.exp(-1.0)] * 3, atol=1e-5)
+    # LINEAR saturates: a distance beyond FogEnd is all fog, one before FogStart none
+    pp = lower("FogEnable = TRUE; FogTableMode = Linear; FogStart = 1.0; FogEnd = 3.0;"
+               "FogColor = 0x00ffffff; ColorOp[0] = SelectArg1; ColorArg1[0] = Diffuse;")
+    close(shade(pp, diffuse=(0, 0, 0, 1), fog=5.0)[:3], [1.0] * 3)
+    close(shade(pp, diffuse=(0, 0, 0, 1), fog=0.5)[:3], [0.0] * 3)
+
+
+def test_fog_with_no_mode_takes_the_factor_from_the_specular_alpha():
+    """FogEnable with both modes NONE: the factor is the specular (color1) alpha (Wine's
+    FOGCOORD case), so f = 0.25 blends three quarters of the fog colour in."""
+    pp = lower("FogEnable = TRUE; FogColor = 0x0000ff00;"
+               "ColorOp[0] = SelectArg1; ColorArg1[0] = Diffuse;")
+    out = shade(pp, diffuse=(1, 0, 0, 1), specular=(0, 0, 0, 0.25))
+    close(out[:3], (0.25, 0.75, 0.0))
+
+
+def test_specular_is_added_before_fog():
+    """Diffuse 0.5 grey + specular 0.25 red = (0.75, 0.5, 0.5); table fog f = 0.5 keeps half
+    and adds half of the blue fog colour: (0.375, 0.25, 0.75); alpha stays the diffuse's."""
+    pp = lower("SpecularEnable = TRUE; FogEnable = TRUE; FogTableMode = Linear; FogStart = 0.0;"
+               "FogEnd = 1.0; FogColor = 0x000000ff; ColorOp[0] = SelectArg1;"
+               "ColorArg1[0] = Diffuse; AlphaOp[0] = SelectArg1; AlphaArg1[0] = Diffuse;")
+    out = shade(pp, diffuse=(0.5, 0.5, 0.5, 0.8), specular=(0.25, 0, 0, 0), fog=0.5)
+    close(out, (0.375, 0.25, 0.75, 0.8))
+
+
+def test_specular_add_saturates_and_fog_is_held_at_8_bits_on_a_dx7_card():
+    """On a GeForce2 the specular add saturates (0.75 + 0.5 -> 1) and the fogged colour is
+    quantised to 8 bits: f = (4 - 1) / 4 of 1.0 red plus a quarter of 0x40 blue
+    = (0.75, 0, 16/255) -> round(191.25) / 255 and round(16) / 255."""
+    pp = lower("SpecularEnable = TRUE; FogEnable = TRUE; FogTableMode = Linear; FogStart = 0.0;"
+               "FogEnd = 4.0; FogColor = 0x00000040; ColorOp[0] = SelectArg1;"
+               "ColorArg1[0] = Diffuse;", profile="geforce2")
+    assert sum(i.op == "quantize" for i in pp.fragment.instrs) >= 2
+    out = shade(pp, diffuse=(0.75, 0, 0, 1), specular=(0.5, 0, 0, 0), fog=1.0)
+    close(out[:3], (191 / 255, 0, 16 / 255))
 
 
 # -- texture bindings and coordinates -------------------------------------------------------------

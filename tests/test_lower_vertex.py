@@ -193,6 +193,25 @@ def test_vertex_fog_factor_from_eye_depth():
     close(run_vertex(pp, position=(1, 1, 4, 1))["fog"][0], 0.6)  # (10 - 4) / 10
 
 
+@pytest.mark.parametrize("mode, density, factor", [
+    ("Exp", 0.25, np.exp(-1.0)),          # e^-(4 * 0.25)
+    ("Exp2", 0.125, np.exp(-0.25)),       # e^-((4 * 0.125)^2)
+])
+def test_vertex_fog_exponential_modes(mode, density, factor):
+    proj = "float4x4 Persp = {1,0,0,0, 0,1,0,0, 0,0,1,1, 0,0,-1,0};"
+    pp = lower(f"Lighting = FALSE; FogEnable = TRUE; FogVertexMode = {mode}; "
+               f"FogDensity = {density}; ProjectionTransform = <Persp>;", proj)
+    close(run_vertex(pp, position=(1, 1, 4, 1))["fog"][0], factor)
+
+
+def test_range_fog_uses_the_distance_from_the_eye():
+    """RangeFogEnable: the distance |(3, 0, 4)| = 5, not the depth 4: (10 - 5) / 10."""
+    proj = "float4x4 Persp = {1,0,0,0, 0,1,0,0, 0,0,1,1, 0,0,-1,0};"
+    pp = lower("Lighting = FALSE; FogEnable = TRUE; FogVertexMode = Linear; FogStart = 0;"
+               "FogEnd = 10; RangeFogEnable = TRUE; ProjectionTransform = <Persp>;", proj)
+    close(run_vertex(pp, position=(3, 0, 4, 1))["fog"][0], 0.5)
+
+
 def test_render_state_comes_from_the_device_state():
     pp = lower("""Lighting = FALSE; AlphaBlendEnable = TRUE; SrcBlend = SrcAlpha;
         DestBlend = InvSrcAlpha; ZWriteEnable = FALSE; CullMode = None; AlphaTestEnable = TRUE;

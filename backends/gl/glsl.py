@@ -20,8 +20,8 @@ Direct3D conventions handled here, once:
   vertex epilogue shifts every position by half a pixel (as Wine and DXVK do).
 - Colour varyings (color0, color1) are saturated before interpolation; varyings nothing supplies
   read D3D's defaults: color0 (1, 1, 1, 1), color1 (0, 0, 0, 0), others (0, 0, 0, 1).
-- Fragment epilogue, in D3D9's order: oDepth (saturated) or the depth bias, the specular add,
-  fog, alpha test against the 8-bit alpha, sRGB write.
+- Fragment epilogue, in D3D9's order: oDepth (saturated) or the depth bias, alpha test against
+  the 8-bit alpha, sRGB write. Fog and the specular add are in the IR (lowering folds them in).
 """
 from __future__ import annotations
 
@@ -44,7 +44,6 @@ FRAGMENT_BUILTINS = {
 # Order of D3DCMPFUNC as the `d3d_alpha_func` uniform numbers them.
 COMPARE_FUNCS = ("NEVER", "LESS", "EQUAL", "LESSEQUAL", "GREATER", "NOTEQUAL", "GREATEREQUAL",
                  "ALWAYS")
-FOG_MODES = ("NONE", "VERTEX", "LINEAR", "EXP", "EXP2")
 # GLSL line numbers of the code after the IR body (a message there is this module's bug).
 EPILOGUE_LINE = 10000
 # Outputs that are not varyings.
@@ -54,21 +53,12 @@ _NOT_VARYINGS = ("position", "psize")
 @dataclass(frozen=True)
 class FragmentOptions:
     """Fixed-function work appended to the fragment program (part of the program cache key;
-    the values it needs are uniforms, so changing them does not recompile).
-
-    fog: NONE, VERTEX (the interpolated 'fog' varying is the factor) or the table modes LINEAR,
-    EXP, EXP2 (per pixel, on the depth)."""
+    the values it needs are uniforms, so changing them does not recompile)."""
 
     flat_colors: bool = False
-    specular_add: bool = False
-    fog: str = "NONE"
     alpha_test: bool = False
     depth_bias: bool = False
     srgb_write: bool = False
-
-    def __post_init__(self) -> None:
-        if self.fog not in FOG_MODES:
-            raise IRError(f"fog mode must be one of {FOG_MODES}, got {self.fog!r}")
 
 
 def attribute_name(name: str) -> str:
@@ -90,10 +80,6 @@ def value_name(value: int) -> str:
 def fragment_varyings(fragment: Program, options: FragmentOptions) -> tuple[str, ...]:
     """The varyings the fragment shader declares, in a stable order."""
     names = [i.name for i in fragment.inputs if i.kind == "varying"]
-    if options.specular_add:
-        names.append("color1")
-    if options.fog == "VERTEX":
-        names.append("fog")
     return tuple(sorted(set(names)))
 
 
@@ -243,14 +229,6 @@ vec3 d3d_linear_to_srgb(vec3 x) {  // IEC 61966-2-1
                lessThanEqual(x, vec3(0.0031308)));
 }"""
 
-_FOG_FACTORS = {
-    "LINEAR": ("(d3d_fog.y != d3d_fog.x ? (d3d_fog.y - fog_z) / (d3d_fog.y - d3d_fog.x)"
-               " : (fog_z < d3d_fog.y ? 1.0 : 0.0))"),
-    "EXP": "exp(-fog_z * d3d_fog.z)",
-    "EXP2": "exp(-(fog_z * d3d_fog.z) * (fog_z * d3d_fog.z))",
-}
-
-
 def fragment_shader(fragment: Program, options: FragmentOptions = FragmentOptions()) -> str:
     """The fragment shader: the fragment program, then the fixed-function epilogue `options`
     asks for, writing colour output 0 (and output 0 index 1 for the second colour, which the
@@ -263,10 +241,6 @@ def fragment_shader(fragment: Program, options: FragmentOptions = FragmentOption
     lines += _sampler_declarations(fragment)
     if options.depth_bias:
         lines.append("uniform vec2 d3d_depth_bias;  // (DepthBias, SlopeScaleDepthBias)")
-    if options.fog != "NONE":
-        lines.append("uniform vec4 d3d_fog_color;")
-    if options.fog in _FOG_FACTORS:
-        lines.append("uniform vec4 d3d_fog;  // (FogStart, FogEnd, FogDensity, 0)")
     if options.alpha_test:
         lines.append("uniform int d3d_alpha_func;  // index in COMPARE_FUNCS")
         lines.append("uniform int d3d_alpha_ref;")
@@ -295,24 +269,12 @@ def fragment_shader(fragment: Program, options: FragmentOptions = FragmentOption
 
 def _fragment_epilogue(outputs: dict[str, int], options: FragmentOptions) -> list[str]:
     lines = [f"    vec4 color = {'out_color0' if 'color0' in outputs else 'vec4(0.0)'};"]
-    depth = "gl_FragCoord.z"
     if "depth" in outputs:
         lines.append("    gl_FragDepth = clamp(out_depth.x, 0.0, 1.0);  // oDepth, saturated")
-        depth = "gl_FragDepth"
     elif options.depth_bias:
         lines += [
             "    float z_slope = max(abs(dFdx(gl_FragCoord.z)), abs(dFdy(gl_FragCoord.z)));",
             "    gl_FragDepth = gl_FragCoord.z + d3d_depth_bias.x + d3d_depth_bias.y * z_slope;"]
-        depth = "gl_FragDepth"
-    if options.specular_add:
-        lines.append(f"    color.rgb += {varying_name('color1')}.rgb;  // SpecularEnable")
-    if options.fog == "VERTEX":
-        lines.append(f"    float fog = clamp({varying_name('fog')}.x, 0.0, 1.0);")
-    elif options.fog != "NONE":
-        lines.append(f"    float fog_z = {depth};")
-        lines.append(f"    float fog = clamp({_FOG_FACTORS[options.fog]}, 0.0, 1.0);")
-    if options.fog != "NONE":
-        lines.append("    color.rgb = fog * color.rgb + (1.0 - fog) * d3d_fog_color.rgb;")
     if options.alpha_test:
         lines.append("    int alpha8 = int(floor(clamp(color.a, 0.0, 1.0) * 255.0 + 0.5));")
         lines.append("    if (!d3d_compare(d3d_alpha_func, alpha8, d3d_alpha_ref)) discard;")

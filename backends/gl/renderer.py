@@ -179,7 +179,7 @@ class GLBackend:
         if len(tris) == 0:
             return
         state = program.render_state
-        options = fragment_options(program, streams, TARGET_FORMATS[target.format][0])
+        options = fragment_options(program, TARGET_FORMATS[target.format][0])
         varyings = glsl.fragment_varyings(program.fragment, options)
         attributes = _attributes(program, varyings)
         present = frozenset(a for a in attributes if a in streams)
@@ -297,9 +297,6 @@ class GLBackend:
         settings: dict[str, object] = {
             "d3d_pixel_size": (2.0 / target.size[0], 2.0 / target.size[1]),
             "d3d_depth_bias": (float(state.depth_bias), float(state.slope_scale_depth_bias)),
-            "d3d_fog_color": tuple(float(c) for c in state.fog_color),
-            "d3d_fog": (float(state.fog_start), float(state.fog_end), float(state.fog_density),
-                        0.0),
             "d3d_alpha_ref": int(state.alpha_ref) & 0xFF,
         }
         if options.alpha_test:
@@ -377,26 +374,12 @@ class GLBackend:
         self._frame = None
 
 
-def fragment_options(program: PassProgram, streams: Mapping[str, np.ndarray],
-                     float_target: bool) -> glsl.FragmentOptions:
-    """The fixed-function epilogue a pass needs, from its render state and what the vertex
-    stage supplies (the reference back end's rules: the specular add and vertex fog need
-    their varyings; sRGB writes apply to 8-bit targets)."""
+def fragment_options(program: PassProgram, float_target: bool) -> glsl.FragmentOptions:
+    """The fixed-function epilogue a pass needs, from its render state (sRGB writes apply to
+    8-bit targets, as in the reference back end)."""
     state: RenderState = program.render_state
-    if program.vertex is None:
-        supplied = set(streams) - {"position"}
-    else:
-        supplied = {name for name, _ in program.vertex.outputs} - {"position", "psize"}
-    fog = "NONE"
-    if state.fog_enable:
-        if state.fog_table_mode != "NONE":
-            fog = state.fog_table_mode
-        elif "fog" in supplied:
-            fog = "VERTEX"
     return glsl.FragmentOptions(
         flat_colors=state.shade_mode == "FLAT",
-        specular_add=bool(state.specular_enable and "color1" in supplied),
-        fog=fog,
         alpha_test=bool(state.alpha_test_enable),
         depth_bias=bool(state.depth_bias or state.slope_scale_depth_bias),
         srgb_write=bool(state.srgb_write_enable and not float_target))

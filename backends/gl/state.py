@@ -5,8 +5,9 @@ D3DTEXTUREADDRESS and D3DTEXTUREFILTERTYPE; the merge rules (what each one means
 are those of the reference back end's output merger. The vertex shader renders D3D's clockwise
 triangles counter-clockwise in GL's window (see `glsl`), so GL's front faces are D3D's.
 
-Alpha test, fog, the specular add, depth bias and sRGB writes are not GL state here: they are
-fragment-shader epilogues (`glsl.FragmentOptions`), as in Wine's and DXVK's shaders.
+Alpha test, depth bias and sRGB writes are not GL state here: they are fragment-shader
+epilogues (`glsl.FragmentOptions`), as in Wine's and DXVK's shaders. Fog and the specular add
+are already in the lowered fragment program.
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The output merger: fog, alpha test, stencil, depth, blending, colour mask and the
+"""The output merger: alpha test, stencil, depth, blending, colour mask and the
 render-target write, in Direct3D 9's order (D3DRENDERSTATETYPE docs; semantics.md section 0).
 
 - Alpha test compares the fragment alpha quantised to 8 bits, round(sat(a) * 255), with
@@ -239,33 +239,6 @@ def blend(state: RenderState, src: np.ndarray, dst: np.ndarray,
 
 
 # ------------------------------------------------------------------------------------------------
-# Fog
-
-def fog_factor(mode: str, distance: np.ndarray, start: float, end: float,
-               density: float) -> np.ndarray:
-    """D3DFOGMODE factor f (1 = no fog) at `distance`: LINEAR (end - d) / (end - start),
-    EXP e^-(d*density), EXP2 e^-(d*density)^2; saturated."""
-    d = np.asarray(distance, np.float32)
-    if mode == "LINEAR":
-        f = (end - d) / (end - start) if end != start else np.where(d < end, 1.0, 0.0)
-    elif mode == "EXP":
-        f = np.exp(-d * density)
-    elif mode == "EXP2":
-        f = np.exp(-(d * density) ** 2)
-    else:
-        raise DrawError(f"fog mode must be LINEAR, EXP or EXP2, got {mode!r}")
-    return np.clip(f, 0, 1).astype(np.float32)
-
-
-def apply_fog(color: np.ndarray, factor: np.ndarray, fog_color) -> np.ndarray:
-    """rgb = f * colour + (1 - f) * FogColor; alpha unchanged."""
-    out = np.array(color, np.float32)
-    f = np.asarray(factor, np.float32)[:, None]
-    out[:, :3] = f * out[:, :3] + (1 - f) * np.asarray(fog_color, np.float32)[:3]
-    return out
-
-
-# ------------------------------------------------------------------------------------------------
 # Merging
 
 def layers(pixels: np.ndarray, pixel_count: int) -> list[np.ndarray]:
@@ -291,7 +264,7 @@ def layers(pixels: np.ndarray, pixel_count: int) -> list[np.ndarray]:
 def merge(fb: Framebuffer, state: RenderState, pixels: np.ndarray, color: np.ndarray,
           depth: np.ndarray, front: np.ndarray, color2: np.ndarray | None = None) -> None:
     """Merge fragments (in draw order) into `fb`. `pixels`: (N,) flat indices y*W + x;
-    `color` (N, 4) the fragment program's colour (fog already applied); `depth` (N,) z;
+    `color` (N, 4) the fragment program's colour; `depth` (N,) z;
     `front` (N,) whether each fragment's triangle is clockwise; `color2` the second colour
     output (for the SRCCOLOR2 blend factors)."""
     if state.alpha_test_enable:

@@ -16,10 +16,8 @@ Conventions beyond `effects.backend`:
   vertex-program inputs missing from `streams`.
 - Fragment builtins: 'vpos' (pixel x, y, 0, 1; D3D9 pixel centres are integers) and 'vface'
   (+1 front, -1 back, replicated).
-- Fog (FogEnable): per-pixel table fog on the depth z when FogTableMode is set, else the
-  interpolated vertex 'fog' output as the factor, when the vertex program writes one.
-  SpecularEnable adds the interpolated color1.rgb before fog. A lowering that folds either into
-  the fragment program leaves these states at their defaults.
+- Fog and the fixed-function specular add are not applied here: lowering folds both into the
+  programs (`effects.lower.passes`), so the fragment program's colour is final.
 - The fragment 'depth' output (oDepth) replaces the interpolated depth, saturated.
 """
 from __future__ import annotations
@@ -32,7 +30,7 @@ from typing import Mapping
 import numpy as np
 
 from effects.ir import Program
-from effects.passprogram import PassProgram, RenderState, TextureBinding
+from effects.passprogram import PassProgram, TextureBinding
 
 from effects.backend import DrawError, register_backend, triangle_list
 from backends.reference import output
@@ -150,7 +148,7 @@ class ReferenceBackend:
         if len(tris) and (tris.min() < 0 or tris.max() >= count):
             raise DrawError(f"indices out of range for {count} vertices")
         clip, varyings = _vertex_stage(program.vertex, streams, uniforms, count)
-        stage = _FragmentStage(program, clip, _needed_varyings(program.fragment, state, varyings),
+        stage = _FragmentStage(program, clip, _needed_varyings(program.fragment, varyings),
                                uniforms, sampler_callbacks(program, textures), fb.size)
         # Triangles in consecutive chunks, rasterised and shaded in parallel, merged in order
         # (all of a chunk's fragments precede the next chunk's, so draw order is kept).
@@ -177,8 +175,8 @@ class ReferenceBackend:
 
 
 class _FragmentStage:
-    """Rasterisation, the fragment program and per-fragment fixed function (specular add, fog)
-    for the triangles of one draw; `run` returns what the output merger needs."""
+    """Rasterisation and the fragment program for the triangles of one draw; `run` returns
+    what the output merger needs."""
 
     def __init__(self, program: PassProgram, clip: np.ndarray, needed: dict, uniforms: dict,
                  callbacks: dict, size: tuple[int, int]) -> None:
@@ -213,12 +211,7 @@ class _FragmentStage:
             if len(rows) == 0:
                 return None
         color = colour[rows]
-        if state.specular_enable and "color1" in frags.varyings:
-            color = color.copy()
-            color[:, :3] += _vec4_rows(frags, "color1")[rows, :3]
         depth = frags.depth[rows] if depth_out is None else np.clip(depth_out[rows], 0, 1)
-        if state.fog_enable:
-            color = _fog(state, color, frags, rows, depth)
         pixels = frags.y[rows].astype(np.int64) * self.size[0] + frags.x[rows]
         return (pixels, color, depth, frags.front[rows],
                 None if colour2 is None else colour2[rows])
@@ -256,15 +249,6 @@ class _FragmentStage:
             killed = np.concatenate([np.zeros(b - a, bool) if r.killed is None else r.killed
                                      for r, (a, b) in zip(results, chunks)])
         return colour, gather("color1"), None if depth is None else depth[:, 0], killed
-
-
-def _vec4_rows(frags: QuadFragments, name: str) -> np.ndarray:
-    value = frags.varyings[name]
-    if value.shape[1] < 4:
-        full = np.broadcast_to(_DEFAULTS.get(name, _DEFAULT_VALUE), (len(value), 4)).copy()
-        full[:, :value.shape[1]] = value
-        return full
-    return value
 
 
 def _vertex_count(streams: Mapping[str, np.ndarray]) -> int:
@@ -327,18 +311,13 @@ def _sampler_reads(instr) -> frozenset:
     return frozenset(reads)
 
 
-def _needed_varyings(fragment: Program, state: RenderState,
+def _needed_varyings(fragment: Program,
                      varyings: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     """The varyings to interpolate: those the fragment program reads, cut after the last
-    component it reads (the rest would read as defaults, never used), and those the fixed
-    function after it needs (whole)."""
+    component it reads (the rest would read as defaults, never used)."""
     reads = input_components(fragment, _sampler_reads)
     needed = {i.name: max(reads.get(i.name, ()), default=0) + 1
               for i in fragment.inputs if i.kind == "varying"}
-    if state.specular_enable:
-        needed["color1"] = 4
-    if state.fog_enable and state.fog_table_mode == "NONE":
-        needed["fog"] = 4
     return {n: varyings[n][:, :needed[n]] for n in sorted(needed) if n in varyings}
 
 
@@ -369,18 +348,6 @@ def _builtin(name: str, frags: QuadFragments, start: int, stop: int) -> np.ndarr
         sign = np.where(frags.front[start:stop], 1.0, -1.0).astype(np.float32)
         return np.repeat(sign[:, None], 4, axis=1)
     raise DrawError(f"unknown fragment builtin {name!r} (known: vpos, vface)")
-
-
-def _fog(state: RenderState, color: np.ndarray, frags: QuadFragments, rows: np.ndarray,
-         depth: np.ndarray) -> np.ndarray:
-    if state.fog_table_mode != "NONE":
-        factor = output.fog_factor(state.fog_table_mode, depth, state.fog_start, state.fog_end,
-                                   state.fog_density)
-    elif "fog" in frags.varyings:
-        factor = np.clip(frags.varyings["fog"][rows, 0], 0, 1)
-    else:
-        return color
-    return output.apply_fog(color, factor, state.fog_color)
 
 
 register_backend("numpy", ReferenceBackend)

@@ -10,9 +10,9 @@ Decisions both back ends rely on:
 - **Fog and the specular add are folded into the fragment program.** The vertex program
   writes the `fog` output (the fog factor for vertex fog, the fog distance for table fog: the
   eye depth |z|, or clip z under an orthographic projection, as Wine does), and the fragment
-  program blends towards the `fog_color` uniform. `RenderState.fog_*` and `specular_enable`
-  therefore stay at their defaults; a back end applies neither. Alpha test, blending, depth
-  and stencil stay in RenderState.
+  program blends towards the `fog_color` uniform. This is the one implementation of both:
+  `RenderState` has no fog or specular fields and a back end applies neither. Alpha test,
+  blending, depth and stencil stay in RenderState.
 - Uniform values come from the state and the effect's parameters at lowering time
   (`PassProgram.uniforms`); the names are documented in `lower_stages` and `lower_vertex`.
 - An uninitialised parameter reads as zero, as in D3DX.
@@ -475,7 +475,7 @@ def texture_binding(effect: Effect, state: DeviceState, sampler: int, kind: str)
 
 
 # RenderState field -> (state name, reader). Fog and SpecularEnable are folded into the
-# programs (module docstring), so their fields keep the defaults.
+# programs (module docstring), so RenderState has no fields for them.
 _RENDER_FIELDS: dict[str, tuple[str, Callable[[DeviceState, str], Any]]] = {
     "z_enable": ("ZEnable", lambda s, n: _enum(s, n) != "FALSE"),
     "z_write_enable": ("ZWriteEnable", _bool), "z_func": ("ZFunc", _enum),

@@ -47,7 +47,6 @@ Decisions (sources: ../shared/reference/semantics.md §2-4, caps.md §1):
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping
 
@@ -139,19 +138,10 @@ class _Precision:
 
 
 def _precision(program: AsmProgram, options: LoweringOptions) -> _Precision:
+    """The options' register grid for this program's model (ps_2_0+ and vertex: float)."""
     rules = program.rules
-    if rules.is_ps11_13:
-        bits, rng, signed = options.ps1x_bits, options.ps1x_range, options.ps1x_signed
-    elif rules.is_ps14:
-        bits, rng, signed = options.ps14_bits, options.ps14_range, True
-    else:
-        return _Precision()
-    grid = None
-    if bits is not None:
-        scale = rng if rng is not None else 1.0
-        integer_bits = max(0, math.ceil(math.log2(scale))) if scale > 1 else 0
-        grid = (bits + integer_bits + (1 if signed else 0), bool(signed), float(scale))
-    return _Precision(rng, grid)
+    model = "ps_1_x" if rules.is_ps11_13 else "ps_1_4" if rules.is_ps14 else None
+    return _Precision() if model is None else _Precision(*options.register_grid(model))
 
 
 class _Lowering:

@@ -1,12 +1,9 @@
 #version 330 core
 // fragment shader for IR program a4c6cde122807bb5
-flat in vec4 vary_color1;
 in vec4 vary_texcoord1;
 uniform vec4 u_LightDirection;
 uniform vec4 u_MaterialDiffuse;
 uniform vec2 d3d_depth_bias;  // (DepthBias, SlopeScaleDepthBias)
-uniform vec4 d3d_fog_color;
-uniform vec4 d3d_fog;  // (FogStart, FogEnd, FogDensity, 0)
 uniform int d3d_alpha_func;  // index in COMPARE_FUNCS
 uniform int d3d_alpha_ref;
 layout(location = 0, index = 0) out vec4 frag_color;
@@ -42,10 +39,6 @@ void main() {
     vec4 color = out_color0;
     float z_slope = max(abs(dFdx(gl_FragCoord.z)), abs(dFdy(gl_FragCoord.z)));
     gl_FragDepth = gl_FragCoord.z + d3d_depth_bias.x + d3d_depth_bias.y * z_slope;
-    color.rgb += vary_color1.rgb;  // SpecularEnable
-    float fog_z = gl_FragDepth;
-    float fog = clamp((d3d_fog.y != d3d_fog.x ? (d3d_fog.y - fog_z) / (d3d_fog.y - d3d_fog.x) : (fog_z < d3d_fog.y ? 1.0 : 0.0)), 0.0, 1.0);
-    color.rgb = fog * color.rgb + (1.0 - fog) * d3d_fog_color.rgb;
     int alpha8 = int(floor(clamp(color.a, 0.0, 1.0) * 255.0 + 0.5));
     if (!d3d_compare(d3d_alpha_func, alpha8, d3d_alpha_ref)) discard;
     color.rgb = d3d_linear_to_srgb(color.rgb);
