@@ -5,8 +5,8 @@
 // takes the first valid one, in file order):
 //
 //   PerPixelPhong_ps20   DX9  (Radeon 9700): Persson's ps.2.0 listing, true pow, 1 pass
-//   PerPixelPhong_ps11   DX8  (GeForce3, Radeon 8500): dot3 diffuse, then specular ^24 by
-//                        squaring with multiplies (8-bit bands), 2 passes added in the frame buffer
+//   PerPixelPhong_ps11   DX8  (GeForce3, Radeon 8500): dot3 diffuse, then the specular by the
+//                        chapter's table lookup (N.H^96 ~ (R.V)^24), 2 passes added in the frame buffer
 //   Dot3_dx7             DX7  (GeForce2): DOTPRODUCT3 texture stage, light vector in the
 //                        diffuse colour, per-vertex specular added by SpecularEnable
 //   SingleTexture        DX6 and anything else (TNT2, Voodoo3): fixed-function vertex lighting
@@ -106,6 +106,17 @@ texture GlossMap
     string Format = "L8";
 >;
 
+// The DX8 technique's specular table (the chapter's LightEval, fxfiles/README.md): at (u, v),
+// rgb = v^96 and alpha = u. 96 = 4 x 24: Blinn's N.H exponent that draws Phong's (R.V)^24.
+texture SpecularTable
+<
+    string Procedural = "power_table:96";
+    string Type = "2D";
+    string Format = "A8R8G8B8";
+    int Width = 256;
+    int Height = 256;
+>;
+
 sampler2D BaseSampler = sampler_state
 {
     Texture = <BaseTexture>;
@@ -178,9 +189,12 @@ VertexShader PhongVS = asm
     dp3 oT2.z, r2, r5                // oT2 = view vector in tangent space
 };
 
-// DX8 path: unit light and half vectors in tangent space, biased into the colour
-// interpolators for _bx2 in the pixel shader, as in the Direct3D chapter's specular setup;
-// light colour * attenuation (per vertex) goes to oT3, read with `texcoord t3`.
+// DX8 path: unit light and half vectors in tangent space. For the diffuse pass the light
+// vector is biased into oD0 for _bx2 in the pixel shader, as in the Direct3D chapter's
+// diffuse setup; for the specular pass the light vector and the half angle go unbiased to
+// oT1 and oT2, the chapter's table-lookup layout (the rows of texm3x2pad/texm3x2tex).
+// oT0 = oT3 = surface coordinates (normal map; base or gloss map); light colour *
+// attenuation (per vertex) in oD1.
 VertexShader PhongVS_dx8 = asm
 {
     vs_1_1
@@ -195,9 +209,8 @@ VertexShader PhongVS_dx8 = asm
     def c13, 0.5, 0.5, 0.5, 0.5
 
     m4x4 oPos, v0, c0
-    mov oT0.xy, v7                   // base texture
-    mov oT1.xy, v7                   // normal map
-    mov oT2.xy, v7                   // gloss map
+    mov oT0.xy, v7                   // normal map
+    mov oT3.xy, v7                   // base map (diffuse pass), gloss map (specular pass)
 
     m4x4 r0, v0, c4                  // world position
     m3x3 r3.xyz, v8, c4              // tangent
@@ -222,17 +235,18 @@ VertexShader PhongVS_dx8 = asm
     dp3 r6.x, r1, r3
     dp3 r6.y, r1, r4
     dp3 r6.z, r1, r5
-    mad oD0.xyz, r6.xyz, c13, c13        // light in oD0: multiply by a half then add half
+    mad oD0.xyz, r6.xyz, c13, c13    // light in oD0: multiply by a half then add half
+    mov oT1.xyz, r6                  // not a tex coord: light direction (texm3x2pad row)
 
     dp3 r8.x, r2, r3
     dp3 r8.y, r2, r4
     dp3 r8.z, r2, r5
-    mad oD1.xyz, r8.xyz, c13, c13        // half angle in oD1
+    mov oT2.xyz, r8                  // not a tex coord: half angle (texm3x2tex row)
 
     mul r9.x, c12.x, r1.w            // q * r^2
     add r9.x, r9.x, c11.x            // c + q * r^2 (vs_1_1 reads one constant per instruction)
     rcp r9.x, r9.x                   // attenuation
-    mul oT3, c10, r9.x               // light colour * attenuation
+    mul oD1, c10, r9.x               // light colour * attenuation
 };
 
 // DX7 path: the tangent-space light vector, biased, in the diffuse colour for DOTPRODUCT3,
@@ -385,14 +399,17 @@ technique PerPixelPhong_ps20
 }
 
 // DX8: ps.1.1 has 4 texture + 8 arithmetic slots and 8-bit fixed point. Pass 0 is the dot3
-// diffuse and the ambient; pass 1 adds the specular, the exponent 24 made of multiplies
-// (2, 4, 8, 16, then 16 * 8). Each product is held at 8 bits: the highlight bands, as the
-// chapter's Figure 5 shows.
+// diffuse and the ambient; pass 1 adds the specular by the chapter's table lookup
+// (texm3x2pad/texm3x2tex: u = N.L, v = N.H, a dependent read of rgb = v^96). Not the
+// exponent by multiplies: the chapter advises against powers above 16 that way (8-bit
+// products band), and 16 would be the wrong size. Blinn's N.H^96 stands for Persson's
+// (R.V)^24: the angle between R and V is about twice the angle between N and H, so
+// cos(2a)^24 ~ exp(-48 a^2) ~ cos(a)^96 -- the same highlight, as the ps.2.0 technique.
 technique PerPixelPhong_ps11
 <
-    string Description = "ps.1.1 dot3 diffuse + specular ^24 by multiplies, two additive passes";
+    string Description = "ps.1.1 dot3 diffuse + specular by table lookup (N.H^96 ~ (R.V)^24), two additive passes";
     int Quality = 3;
-    float Cost = 17.0;
+    float Cost = 11.0;
 >
 {
     pass Diffuse
@@ -406,37 +423,40 @@ technique PerPixelPhong_ps11
         VertexShaderConstantF[11] = <AttenuationConstant>;
         VertexShaderConstantF[12] = <AttenuationQuadratic>;
 
-        Texture[0] = <BaseTexture>;
-        Texture[1] = <NormalMap>;
+        Texture[0] = <NormalMap>;
+        Texture[3] = <BaseTexture>;
         MinFilter[0] = Linear;
         MagFilter[0] = Linear;
         MipFilter[0] = Linear;
-        MinFilter[1] = Linear;
-        MagFilter[1] = Linear;
-        MipFilter[1] = Linear;
+        MinFilter[3] = Linear;
+        MagFilter[3] = Linear;
+        MipFilter[3] = Linear;
 
         PixelShaderConstant[0] = <AmbientColor>;
 
         PixelShader = asm
         {
             ps.1.1
-            tex t0                       // base texture
-            tex t1                       // normal map
-            texcoord t3                  // light colour * attenuation, from oT3
+            tex t0                       // normal map
+            tex t3                       // base texture
 
-            dp3_sat r0, t1_bx2, v0_bx2   // N.L
-            mad r0, r0, t3, c0           // * light colour * attenuation + ambient
-            mul r0, r0, t0               // * base
+            dp3_sat r0, t0_bx2, v0_bx2   // N.L
+            mad r0, r0, v1, c0           // * light colour * attenuation + ambient
+            mul r0, r0, t3               // * base
         };
     }
 
     pass Specular
     {
         // Vertex shader and constants persist from the first pass.
-        Texture[2] = <GlossMap>;
+        Texture[1] = NULL;               // texm3x2pad: the stage's coordinates only
+        Texture[2] = <SpecularTable>;
+        Texture[3] = <GlossMap>;
+        AddressU[2] = Clamp;             // N.L, N.H < 0 land on the table's dark edge
+        AddressV[2] = Clamp;
         MinFilter[2] = Linear;
         MagFilter[2] = Linear;
-        MipFilter[2] = Linear;
+        MipFilter[2] = None;
 
         AlphaBlendEnable = True;
         SrcBlend = One;
@@ -447,18 +467,13 @@ technique PerPixelPhong_ps11
         PixelShader = asm
         {
             ps.1.1
-            tex t1                       // normal map
-            tex t2                       // gloss map
-            texcoord t3                  // light colour * attenuation
+            tex t0                       // normal map
+            texm3x2pad t1, t0_bx2        // u = N.L (light direction in t1)
+            texm3x2tex t2, t0_bx2        // v = N.H (half angle in t2); t2 = table(u, v)
+            tex t3                       // gloss map
 
-            dp3_sat r1, t1_bx2, v1_bx2   // N.H, v1 = half angle
-            mul r1, r1, r1               //  2nd power
-            mul r1, r1, r1               //  4th power
-            mul r1, r1, r1               //  8th power
-            mul r0, r1, r1               // 16th power
-            mul r0, r0, r1               // 24th power = 16th * 8th
-            mul r0, r0, t2               // * gloss
-            mul r0, r0, t3               // * light colour * attenuation
+            mul r0, t2, t3               // N.H^96 * gloss
+            mul r0, r0, v1               // * light colour * attenuation
         };
     }
 }

@@ -73,9 +73,12 @@ float SpecularPower
     float UIMax = 128.0;
 > = 16.0;
 
-// Emboss: how far (in texture coordinates) the height map is shifted toward the light;
-// about one texel of the 128x128 height map.
-float4 EmbossOffset = { 0.008, 0.008, 0.0, 0.0 };
+// Emboss: how far (in texture coordinates) the height map is shifted toward the light:
+// two texels of the 128x128 height map. One texel (0.008) drew a sixth of the relief the
+// normal map draws (mean change 4.6/255 on the lit side against 29/255): invisible. Two
+// double it and still follow the normal map's relief (correlation 0.84); more shifts the
+// difference past the bumps it should outline (0.65 at five texels).
+float4 EmbossOffset = { 0.016, 0.016, 0.0, 0.0 };
 
 texture EarthTexture
 <

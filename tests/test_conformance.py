@@ -10,8 +10,8 @@ difference larger than rounding was traced to its root:
    takes LOD = 0.5 * fast_log2(rho^2), where fast_log2 is exact at powers of two and linear
    in between, so its LOD is up to 0.043 below log2(rho), which D3D (and the reference)
    use. Trilinear blends then differ by up to ~4/255, and ps.1.1 Phong (specular ^24 by
-   repeated squaring) amplifies that to 10/255. Measured at 63 x 63: PerPixelPhong_ps11 max
-   10, Specular_ps20 max 7, PerPixelPhong_ps20 max 5, every other mip-mapped case <= 3.
+   repeated squaring, before it became a table lookup) amplified that to 10/255. Measured at
+   63 x 63: PerPixelPhong_ps11 max 10, Specular_ps20 max 7, PerPixelPhong_ps20 max 5, every other mip-mapped case <= 3.
    With the reference's LOD replaced by Mesa's formula (`llvmpipe_quad_lod`), every one of
    those cases agrees within 2/255: the "lod" bound below. The GL spec allows such an
    approximation, so this is a principled difference, not a bug on either side.
@@ -96,7 +96,7 @@ BOUNDS = {
     ("hemisphere.fx", "HemispherePerPixel_ps11"): Bound("lod", _LOD),
     ("phong.fx", "SingleTexture"): Bound("lod", _LOD),
     ("phong.fx", "Dot3_dx7"): Bound("lod", _LOD),
-    ("phong.fx", "PerPixelPhong_ps11"): Bound("lod", _LOD + "; x^24 by squaring amplifies it"),
+    ("phong.fx", "PerPixelPhong_ps11"): Bound("lod", _LOD + "; the N.H^96 table amplifies it"),
     ("phong.fx", "PerPixelPhong_ps20"): Bound("lod", _LOD + "; pow() amplifies it"),
     ("sdk8_style.fx", "TDX6"): Bound("exact", "bilinear without mip filtering"),
     ("sdk8_style.fx", "TFF7"): Bound("lod", _LOD),

@@ -407,7 +407,7 @@ FX_COUNTS = {
                       (None, [17])],
     "hemisphere.fx": [("HemispherePerPixel_ps11", [17]), ("HemisphereVertex_vs11", [20]),
                       ("SingleTexture", [21])],
-    "phong.fx": [("PerPixelPhong_ps20", [14]), ("PerPixelPhong_ps11", [18, 10]),
+    "phong.fx": [("PerPixelPhong_ps20", [14]), ("PerPixelPhong_ps11", [18, 14]),
                  ("Dot3_dx7", [30]), ("SingleTexture", [34])],
     "specular_bump.fx": [("Specular_ps20", [10]), ("SpecularTable_ps11", [19]),
                          ("SpecularMultiply_ps11", [13]), ("Dot3_dx7", [19]),

@@ -1,7 +1,7 @@
 // phong.fx technique PerPixelPhong_ps11, lowered for geforce3
 // pass 1 of 2: Diffuse
 #version 330 core
-// vertex shader for IR program 7ba4fd24bb5e428b
+// vertex shader for IR program 44f70f4ffd2530c7
 in vec4 attr_position;
 in vec4 attr_texcoord0;
 in vec4 attr_tangent;
@@ -21,8 +21,8 @@ uniform vec4 u_vs_c11;
 uniform vec4 u_vs_c10;
 uniform vec2 d3d_pixel_size;  // (2/W, 2/H): one pixel in NDC
 out vec4 vary_color0;
+out vec4 vary_color1;
 out vec4 vary_texcoord0;
-out vec4 vary_texcoord1;
 out vec4 vary_texcoord3;
 
 void main() {
@@ -118,44 +118,43 @@ void main() {
     vec4 v88 = (v86 * v87 + v87);  // %88 = mad %86, %87, %87
     vec4 v89 = vec4(1.0, 1.0, 1.0, 1.0);  // %89 = const (1.0, 1.0, 1.0, 1.0)
     vec4 v90 = vec4(v88.x, v88.y, v88.z, v89.w);  // %90 = merge %89, %88 mask=xyz
-    vec4 v91 = vec4(dot(v79.xyz, v33.xyz));  // %91 = dp3 %79, %33
-    vec4 v92 = vec4(v91.x, v26.y, v26.z, v26.w);  // %92 = merge %26, %91 mask=x
-    vec4 v93 = vec4(dot(v79.xyz, v49.xyz));  // %93 = dp3 %79, %49
-    vec4 v94 = vec4(v92.x, v93.y, v92.z, v92.w);  // %94 = merge %92, %93 mask=y
-    vec4 v95 = vec4(dot(v79.xyz, v40.xyz));  // %95 = dp3 %79, %40
-    vec4 v96 = vec4(v94.x, v94.y, v95.z, v94.w);  // %96 = merge %94, %95 mask=z
-    vec4 v97 = v96.xyzz;  // %97 = swizzle %96 pattern=xyzz
-    vec4 v98 = (v97 * v87 + v87);  // %98 = mad %97, %87, %87
-    vec4 v99 = vec4(v98.x, v98.y, v98.z, v26.w);  // %99 = merge %26, %98 mask=xyz
-    vec4 v100 = u_vs_c12;  // %100 = input vs_c12
-    vec4 v101 = v100.xxxx;  // %101 = swizzle %100 pattern=xxxx
-    vec4 v102 = v59.wwww;  // %102 = swizzle %59 pattern=wwww
-    vec4 v103 = (v101 * v102);  // %103 = mul %101, %102
-    vec4 v104 = vec4(v103.x, v26.y, v26.z, v26.w);  // %104 = merge %26, %103 mask=x
-    vec4 v105 = v104.xxxx;  // %105 = swizzle %104 pattern=xxxx
-    vec4 v106 = u_vs_c11;  // %106 = input vs_c11
-    vec4 v107 = v106.xxxx;  // %107 = swizzle %106 pattern=xxxx
-    vec4 v108 = (v105 + v107);  // %108 = add %105, %107
-    vec4 v109 = vec4(v108.x, v104.y, v104.z, v104.w);  // %109 = merge %104, %108 mask=x
-    vec4 v110 = v109.xxxx;  // %110 = swizzle %109 pattern=xxxx
-    vec4 v111 = mix(1.0 / v110, vec4(uintBitsToFloat(0x7F800000u)), equal(v110, vec4(0.0)));  // %111 = rcp %110
-    vec4 v112 = vec4(v111.x, v109.y, v109.z, v109.w);  // %112 = merge %109, %111 mask=x
-    vec4 v113 = u_vs_c10;  // %113 = input vs_c10
-    vec4 v114 = v112.xxxx;  // %114 = swizzle %112 pattern=xxxx
-    vec4 v115 = (v113 * v114);  // %115 = mul %113, %114
-    vec4 v116 = clamp(v90, 0.0, 1.0);  // %116 = saturate %90
-    vec4 v117 = clamp(v99, 0.0, 1.0);  // %117 = saturate %99
+    vec4 v91 = vec4(v85.x, v85.y, v85.z, v12.w);  // %91 = merge %12, %85 mask=xyz
+    vec4 v92 = vec4(dot(v79.xyz, v33.xyz));  // %92 = dp3 %79, %33
+    vec4 v93 = vec4(v92.x, v26.y, v26.z, v26.w);  // %93 = merge %26, %92 mask=x
+    vec4 v94 = vec4(dot(v79.xyz, v49.xyz));  // %94 = dp3 %79, %49
+    vec4 v95 = vec4(v93.x, v94.y, v93.z, v93.w);  // %95 = merge %93, %94 mask=y
+    vec4 v96 = vec4(dot(v79.xyz, v40.xyz));  // %96 = dp3 %79, %40
+    vec4 v97 = vec4(v95.x, v95.y, v96.z, v95.w);  // %97 = merge %95, %96 mask=z
+    vec4 v98 = vec4(v97.x, v97.y, v97.z, v12.w);  // %98 = merge %12, %97 mask=xyz
+    vec4 v99 = u_vs_c12;  // %99 = input vs_c12
+    vec4 v100 = v99.xxxx;  // %100 = swizzle %99 pattern=xxxx
+    vec4 v101 = v59.wwww;  // %101 = swizzle %59 pattern=wwww
+    vec4 v102 = (v100 * v101);  // %102 = mul %100, %101
+    vec4 v103 = vec4(v102.x, v26.y, v26.z, v26.w);  // %103 = merge %26, %102 mask=x
+    vec4 v104 = v103.xxxx;  // %104 = swizzle %103 pattern=xxxx
+    vec4 v105 = u_vs_c11;  // %105 = input vs_c11
+    vec4 v106 = v105.xxxx;  // %106 = swizzle %105 pattern=xxxx
+    vec4 v107 = (v104 + v106);  // %107 = add %104, %106
+    vec4 v108 = vec4(v107.x, v103.y, v103.z, v103.w);  // %108 = merge %103, %107 mask=x
+    vec4 v109 = v108.xxxx;  // %109 = swizzle %108 pattern=xxxx
+    vec4 v110 = mix(1.0 / v109, vec4(uintBitsToFloat(0x7F800000u)), equal(v109, vec4(0.0)));  // %110 = rcp %109
+    vec4 v111 = vec4(v110.x, v108.y, v108.z, v108.w);  // %111 = merge %108, %110 mask=x
+    vec4 v112 = u_vs_c10;  // %112 = input vs_c10
+    vec4 v113 = v111.xxxx;  // %113 = swizzle %111 pattern=xxxx
+    vec4 v114 = (v112 * v113);  // %114 = mul %112, %113
+    vec4 v115 = clamp(v90, 0.0, 1.0);  // %115 = saturate %90
+    vec4 v116 = clamp(v114, 0.0, 1.0);  // %116 = saturate %114
     vec4 out_position = v11;  // output position = %11
-    vec4 out_color0 = v116;  // output color0 = %116
-    vec4 out_color1 = v117;  // output color1 = %117
+    vec4 out_color0 = v115;  // output color0 = %115
+    vec4 out_color1 = v116;  // output color1 = %116
     vec4 out_texcoord0 = v14;  // output texcoord0 = %14
-    vec4 out_texcoord1 = v14;  // output texcoord1 = %14
-    vec4 out_texcoord2 = v14;  // output texcoord2 = %14
-    vec4 out_texcoord3 = v115;  // output texcoord3 = %115
+    vec4 out_texcoord1 = v91;  // output texcoord1 = %91
+    vec4 out_texcoord2 = v98;  // output texcoord2 = %98
+    vec4 out_texcoord3 = v14;  // output texcoord3 = %14
 #line 10000
     vary_color0 = clamp(out_color0, 0.0, 1.0);
+    vary_color1 = clamp(out_color1, 0.0, 1.0);
     vary_texcoord0 = out_texcoord0;
-    vary_texcoord1 = out_texcoord1;
     vary_texcoord3 = out_texcoord3;
     vec4 p = out_position;
     // D3D clip space to GL's: half-pixel shift to D3D9 pixel centres, y flipped
@@ -166,7 +165,7 @@ void main() {
 }
 // pass 2 of 2: Specular
 #version 330 core
-// vertex shader for IR program 7ba4fd24bb5e428b
+// vertex shader for IR program 44f70f4ffd2530c7
 in vec4 attr_position;
 in vec4 attr_texcoord0;
 in vec4 attr_tangent;
@@ -186,6 +185,7 @@ uniform vec4 u_vs_c11;
 uniform vec4 u_vs_c10;
 uniform vec2 d3d_pixel_size;  // (2/W, 2/H): one pixel in NDC
 out vec4 vary_color1;
+out vec4 vary_texcoord0;
 out vec4 vary_texcoord1;
 out vec4 vary_texcoord2;
 out vec4 vary_texcoord3;
@@ -283,42 +283,42 @@ void main() {
     vec4 v88 = (v86 * v87 + v87);  // %88 = mad %86, %87, %87
     vec4 v89 = vec4(1.0, 1.0, 1.0, 1.0);  // %89 = const (1.0, 1.0, 1.0, 1.0)
     vec4 v90 = vec4(v88.x, v88.y, v88.z, v89.w);  // %90 = merge %89, %88 mask=xyz
-    vec4 v91 = vec4(dot(v79.xyz, v33.xyz));  // %91 = dp3 %79, %33
-    vec4 v92 = vec4(v91.x, v26.y, v26.z, v26.w);  // %92 = merge %26, %91 mask=x
-    vec4 v93 = vec4(dot(v79.xyz, v49.xyz));  // %93 = dp3 %79, %49
-    vec4 v94 = vec4(v92.x, v93.y, v92.z, v92.w);  // %94 = merge %92, %93 mask=y
-    vec4 v95 = vec4(dot(v79.xyz, v40.xyz));  // %95 = dp3 %79, %40
-    vec4 v96 = vec4(v94.x, v94.y, v95.z, v94.w);  // %96 = merge %94, %95 mask=z
-    vec4 v97 = v96.xyzz;  // %97 = swizzle %96 pattern=xyzz
-    vec4 v98 = (v97 * v87 + v87);  // %98 = mad %97, %87, %87
-    vec4 v99 = vec4(v98.x, v98.y, v98.z, v26.w);  // %99 = merge %26, %98 mask=xyz
-    vec4 v100 = u_vs_c12;  // %100 = input vs_c12
-    vec4 v101 = v100.xxxx;  // %101 = swizzle %100 pattern=xxxx
-    vec4 v102 = v59.wwww;  // %102 = swizzle %59 pattern=wwww
-    vec4 v103 = (v101 * v102);  // %103 = mul %101, %102
-    vec4 v104 = vec4(v103.x, v26.y, v26.z, v26.w);  // %104 = merge %26, %103 mask=x
-    vec4 v105 = v104.xxxx;  // %105 = swizzle %104 pattern=xxxx
-    vec4 v106 = u_vs_c11;  // %106 = input vs_c11
-    vec4 v107 = v106.xxxx;  // %107 = swizzle %106 pattern=xxxx
-    vec4 v108 = (v105 + v107);  // %108 = add %105, %107
-    vec4 v109 = vec4(v108.x, v104.y, v104.z, v104.w);  // %109 = merge %104, %108 mask=x
-    vec4 v110 = v109.xxxx;  // %110 = swizzle %109 pattern=xxxx
-    vec4 v111 = mix(1.0 / v110, vec4(uintBitsToFloat(0x7F800000u)), equal(v110, vec4(0.0)));  // %111 = rcp %110
-    vec4 v112 = vec4(v111.x, v109.y, v109.z, v109.w);  // %112 = merge %109, %111 mask=x
-    vec4 v113 = u_vs_c10;  // %113 = input vs_c10
-    vec4 v114 = v112.xxxx;  // %114 = swizzle %112 pattern=xxxx
-    vec4 v115 = (v113 * v114);  // %115 = mul %113, %114
-    vec4 v116 = clamp(v90, 0.0, 1.0);  // %116 = saturate %90
-    vec4 v117 = clamp(v99, 0.0, 1.0);  // %117 = saturate %99
+    vec4 v91 = vec4(v85.x, v85.y, v85.z, v12.w);  // %91 = merge %12, %85 mask=xyz
+    vec4 v92 = vec4(dot(v79.xyz, v33.xyz));  // %92 = dp3 %79, %33
+    vec4 v93 = vec4(v92.x, v26.y, v26.z, v26.w);  // %93 = merge %26, %92 mask=x
+    vec4 v94 = vec4(dot(v79.xyz, v49.xyz));  // %94 = dp3 %79, %49
+    vec4 v95 = vec4(v93.x, v94.y, v93.z, v93.w);  // %95 = merge %93, %94 mask=y
+    vec4 v96 = vec4(dot(v79.xyz, v40.xyz));  // %96 = dp3 %79, %40
+    vec4 v97 = vec4(v95.x, v95.y, v96.z, v95.w);  // %97 = merge %95, %96 mask=z
+    vec4 v98 = vec4(v97.x, v97.y, v97.z, v12.w);  // %98 = merge %12, %97 mask=xyz
+    vec4 v99 = u_vs_c12;  // %99 = input vs_c12
+    vec4 v100 = v99.xxxx;  // %100 = swizzle %99 pattern=xxxx
+    vec4 v101 = v59.wwww;  // %101 = swizzle %59 pattern=wwww
+    vec4 v102 = (v100 * v101);  // %102 = mul %100, %101
+    vec4 v103 = vec4(v102.x, v26.y, v26.z, v26.w);  // %103 = merge %26, %102 mask=x
+    vec4 v104 = v103.xxxx;  // %104 = swizzle %103 pattern=xxxx
+    vec4 v105 = u_vs_c11;  // %105 = input vs_c11
+    vec4 v106 = v105.xxxx;  // %106 = swizzle %105 pattern=xxxx
+    vec4 v107 = (v104 + v106);  // %107 = add %104, %106
+    vec4 v108 = vec4(v107.x, v103.y, v103.z, v103.w);  // %108 = merge %103, %107 mask=x
+    vec4 v109 = v108.xxxx;  // %109 = swizzle %108 pattern=xxxx
+    vec4 v110 = mix(1.0 / v109, vec4(uintBitsToFloat(0x7F800000u)), equal(v109, vec4(0.0)));  // %110 = rcp %109
+    vec4 v111 = vec4(v110.x, v108.y, v108.z, v108.w);  // %111 = merge %108, %110 mask=x
+    vec4 v112 = u_vs_c10;  // %112 = input vs_c10
+    vec4 v113 = v111.xxxx;  // %113 = swizzle %111 pattern=xxxx
+    vec4 v114 = (v112 * v113);  // %114 = mul %112, %113
+    vec4 v115 = clamp(v90, 0.0, 1.0);  // %115 = saturate %90
+    vec4 v116 = clamp(v114, 0.0, 1.0);  // %116 = saturate %114
     vec4 out_position = v11;  // output position = %11
-    vec4 out_color0 = v116;  // output color0 = %116
-    vec4 out_color1 = v117;  // output color1 = %117
+    vec4 out_color0 = v115;  // output color0 = %115
+    vec4 out_color1 = v116;  // output color1 = %116
     vec4 out_texcoord0 = v14;  // output texcoord0 = %14
-    vec4 out_texcoord1 = v14;  // output texcoord1 = %14
-    vec4 out_texcoord2 = v14;  // output texcoord2 = %14
-    vec4 out_texcoord3 = v115;  // output texcoord3 = %115
+    vec4 out_texcoord1 = v91;  // output texcoord1 = %91
+    vec4 out_texcoord2 = v98;  // output texcoord2 = %98
+    vec4 out_texcoord3 = v14;  // output texcoord3 = %14
 #line 10000
     vary_color1 = clamp(out_color1, 0.0, 1.0);
+    vary_texcoord0 = out_texcoord0;
     vary_texcoord1 = out_texcoord1;
     vary_texcoord2 = out_texcoord2;
     vary_texcoord3 = out_texcoord3;
