@@ -54,6 +54,7 @@ from typing import Any, Callable, Mapping
 
 import yaml
 
+from effects import limits, untrusted, yaml_input
 from effects.errors import Location, ProfileError
 
 PROFILE_DIR = Path(__file__).resolve().parent.parent / "caps_profiles"
@@ -425,6 +426,10 @@ def clear_cache() -> None:
 def _resolve(name_or_path: str | Path, relative_to: Path | None = None,
              where: Location | None = None) -> Path:
     text = str(name_or_path)
+    where = where or Location(yaml_input.brief(text)[1:-1] or "<profile>", 1, 1)
+    if not text.strip():
+        raise ProfileError("the profile name is empty; name a card (`effects profiles` lists "
+                           "them) or a .yaml file", where)
     looks_like_path = text.endswith((".yaml", ".yml")) or "/" in text or "\\" in text
     if looks_like_path:
         path = Path(text)
@@ -432,13 +437,15 @@ def _resolve(name_or_path: str | Path, relative_to: Path | None = None,
             path = relative_to / path
         if path.is_file():
             return path.resolve()
-        raise _located(f"no profile file '{text}'", where or Location(text, 1, 1))
+        if path.exists():   # a directory, a FIFO, a device: say which
+            untrusted.check_regular(str(path), "profile", ProfileError, where)
+        raise _located(f"no profile file '{text}'", where)
     candidate = PROFILE_DIR / f"{text}.yaml"
     if candidate.is_file():
         return candidate.resolve()
     known = sorted(p.stem for p in PROFILE_DIR.glob("*.yaml"))
     raise _located(f"unknown profile '{text}'{_did_you_mean(text, known)}; "
-                   f"known profiles: {', '.join(known)}", where or Location(text, 1, 1))
+                   f"known profiles: {', '.join(known)}", where)
 
 
 @lru_cache(maxsize=None)
@@ -456,6 +463,8 @@ def _build(path: Path, chain: tuple[str, ...]) -> CapsProfile:
         if str(parent_path) in chain + (str(path),):
             raise _located(f"inherit cycle: {' -> '.join(Path(p).stem for p in chain)}"
                            f"{' -> ' if chain else ''}{path.stem} -> {inherit}", where)
+        if len(chain) + 2 > limits.get("inherit_depth"):
+            raise _located(limits.message("inherit_depth", len(chain) + 2, "the inherit chain"), where)
         # Parents are built afresh along the chain (not from the cache) so a cycle is seen.
         parent = _build(parent_path, chain + (str(path),))
     caps, where_defined, quirks = _merge(parent, raw, key_locations, path)
@@ -525,7 +534,7 @@ class _Reader:
     def __init__(self, path: Path, text: str) -> None:
         self.path = str(path)
         self.lines = text.splitlines()
-        self.constructor = yaml.constructor.SafeConstructor()
+        self.constructor = yaml_input.Constructor()
 
     def loc(self, node: yaml.Node) -> Location:
         return Location(self.path, node.start_mark.line + 1, node.start_mark.column + 1)
@@ -538,7 +547,10 @@ class _Reader:
     def scalar(self, node: yaml.Node) -> Any:
         if not isinstance(node, yaml.ScalarNode):
             return node  # the caller reports the wrong type
-        return self.constructor.construct_object(node)
+        try:
+            return self.constructor.construct_object(node)
+        except yaml.YAMLError as exc:   # a tag that cannot build its value (`!!int abc`)
+            raise yaml_input.located(exc, self.path, ProfileError, "YAML value error", self.lines) from None
 
     def pairs(self, node: yaml.Node, what: str) -> list[tuple[str, yaml.Node, yaml.Node]]:
         if not isinstance(node, yaml.MappingNode):
@@ -548,7 +560,7 @@ class _Reader:
         for key_node, value_node in node.value:
             key = self.scalar(key_node)
             if not isinstance(key, str):
-                raise self.error(f"{what}: keys must be names, not {key!r}", key_node)
+                raise self.error(f"{what}: keys must be names, not {yaml_input.brief(key)}", key_node)
             if key in seen:
                 first = self.loc(seen[key])
                 raise self.error(f"duplicate key '{key}' (first at line {first.line})", key_node)
@@ -598,6 +610,8 @@ class _Reader:
         return float(value)
 
     def _range(self, spec, value, node, name):
+        if value != value:   # NaN compares false with every bound
+            raise self.error(f"{name} must be a number, not NaN", node)
         if spec.low is not None and value < spec.low:
             raise self.error(f"{name} must be at least {spec.low}, not {value}", node)
         if spec.high is not None and value > spec.high:
@@ -741,24 +755,12 @@ class _Reader:
 
 def _read(path: Path) -> tuple[dict, dict[str, Location], dict[str, Location]]:
     """Parse and check one profile file: (values, value locations, key locations)."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ProfileError(f"cannot read profile: {exc}", Location(str(path), 1, 1)) from None
+    text = untrusted.read_text(path, "profile", ProfileError, "yaml_bytes")
     reader = _Reader(path, text)
-    try:
-        # libyaml's loader when PyYAML was built with it: the pure-Python one is most of the
-        # time `effects matrix` takes; both give the same nodes and marks.
-        root = yaml.compose(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
-    except yaml.MarkedYAMLError as exc:
-        mark = exc.problem_mark or exc.context_mark
-        where = Location(str(path), mark.line + 1, mark.column + 1) if mark else \
-            Location(str(path), 1, 1)
-        line = reader.lines[where.line - 1] if 0 < where.line <= len(reader.lines) else None
-        raise ProfileError(f"YAML syntax error: {exc.problem or exc.context}", where,
-                           source_line=line) from None
-    except yaml.YAMLError as exc:
-        raise ProfileError(f"YAML error: {exc}", Location(str(path), 1, 1)) from None
+    # libyaml's parser where PyYAML has it (yaml_input): the pure-Python one is most of the
+    # time `effects matrix` takes; both give the same nodes and marks.
+    loader, root = yaml_input.compose(text, str(path), ProfileError)
+    loader.dispose()
     if root is None:
         raise ProfileError("empty profile", Location(str(path), 1, 1))
     values: dict[str, Any] = {}
@@ -784,9 +786,9 @@ def _read(path: Path) -> tuple[dict, dict[str, Location], dict[str, Location]]:
 def _located(message: str, where: Location) -> ProfileError:
     """A ProfileError at `where`, showing that line of the file when it can be read."""
     try:
-        lines = Path(where.path).read_text(encoding="utf-8").splitlines()
+        lines = untrusted.read_text(where.path, "profile", ProfileError, "yaml_bytes").splitlines()
         line = lines[where.line - 1] if 0 < where.line <= len(lines) else None
-    except (OSError, UnicodeDecodeError):
+    except ProfileError:
         line = None
     return ProfileError(message, where, source_line=line)
 
@@ -803,4 +805,4 @@ def _describe(value: Any) -> str:
         return "a mapping" if isinstance(value, yaml.MappingNode) else "a list"
     if value is None:
         return "nothing"
-    return f"{type(value).__name__} {value!r}"
+    return f"{type(value).__name__} {yaml_input.brief(value)}"

@@ -295,6 +295,8 @@ class Effect:
     warnings: list[EffectWarning] = field(default_factory=list, compare=False)
     # paths of every file read (the effect and its #includes), for hot reload
     files: tuple[str, ...] = field(default=(), compare=False)
+    # the folder every file the effect names must lie in (load_effect's include_root), or None
+    include_root: str | None = field(default=None, compare=False)
 
     # -- lookup ------------------------------------------------------------------------------
     def technique(self, name: str) -> Technique:

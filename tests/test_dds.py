@@ -6,13 +6,14 @@ import numpy as np
 import pytest
 
 from effects.host import dds
+from effects.host import pixel_formats as pf
 from effects.errors import SceneError
 from effects.host.textures import Texture, encode, mip_chain
 
 
 def decode_words(fmt: str, words, nbytes: int) -> np.ndarray:
     raw = b"".join(int(w).to_bytes(nbytes, "little") for w in words)
-    return dds.unpack(np.frombuffer(raw, np.uint8), dds.pixel_format(fmt), (1, len(words)))[0]
+    return pf.unpack(np.frombuffer(raw, np.uint8), pf.pixel_format(fmt), (1, len(words)))[0]
 
 
 # ---- signed formats, by hand ----------------------------------------------------------------
@@ -56,9 +57,9 @@ def test_missing_channels_of_unsigned_and_float_formats():
     assert decode_words("A8", [0x33], 1)[0].tolist() == pytest.approx([0, 0, 0, 0.2])
     assert decode_words("A8L8", [0x3366], 2)[0].tolist() == pytest.approx([0.4, 0.4, 0.4, 0.2])
     r32 = np.frombuffer(struct.pack("<f", -2.5), np.uint8)
-    assert dds.unpack(r32, dds.pixel_format("R32F"), (1, 1))[0, 0].tolist() == [-2.5, 1, 1, 1]
+    assert pf.unpack(r32, pf.pixel_format("R32F"), (1, 1))[0, 0].tolist() == [-2.5, 1, 1, 1]
     g16r16 = np.frombuffer(np.array([0.5, -3.0], "<f2").tobytes(), np.uint8)
-    assert dds.unpack(g16r16, dds.pixel_format("G16R16F"), (1, 1))[0, 0].tolist() == [0.5, -3.0, 1, 1]
+    assert pf.unpack(g16r16, pf.pixel_format("G16R16F"), (1, 1))[0, 0].tolist() == [0.5, -3.0, 1, 1]
 
 
 def test_encode_is_the_stored_value():
@@ -146,11 +147,11 @@ def test_dxt5_interpolated_alpha_both_modes(tmp_path):
     assert np.all(img[..., :3] == 1.0)
 
 
-UNCOMPRESSED = [name for name, f in dds.FORMATS.items() if not f.compressed]
+UNCOMPRESSED = [name for name, f in pf.FORMATS.items() if not f.compressed]
 
 
 def random_values(fmt: str, shape, rng) -> np.ndarray:
-    f = dds.pixel_format(fmt)
+    f = pf.pixel_format(fmt)
     lo = -1.0 if f.signed else (-4.0 if f.float_dtype else 0.0)
     hi = 4.0 if f.float_dtype else 1.0
     return rng.uniform(lo, hi, shape + (4,)).astype(np.float32)

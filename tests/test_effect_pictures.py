@@ -31,6 +31,7 @@ import pytest
 
 import effects
 import effects.host.textures
+from effects.host.texture_files import load_texture
 from effects.host.textures import Texture, make_texture, procedural
 
 FXFILES = os.path.join(os.path.dirname(__file__), "..", "fxfiles")
@@ -206,7 +207,7 @@ def normal_map(effect: str) -> Texture:
 
 def base_texture(effect: str) -> Texture:
     name = "stones_base.png" if effect == "phong" else "earth_base.png"
-    return effects.host.textures.load_texture(os.path.join(FXFILES, "textures", name))
+    return load_texture(os.path.join(FXFILES, "textures", name))
 
 
 def base_key(effect: str) -> str:

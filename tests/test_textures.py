@@ -5,6 +5,7 @@ import pytest
 from PIL import Image
 
 from effects.host import textures as T
+from effects.host.texture_files import load_texture
 from effects.errors import SceneError
 
 
@@ -191,7 +192,7 @@ def test_png_through_pillow(tmp_path):
                        [[0, 0, 255, 255], [10, 20, 30, 1]]], np.uint8)
     path = tmp_path / "known.png"
     Image.fromarray(pixels, "RGBA").save(path)
-    tex = T.load_texture(path)
+    tex = load_texture(path)
     assert (tex.kind, tex.format, len(tex.levels)) == ("2d", "A8R8G8B8", 2)
     np.testing.assert_allclose(tex.levels[0], pixels / 255.0, atol=1e-7)
     assert tex.levels[1][0, 0, 3] == pytest.approx(160 / 255)   # rint(639 / 4)
@@ -200,14 +201,14 @@ def test_png_through_pillow(tmp_path):
 def test_npy_cube_volume_and_luminance(tmp_path):
     cube = np.random.default_rng(0).uniform(-2, 2, (6, 4, 4, 3)).astype(np.float32)
     np.save(tmp_path / "c.npy", cube)
-    tex = T.load_texture(tmp_path / "c.npy")
+    tex = load_texture(tmp_path / "c.npy")
     assert (tex.kind, tex.format) == ("cube", "A32B32G32R32F")
     np.testing.assert_array_equal(tex.levels[0][..., :3], cube)
     assert np.all(tex.levels[0][..., 3] == 1)
     np.save(tmp_path / "v.npy", np.zeros((6, 4, 4, 4), np.float32))
-    assert T.load_texture(tmp_path / "v.npy", kind="3d").kind == "3d"
+    assert load_texture(tmp_path / "v.npy", kind="3d").kind == "3d"
     np.save(tmp_path / "l.npy", np.full((2, 2, 1), 51, np.uint8))
-    lum = T.load_texture(tmp_path / "l.npy")
+    lum = load_texture(tmp_path / "l.npy")
     assert lum.levels[0][0, 0].tolist() == pytest.approx([0.2, 0.2, 0.2, 1.0])
 
 
@@ -215,7 +216,7 @@ def test_dds_through_load_texture(tmp_path):
     from effects.host.dds import write_dds
     tex = T.make_texture(np.zeros((6, 4, 4, 4)), "X8R8G8B8", kind="cube")
     write_dds(tmp_path / "c.dds", tex)
-    back = T.load_texture(tmp_path / "c.dds", kind="cube")
+    back = load_texture(tmp_path / "c.dds", kind="cube")
     assert back.kind == "cube" and len(back.levels) == 3
 
 
@@ -235,7 +236,7 @@ def test_bad_texture_files(tmp_path, name, content, kind, message):
     elif content is not None:
         path.write_bytes(content)
     with pytest.raises(SceneError) as info:
-        T.load_texture(path, kind=kind)
+        load_texture(path, kind=kind)
     assert message in str(info.value)
     assert str(info.value).startswith(f"{path}:1:1: error:")
 

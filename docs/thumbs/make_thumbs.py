@@ -13,7 +13,8 @@ import numpy as np
 from PIL import Image
 
 import effects
-from effects.host.textures import fill_cube_texture, load_texture, make_texture, procedural
+from effects.host.texture_files import load_texture
+from effects.host.textures import fill_cube_texture, make_texture, procedural
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))

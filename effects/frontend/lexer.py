@@ -188,7 +188,7 @@ class EffectLexer:
                 kind = punct[value]
                 if kind == "SLASH" and text.startswith("/*", start):
                     raise Located("unterminated comment: '/*' has no closing '*/'", line, col)
-            elif kind != "STRING" and kind != "INDEX" and len(value) > MAX_LITERAL_LENGTH:
+            elif kind != "STRING" and len(value) > MAX_LITERAL_LENGTH:  # INDEX too: `[999...]`
                 raise Located(f"number literal is too long ({len(value)} characters)", line, col)
 
             if kind in special:

@@ -4,29 +4,31 @@ from __future__ import annotations
 import os
 from typing import Callable, Mapping
 
+from effects import limits, untrusted
 from effects.errors import EffectError, Location, PreprocessError
 from effects.model import Effect
 
 IncludeHandler = Callable[[str, str], "str | None"]
 
 
-def _looks_like_path(source: str) -> bool:
-    """One line with no braces or semicolons names a file; anything else is effect text."""
-    return not any(c in source for c in "\n{;") and len(source) < 4096
+def _names_a_file(source: str) -> bool:
+    """Whether `source` names a file rather than being effect text: an existing path always
+    does (`my{1}.fx` too); otherwise one short line with no braces or semicolons."""
+    if "\n" in source or len(source) > 4096:
+        return False
+    try:
+        if os.path.lexists(source):
+            return True
+    except (ValueError, OSError):  # a NUL byte, a name too long for the file system
+        return False
+    return not any(c in source for c in "{;")
 
 
 def read_source_file(path: str) -> str:
-    """Read an effect file as text; a stray non-ASCII byte must not stop the load."""
-    try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except OSError as exc:
-        raise PreprocessError(f"cannot read effect file: {exc.strerror}", Location(path, 1, 1)) from None
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError:
-        # Old effect files are Windows-1252 or worse; latin-1 maps every byte to one char.
-        return data.decode("latin-1")
+    """Read an effect file as text: a regular file within the `source_bytes` limit, UTF-8 or
+    BOM-marked UTF-16/32, else Latin-1 (a stray Windows-1252 byte must not stop the load)."""
+    return untrusted.read_text(path, "effect file", PreprocessError, "source_bytes",
+                               latin1_fallback=True)
 
 
 def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str, str] | None = None,
@@ -40,17 +42,22 @@ def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str,
     from effects.frontend.preprocess import preprocess
 
     source = os.fspath(path_or_text)
-    if _looks_like_path(source):
+    if _names_a_file(source):
         path = source
         text = read_source_file(path)
     else:
         path, text = "<string>", source
+        if len(text) * 4 > limits.get("source_bytes"):   # count bytes only when it may matter
+            limits.check("source_bytes", len(text.encode("utf-8", "surrogatepass")),
+                         Location(path, 1, 1), "the effect text", PreprocessError)
     pre = preprocess(text, path, defines=defines, include_dirs=tuple(include_dirs),
                      include_handler=include_handler, include_root=include_root)
     try:
-        return parse_effect(pre, strict=strict)
+        effect = parse_effect(pre, strict=strict)
     except EffectError:
         raise
     except RecursionError:
         loc = pre.source_map.locate(1, 1)
         raise pre.source_map.error_at(EffectError, "input nests too deeply to parse", loc) from None
+    effect.include_root = None if include_root is None else os.fspath(include_root)
+    return effect

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from itertools import repeat
 from typing import Callable, Mapping, Sequence
 
+from effects import limits, untrusted
 from effects.errors import Location, PreprocessError
 from effects.frontend.macros import MAX_ARGUMENT_PARENS, MAX_EXPANSION_TOKENS, MAX_MACRO_NESTING, MacroTable
 from effects.frontend.preprocess_expr import MAX_EXPRESSION_NESTING, evaluate_condition
@@ -63,15 +64,6 @@ def _is_pseudo_path(path: str) -> bool:
     return path.startswith("<") and path.endswith(">")
 
 
-def _read_text(path: str) -> str:
-    with open(path, "rb") as f:
-        data = f.read()
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError:
-        return data.decode("latin-1")  # every byte is one character: a stray byte survives
-
-
 class _Preprocessor:
     def __init__(self, include_dirs: Sequence[str], include_handler, include_root: str | None) -> None:
         self.include_dirs = [os.fspath(d) for d in include_dirs]
@@ -84,6 +76,8 @@ class _Preprocessor:
         self.files: list[str] = []
         self.chain: list[tuple[str, str]] = []  # (realpath, path) of the files being included
         self.once: set[str] = set()
+        self.include_count = 0
+        self.included_bytes = 0
 
     def error(self, message: str, location: Location) -> PreprocessError:
         return self.smap.error_at(PreprocessError, message, location)
@@ -291,10 +285,20 @@ class _Preprocessor:
             start = [r for r, _ in self.chain].index(real)
             cycle = " -> ".join(chain[start:] + [path])
             raise self.error(f"#include cycle: {cycle}", location)
+        # the budget of the whole load: each file including the next twice doubles per level
+        self.include_count += 1
+        if self.include_count > limits.get("include_count"):
+            raise self.error(limits.message("include_count", self.include_count,
+                                            "this load's #include list"), location)
         try:
-            included = _read_text(path)
-        except OSError as exc:
-            raise self.error(f"cannot read include file '{name}': {exc.strerror}", location) from None
+            included = untrusted.read_text(path, f"include file '{name}'", PreprocessError,
+                                           "source_bytes", location, latin1_fallback=True)
+        except PreprocessError as exc:
+            raise self.error(exc.message, location) from None
+        self.included_bytes += len(included)
+        if self.included_bytes > limits.get("included_bytes"):
+            raise self.error(limits.message("included_bytes", self.included_bytes,
+                                            "the text this load read through #include"), location)
         self.chain.append((real, path))
         self.run_file(included, path, unit.depth + 1, real, spliced=True)
         self.chain.pop()

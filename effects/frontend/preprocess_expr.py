@@ -10,6 +10,7 @@ import operator
 import re
 from typing import Callable, Mapping
 
+from effects import limits
 from effects.errors import Location, PreprocessError
 from effects.frontend.macros import MacroTable
 from effects.frontend.preprocess_tokens import Span, Token, next_solid, tokenize
@@ -143,6 +144,8 @@ class _Expression:
             if match is None:
                 raise self.fail(f"invalid integer constant '{tok.text[:40]}' in {self.where}", tok)
             digits = match.group(1)
+            if len(digits) > limits.get("literal_digits"):
+                raise self.fail(limits.message("literal_digits", len(digits), f"an integer in {self.where}"), tok)
             base = 16 if digits[:2] in ("0x", "0X") else 8 if len(digits) > 1 and digits[0] == "0" else 10
             self.i += 1
             return _int64(int(digits, base))

@@ -39,7 +39,10 @@ from effects.errors import Location, SceneError
 from effects.host.meshes import Mesh, by_name
 from effects.model import Effect, Parameter
 from effects.host.scene import InlineMesh, Scene
-from effects.host.textures import PROCEDURAL, Texture, load_texture, procedural
+from effects import limits
+from effects.host.texture_files import load_texture
+from effects.host.textures import PROCEDURAL, Texture, procedural
+from effects.untrusted import confine
 
 STREAM_NAMES = ("position", "normal", "tangent", "binormal", "color0", "color1",
                 *(f"texcoord{i}" for i in range(8)))
@@ -102,11 +105,13 @@ DEFAULT_TEXTURE_CACHE = TextureCache()
 @dataclass(frozen=True)
 class TextureSource:
     """A user's value for a texture parameter: a path (relative to `base_dir`) or a Texture,
-    and where it was written (for errors)."""
+    and where it was written (for errors). A scene's paths obey the effect's include root;
+    a value the host itself gives (`--set`, `params=`) does not (`confined=False`)."""
 
     value: str | Texture
     base_dir: str
     location: Location
+    confined: bool = True   # under the effect's include root (False: the command line's --set)
 
 
 def resolve_texture(param: Parameter, effect: Effect, given: TextureSource | None = None,
@@ -114,15 +119,18 @@ def resolve_texture(param: Parameter, effect: Effect, given: TextureSource | Non
     """The texture for one texture parameter (module docstring order), or None if unbound."""
     cache = cache or DEFAULT_TEXTURE_CACHE
     kind = declared_kind(param)
+    root = effect.include_root   # with one, every file the effect (or its scene) names stays inside
     if given is not None:
         if isinstance(given.value, Texture):
             texture = given.value
         elif _names_procedural(given.value):
             # 'sobel_normals:textures/h.png', 'sky_cube:64': a generator, as the annotation
             # `string Procedural = "..."` names one (fxfiles/README.md)
-            texture = procedural(given.value, base_dir=given.base_dir, location=given.location)
+            texture = procedural(given.value, base_dir=given.base_dir, location=given.location,
+                                 root=root if given.confined else None)
         else:
-            path = given.value if os.path.isabs(given.value) else os.path.join(given.base_dir, given.value)
+            path = confine(given.value, given.base_dir, root if given.confined else None,
+                           "texture", SceneError, given.location)
             texture = cache.load(path, kind, given.location)
         _check_kind(param, texture, kind, given.location)
         return texture
@@ -130,18 +138,30 @@ def resolve_texture(param: Parameter, effect: Effect, given: TextureSource | Non
     resource = param.annotation("ResourceName")
     if resource is not None and isinstance(resource.value, str) and resource.value.strip():
         name = resource.value.strip()
-        return cache.load(name if os.path.isabs(name) else os.path.join(base, name), kind,
-                          resource.location)
+        path = confine(name, base, root, "ResourceName", SceneError, resource.location)
+        return cache.load(path, kind, resource.location)
     generator = param.annotation("Procedural")
     if generator is not None and isinstance(generator.value, str):
         width = param.annotation("Width")
         size = None
         if width is not None and not isinstance(width.value, str):
-            size = int(np.asarray(width.value).reshape(-1)[0])
-        texture = procedural(generator.value, size=size, base_dir=base, location=generator.location)
+            first = np.asarray(width.value, np.float64).reshape(-1)
+            if first.size == 0 or not np.isfinite(first[0]) or not 1 <= first[0] <= 1 << 20:
+                raise SceneError(f"Width annotation {str(width.value)[:40]} is not a texture size",
+                                 width.location)
+            size = int(first[0])
+        texture = procedural(generator.value, size=size, base_dir=base, location=generator.location,
+                             root=root)
         _check_kind(param, texture, kind, generator.location)
         return texture
     return None
+
+
+def check_texture_budget(textures: Mapping[str, "Texture | None"], at: Location) -> None:
+    """All textures one render binds against the `effect_texels` limit."""
+    total = sum(t.width * t.height * (6 if t.kind == "cube" else t.depth)
+                for t in textures.values() if t is not None)
+    limits.check("effect_texels", total, at, "the textures this render binds", SceneError)
 
 
 def _names_procedural(value: str) -> bool:

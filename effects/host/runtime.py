@@ -28,8 +28,8 @@ from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
 
-from effects.host.assets import (DEFAULT_TEXTURE_CACHE, Geometry, TextureCache, TextureSource, declared_kind,
-                     geometry, resolve_texture)
+from effects.host.assets import (DEFAULT_TEXTURE_CACHE, Geometry, TextureCache, TextureSource, check_texture_budget,
+                     declared_kind, geometry, resolve_texture)
 from effects.errors import EffectError, Location, NoValidTechnique, SceneError
 from effects.model import Effect, Parameter, Technique
 from effects.host.scene import MAX_SIZE, Scene, load_scene
@@ -169,7 +169,8 @@ class Runtime:
              source: str = "") -> None:
         coerced = coerce_value(param, value, at, source)
         if param.type.base == "texture":
-            self._given[param.name] = TextureSource(coerced, base_dir, at)
+            self._given[param.name] = TextureSource(coerced, base_dir, at,
+                                                    confined=source == "scene params")
             self._textures.pop(param.name, None)
         else:
             param.value = coerced
@@ -192,6 +193,7 @@ class Runtime:
             else:
                 self._textures[name] = resolve_texture(param, self.effect, self._given.get(name),
                                                        self.texture_cache)
+                check_texture_budget(self._textures, param.location)
         return self._textures[name]
 
     # -- technique -------------------------------------------------------------------------

@@ -22,6 +22,7 @@ from typing import Any, Mapping
 import numpy as np
 import yaml
 
+from effects import untrusted, yaml_input
 from effects.errors import Location, SceneError
 
 Color = tuple[float, float, float, float]
@@ -45,7 +46,7 @@ class _Seq(list):
     marks: list
 
 
-class _Loader(yaml.SafeLoader):
+class _Loader(yaml_input.Loader):
     path = "<scene>"
 
 
@@ -62,7 +63,7 @@ def _construct_map(loader: _Loader, node: yaml.MappingNode) -> _Map:
         try:
             out[key] = loader.construct_object(value_node, deep=True)
         except TypeError:  # an unhashable key such as a list
-            raise SceneError(f"a scene key must be a name, not {key!r}", _mark(loader, key_node)) from None
+            raise SceneError(f"a scene key must be a name, not {yaml_input.brief(key)}", _mark(loader, key_node)) from None
         out.marks[key] = _mark(loader, value_node)
     return out
 
@@ -102,11 +103,11 @@ def parse_color(value: Any, at: Location) -> Color:
                 return d3dcolor(int(text, 16))
             except ValueError:
                 pass
-        raise SceneError(f"colour {value!r} is neither [r, g, b, a] nor '0xAARRGGBB'", at)
+        raise SceneError(f"colour {yaml_input.brief(value)} is neither [r, g, b, a] nor '0xAARRGGBB'", at)
     if isinstance(value, (list, tuple)) and len(value) in (3, 4) and all(_is_number(c) for c in value):
         c = [float(x) for x in value]
         return (c[0], c[1], c[2], c[3] if len(c) == 4 else 1.0)
-    raise SceneError(f"colour {value!r} is neither [r, g, b, a] nor '0xAARRGGBB'", at)
+    raise SceneError(f"colour {yaml_input.brief(value)} is neither [r, g, b, a] nor '0xAARRGGBB'", at)
 
 
 def d3dcolor(packed: int) -> Color:
@@ -121,7 +122,7 @@ def _is_number(v: Any) -> bool:
 
 def _number(value: Any, what: str, at: Location) -> float:
     if not _is_number(value):
-        raise SceneError(f"{what} needs a number, got {value!r}", at)
+        raise SceneError(f"{what} needs a number, got {yaml_input.brief(value)}", at)
     return float(value)
 
 
@@ -129,7 +130,7 @@ def _vector(value: Any, sizes: tuple[int, ...], what: str, at: Location) -> np.n
     if not isinstance(value, (list, tuple)) or len(value) not in sizes or \
             not all(_is_number(c) for c in value):
         counts = " or ".join(str(n) for n in sizes)
-        raise SceneError(f"{what} needs {counts} numbers, got {value!r}", at)
+        raise SceneError(f"{what} needs {counts} numbers, got {yaml_input.brief(value)}", at)
     return np.asarray(value, np.float64)
 
 
@@ -137,10 +138,10 @@ def _mapping(value: Any, what: str, keys: tuple[str, ...], at: Location) -> Mapp
     if value is None:
         return {}
     if not isinstance(value, dict):
-        raise SceneError(f"{what} takes a mapping of {', '.join(keys)}, got {value!r}", at)
+        raise SceneError(f"{what} takes a mapping of {', '.join(keys)}, got {yaml_input.brief(value)}", at)
     unknown = [k for k in value if k not in keys]
     if unknown:
-        raise SceneError(f"unknown {what} key {unknown[0]!r} (known: {', '.join(keys)})",
+        raise SceneError(f"unknown {what} key {yaml_input.brief(unknown[0])} (known: {', '.join(keys)})",
                          where(value, unknown[0], at))
     return value
 
@@ -299,20 +300,14 @@ def load_scene(source: "str | os.PathLike[str] | Mapping[str, Any] | Scene | Non
 
 
 def _read_yaml(path: str) -> Any:
-    try:
-        with open(path, encoding="utf-8") as f:
-            text = f.read()
-    except OSError as exc:
-        raise SceneError(f"cannot read scene file: {exc.strerror or exc}", Location(path, 1, 1)) from None
-    loader = _Loader(text)
+    text = untrusted.read_text(path, "scene file", SceneError, "yaml_bytes")
+    loader, root = yaml_input.compose(text, path, SceneError, "scene file is not valid YAML",
+                                      loader=_Loader)
     loader.path = path
     try:
-        return loader.get_single_data()
+        return None if root is None else loader.construct_document(root)
     except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        line, col = (mark.line + 1, mark.column + 1) if mark else (1, 1)
-        raise SceneError(f"scene file is not valid YAML: {getattr(exc, 'problem', None) or exc}",
-                         Location(path, line, col)) from None
+        raise yaml_input.located(exc, path, SceneError, "scene file is not valid YAML") from None
     finally:
         loader.dispose()
 
@@ -326,7 +321,7 @@ def scene_from_mapping(data: Any, *, path: str = "<scene>", base_dir: str = ".")
         raise SceneError("a scene file is a mapping of keys such as mesh, camera, light", where(data, None, top))
     unknown = [k for k in data if k not in SCENE_KEYS]
     if unknown:
-        raise SceneError(f"unknown scene key {unknown[0]!r} (known: {', '.join(SCENE_KEYS)})",
+        raise SceneError(f"unknown scene key {yaml_input.brief(unknown[0])} (known: {', '.join(SCENE_KEYS)})",
                          where(data, unknown[0], top))
     scene = Scene(base_dir=base_dir, path=path)
     at = lambda key: where(data, key, top)  # noqa: E731
@@ -337,7 +332,7 @@ def scene_from_mapping(data: Any, *, path: str = "<scene>", base_dir: str = ".")
     if "size" in data:
         size = _vector(data["size"], (2,), "size", at("size"))
         if size.min() < 1 or size.max() > MAX_SIZE or np.any(size != np.round(size)):
-            raise SceneError(f"size {data['size']!r} must be two whole numbers from 1 to {MAX_SIZE}", at("size"))
+            raise SceneError(f"size {yaml_input.brief(data['size'])} must be two whole numbers from 1 to {MAX_SIZE}", at("size"))
         scene.size = (int(size[0]), int(size[1]))
     clear = _mapping(data.get("clear"), "clear", ("color", "depth", "stencil"), at("clear"))
     if "color" in clear:
@@ -350,7 +345,7 @@ def scene_from_mapping(data: Any, *, path: str = "<scene>", base_dir: str = ".")
     if "stencil" in clear:
         stencil = clear["stencil"]
         if not isinstance(stencil, int) or isinstance(stencil, bool) or not 0 <= stencil <= 0xFF:
-            raise SceneError(f"clear stencil must be an integer 0..255, got {stencil!r}",
+            raise SceneError(f"clear stencil must be an integer 0..255, got {yaml_input.brief(stencil)}",
                              where(clear, "stencil", at("clear")))
         scene.clear_stencil = stencil
     _parse_camera(scene, data.get("camera"), at("camera"))
@@ -370,7 +365,7 @@ def scene_from_mapping(data: Any, *, path: str = "<scene>", base_dir: str = ".")
             raise SceneError("params is a mapping NAME: value", at("params"))
         for name, value in params.items():
             if not isinstance(name, str):
-                raise SceneError(f"a parameter name must be text, not {name!r}", where(params, name, at("params")))
+                raise SceneError(f"a parameter name must be text, not {yaml_input.brief(name)}", where(params, name, at("params")))
             scene.params[name] = value
             scene.locations[f"params.{name}"] = where(params, name, at("params"))
     streams = data.get("streams")
@@ -425,13 +420,13 @@ def _parse_mesh(value: Any, at: Location) -> str | InlineMesh:
     if isinstance(value, str):
         from effects.host.meshes import MESHES
         if value not in MESHES and not value.lower().endswith(".obj"):
-            raise SceneError(f"unknown mesh {value!r} (known: {', '.join(MESHES)}, a .obj file, "
+            raise SceneError(f"unknown mesh {yaml_input.brief(value)} (known: {', '.join(MESHES)}, a .obj file, "
                              "or {primitive, vertices})", at)
         return value
     mesh = _mapping(value, "mesh", ("primitive", "vertices"), at)
     primitive = mesh.get("primitive", "list")
     if primitive not in PRIMITIVES:
-        raise SceneError(f"mesh primitive must be one of {', '.join(PRIMITIVES)}, got {primitive!r}",
+        raise SceneError(f"mesh primitive must be one of {', '.join(PRIMITIVES)}, got {yaml_input.brief(primitive)}",
                          where(mesh, "primitive", at))
     vertices = mesh.get("vertices")
     vat = where(mesh, "vertices", at)

@@ -1,7 +1,7 @@
 """Textures the effects sample: the `Texture` container, mip chains, quantisation, procedural
-generators (so no large image is committed) and loading from image, .dds and .npy files.
+generators (so no large image is committed); files load through `effects.host.texture_files`.
 
-Conventions (all of this module and `effects.host.dds`):
+Conventions (all of this module, `effects.host.pixel_formats` and `effects.host.dds`):
 - A `Texture` holds DECODED texel values, float32, RGBA in the last axis: what a card's sampler
   returns for each stored texel ([0, 1] for unsigned formats, [-1, 1] for the signed bump
   formats, any float for the float formats). Where the format quantises, the values are exactly
@@ -29,7 +29,10 @@ from typing import Callable
 
 import numpy as np
 
-from effects.host import dds
+from effects import limits
+from effects.untrusted import confine
+from effects.host import pixel_formats
+from effects.host.images import read_image
 from effects.errors import Location, SceneError
 
 KINDS = ("1d", "2d", "3d", "cube")
@@ -59,7 +62,7 @@ class Texture:
     @property
     def signed(self) -> bool:
         """True for the bump formats whose channels decode to [-1, 1]."""
-        return dds.pixel_format(self.format).signed
+        return pixel_formats.pixel_format(self.format).signed
 
 
 # ---------------------------------------------------------------------------------------------
@@ -69,9 +72,9 @@ class Texture:
 def encode(values: np.ndarray, format: str) -> np.ndarray:
     """`values` (..., 4) as `format` stores them: the decoded values a card would sample.
 
-    Channels the format lacks read as the format's defaults (see `effects.host.dds`).
+    Channels the format lacks read as the format's defaults (see `effects.host.pixel_formats`).
     """
-    return dds.quantize(values, dds.pixel_format(format))
+    return pixel_formats.quantize(values, pixel_formats.pixel_format(format))
 
 
 def _area_weights(n: int, m: int) -> np.ndarray:
@@ -481,6 +484,13 @@ class Procedural:
     doc: str = ""
     arg_is_size: bool = False
     takes_height: bool = False
+    kind: str = "2d"     # with `aspect`, how many texels a size makes (checked before making)
+    aspect: int = 1      # width / height
+
+    def extent(self, size: int) -> tuple[int, int, int]:
+        """(width, height, layers) of the top level at edge length `size`."""
+        layers = {"cube": 6, "3d": size}.get(self.kind, 1)
+        return size * self.aspect, size, layers
 
 
 def _freeze(texture: Texture) -> Texture:
@@ -507,7 +517,7 @@ def _grey(h: np.ndarray) -> np.ndarray:
 
 PROCEDURAL: dict[str, Procedural] = {
     "earth": Procedural(lambda a, s, h: make_texture(earth_base(s), "X8R8G8B8"), 128,
-                        doc="Earth-like colour map, size x 2*size, X8R8G8B8"),
+                        doc="Earth-like colour map, size x 2*size, X8R8G8B8", aspect=2),
     "height": Procedural(lambda a, s, h: make_texture(_grey(h), "L8"), 128, "bumps",
                          "height field KIND (bumps|stones|craters|noise) or image, L8", takes_height=True),
     "height_alpha": Procedural(lambda a, s, h: make_texture(_rgba(np.zeros(h.shape + (3,)), h), "A8"),
@@ -525,10 +535,11 @@ PROCEDURAL: dict[str, Procedural] = {
     "gloss": Procedural(lambda a, s, h: make_texture(gloss_map(s), "L8", blur=True), 128,
                         doc="gloss map, L8, blurred mips"),
     "environment": Procedural(lambda a, s, h: make_texture(environment_cube(s), "X8R8G8B8", kind="cube"), 64,
-                              doc="sky and checkered ground cube map, X8R8G8B8", arg_is_size=True),
+                              doc="sky and checkered ground cube map, X8R8G8B8", arg_is_size=True,
+                              kind="cube"),
     "normalization_cube": Procedural(
         lambda a, s, h: Texture("cube", "X8R8G8B8", [encode(normalization_cube(s), "X8R8G8B8")]), 32,
-        doc="normalisation cube map, X8R8G8B8, one level", arg_is_size=True),
+        doc="normalisation cube map, X8R8G8B8, one level", arg_is_size=True, kind="cube"),
     "power": Procedural(lambda a, s, h: Texture("2d", "A8R8G8B8", [encode(power_table(s, float(a))[0], "A8R8G8B8")]),
                         256, "16", "Boyd-Taylor table: rgb = v^N (rows N.H), alpha = u (N.L); A8R8G8B8"),
     "power1d": Procedural(lambda a, s, h: Texture("1d", "L8", [encode(power_table_1d(s, float(a)), "L8")]),
@@ -536,9 +547,10 @@ PROCEDURAL: dict[str, Procedural] = {
     "power_range": Procedural(lambda a, s, h: Texture("2d", "L8", [encode(power_range_table(s, float(a)), "L8")]),
                               256, "128", "rgb = u^(v*MAX): columns N.H, rows exponent/MAX; L8"),
     "noise_volume": Procedural(lambda a, s, h: make_texture(noise_volume(s), "A8R8G8B8", kind="3d"), 32,
-                               doc="tileable 4-channel noise volume, A8R8G8B8", arg_is_size=True),
+                               doc="tileable 4-channel noise volume, A8R8G8B8", arg_is_size=True,
+                               kind="3d"),
     "noise3d": Procedural(lambda a, s, h: make_texture(_grey(noise_volume(s)[..., 0]), "L8", kind="3d"), 32,
-                          doc="tileable value-noise volume, L8", arg_is_size=True),
+                          doc="tileable value-noise volume, L8", arg_is_size=True, kind="3d"),
     "checker": Procedural(lambda a, s, h: make_texture(checker(s, int(a)), "X8R8G8B8"), 64, "8",
                           "checkerboard with N squares a side, X8R8G8B8"),
 }
@@ -552,14 +564,9 @@ def _is_path(arg: str) -> bool:
 
 
 def _height_from_image(path: str, where: Location) -> np.ndarray:
-    from PIL import Image, UnidentifiedImageError
     if not os.path.isfile(path):
         raise SceneError(f"height image not found: {path}", where)
-    try:
-        with Image.open(path) as img:
-            return np.asarray(img.convert("L"), np.float32) / 255.0
-    except (OSError, UnidentifiedImageError, ValueError) as exc:
-        raise SceneError(f"cannot read height image {path}: {exc}", where) from None
+    return read_image(path, "L", where, "height image").astype(np.float32) / 255.0
 
 
 @functools.lru_cache(maxsize=64)
@@ -574,12 +581,13 @@ def _procedural_cached(base: str, arg: str, size: int, path: str, stamp: float) 
 
 
 def procedural(name: str, *, size: int | None = None, base_dir: str | None = None,
-               location: Location | None = None) -> Texture:
+               location: Location | None = None, root: str | None = None) -> Texture:
     """A procedural texture by name, 'NAME' or 'NAME:ARG' (see `PROCEDURAL` and the table above),
     e.g. 'sobel_normals:stones', 'sobel_normals:textures/h.png' (an image path, relative to
     `base_dir`), 'power_table:16', 'normalization_cube:32'. `size` overrides the default edge
     length (an edge-length argument wins over it). Results are cached (image arguments by file
-    modification time) and read-only. Problems raise `SceneError` at `location`."""
+    modification time) and read-only. With `root` (the effect's include root) an image argument
+    must lie inside it (`effects.untrusted.confine`). Problems raise `SceneError` at `location`."""
     where = location or Location(f"procedural:{name}", 1, 1)
     base, _, arg = name.partition(":")
     entry = PROCEDURAL.get(base)
@@ -588,15 +596,17 @@ def procedural(name: str, *, size: int | None = None, base_dir: str | None = Non
     arg = arg.strip() or entry.default_arg
     size = entry.size if size is None else size
     if entry.arg_is_size and arg:
-        if not arg.isdigit():
-            raise SceneError(f"bad argument {arg!r} for procedural texture {base!r}: "
+        if not (arg.isascii() and arg.isdigit()):
+            raise SceneError(f"bad argument {arg[:40]!r} for procedural texture {base!r}: "
                              "expected an edge length", where)
+        limits.check_digits(arg, where, SceneError)
         size = int(arg)
-    if not 1 <= int(size) <= 4096:
-        raise SceneError(f"procedural texture size {size} is out of range 1..4096", where)
+    if int(size) < 1:
+        raise SceneError(f"procedural texture size {size} must be at least 1", where)
+    limits.check_texture(*entry.extent(int(size)), where, f"procedural texture {base!r}", SceneError)
     path, stamp = "", 0.0
     if entry.takes_height and _is_path(arg):
-        path = arg if base_dir is None or os.path.isabs(arg) else os.path.join(base_dir, arg)
+        path = confine(arg, base_dir or os.getcwd(), root, "procedural image", SceneError, where)
         stamp = os.path.getmtime(path) if os.path.isfile(path) else -1.0
     try:
         return _procedural_cached(base, arg, int(size), path, stamp)
@@ -604,89 +614,3 @@ def procedural(name: str, *, size: int | None = None, base_dir: str | None = Non
         raise SceneError(exc.message, where) from None
     except ValueError as exc:
         raise SceneError(f"bad argument {arg!r} for procedural texture {base!r}: {exc}", where) from None
-
-
-# ---------------------------------------------------------------------------------------------
-# Loading files
-
-
-def _load_image(path: str, where: Location) -> Texture:
-    from PIL import Image, UnidentifiedImageError
-    try:
-        with Image.open(path) as img:
-            rgba = np.asarray(img.convert("RGBA"), np.float32) / 255.0
-    except (OSError, UnidentifiedImageError, ValueError) as exc:
-        raise SceneError(f"cannot read image: {exc}", where) from None
-    return make_texture(rgba, "A8R8G8B8", name=os.path.basename(path))
-
-
-def _expand_channels(a: np.ndarray) -> np.ndarray:
-    """(..., C) texels, C = 1 (L), 2 (L, A), 3 (RGB) or 4 (RGBA) -> (..., 4)."""
-    c = a.shape[-1]
-    if c == 1:
-        return np.concatenate([a, a, a, np.ones_like(a)], -1)
-    if c == 2:
-        return np.concatenate([a[..., :1]] * 3 + [a[..., 1:]], -1)
-    if c == 3:
-        return np.concatenate([a, np.ones_like(a[..., :1])], -1)
-    return a
-
-
-def _load_npy(path: str, where: Location, kind: str | None) -> Texture:
-    try:
-        raw = np.load(path, allow_pickle=False)
-    except (OSError, ValueError) as exc:
-        raise SceneError(f"cannot read .npy texture: {exc}", where) from None
-    if raw.dtype == np.uint8:
-        values, fmt = raw.astype(np.float32) / 255.0, "A8R8G8B8"
-    elif raw.dtype.kind == "f":
-        values, fmt = raw.astype(np.float32), "A32B32G32R32F"
-    else:
-        raise SceneError(f".npy texture must be uint8 or float, not {raw.dtype}", where)
-    if raw.ndim not in (3, 4) or not 1 <= raw.shape[-1] <= 4 or 0 in raw.shape:
-        raise SceneError(f".npy texture shape {raw.shape} is not (H, W, C), (6, H, W, C) or "
-                         "(D, H, W, C) with C in 1..4", where)
-    if raw.ndim == 3:
-        file_kind = "1d" if kind == "1d" and raw.shape[0] == 1 else "2d"
-    elif kind in ("cube", "3d"):
-        file_kind = kind
-    else:
-        file_kind = "cube" if raw.shape[0] == 6 and raw.shape[1] == raw.shape[2] else "3d"
-    if file_kind == "cube" and (raw.shape[0] != 6 or raw.shape[1] != raw.shape[2]):
-        raise SceneError(f".npy cube map must be (6, N, N, C), not {raw.shape}", where)
-    if not np.all(np.isfinite(values)):
-        raise SceneError(".npy texture holds NaN or infinite values", where)
-    return make_texture(_expand_channels(values), fmt, kind=file_kind, name=os.path.basename(path))
-
-
-_IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg", ".bmp", ".tga", ".gif", ".tif", ".tiff", ".ppm")
-
-
-def load_texture(path: str | os.PathLike[str], *, kind: str | None = None) -> Texture:
-    """Load a texture file: images through Pillow (A8R8G8B8, full mip chain), `.dds` through our
-    reader (its own format, kind and mips), `.npy` raw texels (H, W, C), (6, H, W, C) cube or
-    (D, H, W, C) volume, uint8 (A8R8G8B8) or float (A32B32G32R32F), C = L, LA, RGB or RGBA.
-
-    `kind`, when given, is what the caller needs ('2d', 'cube', '3d', '1d'); a file of another
-    kind is an error. Every problem is a `SceneError` at the file (line 1, column 1).
-    """
-    path = os.fspath(path)
-    where = Location(path, 1, 1)
-    if kind is not None and kind not in KINDS:
-        raise ValueError(f"unknown texture kind {kind!r}")
-    if not os.path.isfile(path):
-        raise SceneError("texture file not found", where)
-    ext = os.path.splitext(path)[1].lower()
-    if ext == ".dds":
-        texture = dds.read_dds(path)
-    elif ext == ".npy":
-        texture = _load_npy(path, where, kind)
-    elif ext in _IMAGE_EXTENSIONS:
-        texture = _load_image(path, where)
-    else:
-        raise SceneError(f"unknown texture file type {ext or '(none)'!r}", where)
-    if kind == "1d" and texture.kind == "2d" and texture.height == 1:
-        texture.kind = "1d"
-    if kind is not None and texture.kind != kind:
-        raise SceneError(f"texture is a {texture.kind} texture, but a {kind} texture is needed", where)
-    return texture

@@ -14,6 +14,7 @@ import re
 from dataclasses import dataclass
 from typing import Iterator
 
+from effects import limits
 from effects.errors import AsmError, Location
 from effects.model import ShaderBlock
 from effects.shaders.asm.instructions import COMPARISONS, is_known, lookup, rows_named
@@ -123,6 +124,8 @@ class _Parser:
             self.current = next(self.tokens)
             if self.current.type == "bad":
                 raise self.error(f"unexpected character '{self.current.text}'", self.current)
+            if len(self.current.text) > limits.get("literal_digits"):  # c99999...: Python's int() stops at 4,300 digits
+                raise self.error(limits.message("literal_digits", len(self.current.text), "a word"), self.current)
         return self.current
 
     def advance(self) -> Token:

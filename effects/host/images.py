@@ -1,0 +1,34 @@
+"""Images through Pillow, bounded: the size is checked before any pixel is decoded.
+
+Pillow opens lazily (`Image.open` reads the header only), so a 17 KB PNG that claims
+12000 x 12000 pixels is refused by the `texture_edge`/`texture_texels` limits before it would
+decompress 576 MB. Pillow's own decompression-bomb guard (a warning from 89 M pixels, an
+error from 179 M) is turned into the same located error instead of reaching stderr raw.
+"""
+from __future__ import annotations
+
+import os
+import warnings
+
+import numpy as np
+
+from effects import limits, untrusted
+from effects.errors import Location, SceneError
+
+
+def read_image(path: str, mode: str, where: Location, what: str = "image") -> np.ndarray:
+    """The image at `path` converted to Pillow `mode` ('RGBA', 'L'), as a uint8 array."""
+    from PIL import Image, UnidentifiedImageError
+    untrusted.check_regular(path, what, SceneError, where, "texture_file_bytes")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", Image.DecompressionBombWarning)
+            with Image.open(path) as img:
+                width, height = img.size
+                limits.check_texture(width, height, 1, where, f"{what} {os.path.basename(path)}", SceneError)
+                return np.asarray(img.convert(mode))
+    except (Image.DecompressionBombError, Image.DecompressionBombWarning) as exc:
+        raise SceneError(f"cannot read {what}: {exc} (Pillow's decompression-bomb guard; the "
+                         f"texture_texels limit is {limits.get('texture_texels'):,})", where) from None
+    except (OSError, UnidentifiedImageError, ValueError, SyntaxError, EOFError) as exc:
+        raise SceneError(f"cannot read {what}: {exc}", where) from None

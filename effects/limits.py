@@ -1,0 +1,134 @@
+"""The resource policy for untrusted input: one named limit per thing an input can make us spend.
+
+Effect files, includes, caps profiles, scenes, textures and meshes are data from strangers
+(README "Untrusted effects"). Every door that reads them checks the amount it is about to
+spend against a limit here *before* spending it, and a breach is a located `EffectError`
+that names the limit and how to raise it. The defaults keep any one load or render of the
+bundled kind well under 1 GiB of memory and a few seconds, and are far above what the bundled
+effects, profiles and scenes use.
+
+A host raises a limit with the environment (`EFFECTS_LIMIT_TEXTURE_TEXELS=67108864`, read
+when a limit is looked up) or in code, `effects.limits.set_limit("texture_texels", N)`, or for
+a block, `with effects.limits.raised(texture_texels=N): ...`.
+"""
+from __future__ import annotations
+
+import os
+from contextlib import contextmanager
+from dataclasses import dataclass
+from typing import Iterator
+
+from effects.errors import EffectError, Location
+
+
+@dataclass(frozen=True)
+class Limit:
+    """One bound: its name, default value, unit and what it counts."""
+
+    name: str
+    default: int
+    unit: str
+    what: str
+
+
+_MIB = 1 << 20
+
+LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
+    # text the front end reads (the lexer holds ~100 bytes per character of a long string)
+    Limit("source_bytes", 1 * _MIB, "bytes", "size of one effect file or effect text"),
+    Limit("include_count", 256, "includes", "#include directives expanded in one load"),
+    Limit("included_bytes", 1 * _MIB, "bytes", "text read through #include in one load"),
+    Limit("literal_digits", 200, "digits", "digits of one integer literal (#if, asm, YAML)"),
+    # YAML (caps profiles, scenes)
+    Limit("yaml_bytes", 2 * _MIB, "bytes", "size of one caps profile or scene file"),
+    Limit("yaml_depth", 64, "levels", "nesting of YAML lists and mappings"),
+    Limit("inherit_depth", 16, "levels", "profiles in one `inherit` chain"),
+    # textures: level 0 texels counting every cube face and volume slice
+    Limit("texture_file_bytes", 256 * _MIB, "bytes", "size of one texture file"),
+    Limit("texture_edge", 8192, "texels", "width, height or depth of one texture"),
+    Limit("texture_texels", 4096 * 1024, "texels", "texels of one texture's top level"),
+    Limit("effect_texels", 16 * 1024 * 1024, "texels", "texels of all textures one render binds"),
+    # meshes
+    Limit("mesh_file_bytes", 64 * _MIB, "bytes", "size of one .obj file"),
+    Limit("mesh_vertices", 1_000_000, "vertices", "vertices of one mesh"),
+    Limit("mesh_indices", 3_000_000, "indices", "indices of one mesh (3 per triangle)"),
+    # render targets, per back end (the reference rasteriser holds ~200 bytes per pixel)
+    Limit("target_pixels_numpy", 2048 * 2048, "pixels", "render-target pixels on the numpy back end"),
+    Limit("target_pixels_gl", 8192 * 8192, "pixels", "render-target pixels on the gl back end"),
+]}
+
+_overrides: dict[str, int] = {}
+
+
+def env_name(name: str) -> str:
+    """The environment variable that raises limit `name`."""
+    return f"EFFECTS_LIMIT_{name.upper()}"
+
+
+def get(name: str) -> int:
+    """The value of limit `name` now: set_limit's, else the environment's, else the default."""
+    limit = LIMITS[name]
+    if name in _overrides:
+        return _overrides[name]
+    text = os.environ.get(env_name(name))
+    if text:
+        try:
+            return max(0, int(text.strip()[:30]))
+        except ValueError:
+            pass  # a malformed override leaves the default in force
+    return limit.default
+
+
+def set_limit(name: str, value: int | None) -> None:
+    """Set limit `name` for this process (None: back to the environment or the default)."""
+    if name not in LIMITS:
+        raise KeyError(f"unknown limit {name!r} (known: {', '.join(LIMITS)})")
+    if value is None:
+        _overrides.pop(name, None)
+    else:
+        _overrides[name] = int(value)
+
+
+@contextmanager
+def raised(**values: int) -> Iterator[None]:
+    """Limits changed for the duration of a `with` block."""
+    old = {name: _overrides.get(name) for name in values}
+    try:
+        for name, value in values.items():
+            set_limit(name, value)
+        yield
+    finally:
+        for name, value in old.items():
+            set_limit(name, value)
+
+
+def message(name: str, amount: int, subject: str) -> str:
+    """'SUBJECT has AMOUNT UNIT; the limit is N (limit NAME: raise it with ...)'."""
+    limit = LIMITS[name]
+    return (f"{subject} has {amount:,} {limit.unit}; the limit is {get(name):,} "
+            f"(limit {name}: raise it with {env_name(name)}=N or "
+            f"effects.limits.set_limit({name!r}, N))")
+
+
+def check(name: str, amount: int, location: Location, subject: str,
+          error: type[EffectError] = EffectError) -> None:
+    """Raise `error` at `location` when `amount` is over limit `name`."""
+    if amount > get(name):
+        raise error(message(name, amount, subject), location)
+
+
+def check_digits(digits: str, location: Location, error: type[EffectError] = EffectError) -> None:
+    """An integer literal's digits against `literal_digits` (Python refuses over 4,300 itself)."""
+    if len(digits) > get("literal_digits"):
+        check("literal_digits", len(digits), location, "an integer literal", error)
+
+
+def check_texture(width: int, height: int, layers: int, location: Location, subject: str,
+                  error: type[EffectError] = EffectError) -> None:
+    """A texture's top level (`layers` = 6 cube faces or the volume depth) against
+    `texture_edge` and `texture_texels`, before anything is allocated for it."""
+    edge = max(width, height, layers)
+    if edge > get("texture_edge"):
+        raise error(message("texture_edge", edge, f"{subject} ({width} x {height} x {layers})"), location)
+    check("texture_texels", width * height * layers, location, f"{subject} ({width} x {height} x {layers})",
+          error)
