@@ -3,9 +3,10 @@
 Fixed-function texture stages, ps.1.x / ps.2.0 / vs.1.1 assembly and the fixed-function vertex
 pipeline all lower to a `Program`; the NumPy reference (`backends.reference.evaluate`) and the
 GLSL 330 printer consume it. Every op is one row of `OPS` (after Mesa's `nir_opcodes.py`): its
-arity, the components it reads, its NumPy kernel, its GLSL expression and how it behaves under
-fixed-point lowering. Back ends read that row and nothing else; they never look at caps, so
-precision (clamp, quantize) is always explicit in the program.
+arity, its NumPy kernel, its GLSL expression, whether it is per component, which components of
+its arguments it reads, its column form for the evaluator. Back ends read that row and nothing
+else (no back end knows an op by name); they never look at caps, so precision (clamp,
+quantize) is always explicit in the program.
 
 Conventions
 - Every value is a vec4 of float32; the evaluator holds it as an (N, 4) array over N vertices or
@@ -143,6 +144,8 @@ class KernelContext(Protocol):
 
     def input(self, name: str) -> np.ndarray: ...
 
+    def input_columns(self, name: str) -> list: ...
+
     def sample(self, index: int, coord: np.ndarray, kind: str, bias: np.ndarray | None,
                lod: np.ndarray | None) -> np.ndarray: ...
 
@@ -153,25 +156,49 @@ Kernel = Callable[[KernelContext, Sequence[np.ndarray], Mapping[str, Any]], "np.
 GlslFormat = Callable[[Sequence[str], Mapping[str, Any]], str]
 REQUIRED = object()  # an attribute without a default
 
-# How lowering treats an op's result on fixed-point hardware (ps.1.x): 'arith' results are
-# clamped and quantised by the lowering; 'move' only rearranges existing values; 'source' makes
-# values (inputs, constants); 'precision' is itself a clamp or quantise; 'sample' returns texels
-# (already at the texture's precision); 'effect' has no result.
-PRECISION_CLASSES = ("arith", "move", "source", "precision", "sample", "effect")
+Columns = list  # four component columns, (N,) or (1,) float32, None where nothing reads them
+Demand = Callable[[frozenset, Mapping[str, Any], int], "tuple[frozenset, ...]"]
+ColumnKernel = Callable[[KernelContext, Sequence[Columns], Mapping[str, Any], frozenset], Columns]
+_ALL = frozenset(range(4))
+_XYZ = frozenset(range(3))
 
 
 @dataclass(frozen=True)
 class OpInfo:
+    """One op. Besides its arity, kernel, GLSL template and attributes, the row says what the
+    evaluator and the printers need without knowing the op by name:
+    - `per_component`: component i of the result depends on component i of the arguments only
+      (the evaluator then runs the kernel once per distinct column);
+    - `demand(wanted, attrs, arity)`: the components of each argument read to produce the
+      `wanted` components (0 = x) of the result; None means `wanted` for a per-component op
+      and all four otherwise;
+    - `columns`: the op's column form for the evaluator (moves, dots, inputs), None when it
+      runs its kernel per column (per-component ops) or on whole (N, 4) rows;
+    - `names_input` / `names_sampler`: its `name` attribute names a declared `Input`, its
+      `sampler` attribute a declared `SamplerBinding`; `discards`: it may discard fragments;
+    - `stages`: the program stages it may appear in."""
+
     name: str
     arity: int
     kernel: Kernel
     glsl: str | GlslFormat
     doc: str
-    precision: str = "arith"
     attrs: tuple[tuple[str, Any], ...] = ()        # (name, default or REQUIRED)
-    reads: tuple[str, ...] | None = None            # components read per argument; None = all
     check: Callable[[Mapping[str, Any]], None] | None = None
     has_result: bool = True
+    per_component: bool = False
+    demand: Demand | None = None
+    columns: ColumnKernel | None = None
+    names_input: bool = False
+    names_sampler: bool = False
+    discards: bool = False
+    stages: tuple[str, ...] = STAGES
+
+    def arg_demand(self, wanted: frozenset, attrs: Mapping[str, Any]) -> tuple[frozenset, ...]:
+        """The components of each argument this op reads to produce `wanted` of its result."""
+        if self.demand is not None:
+            return self.demand(wanted, attrs, self.arity)
+        return (wanted if self.per_component else _ALL,) * self.arity
 
     def format_glsl(self, args: Sequence[str], attrs: Mapping[str, Any] | None = None) -> str:
         """The GLSL 330 expression (a statement for `kill`) for this op over `args`."""
@@ -384,92 +411,158 @@ def _op(name: str, arity: int, kernel: Kernel, glsl: str | GlslFormat, doc: str,
     return OpInfo(name, arity, kernel, glsl, doc, **extra)
 
 
-_XYZ2 = ("xyz", "xyz")
+def _pc(name: str, arity: int, kernel: Kernel, glsl: str | GlslFormat, doc: str,
+        **extra: Any) -> OpInfo:
+    """A per-component op row."""
+    return OpInfo(name, arity, kernel, glsl, doc, per_component=True, **extra)
+
+
+# -- demand rules and column forms (see OpInfo)
+
+def _demand_xyz(wanted: frozenset, attrs: Mapping[str, Any], arity: int) -> tuple[frozenset, ...]:
+    return ((_XYZ if wanted else frozenset()),) * arity          # dp3, crs: xyz only
+
+
+def _demand_nrm(wanted: frozenset, attrs: Mapping[str, Any], arity: int) -> tuple[frozenset, ...]:
+    return (_XYZ | wanted if wanted else frozenset(),)            # the length, and w if wanted
+
+
+def _demand_swizzle(wanted: frozenset, attrs: Mapping[str, Any], arity: int
+                    ) -> tuple[frozenset, ...]:
+    return (frozenset(COMPONENTS.index(attrs["pattern"][i]) for i in wanted),)
+
+
+def _demand_merge(wanted: frozenset, attrs: Mapping[str, Any], arity: int
+                  ) -> tuple[frozenset, ...]:
+    mask = frozenset(COMPONENTS.index(c) for c in attrs["mask"])
+    return (wanted - mask, wanted & mask)
+
+
+def _const_columns(value: tuple) -> Columns:
+    shared: dict[float, np.ndarray] = {}
+    return [shared.setdefault(v, np.array([v], np.float32)) for v in value]
+
+
+def _columns_dot(four: bool) -> ColumnKernel:
+    def run(ctx: Any, args: Sequence[Columns], attrs: Mapping[str, Any], wanted: frozenset
+            ) -> Columns:
+        dot = dot3_columns(args[0], args[1])
+        if four:
+            dot = dot + args[0][3] * args[1][3]
+        return [dot] * 4                   # one column shared by the four components
+    return run
+
+
+def _columns_nrm(ctx: Any, args: Sequence[Columns], attrs: Mapping[str, Any],
+                 wanted: frozenset) -> Columns:
+    x = args[0]
+    scale = nrm_scale(dot3_columns(x, x))
+    return [x[i] * scale if i in wanted else None for i in range(4)]
+
+
+def _columns_swizzle(ctx: Any, args: Sequence[Columns], attrs: Mapping[str, Any],
+                     wanted: frozenset) -> Columns:
+    return [args[0][COMPONENTS.index(c)] for c in attrs["pattern"]]
+
+
+def _columns_merge(ctx: Any, args: Sequence[Columns], attrs: Mapping[str, Any],
+                   wanted: frozenset) -> Columns:
+    mask = attrs["mask"]
+    return [args[1][i] if c in mask else args[0][i] for i, c in enumerate(COMPONENTS)]
+
+
 _OP_ROWS = [
     _op("input", 0, lambda ctx, args, attrs: ctx.input(attrs["name"]),
         lambda args, attrs: attrs["name"], "the declared input `name`",
-        precision="source", attrs=(("name", REQUIRED),), check=_check_name),
+        attrs=(("name", REQUIRED),), check=_check_name, names_input=True,
+        columns=lambda ctx, args, attrs, wanted: ctx.input_columns(attrs["name"])),
     _op("const", 0, lambda ctx, args, attrs: np.broadcast_to(
             np.array(attrs["value"], dtype=np.float32), (ctx.count, 4)),
         lambda args, attrs: _vec4(attrs["value"]), "a literal vec4",
-        precision="source", attrs=(("value", REQUIRED),), check=_check_const),
-    _op("add", 2, _elementwise(lambda a, b: a + b), "({0} + {1})", "a + b"),
-    _op("sub", 2, _elementwise(lambda a, b: a - b), "({0} - {1})", "a - b"),
-    _op("mul", 2, _elementwise(lambda a, b: a * b), "({0} * {1})", "a * b"),
-    _op("mad", 3, _elementwise(lambda a, b, c: a * b + c), "({0} * {1} + {2})", "a * b + c"),
-    _op("neg", 1, _elementwise(lambda a: -a), "(-{0})", "-a (the source negate modifier)"),
+        attrs=(("value", REQUIRED),), check=_check_const,
+        columns=lambda ctx, args, attrs, wanted: _const_columns(attrs["value"])),
+    _pc("add", 2, _elementwise(lambda a, b: a + b), "({0} + {1})", "a + b"),
+    _pc("sub", 2, _elementwise(lambda a, b: a - b), "({0} - {1})", "a - b"),
+    _pc("mul", 2, _elementwise(lambda a, b: a * b), "({0} * {1})", "a * b"),
+    _pc("mad", 3, _elementwise(lambda a, b, c: a * b + c), "({0} * {1} + {2})", "a * b + c"),
+    _pc("neg", 1, _elementwise(lambda a: -a), "(-{0})", "-a (the source negate modifier)"),
     _op("dp3", 2, _elementwise(lambda a, b: _replicate(_dot3(a, b))),
-        "vec4(dot({0}.xyz, {1}.xyz))", "a.xyz . b.xyz, replicated to all four", reads=_XYZ2),
+        "vec4(dot({0}.xyz, {1}.xyz))", "a.xyz . b.xyz, replicated to all four", demand=_demand_xyz,
+        columns=_columns_dot(False)),
     _op("dp4", 2, _elementwise(lambda a, b: _replicate(_dot3(a, b) + a[:, 3] * b[:, 3])),
-        "vec4(dot({0}, {1}))", "a . b, replicated to all four"),
-    _op("min", 2, _elementwise(np.minimum), "min({0}, {1})", "per-component minimum"),
-    _op("max", 2, _elementwise(np.maximum), "max({0}, {1})", "per-component maximum"),
-    _op("rcp", 1, _elementwise(_rcp),
+        "vec4(dot({0}, {1}))", "a . b, replicated to all four", columns=_columns_dot(True)),
+    _pc("min", 2, _elementwise(np.minimum), "min({0}, {1})", "per-component minimum"),
+    _pc("max", 2, _elementwise(np.maximum), "max({0}, {1})", "per-component maximum"),
+    _pc("rcp", 1, _elementwise(_rcp),
         "mix(1.0 / {0}, vec4(" + _GLSL_INF + "), equal({0}, vec4(0.0)))",
         "1/a per component; 0 -> +inf (D3D rcp)"),
-    _op("rsq", 1, _elementwise(lambda a: 1 / np.sqrt(np.abs(a))),
+    _pc("rsq", 1, _elementwise(lambda a: 1 / np.sqrt(np.abs(a))),
         "mix(inversesqrt(abs({0})), vec4(" + _GLSL_INF + "), equal({0}, vec4(0.0)))",
         "1/sqrt(|a|) per component; 0 -> +inf (D3D rsq)"),
-    _op("exp2", 1, _elementwise(np.exp2), "exp2({0})", "2^a per component (D3D exp)"),
-    _op("log2", 1, _elementwise(lambda a: np.log2(np.abs(a))),
+    _pc("exp2", 1, _elementwise(np.exp2), "exp2({0})", "2^a per component (D3D exp)"),
+    _pc("log2", 1, _elementwise(lambda a: np.log2(np.abs(a))),
         "mix(log2(abs({0})), vec4(-" + _GLSL_INF + "), equal({0}, vec4(0.0)))",
         "log2(|a|) per component; 0 -> -inf (D3D log)"),
-    _op("pow", 2, _elementwise(lambda a, b: np.power(np.abs(a), b)),
+    _pc("pow", 2, _elementwise(lambda a, b: np.power(np.abs(a), b)),
         # GLSL leaves pow(0, b <= 0) undefined: spell out IEEE's 0^0 = 1 and 0^-y = +inf.
         "mix(pow(abs({0}), {1}), mix(vec4(" + _GLSL_INF + "), vec4(1.0), equal({1}, vec4(0.0))), "
         "bvec4(vec4(lessThanEqual({1}, vec4(0.0))) * vec4(equal({0}, vec4(0.0)))))",
         "|a|^b per component (D3D pow). IEEE pow at |a| = 0: 0^0 = 1, 0^-y = +inf"),
-    _op("frc", 1, _elementwise(lambda a: a - np.floor(a)), "fract({0})", "a - floor(a)"),
-    _op("abs", 1, _elementwise(np.abs), "abs({0})", "|a|"),
-    _op("sin", 1, _elementwise(np.sin), "sin({0})", "sin(a) radians (for sincos)"),
-    _op("cos", 1, _elementwise(np.cos), "cos({0})", "cos(a) radians (for sincos)"),
-    _op("cmp", 3, _elementwise(lambda a, b, c: np.where(a >= 0, b, c)),
+    _pc("frc", 1, _elementwise(lambda a: a - np.floor(a)), "fract({0})", "a - floor(a)"),
+    _pc("abs", 1, _elementwise(np.abs), "abs({0})", "|a|"),
+    _pc("sin", 1, _elementwise(np.sin), "sin({0})", "sin(a) radians (for sincos)"),
+    _pc("cos", 1, _elementwise(np.cos), "cos({0})", "cos(a) radians (for sincos)"),
+    _pc("cmp", 3, _elementwise(lambda a, b, c: np.where(a >= 0, b, c)),
         "mix({2}, {1}, greaterThanEqual({0}, vec4(0.0)))", "per component a >= 0 ? b : c"),
-    _op("cnd", 3, _elementwise(lambda a, b, c: np.where(a > 0.5, b, c)),
+    _pc("cnd", 3, _elementwise(lambda a, b, c: np.where(a > 0.5, b, c)),
         "mix({2}, {1}, greaterThan({0}, vec4(0.5)))",
         "per component a > 0.5 ? b : c (ps.1.1-1.3 lower r0.a with a 'wwww' swizzle)"),
-    _op("lrp", 3, _elementwise(lambda f, a, b: f * a + (1 - f) * b), "mix({2}, {1}, {0})",
+    _pc("lrp", 3, _elementwise(lambda f, a, b: f * a + (1 - f) * b), "mix({2}, {1}, {0})",
         "f * a + (1 - f) * b"),
     _op("nrm", 1, _elementwise(_nrm),
         "({0} * (dot({0}.xyz, {0}.xyz) != 0.0 ? inversesqrt(dot({0}.xyz, {0}.xyz)) : "
         + glsl_float(FLT_MAX) + "))",
-        "a * rsq(a.xyz . a.xyz): w is scaled too; zero xyz scales by FLT_MAX (D3D nrm)"),
+        "a * rsq(a.xyz . a.xyz): w is scaled too; zero xyz scales by FLT_MAX (D3D nrm)",
+        demand=_demand_nrm, columns=_columns_nrm),
     _op("crs", 2, _elementwise(_crs), "vec4(cross({0}.xyz, {1}.xyz), 0.0)",
-        "(a.xyz x b.xyz, 0)", reads=_XYZ2),
-    _op("slt", 2, _elementwise(lambda a, b: (a < b).astype(np.float32)),
+        "(a.xyz x b.xyz, 0)", demand=_demand_xyz),
+    _pc("slt", 2, _elementwise(lambda a, b: (a < b).astype(np.float32)),
         "vec4(lessThan({0}, {1}))", "per component a < b ? 1 : 0"),
-    _op("sge", 2, _elementwise(lambda a, b: (a >= b).astype(np.float32)),
+    _pc("sge", 2, _elementwise(lambda a, b: (a >= b).astype(np.float32)),
         "vec4(greaterThanEqual({0}, {1}))", "per component a >= b ? 1 : 0"),
     _op("swizzle", 1, _with_attrs(lambda a, attrs: _swizzle(a, attrs["pattern"])),
         lambda args, attrs: f"{args[0]}.{attrs['pattern']}", "a.pattern (4 of xyzw)",
-        precision="move", attrs=(("pattern", REQUIRED),), check=_check_pattern),
+        attrs=(("pattern", REQUIRED),), check=_check_pattern, demand=_demand_swizzle,
+        columns=_columns_swizzle),
     _op("merge", 2, _with_attrs(lambda old, new, attrs: _merge(old, new, attrs["mask"])),
         _glsl_merge, "write-mask merge: new where `mask` names a component, else old",
-        precision="move", attrs=(("mask", REQUIRED),), check=_check_components("mask")),
-    _op("saturate", 1, _elementwise(lambda a: np.clip(a, np.float32(0), np.float32(1))),
-        "clamp({0}, 0.0, 1.0)", "clamp to [0, 1]", precision="precision"),
-    _op("clamp", 1, _with_attrs(lambda a, attrs: np.clip(
+        attrs=(("mask", REQUIRED),), check=_check_components("mask"), demand=_demand_merge,
+        columns=_columns_merge),
+    _pc("saturate", 1, _elementwise(lambda a: np.clip(a, np.float32(0), np.float32(1))),
+        "clamp({0}, 0.0, 1.0)", "clamp to [0, 1]"),
+    _pc("clamp", 1, _with_attrs(lambda a, attrs: np.clip(
             a, np.float32(attrs["lo"]), np.float32(attrs["hi"]))),
         lambda args, attrs: (f"clamp({args[0]}, {glsl_float(attrs['lo'])}, "
                              f"{glsl_float(attrs['hi'])})"),
-        "clamp to [lo, hi] (register range of fixed-point hardware)", precision="precision",
+        "clamp to [lo, hi] (register range of fixed-point hardware)",
         attrs=(("lo", REQUIRED), ("hi", REQUIRED)), check=_check_clamp),
-    _op("quantize", 1, _with_attrs(_quantize), _glsl_quantize,
+    _pc("quantize", 1, _with_attrs(_quantize), _glsl_quantize,
         "clamp to [0, scale] (signed: [-scale, scale]) and round, halves away from zero, to "
         "multiples of scale / L, L = 2^bits - 1 (signed: 2^(bits-1) - 1). bits=8 is UNORM8 "
         "(0.5 -> 128/255); bits=9 signed is the GeForce3 combiner grid (steps of 1/255)",
-        precision="precision", attrs=(("bits", REQUIRED), ("signed", False), ("scale", 1.0)),
+        attrs=(("bits", REQUIRED), ("signed", False), ("scale", 1.0)),
         check=_check_quantize),
     _op("sample", 1, _sample, _glsl_sample,
         "texel of sampler `sampler` (a `kind` texture) at coord. proj: xyz / w first; bias: "
         "LOD bias coord.w; lod: explicit LOD coord.w. Unbound samplers read (0, 0, 0, 1)",
-        precision="sample", check=_check_sample,
+        check=_check_sample, names_sampler=True,
         attrs=(("sampler", REQUIRED), ("kind", "2d"), ("proj", False), ("bias", False),
                ("lod", False))),
     _op("kill", 1, _kill, _glsl_kill,
         "discard the fragment where any of `components` is < 0 (texkill: ps.1.x tests xyz, "
-        "ps.2.0 xyzw)", precision="effect", attrs=(("components", "xyzw"),),
-        check=_check_components("components"), has_result=False),
+        "ps.2.0 xyzw)", attrs=(("components", "xyzw"),),
+        check=_check_components("components"), has_result=False, discards=True,
+        stages=("fragment",)),
 ]
 OPS: dict[str, OpInfo] = {row.name: row for row in _OP_ROWS}
 
@@ -536,15 +629,15 @@ def check_program(program: Program) -> None:
                 raise IRError(f"{instr.op} uses %{arg} before it is defined")
         if normalize_attrs(instr.op, instr.attr_map) != instr.attrs:
             raise IRError(f"{instr.op}: attributes not in canonical form: {instr.attrs}")
-        if instr.op == "input" and instr.attr("name") not in inputs:
+        if info.names_input and instr.attr("name") not in inputs:
             raise IRError(f"input {instr.attr('name')!r} is not declared")
-        if instr.op == "sample":
+        if info.names_sampler:
             binding = samplers.get(instr.attr("sampler"))
             if binding is None or binding.kind != instr.attr("kind"):
                 raise IRError(f"sampler {instr.attr('sampler')} is not declared as "
                               f"{instr.attr('kind')}")
-        if instr.op == "kill" and program.stage != "fragment":
-            raise IRError("kill is only valid in fragment programs")
+        if program.stage not in info.stages:
+            raise IRError(f"{instr.op} is only valid in {' and '.join(info.stages)} programs")
         if info.has_result != (instr.dest is not None):
             raise IRError(f"{instr.op}: dest must be {'an id' if info.has_result else 'None'}")
         if instr.dest is not None:
@@ -714,8 +807,8 @@ class Builder:
         instrs = self._instrs
         if prune:
             instrs, outputs = _prune(instrs, outputs)
-        used_inputs = {i.attr("name") for i in instrs if i.op == "input"}
-        used_samplers = {i.attr("sampler") for i in instrs if i.op == "sample"}
+        used_inputs = {i.attr("name") for i in instrs if OPS[i.op].names_input}
+        used_samplers = {i.attr("sampler") for i in instrs if OPS[i.op].names_sampler}
         return Program(
             stage=self.stage,
             inputs=tuple(v for k, v in self._inputs.items() if k in used_inputs),

@@ -17,7 +17,7 @@ import pytest
 from backends.reference.evaluate import evaluate
 from effects.shaders.asm import assemble, check
 from effects.shaders.asm.lower import (ShaderContext, constant_registers, lower_pixel_shader,
-                               lower_vertex_shader)
+                                       lower_vertex_shader, lowering_problems)
 from effects.errors import AsmError, EffectError, Location
 from effects.model import ShaderBlock, VertexDeclElement
 from effects.precision import LoweringOptions
@@ -659,12 +659,39 @@ def test_predication_and_relative_inputs_are_located_errors():
 
 @pytest.mark.parametrize("name,src", VALID, ids=[v[0] for v in VALID])
 def test_every_valid_program_lowers_or_says_what_is_not_lowered(name, src):
+    # `lowering_problems` (what validation rejects) is exactly what the lowering refuses.
     stage = "vertex" if src.startswith("vs") else "pixel"
     prog = assemble_valid(src, stage)
     lower = lower_vertex_shader if stage == "vertex" else lower_pixel_shader
+    problems = lowering_problems(prog)
     try:
         program = lower(prog, ShaderContext(GEFORCE3))
     except AsmError as err:
         assert "not lowered yet" in str(err) and err.location.line > 1
+        assert str(err) in [str(p) for p in problems]
         return
+    assert not problems
     assert program.outputs            # a program that writes nothing would be a lowering bug
+
+
+def test_every_row_says_how_it_lowers():
+    from effects.shaders.asm import INSTRUCTIONS
+    from effects.shaders.asm.instructions import Handler, NoCode, NotLowered, Rewrite
+    for row in INSTRUCTIONS:
+        assert isinstance(row.lowers, (Rewrite, Handler, NoCode, NotLowered)), row.name
+        assert bool(row.matrix_rows) == (row.name.startswith("m") and row.name[1:2].isdigit())
+        if row.category == "setup":
+            assert isinstance(row.lowers, NoCode), row.name
+
+
+def test_validation_rejects_what_does_not_lower():
+    # A vs_2_0 loop is valid assembly on a Radeon 9700; it does not lower, so it is not valid.
+    from effects import load_effect, load_profile
+    effect = load_effect("technique T { pass P { VertexShader = asm {\n"
+                         "vs_2_0\ndcl_position v0\ndefi i0, 3, 0, 1, 0\nmov r0, v0\n"
+                         "loop aL, i0\nadd r0, r0, c0\nendloop\nmov oPos, r0\n}; } }")
+    result = effect.validate("T", load_profile("radeon9700"))
+    assert not result.ok
+    assert [str(r) for r in result.reasons] == [
+        "pass P (line 6): loop: flow control is not lowered yet",
+        "pass P (line 8): endloop: flow control is not lowered yet"]

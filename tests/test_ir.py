@@ -7,7 +7,7 @@ import pytest
 
 from backends.reference.evaluate import evaluate
 from effects.ir import (OPS, Builder, Input, Instr, IRError, Program, SamplerBinding,
-                        format_program, glsl_float)
+                        format_program, glsl_float, normalize_attrs)
 from effects.passprogram import PassProgram, RenderState, TextureBinding
 
 
@@ -173,10 +173,36 @@ def test_program_construction_checks_ssa_and_declarations():
 def test_op_table_rows_are_complete():
     for name, info in OPS.items():
         assert info.name == name and info.doc and info.glsl and callable(info.kernel)
-        assert info.precision in ("arith", "move", "source", "precision", "sample", "effect")
+        assert len(info.arg_demand(frozenset(range(4)), {"pattern": "xyzw", "mask": "x"})) \
+            == info.arity
+        assert not (info.per_component and info.columns is None and info.kernel is None)
     assert {"add", "sub", "mul", "mad", "dp3", "dp4", "min", "max", "rcp", "rsq", "exp2",
             "log2", "pow", "frc", "abs", "cmp", "cnd", "lrp", "nrm", "crs", "slt", "sge",
             "swizzle", "merge", "saturate", "clamp", "quantize", "sample", "kill"} <= set(OPS)
+
+
+_ROW_ATTRS = {"swizzle": {"pattern": "wxzy"}, "merge": {"mask": "yw"}, "clamp": {"lo": -.5, "hi": .5},
+              "quantize": {"bits": 8}}
+
+
+@pytest.mark.parametrize("name", [n for n, info in OPS.items()
+                                  if info.arity and info.has_result and n != "sample"])
+def test_demand_column_is_what_the_kernel_reads(name):
+    # The row's demand rule (and its per-component flag) is checked against its own kernel:
+    # changing an argument component the rule says is unread leaves every wanted component
+    # of the result as it was.
+    info = OPS[name]
+    attrs = dict(normalize_attrs(name, _ROW_ATTRS.get(name, {})))
+    rng = np.random.default_rng(7)
+    args = [rng.uniform(0.1, 2.0, (1, 4)).astype(np.float32) for _ in range(info.arity)]
+    for want in range(4):
+        wanted = frozenset({want})
+        base = info.kernel(None, args, attrs)[0, want]
+        for k, reads in enumerate(info.arg_demand(wanted, attrs)):
+            for j in set(range(4)) - reads:
+                changed = [a.copy() for a in args]
+                changed[k][0, j] += 0.75
+                assert info.kernel(None, changed, attrs)[0, want] == base, (name, k, j)
 
 
 def test_glsl_templates_by_string():

@@ -112,9 +112,9 @@ def _body(program: Program, attribute_inputs: bool) -> list[str]:
     for instr in program.instrs:
         info = OPS[instr.op]
         attrs = instr.attr_map
-        if "name" in attrs:
-            # An attribute `name` names a declared input, which GLSL knows under a prefixed
-            # identifier: hand the op's template that identifier.
+        if info.names_input:
+            # The op's `name` attribute names a declared input, which GLSL knows under a
+            # prefixed identifier: hand the op's template that identifier.
             attrs = {**attrs, "name": _input_expression(program, attrs["name"], attribute_inputs)}
         text = info.format_glsl([value_name(a) for a in instr.args], attrs)
         if instr.dest is not None:

@@ -23,14 +23,13 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from effects.ir import COMPONENTS, OPS, IRError, Instr, Program, dot3_columns, nrm_scale
+from effects.ir import OPS, IRError, Instr, Program
 
 SamplerFn = Callable[..., np.ndarray]
 Columns = list  # four entries: (N,) or (1,) float32 arrays, None where nothing reads them
 _MISSING_DEFAULT = np.array([0, 0, 0, 1], dtype=np.float32)
 _UNBOUND_TEXEL = np.array([0, 0, 0, 1], dtype=np.float32)
 _ALL = frozenset(range(4))
-_XYZ = frozenset(range(3))
 
 
 @dataclass
@@ -65,6 +64,9 @@ class _Context:
 
     def input(self, name: str) -> np.ndarray:
         return _as_vec4(name, self.inputs[name], self.count)
+
+    def input_columns(self, name: str) -> Columns:
+        return _input_columns(name, self.inputs[name], self.count)
 
     def sample(self, index: int, coord: np.ndarray, kind: str, bias: np.ndarray | None,
                lod: np.ndarray | None) -> np.ndarray:
@@ -125,30 +127,17 @@ def _dense(value: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(array)
 
 
-# Per-component ops: component i of the result depends on component i of the arguments only.
-_PER_COMPONENT = frozenset({"add", "sub", "mul", "mad", "neg", "min", "max", "rcp", "rsq",
-                            "exp2", "log2", "pow", "frc", "abs", "sin", "cos", "cmp", "cnd",
-                            "lrp", "slt", "sge", "saturate", "clamp", "quantize"})
 _DEMAND_CACHE: dict[int, tuple[Program, list]] = {}
 
 
-def _arg_demand(instr: Instr, wanted: frozenset, sample_reads=None) -> list[frozenset]:
-    """The components of each argument that `instr` reads to produce `wanted` of its result."""
-    op, attrs = instr.op, instr.attr_map
-    if op == "sample" and sample_reads is not None:
-        return [sample_reads(instr)]
-    if op in _PER_COMPONENT:
-        return [wanted] * len(instr.args)
-    if op == "swizzle":
-        return [frozenset(COMPONENTS.index(attrs["pattern"][i]) for i in wanted)]
-    if op == "merge":
-        mask = frozenset(COMPONENTS.index(c) for c in attrs["mask"])
-        return [wanted - mask, wanted & mask]
-    if op == "dp3":
-        return [_XYZ, _XYZ] if wanted else [frozenset(), frozenset()]
-    if op == "nrm":
-        return [_XYZ | wanted] if wanted else [frozenset()]
-    return [_ALL] * len(instr.args)   # sample, dp4, crs, kill, ...: the whole vec4
+def _arg_demand(instr: Instr, wanted: frozenset, sample_reads=None) -> tuple[frozenset, ...]:
+    """The components of each argument that `instr` reads to produce `wanted` of its result:
+    the op row's demand rule, or for a sampling op the caller's `sample_reads` when given
+    (what the sampler callback reads of its coordinate)."""
+    info = OPS[instr.op]
+    if info.names_sampler and sample_reads is not None:
+        return (sample_reads(instr),)
+    return info.arg_demand(wanted, instr.attr_map)
 
 
 def _demand(program: Program, sample_reads: Callable[[Instr], frozenset] | None = None
@@ -185,7 +174,7 @@ def input_components(program: Program,
     reads (default: all four, since a callback sees the whole vec4)."""
     reads: dict[str, frozenset] = {}
     for instr, wanted in zip(program.instrs, _demand(program, sample_reads)):
-        if instr.op == "input":
+        if OPS[instr.op].names_input:
             name = instr.attr("name")
             reads[name] = reads.get(name, frozenset()) | wanted
     return reads
@@ -209,11 +198,6 @@ def _per_component(instr: Instr, args: Sequence[Columns], wanted: frozenset) -> 
     return out
 
 
-def _const_columns(value: tuple) -> Columns:
-    shared: dict[float, np.ndarray] = {}
-    return [shared.setdefault(v, np.array([v], np.float32)) for v in value]
-
-
 def _as_rows(columns: Columns, count: int) -> np.ndarray:
     """Columns as an (N, 4) C-ordered array; unread (None) columns hold 0."""
     rows = np.empty((count, 4), np.float32)
@@ -229,30 +213,14 @@ def _from_rows(rows: np.ndarray) -> Columns:
 
 
 def _run(ctx: _Context, instr: Instr, args: Sequence[Columns], wanted: frozenset) -> Columns:
-    op = instr.op
-    if op == "input":
-        name = instr.attr("name")
-        return _input_columns(name, ctx.inputs[name], ctx.count)
-    if op == "const":
-        return _const_columns(instr.attr("value"))
-    if op == "swizzle":
-        return [args[0][COMPONENTS.index(c)] for c in instr.attr("pattern")]
-    if op == "merge":
-        mask = instr.attr("mask")
-        return [args[1][i] if c in mask else args[0][i] for i, c in enumerate(COMPONENTS)]
-    if op in _PER_COMPONENT:
+    """One instruction, as its op row says: its column form, its kernel per column, or (no
+    column form) its kernel on whole (N, 4) rows."""
+    info = OPS[instr.op]
+    if info.columns is not None:
+        return info.columns(ctx, args, instr.attr_map, wanted)
+    if info.per_component:
         return _per_component(instr, args, wanted)
-    if op in ("dp3", "dp4"):
-        dot = dot3_columns(args[0], args[1])
-        if op == "dp4":
-            dot = dot + args[0][3] * args[1][3]
-        return [dot] * 4
-    if op == "nrm":
-        x = args[0]
-        scale = nrm_scale(dot3_columns(x, x))
-        return [x[i] * scale if i in wanted else None for i in range(4)]
-    # No column form: the op's kernel on whole (N, 4) rows.
-    result = OPS[op].kernel(ctx, [ctx.as_rows(a) for a in args], instr.attr_map)
+    result = info.kernel(ctx, [ctx.as_rows(a) for a in args], instr.attr_map)
     return None if result is None else _from_rows(result)
 
 
@@ -290,6 +258,6 @@ def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
                 values[instr.dest] = result
     outputs = {name: _as_rows(values[value], ctx.count) for name, value in program.outputs}
     killed = ctx.killed
-    if killed is None and any(i.op == "kill" for i in program.instrs):
+    if killed is None and any(OPS[i.op].discards for i in program.instrs):
         killed = np.zeros(ctx.count, dtype=bool)
     return EvalResult(outputs, killed)

@@ -124,6 +124,12 @@ class ShaderChecks:
             return
         for err in check_cached(program):
             self.fail(err.location, state_name, "valid shader assembly", "assembly error", err.message)
+        # The instruction table's `lowers` column: what does not lower cannot render, so it
+        # is not valid on any card (valid means renders).
+        from effects.shaders.asm.lower import lowering_problems
+        for err in lowering_problems(program):
+            self.fail(err.location, state_name, "instructions this framework lowers",
+                      "not lowered", err.message)
         if program.kind == "ps":
             self.report.render_targets = max(1, program.stats.highest.get("oC", 0) + 1)
         for loc, subject, requirement, card_value, message in card_limit_violations(

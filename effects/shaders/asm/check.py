@@ -9,7 +9,7 @@ Limits come from versions.py and costs from instructions.py (sources named there
 from __future__ import annotations
 
 from effects.errors import AsmError, Location
-from effects.shaders.asm.instructions import MATRIX_ROWS, versions_having
+from effects.shaders.asm.instructions import versions_having
 from effects.shaders.asm.program import AsmProgram, Instruction, Operand
 from effects.shaders.asm.ps1_rules import PS1Rules
 from effects.shaders.asm.stats import instruction_slots, texture_read_levels
@@ -433,7 +433,7 @@ class _Checker(PS1Rules):
             if s0.kind != "r" or s0.index != 0 or s0.swizzle != (3, 3, 3, 3) or s0.modifier \
                     or s0.negate:
                 self.err(f"cnd in {self.v} must use r0.a as its first source", s0.location)
-        rows = MATRIX_ROWS.get(ins.opcode)
+        rows = ins.info.matrix_rows
         if rows and len(ins.srcs) > 1 and ins.srcs[1].relative is None:
             m = ins.srcs[1]
             count = self.rules.registers.get(m.kind, 0)

@@ -4,8 +4,13 @@ Each row says which versions have the instruction, its operands (roles, and whic
 kinds they may name where the instruction narrows the version's rules), its slot cost, whether
 it is a texture or an arithmetic instruction, and what it computes: `op` is the key a lowering
 dispatches on and `formula` a short statement of the result (a, b, c = the sources after
-swizzle and modifiers; d = the destination). The checker, the stats and the lowering all read
-these rows, so what validates and what runs come from one place.
+swizzle and modifiers; d = the destination). `lowers` says how it becomes IR: a `Rewrite`
+(an expression tree over the sources, rewrites.py, with variants whose conditions the row
+carries), a `Handler` (a function, texture_ops.py), `NO_CODE` (declarations), or `NotLowered`
+with the reason, which validation reports, so a valid shader is one that renders.
+`matrix_rows` is how many consecutive registers a matrix macro reads from its second source.
+The checker, the stats, validation and the lowering all read these rows, so what validates and
+what runs come from one place.
 
 Sources: DirectX 9 assembly reference instruction tables (ps_1_x, ps_2_0, ps_2_x, vs_1_1,
 vs_2_0: slot counts; footnote "cmp/dp4: 2 slots in ps_1_2 and ps_1_3"; texbeml "1 + 1"),
@@ -15,7 +20,12 @@ the instruction pages (texld ps_1_4 / ps_2_0, texbem, texm3x2pad ...), and
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
+from typing import Any, Callable
 
+from effects.shaders.asm import rewrites as rw
+from effects.shaders.asm import texture_ops as tx
+from effects.shaders.asm.rewrites import Tree
 from effects.shaders.asm.versions import (PS1, PS10_13, PS12_13, PS13, PS14, PS2, PS20, PS2X, PS3, VS, VS1, VS2,
                        VS3, Group)
 
@@ -26,6 +36,41 @@ from effects.shaders.asm.versions import (PS1, PS10_13, PS12_13, PS13, PS14, PS2
 #   I  integer register i#           L  loop counter aL       p  predicate register p0
 SOURCE_ROLES = frozenset("sx")
 REGISTER_ROLES = frozenset("dsxSlbILp")
+
+
+@dataclass(frozen=True)
+class Rewrite:
+    """Lowers by emitting `tree` over the sources a, b, c. `variants` are (condition, tree)
+    pairs tried first, the condition over (instruction, write mask); `dst_uniform` binds
+    (name, prefix): the uniform `prefix<n>` for destination register n (bem's BUMPENVMAT)."""
+
+    tree: Tree
+    variants: tuple[tuple[Callable[[Any, str], bool], Tree], ...] = ()
+    dst_uniform: tuple[str, str] | None = None
+
+
+@dataclass(frozen=True)
+class Handler:
+    """Lowers by calling `fn(lowering, instruction, register reads)`."""
+
+    fn: Callable[..., None]
+
+
+@dataclass(frozen=True)
+class NotLowered:
+    """Not lowered (yet): validation rejects the shader with `reason`."""
+
+    reason: str
+
+
+@dataclass(frozen=True)
+class NoCode:
+    """Emits no IR (declarations, def, nop): nothing runs."""
+
+
+NO_CODE = NoCode()
+Lowers = Rewrite | Handler | NotLowered | NoCode
+_FLOW_NOT_LOWERED = NotLowered("flow control is not lowered yet")
 
 
 @dataclass(frozen=True)
@@ -43,6 +88,8 @@ class InstrInfo:
     src_kinds: tuple[tuple[str, ...] | None, ...] = ()  # per source; None = version default
     writes: str = ""               # components written when fixed ('xyz' for m3x3); '' = mask
     modifiers: bool = True         # takes instruction modifiers (_sat, _x2 ...)
+    lowers: Lowers = NotLowered("not lowered yet")
+    matrix_rows: int = 0           # m4x4 r0, v0, c4 reads c4..c7: 4
 
     @property
     def has_dst(self) -> bool:
@@ -70,6 +117,19 @@ def _row(name, versions, operands, category, formula, *, op=None, **kw) -> Instr
     return InstrInfo(name, versions, operands, category, op or name, formula, **kw)
 
 
+def _ir(op: str, *args: str) -> Rewrite:
+    """The rewrite `op(a, b, ...)`: the IR op of that name over the sources."""
+    return Rewrite((op, *(args or ("a", "b"))))
+
+
+def _coissued_colour(instr: Any, mask: str) -> bool:
+    return instr.coissue and mask != "w"
+
+
+def _to_address(instr: Any, mask: str) -> bool:
+    return instr.dst is not None and instr.dst.kind == "a"
+
+
 PS_ALL = PS1 | PS2 | PS3
 PS2UP = PS2 | PS3
 VS2UP = VS2 | VS3
@@ -81,169 +141,211 @@ C = ("c",)
 S = ("s",)
 
 _ARITH = [
-    _row("add", PS_ALL | VS, "dss", "arith", "d = a + b"),
-    _row("sub", PS_ALL | VS, "dss", "arith", "d = a - b"),
-    _row("mul", PS_ALL | VS, "dss", "arith", "d = a * b"),
-    _row("mad", PS_ALL | VS, "dsss", "arith", "d = a * b + c"),
-    _row("mov", PS_ALL | VS, "ds", "arith", "d = a"),
+    _row("add", PS_ALL | VS, "dss", "arith", "d = a + b",
+         lowers=_ir("add")),
+    _row("sub", PS_ALL | VS, "dss", "arith", "d = a - b",
+         lowers=_ir("sub")),
+    _row("mul", PS_ALL | VS, "dss", "arith", "d = a * b",
+         lowers=_ir("mul")),
+    _row("mad", PS_ALL | VS, "dsss", "arith", "d = a * b + c",
+         lowers=_ir("mad", "a", "b", "c")),
+    _row("mov", PS_ALL | VS, "ds", "arith", "d = a",
+         lowers=Rewrite("a", variants=((_to_address, rw.MOV_A0),))),
     _row("nop", PS_ALL | VS, "", "arith", "nothing", slot_overrides=tuple(
-        (v, 0) for v in sorted(PS1.names))),
-    _row("dp3", PS_ALL | VS, "dss", "arith", "d = a.x*b.x + a.y*b.y + a.z*b.z (replicated)"),
+        (v, 0) for v in sorted(PS1.names)), lowers=NO_CODE),
+    _row("dp3", PS_ALL | VS, "dss", "arith", "d = a.x*b.x + a.y*b.y + a.z*b.z (replicated)",
+         lowers=_ir("dp3")),
     _row("dp4", PS12_13 | PS14 | PS2UP | VS, "dss", "arith",
          "d = a.x*b.x + a.y*b.y + a.z*b.z + a.w*b.w (replicated)",
-         slot_overrides=(("ps_1_2", 2), ("ps_1_3", 2))),
+         slot_overrides=(("ps_1_2", 2), ("ps_1_3", 2)), lowers=_ir("dp4")),
     _row("lrp", PS1 | PS2UP | VS2UP, "dsss", "arith", "d = a*b + (1-a)*c",
-         slots=2, slot_overrides=tuple((v, 1) for v in sorted(PS1.names))),
-    _row("cnd", PS1, "dsss", "arith",
-         "ps_1_1-1_3: d = (r0.a > 0.5) ? b : c for all components; ps_1_4: per component "
-         "d = (a > 0.5) ? b : c"),
+         slots=2, slot_overrides=tuple((v, 1) for v in sorted(PS1.names)),
+         lowers=_ir("lrp", "a", "b", "c")),
+    _row("cnd", PS10_13, "dsss", "arith", "d = (r0.a > 0.5) ? b : c for all components",
+         lowers=Rewrite(rw.CND_ALPHA, variants=((_coissued_colour, rw.CND_COISSUE),))),
+    _row("cnd", PS14, "dsss", "arith", "d = (a > 0.5) ? b : c per component",
+         lowers=_ir("cnd", "a", "b", "c")),
     _row("cmp", PS12_13 | PS14 | PS2UP, "dsss", "arith", "d = (a >= 0) ? b : c per component",
-         slot_overrides=(("ps_1_2", 2), ("ps_1_3", 2))),
+         slot_overrides=(("ps_1_2", 2), ("ps_1_3", 2)), lowers=_ir("cmp", "a", "b", "c")),
     _row("bem", PS14, "dss", "arith",
          "d.r = a.r + M00(n)*b.r + M10(n)*b.g; d.g = a.g + M01(n)*b.r + M11(n)*b.g "
          "(n = destination register number, M = D3DTSS_BUMPENVMAT of stage n)",
-         slots=2, dst_kinds=R, writes="xy"),
-    _row("min", PS2UP | VS, "dss", "arith", "d = min(a, b) per component"),
-    _row("max", PS2UP | VS, "dss", "arith", "d = max(a, b) per component"),
-    _row("sge", VS, "dss", "arith", "d = (a >= b) ? 1 : 0 per component"),
-    _row("slt", VS, "dss", "arith", "d = (a < b) ? 1 : 0 per component"),
-    _row("rcp", PS2UP | VS, "dx", "arith", "d = 1/a (replicated; 1/0 = +inf)"),
-    _row("rsq", PS2UP | VS, "dx", "arith", "d = 1/sqrt(|a|) (replicated)"),
+         slots=2, dst_kinds=R, writes="xy",
+         lowers=Rewrite(rw.BEM, dst_uniform=("bumpenv", "bumpenv"))),
+    _row("min", PS2UP | VS, "dss", "arith", "d = min(a, b) per component",
+         lowers=_ir("min")),
+    _row("max", PS2UP | VS, "dss", "arith", "d = max(a, b) per component",
+         lowers=_ir("max")),
+    _row("sge", VS, "dss", "arith", "d = (a >= b) ? 1 : 0 per component",
+         lowers=_ir("sge")),
+    _row("slt", VS, "dss", "arith", "d = (a < b) ? 1 : 0 per component",
+         lowers=_ir("slt")),
+    _row("rcp", PS2UP | VS, "dx", "arith", "d = 1/a (replicated; 1/0 = +inf)",
+         lowers=_ir("rcp", "a")),
+    _row("rsq", PS2UP | VS, "dx", "arith", "d = 1/sqrt(|a|) (replicated)",
+         lowers=_ir("rsq", "a")),
     _row("exp", PS2UP | VS, "dx", "arith", "d = 2^a (full precision, replicated)",
-         slot_overrides=(("vs_1_1", 10),)),
+         slot_overrides=(("vs_1_1", 10),), lowers=_ir("exp2", "a")),
     _row("log", PS2UP | VS, "dx", "arith", "d = log2(|a|) (full precision, replicated)",
-         slot_overrides=(("vs_1_1", 10),)),
-    _row("expp", VS, "dx", "arith",
-         "vs_1_1: d = (2^floor(a), a - floor(a), 2^a approx, 1); vs_2_0+: d = 2^a partial"),
-    _row("logp", VS, "dx", "arith",
-         "vs_1_1: v = |a|; d = (floor(log2 v), v / 2^floor(log2 v), log2 v approx, 1)"),
+         slot_overrides=(("vs_1_1", 10),), lowers=_ir("log2", "a")),
+    _row("expp", VS1, "dx", "arith", "d = (2^floor(a), a - floor(a), 2^a approx, 1)",
+         lowers=Rewrite(rw.EXPP_VS1)),
+    _row("expp", VS2 | VS3, "dx", "arith", "d = 2^a partial precision",
+         lowers=_ir("exp2", "a")),
+    _row("logp", VS1, "dx", "arith",
+         "v = |a|; d = (floor(log2 v), v / 2^floor(log2 v), log2 v approx, 1)",
+         lowers=Rewrite(rw.LOGP_VS1)),
+    _row("logp", VS2 | VS3, "dx", "arith", "d = log2(|a|) partial precision",
+         lowers=_ir("log2", "a")),
     _row("frc", PS2UP | VS, "ds", "arith", "d = a - floor(a)",
-         slot_overrides=(("vs_1_1", 3),)),
+         slot_overrides=(("vs_1_1", 3),), lowers=_ir("frc", "a")),
     _row("lit", VS, "ds", "arith",
          "d = (1, max(a.x, 0), a.x > 0 ? max(a.y, 0)^clamp(a.w, -128, 128) : 0, 1)",
-         slot_overrides=(("vs_2_0", 3), ("vs_2_x", 3), ("vs_2_a", 3), ("vs_3_0", 3))),
-    _row("dst", VS, "dss", "arith", "d = (1, a.y*b.y, a.z, b.w)"),
+         slot_overrides=(("vs_2_0", 3), ("vs_2_x", 3), ("vs_2_a", 3), ("vs_3_0", 3)),
+         lowers=Rewrite(rw.LIT)),
+    _row("dst", VS, "dss", "arith", "d = (1, a.y*b.y, a.z, b.w)", lowers=Rewrite(rw.DST)),
     _row("m3x2", PS2UP | VS, "dss", "arith", "d.x = dp3(a, b[0]); d.y = dp3(a, b[1])",
-         slots=2, writes="xy"),
+         slots=2, writes="xy", lowers=_ir("dp3"), matrix_rows=2),
     _row("m3x3", PS2UP | VS, "dss", "arith", "d.i = dp3(a, b[i]) for i = 0..2 (b[i] = b + i)",
-         slots=3, writes="xyz"),
+         slots=3, writes="xyz", lowers=_ir("dp3"), matrix_rows=3),
     _row("m3x4", PS2UP | VS, "dss", "arith", "d.i = dp3(a, b[i]) for i = 0..3", slots=4,
-         writes="xyzw"),
+         writes="xyzw", lowers=_ir("dp3"), matrix_rows=4),
     _row("m4x3", PS2UP | VS, "dss", "arith", "d.i = dp4(a, b[i]) for i = 0..2", slots=3,
-         writes="xyz"),
+         writes="xyz", lowers=_ir("dp4"), matrix_rows=3),
     _row("m4x4", PS2UP | VS, "dss", "arith", "d.i = dp4(a, b[i]) for i = 0..3", slots=4,
-         writes="xyzw"),
-    _row("abs", PS2UP | VS2UP, "ds", "arith", "d = |a|"),
-    _row("crs", PS2UP | VS2UP, "dss", "arith", "d.xyz = cross(a.xyz, b.xyz)", slots=2),
-    _row("nrm", PS2UP | VS2UP, "ds", "arith", "d = a / length(a.xyz)", slots=3),
-    _row("pow", PS2UP | VS2UP, "dxx", "arith", "d = |a|^b (replicated)", slots=3),
+         writes="xyzw", lowers=_ir("dp4"), matrix_rows=4),
+    _row("abs", PS2UP | VS2UP, "ds", "arith", "d = |a|", lowers=_ir("abs", "a")),
+    _row("crs", PS2UP | VS2UP, "dss", "arith", "d.xyz = cross(a.xyz, b.xyz)", slots=2,
+         lowers=_ir("crs")),
+    _row("nrm", PS2UP | VS2UP, "ds", "arith", "d = a / length(a.xyz)", slots=3,
+         lowers=_ir("nrm", "a")),
+    _row("pow", PS2UP | VS2UP, "dxx", "arith", "d = |a|^b (replicated)", slots=3,
+         lowers=_ir("pow")),
     _row("sgn", VS2UP, "dsss", "arith", "d = sign(a) per component (b, c: scratch temps)",
-         slots=3),
+         slots=3, lowers=Rewrite(rw.SGN)),
     _row("sincos", PS2 | VS2, "dxss", "arith",
-         "d.x = cos(a), d.y = sin(a) (b, c = D3DSINCOSCONST1/2)", slots=8, op="sincos"),
-    _row("sincos", PS3 | VS3, "dx", "arith", "d.x = cos(a), d.y = sin(a)", slots=8),
-    _row("dp2add", PS2UP, "dssx", "arith", "d = a.x*b.x + a.y*b.y + c (replicated)", slots=2),
+         "d.x = cos(a), d.y = sin(a) (b, c = D3DSINCOSCONST1/2)", slots=8,
+         lowers=Rewrite(rw.SINCOS)),
+    _row("sincos", PS3 | VS3, "dx", "arith", "d.x = cos(a), d.y = sin(a)", slots=8,
+         lowers=Rewrite(rw.SINCOS)),
+    _row("dp2add", PS2UP, "dssx", "arith", "d = a.x*b.x + a.y*b.y + c (replicated)", slots=2,
+         lowers=Rewrite(rw.DP2ADD)),
     _row("mova", VS2UP, "ds", "arith", "a0 = round_half_away_from_zero(a)",
-         dst_kinds=("a",)),
-    _row("dsx", PS2X | PS3, "ds", "arith", "d = d(a)/dx (screen-space gradient)", slots=2),
-    _row("dsy", PS2X | PS3, "ds", "arith", "d = d(a)/dy (screen-space gradient)", slots=2),
+         dst_kinds=("a",), lowers=Rewrite(rw.MOVA)),
+    _row("dsx", PS2X | PS3, "ds", "arith", "d = d(a)/dx (screen-space gradient)", slots=2,
+         lowers=NotLowered("gradients are not lowered yet")),
+    _row("dsy", PS2X | PS3, "ds", "arith", "d = d(a)/dy (screen-space gradient)", slots=2,
+         lowers=NotLowered("gradients are not lowered yet")),
     _row("setp", PS2X | PS3 | VS2UP, "dss", "flow", "p0 = a <cmp> b per component",
-         dst_kinds=("p",)),
+         dst_kinds=("p",), lowers=_FLOW_NOT_LOWERED),
 ]
 
 # ps_1_1-1_3 texture-address instructions: dst t(m), source t(n) with n < m (semantics.md §2.5).
 _PS1_TEX = dict(dst_kinds=T, src_kinds=(T,), modifiers=False)
+_PAD = Handler(tx.pad)
+_M3X3 = Handler(tx.texm3x3)
 _TEXTURE = [
     _row("tex", PS10_13, "d", "tex", "t(m) = sample(stage m, texcoord m)", dst_kinds=T,
-         modifiers=False),
+         modifiers=False, lowers=Handler(tx.tex)),
     _row("texcoord", PS10_13, "d", "tex", "t(m) = (sat(tc.x), sat(tc.y), sat(tc.z), 1)",
-         dst_kinds=T, modifiers=False),
+         dst_kinds=T, modifiers=False, lowers=Handler(tx.texcoord)),
     _row("texbem", PS10_13, "ds", "tex",
-         "t(m) = sample(m, tc(m).uv + M(m) * t(n).rg)", **_PS1_TEX),
+         "t(m) = sample(m, tc(m).uv + M(m) * t(n).rg)", lowers=Handler(tx.texbem), **_PS1_TEX),
     _row("texbeml", PS10_13, "ds", "tex",
          "texbem, then t(m) *= sat(t(n).b * LSCALE(m) + LOFFSET(m))", extra_arith=1,
-         **_PS1_TEX),
-    _row("texreg2ar", PS10_13, "ds", "tex", "t(m) = sample(m, (t(n).a, t(n).r))", **_PS1_TEX),
-    _row("texreg2gb", PS10_13, "ds", "tex", "t(m) = sample(m, (t(n).g, t(n).b))", **_PS1_TEX),
-    _row("texreg2rgb", PS12_13, "ds", "tex", "t(m) = sample(m, t(n).rgb)", **_PS1_TEX),
+         lowers=Handler(tx.texbeml), **_PS1_TEX),
+    _row("texreg2ar", PS10_13, "ds", "tex", "t(m) = sample(m, (t(n).a, t(n).r))",
+         lowers=Handler(partial(tx.texreg2, pattern="wxxx")), **_PS1_TEX),
+    _row("texreg2gb", PS10_13, "ds", "tex", "t(m) = sample(m, (t(n).g, t(n).b))",
+         lowers=Handler(partial(tx.texreg2, pattern="yzzz")), **_PS1_TEX),
+    _row("texreg2rgb", PS12_13, "ds", "tex", "t(m) = sample(m, t(n).rgb)",
+         lowers=Handler(partial(tx.texreg2, pattern="xyzz", default="3d")), **_PS1_TEX),
     _row("texm3x2pad", PS10_13, "ds", "tex", "u = tc(m).xyz . t(n).rgb (no write)",
-         **_PS1_TEX),
+         lowers=_PAD, **_PS1_TEX),
     _row("texm3x2tex", PS10_13, "ds", "tex",
-         "v = tc(m+1).xyz . t(n).rgb; t(m+1) = sample(m+1, (u, v))", **_PS1_TEX),
+         "v = tc(m+1).xyz . t(n).rgb; t(m+1) = sample(m+1, (u, v))",
+         lowers=Handler(tx.texm3x2tex), **_PS1_TEX),
     _row("texm3x2depth", PS13, "ds", "tex",
-         "w = tc(m+1).xyz . t(n).rgb; depth = (w == 0) ? 1 : sat(u / w)", **_PS1_TEX),
+         "w = tc(m+1).xyz . t(n).rgb; depth = (w == 0) ? 1 : sat(u / w)",
+         lowers=Handler(tx.texm3x2depth), **_PS1_TEX),
     _row("texm3x3pad", PS10_13, "ds", "tex", "row k of a 3x3: tc(m).xyz . t(n).rgb (no write)",
-         **_PS1_TEX),
+         lowers=_PAD, **_PS1_TEX),
     _row("texm3x3tex", PS10_13, "ds", "tex",
-         "w = tc(m+2).xyz . t(n).rgb; t(m+2) = sample(m+2, (u, v, w))", **_PS1_TEX),
-    _row("texm3x3", PS12_13, "ds", "tex", "t(m+2) = (u, v, w, 1)", **_PS1_TEX),
+         "w = tc(m+2).xyz . t(n).rgb; t(m+2) = sample(m+2, (u, v, w))",
+         lowers=_M3X3, **_PS1_TEX),
+    _row("texm3x3", PS12_13, "ds", "tex", "t(m+2) = (u, v, w, 1)", lowers=_M3X3,
+         **_PS1_TEX),
     _row("texm3x3spec", PS10_13, "dss", "tex",
          "N = (u, v, w), E = c.xyz; t(m+2) = sample(m+2, 2 N (N.E)/(N.N) - E)",
-         dst_kinds=T, src_kinds=(T, C), modifiers=False),
+         dst_kinds=T, src_kinds=(T, C), modifiers=False, lowers=_M3X3),
     _row("texm3x3vspec", PS10_13, "ds", "tex",
-         "as texm3x3spec with E = (tc(m).w, tc(m+1).w, tc(m+2).w)", **_PS1_TEX),
-    _row("texdp3", PS12_13, "ds", "tex", "t(m) = tc(m).xyz . t(n).rgb (replicated)",
+         "as texm3x3spec with E = (tc(m).w, tc(m+1).w, tc(m+2).w)", lowers=_M3X3,
          **_PS1_TEX),
+    _row("texdp3", PS12_13, "ds", "tex", "t(m) = tc(m).xyz . t(n).rgb (replicated)",
+         lowers=Handler(tx.texdp3), **_PS1_TEX),
     _row("texdp3tex", PS12_13, "ds", "tex",
-         "t(m) = sample(m, (tc(m).xyz . t(n).rgb, 0))", **_PS1_TEX),
+         "t(m) = sample(m, (tc(m).xyz . t(n).rgb, 0))",
+         lowers=Handler(tx.texdp3tex), **_PS1_TEX),
     _row("texkill", PS10_13, "d", "tex", "discard if any of tc(m).xyz < 0", op="texkill",
-         dst_kinds=T, modifiers=False),
+         dst_kinds=T, modifiers=False, lowers=Handler(tx.texkill)),
     _row("texkill", PS14, "d", "tex", "discard if any of a.xyz < 0", dst_kinds=TR,
-         modifiers=False),
+         modifiers=False, lowers=Handler(tx.texkill)),
     _row("texkill", PS2, "s", "tex", "discard if any of a.xyzw < 0", src_kinds=(TR,),
-         modifiers=False),
-    _row("texkill", PS3, "s", "tex", "discard if any of a.xyzw < 0", modifiers=False),
+         modifiers=False, lowers=Handler(tx.texkill)),
+    _row("texkill", PS3, "s", "tex", "discard if any of a.xyzw < 0", modifiers=False,
+         lowers=Handler(tx.texkill)),
     _row("texld", PS14, "ds", "tex",
          "r(n) = sample(stage n, a.xyz) (a = t# coordinates or, in phase 2, r# dependent)",
-         dst_kinds=R, src_kinds=(TR,), modifiers=False),
+         dst_kinds=R, src_kinds=(TR,), modifiers=False, lowers=Handler(tx.texld)),
     _row("texcrd", PS14, "ds", "tex", "r(n) = texcoord a (unclamped; .w undefined)",
-         dst_kinds=R, src_kinds=(T,)),
+         dst_kinds=R, src_kinds=(T,), lowers=Handler(tx.texcrd)),
     _row("texdepth", PS14, "d", "tex", "depth = (r5.g == 0) ? 1 : sat(r5.r / r5.g)",
-         dst_kinds=R, modifiers=False),
-    *[_row(name, versions, "dsS", "tex", formula, dst_kinds=R, src_kinds=(coords, S))
+         dst_kinds=R, modifiers=False, lowers=Handler(tx.texdepth)),
+    *[_row(name, versions, "dsS", "tex", formula, dst_kinds=R, src_kinds=(coords, S),
+           lowers=Handler(partial(tx.texld, **flags)))
       # ps_2_x reads coordinates from t# or r#; ps_3_0 from any readable register (v#, r# ...)
       for versions, coords in ((PS2, TR), (PS3, None))
-      for name, formula in (("texld", "d = sample(sampler b, a)"),
-                            ("texldp", "d = sample(sampler b, a.xyz / a.w)"),
-                            ("texldb", "d = sample(sampler b, a.xyz, lod bias a.w)"))],
+      for name, formula, flags in (("texld", "d = sample(sampler b, a)", {}),
+                                   ("texldp", "d = sample(sampler b, a.xyz / a.w)",
+                                    {"proj": True}),
+                                   ("texldb", "d = sample(sampler b, a.xyz, lod bias a.w)",
+                                    {"bias": True}))],
     _row("texldd", PS2X | PS3, "dsSss", "tex", "d = sample(sampler b, a, ddx = c, ddy = e)",
-         slots=3, dst_kinds=R, src_kinds=(None, S)),
+         slots=3, dst_kinds=R, src_kinds=(None, S),
+         lowers=NotLowered("gradients are not lowered yet")),
     _row("texldl", PS3 | VS3, "dsS", "tex", "d = sample(sampler b, a.xyz, lod a.w)", slots=2,
-         src_kinds=(None, S)),
+         src_kinds=(None, S), lowers=Handler(partial(tx.texld, lod=True))),
 ]
 
 _FLOW = [
-    _row("call", FLOW_VERSIONS, "l", "flow", "call subroutine l", slots=2),
-    _row("callnz", FLOW_VERSIONS, "lb", "flow", "call subroutine l if b", slots=3),
-    _row("ret", FLOW_VERSIONS, "", "flow", "return", slots=1),
-    _row("label", FLOW_VERSIONS, "l", "flow", "subroutine entry", slots=0),
-    _row("loop", FLOW_VERSIONS, "LI", "flow", "loop i.x times, aL from i.y step i.z", slots=3),
-    _row("endloop", FLOW_VERSIONS, "", "flow", "end of loop", slots=2),
-    _row("rep", FLOW_VERSIONS, "I", "flow", "repeat i.x times", slots=3),
-    _row("endrep", FLOW_VERSIONS, "", "flow", "end of rep", slots=2),
-    _row("if", FLOW_VERSIONS, "b", "flow", "if b (or if_cmp a, b)", slots=3),
-    _row("else", FLOW_VERSIONS, "", "flow", "else", slots=1),
-    _row("endif", FLOW_VERSIONS, "", "flow", "end of if", slots=1),
+    _row("call", FLOW_VERSIONS, "l", "flow", "call subroutine l", lowers=_FLOW_NOT_LOWERED, slots=2),
+    _row("callnz", FLOW_VERSIONS, "lb", "flow", "call subroutine l if b", lowers=_FLOW_NOT_LOWERED, slots=3),
+    _row("ret", FLOW_VERSIONS, "", "flow", "return", lowers=_FLOW_NOT_LOWERED, slots=1),
+    _row("label", FLOW_VERSIONS, "l", "flow", "subroutine entry", lowers=_FLOW_NOT_LOWERED, slots=0),
+    _row("loop", FLOW_VERSIONS, "LI", "flow", "loop i.x times, aL from i.y step i.z", lowers=_FLOW_NOT_LOWERED, slots=3),
+    _row("endloop", FLOW_VERSIONS, "", "flow", "end of loop", lowers=_FLOW_NOT_LOWERED, slots=2),
+    _row("rep", FLOW_VERSIONS, "I", "flow", "repeat i.x times", lowers=_FLOW_NOT_LOWERED, slots=3),
+    _row("endrep", FLOW_VERSIONS, "", "flow", "end of rep", lowers=_FLOW_NOT_LOWERED, slots=2),
+    _row("if", FLOW_VERSIONS, "b", "flow", "if b (or if_cmp a, b)", lowers=_FLOW_NOT_LOWERED, slots=3),
+    _row("else", FLOW_VERSIONS, "", "flow", "else", lowers=_FLOW_NOT_LOWERED, slots=1),
+    _row("endif", FLOW_VERSIONS, "", "flow", "end of if", lowers=_FLOW_NOT_LOWERED, slots=1),
     _row("break", FLOW_VERSIONS, "", "flow", "leave the loop (break_cmp a, b: if a <cmp> b)",
-         slots=1),
-    _row("breakp", FLOW_VERSIONS, "p", "flow", "leave the loop if p0", slots=3),
+         lowers=_FLOW_NOT_LOWERED, slots=1),
+    _row("breakp", FLOW_VERSIONS, "p", "flow", "leave the loop if p0", lowers=_FLOW_NOT_LOWERED, slots=3),
 ]
 
 # Instructions that are no instruction: the version token, constants, declarations, phase.
 _SETUP = [
-    _row("def", PS_ALL | VS, "dffff", "setup", "c# = (x, y, z, w)", slots=0, dst_kinds=C),
-    _row("defi", PS2X | PS3 | VS2UP, "dnnnn", "setup", "i# = (x, y, z, w)", slots=0,
+    _row("def", PS_ALL | VS, "dffff", "setup", "c# = (x, y, z, w)", slots=0, lowers=NO_CODE, dst_kinds=C),
+    _row("defi", PS2X | PS3 | VS2UP, "dnnnn", "setup", "i# = (x, y, z, w)", slots=0, lowers=NO_CODE,
          dst_kinds=("i",)),
-    _row("defb", PS2X | PS3 | VS2UP, "dB", "setup", "b# = value", slots=0, dst_kinds=("b",)),
-    _row("dcl", PS2UP | VS, "d", "setup", "declare an input, output or sampler", slots=0),
-    _row("phase", PS14, "", "setup", "ends phase 1 of a ps_1_4 shader", slots=0),
+    _row("defb", PS2X | PS3 | VS2UP, "dB", "setup", "b# = value", slots=0, lowers=NO_CODE, dst_kinds=("b",)),
+    _row("dcl", PS2UP | VS, "d", "setup", "declare an input, output or sampler", slots=0, lowers=NO_CODE),
+    _row("phase", PS14, "", "setup", "ends phase 1 of a ps_1_4 shader", slots=0, lowers=NO_CODE),
 ]
 
 TABLE: tuple[InstrInfo, ...] = tuple(_ARITH + _TEXTURE + _FLOW + _SETUP)
 
-# Matrix instructions read consecutive registers from their second source: m4x4 r0, v0, c4
-# reads c4..c7.
-MATRIX_ROWS = {"m3x2": 2, "m3x3": 3, "m3x4": 4, "m4x3": 3, "m4x4": 4}
 
 # Comparison suffixes of if_cmp / break_cmp / setp_cmp.
 COMPARISONS = ("gt", "lt", "ge", "le", "eq", "ne")

@@ -6,8 +6,9 @@
 
 Instruction by instruction, over a register file of IR values (SSA, so a snapshot is a dict
 copy). What each instruction, modifier and macro computes lives in rewrites.py as data; this
-module reads operands, picks the row, and writes results. Texture-addressing instructions have
-their own small handlers, registered by the table's `op` key.
+module reads operands, does what the instruction's row says (`InstrInfo.lowers`: a rewrite
+tree, a handler from texture_ops.py, or nothing), and writes results. `lowering_problems`
+lists, located, what the rows and this module do not lower; validation reports them.
 
 Decisions (sources: ../shared/reference/semantics.md §2-4, caps.md §1):
 - A register read before any write is (0, 0, 0, 0) (the checker rejects such reads anyway).
@@ -42,24 +43,25 @@ Decisions (sources: ../shared/reference/semantics.md §2-4, caps.md §1):
 - Relative constant addressing c[a0.x + n] selects among c0 .. c(constants_min - 1) of the
   version (96 for vs_1_1, 256 for vs_2_0+); an index outside reads (0, 0, 0, 0). A program
   that addresses relatively needs all of those registers (`constant_registers`).
-- Flow control, predication, gradients and texldd raise AsmError: not lowered yet.
+- Flow control, predication, gradients and texldd are not lowered yet (`lowering_problems`).
 """
 from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping
+from typing import Any, Mapping
 
 from effects.errors import AsmError
 from effects.ir import COMPONENTS, OUTPUTS, Builder, Program
 from effects.model import VertexDeclElement
 from effects.precision import LoweringOptions
+from effects.shaders.asm.instructions import Handler, NoCode, NotLowered, Rewrite
 from effects.shaders.asm.program import AsmProgram, Instruction, Operand
-from effects.shaders.asm.rewrites import (INSTRUCTIONS, MATRIX_MACROS, NEGATE, PRE_SWIZZLE_MODIFIERS,
-                       RESULT_MODIFIERS, SOURCE_MODIFIERS, Emitter)
+from effects.shaders.asm.rewrites import (NEGATE, PRE_SWIZZLE_MODIFIERS, RESULT_MODIFIERS,
+                                          SOURCE_MODIFIERS, Emitter)
 
 __all__ = ["ShaderContext", "constant_registers", "lower_pixel_shader", "lower_vertex_shader",
-           "input_name"]
+           "input_name", "lowering_problems"]
 
 ZERO = (0.0, 0.0, 0.0, 0.0)
 ONE = (1.0, 1.0, 1.0, 1.0)
@@ -109,7 +111,7 @@ def constant_registers(program: AsmProgram) -> set[int]:
     for instr in program.instructions:
         if instr.info.category == "setup":
             continue
-        rows = MATRIX_MACROS.get(instr.info.op, (None, 1))[1]
+        rows = instr.info.matrix_rows or 1
         for k, src in enumerate(instr.srcs):
             if src.kind != "c" or src.index is None:
                 continue
@@ -120,6 +122,46 @@ def constant_registers(program: AsmProgram) -> set[int]:
     return used - set(program.defs)
 
 
+# Registers a source may read in the lowering (others, e.g. vPos, vFace, are not lowered yet).
+_READABLE = frozenset({"c", "v", "t", "r", "a"})
+
+
+def lowering_problems(program: AsmProgram) -> list[AsmError]:
+    """Every instruction of `program` that does not lower, located, with the reason: its
+    row says `NotLowered`, or it uses predication, a register or an addressing form the
+    lowering does not read. Empty means `lower_*_shader` lowers it."""
+    problems = []
+    for instr in program.instructions:
+        lowers = instr.info.lowers
+        if isinstance(lowers, NotLowered):
+            problems.append(AsmError(f"{instr.opcode}: {lowers.reason}", instr.location))
+        elif isinstance(lowers, NoCode):
+            continue
+        elif instr.predicate is not None:
+            problems.append(AsmError(f"{instr.opcode}: predication is not lowered yet",
+                                     instr.location))
+        else:
+            problems += _operand_problems(instr)
+    return problems
+
+
+def _operand_problems(instr: Instruction) -> list[AsmError]:
+    found = []
+    roles = instr.info.source_roles
+    for k, op in enumerate(instr.srcs):
+        if k < len(roles) and roles[k] not in "sx":
+            continue
+        if op.relative is not None and (op.kind != "c" or op.relative.kind != "a"):
+            found.append(AsmError(f"relative addressing {op.text or op.name} is not lowered "
+                                  "yet", op.location))
+        elif op.kind not in _READABLE:
+            found.append(AsmError(f"reading {op.name} is not lowered yet", op.location))
+    if instr.dst is not None and instr.dst.relative is not None:
+        found.append(AsmError(f"relative addressing of {instr.dst.name} is not lowered yet",
+                              instr.dst.location))
+    return found
+
+
 def input_name(usage: str, index: int) -> str:
     """The IR name of a vertex input (or ps_3_0 varying) declared `dcl_<usage><index>`."""
     return f"{usage}{index}" if usage in ("texcoord", "color") or index else usage
@@ -127,6 +169,17 @@ def input_name(usage: str, index: int) -> str:
 
 def _relative_range(program: AsmProgram) -> int:
     return program.rules.constants_min or program.rules.registers.get("c", 0)
+
+
+@dataclass(frozen=True)
+class _WriteFacts:
+    """What the result modifiers' conditions read (rewrites.RESULT_MODIFIERS)."""
+
+    shift: int
+    saturate: bool
+    computed: bool
+    range: float | None
+    grid: tuple[int, bool, float] | None
 
 
 @dataclass(frozen=True)
@@ -173,22 +226,22 @@ class _Lowering:
         return self.b.build()
 
     def lower(self, instr: Instruction, reads: dict[tuple[str, int], int]) -> None:
-        info = instr.info
-        if info.category == "setup" or info.op == "nop":
+        """What the instruction's row says: nothing, a rewrite, a handler."""
+        lowers = instr.info.lowers
+        if isinstance(lowers, NoCode):
             return
-        if info.category == "flow":
-            raise AsmError(f"{instr.opcode}: flow control is not lowered yet", instr.location)
-        if instr.predicate is not None:
-            raise AsmError(f"{instr.opcode}: predication is not lowered yet", instr.location)
-        handler = TEXTURE_HANDLERS.get(info.op) if info.category == "tex" else None
-        if handler is not None:
-            handler(self, instr, reads)
-        elif info.op in MATRIX_MACROS:
-            self.matrix(instr, reads)
-        elif info.op in ARITH_NOT_LOWERED or info.category == "tex":
-            raise AsmError(f"{instr.opcode}: not lowered yet", instr.location)
+        problems = ([AsmError(f"{instr.opcode}: {lowers.reason}", instr.location)]
+                    if isinstance(lowers, NotLowered) else
+                    [AsmError(f"{instr.opcode}: predication is not lowered yet",
+                              instr.location)] if instr.predicate is not None else [])
+        if problems:       # validation rejects these first; a direct caller gets the reason
+            raise problems[0]
+        if isinstance(lowers, Handler):
+            lowers.fn(self, instr, reads)
+        elif instr.info.matrix_rows:
+            self.matrix(instr, reads, lowers)
         else:
-            self.arithmetic(instr, reads)
+            self.arithmetic(instr, reads, lowers)
 
     # -- reading operands
     def source(self, op: Operand, reads: dict, *, scalar: bool = False) -> int:
@@ -282,15 +335,14 @@ class _Lowering:
         """Apply the instruction modifiers (shift, _sat) and, for computed values, the
         register precision; then merge into the destination under its write mask."""
         env = {"x": value, "scale": float(2.0 ** instr.shift)}
-        switches = {"shift": instr.shift != 0, "saturate": instr.saturate,
-                    "range": computed and self.precision.range is not None,
-                    "quantize": computed and self.precision.grid is not None}
+        facts = _WriteFacts(instr.shift, instr.saturate, computed, self.precision.range,
+                            self.precision.grid)
         if self.precision.range is not None:
             env.update(range=self.precision.range, neg_range=-self.precision.range)
         if self.precision.grid is not None:
             env["grid"] = self.precision.grid
-        for name, tree in RESULT_MODIFIERS:
-            if switches[name]:
+        for _, applies, tree in RESULT_MODIFIERS:
+            if applies(facts):
                 env["x"] = self.e.emit(tree, env)
         self.store(instr.dst, env["x"], mask or self.mask(instr))
 
@@ -315,36 +367,34 @@ class _Lowering:
         self.regs[key] = self.b.merge(old, value, mask)
 
     # -- arithmetic
-    def arithmetic(self, instr: Instruction, reads: dict) -> None:
-        info = instr.info
-        roles = info.source_roles
+    def arithmetic(self, instr: Instruction, reads: dict, rewrite: Rewrite) -> None:
+        roles = instr.info.source_roles
         names = "abc"
         env: dict[str, Any] = {
             names[k]: self.source(src, reads, scalar=roles[k] == "x")
             for k, src in enumerate(instr.srcs[:3]) if roles[k] in "sx"}
-        key = self.rule(instr)
-        if key == "bem":
-            env["bumpenv"] = self.b.uniform(f"bumpenv{instr.dst.index}")
-        if key not in INSTRUCTIONS:
-            raise AsmError(f"{instr.opcode}: not lowered yet", instr.location)
-        self.write(instr, self.e.emit(INSTRUCTIONS[key], env))
+        if rewrite.dst_uniform is not None:
+            name, prefix = rewrite.dst_uniform
+            env[name] = self.b.uniform(f"{prefix}{instr.dst.index}")
+        self.write(instr, self.e.emit(self.tree(instr, rewrite), env))
 
-    def rule(self, instr: Instruction) -> str:
-        """The INSTRUCTIONS row for an instruction: its op key, or a version variant."""
-        op = instr.info.op
-        for (name, applies), key in RULE_VARIANTS.items():
-            if name == op and applies(self, instr):
-                return key
-        return op
+    def tree(self, instr: Instruction, rewrite: Rewrite) -> Any:
+        """The rewrite's tree, or the first variant whose condition holds."""
+        mask = self.mask(instr) if instr.dst is not None else ""
+        for applies, tree in rewrite.variants:
+            if applies(instr, mask):
+                return tree
+        return rewrite.tree
 
-    def matrix(self, instr: Instruction, reads: dict) -> None:
-        dot, rows = MATRIX_MACROS[instr.info.op]
+    def matrix(self, instr: Instruction, reads: dict, rewrite: Rewrite) -> None:
+        """A matrix macro: the row's rewrite (a dot product) once per consecutive register
+        of the second source, into successive components."""
         a = self.source(instr.srcs[0], reads)
         m = instr.srcs[1]
         result = None
-        for i in range(rows):
+        for i in range(instr.info.matrix_rows):
             row = self.source(dataclasses.replace(m, index=m.index + i), reads)
-            d = getattr(self.b, dot)(a, row)
+            d = self.e.emit(rewrite.tree, {"a": a, "b": row})
             result = d if result is None else self.b.merge(result, d, COMPONENTS[i])
         self.write(instr, result)
 
@@ -410,207 +460,3 @@ class _Lowering:
         if self.ctx.projected.get(stage):
             tc = self.b.mul(tc, self.b.rcp(self.e.swizzle(tc, "wwww")))
         return tc
-
-
-# Version variants of an instruction's row: ((op, test), row key), first match wins.
-def _ps11_13(lo: _Lowering, instr: Instruction) -> bool:
-    return lo.rules.is_ps11_13
-
-
-def _coissued_colour(lo: _Lowering, instr: Instruction) -> bool:
-    return lo.rules.is_ps11_13 and instr.coissue and lo.mask(instr) != "w"
-
-
-def _vs1(lo: _Lowering, instr: Instruction) -> bool:
-    return lo.rules.kind == "vs" and lo.rules.major == 1
-
-
-def _to_address(lo: _Lowering, instr: Instruction) -> bool:
-    return instr.dst is not None and instr.dst.kind == "a"
-
-
-RULE_VARIANTS: dict[tuple[str, Callable[[_Lowering, Instruction], bool]], str] = {
-    ("cnd", _coissued_colour): "cnd.coissue",
-    ("cnd", _ps11_13): "cnd.alpha",
-    ("expp", _vs1): "expp.vs1",
-    ("logp", _vs1): "logp.vs1",
-    ("mov", _to_address): "mov.a0",
-}
-ARITH_NOT_LOWERED = frozenset({"dsx", "dsy", "setp"})
-
-
-# --------------------------------------------------------------------------------------------
-# Texture-addressing instructions, registered by op key.
-
-TextureHandler = Callable[[_Lowering, Instruction, dict], None]
-TEXTURE_HANDLERS: dict[str, TextureHandler] = {}
-
-
-def _texture(*ops: str) -> Callable[[TextureHandler], TextureHandler]:
-    def register(fn: TextureHandler) -> TextureHandler:
-        for op in ops:
-            TEXTURE_HANDLERS[op] = fn
-        return fn
-    return register
-
-
-def _dot_row(lo: _Lowering, instr: Instruction, reads: dict) -> int:
-    """tc(m) . t(n).rgb for the texm3x* / texdp3 rows (m = destination register)."""
-    return lo.b.dp3(lo.texcoord(instr.dst.index), lo.source(instr.srcs[0], reads))
-
-
-def _xyz(lo: _Lowering, u: int, v: int, w: int | None = None, fill: int | None = None) -> int:
-    coord = lo.b.merge(u, v, "y")
-    if w is not None:
-        coord = lo.b.merge(coord, w, "z")
-    return lo.b.merge(coord, fill, "w") if fill is not None else coord
-
-
-@_texture("tex")
-def _tex(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    m = instr.dst.index
-    proj = bool(lo.ctx.projected.get(m))
-    lo.write(instr, lo.sample(m, lo.texcoord(m), proj=proj), computed=False)
-
-
-@_texture("texcoord")
-def _texcoord(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    tc = lo.b.saturate(lo.texcoord(instr.dst.index))
-    lo.write(instr, lo.b.merge(lo.e.const(ONE), tc, "xyz"))
-
-
-@_texture("texkill")
-def _texkill(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    if lo.rules.is_ps11_13:
-        lo.b.kill(lo.texcoord(instr.dst.index), "xyz")
-    elif lo.rules.is_ps14:
-        lo.b.kill(lo.source(instr.dst, reads), "xyz")
-    else:
-        lo.b.kill(lo.source(instr.srcs[0], reads), "xyzw")
-
-
-def _bumped(lo: _Lowering, instr: Instruction, reads: dict) -> tuple[int, int]:
-    """texbem: sample stage m at tc(m).uv + M(m) (t(n).r, t(n).g); also returns t(n)."""
-    m = instr.dst.index
-    src = lo.source(instr.srcs[0], reads)
-    bumpenv = lo.b.uniform(f"bumpenv{m}")
-    offset = lo.e.emit(INSTRUCTIONS["bem"], {"a": lo.e.const(ZERO), "b": src,
-                                             "bumpenv": bumpenv})
-    tc = lo.projected_coord(m)
-    coord = lo.b.merge(tc, lo.b.add(tc, offset), "xy")
-    return lo.sample(m, coord), src
-
-
-@_texture("texbem")
-def _texbem(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    texel, _ = _bumped(lo, instr, reads)
-    lo.write(instr, texel, computed=False)
-
-
-@_texture("texbeml")
-def _texbeml(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    # L = sat(t(n).b * LSCALE(m) + LOFFSET(m)); clamped as the FF path and DXVK do (2.5)
-    texel, src = _bumped(lo, instr, reads)
-    scale_offset = lo.b.uniform(f"bumpenvl{instr.dst.index}")
-    lum = lo.b.saturate(lo.b.mad(lo.e.swizzle(src, "zzzz"), lo.e.swizzle(scale_offset, "xxxx"),
-                                 lo.e.swizzle(scale_offset, "yyyy")))
-    lo.write(instr, lo.b.mul(texel, lum))
-
-
-_REG2 = {"texreg2ar": "wxxx", "texreg2gb": "yzzz", "texreg2rgb": "xyzz"}
-
-
-@_texture(*_REG2)
-def _texreg2(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    coord = lo.e.swizzle(lo.source(instr.srcs[0], reads), _REG2[instr.info.op])
-    default = "3d" if instr.info.op == "texreg2rgb" else "2d"
-    lo.write(instr, lo.sample(instr.dst.index, coord, default), computed=False)
-
-
-@_texture("texm3x2pad", "texm3x3pad")
-def _pad(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    if instr.info.op == "texm3x2pad" or not lo.pending_rows or len(lo.pending_rows) >= 2:
-        lo.pending_rows = []
-    lo.pending_rows.append(_dot_row(lo, instr, reads))
-
-
-def _rows(lo: _Lowering, instr: Instruction, count: int) -> list[int]:
-    rows, lo.pending_rows = lo.pending_rows, []
-    if len(rows) != count:
-        raise AsmError(f"{instr.opcode} needs {count} pad instruction(s) before it",
-                       instr.location)
-    return rows
-
-
-@_texture("texm3x2tex")
-def _texm3x2tex(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    (u,) = _rows(lo, instr, 1)
-    coord = _xyz(lo, u, _dot_row(lo, instr, reads))
-    lo.write(instr, lo.sample(instr.dst.index, coord), computed=False)
-
-
-@_texture("texm3x2depth")
-def _texm3x2depth(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    (u,) = _rows(lo, instr, 1)
-    w = _dot_row(lo, instr, reads)
-    ratio = lo.b.saturate(lo.b.mul(u, lo.b.rcp(w)))
-    lo.depth = lo.b.cmp(lo.b.neg(lo.b.abs(w)), lo.e.const(ONE), ratio)   # w == 0 gives 1
-
-
-@_texture("texm3x3tex", "texm3x3", "texm3x3spec", "texm3x3vspec")
-def _texm3x3(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    u, v = _rows(lo, instr, 2)
-    n = _xyz(lo, u, v, _dot_row(lo, instr, reads))
-    m = instr.dst.index
-    op = instr.info.op
-    if op == "texm3x3":
-        lo.write(instr, lo.b.merge(n, lo.e.const(ONE), "w"))
-        return
-    if op == "texm3x3tex":
-        lo.write(instr, lo.sample(m, n, "cube"), computed=False)
-        return
-    if op == "texm3x3spec":
-        eye = lo.source(instr.srcs[1], reads)
-    else:   # the eye vector rides in the w of the three rows' texture coordinates
-        eye = _xyz(lo, *(lo.e.swizzle(lo.texcoord(m - 2 + k), "wwww") for k in range(3)))
-    # R = 2 N (N.E) / (N.N) - E
-    b = lo.b
-    factor = b.mul(lo.e.const(2.0), b.mul(b.dp3(n, eye), b.rcp(b.dp3(n, n))))
-    lo.write(instr, lo.sample(m, b.sub(b.mul(n, factor), eye), "cube"), computed=False)
-
-
-@_texture("texdp3")
-def _texdp3(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    lo.write(instr, _dot_row(lo, instr, reads))
-
-
-@_texture("texdp3tex")
-def _texdp3tex(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    coord = lo.b.merge(lo.e.const(ZERO), _dot_row(lo, instr, reads), "x")
-    lo.write(instr, lo.sample(instr.dst.index, coord), computed=False)
-
-
-@_texture("texdepth")
-def _texdepth(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    # depth = sat(r5.r / min(r5.g, 1)); g == 0 gives 1 (semantics.md 2.6, Wine's formula)
-    b, r5 = lo.b, lo.source(instr.dst, reads)
-    g = lo.e.swizzle(r5, "yyyy")
-    ratio = b.saturate(b.mul(lo.e.swizzle(r5, "xxxx"), b.rcp(b.min(g, lo.e.const(ONE)))))
-    lo.depth = b.cmp(b.neg(b.abs(g)), lo.e.const(ONE), ratio)
-
-
-@_texture("texcrd")
-def _texcrd(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    lo.write(instr, lo.source(instr.srcs[0], reads))
-
-
-@_texture("texld", "texldp", "texldb", "texldl")
-def _texld(lo: _Lowering, instr: Instruction, reads: dict) -> None:
-    coord = lo.source(instr.srcs[0], reads)
-    if lo.rules.is_ps14:                           # stage = destination register number
-        lo.write(instr, lo.sample(instr.dst.index, coord), computed=False)
-        return
-    flags = {"texldp": {"proj": True}, "texldb": {"bias": True},
-             "texldl": {"lod": True}}.get(instr.info.op, {})
-    lo.write(instr, lo.sample(instr.srcs[1].index, coord, **flags), computed=False)
-

@@ -22,7 +22,7 @@ Sources: ../shared/reference/semantics.md §2.2-2.4 (ps_1_x modifiers and instru
 """
 from __future__ import annotations
 
-from typing import Any, Mapping, Union
+from typing import Any, Callable, Mapping, Union
 
 from effects.ir import COMPONENTS, Builder
 
@@ -54,11 +54,15 @@ NEGATE: Tree = ("neg", "x")
 # shift, then _sat (Wine and DXVK order, semantics.md 2.3), then the card's register range and
 # fixed-point grid (the profile's precision, effects.precision). Each row: (name, tree); the
 # lowering binds "scale", "range", "neg_range" and "grid" and skips rows whose switch is off.
-RESULT_MODIFIERS: tuple[tuple[str, Tree], ...] = (
-    ("shift", ("mul", "x", "scale")),
-    ("saturate", ("saturate", "x")),
-    ("range", ("clamp", "neg_range", "range", "x")),
-    ("quantize", ("quantize", "x")),
+# Each row carries its condition (as nir_opt_algebraic rows do), over the write's facts `w`:
+# w.shift, w.saturate (the instruction's), w.computed (an arithmetic result, not a texel),
+# w.range and w.grid (the register precision, None when float).
+RESULT_MODIFIERS: tuple[tuple[str, Callable[[Any], bool], Tree], ...] = (
+    ("shift", lambda w: w.shift != 0, ("mul", "x", "scale")),
+    ("saturate", lambda w: w.saturate, ("saturate", "x")),
+    ("range", lambda w: w.computed and w.range is not None,
+     ("clamp", "neg_range", "range", "x")),
+    ("quantize", lambda w: w.computed and w.grid is not None, ("quantize", "x")),
 )
 
 # -- instructions: the result over the sources a, b, c ----------------------------------------
@@ -75,71 +79,38 @@ def _sign(t: Tree) -> Tree:
     return ("sub", ("slt", 0.0, t), ("slt", t, 0.0))
 
 
-INSTRUCTIONS: dict[str, Tree] = {
-    "mov": "a",
-    "add": ("add", "a", "b"),
-    "sub": ("sub", "a", "b"),
-    "mul": ("mul", "a", "b"),
-    "mad": ("mad", "a", "b", "c"),
-    "dp3": ("dp3", "a", "b"),
-    "dp4": ("dp4", "a", "b"),
-    "lrp": ("lrp", "a", "b", "c"),
-    "cmp": ("cmp", "a", "b", "c"),
-    "min": ("min", "a", "b"),
-    "max": ("max", "a", "b"),
-    "slt": ("slt", "a", "b"),
-    "sge": ("sge", "a", "b"),
-    "rcp": ("rcp", "a"),
-    "rsq": ("rsq", "a"),
-    "exp": ("exp2", "a"),
-    "log": ("log2", "a"),
-    "pow": ("pow", "a", "b"),
-    "frc": ("frc", "a"),
-    "abs": ("abs", "a"),
-    "nrm": ("nrm", "a"),
-    "crs": ("crs", "a", "b"),
-    "sgn": _sign("a"),
-    # ps_1_4 (and ps_1_1-1_3 once r0.a is selected, below): per component a > 0.5 ? b : c
-    "cnd": ("cnd", "a", "b", "c"),
-    # ps_1_1-1_3: the condition is r0.a for all four components
-    "cnd.alpha": ("cnd", ("swz", "wwww", "a"), "b", "c"),
-    # ps_1_1-1_3 co-issued cnd writing colour: always the first choice (Wine; the d3d9
-    # cnd test expects src1, semantics.md 2.4)
-    "cnd.coissue": "b",
-    # a.x * b.x + a.y * b.y + c (c scalar)
-    "dp2add": ("add", ("add", ("swz", "xxxx", ("mul", "a", "b")),
-                       ("swz", "yyyy", ("mul", "a", "b"))), "c"),
-    # x = cos a, y = sin a (sincos's extra constant sources of sm2 are not needed)
-    "sincos": ("merge", "y", ("cos", "a"), ("sin", "a")),
-    # (1, a.y * b.y, a.z, b.w)
-    "dst": ("merge", "w", ("merge", "z", ("merge", "y", 1.0, ("mul", "a", "b")), "a"), "b"),
-    # (1, max(a.x, 0), a.x > 0 ? max(a.y, 0)^clamp(a.w, -128, 128) : 0, 1)
-    "lit": ("merge", "z", ("merge", "y", 1.0, ("max", _X, 0.0)),
-            ("cmp", ("neg", _X), 0.0,
-             ("pow", ("max", _Y, 0.0), ("clamp", -128.0, 128.0, _W)))),
-    # vs_1_1: (2^floor a, a - floor a, 2^a, 1); vs_2_0+: 2^a (partial precision)
-    "expp.vs1": ("merge", "xyz", 1.0,
-                 ("merge", "y", ("merge", "z", ("exp2", _floor("a")), ("exp2", "a")),
-                  ("frc", "a"))),
-    "expp": ("exp2", "a"),
-    # vs_1_1: v = |a|: (floor log2 v, v / 2^floor(log2 v), log2 v, 1); vs_2_0+: log2 |a|
-    "logp.vs1": ("merge", "xyz", 1.0,
-                 ("merge", "y", ("merge", "z", _floor(("log2", "a")), ("log2", "a")),
-                  ("mul", ("abs", "a"), ("exp2", ("neg", _floor(("log2", "a"))))))),
-    "logp": ("log2", "a"),
-    # address register loads: vs_1_1 `mov a0` floors; vs_2_0 `mova` rounds halves away from 0
-    "mov.a0": _floor("a"),
-    "mova": ("mul", _sign("a"), _floor(("add", ("abs", "a"), 0.5))),
-    # bem r(n): xy = a.xy + M(n) (b.r, b.g); bumpenv = (M00, M01, M10, M11)
-    "bem": ("mad", ("swz", "xxxx", "b"), ("swz", "xyxy", "bumpenv"),
-            ("mad", ("swz", "yyyy", "b"), ("swz", "zwzw", "bumpenv"), "a")),
-}
-
-# Matrix macros: one dot product per row of consecutive registers (m4x4 r0, v0, c4 reads c4-c7).
-MATRIX_MACROS: dict[str, tuple[str, int]] = {
-    "m4x4": ("dp4", 4), "m4x3": ("dp4", 3), "m3x4": ("dp3", 4), "m3x3": ("dp3", 3),
-    "m3x2": ("dp3", 2),
-}
+# Rows of the instruction table (instructions.py) name these trees; the plain ones (add, mul
+# ...) are written in the row itself.
+SGN = _sign("a")
+# ps_1_1-1_3: the condition is r0.a for all four components
+CND_ALPHA: Tree = ("cnd", ("swz", "wwww", "a"), "b", "c")
+# ps_1_1-1_3 co-issued cnd writing colour: always the first choice (Wine; the d3d9 cnd test
+# expects src1, semantics.md 2.4)
+CND_COISSUE: Tree = "b"
+# a.x * b.x + a.y * b.y + c (c scalar)
+DP2ADD: Tree = ("add", ("add", ("swz", "xxxx", ("mul", "a", "b")),
+                        ("swz", "yyyy", ("mul", "a", "b"))), "c")
+# x = cos a, y = sin a (sincos's extra constant sources of sm2 are not needed)
+SINCOS: Tree = ("merge", "y", ("cos", "a"), ("sin", "a"))
+# (1, a.y * b.y, a.z, b.w)
+DST: Tree = ("merge", "w", ("merge", "z", ("merge", "y", 1.0, ("mul", "a", "b")), "a"), "b")
+# (1, max(a.x, 0), a.x > 0 ? max(a.y, 0)^clamp(a.w, -128, 128) : 0, 1)
+LIT: Tree = ("merge", "z", ("merge", "y", 1.0, ("max", _X, 0.0)),
+             ("cmp", ("neg", _X), 0.0, ("pow", ("max", _Y, 0.0), ("clamp", -128.0, 128.0, _W))))
+# vs_1_1: (2^floor a, a - floor a, 2^a, 1); vs_2_0+: 2^a (partial precision)
+EXPP_VS1: Tree = ("merge", "xyz", 1.0,
+                  ("merge", "y", ("merge", "z", ("exp2", _floor("a")), ("exp2", "a")),
+                   ("frc", "a")))
+# vs_1_1: v = |a|: (floor log2 v, v / 2^floor(log2 v), log2 v, 1); vs_2_0+: log2 |a|
+LOGP_VS1: Tree = ("merge", "xyz", 1.0,
+                  ("merge", "y", ("merge", "z", _floor(("log2", "a")), ("log2", "a")),
+                   ("mul", ("abs", "a"), ("exp2", ("neg", _floor(("log2", "a")))))))
+# address register loads: vs_1_1 `mov a0` floors; vs_2_0 `mova` rounds halves away from 0
+MOV_A0: Tree = _floor("a")
+MOVA: Tree = ("mul", _sign("a"), _floor(("add", ("abs", "a"), 0.5)))
+# bem r(n): xy = a.xy + M(n) (b.r, b.g); bumpenv = (M00, M01, M10, M11)
+BEM: Tree = ("mad", ("swz", "xxxx", "b"), ("swz", "xyxy", "bumpenv"),
+             ("mad", ("swz", "yyyy", "b"), ("swz", "zwzw", "bumpenv"), "a"))
 
 
 class Emitter:
@@ -189,5 +160,5 @@ class Emitter:
         if head == "quantize":
             bits, signed, scale = env["grid"]
             return self.b.quantize(self.emit(rest[0], env), bits, signed, scale)
-        args = [self.emit(t, env) for t in rest]
-        return getattr(self.b, head)(*args)
+        # any other head is an IR op by name: its row in effects.ir.OPS is all it needs
+        return self.b.emit(head, *(self.emit(t, env) for t in rest))

@@ -11,7 +11,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from effects.shaders.asm.instructions import MATRIX_ROWS
 from effects.shaders.asm.versions import IDENTITY, PS20_SWIZZLES
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -133,7 +132,7 @@ def compute_stats(program: "AsmProgram") -> AsmStats:
             ps[1] += a
         for op in ins.operands:
             note(op.kind, op.index)
-        rows = MATRIX_ROWS.get(ins.opcode)
+        rows = ins.info.matrix_rows
         if rows and len(ins.srcs) > 1 and ins.srcs[1].index is not None:
             for k in range(1, rows):
                 note(ins.srcs[1].kind, ins.srcs[1].index + k)
