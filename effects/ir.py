@@ -510,6 +510,7 @@ _OP_ROWS = [
         "|a|^b per component (D3D pow). IEEE pow at |a| = 0: 0^0 = 1, 0^-y = +inf"),
     _pc("frc", 1, _elementwise(lambda a: a - np.floor(a)), "fract({0})", "a - floor(a)"),
     _pc("abs", 1, _elementwise(np.abs), "abs({0})", "|a|"),
+    _pc("sign", 1, _elementwise(np.sign), "sign({0})", "-1, 0 or 1 per component (D3D sgn)"),
     _pc("sin", 1, _elementwise(np.sin), "sin({0})", "sin(a) radians (for sincos)"),
     _pc("cos", 1, _elementwise(np.cos), "cos({0})", "cos(a) radians (for sincos)"),
     _pc("cmp", 3, _elementwise(lambda a, b, c: np.where(a >= 0, b, c)),

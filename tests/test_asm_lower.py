@@ -107,6 +107,13 @@ def test_ps20_arithmetic(text, expected):
     assert out(prog, {"c0": C0, "c1": C1, "c2": C2}) == approx(expected)
 
 
+def test_vs20_sgn_is_minus_one_zero_or_one():
+    # sgn r0, c0, r1, r2 with c0 = (-2, 0, 3, -0.5): (-1, 0, 1, -1)
+    prog = vs("vs_2_0\ndcl_position v0\ndef c0, -2, 0, 3, -0.5\nmov r1, v0\nmov r2, v0\n"
+              "sgn r0, c0, r1, r2\nmov oPos, r0")
+    assert out(prog, {"position": (0, 0, 0, 1)}, name="position") == approx((-1, 0, 1, -1))
+
+
 def test_ps20_sincos_writes_cos_and_sin():
     prog = ps("ps_2_0\nmov r1, c0\nsincos r0.xy, r1.x, c1, c2\nmov oC0, r0")
     got = out(prog, {"c0": (np.pi / 3, 0, 0, 0), "c1": C1, "c2": C2})

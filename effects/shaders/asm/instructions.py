@@ -222,7 +222,7 @@ _ARITH = [
     _row("pow", PS2UP | VS2UP, "dxx", "arith", "d = |a|^b (replicated)", slots=3,
          lowers=_ir("pow")),
     _row("sgn", VS2UP, "dsss", "arith", "d = sign(a) per component (b, c: scratch temps)",
-         slots=3, lowers=Rewrite(rw.SGN)),
+         slots=3, lowers=_ir("sign", "a")),
     _row("sincos", PS2 | VS2, "dxss", "arith",
          "d.x = cos(a), d.y = sin(a) (b, c = D3DSINCOSCONST1/2)", slots=8,
          lowers=Rewrite(rw.SINCOS)),

@@ -81,7 +81,6 @@ def _sign(t: Tree) -> Tree:
 
 # Rows of the instruction table (instructions.py) name these trees; the plain ones (add, mul
 # ...) are written in the row itself.
-SGN = _sign("a")
 # ps_1_1-1_3: the condition is r0.a for all four components
 CND_ALPHA: Tree = ("cnd", ("swz", "wwww", "a"), "b", "c")
 # ps_1_1-1_3 co-issued cnd writing colour: always the first choice (Wine; the d3d9 cnd test
