@@ -94,6 +94,7 @@ BOUNDS = {
     ("brdf.fx", "tec0"): Bound("exact", "point sampling, no mip maps, ps.1.1 fixed point"),
     ("hemisphere.fx", "HemisphereVertex_vs11"): Bound("lod", _LOD),
     ("hemisphere.fx", "HemispherePerPixel_ps11"): Bound("lod", _LOD),
+    ("hemisphere.fx", "HemisphereOcclusion_ps11"): Bound("lod", _LOD),
     ("phong.fx", "SingleTexture"): Bound("lod", _LOD),
     ("phong.fx", "Dot3_dx7"): Bound("lod", _LOD),
     ("phong.fx", "PerPixelPhong_ps11"): Bound("lod", _LOD + "; the N.H^96 table amplifies it"),

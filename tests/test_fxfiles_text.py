@@ -21,7 +21,8 @@ EXPECTED_TECHNIQUES: dict[str, list[str | None]] = {
     "phong.fx": ["PerPixelPhong_ps20", "PerPixelPhong_ps11", "Dot3_dx7", "SingleTexture"],
     "specular_bump.fx": ["Specular_ps20", "SpecularTable_ps11", "SpecularMultiply_ps11",
                          "Dot3_dx7", "BumpEnvMap_dx6", "Emboss_dx6", "SingleTexture"],
-    "hemisphere.fx": ["HemispherePerPixel_ps11", "HemisphereVertex_vs11", "SingleTexture"],
+    "hemisphere.fx": ["HemisphereOcclusion_ps11", "HemispherePerPixel_ps11", "HemisphereVertex_vs11",
+                      "SingleTexture"],
     "sdk8_style.fx": ["TPS4", "TPS1", "TFF7", "TDX6", None],
     "sdk9_style.fx": ["Marble_ps20", "Marble_ps11", "Marble_dx7", "Marble_dx6"],
 }
@@ -166,7 +167,7 @@ def test_named_texture_files_exist(name: str) -> None:
     for kind, value in ANNOTATED_TEXTURE.findall(strip_comments(read(name), keep_strings=True)):
         if kind == "Procedural":
             generator, _, argument = value.partition(":")
-            assert generator in {"sobel_normals", "sobel_dudv", "normalization_cube",
+            assert generator in {"sobel_normals", "sobel_normals_ao", "sobel_dudv", "normalization_cube",
                                  "power_table", "noise3d", "sky_cube"}, value
             if not argument.replace(".", "").isdigit():
                 assert (FX_DIR / argument).is_file(), f"{name}: {value}"

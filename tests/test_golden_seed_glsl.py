@@ -76,7 +76,7 @@ CASES = [(e, t.name) for e in SEEDS for t in _effect(e).techniques]
 
 
 def test_every_seed_technique_has_a_case():
-    assert len(CASES) == 15
+    assert len(CASES) == 16
     assert ("phong", "PerPixelPhong_ps11") in CASES and ("brdf", "tec0") in CASES
 
 

@@ -38,7 +38,7 @@ NONE = (None, 0)
 EXPECTED = {
     "brdf": row(dx6=NONE, dx7=NONE, dx8=("tec0", 1), dx9=("tec0", 1)),
     "hemisphere": row(dx6=("HemisphereVertex_vs11", 1), dx7=("HemisphereVertex_vs11", 1),
-                      dx8=("HemispherePerPixel_ps11", 1), dx9=("HemispherePerPixel_ps11", 1)),
+                      dx8=("HemisphereOcclusion_ps11", 1), dx9=("HemisphereOcclusion_ps11", 1)),
     "phong": row(dx6=("SingleTexture", 1), dx7=("Dot3_dx7", 1), dx8=("PerPixelPhong_ps11", 2),
                  dx9=("PerPixelPhong_ps20", 1)),
     "sdk8_style": row(dx6=("TDX6", 1), dx7=("TFF7", 1), geforce3=("TPS1", 1),

@@ -63,6 +63,7 @@ THUMBS = [
     ("specular_bump", "BumpEnvMap_dx6", "g400", None),
     ("specular_bump", "Emboss_dx6", "tnt2", None),
     ("specular_bump", "SingleTexture", "tnt2", None),
+    ("hemisphere", "HemisphereOcclusion_ps11", "geforce3", None),
     ("hemisphere", "HemispherePerPixel_ps11", "geforce3", None),
     ("hemisphere", "HemisphereVertex_vs11", "tnt2", None),
     ("sdk8_style", "TPS4", "radeon8500", SDK8),
@@ -74,6 +75,10 @@ THUMBS = [
     ("sdk9_style", "Marble_dx6", "tnt2", None),
     ("brdf", "tec0", "geforce3", BRDF),
 ]
+
+# The same techniques on the teapot, whose handle and spout occlude it (file name + _teapot).
+TEAPOT = [("hemisphere", "HemisphereOcclusion_ps11", "geforce3"),
+          ("hemisphere", "HemispherePerPixel_ps11", "geforce3")]
 
 # The banding close-ups: the specular term alone (black Earth, flat normal map, white
 # specular colour), the 32 x 32 pixels around the highlight of a 128 x 128 render, enlarged
@@ -95,6 +100,12 @@ def main() -> None:
         image = effects.render(fx, card, technique=technique, size=(256, 256), params=params)
         small = Image.fromarray(image[..., :3]).resize((128, 128), Image.LANCZOS)
         save(np.asarray(small), f"{effect}_{technique}_{card}.png")
+    for effect, technique, card in TEAPOT:
+        fx = effects.load_effect(os.path.join(FX, f"{effect}.fx"))
+        image = effects.render(fx, card, technique=technique, size=(256, 256),
+                               scene={"mesh": "teapot"})
+        small = Image.fromarray(image[..., :3]).resize((128, 128), Image.LANCZOS)
+        save(np.asarray(small), f"{effect}_{technique}_{card}_teapot.png")
     fx = effects.load_effect(os.path.join(FX, "specular_bump.fx"))
     for technique, card in CLOSE_UPS:
         image = effects.render(fx, card, technique=technique, size=(128, 128),

@@ -23,7 +23,9 @@ mesh's uv. Which attribute feeds a stream can be changed:
     v8, the TEXCOORD1 register of a DX8 declaration);
   - by the scene, with `streams: {texcoord1: tangent}`, which wins over the effect.
 Attributes: position, normal, tangent, binormal, uv (texture coordinates), diffuse,
-specular, and for inline scene vertices also tex0..tex7.
+specular, uv_occlusion (u, v and the vertex's ambient occlusion, the layout of the chapter's
+hemisphere shaders, which read the occlusion from v7.z; cast over the mesh on first use by
+`effects.host.occlusion`, 0 for inline vertices), and for inline scene vertices also tex0..tex7.
 """
 from __future__ import annotations
 
@@ -37,6 +39,7 @@ import numpy as np
 
 from effects.errors import Location, SceneError
 from effects.host.meshes import Mesh, by_name
+from effects.host.occlusion import vertex_occlusion
 from effects.model import Effect, Parameter
 from effects.host.scene import InlineMesh, Scene
 from effects import limits
@@ -47,7 +50,7 @@ from effects.untrusted import confine
 STREAM_NAMES = ("position", "normal", "tangent", "binormal", "color0", "color1",
                 *(f"texcoord{i}" for i in range(8)))
 ATTRIBUTES = ("position", "normal", "tangent", "binormal", "uv", "diffuse", "specular",
-              *(f"tex{i}" for i in range(8)))
+              "uv_occlusion", *(f"tex{i}" for i in range(8)))
 
 
 # ------------------------------------------------------------------------------------------------
@@ -262,6 +265,8 @@ def geometry(scene: Scene, effect: Effect, mesh: Mesh | InlineMesh | None = None
         has_diffuse = True
     else:
         attributes = _mesh_attributes(mesh, scene)
+        if "uv_occlusion" in overrides.values():
+            attributes["uv_occlusion"] = _uv_occlusion(mesh)
         indices, primitive = np.asarray(mesh.indices), "list"
         has_diffuse = mesh.colors is not None or _scene_gives_colors(scene)
     streams = {name: attributes[source] for name, source in _default_sources(attributes).items()}
@@ -307,8 +312,20 @@ def _mesh_attributes(mesh: Mesh, scene: Scene) -> dict[str, np.ndarray]:
             "specular": np.tile(np.asarray(scene.vertex_specular, np.float32), (n, 1))}
 
 
+def _uv_occlusion(mesh: Mesh) -> np.ndarray:
+    """(N, 3): u, v, ambient occlusion; the occlusion is cast once per mesh (meshes are cached
+    by `scene_mesh`, so a viewer reload does not cast again)."""
+    if mesh.occlusion is None:
+        mesh.occlusion = vertex_occlusion(mesh.positions, mesh.normals, mesh.indices)
+    return np.concatenate([mesh.uv, mesh.occlusion[:, None]], axis=1).astype(np.float32)
+
+
 def _inline_attributes(mesh: InlineMesh) -> dict[str, np.ndarray]:
     attributes = dict(mesh.attributes)
     if "tex0" in attributes:
         attributes["uv"] = attributes["tex0"]
+    if "uv" in attributes:       # inline vertices carry no occlusion: 0, open sky
+        uv = np.asarray(attributes["uv"], np.float32)
+        uv = np.concatenate([uv, np.zeros((len(uv), 2), np.float32)], axis=1)[:, :2]
+        attributes["uv_occlusion"] = np.concatenate([uv, np.zeros((len(uv), 1), np.float32)], 1)
     return attributes

@@ -43,6 +43,7 @@ class Mesh:
     binormals: np.ndarray                 # (N, 3) unit, along dP/dv (orthogonalised)
     indices: np.ndarray                   # (M, 3) uint32, a triangle list
     colors: np.ndarray | None = None      # (N, 4) RGBA or None (the D3D default diffuse)
+    occlusion: np.ndarray | None = None   # (N,) ambient occlusion, made on first use
     primitive: str = "triangle_list"
     space: str = "object"
     name: str = ""

@@ -511,6 +511,14 @@ def _sobel_dudv(heights: np.ndarray, scale: float) -> np.ndarray:
     return np.concatenate([n, np.ones(n.shape[:-1] + (2,))], axis=-1)
 
 
+def _with_openness(normals: np.ndarray, heights: np.ndarray, scale: float) -> np.ndarray:
+    """The normal map with alpha = 1 - occlusion (`heightfield.horizon_occlusion`)."""
+    from effects.host.heightfield import horizon_occlusion
+    out = normals.copy()
+    out[..., 3] = 1.0 - horizon_occlusion(heights, scale=scale)
+    return out
+
+
 def _grey(h: np.ndarray) -> np.ndarray:
     return _rgba(np.repeat(np.asarray(h)[..., None], 3, -1))
 
@@ -526,6 +534,12 @@ PROCEDURAL: dict[str, Procedural] = {
         lambda a, s, h: make_texture(sobel_normal_map(h, 1.0 if _is_path(a) else _normal_scale(s)),
                                      "X8R8G8B8", blur=True),
         128, "bumps", "tangent-space normal map of a height field, X8R8G8B8, blurred mips", takes_height=True),
+    "sobel_normals_ao": Procedural(
+        lambda a, s, h: make_texture(_with_openness(sobel_normal_map(h, 1.0 if _is_path(a) else _normal_scale(s)),
+                                                    h, 1.0 if _is_path(a) else _normal_scale(s)),
+                                     "A8R8G8B8", blur=True),
+        128, "bumps", "sobel_normals with alpha = 1 - the height field's self-occlusion, A8R8G8B8",
+        takes_height=True),
     "sobel_dudv": Procedural(
         lambda a, s, h: make_texture(_sobel_dudv(h, 1.0 if _is_path(a) else _normal_scale(s)), "V8U8"),
         128, "bumps", "EMBM (du, dv) = (n.x, n.y) of the Sobel normal, V8U8", takes_height=True),
