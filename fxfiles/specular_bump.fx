@@ -288,6 +288,67 @@ VertexShader EarthVS_emboss = asm
     mov oD0.w, c20.w                // c20 = (.5,.5,.5,.5) from the pass; alpha unused
 };
 
+// The DirectX 6 technique's vertices, as the SDK's BumpEarth application made them on the CPU:
+// the Earth lit per vertex (oD0 = max(0, N.L) * light colour, what the listing's lit FVF
+// vertices carry) and view-dependent environment coordinates (oT2), so the light map's spot,
+// the Sun's reflection, lands where the surface mirrors the Sun to the eye: one coherent
+// highlight instead of the surface uv's scattered copies. The coordinates measure the normal
+// against the vertex's half angle H of the Sun and the eye:
+//     (u, v) = 0.5 + k (N.a, N.b),   a = normalize(H x up), b = a x H
+// so (0.5, 0.5) (the spot) is N = H and the spot's width is the angle to it; k = 0.32 gives
+// the light map's Gaussian (sigma 0.08) the width of N.H^16 (exp(-8 angle^2)). DX6 cards
+// run it by software vertex processing, as the other vs.1.1 fallbacks here.
+VertexShader EarthVS_envmap = asm
+{
+    vs_1_1
+    dcl_position  v0
+    dcl_normal    v3
+    dcl_texcoord1 v7                // surface coordinates (set 1)
+
+    // c0-c3 world, c8-c11 world*view*projection, c12 light direction, c14 camera position,
+    // c16 light colour; c21 = (k, 0, 0, 0)
+    def c21, 0.32, 0.0, 0.0, 0.0
+    def c20, 0.5, 0.5, 0.5, 0.5
+
+    m4x4 oPos, v0, c8
+    m3x3 r5.xyz, v3, c0             // normal, world space
+    dp3 r0.w, r5, r5
+    rsq r0.w, r0.w
+    mul r5.xyz, r5, r0.w
+
+    dp3 r1.x, r5, -c12              // N.L
+    max r1.x, r1.x, c21.y
+    mul oD0, c16, r1.x              // lit Earth colour, as the FVF vertex's diffuse
+
+    // H: the half angle of the Sun and the eye at this vertex
+    m4x4 r0, v0, c0                 // world position
+    sub r2.xyz, c14, r0             // toward the eye
+    dp3 r2.w, r2, r2
+    rsq r2.w, r2.w
+    mul r2.xyz, r2, r2.w
+    sub r2.xyz, r2, c12             // + direction to the Sun
+    dp3 r2.w, r2, r2
+    rsq r2.w, r2.w
+    mul r2.xyz, r2, r2.w            // r2 = H
+
+    mov r3.x, -r2.z                 // a = H x (0, 1, 0) = (-H.z, 0, H.x)
+    mov r3.y, c21.y
+    mov r3.z, r2.x
+    dp3 r3.w, r3, r3
+    rsq r3.w, r3.w
+    mul r3.xyz, r3, r3.w            // a
+    mul r4.xyz, r3.yzx, r2.zxy
+    mad r4.xyz, r3.zxy, r2.yzx, -r4 // b = a x H
+
+    dp3 r6.x, r5, r3
+    dp3 r6.y, r5, r4
+    mul r6.xy, r6.xy, c21.x
+    add oT2.xy, r6.xy, c20          // 0.5 + k (N.a, N.b)
+
+    mov oT0.xy, v7                  // Earth
+    mov oT1.xy, v7                  // bump map
+};
+
 //----------------------------------------------------------------------------------------------
 // Techniques, best first
 
@@ -479,7 +540,9 @@ technique Dot3_dx7
 //   1   BUMPENVMAP( BumpMap, _ );            // sample bump map (other arg ignored)
 //   2   ADD( EnvMapTexture, Current );       // sample envt map using bumped texcoords
 //                                            // and add to result
-// with the fixed-function pipeline lighting the vertices (the listing's FVF path).
+// with the vertices the application made (EarthVS_envmap: lit colour, view-dependent
+// environment coordinates). BUMPENVMAT scales the bump map's (du, dv) by k, the coordinates'
+// own scale, so a bump tilts the lookup as far as the same tilt of the normal would.
 technique BumpEnvMap_dx6
 <
     string Description = "DX6 BUMPENVMAP: base x diffuse, bump-perturbed environment map added";
@@ -489,44 +552,44 @@ technique BumpEnvMap_dx6
 {
     pass P0
     {
-        VertexShader = NULL;
+        VertexShader = <EarthVS_envmap>;
+        VertexShaderConstantF[0]  = <World>;
+        VertexShaderConstantF[8]  = <WorldViewProjection>;
+        VertexShaderConstantF[12] = <LightDirection>;
+        VertexShaderConstantF[14] = <CameraPosition>;
+        VertexShaderConstantF[16] = <LightColor>;
         PixelShader  = NULL;
-        WorldTransform[0]   = <World>;
-        ViewTransform       = <View>;
-        ProjectionTransform = <Projection>;
-
-        Lighting          = True;
-        LightEnable[0]    = True;
-        LightType[0]      = Directional;
-        LightDirection[0] = <LightDirection>;
-        LightDiffuse[0]   = <LightColor>;
-        MaterialDiffuse   = { 1.0, 1.0, 1.0, 1.0 };
 
         Wrap0 = 3;                      // D3DWRAP_U | D3DWRAP_V
 
         Texture[0]       = <EarthTexture>;
-        TexCoordIndex[0] = 1;
         ColorOp[0]       = Modulate;
         ColorArg1[0]     = Texture;
         ColorArg2[0]     = Diffuse;
 
         Texture[1]       = <BumpMap>;
-        TexCoordIndex[1] = 1;
         ColorOp[1]       = BumpEnvMap;
         ColorArg1[1]     = Texture;
         ColorArg2[1]     = Current;
-        BumpEnvMat00[1]  = 0.5;
+        BumpEnvMat00[1]  = 0.32;
         BumpEnvMat01[1]  = 0.0;
         BumpEnvMat10[1]  = 0.0;
-        BumpEnvMat11[1]  = 0.5;
+        BumpEnvMat11[1]  = 0.32;
         BumpEnvLScale[1]  = 4.0;
         BumpEnvLOffset[1] = 0.0;
 
         Texture[2]       = <EnvMapTexture>;
-        TexCoordIndex[2] = 0;
         ColorOp[2]       = Add;
         ColorArg1[2]     = Texture;
         ColorArg2[2]     = Current;
+        AddressU[2]      = Clamp;       // off the spot the light map is black
+        AddressV[2]      = Clamp;
+        MinFilter[0] = Linear;
+        MagFilter[0] = Linear;
+        MinFilter[1] = Linear;
+        MagFilter[1] = Linear;
+        MinFilter[2] = Linear;
+        MagFilter[2] = Linear;
     }
 }
 

@@ -109,8 +109,8 @@ BOUNDS = {
         "exact", "no mip filtering, but texreg2gb reads a steep vein ramp at a filtered "
         "value (see 3.): a few pixels within 8/255", max_abs=8, outliers=4),
     ("specular_bump.fx", "BumpEnvMap_dx6"): Bound(
-        "exact", "point sampling without mip maps; the environment lookup is offset by a "
-        "point-sampled bump texel, so a near-tie may flip one texel", max_abs=255, outliers=4),
+        "exact", "bilinear without mip maps; the environment lookup is offset by a "
+        "filtered bump texel, so a near-tie may move one texel", max_abs=255, outliers=4),
     ("specular_bump.fx", "Emboss_dx6"): Bound("lod", _LOD),
     ("specular_bump.fx", "Dot3_dx7"): Bound("lod", _LOD),
     ("specular_bump.fx", "SpecularTable_ps11"): Bound("lod", _LOD),

@@ -411,7 +411,7 @@ FX_COUNTS = {
                  ("Dot3_dx7", [30]), ("SingleTexture", [34])],
     "specular_bump.fx": [("Specular_ps20", [10]), ("SpecularTable_ps11", [19]),
                          ("SpecularMultiply_ps11", [13]), ("Dot3_dx7", [19]),
-                         ("BumpEnvMap_dx6", [33]), ("Emboss_dx6", [18, 11]),
+                         ("BumpEnvMap_dx6", [34]), ("Emboss_dx6", [18, 11]),
                          ("SingleTexture", [20])],
 }
 
