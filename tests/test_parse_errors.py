@@ -249,4 +249,6 @@ def test_pathological_input_ends_quickly(source, outcome):
         assert len(effect.parameters) + len(effect.techniques) == 1
     except EffectError as err:
         assert outcome is not None and outcome in str(err)
-    assert time.perf_counter() - start < 1.5
+    # The bound of the untrusted-input policy (issue 14: 5 s); linear inputs take ~0.3 s alone,
+    # a quadratic path would take minutes. Speed itself is held by benchmarks/bench_load.py.
+    assert time.perf_counter() - start < 5.0
