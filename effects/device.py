@@ -1,7 +1,8 @@
 """The simulated device's state as a technique's passes set it.
 
-Each technique starts from Direct3D 9's default device state; each pass applies its
-assignments on top, and what a pass set persists into the following passes (as on a device,
+Each technique starts from Direct3D 9's default device state, with what the host set before
+`Begin` on top (`host`: the application's SetTransform calls, as EffectEdit and FX Composer set
+WORLD/VIEW/PROJECTION from their camera); each pass applies its assignments on top, and what a pass set persists into the following passes (as on a device,
 D3DX restoring state only at End). Validation and lowering both read state through this, so
 "what was validated" and "what runs" see the same values.
 """
@@ -9,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import Any, Iterator
+from typing import Any, Iterator, Mapping
 
 import numpy as np
 
@@ -27,9 +28,12 @@ class DeviceState:
 
     effect: Effect
     values: dict[tuple[str, int | None], StateAssignment] = field(default_factory=dict)
+    # Values the host set before Begin, keyed like `values` (canonical name, index): read
+    # where no pass assigned the state, instead of the D3D9 default.
+    host: Mapping[tuple[str, int | None], Any] = field(default_factory=dict)
 
     def copy(self) -> "DeviceState":
-        return DeviceState(self.effect, dict(self.values))
+        return DeviceState(self.effect, dict(self.values), self.host)
 
     # -- writing ----------------------------------------------------------------------------
     def apply_pass(self, p: Pass) -> None:
@@ -59,6 +63,10 @@ class DeviceState:
         """The value in force: an assignment's value (parameters resolved) or the default."""
         a = self.assignment(name, index)
         if a is None:
+            if self.host:
+                key = _key(name, index)
+                if key in self.host:
+                    return self.host[key]
             info = _info(name)
             return state_table.default_value(info, index) if info else None
         return self.resolve(a.value)
@@ -113,9 +121,17 @@ def _key(name: str, index: int | None) -> tuple[str, int | None]:
     return info.name, index
 
 
-def pass_states(effect: Effect, passes: list[Pass]) -> Iterator[tuple[Pass, DeviceState]]:
-    """Each pass with the device state in force while it draws (earlier passes persist)."""
-    state = DeviceState(effect)
+def host_states(values: Mapping[str, Any]) -> dict[tuple[str, int | None], Any]:
+    """{'WorldTransform': M, ...} as `DeviceState.host` keys them (canonical name, index)."""
+    return {_key(name, None): value for name, value in values.items()}
+
+
+def pass_states(effect: Effect, passes: list[Pass],
+                host: Mapping[tuple[str, int | None], Any] | None = None
+                ) -> Iterator[tuple[Pass, DeviceState]]:
+    """Each pass with the device state in force while it draws (earlier passes persist);
+    `host`: states the application set before Begin (see `host_states`)."""
+    state = DeviceState(effect, host=host or {})
     for p in passes:
         state.apply_pass(p)
         yield p, state.copy()

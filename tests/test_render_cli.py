@@ -54,8 +54,13 @@ def test_render_writes_the_png_and_prints_one_line(fx, tmp_path, capsys):
                         printed[0]), printed
     image = np.asarray(Image.open(out))
     assert image.shape == (4, 6, 4)
-    # the triangle covers the upper-left half in blue; the transparent black clear elsewhere
-    assert tuple(image[0, 0]) == (0, 0, 255, 255) and tuple(image[3, 5]) == (0, 0, 0, 0)
+    # the triangle covers the upper-left half in blue; the black clear elsewhere, opaque in
+    # the PNG although the target's alpha there is 0
+    assert tuple(image[0, 0]) == (0, 0, 255, 255) and tuple(image[3, 5]) == (0, 0, 0, 255)
+    assert run("render", fx, "--profile", "tnt2", "--scene", scene, "--size", "6x4", "--alpha",
+               "-o", out) == 0
+    kept = np.asarray(Image.open(out))
+    assert tuple(kept[0, 0]) == (0, 0, 255, 255) and tuple(kept[3, 5]) == (0, 0, 0, 0)
 
 
 def test_scene_size_technique_and_set_values(fx, tmp_path, capsys):

@@ -129,6 +129,11 @@ def _add_render(sub) -> None:
                         "0xAARRGGBB, or an image path for a texture (repeatable)")
     p.add_argument("--policy", default="first", help="selection policy (see matrix)")
     p.add_argument("-o", "--output", required=True, metavar="OUT.png", help="the PNG to write")
+    p.add_argument("--alpha", action="store_true",
+                   help="keep the render target's alpha in the PNG (default: opaque; the "
+                        "target's alpha is not a picture's transparency)")
+    p.add_argument("--strict", action="store_true",
+                   help="unknown state names, and textures nothing supplies, are errors")
     p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
                    help="preprocessor macro")
     p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
@@ -158,13 +163,18 @@ def _cmd_render(args, console: Console) -> int:
     start = time.perf_counter()
     try:
         frame = render_frame(effect, profile, technique=args.technique, backend=args.backend,
-                             scene=args.scene, size=size, params=params, policy=args.policy)
+                             scene=args.scene, size=size, params=params, policy=args.policy,
+                             strict=args.strict)
     except NoValidTechnique as exc:
         Console(stderr=True, highlight=False).print(str(exc), markup=False, soft_wrap=True)
         return EXIT_INVALID
     ms = (time.perf_counter() - start) * 1000.0
+    err = Console(stderr=True, highlight=False)
+    for warning in [*effect.warnings, *frame.warnings]:
+        err.print(warning.report(), markup=False, soft_wrap=True, style="yellow")
+    image = frame.image if args.alpha else opaque(frame.image)
     try:
-        Image.fromarray(frame.image, "RGBA").save(args.output)
+        Image.fromarray(image, "RGBA").save(args.output)
     except (OSError, ValueError) as exc:
         from effects.errors import Location, SceneError
         raise SceneError(f"cannot write the image: {exc}", Location(args.output, 1, 1)) from None
@@ -173,6 +183,13 @@ def _cmd_render(args, console: Console) -> int:
           f"pass{'es' if frame.passes != 1 else ''}) with {frame.backend} in {ms:.1f} ms "
           f"-> {args.output}")
     return EXIT_OK
+
+
+def opaque(image):
+    """The picture without the target's alpha (alpha 255): what a window would show."""
+    out = image.copy()
+    out[..., 3] = 255
+    return out
 
 
 def _add_view(sub) -> None:

@@ -6,8 +6,9 @@ Texture parameters, first source that applies wins:
   2. `string ResourceName = "file"`, relative to the effect file;
   3. `string Procedural = "generator:argument"` (`effects.host.textures.procedural`; an `int Width`
      annotation gives the size of generators that take one);
-  4. nothing: the parameter stays unbound (shaders sample (0, 0, 0, 1) there; fixed-function
-     stages follow the missing-texture rule).
+  4. nothing: the parameter stays unbound; the runtime draws a stand-in of its kind
+     (`stand_in_texture`) with a warning, or fails when strict. A `ResourceName` file that is
+     missing raises `MissingTexture`, which the runtime treats the same way.
 The kind comes from the parameter's type (`textureCUBE`) or its `string Type` annotation
 ("2D", "CUBE", "3D"/"VOLUME"); a file of another kind is an error. An untyped DX8 `texture`
 takes the kind of what was loaded. Loaded files are cached by (path, modification time), so a
@@ -70,6 +71,23 @@ def effect_dir(effect: Effect) -> str:
     return os.getcwd()
 
 
+class MissingTexture(SceneError):
+    """A texture file an annotation names is not there (a host may draw a stand-in)."""
+
+
+# The stand-in a host draws for a texture nobody supplies, by kind (procedural generators).
+STAND_INS = {"2d": "checker", "1d": "checker", "cube": "sky_cube", "3d": "noise_volume"}
+
+
+def stand_in_texture(kind: str) -> Texture:
+    """A checker for 2D (and 1D), a sky for CUBE, noise for 3D."""
+    texture = procedural(STAND_INS.get(kind, "checker"))
+    if kind == "1d":  # one row of the checker
+        texture = Texture("1d", texture.format, [level[:1] for level in texture.levels],
+                          texture.name)
+    return texture
+
+
 class TextureCache:
     """Texture files by (absolute path, modification time, kind): a changed file reloads."""
 
@@ -84,7 +102,7 @@ class TextureCache:
         try:
             stamp = os.stat(full).st_mtime_ns
         except OSError:
-            raise SceneError(f"texture file not found: {path}", at) from None
+            raise MissingTexture(f"texture file not found: {path}", at) from None
         key = (full, stamp, kind)
         hit = self._entries.get(key)
         if hit is not None:

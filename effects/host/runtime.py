@@ -4,14 +4,19 @@
 
 The spine, per render:
   1. the parameters are copied (the caller's Effect is never changed) and given their values:
-     the effect's own initialisers, then what the scene supplies by semantic
+     the effect's own initialisers (an uninitialised one with a UIMin/UIMax range the middle
+     of it, `semantics.ui_defaults`), then what the scene supplies by semantic
      (`effects.host.semantics.bind_scene`), then the scene's `params`, then `params=` (the command
      line's --set), each later source winning;
   2. the technique: the one named, rendered as asked whether or not the card can run it, or
      the one the card selects (`find_valid_technique`, policy as named); none is
      `NoValidTechnique` carrying every technique's reasons;
-  3. every pass is lowered (`effects.lower.passes.lower_pass`) from Direct3D 9's default device state,
-     states set by a pass persisting into the following passes, and drawn into one frame;
+  3. every pass is lowered (`effects.lower.passes.lower_pass`) from Direct3D 9's default device state
+     with the scene camera's WORLD/VIEW/PROJECTION transforms set (as an application sets them
+     before Begin), states set by a pass persisting into the following passes, and drawn into
+     one frame; a texture a pass samples that nothing supplies is drawn with a stand-in of its
+     kind (a checker, a sky cube, a noise volume) and a warning (`Runtime.warnings`), an
+     error when `strict`;
   4. the frame comes back as H x W x 4 uint8 RGBA, row 0 at the top.
 
 `Runtime` exposes the same steps as ID3DXEffect does: `begin()` (returns the pass count),
@@ -28,12 +33,13 @@ from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
 
-from effects.host.assets import (DEFAULT_TEXTURE_CACHE, Geometry, TextureCache, TextureSource, check_texture_budget,
-                     declared_kind, geometry, resolve_texture)
-from effects.errors import EffectError, Location, NoValidTechnique, SceneError
+from effects.host.assets import (DEFAULT_TEXTURE_CACHE, Geometry, MissingTexture, TextureCache,
+                                 TextureSource, check_texture_budget, declared_kind, geometry,
+                                 resolve_texture, stand_in_texture)
+from effects.errors import EffectError, EffectWarning, Location, NoValidTechnique, SceneError
 from effects.model import Effect, Parameter, Technique
 from effects.host.scene import MAX_SIZE, Scene, load_scene
-from effects.host.semantics import bind_scene, coerce_value, lookup_parameter
+from effects.host.semantics import bind_scene, coerce_value, lookup_parameter, ui_defaults
 from effects.host.textures import Texture
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -113,6 +119,7 @@ class Frame:
     passes: int
     backend: str
     profile: "CapsProfile"
+    warnings: list[EffectWarning] = dataclasses.field(default_factory=list)
 
 
 class Runtime:
@@ -124,11 +131,22 @@ class Runtime:
 
     def __init__(self, effect: Effect | str, profile: Any, *, scene: Any = None,
                  size: tuple[int, int] | None = None, params: Mapping[str, Any] | None = None,
-                 backend: Any = "numpy", textures: TextureCache | None = None) -> None:
+                 backend: Any = "numpy", textures: TextureCache | None = None,
+                 strict: bool = False) -> None:
         self.source_effect = _as_effect(effect)
+        self.strict = strict
+        # Located warnings about what the host had to stand in for (a texture nobody
+        # supplies); printed by `effects render`, shown by the viewer; errors when strict.
+        self.warnings: list[EffectWarning] = []
         self.profile = _as_profile(profile)
         self.scene: Scene = load_scene(scene)
         self.size = _check_size(size if size is not None else self.scene.size)
+        # What an application sets with SetTransform before Begin, from the scene's camera
+        # (EffectEdit and FX Composer do): a fixed-function pass that sets no transforms of
+        # its own then draws the mesh where the camera sees it.
+        m = self.scene.matrices(self.size)
+        self.host_states = {"WorldTransform": m["world"], "ViewTransform": m["view"],
+                            "ProjectionTransform": m["projection"]}
         self.backend = get_backend(backend)
         self.texture_cache = textures or DEFAULT_TEXTURE_CACHE
         # A copy of the parameter list (and of each Parameter): lowering reads Parameter.value.
@@ -149,6 +167,8 @@ class Runtime:
         return self.effect.parameter(name)  # type: ignore[return-value]
 
     def _bind(self, params: Mapping[str, Any]) -> None:
+        for name, value in ui_defaults(self.effect).items():
+            self._param(name).value = value
         for name, value in bind_scene(self.effect, self.scene, self.size).items():
             self._param(name).value = value
         for name, value in self.scene.params.items():
@@ -191,10 +211,51 @@ class Runtime:
             if param is None or param.type.base != "texture":
                 self._textures[name] = None
             else:
-                self._textures[name] = resolve_texture(param, self.effect, self._given.get(name),
-                                                       self.texture_cache)
+                self._textures[name] = self._resolve(param)
                 check_texture_budget(self._textures, param.location)
         return self._textures[name]
+
+    def _resolve(self, param: Parameter) -> Texture | None:
+        """The parameter's texture; a ResourceName file that is missing is a stand-in (a path
+        the user gave that is missing stays an error: that is a typo to fix)."""
+        given = self._given.get(param.name)
+        try:
+            return resolve_texture(param, self.effect, given, self.texture_cache)
+        except MissingTexture as exc:
+            if given is not None:
+                raise
+            return self._stand_in(param, exc.message, exc.location)
+
+    def used_texture(self, name: str) -> Texture:
+        """The texture a draw samples from parameter `name`: the bound one, or a stand-in of
+        its kind with a warning when nothing supplies it (FX Composer shows a default
+        texture too; the effect's author meant a picture there, not black)."""
+        texture = self.texture(name)
+        if texture is None:
+            param = self._param(name)
+            texture = self._stand_in(param, "nothing supplies it (no ResourceName, scene "
+                                     "params or --set value)", param.location)
+            self._textures[name] = texture
+        return texture
+
+    def _stand_in(self, param: Parameter, why: str, at: Location) -> Texture:
+        kind = declared_kind(param) or "2d"
+        texture = stand_in_texture(kind)
+        message = (f"texture parameter {param.name}: {why}; drawn with a stand-in "
+                   f"({texture.name}, {kind})")
+        if self.strict:
+            raise SceneError(message, at)
+        warning = EffectWarning(message, at)
+        if warning not in self.warnings:
+            self.warnings.append(warning)
+        return texture
+
+    def lower(self, technique: Technique, index: int) -> "PassProgram":
+        """Pass `index` of `technique`, lowered with this runtime's parameter values and the
+        transforms the host set."""
+        from effects.lower.passes import lower_pass
+        return lower_pass(self.effect, technique, index, self.profile,
+                          vertex_colors=self.geometry().has_diffuse, host=self.host_states)
 
     # -- technique -------------------------------------------------------------------------
     def select(self, technique: Technique | str | None = None, policy: Any = "first") -> Technique:
@@ -228,11 +289,9 @@ class Runtime:
 
     def commit_changes(self) -> None:
         """Lower the current pass with the parameter values now set."""
-        from effects.lower.passes import lower_pass
         if self._pass is None or self.technique is None:
             raise RuntimeError("commit_changes outside begin_pass/end_pass")
-        self._program = lower_pass(self.effect, self.technique, self._pass, self.profile,
-                                   vertex_colors=self.geometry().has_diffuse)
+        self._program = self.lower(self.technique, self._pass)
 
     def geometry(self) -> Geometry:
         """The scene's vertex streams for this effect (built once)."""
@@ -245,8 +304,8 @@ class Runtime:
         if self._program is None:
             raise RuntimeError("draw outside begin_pass/end_pass")
         geo = geo or self.geometry()
-        textures = {b.texture: t for b in self._program.textures if b.texture is not None
-                    for t in [self.texture(b.texture)] if t is not None}
+        textures = {b.texture: self.used_texture(b.texture) for b in self._program.textures
+                    if b.texture is not None}
         self.backend.draw(self._program, geo.streams, geo.indices, geo.primitive, textures)
 
     def end_pass(self) -> None:
@@ -271,23 +330,28 @@ class Runtime:
             self.end()          # leave the back end ready for the next frame
             raise
         image = self.end()
-        return Frame(image, tech, passes, getattr(self.backend, "name", str(self.backend)), self.profile)
+        return Frame(image, tech, passes, getattr(self.backend, "name", str(self.backend)),
+                     self.profile, list(self.warnings))
 
 
 def render_frame(effect: Effect | str, profile: Any, *, technique: Technique | str | None = None,
                  backend: Any = "numpy", scene: Any = None, size: tuple[int, int] | None = None,
-                 params: Mapping[str, Any] | None = None, policy: Any = "first") -> Frame:
-    """`render`, returning the Frame (image, technique, pass count) the command line reports."""
-    runtime = Runtime(effect, profile, scene=scene, size=size, params=params, backend=backend)
+                 params: Mapping[str, Any] | None = None, policy: Any = "first",
+                 strict: bool = False) -> Frame:
+    """`render`, returning the Frame (image, technique, pass count, warnings) the command
+    line reports."""
+    runtime = Runtime(effect, profile, scene=scene, size=size, params=params, backend=backend,
+                      strict=strict)
     return runtime.render(technique, policy)
 
 
 def render(effect: Effect | str, profile: Any, *, technique: Technique | str | None = None,
            backend: Any = "numpy", scene: Any = None, size: tuple[int, int] | None = None,
-           params: Mapping[str, Any] | None = None, policy: Any = "first") -> np.ndarray:
+           params: Mapping[str, Any] | None = None, policy: Any = "first",
+           strict: bool = False) -> np.ndarray:
     """Render `effect` on the card `profile` (a CapsProfile or a name): H x W x 4 uint8 RGBA
     of an A8R8G8B8 target, row 0 at the top. See the module docstring for the steps;
     `scene` is a YAML path, a mapping or a Scene; an explicit `size` (w, h) wins over the
-    scene's."""
+    scene's. `strict`: a texture nothing supplies is an error instead of a stand-in."""
     return render_frame(effect, profile, technique=technique, backend=backend, scene=scene,
-                        size=size, params=params, policy=policy).image
+                        size=size, params=params, policy=policy, strict=strict).image

@@ -1,8 +1,10 @@
 """Parameter values: what the scene supplies by semantic, and values a user writes.
 
-Scene binding (as DXSAS-aware hosts did): `float4x4 WorldViewProj : WORLDVIEWPROJECTION;`
-receives world·view·projection of the scene, `: WORLDINVERSETRANSPOSE` its inverse transpose,
-`: CAMERAPOSITION` the eye, and so on. DX8 files carry no semantics; for them a short table of
+Scene binding (as DXSAS-aware hosts, FX Composer and EffectEdit did): `float4x4 WorldViewProj
+: WORLDVIEWPROJECTION;` receives world·view·projection of the scene, `: WORLDINVERSETRANSPOSE`
+its inverse transpose, `: CAMERAPOSITION` the eye, `float3 L : Position < string Object =
+"PointLight0"; >` the light's position, and so on: one table (`MATRIX_SEMANTICS`,
+`VALUE_SEMANTICS`, `OBJECT_LIGHT_SEMANTICS`), semantics matched case-insensitively. DX8 files carry no semantics; for them a short table of
 the parameter names the DirectX 8 SDK samples (and the bundled DX8 files) used stands in.
 Matrices are stored in Direct3D's row-vector convention (p' = p · M), exactly what the
 application would pass to SetMatrix; how they reach constant registers is the lowering's job.
@@ -27,8 +29,46 @@ from effects.errors import Location, SceneError
 from effects.model import Effect, Parameter
 from effects.host.scene import Scene, d3dcolor
 
-_BASE = ("WORLDVIEWPROJECTION", "WORLDVIEW", "VIEWPROJECTION", "WORLD", "VIEW", "PROJECTION")
+# What the scene binds, by semantic (matched case-insensitively): one row per semantic, read by
+# `bind_scene`, by `effects doctor` and printed as the README's table (`binding_table`). The
+# transform rows also bind with the suffixes INVERSE, TRANSPOSE and INVERSETRANSPOSE (and the
+# NVIDIA shader library's short forms I, T, IT, INV), e.g. WORLDINVERSETRANSPOSE, VIEWI.
+MATRIX_SEMANTICS = {
+    "WORLD": "the scene's world matrix (the mesh's placement; identity for the built-in meshes)",
+    "VIEW": "the camera's look-at view matrix (left-handed, as D3DXMatrixLookAtLH)",
+    "PROJECTION": "the camera's perspective projection (D3DXMatrixPerspectiveFovLH: fov, aspect, near, far)",
+    "WORLDVIEW": "world · view",
+    "VIEWPROJECTION": "view · projection",
+    "WORLDVIEWPROJECTION": "world · view · projection",
+}
+_MATRIX_ALIASES = {"WORLDVIEWPROJ": "WORLDVIEWPROJECTION", "VIEWPROJ": "VIEWPROJECTION",
+                   "WVP": "WORLDVIEWPROJECTION", "PROJ": "PROJECTION"}
+_SUFFIXES = {"": "", "INVERSE": "INVERSE", "TRANSPOSE": "TRANSPOSE",
+             "INVERSETRANSPOSE": "INVERSETRANSPOSE", "I": "INVERSE", "INV": "INVERSE",
+             "T": "TRANSPOSE", "IT": "INVERSETRANSPOSE", "INVTRANS": "INVERSETRANSPOSE"}
 
+VALUE_SEMANTICS = {
+    "CAMERAPOSITION": "the camera's eye (x, y, z, 1)",
+    "VIEWPOSITION": "the camera's eye",
+    "EYEPOSITION": "the camera's eye",
+    "LIGHTPOSITION": "the scene light's position (x, y, z, 1)",
+    "LIGHT0POSITION": "the scene light's position",
+    "LIGHTDIRECTION": "the scene light's direction (towards where it shines, w = 0)",
+    "LIGHT0DIRECTION": "the scene light's direction",
+    "LIGHTCOLOR": "the scene light's colour (r, g, b, a)",
+    "LIGHT0COLOR": "the scene light's colour",
+    "LIGHTDIFFUSE": "the scene light's colour",
+    "TIME": "the scene's time in seconds (`time:` key; 0 by default)",
+    "VIEWPORTPIXELSIZE": "the frame's (width, height) in pixels",
+    "VIEWPORTSIZE": "the frame's (width, height) in pixels",
+}
+# FX Composer's light binding: a parameter whose `string Object` annotation names a light
+# ("PointLight0", "DirectionalLight0", "SpotLight0", "TargetLight", "Light0") takes the scene
+# light's value of the kind its semantic says.
+OBJECT_LIGHT_SEMANTICS = {
+    "POSITION": "LIGHTPOSITION", "DIRECTION": "LIGHTDIRECTION", "DIFFUSE": "LIGHTCOLOR",
+    "COLOR": "LIGHTCOLOR", "COLOUR": "LIGHTCOLOR", "SPECULAR": "LIGHTCOLOR",
+}
 # Names, not semantics, that DirectX 8-era effects (the SDK samples, the chapter's BRDF effect,
 # fxfiles/sdk8_style.fx) used for what the application set every frame.
 DX8_NAME_SEMANTICS = {
@@ -42,23 +82,32 @@ _LIGHT_SEMANTICS = {"LIGHTPOSITION", "LIGHT0POSITION", "LIGHTDIRECTION", "LIGHT0
                     "LIGHTCOLOR", "LIGHTDIFFUSE", "LIGHT0COLOR"}
 
 
-def _matrix_for(semantic: str, m: dict[str, np.ndarray]) -> np.ndarray | None:
+def matrix_semantic(semantic: str) -> tuple[str, str] | None:
+    """(base row of MATRIX_SEMANTICS, 'INVERSE' / 'TRANSPOSE' / 'INVERSETRANSPOSE' / '') of a
+    transform semantic, or None. The longest base that leaves a known suffix wins, so
+    WORLDVIEWI is WORLDVIEW inverse, not WORLD + 'VIEWI'."""
     key = semantic.upper()
-    for base in _BASE:
-        if key.startswith(base):
-            rest = key[len(base):]
-            if rest not in ("", "INVERSE", "TRANSPOSE", "INVERSETRANSPOSE"):
-                continue
-            value = {"WORLD": m["world"], "VIEW": m["view"], "PROJECTION": m["projection"],
-                     "WORLDVIEW": m["world"] @ m["view"],
-                     "VIEWPROJECTION": m["view"] @ m["projection"],
-                     "WORLDVIEWPROJECTION": m["world"] @ m["view"] @ m["projection"]}[base]
-            if "INVERSE" in rest:
-                value = np.linalg.inv(value)
-            if "TRANSPOSE" in rest:
-                value = value.T
-            return value
+    bases = sorted([*MATRIX_SEMANTICS, *_MATRIX_ALIASES], key=len, reverse=True)
+    for base in bases:
+        if key.startswith(base) and key[len(base):] in _SUFFIXES:
+            return _MATRIX_ALIASES.get(base, base), _SUFFIXES[key[len(base):]]
     return None
+
+
+def _matrix_for(semantic: str, m: dict[str, np.ndarray]) -> np.ndarray | None:
+    found = matrix_semantic(semantic)
+    if found is None:
+        return None
+    base, rest = found
+    value = {"WORLD": m["world"], "VIEW": m["view"], "PROJECTION": m["projection"],
+             "WORLDVIEW": m["world"] @ m["view"],
+             "VIEWPROJECTION": m["view"] @ m["projection"],
+             "WORLDVIEWPROJECTION": m["world"] @ m["view"] @ m["projection"]}[base]
+    if "INVERSE" in rest:
+        value = np.linalg.inv(value)
+    if "TRANSPOSE" in rest:
+        value = value.T
+    return value
 
 
 def _fit(value: Any, param: Parameter) -> np.ndarray:
@@ -82,26 +131,36 @@ def scene_values(scene: Scene, size: tuple[int, int] | None = None
     direction = np.array([*scene.light_direction(), 0.0])
     color = np.array(scene.light.color)
     frame = np.array(size or scene.size, np.float32)
+    by_kind = {"eye": eye, "light": light, "direction": direction, "color": color,
+               "time": np.float32(scene.time), "frame": frame}
+    kinds = {"CAMERAPOSITION": "eye", "VIEWPOSITION": "eye", "EYEPOSITION": "eye",
+             "LIGHTPOSITION": "light", "LIGHT0POSITION": "light", "LIGHTDIRECTION": "direction",
+             "LIGHT0DIRECTION": "direction", "LIGHTCOLOR": "color", "LIGHT0COLOR": "color",
+             "LIGHTDIFFUSE": "color", "TIME": "time", "VIEWPORTPIXELSIZE": "frame",
+             "VIEWPORTSIZE": "frame"}
     values: dict[str, Callable[[Parameter], Any]] = {
-        "CAMERAPOSITION": lambda p: _fit(eye, p),
-        "VIEWPOSITION": lambda p: _fit(eye, p),
-        "EYEPOSITION": lambda p: _fit(eye, p),
-        "LIGHTPOSITION": lambda p: _fit(light, p),
-        "LIGHT0POSITION": lambda p: _fit(light, p),
-        "LIGHTDIRECTION": lambda p: _fit(direction, p),
-        "LIGHT0DIRECTION": lambda p: _fit(direction, p),
-        "LIGHTCOLOR": lambda p: _fit(color, p),
-        "LIGHT0COLOR": lambda p: _fit(color, p),
-        "LIGHTDIFFUSE": lambda p: _fit(color, p),
-        "TIME": lambda p: _fit(scene.time, p),
-        "VIEWPORTPIXELSIZE": lambda p: _fit(frame, p),
-    }
+        semantic: (lambda p, v=by_kind[kind]: _fit(v, p)) for semantic, kind in kinds.items()}
     return values, m
 
 
+def _light_object(param: Parameter) -> bool:
+    obj = param.annotation("Object")
+    return obj is not None and isinstance(obj.value, str) and "light" in obj.value.lower()
+
+
 def parameter_semantic(param: Parameter) -> str:
-    """The parameter's semantic, or for DX8 files the one its conventional name stands for."""
-    return (param.semantic or DX8_NAME_SEMANTICS.get(param.name.lower(), "")).upper()
+    """The semantic the scene binds the parameter by (upper case): its own, FX Composer's
+    light-object form (`: Position < string Object = "PointLight0"; >` is LIGHTPOSITION), or
+    for DX8 files the one its conventional name stands for."""
+    semantic = (param.semantic or "").upper()
+    if semantic in OBJECT_LIGHT_SEMANTICS and _light_object(param):
+        return OBJECT_LIGHT_SEMANTICS[semantic]
+    return semantic or DX8_NAME_SEMANTICS.get(param.name.lower(), "").upper()
+
+
+def binds(semantic: str) -> bool:
+    """Whether the scene supplies a value for this (upper-case) semantic."""
+    return semantic in VALUE_SEMANTICS or matrix_semantic(semantic) is not None
 
 
 def bind_scene(effect: Effect, scene: Scene, size: tuple[int, int] | None = None) -> dict[str, Any]:
@@ -117,11 +176,44 @@ def bind_scene(effect: Effect, scene: Scene, size: tuple[int, int] | None = None
         if matrix is not None:
             if param.type.rows == 4 and param.type.cols == 4:
                 bound[param.name] = matrix.astype(np.float32)
+            elif param.type.rows >= 3 and param.type.cols >= 3:  # float4x3, float3x3
+                bound[param.name] = matrix[:param.type.rows, :param.type.cols].astype(np.float32)
         elif semantic in values and param.type.is_numeric:
             if semantic in _LIGHT_SEMANTICS and not scene.light_given and param.value is not None:
                 continue
             bound[param.name] = values[semantic](param)
     return bound
+
+
+def ui_defaults(effect: Effect) -> dict[str, np.ndarray]:
+    """Values a tool's UI would show for numeric parameters the file leaves uninitialised
+    and the scene does not bind: the middle of the `UIMin`..`UIMax` range when both are given,
+    else `UIMin` (FX Composer's slider starts inside its range; an uninitialised value would
+    read 0, which may be outside it)."""
+    out: dict[str, np.ndarray] = {}
+    for param in effect.parameters:
+        if param.value is not None or not param.type.is_numeric or param.array:
+            continue
+        lo, hi = param.annotation("UIMin"), param.annotation("UIMax")
+        numbers = [np.asarray(a.value, np.float64) for a in (lo, hi)
+                   if a is not None and not isinstance(a.value, str)]
+        if not numbers:
+            continue
+        value = (numbers[0] + numbers[1]) / 2 if len(numbers) == 2 else numbers[0]
+        out[param.name] = _fit(value, param) if param.type.base in ("float", "half") else \
+            _fit(value, param).astype(np.int32 if param.type.base == "int" else np.float32)
+    return out
+
+
+def binding_table() -> list[tuple[str, str]]:
+    """(semantic, what the scene binds) rows, as the README lists them."""
+    rows = [(name, text) for name, text in MATRIX_SEMANTICS.items()]
+    rows.append(("…INVERSE, …TRANSPOSE, …INVERSETRANSPOSE (also …I, …T, …IT)",
+                 "the inverse / transpose / inverse transpose of the matrix above"))
+    rows.extend(VALUE_SEMANTICS.items())
+    rows.extend((f"{s} with `string Object = \"…Light…\"`", VALUE_SEMANTICS[t])
+                for s, t in OBJECT_LIGHT_SEMANTICS.items())
+    return rows
 
 
 # ------------------------------------------------------------------------------------------------

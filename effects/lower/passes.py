@@ -30,12 +30,12 @@ from __future__ import annotations
 
 import threading
 from dataclasses import dataclass, fields
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 import numpy as np
 
 from effects import states as state_table
-from effects.device import DeviceState, pass_states
+from effects.device import DeviceState, host_states, pass_states
 from effects.errors import EffectError, Location
 from effects.shaders.asm import assemble_cached
 from effects.shaders.asm import lower as asm_lower
@@ -61,13 +61,17 @@ CACHE_SIZE = 256
 
 
 def lower_pass(effect: Effect, technique: Technique, pass_index: int,
-               profile: "CapsProfile", *, vertex_colors: bool = True) -> PassProgram:
+               profile: "CapsProfile", *, vertex_colors: bool = True,
+               host: Mapping[str, Any] | None = None) -> PassProgram:
     """Lower pass `pass_index` of `technique` for `profile` (cached; see `_cache_key`).
     `vertex_colors`: whether the vertices drawn carry a diffuse colour. Without one, the
     fixed-function lighting takes every colour from the material, whatever ColorVertex and
     the *MaterialSource states say (D3D's rule for a vertex format without the colour; Wine's
-    wined3d_ffp_get_vs_settings does the same)."""
-    key = _cache_key(effect, technique, pass_index, profile) + (vertex_colors,)
+    wined3d_ffp_get_vs_settings does the same). `host`: states the application set before
+    Begin, by state name (the scene camera's 'WorldTransform', 'ViewTransform',
+    'ProjectionTransform'); a pass's own assignments win over them."""
+    host_key = tuple(sorted((k, np.asarray(v).tobytes()) for k, v in (host or {}).items()))
+    key = _cache_key(effect, technique, pass_index, profile) + (vertex_colors, host_key)
     hit = _CACHE.get(key)
     if hit is not None and hit[0] is effect:
         return hit[1]
@@ -75,7 +79,8 @@ def lower_pass(effect: Effect, technique: Technique, pass_index: int,
         raise EffectError(f"technique '{technique.name}' has no pass {pass_index} (it has "
                           f"{len(technique.passes)})", technique.location)
     state = None
-    for i, (_, s) in enumerate(pass_states(effect, technique.passes)):
+    for i, (_, s) in enumerate(pass_states(effect, technique.passes,
+                                           host_states(host) if host else None)):
         if i == pass_index:
             state = s
             break

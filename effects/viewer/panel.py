@@ -121,6 +121,12 @@ def _techniques(state: ViewerState, status: Status) -> None:
     if loaded.prepare_error is not None:
         imgui.text_colored(RED, "...but it cannot be drawn:")
         imgui.text_wrapped(error_text(loaded.prepare_error))
+    warnings = loaded_warnings(loaded)
+    if warnings:
+        imgui.text_colored(YELLOW, f"{len(warnings)} warning{'s' if len(warnings) != 1 else ''}:")
+        for warning in warnings:
+            imgui.bullet()
+            imgui.text_wrapped(str(warning))
     if loaded.forced_rejected is not None:
         v = loaded.forced_rejected
         imgui.text_colored(YELLOW, f"Forced {v.technique.name} is not valid on this card:")
@@ -151,6 +157,12 @@ def _techniques(state: ViewerState, status: Status) -> None:
         imgui.unindent()
         if opened:
             imgui.tree_pop()
+
+
+def loaded_warnings(loaded) -> list:
+    """The effect's load warnings and what the host stood in for (a texture nobody supplies)."""
+    runtime_warnings = getattr(loaded.runtime, "warnings", None) or []
+    return [*loaded.effect.warnings, *runtime_warnings]
 
 
 def _view(state: ViewerState, status: Status) -> None:

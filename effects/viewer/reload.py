@@ -202,16 +202,13 @@ def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
     bind the scene, lower every pass, load the textures the passes sample, build the streams.
     Returns the Runtime that did it (its lowered passes cached, its textures and streams
     loaded; it has no back end) and the lowered passes."""
-    from effects.lower.passes import lower_pass
     from effects.host.runtime import Runtime
     runtime = Runtime(effect, profile, scene=scene, backend=None)
-    has_diffuse = runtime.geometry().has_diffuse   # lowered as the Runtime will draw them
-    programs = [lower_pass(runtime.effect, technique, i, profile, vertex_colors=has_diffuse)
-                for i in range(len(technique.passes))]
+    programs = [runtime.lower(technique, i) for i in range(len(technique.passes))]
     for program in programs:
         for binding in program.textures:
             if binding.texture is not None:
-                runtime.texture(binding.texture)
+                runtime.used_texture(binding.texture)
     runtime.geometry()
     return runtime, programs
 
