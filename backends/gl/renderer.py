@@ -62,6 +62,9 @@ class GLBackend:
 
     def __init__(self, context: moderngl.Context | None = None) -> None:
         self.ctx = context if context is not None else headless_context()
+        # A context of our own is made current at each frame: another headless context made
+        # (and released) in the same process since would otherwise receive our GL calls.
+        self._owns_context = context is None
         self.gl = raw_gl()
         self.textures = TextureCache(self.gl)
         self._programs: dict[tuple, moderngl.Program] = {}
@@ -90,6 +93,8 @@ class GLBackend:
                             f"got {format!r}")
         if size[0] <= 0 or size[1] <= 0:
             raise DrawError(f"render-target size must be positive, got {size}")
+        if self._owns_context:
+            self.ctx.__enter__()
         gl = self.gl
         target = self._target(size, format)
         gl.glBindFramebuffer(G.FRAMEBUFFER, target.framebuffer)
