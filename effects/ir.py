@@ -16,7 +16,14 @@ Conventions
   builtin) by name and `const` makes a literal; both are ordinary instructions, so constants are
   deduplicated like any other value and print inline in GLSL. (A 'constant' input kind is not
   needed: a constant is a `const` instruction.)
-- `kill` is the one instruction without a result (`dest is None`).
+- Structured control flow (Shader Model 2.x/3.0): `if %c` / `else` / `endif` run a block where
+  `c.x != 0`, `loop count=N` / `endloop` repeat a block N times (N static, at most 255 as in
+  D3D), `break %c` leaves the innermost loop where `c.x != 0`. Values that change inside a
+  block are mutable variables: `%v = var %init` declares one, `assign %v, %x` sets it (under
+  the current per-fragment mask in the evaluator); every other value is SSA and a value defined
+  inside a block is not used after it. Row columns say which op opens, continues or closes a
+  block (`flow`), so checker, evaluator and printer follow the table.
+- `kill`, `assign` and the flow ops are the instructions without a result (`dest is None`).
 - GLSL templates format with the GLSL expressions of the arguments. Several templates use an
   argument more than once, so the printer binds every value to a variable and passes names.
   Samplers are the uniforms `sampler0`..; inputs keep their names.
@@ -176,6 +183,9 @@ class OpInfo:
       runs its kernel per column (per-component ops) or on whole (N, 4) rows;
     - `names_input` / `names_sampler`: its `name` attribute names a declared `Input`, its
       `sampler` attribute a declared `SamplerBinding`; `discards`: it may discard fragments;
+    - `pure`: equal instructions may be one value; `flow`, `loop`: its place in structured
+      control flow (opens / continues / closes a block, or 'exit': break), and whether the
+      block is a loop;
     - `stages`: the program stages it may appear in."""
 
     name: str
@@ -193,6 +203,10 @@ class OpInfo:
     names_sampler: bool = False
     discards: bool = False
     stages: tuple[str, ...] = STAGES
+    pure: bool = True              # equal instructions are one value (var: each is its own)
+    assigns: bool = False          # sets its first argument (a var) to its second
+    flow: str | None = None        # 'open' | 'middle' | 'close' | 'exit' (structured flow)
+    loop: bool = False             # the block it opens or closes is a loop
 
     def arg_demand(self, wanted: frozenset, attrs: Mapping[str, Any]) -> tuple[frozenset, ...]:
         """The components of each argument this op reads to produce `wanted` of its result."""
@@ -392,6 +406,26 @@ def _glsl_kill(args: Sequence[str], attrs: Mapping[str, Any]) -> str:
     return f"if (any(lessThan({args[0]}.{mask}, vec{len(mask)}(0.0)))) discard;"
 
 
+def _no_kernel(ctx: KernelContext, args: Sequence[np.ndarray], attrs: Mapping[str, Any]) -> None:
+    raise IRError("flow and assign ops are run by the evaluator's control, not a kernel")
+
+
+def _glsl_loop(args: Sequence[str], attrs: Mapping[str, Any]) -> str:
+    k = f"loop{attrs['level']}"
+    return f"for (int {k} = 0; {k} < {attrs['count']}; ++{k}) {{"
+
+
+MAX_LOOP_COUNT = 255   # D3D9: rep/loop run at most 255 times (integer constant range)
+
+
+def _check_loop(attrs: Mapping[str, Any]) -> None:
+    count, level = attrs["count"], attrs["level"]
+    if not (isinstance(count, int) and 0 <= count <= MAX_LOOP_COUNT):
+        raise IRError(f"loop count must be an int in 0..{MAX_LOOP_COUNT}, got {count!r}")
+    if not (isinstance(level, int) and level >= 0):
+        raise IRError(f"loop level must be a non-negative int, got {level!r}")
+
+
 def _glsl_merge(args: Sequence[str], attrs: Mapping[str, Any]) -> str:
     old, new = args
     parts = [f"{new if c in attrs['mask'] else old}.{c}" for c in COMPONENTS]
@@ -559,6 +593,25 @@ _OP_ROWS = [
         check=_check_sample, names_sampler=True,
         attrs=(("sampler", REQUIRED), ("kind", "2d"), ("proj", False), ("bias", False),
                ("lod", False))),
+    _op("var", 1, lambda ctx, args, attrs: args[0], "{0}",
+        "a mutable variable, initially a (set by assign)", pure=False,
+        columns=lambda ctx, args, attrs, wanted: list(args[0])),
+    _op("assign", 2, _no_kernel, "{0} = {1};",
+        "variable a = b (in the evaluator: in the fragments the current mask runs)",
+        has_result=False, assigns=True),
+    _op("if", 1, _no_kernel, "if ({0}.x != 0.0) {{", "run the block where a.x != 0",
+        has_result=False, flow="open"),
+    _op("else", 0, _no_kernel, "}} else {{", "run the block where the if's a.x == 0",
+        has_result=False, flow="middle"),
+    _op("endif", 0, _no_kernel, "}}", "end of the if block", has_result=False, flow="close"),
+    _op("loop", 0, _no_kernel, _glsl_loop,
+        "run the block `count` times (0..255); `level` is the loop nesting depth, which names "
+        "the GLSL counter", has_result=False, flow="open", loop=True,
+        attrs=(("count", REQUIRED), ("level", 0)), check=_check_loop),
+    _op("endloop", 0, _no_kernel, "}}", "end of the loop block", has_result=False,
+        flow="close", loop=True),
+    _op("break", 1, _no_kernel, "if ({0}.x != 0.0) break;",
+        "leave the innermost loop where a.x != 0", has_result=False, flow="exit"),
     _op("kill", 1, _kill, _glsl_kill,
         "discard the fragment where any of `components` is < 0 (texkill: ps.1.x tests xyz, "
         "ps.2.0 xyzw)", attrs=(("components", "xyzw"),),
@@ -621,8 +674,11 @@ def check_program(program: Program) -> None:
             raise IRError(f"bad or repeated sampler binding {binding}")
         samplers[binding.index] = binding
     defined: set[int] = set()
+    variables: set[int] = set()
+    blocks: list[tuple[OpInfo, set[int]]] = []     # open blocks and the values defined in them
     for instr in program.instrs:
         info = _op_info(instr.op)
+        _check_structure(instr, info, blocks, defined)
         if len(instr.args) != info.arity:
             raise IRError(f"{instr.op} takes {info.arity} argument(s), got {len(instr.args)}")
         for arg in instr.args:
@@ -641,10 +697,18 @@ def check_program(program: Program) -> None:
             raise IRError(f"{instr.op} is only valid in {' and '.join(info.stages)} programs")
         if info.has_result != (instr.dest is not None):
             raise IRError(f"{instr.op}: dest must be {'an id' if info.has_result else 'None'}")
+        if info.assigns and instr.args[0] not in variables:
+            raise IRError(f"assign to %{instr.args[0]}, which is not a var")
         if instr.dest is not None:
             if instr.dest in defined:
                 raise IRError(f"%{instr.dest} defined twice")
             defined.add(instr.dest)
+            if blocks:
+                blocks[-1][1].add(instr.dest)
+            if not info.pure:
+                variables.add(instr.dest)
+    if blocks:
+        raise IRError(f"{blocks[-1][0].name} block is not closed")
     allowed = OUTPUTS[program.stage]
     names = [name for name, _ in program.outputs]
     if any(name not in allowed for name in names) or len(set(names)) != len(names):
@@ -654,6 +718,28 @@ def check_program(program: Program) -> None:
     for name, value in program.outputs:
         if value not in defined:
             raise IRError(f"output {name} uses undefined %{value}")
+
+
+def _check_structure(instr: Instr, info: OpInfo, blocks: list, defined: set[int]) -> None:
+    """Blocks nest (if [else] endif, loop endloop), break is inside a loop, and a value defined
+    inside a block is not used once the block (or its if-half) is closed."""
+    if info.flow in ("middle", "close"):
+        if not blocks or blocks[-1][0].loop != info.loop or (
+                info.flow == "middle" and blocks[-1][0].flow != "open"):
+            raise IRError(f"{instr.op} without its opening instruction")
+        opened, inside = blocks.pop()
+        defined -= inside                          # out of scope
+        if info.flow == "middle":
+            blocks.append((info, set()))
+    if info.flow == "exit" and not any(b[0].loop for b in blocks):
+        raise IRError(f"{instr.op} outside a loop")
+    if info.flow == "open":
+        blocks.append((info, set()))
+
+
+def has_flow(program: Program) -> bool:
+    """Whether the program has control flow or variables (so it is not straight-line)."""
+    return any(OPS[i.op].flow or not OPS[i.op].pure for i in program.instrs)
 
 
 # --------------------------------------------------------------------------------------------
@@ -691,6 +777,12 @@ class Builder:
         self._instrs: list[Instr] = []
         self._known: dict[tuple, int] = {}
         self._outputs: dict[str, int] = {}
+        self._count = 0
+        # Control flow: values that read a variable are never shared (the variable changes);
+        # values first made inside a block are forgotten when it closes (out of scope).
+        self._variable_dependent: set[int] = set()
+        self._scopes: list[list[tuple]] = []
+        self._loops = 0
 
     # -- the generic entry point
     def emit(self, op: str, *args: int, **attrs: Any) -> int | None:
@@ -703,15 +795,35 @@ class Builder:
         canonical = normalize_attrs(op, attrs)
         if not info.has_result:
             self._instrs.append(Instr(None, op, tuple(args), canonical))
+            self._flow(info)
             return None
         key = (op, tuple(args), canonical)
-        if key not in self._known:
-            self._known[key] = self._next_id()
-            self._instrs.append(Instr(self._known[key], op, tuple(args), canonical))
-        return self._known[key]
+        if key in self._known:
+            return self._known[key]
+        dest = self._count
+        self._count += 1
+        self._instrs.append(Instr(dest, op, tuple(args), canonical))
+        if not info.pure or any(a in self._variable_dependent for a in args):
+            self._variable_dependent.add(dest)
+        else:
+            self._known[key] = dest
+            if self._scopes:
+                self._scopes[-1].append(key)
+        return dest
+
+    def _flow(self, info: OpInfo) -> None:
+        if info.flow in ("middle", "close"):
+            if not self._scopes:
+                raise IRError(f"{info.name} without its opening instruction")
+            for key in self._scopes.pop():
+                self._known.pop(key, None)
+            self._loops -= 1 if info.flow == "close" and info.loop else 0
+        if info.flow in ("open", "middle"):
+            self._scopes.append([])
+            self._loops += 1 if info.flow == "open" and info.loop else 0
 
     def _next_id(self) -> int:
-        return len(self._known)
+        return self._count
 
     # -- values from outside
     def input(self, name: str, kind: str = "varying", semantic: str = "",
@@ -789,6 +901,24 @@ class Builder:
             raise IRError(f"sampler {sampler} used as {kind} and {self._samplers[sampler].kind}")
         return self.emit("sample", coord, sampler=sampler, kind=kind, proj=bool(proj),
                          bias=bool(bias), lod=bool(lod))
+
+    # -- variables and structured control flow
+    def var(self, init: int) -> int:
+        return self.emit("var", init)
+
+    def assign(self, variable: int, value: int) -> None:
+        if variable != value:
+            self.emit("assign", variable, value)
+
+    def if_(self, cond: int) -> None: self.emit("if", cond)
+    def else_(self) -> None: self.emit("else")
+    def endif(self) -> None: self.emit("endif")
+
+    def loop(self, count: int) -> None:
+        self.emit("loop", count=int(min(max(count, 0), MAX_LOOP_COUNT)), level=self._loops)
+
+    def endloop(self) -> None: self.emit("endloop")
+    def break_(self, cond: int) -> None: self.emit("break", cond)
 
     def kill(self, a: int, components: str = "xyzw") -> None:
         if self.stage != "fragment":

@@ -609,13 +609,12 @@ def test_ps14_grid_includes_the_integer_range():
 
 # -- errors -----------------------------------------------------------------------------------
 
-def test_flow_control_is_a_located_error():
-    prog = assemble_valid("vs_2_0\ndcl_position v0\ndefb b0, true\nmov oPos, v0\nif b0\n"
-                          "mov oD0, v0\nendif", "vertex")
-    with pytest.raises(AsmError) as err:
-        lower_vertex_shader(prog, ShaderContext(FLOAT))
-    assert isinstance(err.value, EffectError)
-    assert str(err.value) == "t.fx:5:1: error: if: flow control is not lowered yet"
+def test_vertex_if_on_a_boolean_constant_lowers():
+    # defb b0, true: the if's block runs, so oD0 = v0 (saturated below vs_3_0)
+    prog = vs("vs_2_0\ndcl_position v0\ndefb b0, true\nmov oPos, v0\nif b0\n"
+              "mov oD0, v0\nendif")
+    got = run(prog, {"position": (0.25, 2.0, 0.5, 1.0)}).outputs
+    assert got["color0"][0] == approx((0.25, 1.0, 0.5, 1.0))
 
 
 def test_wrong_stage_is_an_error():
@@ -658,10 +657,12 @@ def test_boyd_specular_on_the_geforce3_shows_banding():
     assert got[:3] == approx((48 / 255,) * 3, rel=0, abs=1e-6)
 
 
-def test_predication_and_relative_inputs_are_located_errors():
-    pred = assemble_valid("ps_2_x\ndcl t0\nsetp_gt p0, t0, c0\n(p0) mov r0, t0\nmov oC0, r0")
-    with pytest.raises(AsmError, match="not lowered yet"):
-        lower_pixel_shader(pred, ShaderContext(FLOAT))
+def test_relative_inputs_are_located_errors():
+    prog = assemble_valid("vs_3_0\ndcl_position v0\ndcl_position o0\ndefi i0, 2, 0, 1, 0\n"
+                          "mov r0, v0\nloop aL, i0\nadd r0, r0, v[aL]\nendloop\nmov o0, r0",
+                          "vertex")
+    assert [str(e) for e in lowering_problems(prog)] == [
+        "t.fx:7:13: error: relative addressing of v# registers (v[aL]) is not lowered yet"]
 
 
 @pytest.mark.parametrize("name,src", VALID, ids=[v[0] for v in VALID])
@@ -692,13 +693,15 @@ def test_every_row_says_how_it_lowers():
 
 
 def test_validation_rejects_what_does_not_lower():
-    # A vs_2_0 loop is valid assembly on a Radeon 9700; it does not lower, so it is not valid.
+    # A vs_2_0 loop validates and lowers on a Radeon 9700 now; an integer constant the
+    # application would set does not lower, so that shader is not valid.
     from effects import load_effect, load_profile
     effect = load_effect("technique T { pass P { VertexShader = asm {\n"
                          "vs_2_0\ndcl_position v0\ndefi i0, 3, 0, 1, 0\nmov r0, v0\n"
-                         "loop aL, i0\nadd r0, r0, c0\nendloop\nmov oPos, r0\n}; } }")
+                         "loop aL, i0\nadd r0, r0, c0\nendloop\nrep i1\nendrep\n"
+                         "mov oPos, r0\n}; } }")
     result = effect.validate("T", load_profile("radeon9700"))
     assert not result.ok
     assert [str(r) for r in result.reasons] == [
-        "pass P (line 6): loop: flow control is not lowered yet",
-        "pass P (line 8): endloop: flow control is not lowered yet"]
+        "pass P (line 9): i1 is not set by defi (constants the application sets are not "
+        "lowered yet)"]

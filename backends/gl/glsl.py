@@ -1,7 +1,9 @@
 """IR programs printed as GLSL 330 core shaders, plus the fixed-function epilogues of Direct3D 9.
 
-Every instruction becomes one line `vec4 vN = <template>;` where the template is the op's row
-in `effects.ir.OPS` (`OpInfo.format_glsl`); nothing here knows an op by name. Values live in
+Every instruction becomes one line `vec4 vN = <template>;` (a statement for ops without a
+result: `if (...) {`, `for (...) {`, `}`, an assignment) where the template is the op's row in
+`effects.ir.OPS` (`OpInfo.format_glsl`), indented by the blocks the rows open and close;
+nothing here knows an op by name. Values live in
 variables because templates may use an argument twice. A `#line` directive before the body
 numbers each instruction line as the same instruction's line in the printed IR
 (`effects.ir.format_program`), so a GLSL compiler message points into the IR listing, and a
@@ -109,8 +111,11 @@ def _body(program: Program, attribute_inputs: bool) -> list[str]:
     """`#line` then one line per instruction, then one per output (`out_<name>` locals)."""
     first_instr_line = 2 + len(program.inputs) + len(program.samplers)
     lines = [f"#line {first_instr_line}"]
+    depth = 1
     for instr in program.instrs:
         info = OPS[instr.op]
+        if info.flow in ("middle", "close"):
+            depth -= 1
         attrs = instr.attr_map
         if info.names_input:
             # The op's `name` attribute names a declared input, which GLSL knows under a
@@ -119,7 +124,9 @@ def _body(program: Program, attribute_inputs: bool) -> list[str]:
         text = info.format_glsl([value_name(a) for a in instr.args], attrs)
         if instr.dest is not None:
             text = f"vec4 {value_name(instr.dest)} = {text};"
-        lines.append(f"    {text}  // {format_instr(instr)}")
+        lines.append(f"{'    ' * depth}{text}  // {format_instr(instr)}")
+        if info.flow in ("open", "middle"):   # the op's row says it opens a block
+            depth += 1
     for name, value in program.outputs:
         lines.append(f"    vec4 out_{name} = {value_name(value)};  // output {name} = %{value}")
     return lines

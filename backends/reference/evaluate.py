@@ -23,7 +23,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from effects.ir import OPS, IRError, Instr, Program
+from effects.ir import OPS, IRError, Instr, Program, has_flow
 
 SamplerFn = Callable[..., np.ndarray]
 Columns = list  # four entries: (N,) or (1,) float32 arrays, None where nothing reads them
@@ -51,6 +51,7 @@ class _Context:
         self.samplers = samplers
         self.count = count
         self.killed: np.ndarray | None = None
+        self.active: np.ndarray | None = None    # (N,) bool inside control flow, else None
         self.rows: dict[tuple, tuple] = {}
 
     def as_rows(self, columns: Columns) -> np.ndarray:
@@ -80,6 +81,8 @@ class _Context:
         return texels
 
     def kill(self, mask: np.ndarray) -> None:
+        if self.active is not None:        # inside control flow: only the running fragments
+            mask = mask & self.active
         self.killed = mask if self.killed is None else self.killed | mask
 
 
@@ -148,6 +151,8 @@ def _demand(program: Program, sample_reads: Callable[[Instr], frozenset] | None 
     found = _DEMAND_CACHE.get((id(program), sample_reads))
     if found is not None and found[0] is program:
         return found[1]
+    if has_flow(program):      # variables and loops: every component of every value counts
+        return [_ALL] * len(program.instrs)
     need: dict[int, frozenset] = {}
     for _, value in program.outputs:
         need[value] = _ALL
@@ -224,6 +229,93 @@ def _run(ctx: _Context, instr: Instr, args: Sequence[Columns], wanted: frozenset
     return None if result is None else _from_rows(result)
 
 
+# ------------------------------------------------------------------------------------------------
+# Structured control flow: every fragment runs every instruction; a mask says which fragments a
+# block runs for. Assignments and kills only touch running fragments, so a fragment's result is
+# that of running its own path (D3D's semantics, and GLSL's). A loop repeats while some fragment
+# still runs it and its count is not reached; `break` stops fragments until the loop ends.
+
+@dataclass
+class _Block:
+    info: object
+    parent: np.ndarray                 # the mask when the block was entered
+    cond: np.ndarray | None = None     # if: where the condition holds
+    start: int = 0                     # loop: index of the loop instruction
+    left: int = 0                      # loop: iterations still to run after this one
+    broken: np.ndarray | None = None   # loop: fragments that took a break
+
+
+def _truth(columns: Columns, count: int) -> np.ndarray:
+    return np.broadcast_to(columns[0] != 0, (count,))
+
+
+def _masked(old: Columns, new: Columns, active: np.ndarray) -> Columns:
+    if active.all():
+        return list(new)
+    return [np.where(active, n, o).astype(np.float32) for o, n in zip(old, new)]
+
+
+def _run_structured(ctx: _Context, program: Program, values: dict[int, Columns]) -> None:
+    instrs, count = program.instrs, ctx.count
+    active = np.ones(count, dtype=bool)
+    blocks: list[_Block] = []
+    everything = _ALL
+    pc = 0
+    while pc < len(instrs):
+        instr = instrs[pc]
+        info = OPS[instr.op]
+        args = [values[a] for a in instr.args]
+        flow = info.flow
+        ctx.active = active
+        if info.assigns:
+            values[instr.args[0]] = _masked(args[0], args[1], active)
+        elif flow is None:
+            result = _run(ctx, instr, args, everything)
+            if instr.dest is not None:
+                values[instr.dest] = result
+        elif flow == "open" and info.loop:
+            n = instr.attr("count")
+            blocks.append(_Block(info, active, start=pc, left=n - 1,
+                                 broken=np.zeros(count, dtype=bool)))
+            if n == 0:
+                active = np.zeros(count, dtype=bool)
+        elif flow == "open":
+            cond = _truth(args[0], count)
+            blocks.append(_Block(info, active, cond=cond))
+            active = active & cond
+        elif flow == "middle":
+            block = blocks[-1]
+            active = block.parent & ~block.cond & ~_broken(blocks)
+        elif flow == "exit":
+            loop = next(b for b in reversed(blocks) if b.broken is not None)
+            leaving = active & _truth(args[0], count)
+            loop.broken |= leaving
+            active = active & ~leaving
+        elif info.loop:                                   # endloop
+            loop = blocks[-1]
+            running = loop.parent & ~loop.broken
+            if loop.left > 0 and running.any():
+                loop.left -= 1
+                active = running
+                pc = loop.start + 1
+                continue
+            blocks.pop()
+            active = loop.parent & ~_broken(blocks)
+        else:                                             # endif
+            block = blocks.pop()
+            active = block.parent & ~_broken(blocks)
+        pc += 1
+    ctx.active = None
+
+
+def _broken(blocks: list[_Block]) -> np.ndarray | bool:
+    """Fragments that broke out of the innermost loop enclosing the current point."""
+    for block in reversed(blocks):
+        if block.broken is not None:
+            return block.broken
+    return False
+
+
 def _row_count(program: Program, inputs: Mapping[str, np.ndarray], count: int | None) -> int:
     counts = {np.shape(inputs[i.name])[0] for i in program.inputs
               if i.kind != "uniform" and np.ndim(inputs[i.name]) == 2}
@@ -247,15 +339,17 @@ def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
         raise IRError(f"missing inputs: {', '.join(missing)}")
     ctx = _Context(program, inputs, samplers or {}, _row_count(program, inputs, count))
     values: dict[int, Columns] = {}
-    demand = _demand(program)
     with np.errstate(all="ignore"):  # inf and NaN are legitimate D3D results (rcp 0, log 0)
-        for instr, wanted in zip(program.instrs, demand):
-            if not wanted:           # nothing reads it
-                values[instr.dest] = [None] * 4
-                continue
-            result = _run(ctx, instr, [values[a] for a in instr.args], wanted)
-            if instr.dest is not None:
-                values[instr.dest] = result
+        if has_flow(program):
+            _run_structured(ctx, program, values)
+        else:
+            for instr, wanted in zip(program.instrs, _demand(program)):
+                if not wanted:           # nothing reads it
+                    values[instr.dest] = [None] * 4
+                    continue
+                result = _run(ctx, instr, [values[a] for a in instr.args], wanted)
+                if instr.dest is not None:
+                    values[instr.dest] = result
     outputs = {name: _as_rows(values[value], ctx.count) for name, value in program.outputs}
     killed = ctx.killed
     if killed is None and any(OPS[i.op].discards for i in program.instrs):

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from functools import partial
 from typing import Any, Callable
 
+from effects.shaders.asm import flow as fl
 from effects.shaders.asm import rewrites as rw
 from effects.shaders.asm import texture_ops as tx
 from effects.shaders.asm.rewrites import Tree
@@ -70,7 +71,6 @@ class NoCode:
 
 NO_CODE = NoCode()
 Lowers = Rewrite | Handler | NotLowered | NoCode
-_FLOW_NOT_LOWERED = NotLowered("flow control is not lowered yet")
 
 
 @dataclass(frozen=True)
@@ -90,6 +90,7 @@ class InstrInfo:
     modifiers: bool = True         # takes instruction modifiers (_sat, _x2 ...)
     lowers: Lowers = NotLowered("not lowered yet")
     matrix_rows: int = 0           # m4x4 r0, v0, c4 reads c4..c7: 4
+    ends_body: bool = False        # ret, label: the main program or a subroutine ends here
 
     @property
     def has_dst(self) -> bool:
@@ -237,7 +238,7 @@ _ARITH = [
     _row("dsy", PS2X | PS3, "ds", "arith", "d = d(a)/dy (screen-space gradient)", slots=2,
          lowers=NotLowered("gradients are not lowered yet")),
     _row("setp", PS2X | PS3 | VS2UP, "dss", "flow", "p0 = a <cmp> b per component",
-         dst_kinds=("p",), lowers=_FLOW_NOT_LOWERED),
+         dst_kinds=("p",), lowers=Handler(fl.setp)),
 ]
 
 # ps_1_1-1_3 texture-address instructions: dst t(m), source t(n) with n < m (semantics.md §2.5).
@@ -318,20 +319,29 @@ _TEXTURE = [
 ]
 
 _FLOW = [
-    _row("call", FLOW_VERSIONS, "l", "flow", "call subroutine l", lowers=_FLOW_NOT_LOWERED, slots=2),
-    _row("callnz", FLOW_VERSIONS, "lb", "flow", "call subroutine l if b", lowers=_FLOW_NOT_LOWERED, slots=3),
-    _row("ret", FLOW_VERSIONS, "", "flow", "return", lowers=_FLOW_NOT_LOWERED, slots=1),
-    _row("label", FLOW_VERSIONS, "l", "flow", "subroutine entry", lowers=_FLOW_NOT_LOWERED, slots=0),
-    _row("loop", FLOW_VERSIONS, "LI", "flow", "loop i.x times, aL from i.y step i.z", lowers=_FLOW_NOT_LOWERED, slots=3),
-    _row("endloop", FLOW_VERSIONS, "", "flow", "end of loop", lowers=_FLOW_NOT_LOWERED, slots=2),
-    _row("rep", FLOW_VERSIONS, "I", "flow", "repeat i.x times", lowers=_FLOW_NOT_LOWERED, slots=3),
-    _row("endrep", FLOW_VERSIONS, "", "flow", "end of rep", lowers=_FLOW_NOT_LOWERED, slots=2),
-    _row("if", FLOW_VERSIONS, "b", "flow", "if b (or if_cmp a, b)", lowers=_FLOW_NOT_LOWERED, slots=3),
-    _row("else", FLOW_VERSIONS, "", "flow", "else", lowers=_FLOW_NOT_LOWERED, slots=1),
-    _row("endif", FLOW_VERSIONS, "", "flow", "end of if", lowers=_FLOW_NOT_LOWERED, slots=1),
+    _row("call", FLOW_VERSIONS, "l", "flow", "call subroutine l", slots=2,
+         lowers=Handler(fl.call)),
+    _row("callnz", FLOW_VERSIONS, "lb", "flow", "call subroutine l if b", slots=3,
+         lowers=Handler(fl.callnz)),
+    _row("ret", FLOW_VERSIONS, "", "flow", "return", slots=1, lowers=NO_CODE, ends_body=True),
+    _row("label", FLOW_VERSIONS, "l", "flow", "subroutine entry", slots=0, lowers=NO_CODE,
+         ends_body=True),
+    _row("loop", FLOW_VERSIONS, "LI", "flow", "loop i.x times, aL from i.y step i.z", slots=3,
+         lowers=Handler(fl.loop)),
+    _row("endloop", FLOW_VERSIONS, "", "flow", "end of loop", slots=2,
+         lowers=Handler(fl.endloop)),
+    _row("rep", FLOW_VERSIONS, "I", "flow", "repeat i.x times", slots=3,
+         lowers=Handler(fl.rep)),
+    _row("endrep", FLOW_VERSIONS, "", "flow", "end of rep", slots=2,
+         lowers=Handler(fl.endrep)),
+    _row("if", FLOW_VERSIONS, "b", "flow", "if b (or if_cmp a, b)", slots=3,
+         lowers=Handler(fl.if_)),
+    _row("else", FLOW_VERSIONS, "", "flow", "else", slots=1, lowers=Handler(fl.else_)),
+    _row("endif", FLOW_VERSIONS, "", "flow", "end of if", slots=1, lowers=Handler(fl.endif)),
     _row("break", FLOW_VERSIONS, "", "flow", "leave the loop (break_cmp a, b: if a <cmp> b)",
-         lowers=_FLOW_NOT_LOWERED, slots=1),
-    _row("breakp", FLOW_VERSIONS, "p", "flow", "leave the loop if p0", lowers=_FLOW_NOT_LOWERED, slots=3),
+         slots=1, lowers=Handler(fl.break_)),
+    _row("breakp", FLOW_VERSIONS, "p", "flow", "leave the loop if p0", slots=3,
+         lowers=Handler(fl.break_)),
 ]
 
 # Instructions that are no instruction: the version token, constants, declarations, phase.

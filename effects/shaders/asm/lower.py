@@ -55,6 +55,7 @@ from effects.errors import AsmError
 from effects.ir import COMPONENTS, OUTPUTS, Builder, Program
 from effects.model import VertexDeclElement
 from effects.precision import LoweringOptions
+from effects.shaders.asm import flow
 from effects.shaders.asm.instructions import Handler, NoCode, NotLowered, Rewrite
 from effects.shaders.asm.program import AsmProgram, Instruction, Operand
 from effects.shaders.asm.rewrites import (NEGATE, PRE_SWIZZLE_MODIFIERS, RESULT_MODIFIERS,
@@ -122,38 +123,73 @@ def constant_registers(program: AsmProgram) -> set[int]:
     return used - set(program.defs)
 
 
-# Registers a source may read in the lowering (others, e.g. vPos, vFace, are not lowered yet).
-_READABLE = frozenset({"c", "v", "t", "r", "a"})
+# Registers a source may read in the lowering; ps_3_0 vPos / vFace are fragment builtins.
+_READABLE = frozenset({"c", "v", "t", "r", "a", "aL", "p", "b", "vPos", "vFace"})
+_BUILTINS = {"vPos": "vpos", "vFace": "vface"}
+_MAX_CALL_DEPTH = 16
+
+
+def _written(instrs: list, body: range, labels: dict[int, int], seen: frozenset = frozenset()
+             ) -> dict[tuple[str, int], Operand]:
+    """The registers the instructions in `body` (and the subroutines they call) write; a
+    subroutine's body ends at its ret."""
+    found: dict[tuple[str, int], Operand] = {}
+    for k in body:
+        instr = instrs[k]
+        if instr.info.ends_body:
+            break
+        if instr.dst is not None and not isinstance(instr.info.lowers, NoCode):
+            found.setdefault((instr.dst.kind, instr.dst.index or 0), instr.dst)
+        if instr.opcode in ("call", "callnz") and instr.srcs:
+            start = labels.get(instr.srcs[0].index)
+            if start is not None and start not in seen:
+                found.update(_written(instrs, range(start + 1, len(instrs)), labels,
+                                      seen | {start}))
+    return found
 
 
 def lowering_problems(program: AsmProgram) -> list[AsmError]:
     """Every instruction of `program` that does not lower, located, with the reason: its
-    row says `NotLowered`, or it uses predication, a register or an addressing form the
-    lowering does not read. Empty means `lower_*_shader` lowers it."""
+    row says `NotLowered`, or it uses a register, an addressing form or a flow-control form
+    the lowering does not handle. Empty means `lower_*_shader` lowers it."""
     problems = []
+    depth = 0
     for instr in program.instructions:
         lowers = instr.info.lowers
+        if instr.opcode in flow.OPENS:
+            depth += 1
+        elif instr.opcode in flow.OPENS.values():
+            depth -= 1
         if isinstance(lowers, NotLowered):
             problems.append(AsmError(f"{instr.opcode}: {lowers.reason}", instr.location))
+        elif instr.opcode == "ret" and depth > 0:
+            problems.append(AsmError("ret inside if, rep or loop (an early return) is not "
+                                     "lowered yet", instr.location))
         elif isinstance(lowers, NoCode):
             continue
-        elif instr.predicate is not None:
-            problems.append(AsmError(f"{instr.opcode}: predication is not lowered yet",
-                                     instr.location))
+        elif instr.predicate is not None and instr.info.category == "flow":
+            problems.append(AsmError(f"{instr.opcode}: a predicated flow-control instruction "
+                                     "is not lowered yet", instr.location))
         else:
-            problems += _operand_problems(instr)
+            problems += _operand_problems(program, instr)
     return problems
 
 
-def _operand_problems(instr: Instruction) -> list[AsmError]:
+def _operand_problems(program: AsmProgram, instr: Instruction) -> list[AsmError]:
     found = []
     roles = instr.info.source_roles
+    for op in instr.srcs:
+        defined = {"i": program.int_defs, "b": program.bool_defs}.get(op.kind)
+        if defined is not None and op.index not in defined:
+            found.append(AsmError(f"{op.name} is not set by def{op.kind} (constants the "
+                                  "application sets are not lowered yet)", op.location))
     for k, op in enumerate(instr.srcs):
         if k < len(roles) and roles[k] not in "sx":
             continue
-        if op.relative is not None and (op.kind != "c" or op.relative.kind != "a"):
-            found.append(AsmError(f"relative addressing {op.text or op.name} is not lowered "
-                                  "yet", op.location))
+        if op.relative is not None and op.kind != "c":
+            found.append(AsmError(f"relative addressing of {op.kind}# registers "
+                                  f"({op.kind}[{op.relative.kind}]) is not lowered yet",
+                                  op.location))
         elif op.kind not in _READABLE:
             found.append(AsmError(f"reading {op.name} is not lowered yet", op.location))
     if instr.dst is not None and instr.dst.relative is not None:
@@ -209,33 +245,73 @@ class _Lowering:
         self.pending_rows: list[int] = []        # texm3x2pad / texm3x3pad dot products
         self.depth: int | None = None
         self.written: list[tuple[str, int]] = []  # output registers in first-write order
+        # flow control (flow.py): registers held in IR variables, open loops (None for rep,
+        # else (aL variable, outer aL, start, step, count)), the instruction being lowered,
+        # the predicate of a predicated instruction, subroutines being inlined
+        self.variables: dict[tuple[str, int], int] = {}
+        self.loops: list[Any] = []
+        self.pos = 0
+        self.pred: int | None = None
+        self.calls: list[int] = []
+        self.labels = {ins.srcs[0].index: k for k, ins in enumerate(program.instructions)
+                       if ins.opcode == "label" and ins.srcs}
 
     # -- driver
     def run(self) -> Program:
+        self.lower_from(0)
+        self.outputs()
+        return self.b.build()
+
+    def lower_from(self, start: int) -> None:
+        """Lower instructions from `start` to the end of the body (a `ret` or `label`, whose
+        rows say `ends_body`, or the end of the program)."""
         instrs = self.p.instructions
-        i = 0
-        while i < len(instrs):
+        i = start
+        while i < len(instrs) and not instrs[i].info.ends_body:
             group = [instrs[i]]
             while i + len(group) < len(instrs) and instrs[i + len(group)].coissue:
                 group.append(instrs[i + len(group)])
             snapshot = dict(self.regs)             # co-issued halves read the pre-pair state
-            for instr in group:
+            for k, instr in enumerate(group):
+                self.pos = i + k
                 self.lower(instr, snapshot)
             i += len(group)
-        self.outputs()
-        return self.b.build()
+
+    def inline(self, label: Operand) -> None:
+        """The body of subroutine `label`, lowered here (call / callnz)."""
+        start = self.labels.get(label.index)
+        if start is None:
+            raise AsmError(f"l{label.index} has no label", label.location)
+        if start in self.calls or len(self.calls) >= _MAX_CALL_DEPTH:
+            raise AsmError(f"call l{label.index}: recursive or too deep", label.location)
+        self.calls.append(start)
+        pos = self.pos
+        self.lower_from(start + 1)
+        self.pos = pos
+        self.calls.pop()
+
+    def enter_block(self, pos: int, subroutine: Operand | None = None) -> None:
+        """Before a block opens: every register the block (or the subroutine) may write is
+        moved into an IR variable, so its writes inside are assignments."""
+        instrs = self.p.instructions
+        if subroutine is None:
+            body = range(pos + 1, flow.block_end(instrs, pos))
+        else:
+            body = range(self.labels.get(subroutine.index, len(instrs)) + 1, len(instrs))
+        for key, dst in _written(instrs, body, self.labels).items():
+            if key in self.variables:
+                continue
+            self.regs[key] = self.variables[key] = self.b.var(self.initial(key, dst))
 
     def lower(self, instr: Instruction, reads: dict[tuple[str, int], int]) -> None:
         """What the instruction's row says: nothing, a rewrite, a handler."""
         lowers = instr.info.lowers
         if isinstance(lowers, NoCode):
             return
-        problems = ([AsmError(f"{instr.opcode}: {lowers.reason}", instr.location)]
-                    if isinstance(lowers, NotLowered) else
-                    [AsmError(f"{instr.opcode}: predication is not lowered yet",
-                              instr.location)] if instr.predicate is not None else [])
-        if problems:       # validation rejects these first; a direct caller gets the reason
-            raise problems[0]
+        if isinstance(lowers, NotLowered):   # validation rejects these first
+            raise AsmError(f"{instr.opcode}: {lowers.reason}", instr.location)
+        self.pred = (None if instr.predicate is None
+                     else flow.predicate(self, instr.predicate, reads))
         if isinstance(lowers, Handler):
             lowers.fn(self, instr, reads)
         elif instr.info.matrix_rows:
@@ -262,6 +338,8 @@ class _Lowering:
         kind, index = op.kind, op.index
         if op.relative is not None and kind != "c":
             raise AsmError(f"relative addressing of {op.name} is not lowered yet", op.location)
+        if kind in _BUILTINS and self.b.stage == "fragment":
+            return self.b.builtin(_BUILTINS[kind])
         if kind == "c":
             if op.relative is not None:
                 return self.relative_constant(op, reads)
@@ -270,8 +348,8 @@ class _Lowering:
             return self.varying_input(index)
         if kind == "t" and not self.rules.is_ps11_13:
             return self.texcoord(index)
-        if kind in ("r", "t", "a"):
-            value = reads.get((kind, index))
+        if kind in ("r", "t", "a", "aL", "p"):
+            value = reads.get((kind, index or 0))
             return self.e.const(ZERO) if value is None else value
         raise AsmError(f"reading {op.name} is not lowered yet", op.location)
 
@@ -289,14 +367,15 @@ class _Lowering:
         """c[a0.x + n]: a select over every addressable register (no indexed uniforms in the
         IR); outside the range reads (0, 0, 0, 0)."""
         rel = op.relative
-        if rel.kind != "a":
-            raise AsmError("aL-relative addressing is not lowered yet", op.location)
-        a0 = reads.get(("a", 0))
-        address = self.e.swizzle(self.e.const(ZERO) if a0 is None else a0,
-                                 COMPONENTS[rel.component] * 4)
+        index_register = reads.get(("a", 0) if rel.kind == "a" else ("aL", 0))
+        address = self.e.swizzle(self.e.const(ZERO) if index_register is None
+                                 else index_register, COMPONENTS[rel.component] * 4)
         address = self.b.add(address, self.e.const(float(op.index)))
         result = self.e.const(ZERO)
-        for k in range(_relative_range(self.p)):
+        # c[aL + n] reaches only what the innermost loop's aL runs through
+        reach = (range(_relative_range(self.p)) if rel.kind == "a"
+                 else flow.aL_candidates(self, op.index, _relative_range(self.p)))
+        for k in reach:
             off = self.b.neg(self.b.abs(self.b.sub(address, self.e.const(float(k)))))
             result = self.b.cmp(off, self.constant(k), result)   # -|addr - k| >= 0 iff equal
         return result
@@ -352,19 +431,40 @@ class _Lowering:
             return "".join(COMPONENTS[c] for c in dst.mask)
         return instr.info.writes or COMPONENTS
 
+    def initial(self, key: tuple[str, int], dst: Operand) -> int:
+        """A register's value before any write: its current value, zero for temporaries,
+        D3D's default for an output (which then counts as written)."""
+        old = self.regs.get(key)
+        if old is not None:
+            return old
+        if key[0] in ("r", "t", "a", "oC", "p"):
+            return self.e.const(ZERO)
+        self.written.append(key)
+        return self.e.const(OUTPUT_DEFAULTS.get(self.output_name(dst), DEFAULT_VARYING))
+
     def store(self, dst: Operand, value: int, mask: str) -> None:
+        """Merge under the write mask (and the predicate of a predicated instruction); a
+        register held in a variable is assigned."""
         if dst.relative is not None:
             raise AsmError(f"relative addressing of {dst.name} is not lowered yet",
                            dst.location)
         key = (dst.kind, dst.index if dst.index is not None else 0)
-        old = self.regs.get(key)
-        if old is None:
-            if key[0] in ("r", "t", "a", "oC"):
-                old = self.e.const(ZERO)
-            else:
-                old = self.e.const(OUTPUT_DEFAULTS.get(self.output_name(dst), DEFAULT_VARYING))
-                self.written.append(key)
-        self.regs[key] = self.b.merge(old, value, mask)
+        old = self.initial(key, dst)
+        new = self.b.merge(old, value, mask)
+        if self.pred is not None:     # per component: new where the predicate holds
+            new = self.b.cmp(self.b.sub(self.pred, self.e.const(0.5)), new, old)
+        variable = self.variables.get(key)
+        if variable is not None:
+            self.b.assign(variable, new)
+        else:
+            self.regs[key] = new
+
+    def kill(self, value: int, components: str) -> None:
+        """texkill, only where the predicate (if any) holds."""
+        if self.pred is not None:
+            value = self.b.cmp(self.b.sub(self.pred, self.e.const(0.5)), value,
+                               self.e.const(ZERO))
+        self.b.kill(value, components)
 
     # -- arithmetic
     def arithmetic(self, instr: Instruction, reads: dict, rewrite: Rewrite) -> None:

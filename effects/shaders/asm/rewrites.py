@@ -79,6 +79,16 @@ def _sign(t: Tree) -> Tree:
     return ("sub", ("slt", 0.0, t), ("slt", t, 0.0))
 
 
+# Comparisons of if_cmp / break_cmp / setp_cmp, per component, as 1 (true) or 0.
+def _eq(a: Tree, b: Tree) -> Tree:
+    return ("mul", ("sge", a, b), ("sge", b, a))
+
+
+COMPARE: dict[str, Tree] = {
+    "gt": ("slt", "b", "a"), "lt": ("slt", "a", "b"), "ge": ("sge", "a", "b"),
+    "le": ("sge", "b", "a"), "eq": _eq("a", "b"), "ne": ("sub", 1.0, _eq("a", "b")),
+}
+
 # Rows of the instruction table (instructions.py) name these trees; the plain ones (add, mul
 # ...) are written in the row itself.
 # ps_1_1-1_3: the condition is r0.a for all four components

@@ -45,11 +45,11 @@ def texcoord(lo: Lowering, instr: Instruction, reads: dict) -> None:
 
 def texkill(lo: Lowering, instr: Instruction, reads: dict) -> None:
     if lo.rules.is_ps11_13:
-        lo.b.kill(lo.texcoord(instr.dst.index), "xyz")
+        lo.kill(lo.texcoord(instr.dst.index), "xyz")
     elif lo.rules.is_ps14:
-        lo.b.kill(lo.source(instr.dst, reads), "xyz")
+        lo.kill(lo.source(instr.dst, reads), "xyz")
     else:
-        lo.b.kill(lo.source(instr.srcs[0], reads), "xyzw")
+        lo.kill(lo.source(instr.srcs[0], reads), "xyzw")
 
 
 def _bumped(lo: Lowering, instr: Instruction, reads: dict) -> tuple[int, int]:

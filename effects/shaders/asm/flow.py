@@ -1,0 +1,167 @@
+"""Shader Model 2.x/3.0 flow control, lowered to the IR's structured blocks.
+
+Each function is the `Handler` of its instruction's row (instructions.py). The lowering
+(lower.py) keeps a register file of IR values; a block (if, rep, loop, an inlined callnz
+subroutine) that writes registers first turns each of them into an IR variable (`var`), so the
+writes inside become `assign`s and the values after the block are what ran. Sources: the
+DirectX 9 assembly reference pages for if_bool / if_comp / if_pred, loop, rep, break_comp,
+breakp, call, callnz, label, ret, setp_comp, and the predicate register.
+
+Decisions:
+- Loop and rep counts are the integer constant's x (`defi`), clamped to D3D's 0..255; loop
+  starts aL at i.y and steps it by i.z at the end of each iteration. Integer and boolean
+  constants the application would set (no defi / defb) are not lowered (`lowering_problems`).
+- Conditions are IR values whose x is 1 (true) or 0: if_comp / break_comp compare the x of
+  the (replicated) sources; b# is its defb value; p0.c (or !p0.c) a predicate component.
+- call / callnz are inlined (D3D forbids recursion); a subroutine body runs from its label to
+  its ret.
+- Predicated instructions `(p0) op` write, per component, only where p0 (or !p0) is true.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from effects.errors import AsmError
+from effects.ir import MAX_LOOP_COUNT
+from effects.shaders.asm.rewrites import COMPARE
+
+if TYPE_CHECKING:  # pragma: no cover
+    from effects.shaders.asm.lower import _Lowering as Lowering
+    from effects.shaders.asm.program import Instruction, Operand
+
+OPENS = {"if": "endif", "rep": "endrep", "loop": "endloop"}
+
+
+def block_end(instrs: list, pos: int) -> int:
+    """The index of the endif / endrep / endloop that closes the block opened at `pos`."""
+    depth = 0
+    for k in range(pos, len(instrs)):
+        op = instrs[k].opcode
+        if op in OPENS:
+            depth += 1
+        elif op in OPENS.values():
+            depth -= 1
+            if depth == 0:
+                return k
+    raise AsmError(f"{instrs[pos].opcode} is not closed", instrs[pos].location)
+
+
+def loop_count(lo: Lowering, reg: Operand) -> tuple[int, int, int]:
+    """(count, start, step) of the integer constant a rep / loop names."""
+    values = lo.p.int_defs.get(reg.index)
+    if values is None:
+        raise AsmError(f"i{reg.index} is not defined by defi (constants the application sets "
+                       "are not lowered yet)", reg.location)
+    return min(max(int(values[0]), 0), MAX_LOOP_COUNT), int(values[1]), int(values[2])
+
+
+def condition(lo: Lowering, instr: Instruction, reads: dict, operand: int = 0) -> int:
+    """The IR condition (x = 1 or 0) of an if / break / callnz: a comparison of two sources,
+    a boolean constant or a predicate component."""
+    if instr.comparison is not None:
+        a = lo.source(instr.srcs[0], reads, scalar=True)
+        b = lo.source(instr.srcs[1], reads, scalar=True)
+        return lo.e.emit(COMPARE[instr.comparison], {"a": a, "b": b})
+    if not instr.srcs[operand:]:
+        return lo.e.const(1.0)                        # plain break
+    return truth(lo, instr.srcs[operand], reads)
+
+
+def truth(lo: Lowering, op: Operand, reads: dict) -> int:
+    """b# (its defb value) or [!]p0.c as an IR value of 1s and 0s."""
+    if op.kind == "b":
+        value = lo.p.bool_defs.get(op.index)
+        if value is None:
+            raise AsmError(f"b{op.index} is not defined by defb (constants the application "
+                           "sets are not lowered yet)", op.location)
+        return lo.e.const(1.0 if value else 0.0)
+    return predicate(lo, op, reads)
+
+
+def predicate(lo: Lowering, op: Operand, reads: dict) -> int:
+    """The predicate register under the operand's swizzle, inverted by `!`."""
+    p0 = reads.get(("p", 0))
+    value = lo.e.const(0.0) if p0 is None else p0
+    value = lo.e.swizzle(value, "".join("xyzw"[c] for c in op.swizzle))
+    return lo.b.sub(lo.e.const(1.0), value) if op.negate else value
+
+
+# -- handlers -----------------------------------------------------------------------------------
+
+def if_(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    cond = condition(lo, instr, reads)
+    lo.enter_block(lo.pos)
+    lo.b.if_(cond)
+
+
+def else_(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    lo.b.else_()
+
+
+def endif(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    lo.b.endif()
+
+
+def rep(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    count, _, _ = loop_count(lo, instr.srcs[0])
+    lo.enter_block(lo.pos)
+    lo.loops.append(None)
+    lo.b.loop(count)
+
+
+def loop(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    count, start, step = loop_count(lo, instr.srcs[1])
+    lo.enter_block(lo.pos)
+    outer = lo.regs.get(("aL", 0))
+    counter = lo.b.var(lo.e.const(float(start)))
+    lo.regs[("aL", 0)] = counter
+    lo.loops.append((counter, outer, start, step, count))
+    lo.b.loop(count)
+
+
+def endloop(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    counter, outer, _, step, _ = lo.loops.pop()
+    lo.b.assign(counter, lo.b.add(counter, lo.e.const(float(step))))
+    lo.b.endloop()
+    if outer is None:
+        lo.regs.pop(("aL", 0), None)
+    else:
+        lo.regs[("aL", 0)] = outer
+
+
+def endrep(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    lo.loops.pop()
+    lo.b.endloop()
+
+
+def break_(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    lo.b.break_(condition(lo, instr, reads))
+
+
+def call(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    lo.inline(instr.srcs[0])
+
+
+def callnz(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    cond = truth(lo, instr.srcs[1], reads)
+    lo.enter_block(lo.pos, subroutine=instr.srcs[0])
+    lo.b.if_(cond)
+    lo.inline(instr.srcs[0])
+    lo.b.endif()
+
+
+def setp(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    a = lo.source(instr.srcs[0], reads)
+    b = lo.source(instr.srcs[1], reads)
+    lo.write(instr, lo.e.emit(COMPARE[instr.comparison], {"a": a, "b": b}))
+
+
+def aL_candidates(lo: Lowering, offset: int, limit: int) -> list[int]:
+    """The constant registers c[aL + offset] can reach in the innermost loop: its aL runs
+    start, start + step, ... for count iterations."""
+    loops = [entry for entry in lo.loops if entry is not None]
+    if not loops:
+        return []
+    _, _, start, step, count = loops[-1]
+    return sorted({start + k * step + offset for k in range(count)} & set(range(limit)))
+

@@ -1,0 +1,267 @@
+"""Shader Model 2.x/3.0 flow control, lowered to the IR's structured blocks and drawn by both
+back ends (the `backend` fixture), each pixel checked against a value worked out by hand.
+
+Every case draws a full-screen quad into an A32B32G32R32F target, so pixel (px, py) reads
+vPos = (px, py, 0, 1) (D3D9's integer pixel centres) and colours are not clamped. Expected
+values follow the DirectX 9 assembly reference pages of each instruction (loop: aL from i.y
+stepping i.z, i.x times; break_comp; setp_comp; callnz; if_comp on vFace ...).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from effects.backend import create_backend
+from effects.errors import AsmError, Location
+from effects.ir import IRError
+from effects.model import ShaderBlock
+from effects.passprogram import PassProgram, RenderState
+from effects.precision import LoweringOptions
+from effects.shaders.asm import assemble, check
+from effects.shaders.asm.lower import ShaderContext, lower_pixel_shader, lowering_problems
+
+NO_CULL = RenderState(cull_mode="NONE")
+FLOAT = "A32B32G32R32F"
+
+
+@pytest.fixture(scope="module", params=("numpy", "gl"))
+def backend(request):
+    made = create_backend(request.param)
+    yield made
+    made.close()
+
+
+def program(src: str):
+    prog = assemble(ShaderBlock("pixel", None, src, location=Location("t.fx", 1, 1)))
+    assert [str(e) for e in check(prog)] == []
+    assert [str(e) for e in lowering_problems(prog)] == []
+    return lower_pixel_shader(prog, ShaderContext(LoweringOptions()))
+
+
+def quad(x0=-1.0, x1=1.0):
+    """A full-height rectangle from x0 to x1 in clip space; clockwise on screen (front facing)
+    when x0 < x1, counter-clockwise (back facing) when x0 > x1."""
+    position = np.array([[x0, 1, 0.5], [x1, 1, 0.5], [x0, -1, 0.5], [x1, -1, 0.5]], np.float32)
+    return {"position": position}, np.arange(4), "strip"
+
+
+def draw(backend, src: str, size=(16, 1), uniforms=None, quads=None) -> np.ndarray:
+    fragment = program(src)
+    passp = PassProgram(fragment, render_state=NO_CULL,
+                        uniforms=PassProgram.pack_uniforms(uniforms or {}))
+    backend.begin_frame(size, (0.25, 0.25, 0.25, 0.25), 1.0, 0, format=FLOAT)
+    for streams, indices, primitive in quads or [quad()]:
+        backend.draw(passp, streams, indices, primitive, {})
+    return backend.end_frame()
+
+
+PX = np.arange(16, dtype=np.float32)
+
+
+def test_nested_loops_read_al_indexed_constants(backend):
+    # outer aL = 0, 1, 2 adds c[aL]; inner aL = 4, 5 adds c[aL + 1] (c5, c6) each time:
+    # x = (1 + 2 + 4) + 3 (16 + 32) = 151; y counts the inner iterations: 3 * 2 = 6.
+    # After the inner loop aL is the outer one again (c[aL] in the second add).
+    src = """ps_3_0
+    defi i0, 3, 0, 1, 0
+    defi i1, 2, 4, 1, 0
+    def c0, 1, 0, 0, 0
+    def c1, 2, 0, 0, 0
+    def c2, 4, 0, 0, 0
+    def c9, 0, 1, 0, 0
+    def c10, 0, 0, 0, 1
+    mov r0, c10
+    loop aL, i0
+        add r0, r0, c[aL]
+        loop aL, i1
+            add r0, r0, c[aL + 1]
+            add r0, r0, c9
+        endloop
+        add r0.z, r0.z, c[aL].x
+    endloop
+    mov oC0, r0
+    """
+    image = draw(backend, src, uniforms={"c5": [16, 0, 0, 0], "c6": [32, 0, 0, 0]})
+    np.testing.assert_array_equal(image[0], np.tile([151, 6, 7, 1], (16, 1)))
+
+
+def test_early_break_leaves_each_pixel_at_its_own_count(backend):
+    # r0.x counts up by one until it reaches vPos.x (break_ge), at most 10 iterations:
+    # pixel px ends at min(px, 10); r0.y counts the adds after the break test as well.
+    src = """ps_3_0
+    dcl vPos.xy
+    defi i0, 10, 0, 1, 0
+    def c0, 1, 1, 0, 0
+    def c1, 0, 0, 0, 1
+    mov r0, c1
+    rep i0
+        break_ge r0.x, vPos.x
+        add r0, r0, c0
+    endrep
+    mov oC0, r0
+    """
+    image = draw(backend, src)
+    expected = np.minimum(PX, 10)
+    np.testing.assert_array_equal(image[0, :, 0], expected)
+    np.testing.assert_array_equal(image[0, :, 1], expected)
+
+
+def test_predicated_writes_per_component(backend):
+    # setp_gt p0, vPos.xxxx, c0 with c0 = (3, 7, 11, -1): p0 = (px > 3, px > 7, px > 11, 1);
+    # (p0) mov r0, c1 writes c1's components where p0 holds (w always: px > -1); then
+    # (!p0.x) add r0.w, r0.w, c1.x adds 10 to w where px <= 3: w = 50 there, 40 elsewhere.
+    src = """ps_3_0
+    dcl vPos.xy
+    def c0, 3, 7, 11, -1
+    def c1, 10, 20, 30, 40
+    def c2, 0, 0, 0, 1
+    mov r0, c2
+    setp_gt p0, vPos.x, c0
+    (p0) mov r0, c1
+    (!p0.x) add r0.w, r0.w, c1.x
+    mov oC0, r0
+    """
+    image = draw(backend, src)
+    expected = np.stack([np.where(PX > 3, 10, 0), np.where(PX > 7, 20, 0),
+                         np.where(PX > 11, 30, 0), np.where(PX > 3, 40, 50)], axis=1)
+    np.testing.assert_array_equal(image[0], expected)
+
+
+def test_callnz_on_a_boolean_and_on_a_predicate(backend):
+    # l0 adds (1, 0, 0, 0), l1 adds (0, 1, 0, 0). callnz l0, b0 (true) runs; callnz l0, b1
+    # (false) does not; callnz l1, p0.x runs where px < 5 (setp_lt); call l1 always runs.
+    src = """ps_3_0
+    dcl vPos.xy
+    defb b0, true
+    defb b1, false
+    def c0, 5, 5, 5, 5
+    def c1, 1, 0, 0, 0
+    def c2, 0, 1, 0, 0
+    def c3, 0, 0, 0, 1
+    mov r0, c3
+    setp_lt p0, vPos.x, c0
+    callnz l0, b0
+    callnz l0, b1
+    callnz l1, p0.x
+    call l1
+    mov oC0, r0
+    ret
+    label l0
+    add r0, r0, c1
+    ret
+    label l1
+    add r0, r0, c2
+    ret
+    """
+    image = draw(backend, src)
+    np.testing.assert_array_equal(image[0, :, 0], np.ones(16))
+    np.testing.assert_array_equal(image[0, :, 1], np.where(PX < 5, 2, 1))
+
+
+def test_if_on_vface_and_else(backend):
+    # The left half is drawn front facing (clockwise), the right half back facing: vFace is
+    # positive, negative. if_lt vFace, c0.x (0) picks (0, 1, 0, 1) on the back, else (1, 0, 0, 1).
+    src = """ps_3_0
+    dcl vFace
+    def c0, 0, 0, 0, 0
+    def c1, 0, 1, 0, 1
+    def c2, 1, 0, 0, 1
+    if_lt vFace, c0.x
+        mov r0, c1
+    else
+        mov r0, c2
+    endif
+    mov oC0, r0
+    """
+    image = draw(backend, src, size=(8, 2), quads=[quad(-1.0, 0.0), quad(1.0, 0.0)])
+    assert (image[:, :4] == [1, 0, 0, 1]).all() and (image[:, 4:] == [0, 1, 0, 1]).all()
+
+
+def test_texkill_inside_a_branch_only_kills_there(backend):
+    # if_lt vPos.x, c0.x (4): texkill of a negative value; those pixels keep the clear colour.
+    src = """ps_3_0
+    dcl vPos.xy
+    def c0, 4, 0, 0, 0
+    def c1, -1, -1, -1, -1
+    def c2, 1, 1, 1, 1
+    if_lt vPos.x, c0.x
+        texkill c1
+    endif
+    mov oC0, c2
+    """
+    image = draw(backend, src)
+    np.testing.assert_array_equal(image[0, :, 0], np.where(PX < 4, 0.25, 1.0))
+
+
+def test_loop_counts_clamp_to_255_and_zero_runs_nothing(backend):
+    # rep i0 with i0.x = 255 adds 255 times; rep i1 with i1.x = 0 never runs its body.
+    src = """ps_3_0
+    defi i0, 255, 0, 0, 0
+    defi i1, 0, 0, 0, 0
+    def c0, 1, 0, 0, 0
+    def c1, 0, 1, 0, 0
+    def c2, 0, 0, 0, 1
+    mov r0, c2
+    rep i0
+        add r0, r0, c0
+    endrep
+    rep i1
+        add r0, r0, c1
+    endrep
+    mov oC0, r0
+    """
+    image = draw(backend, src, size=(2, 1))
+    np.testing.assert_array_equal(image[0], [[255, 0, 0, 1]] * 2)
+
+
+def test_static_if_on_a_boolean_constant(backend):
+    src = """ps_3_0
+    defb b0, false
+    def c0, 1, 0, 0, 1
+    def c1, 0, 0, 1, 1
+    mov r0, c0
+    if b0
+        mov r0, c1
+    endif
+    mov oC0, r0
+    """
+    image = draw(backend, src, size=(2, 1))
+    np.testing.assert_array_equal(image[0], [[1, 0, 0, 1]] * 2)
+
+
+# -- errors and the IR's structure checks ----------------------------------------------------
+
+def test_constants_the_application_sets_are_located_problems():
+    src = "ps_3_0\nrep i3\nmov r0, c0\nendrep\nmov oC0, c0"
+    prog = assemble(ShaderBlock("pixel", None, src, location=Location("t.fx", 1, 1)))
+    assert [str(e) for e in lowering_problems(prog)] == [
+        "t.fx:2:5: error: i3 is not set by defi (constants the application sets are not "
+        "lowered yet)"]
+
+
+def test_early_return_is_a_located_problem():
+    src = "ps_3_0\ndefb b0, true\nif b0\nret\nendif\nmov oC0, c0"
+    prog = assemble(ShaderBlock("pixel", None, src, location=Location("t.fx", 1, 1)))
+    assert [str(e) for e in lowering_problems(prog)] == [
+        "t.fx:4:1: error: ret inside if, rep or loop (an early return) is not lowered yet"]
+
+
+def test_ir_rejects_badly_nested_blocks_and_out_of_scope_values():
+    from effects.ir import Builder
+    b = Builder("fragment")
+    with pytest.raises(IRError, match="without its opening"):
+        b.endif()
+    b = Builder("fragment")
+    one = b.const(1.0)
+    b.if_(one)
+    inside = b.add(one, one)
+    b.endif()
+    assert b.add(one, one) != inside            # not shared across the block's end
+    b.output("color0", inside)
+    with pytest.raises(IRError, match="undefined %1"):     # out of scope after endif
+        b.build()
+    b = Builder("fragment")
+    with pytest.raises(IRError, match="outside a loop"):
+        b.break_(b.const(1.0))
+        b.output("color0", b.const(0.0))
+        b.build()
