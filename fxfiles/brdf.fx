@@ -16,18 +16,23 @@
 //     `pixelshader`, `clamp`, `wrap`, `;` inside asm (starts an asm comment);
 //   * `string tec0` and `technique tec0` share a name (parameters and techniques are separate
 //     name spaces);
-//   * the vertex shader reads c10 (the eye position in world space) but no state in the pass
-//     sets VertexShaderConstant[10]: the application that shipped with this effect set it;
 //   * `m3x3` without the .xyz destination mask (DX8 assemblers accepted it; DX9 asks for it);
 //   * the EffectEdit strings `BCLR` (background colour) and `XFile` (model to load).
 // BRDFTexture1-3 are cube maps (see "set up clamping for cube maps"); ObjectTexture is 2D.
 // DX8 effect files have no annotations, so the file itself cannot say so.
-// One addition, the only line not in the printed text: the `VertexStreams` string just below.
+// Two additions, the only lines not in the printed text: the `VertexStreams` string just below,
+// and the `vEye` parameter with the state that loads it into c10.
 
 // Not in the printed file: it stands in for the application code that built the DX8 vertex
 // buffer, which put each vertex's tangent in TEXCOORD1 (register v8 of the declaration).
 // effects.assets reads it to feed the tangent into the texcoord1 stream.
 string VertexStreams = "texcoord1=tangent";
+
+// Not in the printed file either: the vertex shader reads the eye position (world space) from
+// c10, which the application set; this parameter (named as the DX8 samples named the eye, which
+// hosts bind to the camera position) and the one state that loads it stand in for that code, so
+// the view factor (BRDFTexture1) is looked up with the real view vector.
+vector vEye;
 
 /////////////////////////////////////////////////////////////////////////////
 // BRDF Effect File
@@ -75,6 +80,7 @@ technique tec0
    // lhtR, the light direction, is input from the shader app
     // for BRDFs, these color constants are built into the texture maps
         VertexShaderConstant[16] = <lhtR>;         // light direction
+        VertexShaderConstant[10] = <vEye>;         // added: see vEye above
 
         Texture[0] = <BRDFTexture1>;
         Texture[1] = <BRDFTexture2>;

@@ -55,7 +55,7 @@ from effects.frontend.loader import load_effect
 from effects.lower.passes import lower_pass
 from effects.model import Effect
 from effects.host.runtime import Runtime, render
-from effects.host.textures import fill_cube_texture, make_texture, procedural
+from effects.host.textures import procedural
 
 FXFILES = Path(__file__).resolve().parent.parent / "fxfiles"
 EFFECTS = sorted(p.name for p in FXFILES.glob("*.fx"))
@@ -91,7 +91,10 @@ class Bound:
 
 _LOD = "trilinear or mip-point lookups: llvmpipe's LOD approximation (see 1.)"
 BOUNDS = {
-    ("brdf.fx", "tec0"): Bound("exact", "point sampling, no mip maps, ps.1.1 fixed point"),
+    ("brdf.fx", "tec0"): Bound(
+        "exact", "point sampling, no mip maps, ps.1.1 fixed point; a view vector on a texel "
+        "boundary may take the neighbour texel of a smooth factor map (measured: 1 pixel, 3/255)",
+        max_abs=4, outliers=4),
     ("hemisphere.fx", "HemisphereVertex_vs11"): Bound("lod", _LOD),
     ("hemisphere.fx", "HemispherePerPixel_ps11"): Bound("lod", _LOD),
     ("hemisphere.fx", "HemisphereOcclusion_ps11"): Bound("lod", _LOD),
@@ -118,22 +121,13 @@ BOUNDS = {
 }
 
 
-def _symmetric_lobe(directions: np.ndarray) -> np.ndarray:
-    """A BRDF-factor-like cube map of |x|, |y| and z, equal on the four texels around each
-    face centre (brdf.fx's view vector sits exactly there)."""
-    n = directions / np.linalg.norm(directions, axis=-1, keepdims=True)
-    return np.stack([0.9 - 0.5 * np.abs(n[..., 0]), 0.9 - 0.5 * np.abs(n[..., 1]),
-                     0.55 + 0.45 * n[..., 2], np.ones(n.shape[:-1])], axis=-1)
-
-
 @lru_cache(maxsize=None)
 def params_for(effect_name: str) -> dict:
     """Textures for the DX8 effects that bind none themselves (and brdf's material colour)."""
-    if effect_name == "brdf.fx":
-        lobe = make_texture(fill_cube_texture(_symmetric_lobe, 16), "X8R8G8B8", kind="cube",
-                            mips=False)
-        return {"BRDFTexture1": lobe, "BRDFTexture2": procedural("environment:16"),
-                "BRDFTexture3": procedural("environment:16"),
+    if effect_name == "brdf.fx":     # fxfiles/brdf.yaml's factor maps
+        return {"BRDFTexture1": procedural("brdf_factor:phong:view"),
+                "BRDFTexture2": procedural("brdf_factor:phong:light"),
+                "BRDFTexture3": procedural("brdf_factor:phong:half"),
                 "ObjectTexture": procedural("checker"), "MaterialColor": [1, 1, 1, 1]}
     if effect_name == "sdk8_style.fx":
         return {"tBas": procedural("checker"), "tNrm": procedural("sobel_normals"),

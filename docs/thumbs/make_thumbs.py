@@ -14,7 +14,8 @@ from PIL import Image
 
 import effects
 from effects.host.texture_files import load_texture
-from effects.host.textures import fill_cube_texture, make_texture, procedural
+from effects.host import brdf  # noqa: F401  (registers the brdf_factor procedural)
+from effects.host.textures import make_texture, procedural
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -27,27 +28,18 @@ def solid(rgb) -> effects.host.textures.Texture:
                         "X8R8G8B8")
 
 
-def cosine_lobe_cube(size: int = 32) -> effects.host.textures.Texture:
-    """A cube map holding max(0, z) of each direction (tangent-space N.L for a flat surface)."""
-    def fn(d: np.ndarray) -> np.ndarray:
-        z = np.clip(d[..., 2:3] / np.linalg.norm(d, axis=-1, keepdims=True), 0.0, 1.0)
-        return np.concatenate([z, z, z, np.ones_like(z)], axis=-1)
-    return make_texture(fill_cube_texture(fn, size), "X8R8G8B8", kind="cube", mips=False)
-
-
-def white_cube() -> effects.host.textures.Texture:
-    return make_texture(np.ones((6, 4, 4, 4), np.float32), "X8R8G8B8", kind="cube", mips=False)
-
-
 # DX8 files carry no texture annotations: their textures come from the caller.
 gloss = load_texture(os.path.join(TEXTURES, "stones_gloss.png")).levels[0]
 DIRT = make_texture(np.concatenate([1.0 - gloss[..., :3], gloss[..., 3:]], axis=-1), "X8R8G8B8")
 SDK8 = {"tBas": os.path.join(TEXTURES, "stones_base.png"),
         "tNrm": procedural("sobel_normals:textures/stones_height.png", base_dir=FX),
         "tEnv": procedural("sky_cube:64"), "tDrt": DIRT}
-# The chapter's BRDF factor cube maps are not published: stand-ins (white, N.L, white).
-BRDF = {"BRDFTexture1": white_cube(), "BRDFTexture2": cosine_lobe_cube(),
-        "BRDFTexture3": white_cube(), "ObjectTexture": os.path.join(TEXTURES, "earth_base.png"),
+# The chapter's BRDF application set the factor cube maps: fxfiles/brdf.yaml's, the
+# homomorphic factorisation of a known BRDF (effects/host/brdf.py).
+BRDF = {"BRDFTexture1": procedural("brdf_factor:phong:view"),
+        "BRDFTexture2": procedural("brdf_factor:phong:light"),
+        "BRDFTexture3": procedural("brdf_factor:phong:half"),
+        "ObjectTexture": os.path.join(TEXTURES, "earth_base.png"),
         "MaterialColor": [1.0, 1.0, 1.0, 1.0]}
 
 # (effect, technique, card, policy, params): technique None = the one the card selects.
@@ -74,6 +66,8 @@ THUMBS = [
     ("sdk9_style", "Marble_dx7", "geforce2", None),
     ("sdk9_style", "Marble_dx6", "tnt2", None),
     ("brdf", "tec0", "geforce3", BRDF),
+    ("brdf", "tec0", "radeon8500", BRDF),
+    ("brdf", "tec0", "radeon9700", BRDF),
 ]
 
 # The same techniques on the teapot, whose handle and spout occlude it (file name + _teapot).

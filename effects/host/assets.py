@@ -41,6 +41,7 @@ import numpy as np
 from effects.errors import Location, SceneError
 from effects.host.meshes import Mesh, by_name
 from effects.host.occlusion import vertex_occlusion
+from effects.host import brdf as _brdf  # noqa: F401  (registers the brdf_factor procedural)
 from effects.model import Effect, Parameter
 from effects.host.scene import InlineMesh, Scene
 from effects import limits
