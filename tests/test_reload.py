@@ -33,7 +33,12 @@ def folder(tinted_effect):
 
 
 def write_png(path, rgb):
-    Image.new("RGB", (4, 4), rgb).save(path)
+    # Atomically: Pillow writes a PNG in several chunks, and on a loaded machine the watcher can
+    # hash the half-written file, build after the write completes, then see the rest as a
+    # second change (one extra "ok" reload that a test expecting the next edit would take).
+    tmp = f"{path}.part.png"
+    Image.new("RGB", (4, 4), rgb).save(tmp)
+    os.replace(tmp, path)
 
 
 def tfactor(loaded) -> tuple[float, ...]:
