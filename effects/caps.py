@@ -146,6 +146,17 @@ _PREFIXES = {
     id(PS20CAPS): "D3DPS20CAPS_", id(VS20CAPS): "D3DVS20CAPS_",
 }
 
+
+
+def bit_prefix(field: str) -> str:
+    """The d3d9caps.h header prefix of a cap-bit field's bits: 'SrcBlendCaps' ->
+    'D3DPBLENDCAPS_' (messages name a bit in full, as the header does)."""
+    spec = FIELDS.get(ALIASES.get(field, field))
+    if spec is None or spec.table is None:
+        raise ValueError(f"{field} is not a cap-bit field")
+    return _PREFIXES[id(spec.table)]
+
+
 # D3DFORMAT names a profile may list (DX9 d3d9types.h, without the D3DFMT_ prefix).
 FORMATS = frozenset("""
     R8G8B8 A8R8G8B8 X8R8G8B8 R5G6B5 X1R5G5B5 A1R5G5B5 A4R4G4B4 R3G3B2 A8 A8R3G3B2 X4R4G4B4

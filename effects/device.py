@@ -1,10 +1,19 @@
-"""The simulated device's state as a technique's passes set it.
+"""The simulated device's state as a technique's passes set it, and its typed readers.
 
 Each technique starts from Direct3D 9's default device state, with what the host set before
 `Begin` on top (`host`: the application's SetTransform calls, as EffectEdit and FX Composer set
-WORLD/VIEW/PROJECTION from their camera); each pass applies its assignments on top, and what a pass set persists into the following passes (as on a device,
-D3DX restoring state only at End). Validation and lowering both read state through this, so
-"what was validated" and "what runs" see the same values.
+WORLD/VIEW/PROJECTION from their camera); each pass applies its assignments on top, and what
+a pass set persists into the following passes (as on a device, D3DX restoring state only at
+End). Validation computes each pass's state once and keeps it in its answer
+(`PassReport.state`); lowering draws from that same object (with the host's states added),
+and both read values through the typed readers here (`get_int`, `get_float`, `get_bool`,
+`get_enum`, `get_color`, `get_vector`, `get_matrix`), so "what was validated" and "what runs"
+see the same values.
+
+The readers' rules: an uninitialised parameter reads 0, as D3DX leaves it; a number is read as
+the state's type (a float cast to a DWORD, the first element of an array); a value that cannot
+be read as the type raises a located EffectError, or returns `default` when one is given (the
+validator passes None and skips what it cannot read).
 """
 from __future__ import annotations
 
@@ -14,12 +23,13 @@ from typing import Any, Iterator, Mapping
 
 import numpy as np
 
-from effects.model import Effect, EnumValue, ParamRef, Pass, SamplerState, StateAssignment
+from effects.errors import EffectError, Location
+from effects.model import (Effect, EnumValue, Expression, NullValue, ParamRef, Pass, SamplerState,
+                           StateAssignment)
 from effects import states as state_table
 
-# How many units each indexed kind has on a D3D9 device (stages, samplers, lights).
-MAX_STAGES = 8
-MAX_SAMPLERS = 16
+Color = tuple[float, float, float, float]
+_RAISE: Any = object()   # no default given: a reader raises
 
 
 @dataclass
@@ -34,6 +44,12 @@ class DeviceState:
 
     def copy(self) -> "DeviceState":
         return DeviceState(self.effect, dict(self.values), self.host)
+
+    def for_effect(self, effect: Effect,
+                   host: Mapping[tuple[str, int | None], Any] | None = None) -> "DeviceState":
+        """The same assignments read against another copy of the effect (a runtime's, whose
+        parameters hold the scene's values), with `host`'s states under them."""
+        return DeviceState(effect, dict(self.values), self.host if host is None else host)
 
     # -- writing ----------------------------------------------------------------------------
     def apply_pass(self, p: Pass) -> None:
@@ -101,6 +117,148 @@ class DeviceState:
 
     def items(self) -> Iterator[tuple[tuple[str, int | None], StateAssignment]]:
         return iter(self.values.items())
+
+    # -- typed readers (see the module docstring) ------------------------------------------
+    def where(self, name: str, index: int | None = None,
+              fallback: Location | None = None) -> Location:
+        """Where the value in force was assigned (`fallback`, or the file, for a default)."""
+        a = self.assignment(name, index)
+        if a is not None:
+            return a.location
+        return fallback if fallback is not None else Location(self.effect.path, 1, 1)
+
+    def known(self, name: str, index: int | None = None) -> bool:
+        """False while the value waits on the application: a parameter without a value, or a
+        preshader expression."""
+        return not isinstance(self.get(name, index), (ParamRef, Expression))
+
+    def value(self, name: str, index: int | None = None) -> Any:
+        """`get`, with a parameter that has no value reading 0 (D3DX leaves it zero)."""
+        value = self.get(name, index)
+        return 0 if isinstance(value, ParamRef) else value
+
+    def _unread(self, name: str, index: int | None, what: str, value: Any, default: Any) -> Any:
+        if default is not _RAISE:
+            return default
+        raise EffectError(f"{name}: expected {what}, got {value!r}", self.where(name, index))
+
+    def read(self, name: str, index: int | None = None) -> Any:
+        """The value in force read as its row in the states table types it: bool, int (dword,
+        and flag enums such as ColorWriteEnable), float, enum name, colour, vector, matrix."""
+        info = _info(name)
+        kind = info.type if info is not None else None
+        if kind == "enum" and info is not None and info.enum is not None and info.enum.flags:
+            kind = "int"
+        reader = _READERS.get(kind or "")
+        if reader is None:
+            raise ValueError(f"no typed reader for state {name!r} ({kind})")
+        if kind in ("float3", "float4"):
+            return self.get_vector(name, index, 3 if kind == "float3" else 4)
+        return reader(self, name, index)
+
+    def get_int(self, name: str, index: int | None = None, default: Any = _RAISE) -> int:
+        """The value as a DWORD: enums and flags by number, TRUE as 1, a float truncated."""
+        value = self.value(name, index)
+        number = value.value if isinstance(value, EnumValue) else value
+        if type(number) is int:   # the common case, without NumPy
+            return number & state_table.DWORD_MASK
+        try:
+            return int(np.ravel(np.asarray(number, dtype=np.float64))[0]) & state_table.DWORD_MASK
+        except (TypeError, ValueError, IndexError):
+            return self._unread(name, index, "a number", value, default)
+
+    def get_float(self, name: str, index: int | None = None, default: Any = _RAISE) -> float:
+        value = self.value(name, index)
+        if type(value) in (float, int):
+            return float(value)
+        try:
+            return float(np.ravel(np.asarray(value, dtype=np.float64))[0])
+        except (TypeError, ValueError, IndexError):
+            return self._unread(name, index, "a float", value, default)
+
+    def get_bool(self, name: str, index: int | None = None) -> bool:
+        """Whether the state is on; a value the application has not set yet, or NULL, is off."""
+        value = self.get(name, index)
+        if value is None or isinstance(value, (ParamRef, Expression, NullValue)):
+            return False
+        if isinstance(value, EnumValue):
+            return bool(value.value)
+        if isinstance(value, (bool, int, float)):
+            return bool(value)
+        flat = np.ravel(np.asarray(value))
+        return bool(flat.size) and bool(flat[0])
+
+    def get_enum(self, name: str, index: int | None = None, default: Any = _RAISE) -> str:
+        """The canonical enum name (upper case, no prefix) of the value in force."""
+        found = self.enum_name(name, index)
+        if found is not None:
+            return found
+        info = _info(name)
+        table = info.enum if info is not None else None
+        number = self.get_int(name, index, default=None)
+        if table is not None and number is not None:
+            for enum_name, v in table.values.items():
+                if v == number:
+                    return enum_name
+        if default is not _RAISE:
+            return default
+        shown = name if index is None else f"{name}[{index}]"
+        raise EffectError(f"{shown}: {number if number is not None else self.get(name, index)!r} "
+                          f"is not a {table.name if table else 'known'} value",
+                          self.where(name, index))
+
+    def get_color(self, name: str, index: int | None = None, default: Any = _RAISE) -> Color:
+        """(r, g, b, a): a D3DCOLOR DWORD unpacked, or a float3 / float4 colour parameter."""
+        value = self.value(name, index)
+        if type(value) is not int:
+            try:
+                array = np.ravel(np.asarray(value, dtype=np.float64))
+            except (TypeError, ValueError):
+                return self._unread(name, index, "a colour", value, default)
+            if array.size >= 3:
+                rgba = list(array[:4]) + [1.0] * (4 - min(4, array.size))
+                return (float(rgba[0]), float(rgba[1]), float(rgba[2]), float(rgba[3]))
+        number = self.get_int(name, index, default)
+        return number if number is default else state_table.unpack_color(number)
+
+    def get_vector(self, name: str, index: int | None, size: int,
+                   default: Any = _RAISE) -> tuple[float, ...]:
+        """`size` floats; a scalar (an unset parameter reads 0) fills every component, missing
+        ones read 0."""
+        value = self.value(name, index)
+        try:
+            array = np.ravel(np.asarray(value, dtype=np.float64))
+        except (TypeError, ValueError):
+            return self._unread(name, index, f"{size} numbers", value, default)
+        if array.size == 1 and size > 1:
+            array = np.full(size, array[0])
+        out = list(array[:size]) + [0.0] * max(0, size - array.size)
+        return tuple(float(x) for x in out)
+
+    def get_matrix(self, name: str, index: int | None = None,
+                   default: Any = _RAISE) -> np.ndarray:
+        """A 4x4 matrix (row-major, as the effect writes it); an unset parameter reads zero."""
+        value = self.value(name, index)
+        try:
+            array = np.ravel(np.asarray(value, dtype=np.float64))
+        except (TypeError, ValueError):
+            return self._unread(name, index, "a 4x4 matrix", value, default)
+        if array.size == 1 and array[0] == 0:
+            return np.zeros((4, 4))
+        if array.size != 16:
+            if default is not _RAISE:
+                return default
+            raise EffectError(f"{name}: expected a 4x4 matrix, got {array.size} value(s)",
+                              self.where(name, index))
+        return array.reshape(4, 4)
+
+
+_READERS: dict[str, Any] = {
+    "bool": DeviceState.get_bool, "int": DeviceState.get_int, "dword": DeviceState.get_int,
+    "float": DeviceState.get_float, "enum": DeviceState.get_enum, "color": DeviceState.get_color,
+    "float3": DeviceState.get_vector, "float4": DeviceState.get_vector,
+    "matrix": DeviceState.get_matrix,
+}
 
 
 @lru_cache(maxsize=None)

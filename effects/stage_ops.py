@@ -1,5 +1,7 @@
 """The Direct3D texture-stage vocabulary that validation and lowering share: the D3DTA_*
-argument selectors and modifiers, the D3DTTFF_* flags, the stage count, and one row per D3DTOP
+argument selectors and modifiers, the D3DTTFF_* flags, the D3DTSS_TCI_* texgen modes and the
+stage count (each named here from its row in `effects.states`, where it is defined once), and
+one row per D3DTOP
 (`STAGE_OPS`): the caps bit that validation checks, the arguments it reads (for the
 missing-texture rule), whether it samples its texture without a TEXTURE argument, and its
 formula over vec4 IR values (semantics.md section 1).
@@ -14,6 +16,8 @@ from dataclasses import dataclass
 from typing import Callable, Mapping, Protocol
 
 from effects.ir import Builder
+from effects.states import (D3DTA, D3DTEXTURETRANSFORMFLAGS, D3DTSS_TCI, MAX_SAMPLERS, MAX_STAGES,
+                            TCI_SHIFT)
 
 
 class Cascade(Protocol):
@@ -28,14 +32,23 @@ class Cascade(Protocol):
     def tfactor(self) -> int: ...
 
 
-# D3DTA_* selectors and modifier flags (d3d9types.h).
-TA_DIFFUSE, TA_CURRENT, TA_TEXTURE, TA_TFACTOR, TA_SPECULAR, TA_TEMP, TA_CONSTANT = range(7)
+# D3DTA_* selectors and modifier flags (the D3DTA enum table); D3DTA_SELECTMASK has no name
+# of its own in an effect file, so it is defined here.
+(TA_DIFFUSE, TA_CURRENT, TA_TEXTURE, TA_TFACTOR, TA_SPECULAR, TA_TEMP,
+ TA_CONSTANT) = (D3DTA.values[n] for n in ("DIFFUSE", "CURRENT", "TEXTURE", "TFACTOR",
+                                           "SPECULAR", "TEMP", "CONSTANT"))
+TA_COMPLEMENT = D3DTA.values["COMPLEMENT"]
+TA_ALPHAREPLICATE = D3DTA.values["ALPHAREPLICATE"]
 TA_SELECTMASK = 0x0F
-TA_COMPLEMENT = 0x10
-TA_ALPHAREPLICATE = 0x20
+# D3DTTFF_*: the coordinate count in the low byte, PROJECTED above it.
 TTFF_COUNT_MASK = 0xFF
-TTFF_PROJECTED = 0x100
-MAX_STAGES = 8
+TTFF_PROJECTED = D3DTEXTURETRANSFORMFLAGS.values["PROJECTED"]
+# D3DTSS_TCI_*: the texgen mode in TexCoordIndex's high word, the coordinate set below it.
+TCI_SET_MASK = (1 << TCI_SHIFT) - 1
+TCI_MODES: Mapping[int, str] = {value >> TCI_SHIFT: name for name, value in D3DTSS_TCI.values.items()}
+# The camera-space modes: with three coordinates they are the fixed-function cube lookups.
+TCI_CAMERA_SPACE = frozenset(code for code, name in TCI_MODES.items()
+                             if name.startswith("CAMERASPACE"))
 
 Value = int  # an IR value id
 

@@ -2,7 +2,9 @@
 
 Everything that reads or writes a state assignment (parser, validator, lowering, runtime,
 printer) asks this module: which states exist, what `[n]` means for each, which type its
-value has, which enum names it takes, and what the device default is.
+value has, which enum names it takes, what the device default is, and which D3DCAPS9 field
+limits the values a card accepts (`StateInfo.limit`, read by the validator; the bit names
+and their header prefixes are `effects.caps`' tables).
 
 Sources (facts only, restated here):
 - state names and their order: Wine `dlls/d3dx9_36/effect.c` `state_table`;
@@ -10,7 +12,9 @@ Sources (facts only, restated here):
 - state codes and defaults: D3DRENDERSTATETYPE, D3DTEXTURESTAGESTATETYPE, D3DSAMPLERSTATETYPE
   docs, cross-checked with Wine `wined3d/stateblock.c` (`init_default_render_states`,
   `init_default_texture_state`, `init_default_sampler_states`, `WINED3D_default_light`);
-- enum values: the d3d9types.h enums as documented (D3DTEXTUREOP, D3DTA, D3DBLEND, ...).
+- enum values: the d3d9types.h enums as documented (D3DTEXTUREOP, D3DTA, D3DBLEND, ...);
+- limiting caps: the d3d9caps.h fields as documented (D3DPBLENDCAPS, D3DPCMPCAPS,
+  D3DSTENCILCAPS, D3DPMISCCAPS_CULL*, MASKZ, BLENDOP, SEPARATEALPHABLEND, D3DPRASTERCAPS_*).
 
 `[n]` means, by `kind`: 'stage' → texture stage 0-7, 'sampler' / 'texture' / 'sampler_object'
 → sampler 0-15 (256-260 are the displacement-map and vertex samplers), 'light' → light index,
@@ -33,6 +37,11 @@ from effects.model import (CompileShader, EnumValue, Expression, NullValue, Para
                     ShaderBlock)
 
 DWORD_MASK = 0xFFFFFFFF
+# How many units the indexed kinds have on a D3D9 device: texture stages and pixel samplers.
+MAX_STAGES = 8
+MAX_SAMPLERS = 16
+# TexCoordIndex: the D3DTSS_TCI_* texgen mode sits above this bit, the coordinate set below.
+TCI_SHIFT = 16
 # D3DDMAPSAMPLER and D3DVERTEXTEXTURESAMPLER0-3: sampler numbers above the 16 pixel samplers.
 VERTEX_SAMPLER_INDICES = range(256, 261)
 
@@ -156,7 +165,7 @@ D3DTEXTURETRANSFORMFLAGS = _table("D3DTEXTURETRANSFORMFLAGS", ["D3DTTFF_"], [
 _TCI_MODES = ("PassThru", "CameraSpaceNormal", "CameraSpacePosition",
               "CameraSpaceReflectionVector", "SphereMap")
 D3DTSS_TCI = _table("D3DTSS_TCI", ["D3DTSS_TCI_"], [
-    (name, value << 16) for value, name in enumerate(_TCI_MODES)
+    (name, value << TCI_SHIFT) for value, name in enumerate(_TCI_MODES)
 ], flags=True, exclusive=[("texture coordinate generation modes", _TCI_MODES)],
     example="CameraSpaceReflectionVector")
 D3DLIGHTTYPE = _table("D3DLIGHTTYPE", ["D3DLIGHT_"],
@@ -220,12 +229,61 @@ def enum_value(table: EnumTable, *names: str | int) -> EnumValue:
 
 
 @dataclass(frozen=True)
+class CapsLimit:
+    """The D3DCAPS9 bit field that limits a state's values (validation checks it).
+
+    `bit` names the one bit the state needs when `needs(value)` says so (BlendOp needs BLENDOP
+    for anything but ADD); without `bit`, an enum value needs the bit of its own name
+    (ZFunc = LessEqual needs D3DPCMPCAPS_LESSEQUAL), or its entry in `renamed`. `gate` lists
+    the bool states that must be on for the state to matter: a gated state is checked at the
+    value in force, its default included (what the card must draw with); an ungated one only
+    where a pass assigns it, so a card is never rejected for a default. `what` says what a
+    value does, for the message (per value, or one text for all)."""
+
+    field: str
+    bit: str | None = None
+    needs: Callable[[Any], bool] = bool
+    renamed: Mapping[str, str] = field(default_factory=dict)
+    gate: tuple[str, ...] = ()
+    what: Mapping[str, str] | str = ""
+
+    def bit_for(self, value: Any) -> str | None:
+        """The bit `value` needs, or None when it needs none."""
+        if self.bit is not None:
+            return self.bit if self.needs(value) else None
+        return self.renamed.get(value, value) if isinstance(value, str) else None
+
+    def describe(self, value: Any) -> str:
+        return self.what if isinstance(self.what, str) else self.what.get(value, "")
+
+
+_BLEND = ("AlphaBlendEnable",)
+_SEPARATE_BLEND = ("AlphaBlendEnable", "SeparateAlphaBlendEnable")
+_STENCIL = ("StencilEnable",)
+_TWO_SIDED = ("StencilEnable", "TwoSidedStencilMode")
+# D3DBLEND_INVBLENDFACTOR shares D3DPBLENDCAPS_BLENDFACTOR.
+_SRC_BLEND = CapsLimit("SrcBlendCaps", renamed={"INVBLENDFACTOR": "BLENDFACTOR"}, gate=_BLEND)
+_DEST_BLEND = CapsLimit("DestBlendCaps", renamed={"INVBLENDFACTOR": "BLENDFACTOR"}, gate=_BLEND)
+_BLEND_OP = CapsLimit("PrimitiveMiscCaps", "BLENDOP", lambda v: v != "ADD", gate=_BLEND)
+
+
+def _alpha_blend(limit: CapsLimit) -> CapsLimit:
+    # The *Alpha blend states matter only with SeparateAlphaBlendEnable.
+    return CapsLimit(limit.field, limit.bit, limit.needs, limit.renamed, _SEPARATE_BLEND)
+
+
+_STENCIL_OP = CapsLimit("StencilCaps", gate=_STENCIL)
+_CCW_STENCIL_OP = CapsLimit("StencilCaps", gate=_TWO_SIDED)
+
+
+@dataclass(frozen=True)
 class StateInfo:
     """One effect state. `default` is the Direct3D 9 device default: a value, or a callable of
     the index (stage, sampler, light ...) where it differs per index; read it with
     `default_value`. Extra fields: `aliases` (other accepted names), `registers` (register
     count of VertexShaderConstant1-4 / PixelShaderConstant1-4), `legacy` (a DX8 state that
-    Direct3D 9 no longer has; kept so old files load)."""
+    Direct3D 9 no longer has; kept so old files load), `limit` (the caps field that limits its
+    values, see CapsLimit)."""
 
     name: str
     kind: str
@@ -238,6 +296,7 @@ class StateInfo:
     aliases: tuple[str, ...] = ()
     registers: int | None = None
     legacy: bool = False
+    limit: CapsLimit | None = None
 
 
 def _identity() -> np.ndarray:
@@ -262,29 +321,37 @@ _RENDER_STATES = (
     _rs("ZEnable", 7, "enum", _ev(D3DZBUFFERTYPE, "True"), D3DZBUFFERTYPE),
     _rs("FillMode", 8, "enum", _ev(D3DFILLMODE, "Solid"), D3DFILLMODE),
     _rs("ShadeMode", 9, "enum", _ev(D3DSHADEMODE, "Gouraud"), D3DSHADEMODE),
-    _rs("ZWriteEnable", 14, "bool", True),
+    _rs("ZWriteEnable", 14, "bool", True, limit=CapsLimit(
+        "PrimitiveMiscCaps", "MASKZ", lambda v: not v, what="turns depth writes off")),
     _rs("AlphaTestEnable", 15, "bool", False),
     _rs("LastPixel", 16, "bool", True),
-    _rs("SrcBlend", 19, "enum", _ev(D3DBLEND, "One"), D3DBLEND),
-    _rs("DestBlend", 20, "enum", _ev(D3DBLEND, "Zero"), D3DBLEND),
-    _rs("CullMode", 22, "enum", _ev(D3DCULL, "CCW"), D3DCULL),
-    _rs("ZFunc", 23, "enum", _ev(D3DCMPFUNC, "LessEqual"), D3DCMPFUNC),
+    _rs("SrcBlend", 19, "enum", _ev(D3DBLEND, "One"), D3DBLEND, limit=_SRC_BLEND),
+    _rs("DestBlend", 20, "enum", _ev(D3DBLEND, "Zero"), D3DBLEND, limit=_DEST_BLEND),
+    _rs("CullMode", 22, "enum", _ev(D3DCULL, "CCW"), D3DCULL, limit=CapsLimit(
+        "PrimitiveMiscCaps", renamed={"NONE": "CULLNONE", "CW": "CULLCW", "CCW": "CULLCCW"},
+        what={"NONE": "draws both faces", "CW": "culls clockwise faces",
+              "CCW": "culls counter-clockwise faces"})),
+    _rs("ZFunc", 23, "enum", _ev(D3DCMPFUNC, "LessEqual"), D3DCMPFUNC,
+        limit=CapsLimit("ZCmpCaps")),
     _rs("AlphaRef", 24, "int", 0),
-    _rs("AlphaFunc", 25, "enum", _ev(D3DCMPFUNC, "Always"), D3DCMPFUNC),
+    _rs("AlphaFunc", 25, "enum", _ev(D3DCMPFUNC, "Always"), D3DCMPFUNC,
+        limit=CapsLimit("AlphaCmpCaps", gate=("AlphaTestEnable",))),
     _rs("DitherEnable", 26, "bool", False),
     _rs("AlphaBlendEnable", 27, "bool", False),
     _rs("FogEnable", 28, "bool", False),
     _rs("SpecularEnable", 29, "bool", False),
     _rs("FogColor", 34, "color", 0),
-    _rs("FogTableMode", 35, "enum", _ev(D3DFOGMODE, "None"), D3DFOGMODE),
+    _rs("FogTableMode", 35, "enum", _ev(D3DFOGMODE, "None"), D3DFOGMODE, limit=CapsLimit(
+        "RasterCaps", "FOGTABLE", lambda v: v not in (None, "NONE"), gate=("FogEnable",),
+        what="computes fog per pixel")),
     _rs("FogStart", 36, "float", 0.0),
     _rs("FogEnd", 37, "float", 1.0),
     _rs("FogDensity", 38, "float", 1.0),
     _rs("RangeFogEnable", 48, "bool", False),
     _rs("StencilEnable", 52, "bool", False),
-    _rs("StencilFail", 53, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP),
-    _rs("StencilZFail", 54, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP),
-    _rs("StencilPass", 55, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP),
+    _rs("StencilFail", 53, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP, limit=_STENCIL_OP),
+    _rs("StencilZFail", 54, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP, limit=_STENCIL_OP),
+    _rs("StencilPass", 55, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP, limit=_STENCIL_OP),
     _rs("StencilFunc", 56, "enum", _ev(D3DCMPFUNC, "Always"), D3DCMPFUNC),
     _rs("StencilRef", 57, "int", 0),
     _rs("StencilMask", 58, "dword", DWORD_MASK),
@@ -326,14 +393,16 @@ _RENDER_STATES = (
     _rs("ColorWriteEnable", 168, "enum", _ev(D3DCOLORWRITEENABLE, "Red", "Green", "Blue", "Alpha"),
         D3DCOLORWRITEENABLE),
     _rs("TweenFactor", 170, "float", 0.0),
-    _rs("BlendOp", 171, "enum", _ev(D3DBLENDOP, "Add"), D3DBLENDOP),
+    _rs("BlendOp", 171, "enum", _ev(D3DBLENDOP, "Add"), D3DBLENDOP, limit=_BLEND_OP),
     # DX8 named these two D3DRS_POSITIONORDER / D3DRS_NORMALORDER.
     _rs("PositionDegree", 172, "enum", _ev(D3DDEGREETYPE, "Cubic"), D3DDEGREETYPE,
         aliases=("PositionOrder",)),
     _rs("NormalDegree", 173, "enum", _ev(D3DDEGREETYPE, "Linear"), D3DDEGREETYPE,
         aliases=("NormalOrder",)),
-    _rs("ScissorTestEnable", 174, "bool", False),
-    _rs("SlopeScaleDepthBias", 175, "float", 0.0),
+    _rs("ScissorTestEnable", 174, "bool", False, limit=CapsLimit(
+        "RasterCaps", "SCISSORTEST", what="clips to a scissor rectangle")),
+    _rs("SlopeScaleDepthBias", 175, "float", 0.0, limit=CapsLimit(
+        "RasterCaps", "SLOPESCALEDEPTHBIAS", what="offsets depth by slope")),
     _rs("AntialiasedLineEnable", 176, "bool", False),
     _rs("MinTessellationLevel", 178, "float", 1.0),
     _rs("MaxTessellationLevel", 179, "float", 1.0),
@@ -342,22 +411,31 @@ _RENDER_STATES = (
     _rs("AdaptiveTess_Z", 182, "float", 1.0),
     _rs("AdaptiveTess_W", 183, "float", 0.0),
     _rs("EnableAdaptiveTessellation", 184, "bool", False),
-    _rs("TwoSidedStencilMode", 185, "bool", False),
-    _rs("CCW_StencilFail", 186, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP),
-    _rs("CCW_StencilZFail", 187, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP),
-    _rs("CCW_StencilPass", 188, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP),
+    _rs("TwoSidedStencilMode", 185, "bool", False,
+        limit=CapsLimit("StencilCaps", "TWOSIDED", gate=_STENCIL)),
+    _rs("CCW_StencilFail", 186, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP,
+        limit=_CCW_STENCIL_OP),
+    _rs("CCW_StencilZFail", 187, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP,
+        limit=_CCW_STENCIL_OP),
+    _rs("CCW_StencilPass", 188, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP,
+        limit=_CCW_STENCIL_OP),
     _rs("CCW_StencilFunc", 189, "enum", _ev(D3DCMPFUNC, "Always"), D3DCMPFUNC),
     *(_rs(f"ColorWriteEnable{n}", 189 + n, "enum",
           _ev(D3DCOLORWRITEENABLE, "Red", "Green", "Blue", "Alpha"), D3DCOLORWRITEENABLE)
       for n in (1, 2, 3)),
     _rs("BlendFactor", 193, "color", DWORD_MASK),
     _rs("SRGBWriteEnable", 194, "bool", False),
-    _rs("DepthBias", 195, "float", 0.0),
+    _rs("DepthBias", 195, "float", 0.0,
+        limit=CapsLimit("RasterCaps", "DEPTHBIAS", what="offsets depth")),
     *(_rs(f"Wrap{n}", 190 + n, "enum", _ev(D3DWRAP, 0), D3DWRAP) for n in range(8, 16)),
-    _rs("SeparateAlphaBlendEnable", 206, "bool", False),
-    _rs("SrcBlendAlpha", 207, "enum", _ev(D3DBLEND, "One"), D3DBLEND),
-    _rs("DestBlendAlpha", 208, "enum", _ev(D3DBLEND, "Zero"), D3DBLEND),
-    _rs("BlendOpAlpha", 209, "enum", _ev(D3DBLENDOP, "Add"), D3DBLENDOP),
+    _rs("SeparateAlphaBlendEnable", 206, "bool", False,
+        limit=CapsLimit("PrimitiveMiscCaps", "SEPARATEALPHABLEND", gate=_BLEND)),
+    _rs("SrcBlendAlpha", 207, "enum", _ev(D3DBLEND, "One"), D3DBLEND,
+        limit=_alpha_blend(_SRC_BLEND)),
+    _rs("DestBlendAlpha", 208, "enum", _ev(D3DBLEND, "Zero"), D3DBLEND,
+        limit=_alpha_blend(_DEST_BLEND)),
+    _rs("BlendOpAlpha", 209, "enum", _ev(D3DBLENDOP, "Add"), D3DBLENDOP,
+        limit=_alpha_blend(_BLEND_OP)),
     # DX8 render states with no D3D9 equivalent (codes from d3d8types.h): accepted, flagged.
     _rs("LinePattern", 10, "dword", 0, legacy=True),
     _rs("ZVisible", 30, "bool", False, legacy=True),
@@ -368,7 +446,7 @@ _RENDER_STATES = (
 
 
 def _ts(name: str, code: int, type_: str, default: object, enum: EnumTable | None = None) -> StateInfo:
-    return StateInfo(name, "stage", type_, enum, "optional", 7, code, default)
+    return StateInfo(name, "stage", type_, enum, "optional", MAX_STAGES - 1, code, default)
 
 
 def _stage0_else(stage0: EnumValue, others: EnumValue) -> Callable[[int], EnumValue]:
@@ -404,7 +482,7 @@ _STAGE_STATES = (
 
 def _ss(name: str, code: int, type_: str, default: object, enum: EnumTable | None = None) -> StateInfo:
     # In a pass `MinFilter[n]` (the DX8 texture-stage spelling); inside sampler_state no index.
-    return StateInfo(name, "sampler", type_, enum, "optional", 15, code, default)
+    return StateInfo(name, "sampler", type_, enum, "optional", MAX_SAMPLERS - 1, code, default)
 
 
 _SAMPLER_STATES = (
@@ -425,8 +503,10 @@ _SAMPLER_STATES = (
 )
 
 _OBJECT_STATES = (
-    StateInfo("Texture", "texture", "texture", None, "optional", 15, None, NullValue()),
-    StateInfo("Sampler", "sampler_object", "sampler", None, "optional", 15, None, NullValue()),
+    StateInfo("Texture", "texture", "texture", None, "optional", MAX_SAMPLERS - 1, None,
+              NullValue()),
+    StateInfo("Sampler", "sampler_object", "sampler", None, "optional", MAX_SAMPLERS - 1, None,
+              NullValue()),
     StateInfo("VertexShader", "shader", "vertexshader", None, "none", None, None, NullValue()),
     StateInfo("PixelShader", "shader", "pixelshader", None, "none", None, None, NullValue()),
 )
@@ -439,7 +519,7 @@ _TRANSFORM_STATES = (
               lambda _i: _identity()),
     StateInfo("ProjectionTransform", "transform", "matrix", None, "none", None, 3,
               lambda _i: _identity()),
-    StateInfo("TextureTransform", "transform", "matrix", None, "optional", 7, 16,
+    StateInfo("TextureTransform", "transform", "matrix", None, "optional", MAX_STAGES - 1, 16,
               lambda _i: _identity()),
 )
 
@@ -768,6 +848,13 @@ def pack_color(rgba: Iterable[float]) -> int:
                         else int(f * np.float32(255.0) + np.float32(0.5)))
     r, g, b, a = channels
     return (a << 24) | (r << 16) | (g << 8) | b
+
+
+def unpack_color(value: int) -> tuple[float, float, float, float]:
+    """D3DCOLOR 0xAARRGGBB as (r, g, b, a) floats in [0, 1] (the inverse of `pack_color`'s
+    rounding for every 8-bit value)."""
+    v = int(value) & DWORD_MASK
+    return ((v >> 16 & 0xFF) / 255, (v >> 8 & 0xFF) / 255, (v & 0xFF) / 255, (v >> 24) / 255)
 
 
 def _coerce_color(info: StateInfo, raw: Any, location: Location, parameters: Container[str]) -> Any:

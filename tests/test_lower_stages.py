@@ -478,3 +478,25 @@ def test_golden_ir_of_seed_setups(name):
         path.write_text(text)
     assert path.exists(), f"{path} is missing: run with EFFECTS_UPDATE_GOLDEN=1"
     assert text == path.read_text()
+
+
+def test_lowering_draws_the_device_state_the_validation_checked():
+    """With a Validation, pass 1 lowers from the state the validator kept for it (pass 0's
+    TextureFactor persisting), and gives what playing the passes through gives."""
+    from effects.validate.technique import validate_technique
+    effect = effects.load_effect("""technique t {
+        pass a { TextureFactor = 0xff336699; ColorOp[0] = SelectArg1; ColorArg1[0] = TFactor; }
+        pass b { AlphaOp[0] = SelectArg1; AlphaArg1[0] = TFactor; } }""")
+    technique, profile = effect.techniques[0], load_profile("modern")
+    validation = validate_technique(effect, technique, profile)
+    assert validation.pass_reports[1].state.get_color("TextureFactor") == argb(0xff336699)
+    clear_cache()
+    drawn = lower_pass(effect, technique, 1, profile, validation=validation)
+    close(shade(drawn), argb(0xff336699))
+    clear_cache()
+    assert lower_pass(effect, technique, 1, profile) == drawn
+    other = effects.load_effect("technique u { pass p { } }")
+    clear_cache()
+    with pytest.raises(ValueError, match="validation is of technique 'u'"):
+        lower_pass(effect, technique, 0, profile,
+                   validation=validate_technique(other, other.techniques[0], profile))

@@ -299,3 +299,33 @@ def test_unchanged_textures_are_not_read_again_and_a_changed_one_is(folder):
         assert after_image.levels[0][0, 0, :3] == pytest.approx((0.0, 0.0, 1.0))
     finally:
         reloader.stop()
+
+
+def test_a_build_validates_each_technique_once_and_lowers_from_those_answers(tinted_effect,
+                                                                             monkeypatch):
+    """build_effect validates every technique once (the panel lists them), selects among those
+    same answers, and lowering draws the chosen one's per-pass device states: nothing replays
+    the passes or validates again."""
+    import effects.lower.passes as passes
+    import effects.validate.select as select
+    import effects.validate.technique as technique
+    calls = []
+    real = technique.validate_technique
+
+    def counting(effect, tech, profile):
+        calls.append(tech.name)
+        return real(effect, tech, profile)
+
+    def no_replay(*args, **kwargs):
+        raise AssertionError("lowering replayed the passes instead of using the validation")
+
+    monkeypatch.setattr(technique, "validate_technique", counting)
+    monkeypatch.setattr(select, "validate_technique", counting)
+    monkeypatch.setattr(passes, "pass_states", no_replay)
+    passes.clear_cache()
+    loaded = build_effect(str(tinted_effect), effects.load_profile("geforce3"))
+    assert sorted(calls) == ["Dot3", "Flat"]
+    assert loaded.technique.name == "Flat" and len(loaded.programs) == 1
+    chosen = next(v for v in loaded.validations if v.technique is loaded.technique)
+    assert loaded.runtime.validation is chosen
+    assert chosen.pass_reports[0].state.get_color("TextureFactor") == (1.0, 0.0, 0.0, 1.0)

@@ -424,3 +424,72 @@ def test_a_suggested_name_that_starts_with_a_digit_keeps_its_prefix():
     # `VertexBlend = VBF_2WEIGHT` must suggest something a file can contain.
     table = next(t for t in ENUMS.values() if t.name == "D3DVERTEXBLENDFLAGS")
     assert table.suggest("VBF_2WEIGHT") == "D3DVBF_2WEIGHTS"
+
+
+# --------------------------------------------------------------------------------------------
+# The contracts' defaults agree with the table (effects.passprogram cannot import it: back ends
+# read passprogram and must not see the state table)
+
+
+def _fresh_device():
+    import effects
+    from effects.device import DeviceState
+    effect = effects.load_effect("technique t { pass p { } }")
+    return effect, DeviceState(effect)
+
+
+def test_render_state_defaults_are_the_state_tables_defaults():
+    from dataclasses import fields
+
+    from effects.lower.passes import _RENDER_FIELDS, read_render_state
+    from effects.passprogram import RenderState
+    assert set(_RENDER_FIELDS) == {f.name for f in fields(RenderState)}  # every field has a row
+    _, state = _fresh_device()
+    assert read_render_state(state) == RenderState()
+
+
+def test_texture_binding_defaults_are_the_sampler_state_defaults():
+    from effects.lower.passes import texture_binding
+    from effects.passprogram import TextureBinding
+    effect, state = _fresh_device()
+    for sampler in (0, 15):
+        assert texture_binding(effect, state, sampler, "2d") == TextureBinding(sampler)
+
+
+def test_typed_readers_read_each_state_as_its_row_types_it():
+    import effects
+    from effects.device import DeviceState
+    effect = effects.load_effect("""float Ref = 127.9; float4 Tint = {0.5, 0.25, 1, 0.75};
+        technique t { pass p { AlphaRef = <Ref>; BlendFactor = <Tint>; FogEnd = 3;
+        ColorWriteEnable = Red | Alpha; CullMode = 2; ZEnable = UseW; } }""")
+    state = DeviceState(effect)
+    state.apply_pass(effect.techniques[0].passes[0])
+    assert state.read("AlphaRef") == 127                      # a float cast to a DWORD
+    assert state.read("BlendFactor") == (0.5, 0.25, 1.0, 0.75)  # a float4 colour parameter
+    assert state.read("TextureFactor") == (1.0, 1.0, 1.0, 1.0)  # the default 0xFFFFFFFF
+    assert state.read("FogEnd") == 3.0 and isinstance(state.read("FogEnd"), float)
+    assert state.read("ColorWriteEnable") == 0x9               # flags read as a number
+    assert state.read("CullMode") == "CW" and state.read("ZEnable") == "USEW"
+    assert state.read("Lighting") is True and state.read("FogEnable") is False
+
+
+def test_every_caps_limit_names_a_bit_field_and_its_bits():
+    """Each limited state's row names a D3DCAPS9 bit field, and every value it can take needs a
+    bit of that field, except the blend factors that only Direct3D 9Ex reports."""
+    from effects.caps import FIELDS, bit_prefix
+    no_caps_bit = {("SrcBlend", "SRCCOLOR2"), ("SrcBlend", "INVSRCCOLOR2"),
+                   ("DestBlend", "SRCCOLOR2"), ("DestBlend", "INVSRCCOLOR2"),
+                   ("SrcBlendAlpha", "SRCCOLOR2"), ("SrcBlendAlpha", "INVSRCCOLOR2"),
+                   ("DestBlendAlpha", "SRCCOLOR2"), ("DestBlendAlpha", "INVSRCCOLOR2")}
+    limited = [row for row in STATES if row.limit is not None]
+    assert {row.name for row in limited} >= {"SrcBlend", "ZFunc", "AlphaFunc", "StencilPass",
+                                             "CCW_StencilFail", "CullMode", "BlendOp"}
+    for row in limited:
+        table = FIELDS[row.limit.field].table
+        assert table is not None and bit_prefix(row.limit.field).startswith("D3D")
+        if row.limit.bit is not None:
+            assert row.limit.bit in table, row.name
+            continue
+        for value in row.enum.values:
+            bit = row.limit.bit_for(value)
+            assert bit in table or (row.name, value) in no_caps_bit, (row.name, value)

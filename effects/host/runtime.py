@@ -16,7 +16,8 @@ The spine, per render:
      before Begin), states set by a pass persisting into the following passes, and drawn into
      one frame; a texture a pass samples that nothing supplies is drawn with a stand-in of its
      kind (a checker, a sky cube, a noise volume) and a warning (`Runtime.warnings`), an
-     error when `strict`;
+     error when `strict`; when the card selected the technique, the device states are those its
+     Validation checked;
   4. the frame comes back as H x W x 4 uint8 RGBA, row 0 at the top.
 
 `Runtime` exposes the same steps as ID3DXEffect does: `begin()` (returns the pass count),
@@ -45,6 +46,7 @@ from effects.host.textures import Texture
 if TYPE_CHECKING:  # pragma: no cover
     from effects.caps import CapsProfile
     from effects.passprogram import PassProgram
+    from effects.validate.technique import Validation
 
 _BACKENDS: dict[str, Any] = {}   # back ends by name, made once (a GL context is costly)
 
@@ -161,6 +163,9 @@ class Runtime:
         self._pass: int | None = None
         self._program: "PassProgram | None" = None
         self.technique_drawn: Technique | None = None
+        # The Validation of the technique being drawn, when one was made (the card's
+        # selection, or given by a host that validated): lowering draws its device states.
+        self.validation: "Validation | None" = None
 
     # -- parameter values ------------------------------------------------------------------
     def _param(self, name: str) -> Parameter:
@@ -254,20 +259,26 @@ class Runtime:
         """Pass `index` of `technique`, lowered with this runtime's parameter values and the
         transforms the host set."""
         from effects.lower.passes import lower_pass
+        validation = self.validation if self.validation is not None \
+            and self.validation.technique is technique else None
         return lower_pass(self.effect, technique, index, self.profile,
-                          vertex_colors=self.geometry().has_diffuse, host=self.host_states)
+                          vertex_colors=self.geometry().has_diffuse, host=self.host_states,
+                          validation=validation)
 
     # -- technique -------------------------------------------------------------------------
     def select(self, technique: Technique | str | None = None, policy: Any = "first") -> Technique:
         """The named technique (valid or not), or the one the card selects."""
-        if isinstance(technique, Technique):
-            return technique
+        from effects.validate.select import select_validation
         if technique is not None:
-            return self.effect.technique(technique)
-        chosen = self.effect.find_valid_technique(self.profile, policy)
+            named = technique if isinstance(technique, Technique) else self.effect.technique(technique)
+            if self.validation is not None and self.validation.technique is not named:
+                self.validation = None
+            return named
+        chosen = select_validation(self.effect, self.profile, policy)
         if chosen is None:
             raise no_valid_technique(self.effect, self.profile, policy)
-        return chosen
+        self.validation = chosen
+        return chosen.technique
 
     # -- ID3DXEffect-like drawing ----------------------------------------------------------
     def begin(self, technique: Technique | str | None = None, policy: Any = "first") -> int:

@@ -1,7 +1,10 @@
 """Lowering a pass to a PassProgram: the entry point and dispatcher.
 
-`lower_pass` reads the device state in force for the pass (`effects.device.pass_states`:
-D3D9 defaults, earlier passes persisting), resolves it into plain setups, and hands them to
+`lower_pass` takes the device state in force for the pass from the technique's `Validation`
+(`PassReport.state`: the state the validator checked, D3D9 defaults with earlier passes
+persisting), or, for a technique drawn without one (named by the caller, valid or not), plays
+the passes through `effects.device.pass_states` itself; it reads that state with the device
+state's typed readers, resolves it into plain setups, and hands them to
 the lowerings: the texture-stage cascade (`lower_stages`), the fixed-function vertex pipeline
 (`lower_vertex`), or the shader-assembly lowering (`effects.shaders.asm.lower`) for passes with
 shaders. The profile picks the precision (`effects.precision`).
@@ -29,7 +32,6 @@ Fixed-function fog after a pixel shader is not lowered yet (a clear error, not a
 from __future__ import annotations
 
 import threading
-from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 import numpy as np
@@ -40,19 +42,19 @@ from effects.errors import EffectError, Location
 from effects.shaders.asm import assemble_cached
 from effects.shaders.asm import lower as asm_lower
 from effects.ir import Builder, Program
-from effects.lower.stages import (MAX_STAGES, FogSetup, FragmentInputs, StageSetup, apply_fog,
-                           lower_cascade)
-from effects.lower.vertex import TCI_MODES, LightSetup, TexCoordSetup, VertexSetup, lower_vertex
-from effects.model import (CompileShader, Effect, EnumValue, NullValue, Parameter, ParamRef,
+from effects.lower.stages import FogSetup, FragmentInputs, StageSetup, apply_fog, lower_cascade
+from effects.lower.vertex import LightSetup, TexCoordSetup, VertexSetup, lower_vertex
+from effects.model import (CompileShader, Effect, NullValue, Parameter, ParamRef,
                     ShaderBlock, Technique)
 from effects.passprogram import PassProgram, RenderState, TextureBinding
-from effects.precision import LoweringOptions, lowering_options
+from effects.precision import lowering_options
+from effects.stage_ops import MAX_STAGES, TCI_MODES, TCI_SET_MASK, TCI_SHIFT, TTFF_PROJECTED
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.shaders.asm import AsmProgram
     from effects.caps import CapsProfile
+    from effects.validate.technique import Validation
 
-Color = tuple[float, float, float, float]
 CACHE_SIZE = 256
 
 
@@ -62,8 +64,11 @@ CACHE_SIZE = 256
 
 def lower_pass(effect: Effect, technique: Technique, pass_index: int,
                profile: "CapsProfile", *, vertex_colors: bool = True,
-               host: Mapping[str, Any] | None = None) -> PassProgram:
+               host: Mapping[str, Any] | None = None,
+               validation: "Validation | None" = None) -> PassProgram:
     """Lower pass `pass_index` of `technique` for `profile` (cached; see `_cache_key`).
+    `validation`: the technique's Validation, whose per-pass device state is drawn (see the
+    module docstring); its parameter references read `effect`'s values (a runtime's copy).
     `vertex_colors`: whether the vertices drawn carry a diffuse colour. Without one, the
     fixed-function lighting takes every colour from the material, whatever ColorVertex and
     the *MaterialSource states say (D3D's rule for a vertex format without the colour; Wine's
@@ -78,13 +83,9 @@ def lower_pass(effect: Effect, technique: Technique, pass_index: int,
     if not 0 <= pass_index < len(technique.passes):
         raise EffectError(f"technique '{technique.name}' has no pass {pass_index} (it has "
                           f"{len(technique.passes)})", technique.location)
-    state = None
-    for i, (_, s) in enumerate(pass_states(effect, technique.passes,
-                                           host_states(host) if host else None)):
-        if i == pass_index:
-            state = s
-            break
-    program = _lower(effect, state, profile, vertex_colors)  # type: ignore[arg-type]
+    state = _pass_state(effect, technique, pass_index, validation,
+                        host_states(host) if host else None)
+    program = _lower(effect, state, profile, vertex_colors)
     with _CACHE_LOCK:  # the viewer lowers on a worker thread and on the render thread
         if len(_CACHE) >= CACHE_SIZE:
             _CACHE.pop(next(iter(_CACHE)))
@@ -92,10 +93,30 @@ def lower_pass(effect: Effect, technique: Technique, pass_index: int,
     return program
 
 
-def lower_technique(effect: Effect, technique: Technique,
-                    profile: "CapsProfile") -> list[PassProgram]:
+def lower_technique(effect: Effect, technique: Technique, profile: "CapsProfile", *,
+                    validation: "Validation | None" = None) -> list[PassProgram]:
     """Every pass of `technique`, lowered."""
-    return [lower_pass(effect, technique, i, profile) for i in range(len(technique.passes))]
+    return [lower_pass(effect, technique, i, profile, validation=validation)
+            for i in range(len(technique.passes))]
+
+
+def _pass_state(effect: Effect, technique: Technique, pass_index: int,
+                validation: "Validation | None", host: Mapping | None) -> DeviceState:
+    """The device state pass `pass_index` draws with: the validation's (read against `effect`,
+    with the host's states under the passes'), or played through when there is none."""
+    if validation is not None:
+        if validation.technique is not technique:
+            raise ValueError(f"the validation is of technique '{validation.technique.name}', "
+                             f"not '{technique.name}'")
+        state = validation.pass_reports[pass_index].state
+        if state is not None:
+            if state.effect is effect and not host and not state.host:
+                return state
+            return state.for_effect(effect, host or {})
+    for i, (_, s) in enumerate(pass_states(effect, technique.passes, host)):
+        if i == pass_index:
+            return s
+    raise AssertionError("pass index checked by the caller")
 
 
 def clear_cache() -> None:
@@ -144,8 +165,8 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     if pixel_shader is None:
         fb = Builder("fragment")
         stages = read_stages(effect, state)
-        inputs = FragmentInputs(tfactor=_color(state, "TextureFactor"),
-                                specular_enable=_bool(state, "SpecularEnable"),
+        inputs = FragmentInputs(tfactor=state.get_color("TextureFactor"),
+                                specular_enable=state.get_bool("SpecularEnable"),
                                 uniforms=uniforms)
         color = lower_cascade(fb, stages, inputs, options)
         fb.output("color0", apply_fog(fb, color, fog, uniforms, options))
@@ -153,12 +174,12 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     else:
         if fog.source != "none":
             raise EffectError("fog after a pixel shader is not lowered yet",
-                              _where(state, "FogEnable"))
+                              state.where("FogEnable"))
         program = _assemble(pixel_shader, "pixel")
         ctx = asm_lower.ShaderContext(
             options, sampler_kinds={s: k for s in range(MAX_STAGES)
                                     if (k := _texture_kind(effect, state, s))},
-            projected={s: bool(_int(state, "TextureTransformFlags", s) & _TTFF_PROJECTED)
+            projected={s: bool(state.get_int("TextureTransformFlags", s) & TTFF_PROJECTED)
                        for s in range(MAX_STAGES)},
             constant_prefix=PIXEL_CONSTANT_PREFIX)
         fragment = asm_lower.lower_pixel_shader(program, ctx)
@@ -213,7 +234,6 @@ def _assemble(shader: Any, stage: str) -> "AsmProgram":
     return assemble_cached(shader)
 
 
-_TTFF_PROJECTED = 256
 _CONSTANT_FAMILIES = {"VertexShaderConstant": ("VertexShaderConstant", "VertexShaderConstantF",
                                                "VertexShaderConstant1", "VertexShaderConstant2",
                                                "VertexShaderConstant3", "VertexShaderConstant4"),
@@ -266,100 +286,13 @@ def _bump_uniforms(state: DeviceState) -> dict[str, tuple[float, ...]]:
     """Each stage's bump-environment matrix and luminance scale/offset (texbem, texbeml, bem)."""
     out = {}
     for n in range(MAX_STAGES):
-        out[f"bumpenv{n}"] = tuple(_float(state, f"BumpEnvMat{ij}", n) for ij in ("00", "01", "10", "11"))
-        out[f"bumpenvl{n}"] = (_float(state, "BumpEnvLScale", n), _float(state, "BumpEnvLOffset", n), 0.0, 0.0)
+        out[f"bumpenv{n}"] = tuple(state.get_float(f"BumpEnvMat{ij}", n) for ij in ("00", "01", "10", "11"))
+        out[f"bumpenvl{n}"] = (state.get_float("BumpEnvLScale", n), state.get_float("BumpEnvLOffset", n), 0.0, 0.0)
     return out
 
 
 # --------------------------------------------------------------------------------------------
 # Reading the device state
-
-
-def _value(state: DeviceState, name: str, index: int | None = None) -> Any:
-    value = state.get(name, index)
-    if isinstance(value, ParamRef):  # an uninitialised parameter: zero, as in D3DX
-        return 0
-    return value
-
-
-def _where(state: DeviceState, name: str, index: int | None = None) -> Location:
-    a = state.assignment(name, index)
-    return a.location if a is not None else Location(state.effect.path, 1, 1)
-
-
-def _int(state: DeviceState, name: str, index: int | None = None) -> int:
-    value = _value(state, name, index)
-    if isinstance(value, EnumValue):
-        value = value.value
-    try:
-        return int(np.ravel(np.asarray(value, dtype=np.float64))[0]) & 0xFFFFFFFF
-    except (TypeError, ValueError, IndexError):
-        raise EffectError(f"{name}: expected a number, got {value!r}",
-                          _where(state, name, index)) from None
-
-
-def _float(state: DeviceState, name: str, index: int | None = None) -> float:
-    value = _value(state, name, index)
-    try:
-        return float(np.ravel(np.asarray(value, dtype=np.float64))[0])
-    except (TypeError, ValueError, IndexError):
-        raise EffectError(f"{name}: expected a float, got {value!r}",
-                          _where(state, name, index)) from None
-
-
-def _bool(state: DeviceState, name: str, index: int | None = None) -> bool:
-    value = _value(state, name, index)
-    return bool(np.ravel(np.asarray(value))[0]) if value is not None else False
-
-
-def decode_color(value: int) -> Color:
-    """D3DCOLOR 0xAARRGGBB as (r, g, b, a) floats."""
-    v = int(value) & 0xFFFFFFFF
-    return ((v >> 16 & 0xFF) / 255, (v >> 8 & 0xFF) / 255, (v & 0xFF) / 255, (v >> 24) / 255)
-
-
-def _color(state: DeviceState, name: str, index: int | None = None) -> Color:
-    value = _value(state, name, index)
-    array = np.ravel(np.asarray(value, dtype=np.float64))
-    if array.size >= 3:  # a float3/float4 colour parameter
-        rgba = list(array[:4]) + [1.0] * (4 - min(4, array.size))
-        return (float(rgba[0]), float(rgba[1]), float(rgba[2]), float(rgba[3]))
-    return decode_color(_int(state, name, index))
-
-
-def _vector(state: DeviceState, name: str, index: int | None, size: int) -> tuple[float, ...]:
-    value = _value(state, name, index)
-    array = np.ravel(np.asarray(value, dtype=np.float64))
-    if array.size == 1 and size > 1:  # a scalar (an uninitialised parameter reads 0)
-        array = np.full(size, array[0])
-    out = list(array[:size]) + [0.0] * max(0, size - array.size)
-    return tuple(float(x) for x in out)
-
-
-def _matrix(state: DeviceState, name: str, index: int | None = None) -> np.ndarray:
-    value = _value(state, name, index)
-    array = np.ravel(np.asarray(value, dtype=np.float64))
-    if array.size == 1 and array[0] == 0:
-        return np.zeros((4, 4))
-    if array.size != 16:
-        raise EffectError(f"{name}: expected a 4x4 matrix, got {array.size} value(s)",
-                          _where(state, name, index))
-    return array.reshape(4, 4)
-
-
-def _enum(state: DeviceState, name: str, index: int | None = None) -> str:
-    found = state.enum_name(name, index)
-    if found is None:
-        info = state_table.lookup_state(name)
-        number = _int(state, name, index)
-        table = info.enum if info is not None else None
-        names = [k for k, v in (table.values.items() if table else ()) if v == number]
-        if not names:
-            raise EffectError(f"{name}{'' if index is None else f'[{index}]'}: {number} is not "
-                              f"a {table.name if table else 'known'} value",
-                              _where(state, name, index))
-        found = names[0]
-    return found
 
 
 def _texture_param(effect: Effect, state: DeviceState, sampler: int) -> Parameter | None:
@@ -383,40 +316,40 @@ def read_stages(effect: Effect, state: DeviceState) -> list[StageSetup]:
     """The eight texture stages as the cascade lowering needs them."""
     stages = []
     for n in range(MAX_STAGES):
-        args = [(_int(state, f"ColorArg{k}", n), _int(state, f"AlphaArg{k}", n)) for k in range(3)]
+        args = [(state.get_int(f"ColorArg{k}", n), state.get_int(f"AlphaArg{k}", n)) for k in range(3)]
         stages.append(StageSetup(
             index=n,
-            color_op=_enum(state, "ColorOp", n),
+            color_op=state.get_enum("ColorOp", n),
             color_args=(args[0][0], args[1][0], args[2][0]),
-            alpha_op=_enum(state, "AlphaOp", n),
+            alpha_op=state.get_enum("AlphaOp", n),
             alpha_args=(args[0][1], args[1][1], args[2][1]),
-            result_arg=_int(state, "ResultArg", n),
-            transform_flags=_int(state, "TextureTransformFlags", n),
+            result_arg=state.get_int("ResultArg", n),
+            transform_flags=state.get_int("TextureTransformFlags", n),
             texture_kind=_texture_kind(effect, state, n),
-            bump_matrix=tuple(_float(state, f"BumpEnvMat{ij}", n)  # type: ignore[arg-type]
+            bump_matrix=tuple(state.get_float(f"BumpEnvMat{ij}", n)  # type: ignore[arg-type]
                               for ij in ("00", "01", "10", "11")),
-            bump_lscale=_float(state, "BumpEnvLScale", n),
-            bump_loffset=_float(state, "BumpEnvLOffset", n),
-            constant=_color(state, "Constant", n),
-            location=_where(state, "ColorOp", n)))
+            bump_lscale=state.get_float("BumpEnvLScale", n),
+            bump_loffset=state.get_float("BumpEnvLOffset", n),
+            constant=state.get_color("Constant", n),
+            location=state.where("ColorOp", n)))
     return stages
 
 
 def read_fog(state: DeviceState) -> FogSetup:
-    if not _bool(state, "FogEnable"):
+    if not state.get_bool("FogEnable"):
         return FogSetup()
-    table, vertex = _enum(state, "FogTableMode"), _enum(state, "FogVertexMode")
+    table, vertex = state.get_enum("FogTableMode"), state.get_enum("FogVertexMode")
     source = "table" if table != "NONE" else "vertex" if vertex != "NONE" else "specular"
     return FogSetup(source=source, table_mode=table, vertex_mode=vertex,
-                    color=_color(state, "FogColor"), start=_float(state, "FogStart"),
-                    end=_float(state, "FogEnd"), density=_float(state, "FogDensity"),
-                    range_fog=_bool(state, "RangeFogEnable"))
+                    color=state.get_color("FogColor"), start=state.get_float("FogStart"),
+                    end=state.get_float("FogEnd"), density=state.get_float("FogDensity"),
+                    range_fog=state.get_bool("RangeFogEnable"))
 
 
 def _enabled_lights(state: DeviceState) -> list[int]:
     indices = sorted({index for (name, index), _ in state.items()
                       if name == "LightEnable" and index is not None})
-    return [i for i in indices if _bool(state, "LightEnable", i)]
+    return [i for i in indices if state.get_bool("LightEnable", i)]
 
 
 def read_vertex(effect: Effect, state: DeviceState, stages: list[int],
@@ -424,43 +357,43 @@ def read_vertex(effect: Effect, state: DeviceState, stages: list[int],
     """The fixed-function vertex state; `stages` are the stages whose coordinates the
     fragment program reads; without `vertex_colors` the material sources are forced."""
     lights = tuple(LightSetup(
-        index=i, type=_enum(state, "LightType", i),
-        diffuse=_vector(state, "LightDiffuse", i, 4),  # type: ignore[arg-type]
-        specular=_vector(state, "LightSpecular", i, 4),  # type: ignore[arg-type]
-        ambient=_vector(state, "LightAmbient", i, 4),  # type: ignore[arg-type]
-        position=_vector(state, "LightPosition", i, 3),  # type: ignore[arg-type]
-        direction=_vector(state, "LightDirection", i, 3),  # type: ignore[arg-type]
-        range=_float(state, "LightRange", i),
-        attenuation=(_float(state, "LightAttenuation0", i), _float(state, "LightAttenuation1", i),
-                     _float(state, "LightAttenuation2", i)),
-        falloff=_float(state, "LightFalloff", i), theta=_float(state, "LightTheta", i),
-        phi=_float(state, "LightPhi", i)) for i in _enabled_lights(state))
+        index=i, type=state.get_enum("LightType", i),
+        diffuse=state.get_vector("LightDiffuse", i, 4),  # type: ignore[arg-type]
+        specular=state.get_vector("LightSpecular", i, 4),  # type: ignore[arg-type]
+        ambient=state.get_vector("LightAmbient", i, 4),  # type: ignore[arg-type]
+        position=state.get_vector("LightPosition", i, 3),  # type: ignore[arg-type]
+        direction=state.get_vector("LightDirection", i, 3),  # type: ignore[arg-type]
+        range=state.get_float("LightRange", i),
+        attenuation=(state.get_float("LightAttenuation0", i), state.get_float("LightAttenuation1", i),
+                     state.get_float("LightAttenuation2", i)),
+        falloff=state.get_float("LightFalloff", i), theta=state.get_float("LightTheta", i),
+        phi=state.get_float("LightPhi", i)) for i in _enabled_lights(state))
     texcoords = []
     for n in stages:
-        tci = _int(state, "TexCoordIndex", n)
-        mode = TCI_MODES.get(tci >> 16)
+        tci = state.get_int("TexCoordIndex", n)
+        mode = TCI_MODES.get(tci >> TCI_SHIFT)
         if mode is None:
             raise EffectError(f"TexCoordIndex[{n}]: {tci:#x} names no texture-coordinate "
-                              "generation mode", _where(state, "TexCoordIndex", n))
-        texcoords.append(TexCoordSetup(stage=n, set_index=tci & 0xFFFF, texgen=mode,
-                                       transform_flags=_int(state, "TextureTransformFlags", n),
-                                       matrix=_matrix(state, "TextureTransform", n)))
+                              "generation mode", state.where("TexCoordIndex", n))
+        texcoords.append(TexCoordSetup(stage=n, set_index=tci & TCI_SET_MASK, texgen=mode,
+                                       transform_flags=state.get_int("TextureTransformFlags", n),
+                                       matrix=state.get_matrix("TextureTransform", n)))
     return VertexSetup(
-        world=_matrix(state, "WorldTransform", 0), view=_matrix(state, "ViewTransform"),
-        projection=_matrix(state, "ProjectionTransform"),
-        lighting=_bool(state, "Lighting"), lights=lights,
-        material_diffuse=_vector(state, "MaterialDiffuse", None, 4),  # type: ignore[arg-type]
-        material_ambient=_vector(state, "MaterialAmbient", None, 4),  # type: ignore[arg-type]
-        material_specular=_vector(state, "MaterialSpecular", None, 4),  # type: ignore[arg-type]
-        material_emissive=_vector(state, "MaterialEmissive", None, 4),  # type: ignore[arg-type]
-        material_power=_float(state, "MaterialPower"), ambient=_color(state, "Ambient"),
-        color_vertex=_bool(state, "ColorVertex") and vertex_colors,
-        diffuse_source=_enum(state, "DiffuseMaterialSource"),
-        specular_source=_enum(state, "SpecularMaterialSource"),
-        ambient_source=_enum(state, "AmbientMaterialSource"),
-        emissive_source=_enum(state, "EmissiveMaterialSource"),
-        specular_enable=_bool(state, "SpecularEnable"), local_viewer=_bool(state, "LocalViewer"),
-        normalize_normals=_bool(state, "NormalizeNormals"), texcoords=tuple(texcoords), fog=fog)
+        world=state.get_matrix("WorldTransform", 0), view=state.get_matrix("ViewTransform"),
+        projection=state.get_matrix("ProjectionTransform"),
+        lighting=state.get_bool("Lighting"), lights=lights,
+        material_diffuse=state.get_vector("MaterialDiffuse", None, 4),  # type: ignore[arg-type]
+        material_ambient=state.get_vector("MaterialAmbient", None, 4),  # type: ignore[arg-type]
+        material_specular=state.get_vector("MaterialSpecular", None, 4),  # type: ignore[arg-type]
+        material_emissive=state.get_vector("MaterialEmissive", None, 4),  # type: ignore[arg-type]
+        material_power=state.get_float("MaterialPower"), ambient=state.get_color("Ambient"),
+        color_vertex=state.get_bool("ColorVertex") and vertex_colors,
+        diffuse_source=state.get_enum("DiffuseMaterialSource"),
+        specular_source=state.get_enum("SpecularMaterialSource"),
+        ambient_source=state.get_enum("AmbientMaterialSource"),
+        emissive_source=state.get_enum("EmissiveMaterialSource"),
+        specular_enable=state.get_bool("SpecularEnable"), local_viewer=state.get_bool("LocalViewer"),
+        normalize_normals=state.get_bool("NormalizeNormals"), texcoords=tuple(texcoords), fog=fog)
 
 
 def texture_binding(effect: Effect, state: DeviceState, sampler: int, kind: str) -> TextureBinding:
@@ -468,48 +401,50 @@ def texture_binding(effect: Effect, state: DeviceState, sampler: int, kind: str)
     param = _texture_param(effect, state, sampler)
     return TextureBinding(
         sampler=sampler, texture=param.name if param is not None else None, kind=kind,
-        address_u=_enum(state, "AddressU", sampler), address_v=_enum(state, "AddressV", sampler),
-        address_w=_enum(state, "AddressW", sampler),
-        border_color=_color(state, "BorderColor", sampler),
-        mag_filter=_enum(state, "MagFilter", sampler), min_filter=_enum(state, "MinFilter", sampler),
-        mip_filter=_enum(state, "MipFilter", sampler),
-        mip_lod_bias=_float(state, "MipMapLodBias", sampler),
-        max_mip_level=_int(state, "MaxMipLevel", sampler),
-        max_anisotropy=_int(state, "MaxAnisotropy", sampler),
-        srgb_texture=_bool(state, "SRGBTexture", sampler))
+        address_u=state.get_enum("AddressU", sampler), address_v=state.get_enum("AddressV", sampler),
+        address_w=state.get_enum("AddressW", sampler),
+        border_color=state.get_color("BorderColor", sampler),
+        mag_filter=state.get_enum("MagFilter", sampler), min_filter=state.get_enum("MinFilter", sampler),
+        mip_filter=state.get_enum("MipFilter", sampler),
+        mip_lod_bias=state.get_float("MipMapLodBias", sampler),
+        max_mip_level=state.get_int("MaxMipLevel", sampler),
+        max_anisotropy=state.get_int("MaxAnisotropy", sampler),
+        srgb_texture=state.get_bool("SRGBTexture", sampler))
 
 
-# RenderState field -> (state name, reader). Fog and SpecularEnable are folded into the
-# programs (module docstring), so RenderState has no fields for them.
-_RENDER_FIELDS: dict[str, tuple[str, Callable[[DeviceState, str], Any]]] = {
-    "z_enable": ("ZEnable", lambda s, n: _enum(s, n) != "FALSE"),
-    "z_write_enable": ("ZWriteEnable", _bool), "z_func": ("ZFunc", _enum),
-    "depth_bias": ("DepthBias", _float), "slope_scale_depth_bias": ("SlopeScaleDepthBias", _float),
-    "cull_mode": ("CullMode", _enum), "fill_mode": ("FillMode", _enum),
-    "shade_mode": ("ShadeMode", _enum), "scissor_test_enable": ("ScissorTestEnable", _bool),
-    "clip_plane_enable": ("ClipPlaneEnable", _int),
-    "alpha_test_enable": ("AlphaTestEnable", _bool), "alpha_func": ("AlphaFunc", _enum),
-    "alpha_ref": ("AlphaRef", lambda s, n: _int(s, n) & 0xFF),
-    "alpha_blend_enable": ("AlphaBlendEnable", _bool), "src_blend": ("SrcBlend", _enum),
-    "dest_blend": ("DestBlend", _enum), "blend_op": ("BlendOp", _enum),
-    "separate_alpha_blend_enable": ("SeparateAlphaBlendEnable", _bool),
-    "src_blend_alpha": ("SrcBlendAlpha", _enum), "dest_blend_alpha": ("DestBlendAlpha", _enum),
-    "blend_op_alpha": ("BlendOpAlpha", _enum), "blend_factor": ("BlendFactor", _color),
-    "color_write_enable": ("ColorWriteEnable", lambda s, n: _int(s, n) & 0xF),
-    "dither_enable": ("DitherEnable", _bool), "srgb_write_enable": ("SRGBWriteEnable", _bool),
-    "stencil_enable": ("StencilEnable", _bool), "stencil_func": ("StencilFunc", _enum),
-    "stencil_ref": ("StencilRef", _int), "stencil_mask": ("StencilMask", _int),
-    "stencil_write_mask": ("StencilWriteMask", _int), "stencil_fail": ("StencilFail", _enum),
-    "stencil_zfail": ("StencilZFail", _enum), "stencil_pass": ("StencilPass", _enum),
-    "two_sided_stencil_mode": ("TwoSidedStencilMode", _bool),
-    "ccw_stencil_func": ("CCW_StencilFunc", _enum), "ccw_stencil_fail": ("CCW_StencilFail", _enum),
-    "ccw_stencil_zfail": ("CCW_StencilZFail", _enum),
-    "ccw_stencil_pass": ("CCW_StencilPass", _enum),
+# RenderState field -> (state name, conversion of the value the state's row types). Fog and
+# SpecularEnable are folded into the programs (module docstring), so RenderState has no fields
+# for them. ZEnable's D3DZB_USEW draws with a depth buffer too (as z).
+_RENDER_FIELDS: dict[str, tuple[str, Callable[[Any], Any] | None]] = {
+    "z_enable": ("ZEnable", lambda v: v != "FALSE"), "z_write_enable": ("ZWriteEnable", None),
+    "z_func": ("ZFunc", None), "depth_bias": ("DepthBias", None),
+    "slope_scale_depth_bias": ("SlopeScaleDepthBias", None), "cull_mode": ("CullMode", None),
+    "fill_mode": ("FillMode", None), "shade_mode": ("ShadeMode", None),
+    "scissor_test_enable": ("ScissorTestEnable", None),
+    "clip_plane_enable": ("ClipPlaneEnable", None), "alpha_test_enable": ("AlphaTestEnable", None),
+    "alpha_func": ("AlphaFunc", None), "alpha_ref": ("AlphaRef", lambda v: v & 0xFF),
+    "alpha_blend_enable": ("AlphaBlendEnable", None), "src_blend": ("SrcBlend", None),
+    "dest_blend": ("DestBlend", None), "blend_op": ("BlendOp", None),
+    "separate_alpha_blend_enable": ("SeparateAlphaBlendEnable", None),
+    "src_blend_alpha": ("SrcBlendAlpha", None), "dest_blend_alpha": ("DestBlendAlpha", None),
+    "blend_op_alpha": ("BlendOpAlpha", None), "blend_factor": ("BlendFactor", None),
+    "color_write_enable": ("ColorWriteEnable", lambda v: v & 0xF),
+    "dither_enable": ("DitherEnable", None), "srgb_write_enable": ("SRGBWriteEnable", None),
+    "stencil_enable": ("StencilEnable", None), "stencil_func": ("StencilFunc", None),
+    "stencil_ref": ("StencilRef", None), "stencil_mask": ("StencilMask", None),
+    "stencil_write_mask": ("StencilWriteMask", None), "stencil_fail": ("StencilFail", None),
+    "stencil_zfail": ("StencilZFail", None), "stencil_pass": ("StencilPass", None),
+    "two_sided_stencil_mode": ("TwoSidedStencilMode", None),
+    "ccw_stencil_func": ("CCW_StencilFunc", None), "ccw_stencil_fail": ("CCW_StencilFail", None),
+    "ccw_stencil_zfail": ("CCW_StencilZFail", None), "ccw_stencil_pass": ("CCW_StencilPass", None),
 }
 
 
 def read_render_state(state: DeviceState) -> RenderState:
-    known = {f.name for f in fields(RenderState)}
-    values = {name: read(state, state_name)
-              for name, (state_name, read) in _RENDER_FIELDS.items() if name in known}
+    """The pass's RenderState from the device state; every RenderState field has a row above
+    (tests/test_states.py checks that the defaults agree with the states table)."""
+    values = {}
+    for name, (state_name, convert) in _RENDER_FIELDS.items():
+        value = state.read(state_name)
+        values[name] = convert(value) if convert is not None else value
     return RenderState(**values)

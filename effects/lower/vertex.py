@@ -32,14 +32,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from effects.ir import Builder
-from effects.lower.stages import FogSetup, TTFF_COUNT_MASK, fog_factor
+from effects.lower.stages import FogSetup, fog_factor
+from effects.stage_ops import TTFF_COUNT_MASK
 
 Vec4 = tuple[float, float, float, float]
 Value = int
 
-# D3DTSS_TCI_* texgen modes (the high word of TexCoordIndex).
-TCI_MODES = {0: "PASSTHRU", 1: "CAMERASPACENORMAL", 2: "CAMERASPACEPOSITION",
-             3: "CAMERASPACEREFLECTIONVECTOR", 4: "SPHEREMAP"}
 
 
 @dataclass(frozen=True)

@@ -175,13 +175,25 @@ def choose(results: list[Validation], policy: PolicyLike = "first") -> Validatio
     return ordered[0] if ordered and pol.accepts(ordered[0]) else None
 
 
+def select_validation(effect: Effect, profile: CapsProfile,
+                      policy: PolicyLike = "first") -> Validation | None:
+    """The validation of the technique the policy picks on this card (None when none is
+    valid). The default policy validates in file order and stops at the first valid one, as
+    FindNextValidTechnique does; the others rank every technique."""
+    pol = as_policy(policy)
+    if pol == Policy():
+        for tech in effect.techniques:
+            validation = validate_technique(effect, tech, profile)
+            if validation.ok:
+                return validation
+        return None
+    return choose([validate_technique(effect, t, profile) for t in effect.techniques], pol)
+
+
 def find_valid_technique(effect: Effect, profile: CapsProfile,
                          policy: PolicyLike = "first") -> Technique | None:
     """The technique the policy picks on this card, or None when none is valid."""
-    pol = as_policy(policy)
-    if pol == Policy():
-        return find_next_valid_technique(effect, profile, None)
-    chosen = choose([validate_technique(effect, t, profile) for t in effect.techniques], pol)
+    chosen = select_validation(effect, profile, policy)
     return chosen.technique if chosen else None
 
 

@@ -6,10 +6,8 @@ A mixin of `validate._PassChecker`: it uses the checker's state, profile, report
 and reason helpers (fail, need_bit, where, unknown ...)."""
 from __future__ import annotations
 
-from effects.device import MAX_STAGES
-from effects.stage_ops import STAGE_OPS, StageOp
-from effects.validate.values import (_TA_ALPHAREPLICATE, _TA_COMPLEMENT, _TA_CONSTANT, _TA_CURRENT,
-                              _TA_SELECT_MASK, _TA_TEMP, _int_value, _ta_select)
+from effects.stage_ops import (MAX_STAGES, STAGE_OPS, TA_ALPHAREPLICATE, TA_COMPLEMENT, TA_CONSTANT,
+                               TA_CURRENT, TA_SELECTMASK, TA_TEMP, StageOp)
 
 def _stage_op(op: str) -> StageOp | None:
     """The lowering's row for a D3DTOP: the caps bit it needs, the arguments it reads, and
@@ -27,11 +25,16 @@ def _args_read(op: str) -> tuple[int, ...]:
 class StageChecks:
     """The fixed-function texture stage checks of a pass (used when it has no pixel shader)."""
 
+    def arg_select(self, name: str, stage: int) -> int | None:
+        """The D3DTA selector of an argument state (modifiers masked off), or None."""
+        value = self.state.get_int(name, stage, default=None)
+        return None if value is None else value & TA_SELECTMASK
+
     def active_stages(self) -> list[int]:
         """Stages up to the first disabled one (an unknown op counts as enabled)."""
         stages = []
         for stage in range(MAX_STAGES):
-            if self.state.enum_name("ColorOp", stage) == "DISABLE":
+            if self.state.get_enum("ColorOp", stage, default=None) == "DISABLE":
                 break
             stages.append(stage)
         return stages
@@ -55,27 +58,26 @@ class StageChecks:
         for op_state, arg_prefix in (("ColorOp", "ColorArg"), ("AlphaOp", "AlphaArg")):
             if self.unknown(op_state, stage):
                 continue
-            op = self.state.enum_name(op_state, stage)
+            op = self.state.get_enum(op_state, stage, default=None)
             if op is None or (op_state == "AlphaOp" and op == "DISABLE"):
                 continue
             shown = self._shown(op_state, stage)
             row = _stage_op(op)
             self.need_bit("TextureOpCaps", row.cap if row is not None else op,
-                          f"{op_state}[{stage}] = {shown}", self.where(op_state, stage),
-                          "D3DTEXOPCAPS_")
+                          f"{op_state}[{stage}] = {shown}", self.where(op_state, stage))
             for n in _args_read(op):
                 self.check_arg(f"{arg_prefix}{n}", stage)
 
     def check_arg(self, state_name: str, stage: int) -> None:
         if self.unknown(state_name, stage):
             return
-        select = _ta_select(self.state.get(state_name, stage))
-        if select == _TA_TEMP:
+        select = self.arg_select(state_name, stage)
+        if select == TA_TEMP:
             self.need_bit("PrimitiveMiscCaps", "TSSARGTEMP", f"{state_name}[{stage}] = Temp",
-                          self.where(state_name, stage), "D3DPMISCCAPS_")
-        elif select == _TA_CONSTANT:
+                          self.where(state_name, stage))
+        elif select == TA_CONSTANT:
             self.need_bit("PrimitiveMiscCaps", "PERSTAGECONSTANT", f"{state_name}[{stage}] = Constant",
-                          self.where(state_name, stage), "D3DPMISCCAPS_")
+                          self.where(state_name, stage))
 
     def check_result_args(self, stages: list[int]) -> None:
         """ResultArg is Current (default) or Temp, never modified, and the last stage writes
@@ -83,18 +85,18 @@ class StageChecks:
         for stage in stages:
             if self.state.assignment("ResultArg", stage) is None or self.unknown("ResultArg", stage):
                 continue
-            value = _int_value(self.state.get("ResultArg", stage))
+            value = self.state.get_int("ResultArg", stage, default=None)
             if value is None:
                 continue
             subject = f"ResultArg[{stage}] = {self._shown_flags('ResultArg', stage)}"
             loc = self.where("ResultArg", stage)
-            if value & (_TA_COMPLEMENT | _TA_ALPHAREPLICATE) or (value & _TA_SELECT_MASK) not in (_TA_CURRENT, _TA_TEMP):
+            if value & (TA_COMPLEMENT | TA_ALPHAREPLICATE) or (value & TA_SELECTMASK) not in (TA_CURRENT, TA_TEMP):
                 self.fail(loc, subject, "D3DTA_CURRENT or D3DTA_TEMP", "any card",
                           f"{subject}: a stage writes its result to Current or Temp only, without "
                           "modifiers; no card accepts this")
                 continue
-            if value == _TA_TEMP:
-                self.need_bit("PrimitiveMiscCaps", "TSSARGTEMP", subject, loc, "D3DPMISCCAPS_")
+            if value == TA_TEMP:
+                self.need_bit("PrimitiveMiscCaps", "TSSARGTEMP", subject, loc)
                 if stage == stages[-1]:
                     self.fail(loc, subject, "D3DTA_CURRENT on the last active stage", "any card",
                               f"{subject} on the last active stage: its result never reaches the "

@@ -34,18 +34,21 @@ What is checked, and what is not:
 A state whose value is a parameter without a value (or a preshader expression) cannot be
 checked before the application sets it: it is skipped with a note, never a crash.
 
-The checks live in one module per job, each a mixin of the pass checker here:
-validate_stages (fixed-function stages), validate_textures (textures, samplers, formats),
-validate_framebuffer (blend, compare, stencil, render states), validate_shaders (shader
-versions, assembly, limits); validate_values reads and spells state values. This module holds
-the answer types, the pass checker's helpers and run order, and the card quirk rules.
+The checks live in one module per job, each a mixin of the pass checker here: `stages`
+(fixed-function stages), `textures` (textures, samplers, formats), `framebuffer` (one loop
+over the states whose row in `effects.states` names the caps field that limits them: blend,
+compare, stencil, cull, depth and raster states), `shaders` (shader versions, assembly,
+limits); `values` spells state values. Values are read with the device state's typed readers
+(`effects.device`), the ones lowering uses, and each pass's device state is kept in its
+PassReport for lowering to draw from. This module holds the answer types, the pass checker's
+helpers and run order, and the card quirk rules.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable
 
-from effects.caps import FIELDS, CapsProfile, Quirk
+from effects.caps import FIELDS, CapsProfile, Quirk, bit_prefix
 from effects.device import DeviceState, pass_states
 from effects.errors import Location
 from effects.model import Effect, EnumValue, Expression, NullValue, ParamRef, Pass, Technique
@@ -53,7 +56,8 @@ from effects.validate.framebuffer import FrameBufferChecks
 from effects.validate.shaders import ShaderChecks, software_vs_version
 from effects.validate.stages import StageChecks
 from effects.validate.textures import TextureChecks, texture_kind
-from effects.validate.values import _TA_TEXTURE, _is_indexed, _ta_select, spelled
+from effects.stage_ops import TA_TEXTURE
+from effects.validate.values import _is_indexed, spelled
 
 __all__ = ["PassReport", "Reason", "Validation", "software_vs_version", "spelled", "texture_kind",
            "validate_technique"]
@@ -91,6 +95,9 @@ class PassReport:
     pixel_shader: str | None = None     # 'ps_1_1', ...
     vertex_shader: str | None = None    # 'vs_1_1', ...
     software_vertex_processing: bool = False   # the vertex shader runs on the CPU
+    # The device state this pass draws with (earlier passes persisting): what was checked is
+    # what lowering draws from (`effects.lower.passes.lower_pass(..., validation=)`).
+    state: DeviceState | None = field(default=None, repr=False, compare=False)
 
     @property
     def ok(self) -> bool:
@@ -99,7 +106,8 @@ class PassReport:
 
 @dataclass
 class Validation:
-    """The validator's answer for one technique on one card (naga's ModuleInfo, in spirit)."""
+    """The validator's answer for one technique on one card (naga's ModuleInfo, in spirit):
+    per pass its reasons, the resources it uses and the device state it draws with."""
 
     technique: Technique
     profile: CapsProfile
@@ -133,7 +141,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
     def __init__(self, effect: Effect, technique: Technique, p: Pass, index: int,
                  state: DeviceState, profile: CapsProfile) -> None:
         self.effect, self.technique, self.pass_, self.state, self.profile = effect, technique, p, state, profile
-        self.report = PassReport(p.name or str(index), index, p.location)
+        self.report = PassReport(p.name or str(index), index, p.location, state=state)
         # quirks that make a reported caps bit or format unusable: (field, bit) / (format, usage)
         self.unreliable_bits = {(q.get("field"), q.get("bit")): q for q in profile.quirks
                                 if q.rule == "cap_unreliable"}
@@ -157,16 +165,16 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
             self.report.notes.append(text)
 
     def where(self, name: str, index: int | None = None) -> Location:
-        a = self.state.assignment(name, index)
-        return a.location if a is not None else self.pass_.location
+        return self.state.where(name, index, self.pass_.location)
 
     def card(self) -> str:
         return self.profile.display_name or self.profile.name
 
-    def need_bit(self, caps_field: str, bit: str, subject: str, location: Location,
-                 prefix: str) -> None:
-        """Fail unless the card reports `bit` in `caps_field` and no error quirk disowns it."""
+    def need_bit(self, caps_field: str, bit: str, subject: str, location: Location) -> None:
+        """Fail unless the card reports `bit` in `caps_field` and no error quirk disowns it;
+        messages name the bit with its header prefix (`effects.caps.bit_prefix`)."""
         table = FIELDS[caps_field].table or {}
+        prefix = bit_prefix(caps_field)
         if bit not in table:  # a value no caps bit covers (Direct3D 9Ex additions ...)
             self.fail(location, subject, f"{prefix}{bit}", f"not in {caps_field}",
                       f"{subject} needs {prefix}{bit}, which no Direct3D 9 caps report; "
@@ -210,10 +218,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
         if vs is not None:
             self.check_vertex_shader(vs)
         self.check_textures(ps is not None)
-        self.check_blending()
-        self.check_compares()
-        self.check_stencil()
-        self.check_state_bits()
+        self.check_framebuffer()
         self.check_quirks()
         return self.report
 
@@ -233,7 +238,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
     # -- values as the docs spell them (every check's messages use these) ----------------------
     def _shown(self, name: str, index: int | None = None) -> str:
         """A state's value as the docs spell it ('BumpEnvMap')."""
-        return spelled(name, self.state.enum_name(name, index) or "default")
+        return spelled(name, self.state.get_enum(name, index, default=None) or "default")
 
     def _shown_flags(self, name: str, index: int | None = None) -> str:
         value = self.state.get(name, index)
@@ -263,10 +268,10 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
             channel, [("ColorOp", "ColorArg"), ("AlphaOp", "AlphaArg")])
         for stage in self.active_stages():
             for op_state, arg_prefix in prefixes:
-                if self.state.enum_name(op_state, stage) != quirk.get("op"):
+                if self.state.get_enum(op_state, stage, default=None) != quirk.get("op"):
                     continue
                 arg = f"{arg_prefix}{quirk.get('arg')}"
-                if _ta_select(self.state.get(arg, stage)) == _TA_TEXTURE:
+                if self.arg_select(arg, stage) == TA_TEXTURE:
                     yield (self.where(arg, stage),
                            f"{op_state}[{stage}] = {self._shown(op_state, stage)} with {arg}[{stage}] = Texture")
 
@@ -277,7 +282,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
         if len(units) <= int(quirk.get("max_textures")):
             return
         ops = set(quirk.get("ops") or ())
-        if not any(self.state.enum_name("ColorOp", s) in ops for s in self.active_stages()):
+        if not any(self.state.get_enum("ColorOp", s, default=None) in ops for s in self.active_stages()):
             yield self.where("Texture", units[-1]), f"{len(units)} textures in one pass"
 
     def _quirk_op_stages(self, quirk: Quirk) -> Iterable[tuple[Location, str]]:
@@ -286,7 +291,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
         allowed = set(quirk.get("stages") or ())
         for stage in self.active_stages():
             for op_state in ("ColorOp", "AlphaOp"):
-                if self.state.enum_name(op_state, stage) == quirk.get("op") and stage not in allowed:
+                if self.state.get_enum(op_state, stage, default=None) == quirk.get("op") and stage not in allowed:
                     yield self.where(op_state, stage), f"{op_state}[{stage}] = {self._shown(op_state, stage)}"
 
     def _quirk_max_textures(self, quirk: Quirk) -> Iterable[tuple[Location, str]]:

@@ -11,11 +11,12 @@ from typing import Any
 import numpy as np
 
 from effects.caps import FORMATS
-from effects.device import MAX_SAMPLERS
 from effects.errors import EffectError
-from effects.model import Effect, Expression, Parameter, ParamRef, SamplerState, ShaderBlock
+from effects.model import Effect, Parameter, ParamRef, SamplerState, ShaderBlock
+from effects.stage_ops import (MAX_SAMPLERS, TA_TEXTURE, TCI_CAMERA_SPACE, TCI_SHIFT,
+                               TTFF_COUNT_MASK, TTFF_PROJECTED)
 from effects.validate.stages import _args_read, _stage_op
-from effects.validate.values import _TA_TEXTURE, _int_value, _ta_select, spelled
+from effects.validate.values import spelled
 
 # Enum names are the states table's canonical names (no prefix); caps bits are the
 # D3D*CAPS_ names without prefix, which mostly coincide. Sources: d3d9types.h / d3d9caps.h as
@@ -27,11 +28,6 @@ _FILTER_BITS = {  # (state, D3DTEXF name) -> D3DPTFILTERCAPS bit; other pairs no
 }
 # Filter caps field per texture kind (a card without the field uses TextureFilterCaps).
 _FILTER_FIELD = {"CUBE": "CubeTextureFilterCaps", "3D": "VolumeTextureFilterCaps"}
-# D3DTSS_TEXTURETRANSFORMFLAGS: D3DTTFF_PROJECTED.
-_TTFF_PROJECTED = 0x100
-# D3DTSS_TCI_CAMERASPACENORMAL / POSITION / REFLECTIONVECTOR (value >> 16): with three
-# coordinates (D3DTTFF_COUNT3) they are the cube-map lookups of the fixed-function pipeline.
-_CAMERA_SPACE_TEXGEN = (1, 2, 3)
 # ps_1_1-1_3 instructions that look up a cube map (the ps_1_x instruction pages).
 _CUBE_LOOKUPS_PS1 = frozenset({"texm3x3tex", "texm3x3spec", "texm3x3vspec"})
 
@@ -57,15 +53,15 @@ class TextureChecks:
 
     def stage_reads_texture(self, stage: int) -> bool:
         for op_state, arg_prefix in (("ColorOp", "ColorArg"), ("AlphaOp", "AlphaArg")):
-            op = self.state.enum_name(op_state, stage)
+            op = self.state.get_enum(op_state, stage, default=None)
             if op is None:
                 return True   # unknown op: assume it reads what is bound
             row = _stage_op(op)
             if row is not None and row.samples:
                 return True
             for n in _args_read(op):
-                value = self.state.get(f"{arg_prefix}{n}", stage)
-                if isinstance(value, (ParamRef, Expression)) or _ta_select(value) == _TA_TEXTURE:
+                arg = f"{arg_prefix}{n}"
+                if not self.state.known(arg, stage) or self.arg_select(arg, stage) == TA_TEXTURE:
                     return True
         return False
 
@@ -104,9 +100,11 @@ class TextureChecks:
                 if ins.opcode in _CUBE_LOOKUPS_PS1 and ins.dst is not None and ins.dst.index == unit:
                     return "CUBE", f"read by {ins.opcode} t{unit}"
             return None, ""
-        tci = _int_value(self.state.get("TexCoordIndex", unit)) or 0
-        flags = _int_value(self.state.get("TextureTransformFlags", unit)) or 0
-        if (tci >> 16) in _CAMERA_SPACE_TEXGEN and flags & 0xFF == 3 and not flags & _TTFF_PROJECTED:
+        tci = self.state.get_int("TexCoordIndex", unit, default=None) or 0
+        flags = self.state.get_int("TextureTransformFlags", unit, default=None) or 0
+        # camera-space texgen with three coordinates (COUNT3): a fixed-function cube lookup
+        if (tci >> TCI_SHIFT) in TCI_CAMERA_SPACE and flags & TTFF_COUNT_MASK == 3 \
+                and not flags & TTFF_PROJECTED:
             return "CUBE", "looked up with 3-component camera-space texture coordinates"
         return None, ""
 
@@ -121,17 +119,16 @@ class TextureChecks:
         subject = f"Texture[{unit}] = <{param.name}>"
         because = f", {how}" if how else ""
         if kind == "CUBE":
-            self.need_bit("TextureCaps", "CUBEMAP", f"{subject} (a cube map{because})", loc, "D3DPTEXTURECAPS_")
+            self.need_bit("TextureCaps", "CUBEMAP", f"{subject} (a cube map{because})", loc)
         elif kind == "3D":
-            self.need_bit("TextureCaps", "VOLUMEMAP", f"{subject} (a volume texture{because})", loc,
-                          "D3DPTEXTURECAPS_")
+            self.need_bit("TextureCaps", "VOLUMEMAP", f"{subject} (a volume texture{because})", loc)
         self.check_texture_size(unit, param, kind, subject)
         self.check_texture_format(unit, param, kind, subject)
-        flags = _int_value(self.state.get("TextureTransformFlags", unit))
+        flags = self.state.get_int("TextureTransformFlags", unit, default=None)
         if (self.state.assignment("TextureTransformFlags", unit) is not None and flags is not None
-                and flags & _TTFF_PROJECTED):
+                and flags & TTFF_PROJECTED):
             self.need_bit("TextureCaps", "PROJECTED", f"TextureTransformFlags[{unit}] = Projected",
-                          self.where("TextureTransformFlags", unit), "D3DPTEXTURECAPS_")
+                          self.where("TextureTransformFlags", unit))
 
     def check_texture_size(self, unit: int, param: Parameter, kind: str | None, subject: str) -> None:
         width, height = _annotation_int(param, "Width"), _annotation_int(param, "Height")
@@ -169,12 +166,12 @@ class TextureChecks:
             return
         # NONPOW2CONDITIONAL: allowed with clamped addressing and no mipmaps (D3DPTEXTURECAPS docs)
         for name in ("AddressU", "AddressV"):
-            if self.state.enum_name(name, unit) != "CLAMP":
+            if self.state.get_enum(name, unit, default=None) != "CLAMP":
                 self.fail(self.where(name, unit), f"{subject} with {name}[{unit}] = {self._shown(name, unit)}",
                           "D3DTADDRESS_CLAMP for a non-power-of-two texture", "TextureCaps NONPOW2CONDITIONAL",
                           f"{subject} is {shown}, not a power of two; the {self.card()} takes such "
                           f"a texture only with {name} = Clamp")
-        if self.state.enum_name("MipFilter", unit) not in ("NONE", None):
+        if self.state.get_enum("MipFilter", unit, default=None) not in ("NONE", None):
             self.fail(self.where("MipFilter", unit), f"{subject} with MipFilter[{unit}] = {self._shown('MipFilter', unit)}",
                       "no mipmapping for a non-power-of-two texture", "TextureCaps NONPOW2CONDITIONAL",
                       f"{subject} is {shown}, not a power of two; the {self.card()} takes such a "
@@ -196,7 +193,7 @@ class TextureChecks:
         wanted = [usage]
         if _annotation_bool(param, "RenderTarget"):
             wanted.append("rendertarget")
-        if any(self.state.enum_name(f, unit) in ("LINEAR", "ANISOTROPIC", "PYRAMIDALQUAD", "GAUSSIANQUAD")
+        if any(self.state.get_enum(f, unit, default=None) in ("LINEAR", "ANISOTROPIC", "PYRAMIDALQUAD", "GAUSSIANQUAD")
                for f in ("MinFilter", "MagFilter", "MipFilter")):
             wanted.append("filter")
         usages = self.profile.format_usages(name)
@@ -223,7 +220,7 @@ class TextureChecks:
         for name in ("MinFilter", "MagFilter", "MipFilter"):
             if self.unknown(name, unit):
                 continue
-            value = self.state.enum_name(name, unit)
+            value = self.state.get_enum(name, unit, default=None)
             if value is None or value == "NONE":
                 continue
             subject = f"{name}[{unit}] = {spelled(name, value)}"
@@ -234,14 +231,14 @@ class TextureChecks:
                           f"{subject} is not a {name[:3].lower()}ification filter a Direct3D 9 "
                           f"card reports; the {self.card()} does not have it")
                 continue
-            self.need_bit(filter_field, bit, subject, self.where(name, unit), "D3DPTFILTERCAPS_")
-        mip = self.state.enum_name("MipFilter", unit)
+            self.need_bit(filter_field, bit, subject, self.where(name, unit))
+        mip = self.state.get_enum("MipFilter", unit, default=None)
         if mip not in (None, "NONE"):
             mip_bit = {"CUBE": "MIPCUBEMAP", "3D": "MIPVOLUMEMAP"}.get(kind or "", "MIPMAP")
             self.need_bit("TextureCaps", mip_bit, f"MipFilter[{unit}] = {spelled('MipFilter', mip)}",
-                          self.where("MipFilter", unit), "D3DPTEXTURECAPS_")
+                          self.where("MipFilter", unit))
         if self.state.assignment("MaxAnisotropy", unit) is not None and not self.unknown("MaxAnisotropy", unit):
-            wanted = _int_value(self.state.get("MaxAnisotropy", unit))
+            wanted = self.state.get_int("MaxAnisotropy", unit, default=None)
             have = int(self.profile.get("MaxAnisotropy", 1) or 1)
             if wanted is not None and wanted > have:
                 self.fail(self.where("MaxAnisotropy", unit), f"MaxAnisotropy[{unit}] = {wanted}",
@@ -253,10 +250,10 @@ class TextureChecks:
         for name in names:
             if self.state.assignment(name, unit) is None or self.unknown(name, unit):
                 continue
-            value = self.state.enum_name(name, unit)
+            value = self.state.get_enum(name, unit, default=None)
             if value:
                 self.need_bit(address_field, value, f"{name}[{unit}] = {spelled(name, value)}",
-                              self.where(name, unit), "D3DPTADDRESSCAPS_")
+                              self.where(name, unit))
 
 
 def texture_kind(param: Parameter, effect: Effect | None = None) -> str | None:

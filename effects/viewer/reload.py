@@ -162,11 +162,14 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     kept in `prepare_error` instead with `keep_prepare_error` (a card change: the file is fine,
     the panel shows why this card cannot draw it)."""
     from effects.frontend.loader import load_effect
-    from effects.validate.select import find_valid_technique
+    from effects.validate.select import choose
     from effects.validate.technique import validate_technique
     effect = previous if previous is not None else load_effect(path, **load_options)
+    # Every technique is validated once: the panel lists them all, and selection chooses
+    # among these same answers (the first valid one in file order, for the default policy).
     validations = [validate_technique(effect, t, profile) for t in effect.techniques]
     chosen = None
+    chosen_validation = None
     forced_rejected = None
     if technique:
         try:
@@ -177,17 +180,18 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
                               Location(path, 1, 1)) from None
         v = next(v for v in validations if v.technique is forced)
         if v.ok:
-            chosen = forced
+            chosen, chosen_validation = forced, v
         else:
             forced_rejected = v
     if chosen is None:
-        chosen = find_valid_technique(effect, profile, policy)
+        chosen_validation = choose(validations, policy)
+        chosen = chosen_validation.technique if chosen_validation is not None else None
     programs = None
     prepare_error = None
     runtime = None
     if chosen is not None and lower:
         try:
-            runtime, programs = prepare(effect, chosen, profile, scene)
+            runtime, programs = prepare(effect, chosen, profile, scene, chosen_validation)
         except Exception as exc:  # noqa: BLE001 - a bug of ours must not close the viewer either
             if not keep_prepare_error:
                 raise
@@ -197,13 +201,16 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
 
 
 def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
-            scene: Any = None) -> tuple[Any, list["PassProgram"]]:
+            scene: Any = None, validation: "Validation | None" = None
+            ) -> tuple[Any, list["PassProgram"]]:
     """Everything that can fail before a technique draws, done now (off the render thread):
-    bind the scene, lower every pass, load the textures the passes sample, build the streams.
-    Returns the Runtime that did it (its lowered passes cached, its textures and streams
-    loaded; it has no back end) and the lowered passes."""
+    bind the scene, lower every pass (from `validation`'s device states when given), load the
+    textures the passes sample, build the streams. Returns the Runtime that did it (its
+    lowered passes cached, its validation kept, its textures and streams loaded; it has no
+    back end) and the lowered passes."""
     from effects.host.runtime import Runtime
     runtime = Runtime(effect, profile, scene=scene, backend=None)
+    runtime.validation = validation
     programs = [runtime.lower(technique, i) for i in range(len(technique.passes))]
     for program in programs:
         for binding in program.textures:
