@@ -104,14 +104,17 @@ class Instr:
 
 @dataclass(frozen=True)
 class Program:
-    """A straight-line program for one stage. Checked on construction (see `check_program`).
-    `outputs` is (name, value id) pairs in the stage's output order."""
+    """A program for one stage. Checked on construction (see `check_program`).
+    `outputs` is (name, value id) pairs in the stage's output order. `clamp_colors` (vertex
+    programs): the back end saturates the color0/color1 interpolators, as Direct3D does below
+    Shader Model 3; a vs_3_0 program's colour outputs are not clamped."""
 
     stage: str
     inputs: tuple[Input, ...] = ()
     instrs: tuple[Instr, ...] = ()
     outputs: tuple[tuple[str, int], ...] = ()
     samplers: tuple[SamplerBinding, ...] = ()
+    clamp_colors: bool = True
 
     def __post_init__(self) -> None:
         check_program(self)
@@ -158,6 +161,8 @@ class KernelContext(Protocol):
 
     def kill(self, mask: np.ndarray) -> None: ...
 
+    def derivative(self, x: np.ndarray, axis: int) -> np.ndarray: ...
+
 
 Kernel = Callable[[KernelContext, Sequence[np.ndarray], Mapping[str, Any]], "np.ndarray | None"]
 GlslFormat = Callable[[Sequence[str], Mapping[str, Any]], str]
@@ -185,7 +190,7 @@ class OpInfo:
       `sampler` attribute a declared `SamplerBinding`; `discards`: it may discard fragments;
     - `pure`: equal instructions may be one value; `flow`, `loop`: its place in structured
       control flow (opens / continues / closes a block, or 'exit': break), and whether the
-      block is a loop;
+      block is a loop; `needs_quads`: its result depends on the 2x2 quad (LOD, gradients);
     - `stages`: the program stages it may appear in."""
 
     name: str
@@ -207,6 +212,7 @@ class OpInfo:
     assigns: bool = False          # sets its first argument (a var) to its second
     flow: str | None = None        # 'open' | 'middle' | 'close' | 'exit' (structured flow)
     loop: bool = False             # the block it opens or closes is a loop
+    needs_quads: bool = False      # reads neighbouring fragments: run over whole 2x2 quads
 
     def arg_demand(self, wanted: frozenset, attrs: Mapping[str, Any]) -> tuple[frozenset, ...]:
         """The components of each argument this op reads to produce `wanted` of its result."""
@@ -590,9 +596,15 @@ _OP_ROWS = [
     _op("sample", 1, _sample, _glsl_sample,
         "texel of sampler `sampler` (a `kind` texture) at coord. proj: xyz / w first; bias: "
         "LOD bias coord.w; lod: explicit LOD coord.w. Unbound samplers read (0, 0, 0, 1)",
-        check=_check_sample, names_sampler=True,
+        check=_check_sample, names_sampler=True, needs_quads=True,
         attrs=(("sampler", REQUIRED), ("kind", "2d"), ("proj", False), ("bias", False),
                ("lod", False))),
+    _op("ddx", 1, lambda ctx, args, attrs: ctx.derivative(args[0], 0), "dFdx({0})",
+        "screen-space gradient of a along x (D3D dsx): the quad's right minus left pixel",
+        needs_quads=True, stages=("fragment",)),
+    _op("ddy", 1, lambda ctx, args, attrs: ctx.derivative(args[0], 1), "dFdy({0})",
+        "screen-space gradient of a along y (D3D dsy; y grows downward): the quad's lower "
+        "minus upper pixel", needs_quads=True, stages=("fragment",)),
     _op("var", 1, lambda ctx, args, attrs: args[0], "{0}",
         "a mutable variable, initially a (set by assign)", pure=False,
         columns=lambda ctx, args, attrs, wanted: list(args[0])),
@@ -783,6 +795,7 @@ class Builder:
         self._variable_dependent: set[int] = set()
         self._scopes: list[list[tuple]] = []
         self._loops = 0
+        self.clamp_colors = True        # see Program.clamp_colors
 
     # -- the generic entry point
     def emit(self, op: str, *args: int, **attrs: Any) -> int | None:
@@ -945,7 +958,8 @@ class Builder:
             inputs=tuple(v for k, v in self._inputs.items() if k in used_inputs),
             instrs=tuple(instrs),
             outputs=tuple(outputs),
-            samplers=tuple(self._samplers[i] for i in sorted(used_samplers)))
+            samplers=tuple(self._samplers[i] for i in sorted(used_samplers)),
+            clamp_colors=self.clamp_colors)
 
 
 def _prune(instrs: list[Instr], outputs: list[tuple[str, int]]
@@ -997,6 +1011,8 @@ def format_instr(instr: Instr) -> str:
 def format_program(program: Program) -> str:
     """Readable, stable text for golden tests: header, declarations, body, outputs."""
     lines = [f"{program.stage} program"]
+    if not program.clamp_colors:
+        lines.append("colors unclamped")
     for item in program.inputs:
         extra = [f"semantic={item.semantic}"] if item.semantic else []
         extra += [f"components={item.components}"] if item.components != 4 else []

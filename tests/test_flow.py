@@ -265,3 +265,72 @@ def test_ir_rejects_badly_nested_blocks_and_out_of_scope_values():
         b.break_(b.const(1.0))
         b.output("color0", b.const(0.0))
         b.build()
+
+
+# -- gradients ---------------------------------------------------------------------------------
+
+def test_dsx_dsy_of_a_ramp(backend):
+    # vPos.x * 3 + vPos.y * 5 (c0 = (3, 5)): d/dx = 3, d/dy = 5 at every pixel; the squared
+    # ramp (vPos.x)^2 has d/dx = (x + 1)^2 - x^2 = 2x + 1 over the quad's pixel pair, x even.
+    src = """ps_3_0
+    dcl vPos.xy
+    def c0, 3, 5, 0, 0
+    def c1, 0, 0, 0, 1
+    mul r0, vPos.xxxx, c0.x
+    mad r0, vPos.yyyy, c0.y, r0
+    mul r1, vPos.x, vPos.x
+    dsx r2, r0
+    dsy r3, r0
+    dsx r4, r1
+    mov r5, c1
+    mov r5.x, r2.x
+    mov r5.y, r3.x
+    mov r5.z, r4.x
+    mov oC0, r5
+    """
+    image = draw(backend, src, size=(8, 4))
+    x0 = (np.arange(8) // 2) * 2                        # the left pixel of each quad
+    assert (image[..., 0] == 3).all() and (image[..., 1] == 5).all()
+    np.testing.assert_array_equal(image[0, :, 2], 2 * x0 + 1)
+
+
+def test_gradients_in_dynamic_flow_control_are_rejected_located():
+    src = ("ps_3_0\ndcl vPos.xy\ndcl_2d s0\ndef c0, 4, 0, 0, 0\nif_lt vPos.x, c0.x\n"
+           "dsx r0, vPos\ntexld r1, vPos, s0\ntexldl r2, vPos, s0\nendif\nmov oC0, c0")
+    prog = assemble(ShaderBlock("pixel", None, src, location=Location("t.fx", 1, 1)))
+    assert [str(e) for e in lowering_problems(prog)] == [
+        f"t.fx:{line}:1: error: {op}: gradients inside dynamic flow control are undefined "
+        "(X4014: move it out of the if or loop, or use texldl / texldd)"
+        for line, op in ((6, "dsx"), (7, "texld"))]
+    static = src.replace("if_lt vPos.x, c0.x", "defb b0, true\nif b0")
+    assert lowering_problems(assemble(ShaderBlock("pixel", None, static,
+                                                  location=Location("t.fx", 1, 1)))) == []
+
+
+# -- the rest of SM3 ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize("version, expected", [("3_0", 1.0), ("2_0", 0.5)])
+def test_sm3_colour_interpolators_are_not_clamped(backend, version, expected):
+    # The vertex shader writes colour 2; the pixel shader halves it. vs_3_0 / ps_3_0 keep 2
+    # (1.0 out); vs_2_0 / ps_2_0 saturate the colour interpolator first (0.5 out).
+    from effects.shaders.asm.lower import lower_vertex_shader
+    out = "o1" if version == "3_0" else "oD0"
+    decl = "dcl_position o0\ndcl_color o1\n" if version == "3_0" else ""
+    position = "o0" if version == "3_0" else "oPos"
+    vsrc = f"vs_{version}\ndcl_position v0\n{decl}def c0, 2, 2, 2, 2\nmov {position}, v0\nmov {out}, c0"
+    psrc = (f"ps_{version}\n" + ("dcl_color v0\n" if version == "3_0" else "dcl v0\n") +
+            "def c0, 0.5, 0.5, 0.5, 0.5\nmul r0, v0, c0\nmov oC0, r0")
+    block = ShaderBlock("vertex", None, vsrc, location=Location("t.fx", 1, 1))
+    vertex = lower_vertex_shader(assemble(block), ShaderContext(LoweringOptions(),
+                                                               constant_prefix="vc"))
+    fragment = lower_pixel_shader(assemble(ShaderBlock("pixel", None, psrc,
+                                                       location=Location("t.fx", 1, 1))),
+                                  ShaderContext(LoweringOptions()))
+    assert vertex.clamp_colors == (version != "3_0")
+    passp = PassProgram(fragment, vertex=vertex, render_state=NO_CULL)
+    backend.begin_frame((2, 2), (0, 0, 0, 0), 1.0, 0, format=FLOAT)
+    streams, indices, primitive = quad()
+    streams["position"] = np.hstack([streams["position"], np.ones((4, 1), np.float32)])
+    backend.draw(passp, streams, indices, primitive, {})
+    image = backend.end_frame()
+    np.testing.assert_allclose(image[..., :3], expected)

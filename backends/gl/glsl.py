@@ -20,7 +20,8 @@ Direct3D conventions handled here, once:
   D3D's row r, the read-back needs no flip and GL's counter-clockwise is D3D's clockwise (front).
 - Pixel centres: D3D9 samples pixel (px, py) at window (px, py), GL at (px + .5, py + .5); the
   vertex epilogue shifts every position by half a pixel (as Wine and DXVK do).
-- Colour varyings (color0, color1) are saturated before interpolation; varyings nothing supplies
+- Colour varyings (color0, color1) are saturated before interpolation unless the vertex
+  program says its colours are unclamped (vs_3_0: `Program.clamp_colors`); varyings nothing supplies
   read D3D's defaults: color0 (1, 1, 1, 1), color1 (0, 0, 0, 0), others (0, 0, 0, 1).
 - Fragment epilogue, in D3D9's order: oDepth (saturated) or the depth bias, alpha test against
   the 8-bit alpha, sRGB write. Fog and the specular add are in the IR (lowering folds them in).
@@ -195,8 +196,8 @@ def vertex_shader(vertex: Program | None, varyings: Sequence[str], streams: Iter
     lines.append(f"#line {EPILOGUE_LINE}")
     for name in varyings:
         value = outputs.get(name, _vec4(VARYING_DEFAULTS.get(name, DEFAULT_VALUE)))
-        if name in COLOR_VARYINGS:
-            value = f"clamp({value}, 0.0, 1.0)"  # D3D saturates colour interpolators
+        if name in COLOR_VARYINGS and (vertex is None or vertex.clamp_colors):
+            value = f"clamp({value}, 0.0, 1.0)"  # D3D saturates colour interpolators (< SM3)
         lines.append(f"    {varying_name(name)} = {value};")
     lines += [
         f"    vec4 p = {position};",

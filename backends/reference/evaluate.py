@@ -52,6 +52,7 @@ class _Context:
         self.count = count
         self.killed: np.ndarray | None = None
         self.active: np.ndarray | None = None    # (N,) bool inside control flow, else None
+        self.quads = False
         self.rows: dict[tuple, tuple] = {}
 
     def as_rows(self, columns: Columns) -> np.ndarray:
@@ -79,6 +80,16 @@ class _Context:
             raise IRError(f"sampler {index} returned shape {texels.shape}, "
                           f"expected {(self.count, 4)}")
         return texels
+
+    def derivative(self, x: np.ndarray, axis: int) -> np.ndarray:
+        """d x / d(screen x or y) from the 2x2 quad each row belongs to (rows quad*4 + pixel,
+        pixels (0,0) (1,0) (0,1) (1,1)): each pixel takes the difference along its own row
+        (axis 0) or column (axis 1) of the quad, as GL's fine derivatives do."""
+        if not self.quads or self.count % 4:
+            raise IRError("screen-space gradients need the rows as whole 2x2 quads (quads=True)")
+        q = np.asarray(x, np.float32).reshape(-1, 2, 2, x.shape[1])   # quad, y, x, component
+        d = (q[:, :, 1] - q[:, :, 0])[:, :, None] if axis == 0 else (q[:, 1] - q[:, 0])[:, None]
+        return np.broadcast_to(d, q.shape).reshape(-1, x.shape[1])
 
     def kill(self, mask: np.ndarray) -> None:
         if self.active is not None:        # inside control flow: only the running fragments
@@ -330,14 +341,16 @@ def _row_count(program: Program, inputs: Mapping[str, np.ndarray], count: int | 
 
 def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
              samplers: Mapping[int, SamplerFn] | None = None, *,
-             count: int | None = None) -> EvalResult:
+             count: int | None = None, quads: bool = False) -> EvalResult:
     """Evaluate `program` over N rows. `inputs` maps every declared input name to an (N, k)
     array (varyings, builtins) or a (k,) vector (uniforms, broadcast); `count` gives N when no
-    input is per row."""
+    input is per row. `quads`: the rows are whole 2x2 quads (rasteriser order), which
+    gradient ops (ddx, ddy) need."""
     missing = [i.name for i in program.inputs if i.name not in inputs]
     if missing:
         raise IRError(f"missing inputs: {', '.join(missing)}")
     ctx = _Context(program, inputs, samplers or {}, _row_count(program, inputs, count))
+    ctx.quads = quads
     values: dict[int, Columns] = {}
     with np.errstate(all="ignore"):  # inf and NaN are legitimate D3D results (rcp 0, log 0)
         if has_flow(program):

@@ -29,7 +29,7 @@ from typing import Mapping
 
 import numpy as np
 
-from effects.ir import Program
+from effects.ir import OPS, Program
 from effects.passprogram import PassProgram, TextureBinding
 
 from effects.backend import DrawError, register_backend, triangle_list
@@ -187,8 +187,8 @@ class _FragmentStage:
         self.uniforms = uniforms
         self.callbacks = callbacks
         self.size = size
-        # Helper pixels are shaded only when a texture lookup needs quad derivatives.
-        self.quads = any(instr.op == "sample" for instr in program.fragment.instrs)
+        # Helper pixels are shaded only when an op needs quad derivatives (its row says).
+        self.quads = any(OPS[instr.op].needs_quads for instr in program.fragment.instrs)
 
     def run(self, tris: np.ndarray, pool: ThreadPoolExecutor | None):
         """(pixels, colour, depth, front, colour2) of the covered, unkilled fragments of
@@ -226,7 +226,8 @@ class _FragmentStage:
         def run(bounds):
             start, stop = bounds
             inputs = _fragment_inputs(fragment, frags, start, stop, self.uniforms)
-            return evaluate(fragment, inputs, self.callbacks, count=stop - start)
+            return evaluate(fragment, inputs, self.callbacks, count=stop - start,
+                            quads=self.quads)
 
         if pool is not None and len(chunks) > 1:
             results = list(pool.map(run, chunks))
@@ -292,8 +293,8 @@ def _vertex_stage(vertex: Program | None, streams: Mapping[str, np.ndarray], uni
         value = np.asarray(value, np.float32)
         if value.ndim == 1:
             value = value[:, None]
-        if name in _COLOR_VARYINGS:
-            value = np.clip(value, 0, 1)
+        if name in _COLOR_VARYINGS and (vertex is None or vertex.clamp_colors):
+            value = np.clip(value, 0, 1)     # below SM3 (Program.clamp_colors)
         varyings[name] = value
     return position, varyings
 

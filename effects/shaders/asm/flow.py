@@ -46,6 +46,38 @@ def block_end(instrs: list, pos: int) -> int:
     raise AsmError(f"{instrs[pos].opcode} is not closed", instrs[pos].location)
 
 
+def dynamic_blocks(instrs: list) -> list[tuple[int, int]]:
+    """(start, end) of the blocks whose fragments may diverge: an if on a comparison or a
+    predicate, and a loop or rep with a break on one (a break inside a dynamic if counts);
+    a subroutine body is dynamic when some callnz on a predicate calls it. Ifs on a
+    boolean constant and loop counts are static (the same for every fragment)."""
+    found = []
+    for pos, instr in enumerate(instrs):
+        if instr.opcode == "if" and _divergent(instr):
+            found.append((pos, block_end(instrs, pos)))
+        elif instr.opcode == "callnz" and _divergent(instr) and instr.srcs:
+            start = next((k for k, ins in enumerate(instrs) if ins.opcode == "label" and
+                          ins.srcs and ins.srcs[0].index == instr.srcs[0].index), None)
+            if start is not None:
+                end = next((k for k in range(start + 1, len(instrs))
+                            if instrs[k].info.ends_body), len(instrs))
+                found.append((start, end))
+    branches = list(found)
+    for pos, instr in enumerate(instrs):
+        if instr.opcode in ("loop", "rep"):
+            end = block_end(instrs, pos)
+            if any(instrs[k].opcode in ("break", "breakp") and (
+                    _divergent(instrs[k]) or any(s < k < e for s, e in branches))
+                   for k in range(pos + 1, end)):
+                found.append((pos, end))
+    return found
+
+
+def _divergent(instr: Instruction) -> bool:
+    """A condition that may differ between fragments: a comparison or a predicate."""
+    return instr.comparison is not None or any(op.kind == "p" for op in instr.srcs)
+
+
 def loop_count(lo: Lowering, reg: Operand) -> tuple[int, int, int]:
     """(count, start, step) of the integer constant a rep / loop names."""
     values = lo.p.int_defs.get(reg.index)

@@ -91,6 +91,7 @@ class InstrInfo:
     lowers: Lowers = NotLowered("not lowered yet")
     matrix_rows: int = 0           # m4x4 r0, v0, c4 reads c4..c7: 4
     ends_body: bool = False        # ret, label: the main program or a subroutine ends here
+    gradient: bool = False         # takes screen-space gradients (dsx, dsy, texld's LOD)
 
     @property
     def has_dst(self) -> bool:
@@ -234,9 +235,9 @@ _ARITH = [
     _row("mova", VS2UP, "ds", "arith", "a0 = round_half_away_from_zero(a)",
          dst_kinds=("a",), lowers=Rewrite(rw.MOVA)),
     _row("dsx", PS2X | PS3, "ds", "arith", "d = d(a)/dx (screen-space gradient)", slots=2,
-         lowers=NotLowered("gradients are not lowered yet")),
+         lowers=_ir("ddx", "a"), gradient=True),
     _row("dsy", PS2X | PS3, "ds", "arith", "d = d(a)/dy (screen-space gradient)", slots=2,
-         lowers=NotLowered("gradients are not lowered yet")),
+         lowers=_ir("ddy", "a"), gradient=True),
     _row("setp", PS2X | PS3 | VS2UP, "dss", "flow", "p0 = a <cmp> b per component",
          dst_kinds=("p",), lowers=Handler(fl.setp)),
 ]
@@ -303,7 +304,7 @@ _TEXTURE = [
     _row("texdepth", PS14, "d", "tex", "depth = (r5.g == 0) ? 1 : sat(r5.r / r5.g)",
          dst_kinds=R, modifiers=False, lowers=Handler(tx.texdepth)),
     *[_row(name, versions, "dsS", "tex", formula, dst_kinds=R, src_kinds=(coords, S),
-           lowers=Handler(partial(tx.texld, **flags)))
+           lowers=Handler(partial(tx.texld, **flags)), gradient=True)
       # ps_2_x reads coordinates from t# or r#; ps_3_0 from any readable register (v#, r# ...)
       for versions, coords in ((PS2, TR), (PS3, None))
       for name, formula, flags in (("texld", "d = sample(sampler b, a)", {}),

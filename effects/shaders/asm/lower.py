@@ -154,13 +154,19 @@ def lowering_problems(program: AsmProgram) -> list[AsmError]:
     the lowering does not handle. Empty means `lower_*_shader` lowers it."""
     problems = []
     depth = 0
-    for instr in program.instructions:
+    dynamic = flow.dynamic_blocks(program.instructions)
+    for pos, instr in enumerate(program.instructions):
         lowers = instr.info.lowers
         if instr.opcode in flow.OPENS:
             depth += 1
         elif instr.opcode in flow.OPENS.values():
             depth -= 1
-        if isinstance(lowers, NotLowered):
+        if instr.info.gradient and program.kind == "ps" and any(
+                start < pos < end for start, end in dynamic):
+            problems.append(AsmError(
+                f"{instr.opcode}: gradients inside dynamic flow control are undefined (X4014: "
+                "move it out of the if or loop, or use texldl / texldd)", instr.location))
+        elif isinstance(lowers, NotLowered):
             problems.append(AsmError(f"{instr.opcode}: {lowers.reason}", instr.location))
         elif instr.opcode == "ret" and depth > 0:
             problems.append(AsmError("ret inside if, rep or loop (an early return) is not "
@@ -526,6 +532,7 @@ class _Lowering:
         b = self.b
         if self.b.stage == "vertex":
             saturate = self.rules.major < 3
+            b.clamp_colors = saturate        # SM3 colour interpolators are not clamped
             for key in self.written:
                 name = self.output_name(Operand(key[0], key[1]))
                 value = self.regs[key]
