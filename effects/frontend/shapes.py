@@ -95,7 +95,11 @@ class Shapes(Transformer):
             raise Located(f"number {tok.value} is out of range", tok.line, tok.column)
         return _tok_v("float", value, tok)
 
-    def string(self, c): return _tok_v("str", _unescape(c[0].value[1:-1]), c[0])
+    def string(self, c):
+        # adjacent literals are one string, as in C ("Draw=Buffer;" "ScriptExternal=;")
+        if len(c) == 1:
+            return _tok_v("str", _unescape(c[0].value[1:-1]), c[0])
+        return _span_v("str", "".join(_unescape(t.value[1:-1]) for t in c), c[0], c[-1])
     def true(self, c): return _tok_v("bool", True, c[0])
     def false(self, c): return _tok_v("bool", False, c[0])
     def null(self, c): return _tok_v("null", None, c[0])

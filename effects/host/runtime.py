@@ -41,7 +41,8 @@ from effects.errors import EffectError, EffectWarning, Location, NoValidTechniqu
 from effects.model import Effect, Parameter, Technique
 from effects.host.scene import MAX_SIZE, Scene, load_scene
 from effects.host.semantics import bind_scene, coerce_value, lookup_parameter, ui_defaults
-from effects.host.textures import Texture
+from effects.host.scripts import is_render_target, target_format, target_size
+from effects.host.textures import Texture, make_texture
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.caps import CapsProfile
@@ -157,6 +158,7 @@ class Runtime:
         self._given: dict[str, TextureSource] = {}
         self._textures: dict[str, Texture | None] = {}
         self._geometry: Geometry | None = None
+        self._scene_runtime: Runtime | None = None
         self._bind(params or {})
         self.technique: Technique | None = None
         self._programs: list["PassProgram"] = []
@@ -236,7 +238,14 @@ class Runtime:
         its kind with a warning when nothing supplies it (FX Composer shows a default
         texture too; the effect's author meant a picture there, not black)."""
         texture = self.texture(name)
-        if texture is None:
+        if texture is None and is_render_target(self._param(name)):
+            # a render target sampled before anything was drawn into it: cleared to black
+            param = self._param(name)
+            w, h = target_size(param, self.size)
+            texture = make_texture(np.zeros((h, w, 4), np.float32), target_format(param),
+                                   mips=False, name=name)
+            self._textures[name] = texture
+        elif texture is None:
             param = self._param(name)
             texture = self._stand_in(param, "nothing supplies it (no ResourceName, scene "
                                      "params or --set value)", param.location)
@@ -255,15 +264,32 @@ class Runtime:
             self.warnings.append(warning)
         return texture
 
-    def lower(self, technique: Technique, index: int) -> "PassProgram":
+    def lower(self, technique: Technique, index: int,
+              host: Mapping[str, Any] | None = None) -> "PassProgram":
         """Pass `index` of `technique`, lowered with this runtime's parameter values and the
-        transforms the host set."""
+        transforms the host set (`host` replaces them: a script's full-screen quad is drawn
+        with identities)."""
         from effects.lower.passes import lower_pass
         validation = self.validation if self.validation is not None \
             and self.validation.technique is technique else None
         return lower_pass(self.effect, technique, index, self.profile,
-                          vertex_colors=self.geometry().has_diffuse, host=self.host_states,
+                          vertex_colors=self.geometry().has_diffuse,
+                          host=self.host_states if host is None else host,
                           validation=validation)
+
+    def set_target_texture(self, name: str, texture: Texture) -> None:
+        """What a script drew into render-target texture parameter `name`."""
+        self._textures[name] = texture
+
+    def scene_material_runtime(self) -> "Runtime":
+        """A runtime drawing this scene with the host's plain material (`ScriptExternal`)."""
+        if self._scene_runtime is None:
+            from effects.frontend.loader import load_effect
+            from effects.host.scripts import SCENE_MATERIAL
+            self._scene_runtime = Runtime(load_effect(SCENE_MATERIAL), self.profile,
+                                          scene=self.scene, size=self.size, backend=None,
+                                          textures=self.texture_cache)
+        return self._scene_runtime
 
     # -- technique -------------------------------------------------------------------------
     def select(self, technique: Technique | str | None = None, policy: Any = "first") -> Technique:
@@ -314,10 +340,15 @@ class Runtime:
         """Draw the scene's mesh (or `geo`) with the current pass."""
         if self._program is None:
             raise RuntimeError("draw outside begin_pass/end_pass")
+        self.draw_program(self._program, geo)
+
+    def draw_program(self, program: "PassProgram", geo: Geometry | None = None,
+                     backend: Any = None) -> None:
+        """Draw `geo` (default the scene's mesh) with a lowered pass, its textures bound."""
         geo = geo or self.geometry()
-        textures = {b.texture: self.used_texture(b.texture) for b in self._program.textures
+        textures = {b.texture: self.used_texture(b.texture) for b in program.textures
                     if b.texture is not None}
-        self.backend.draw(self._program, geo.streams, geo.indices, geo.primitive, textures)
+        (backend or self.backend).draw(program, geo.streams, geo.indices, geo.primitive, textures)
 
     def end_pass(self) -> None:
         self._pass, self._program = None, None
@@ -328,8 +359,18 @@ class Runtime:
         return self.backend.end_frame()
 
     def render(self, technique: Technique | str | None = None, policy: Any = "first") -> Frame:
-        """A whole frame: every pass of the technique, drawn once each."""
-        passes = self.begin(technique, policy)
+        """A whole frame: every pass of the technique, drawn once each, or what its DXSAS
+        `Script` annotation says (`effects.host.scripts`)."""
+        from effects.host.scripts import ScriptRunner, technique_script
+        chosen = self.select(technique, policy)
+        if technique_script(chosen) is not None:
+            runner = ScriptRunner(self, chosen)
+            image = runner.run()
+            self.technique_drawn = chosen
+            return Frame(image, chosen, runner.passes_drawn,
+                         getattr(self.backend, "name", str(self.backend)), self.profile,
+                         list(self.warnings))
+        passes = self.begin(chosen, policy)
         tech = self.technique
         try:
             for i in range(passes):

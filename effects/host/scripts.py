@@ -1,0 +1,387 @@
+"""DXSAS `Script` annotations: the render-target chain of post-processing effects.
+
+FX Composer and NVIDIA's shader library write, on a technique and its passes, a
+`string Script = "Cmd=Value;Cmd=Value;..."` annotation that tells the host what to draw where
+(the DirectX SDK's "DXSAS" convention, version 0.8 / 1.0). The commands run here:
+
+| command | what the host does |
+|---|---|
+| `RenderColorTarget0=Tex` / `RenderColorTarget=Tex` | draw into texture parameter `Tex` from now on; empty: the back buffer |
+| `RenderDepthStencilTarget=Tex` | accepted: every target here has its own depth-stencil buffer |
+| `ClearSetColor=P`, `ClearSetDepth=P` | the clear colour / depth, from parameter `P` |
+| `Clear=Color`, `Clear=Depth`, `Clear=Stencil` | clear the current target |
+| `Pass=P` | run pass `P`: its own `Script` (default `Draw=Geometry`) |
+| `Draw=Geometry` | draw the scene's mesh with the current pass |
+| `Draw=Buffer` | draw a full-screen quad (clip space, identity transforms; uv 0..1, row 0 at v = 0) |
+| `LoopByCount=P` … `LoopEnd=` | repeat the commands between, `P` (a parameter or a number) times |
+| `ScriptExternal=color` | draw the scene there: the mesh with a plain lit, checker-textured material (`SCENE_MATERIAL`), as FX Composer draws the rest of its scene |
+| `Technique=T`, `ScriptSignature=`, `ScriptOrder=`… | not run (a warning; `effects doctor` lists them) |
+
+Render-target textures are texture parameters with the `RenderColorTarget` or
+`RenderDepthStencilTarget` semantic; their size is `float2 ViewportRatio = {x, y}` times the
+frame size, or `int2 Dimensions = {w, h}` (or `Width`/`Height`), default the frame's; their
+format `string Format = "..."` where a back end can render it (else A8R8G8B8). A technique with
+a `Script` annotation draws only what its script says; without one, every pass once, as D3DX.
+Each target is drawn in one back-end frame (`effects.backend`): switching targets ends the
+frame and the finished picture becomes that texture parameter's texture (one mip level).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from effects.backend import TARGET_FORMATS
+from effects.errors import EffectError, EffectWarning, Location
+from effects.model import Annotation, Effect, Parameter, Technique
+from effects.host.assets import Geometry
+from effects.host.textures import make_texture
+
+if TYPE_CHECKING:  # pragma: no cover
+    from effects.host.runtime import Runtime
+
+MAX_LOOP_COUNT = 256          # LoopByCount above this is an error, not a hang
+MAX_SCRIPT_DRAWS = 4096       # draws one frame's script may make
+
+COMMANDS = {
+    "rendercolortarget0": "RenderColorTarget0", "rendercolortarget": "RenderColorTarget0",
+    "renderdepthstenciltarget": "RenderDepthStencilTarget", "clearsetcolor": "ClearSetColor",
+    "clearsetdepth": "ClearSetDepth", "clearsetstencil": "ClearSetStencil", "clear": "Clear",
+    "pass": "Pass", "draw": "Draw", "loopbycount": "LoopByCount", "loopend": "LoopEnd",
+    "scriptexternal": "ScriptExternal",
+}
+TARGET_SEMANTICS = ("RENDERCOLORTARGET", "RENDERDEPTHSTENCILTARGET")
+
+# What `ScriptExternal=color` draws: the rest of the scene, with the plain material a tool
+# gives objects that have none (a lit white checker). Itself an effect, so it goes through
+# the same front end and lowering as any other.
+SCENE_MATERIAL = """
+texture SceneChecker < string Procedural = "checker"; >;
+float3 SceneLightDirection : LIGHTDIRECTION = {0.577, -0.577, -0.577};
+technique Scene { pass P0 {
+    Lighting = true; LightEnable[0] = true; LightType[0] = Directional;
+    LightDirection[0] = <SceneLightDirection>; LightDiffuse[0] = {1, 1, 1, 1};
+    LightAmbient[0] = {0.2, 0.2, 0.2, 1}; MaterialDiffuse = {1, 1, 1, 1};
+    MaterialAmbient = {1, 1, 1, 1}; Texture[0] = <SceneChecker>; MinFilter[0] = Linear;
+    MagFilter[0] = Linear; MipFilter[0] = Linear;
+    ColorOp[0] = Modulate; ColorArg1[0] = Texture; ColorArg2[0] = Diffuse;
+    AlphaOp[0] = SelectArg1; AlphaArg1[0] = Diffuse;
+} }
+"""
+
+
+@dataclass(frozen=True)
+class Command:
+    name: str            # canonical name (COMMANDS), or as written when unknown
+    value: str
+    known: bool
+    location: Location   # the Script annotation's
+
+
+def parse_script(text: str, at: Location) -> list[Command]:
+    """'Cmd=Value;...' as commands (blank entries skipped; a missing '=' is an error)."""
+    out = []
+    for item in text.split(";"):
+        item = item.strip()
+        if not item:
+            continue
+        name, eq, value = item.partition("=")
+        if not eq:
+            raise EffectError(f"script command {item!r} is not NAME=VALUE", at)
+        canonical = COMMANDS.get(name.strip().lower())
+        out.append(Command(canonical or name.strip(), value.strip(), canonical is not None, at))
+    return out
+
+
+def script_of(annotations: list[Annotation]) -> list[Command] | None:
+    """The commands of a `string Script` annotation, or None when there is none."""
+    for a in annotations:
+        if a.name.lower() == "script" and isinstance(a.value, str):
+            return parse_script(a.value, a.location)
+    return None
+
+
+def technique_script(technique: Technique) -> list[Command] | None:
+    return script_of(technique.annotations)
+
+
+def is_render_target(param: Parameter) -> bool:
+    return param.type.base == "texture" and (param.semantic or "").upper() in TARGET_SEMANTICS
+
+
+def unsupported_commands(effect: Effect, technique: Technique) -> list[Command]:
+    """Script commands of the technique and its passes that are not run."""
+    commands = list(technique_script(technique) or [])
+    for p in technique.passes:
+        commands.extend(script_of(p.annotations) or [])
+    return [c for c in commands if not c.known or
+            (c.name == "ScriptExternal" and c.value.lower() not in ("", "color"))]
+
+
+def _numbers(value: Any) -> list[float]:
+    return [float(x) for x in np.asarray(value, np.float64).reshape(-1)]
+
+
+def target_size(param: Parameter, frame: tuple[int, int]) -> tuple[int, int]:
+    """A render target's size: Dimensions, Width/Height, ViewportRatio × frame, or the frame's."""
+    dims = param.annotation("Dimensions")
+    if dims is not None and not isinstance(dims.value, str) and len(_numbers(dims.value)) >= 2:
+        w, h = _numbers(dims.value)[:2]
+        return max(1, int(w)), max(1, int(h))
+    width, height = param.annotation("Width"), param.annotation("Height")
+    if width is not None and height is not None and not isinstance(width.value, str):
+        return max(1, int(_numbers(width.value)[0])), max(1, int(_numbers(height.value)[0]))
+    ratio = param.annotation("ViewportRatio")
+    if ratio is not None and not isinstance(ratio.value, str):
+        r = _numbers(ratio.value) + [1.0, 1.0]
+        rx, ry = r[0], r[1] if len(_numbers(ratio.value)) > 1 else r[0]
+        return max(1, int(round(frame[0] * rx))), max(1, int(round(frame[1] * ry)))
+    return frame
+
+
+def target_format(param: Parameter) -> str:
+    fmt = param.annotation("Format")
+    if fmt is not None and isinstance(fmt.value, str):
+        name = fmt.value.strip().upper().removeprefix("D3DFMT_")
+        if name in TARGET_FORMATS:
+            return name
+    return "A8R8G8B8"
+
+
+def quad_geometry() -> Geometry:
+    """The full-screen quad of `Draw=Buffer`: clip-space corners, uv (0, 0) at the top left."""
+    position = np.array([[-1, 1, 0, 1], [1, 1, 0, 1], [-1, -1, 0, 1], [1, -1, 0, 1]], np.float32)
+    uv = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], np.float32)
+    streams = {"position": position, "normal": np.tile([0, 0, -1], (4, 1)).astype(np.float32),
+               "color0": np.ones((4, 4), np.float32), "color1": np.zeros((4, 4), np.float32),
+               **{f"texcoord{i}": uv for i in range(8)}}
+    return Geometry(streams, np.arange(4), "strip", False)
+
+
+IDENTITY_HOST = {"WorldTransform": np.identity(4), "ViewTransform": np.identity(4),
+                 "ProjectionTransform": np.identity(4)}
+
+
+class ScriptRunner:
+    """Runs one technique's script on a Runtime, frame by frame of the back end."""
+
+    def __init__(self, runtime: "Runtime", technique: Technique) -> None:
+        self.rt = runtime
+        self.technique = technique
+        self.target: str | None = None          # the colour target (None: the back buffer)
+        self.open = False                       # a back-end frame is open for `target`
+        self.drawn_since_open = False
+        self.clear_color = tuple(runtime.scene.clear_color)
+        self.clear_depth = float(runtime.scene.clear_depth)
+        self.clear_pending = True               # the first frame of each target is cleared
+        self.back_buffer: np.ndarray | None = None
+        self.kept: set[str | None] = set()      # targets holding a finished picture
+        self.draws = 0
+        self.passes_drawn = 0
+
+    # -- targets ---------------------------------------------------------------------------
+    def _target_param(self, name: str, at: Location) -> Parameter:
+        param = self.rt.effect.parameter(name)
+        if param is None or param.type.base != "texture":
+            raise EffectError(f"script: {name!r} is not a texture parameter of the effect", at)
+        return param
+
+    def _frame_of(self, name: str | None) -> tuple[tuple[int, int], str]:
+        if name is None:
+            return self.rt.size, "A8R8G8B8"
+        param = self.rt.effect.parameter(name)
+        return target_size(param, self.rt.size), target_format(param)
+
+    def _open(self) -> None:
+        if self.open:
+            return
+        size, fmt = self._frame_of(self.target)
+        if self.target in self.kept and not self.clear_pending:
+            self.warn(f"script draws into {self.target or 'the back buffer'} again without "
+                      "clearing it; its earlier picture is not kept", self.technique.location)
+        self.rt.backend.begin_frame(size, self.clear_color, self.clear_depth, 0, format=fmt)
+        self.open, self.drawn_since_open, self.clear_pending = True, False, False
+
+    def _close(self) -> None:
+        if not self.open:
+            return
+        image = self.rt.backend.end_frame()
+        self.open = False
+        self.kept.add(self.target)
+        if self.target is None:
+            self.back_buffer = image
+            return
+        values = image.astype(np.float32) / 255.0 if image.dtype == np.uint8 else image
+        _, fmt = self._frame_of(self.target)
+        self.rt.set_target_texture(self.target, make_texture(values, fmt, mips=False,
+                                                            name=self.target))
+
+    def warn(self, message: str, at: Location) -> None:
+        warning = EffectWarning(message, at)
+        if self.rt.strict:
+            raise EffectError(message, at)
+        if warning not in self.rt.warnings:
+            self.rt.warnings.append(warning)
+
+    # -- commands --------------------------------------------------------------------------
+    def run(self) -> np.ndarray:
+        try:
+            self.execute(technique_script(self.technique) or [], None)
+            if self.target is not None or not self.open:
+                self._close()
+                self.target = None
+                self._open()             # a script that never drew to the screen: cleared
+            self._close()
+        except BaseException:
+            if self.open:
+                self.rt.backend.end_frame()
+            raise
+        return self.back_buffer  # type: ignore[return-value]
+
+    def execute(self, commands: list[Command], pass_index: int | None) -> None:
+        i = 0
+        while i < len(commands):
+            c = commands[i]
+            if c.name == "LoopByCount":
+                end = _loop_end(commands, i)
+                for _ in range(self._count(c)):
+                    self.execute(commands[i + 1:end], pass_index)
+                i = end + 1
+                continue
+            self.command(c, pass_index)
+            i += 1
+
+    def _count(self, c: Command) -> int:
+        param = self.rt.effect.parameter(c.value)
+        try:
+            n = int(_numbers(param.value)[0]) if param is not None else int(c.value)
+        except (TypeError, ValueError, IndexError):
+            raise EffectError(f"script: LoopByCount={c.value}: not a number or a numeric "
+                              "parameter with a value", c.location) from None
+        if not 0 <= n <= MAX_LOOP_COUNT:
+            raise EffectError(f"script: LoopByCount={c.value} is {n}; at most {MAX_LOOP_COUNT}",
+                              c.location)
+        return n
+
+    def command(self, c: Command, pass_index: int | None) -> None:
+        name, value = c.name, c.value
+        if not c.known:
+            self.warn(f"script command {name}={value} is not supported; ignored", c.location)
+        elif name == "RenderColorTarget0":
+            target = value or None
+            if target is not None:
+                self._target_param(target, c.location)
+            if target != self.target:
+                self._close()
+                self.target, self.clear_pending = target, False
+        elif name == "RenderDepthStencilTarget":
+            if value:
+                self._target_param(value, c.location)
+        elif name == "ClearSetColor":
+            self.clear_color = tuple((_numbers(self._value(c)) + [0.0] * 4)[:4])
+        elif name == "ClearSetDepth":
+            self.clear_depth = _numbers(self._value(c))[0]
+        elif name == "ClearSetStencil":
+            pass  # the stencil clear value: targets clear stencil to 0
+        elif name == "Clear":
+            what = value.lower()
+            if what not in ("color", "depth", "stencil"):
+                raise EffectError(f"script: Clear={value}: expected Color, Depth or Stencil",
+                                  c.location)
+            if self.open and self.drawn_since_open:
+                if what == "color":
+                    self.rt.backend.end_frame()   # what was drawn is cleared away
+                    self.open = False
+                else:
+                    self.warn(f"script: Clear={value} after drawing into the same target is "
+                              "not supported (the colour would be lost); ignored", c.location)
+                    return
+            self.clear_pending = True
+            if self.open and not self.drawn_since_open:
+                self.rt.backend.end_frame()       # reopen with the clear values now set
+                self.open = False
+        elif name == "Pass":
+            index = self._pass_index(c)
+            p = self.technique.passes[index]
+            self.execute(script_of(p.annotations) or
+                         [Command("Draw", "Geometry", True, p.location)], index)
+            self.passes_drawn += 1
+        elif name == "Draw":
+            self.draw(c, pass_index)
+        elif name == "LoopEnd":
+            raise EffectError("script: LoopEnd without LoopByCount", c.location)
+        elif name == "ScriptExternal":
+            if value.lower() in ("", "color"):
+                self.draw_scene(c)
+            else:
+                self.warn(f"script command ScriptExternal={value} is not supported; ignored",
+                          c.location)
+
+    def _value(self, c: Command) -> Any:
+        param = self.rt.effect.parameter(c.value)
+        if param is None or param.value is None:
+            try:
+                return [float(x) for x in c.value.replace(",", " ").split()]
+            except ValueError:
+                raise EffectError(f"script: {c.name}={c.value}: no parameter of that name with "
+                                  "a value", c.location) from None
+        return param.value
+
+    def _pass_index(self, c: Command) -> int:
+        for match in (lambda n: n == c.value, lambda n: (n or "").lower() == c.value.lower()):
+            for i, p in enumerate(self.technique.passes):
+                if match(p.name):
+                    return i
+        names = ", ".join(p.name or "<anonymous>" for p in self.technique.passes)
+        raise EffectError(f"script: Pass={c.value}: technique {self.technique.name} has no "
+                          f"such pass (passes: {names})", c.location)
+
+    def draw(self, c: Command, pass_index: int | None) -> None:
+        what = c.value.lower()
+        if what not in ("geometry", "buffer"):
+            raise EffectError(f"script: Draw={c.value}: expected Geometry or Buffer", c.location)
+        if pass_index is None:
+            raise EffectError(f"script: Draw={c.value} outside a pass (write it in a pass's "
+                              "Script, or after Pass=)", c.location)
+        self._count_draw(c)
+        self._open()
+        buffer = what == "buffer"
+        program = self.rt.lower(self.technique, pass_index, host=IDENTITY_HOST if buffer else None)
+        self.rt.draw_program(program, quad_geometry() if buffer else None)
+        self.drawn_since_open = True
+
+    def draw_scene(self, c: Command) -> None:
+        self._count_draw(c)
+        self._open()
+        scene_rt = self.rt.scene_material_runtime()
+        program = scene_rt.lower(scene_rt.effect.techniques[0], 0)
+        scene_rt.draw_program(program, backend=self.rt.backend)
+        self.drawn_since_open = True
+
+    def _count_draw(self, c: Command) -> None:
+        self.draws += 1
+        if self.draws > MAX_SCRIPT_DRAWS:
+            raise EffectError(f"script: more than {MAX_SCRIPT_DRAWS} draws in one frame",
+                              c.location)
+
+
+def _loop_end(commands: list[Command], start: int) -> int:
+    depth = 0
+    for j in range(start, len(commands)):
+        if commands[j].name == "LoopByCount":
+            depth += 1
+        elif commands[j].name == "LoopEnd":
+            depth -= 1
+            if depth == 0:
+                return j
+    raise EffectError("script: LoopByCount without LoopEnd", commands[start].location)
+
+
+def render_targets(effect: Effect) -> list[Parameter]:
+    return [p for p in effect.parameters if is_render_target(p)]
+
+
+__all__ = ["Command", "parse_script", "script_of", "technique_script", "ScriptRunner",
+           "render_targets", "target_size", "target_format", "unsupported_commands",
+           "quad_geometry", "SCENE_MATERIAL"]
