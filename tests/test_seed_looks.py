@@ -12,6 +12,7 @@ from __future__ import annotations
 import os
 
 import numpy as np
+import pytest
 
 import effects
 from effects.host.textures import make_texture
@@ -93,3 +94,38 @@ def test_bump_env_map_sun_is_one_spot_where_the_sun_reflects():
     assert np.hypot(px - tx, py - ty) < 4.0
     ys, xs = np.nonzero(spot > spot.max() / 2)
     assert np.hypot(xs - px, ys - py).max() < 20.0
+
+
+def test_persson_normalisation_claim(tmp_path):
+    # Persson: a filtered normal map's normals are shorter than 1, and without renormalising
+    # the highlight dims: 0.99^24 = 0.786 for one N.H factor. His shader forms the reflection
+    # vector R = 2 (N.L) N - L from the normal, which loses more: with |N| = s, at the
+    # highlight (N.L = N.V = c) R.V = 1 - 2 c^2 (1 - s^2), raised to the 24th power. Here the
+    # ps.2.0 technique is drawn with normals of length s (a flat map stored at z = 254/255)
+    # with and without its three normalising instructions: measured 0.73 of the peak kept,
+    # predicted 0.73, where N.H^24 would keep s^24 = 0.83.
+    import shutil
+
+    import test_effect_pictures as pictures
+    assert 0.99 ** 24 == pytest.approx(0.786, abs=5e-4)
+    source = open(os.path.join(FXFILES, "phong.fx")).read()
+    norm = ("            dp3      r7.w, r1, r1\n            rsq      r7.w, r7.w\n"
+            "            mul      r1.xyz, r1, r7.w   // r1 = post-filter normalized bumpmap\n")
+    assert norm in source
+    shutil.copytree(os.path.join(FXFILES, "textures"), tmp_path / "textures")
+    (tmp_path / "raw.fx").write_text(source.replace(norm, ""))
+    stored = solid((0.5, 0.5, 0.995))
+    s = float(2 * stored.levels[0][0, 0, 2] - 1)                  # 254/255 decoded: 0.992
+    params = {**SPECULAR_ONLY, "NormalMap": stored}
+
+    def peak(path) -> float:
+        image = effects.render(effects.load_effect(str(path)), "radeon9700",
+                               technique="PerPixelPhong_ps20", size=(128, 128), params=params)
+        return float(image[..., 1].max())
+
+    kept = peak(tmp_path / "raw.fx") / peak(os.path.join(FXFILES, "phong.fx"))
+    n = pictures.blinn_point("phong")
+    c = float(np.dot(n, pictures.unit(pictures.PHONG_LIGHT - n)))
+    predicted = (1 - 2 * c * c * (1 - s * s)) ** 24
+    assert kept == pytest.approx(predicted, abs=0.03)
+    assert kept < s ** 24 - 0.05         # the reflection vector loses more than N.H would

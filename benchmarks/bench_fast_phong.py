@@ -1,0 +1,78 @@
+"""Bishop and Weimer's timing table (Fast Phong Shading, SIGGRAPH 1986) as ratios to Gouraud,
+measured on the NumPy reference's screen-space shader (backends/reference/fast_phong.py):
+a 64 x 128 sphere seen from the front at 1024 x 1024, one directional light, exponent 20.
+
+    .venv/bin/python benchmarks/bench_fast_phong.py [--size 1024] [--repeat 5]
+
+Shading only: the scan conversion and interpolation planes, which every mode shares, are made
+once (`prepare`) and timed apart. The paper's table (microVAX-II, 14620 polygons at 2048^2):
+Gouraud 406 s, Taylor (infinite eye) 767 s, Taylor (finite eye) 850 s, Phong 3900 s --
+ratios 1, 1.89, 2.09, 9.6.
+"""
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+from backends.reference.fast_phong import Light, pixel_values, prepare
+from effects.host.meshes import sphere
+
+PAPER = {"gouraud": 406.0, "taylor, infinite eye": 767.0, "taylor, finite eye": 850.0,
+         "phong (normalised normal), infinite eye": 3900.0}
+
+
+def front_sphere(size: int, rings: int = 64, segments: int = 128):
+    """Front-facing triangles of a unit sphere, orthographic view from +z, in pixels, with
+    vertex normals and unit vectors toward an eye at (0, 0, 4)."""
+    m = sphere(rings, segments)
+    tri = m.indices.astype(np.int64)
+    p, n = m.positions[tri].astype(np.float64), m.normals[tri].astype(np.float64)
+    front = n[:, :, 2].mean(axis=1) > 0
+    p, n = p[front], n[front]
+    xy = np.stack([(p[..., 0] + 1.2) / 2.4 * size, (1.2 - p[..., 1]) / 2.4 * size], axis=-1)
+    v = np.array([0.0, 0.0, 4.0]) - p
+    return xy, n, v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def best_of(fn, repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--size", type=int, default=1024)
+    parser.add_argument("--repeat", type=int, default=5)
+    args = parser.parse_args()
+    xy, n, v = front_sphere(args.size)
+    to_light = np.array([0.4, 0.5, 0.77]) / np.linalg.norm([0.4, 0.5, 0.77])
+    infinite = Light(to_light, eye=np.array([0.0, 0.0, 1.0]))
+    finite = Light(to_light, eye=None)
+    setup = best_of(lambda: prepare(xy, n, (args.size, args.size), v), args.repeat)
+    prep = prepare(xy, n, (args.size, args.size), v)
+    cases = {"gouraud": (infinite, "gouraud"), "taylor, infinite eye": (infinite, "taylor"),
+             "taylor, finite eye": (finite, "taylor"),
+             "phong (normalised normal), infinite eye": (infinite, "phong"),
+             "phong (normalised normal), finite eye": (finite, "phong")}
+    times = {name: best_of(lambda: pixel_values(prep, light, mode), args.repeat)
+             for name, (light, mode) in cases.items()}
+    pixels = len(prep.spans.x)
+    print(f"{len(xy)} triangles, {pixels} pixels at {args.size}^2; scan conversion and planes "
+          f"(shared) {setup * 1e3:.1f} ms")
+    print(f"{'shading':42s} {'ms':>8s} {'ns/pixel':>9s} {'ratio':>6s} {'paper':>6s}")
+    for name, t in times.items():
+        paper = f"{PAPER[name] / PAPER['gouraud']:.2f}" if name in PAPER else "-"
+        print(f"{name:42s} {t * 1e3:8.1f} {t / pixels * 1e9:9.1f} "
+              f"{t / times['gouraud']:6.2f} {paper:>6s}")
+    ratio = times["phong (normalised normal), infinite eye"] / times["taylor, infinite eye"]
+    print(f"normalised-normal Phong / Taylor (infinite eye): {ratio:.2f}x (goal >= 2)")
+
+
+if __name__ == "__main__":
+    main()
