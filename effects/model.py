@@ -309,17 +309,32 @@ class Effect:
                           Location(self.path, 1, 1))
 
     def parameter(self, name: str) -> Parameter | None:
-        for p in self.parameters:
-            if p.name == name:
-                return p
-        return None
+        """The first parameter named `name` (a dict lookup; see `_ParameterIndex`)."""
+        index = self._index()
+        found = index.by_name.get(name)
+        if found is not None and found.name != name:   # renamed since the index was built
+            index = self._index(rebuild=True)
+            found = index.by_name.get(name)
+        return found
 
     def parameter_by_semantic(self, semantic: str) -> Parameter | None:
-        key = semantic.lower()
-        for p in self.parameters:
-            if p.semantic and p.semantic.lower() == key:
-                return p
-        return None
+        return self._index().by_semantic.get(semantic.lower())
+
+    def sampler_dim_of(self, texture: str) -> str | None:
+        """The dim ('2D', 'CUBE', ...) of the first typed sampler whose sampler_state binds the
+        texture parameter `texture` (`Texture = <name>`), or None."""
+        return self._index().sampler_dims.get(texture)
+
+    def _index(self, rebuild: bool = False) -> "_ParameterIndex":
+        # Lookups by name happen per state per pass per card: a linear scan made validation
+        # and lowering quadratic in the file. The index is rebuilt when the parameter list is
+        # replaced or changes length (the parser appends; the runtime copies the list).
+        index = self.__dict__.get("_parameter_index")
+        params = self.parameters
+        if rebuild or index is None or index.list_id != id(params) or index.size != len(params):
+            index = _ParameterIndex(params)
+            self.__dict__["_parameter_index"] = index
+        return index
 
     # -- the spine ---------------------------------------------------------------------------
     def validate(self, technique: Technique | str, profile: "CapsProfile") -> "Validation":
@@ -340,6 +355,26 @@ class Effect:
     def to_source(self) -> str:
         from effects.frontend.printer import print_effect
         return print_effect(self)
+
+
+class _ParameterIndex:
+    """Name, semantic and sampler-binding maps over one parameter list (first match wins,
+    as the linear scans they replace did)."""
+
+    def __init__(self, parameters: list[Parameter]) -> None:
+        self.list_id, self.size = id(parameters), len(parameters)
+        self.by_name: dict[str, Parameter] = {}
+        self.by_semantic: dict[str, Parameter] = {}
+        self.sampler_dims: dict[str, str] = {}
+        for p in parameters:
+            self.by_name.setdefault(p.name, p)
+            if p.semantic:
+                self.by_semantic.setdefault(p.semantic.lower(), p)
+            if p.type.base == "sampler" and p.type.dim:
+                for s in p.value if isinstance(p.value, list) else [p.value]:
+                    bound = s.get("Texture") if isinstance(s, SamplerState) else None
+                    if bound is not None and isinstance(bound.value, ParamRef):
+                        self.sampler_dims.setdefault(bound.value.name, p.type.dim)
 
 
 def _find_annotation(annotations: list[Annotation], name: str) -> Annotation | None:

@@ -500,3 +500,27 @@ def test_lowering_draws_the_device_state_the_validation_checked():
     with pytest.raises(ValueError, match="validation is of technique 'u'"):
         lower_pass(effect, technique, 0, profile,
                    validation=validate_technique(other, other.techniques[0], profile))
+
+
+def test_cache_is_shared_by_runtime_copies_and_checks_only_what_the_pass_reads():
+    from effects.host.runtime import Runtime
+    clear_cache()
+    effect = effects.load_effect("""DWORD Factor = 0xff000000; float Unused = 1;
+        technique t { pass p { Lighting = False; TextureFactor = <Factor>; ColorOp[0] = SelectArg1;
+                               ColorArg1[0] = TFactor; } }""")
+    profile = load_profile("modern")
+    first = Runtime(effect, profile, size=(4, 4))
+    first.begin(); first.begin_pass(0)
+    program = first._program
+    first.end_pass(); first.end()
+    again = Runtime(effect, profile, size=(4, 4))   # a fresh copy of the effect's parameters
+    again.begin(); again.begin_pass(0)
+    assert again._program is program
+    again.effect.parameter("Unused").value = np.array(2.0, dtype=np.float32)
+    again.commit_changes()
+    assert again._program is program                # the pass never reads Unused
+    again.set_value("Factor", 0xFF0000FF)
+    again.commit_changes()
+    assert again._program is not program
+    assert dict(again._program.uniforms)["tfactor"] == (0.0, 0.0, 1.0, 1.0)
+    again.end_pass(); again.end()

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+import dataclasses
 
 import numpy as np
 import pytest
@@ -439,3 +440,17 @@ def test_brdf_dx8_details():
     assert p.state("Texture", 3).value == ParamRef("ObjectTexture", angle=True)
     assert e.parameter("BCLR").value == 0xFF0000FF
     assert e.parameter("tec0").value == "BRDF Shader"
+
+
+def test_parameter_lookups_follow_the_list_first_match_wins():
+    e = parse("""float A : COLOR0 = 1; float B : color0 = 3;
+        texture T; sampler3D S = sampler_state { Texture = <T>; };""")
+    e.parameters.insert(1, dataclasses.replace(e.parameters[0]))   # a second A
+    assert e.parameter("A") is e.parameters[0] and e.parameter("Missing") is None
+    assert e.parameter_by_semantic("COLOR0") is e.parameters[0]
+    assert e.sampler_dim_of("T") == "3D" and e.sampler_dim_of("A") is None
+    extra = dataclasses.replace(e.parameters[2], name="C")
+    e.parameters.append(extra)                      # appended after the index was built
+    assert e.parameter("C") is extra
+    e.parameters[0].name = "Renamed"                 # renamed in place
+    assert e.parameter("A") is e.parameters[1] and e.parameter("Renamed") is e.parameters[0]

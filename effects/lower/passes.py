@@ -76,20 +76,25 @@ def lower_pass(effect: Effect, technique: Technique, pass_index: int,
     Begin, by state name (the scene camera's 'WorldTransform', 'ViewTransform',
     'ProjectionTransform'); a pass's own assignments win over them."""
     host_key = tuple(sorted((k, np.asarray(v).tobytes()) for k, v in (host or {}).items()))
-    key = _cache_key(effect, technique, pass_index, profile) + (vertex_colors, host_key)
+    key = _cache_key(technique, pass_index, profile, vertex_colors) + (host_key,)
     hit = _CACHE.get(key)
-    if hit is not None and hit[0] is effect:
-        return hit[1]
+    # A validation's device state was applied when the technique was validated (sampler states
+    # included): the program is good for that validation object only.
+    if hit is not None and hit[0] is technique and hit[3] is validation \
+            and _still_reads(effect, hit[1]):
+        return hit[2]
     if not 0 <= pass_index < len(technique.passes):
         raise EffectError(f"technique '{technique.name}' has no pass {pass_index} (it has "
                           f"{len(technique.passes)})", technique.location)
-    state = _pass_state(effect, technique, pass_index, validation,
+    reads = _ReadLog(effect)
+    state = _pass_state(reads, technique, pass_index, validation,  # type: ignore[arg-type]
                         host_states(host) if host else None)
-    program = _lower(effect, state, profile, vertex_colors)
+    program = _lower(reads, state, profile, vertex_colors)  # type: ignore[arg-type]
     with _CACHE_LOCK:  # the viewer lowers on a worker thread and on the render thread
+        _CACHE.pop(key, None)
         if len(_CACHE) >= CACHE_SIZE:
             _CACHE.pop(next(iter(_CACHE)))
-        _CACHE[key] = (effect, program)
+        _CACHE[key] = (technique, reads.snapshot(), program, validation)
     return program
 
 
@@ -124,30 +129,67 @@ def clear_cache() -> None:
         _CACHE.clear()
 
 
-_CACHE: dict[tuple, tuple[Effect, PassProgram]] = {}
+_CACHE: dict[tuple, tuple[Technique, tuple, PassProgram, Any]] = {}
 _CACHE_LOCK = threading.Lock()
 
 
-def _cache_key(effect: Effect, technique: Technique, pass_index: int,
-               profile: "CapsProfile") -> tuple:
-    """(id(effect), technique, pass, profile, parameter values): uniforms are baked from the
-    parameters, so a parameter the runtime changes must miss the cache. The effect object is
-    kept with the entry and compared on a hit, so a recycled id cannot match."""
-    return (id(effect), technique.name, pass_index, profile.name,
-            _parameter_digest(effect.parameters))
+def _cache_key(technique: Technique, pass_index: int, profile: "CapsProfile",
+               vertex_colors: bool) -> tuple:
+    """(technique, pass, profile, vertex colours). The technique object is kept with the entry
+    and compared on a hit, so a recycled id cannot match. The effect is not in the key: a
+    Runtime's copy of an effect shares its techniques, so `effects.render()` called again hits.
+    What the program depends on beyond that, the parameters it read, is checked by
+    `_still_reads` on a hit: only those, so the check costs what the pass reads, not what the
+    file declares."""
+    return (id(technique), pass_index, profile.name, vertex_colors)
 
 
-def _parameter_digest(parameters: list[Parameter]) -> tuple:
-    items = []
-    for p in parameters:
-        v = p.value
-        if isinstance(v, np.ndarray):
-            items.append((p.name, v.dtype.str, v.shape, v.tobytes()))
-        elif v is None or isinstance(v, (str, int, float, bool)):
-            items.append((p.name, v))
-        else:
-            items.append((p.name, id(v)))
-    return tuple(items)
+class _ReadLog:
+    """The effect as lowering sees it: every parameter looked up by name is noted, so a cache
+    hit can check that exactly those still hold what the program was lowered from."""
+
+    def __init__(self, effect: Effect) -> None:
+        self.effect, self.path = effect, effect.path
+        self.read: dict[str, Parameter | None] = {}
+
+    def parameter(self, name: str) -> Parameter | None:
+        param = self.effect.parameter(name)
+        self.read[name] = param
+        return param
+
+    def snapshot(self) -> tuple:
+        return tuple((name, _fingerprint(p)) for name, p in self.read.items())
+
+
+def _fingerprint(param: Parameter | None) -> tuple:
+    """What lowering takes from a parameter: its type (an untyped texture takes the kind of what
+    is bound) and annotations (`string Type`), and its value: numbers by bytes, other objects
+    (shader blocks, sampler states) by identity, as the parameter digest that preceded this did."""
+    if param is None:
+        return ()
+    v = param.value
+    if isinstance(v, np.ndarray):
+        value: Any = ("array", v.dtype.str, v.shape, v.tobytes())
+    elif v is None or isinstance(v, (str, int, float, bool)):
+        value = ("plain", type(v), v)
+    else:
+        value = ("object", v)    # compared by identity in _same
+    return (param.type, param.annotations, value)
+
+
+def _same(a: tuple, b: tuple) -> bool:
+    if len(a) != len(b):
+        return False
+    if not a:
+        return True
+    if a[0] != b[0] or a[1] is not b[1] and a[1] != b[1]:
+        return False
+    va, vb = a[2], b[2]
+    return va[0] == vb[0] and (va[1] is vb[1] if va[0] == "object" else va == vb)
+
+
+def _still_reads(effect: Effect, snapshot: tuple) -> bool:
+    return all(_same(_fingerprint(effect.parameter(name)), fp) for name, fp in snapshot)
 
 
 # --------------------------------------------------------------------------------------------

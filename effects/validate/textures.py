@@ -265,15 +265,8 @@ def texture_kind(param: Parameter, effect: Effect | None = None) -> str | None:
         return {"VOLUME": "3D", "CUBE": "CUBE", "3D": "3D", "2D": "2D", "1D": "1D"}.get(ann, ann)
     if param.type.dim:
         return param.type.dim
-    if effect is not None:
-        for sampler in effect.parameters:
-            if sampler.type.base != "sampler" or not sampler.type.dim:
-                continue
-            values = sampler.value if isinstance(sampler.value, list) else [sampler.value]
-            for s in values:
-                bound = s.get("Texture") if isinstance(s, SamplerState) else None
-                if bound is not None and isinstance(bound.value, ParamRef) and bound.value.name == param.name:
-                    return sampler.type.dim
+    if effect is not None:   # a map built once per effect, not a scan per texture
+        return effect.sampler_dim_of(param.name)
     return None
 
 
