@@ -6,8 +6,21 @@
 """
 from effects.errors import (AsmError, EffectError, EffectWarning, Location, NoValidTechnique, ParseError,
                      PreprocessError, ProfileError, SceneError, StateError)
-from effects.frontend.loader import load_effect
-from effects.model import Effect, Parameter, Pass, StateAssignment, Technique
+
+# The model and the loader import numpy and lark; they load on first use (PEP 562), so that
+# `effects --help` and `effects profiles` do not pay for them.
+_LAZY = {"load_effect": "effects.frontend.loader", "Effect": "effects.model",
+         "Parameter": "effects.model", "Pass": "effects.model",
+         "StateAssignment": "effects.model", "Technique": "effects.model"}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        import importlib
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'effects' has no attribute {name!r}")
 
 __all__ = [
     "AsmError", "Effect", "EffectError", "EffectWarning", "Location", "NoValidTechnique",

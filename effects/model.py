@@ -6,14 +6,14 @@ compares equal to the original.
 """
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Union
-
-import numpy as np
 
 from effects.errors import EffectWarning, Location, UNKNOWN_LOCATION
 
 if TYPE_CHECKING:  # pragma: no cover
+    import numpy as np
     from effects.caps import CapsProfile
     from effects.validate.technique import Validation
 
@@ -24,7 +24,10 @@ def _loc() -> Any:
 
 def values_equal(a: Any, b: Any) -> bool:
     """Equality that treats numpy arrays by value (dataclass __eq__ cannot)."""
-    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+    # The model does not import numpy (`effects profiles` and `--help` start without it): the
+    # parser that makes arrays does, and until then no value can be one.
+    np = sys.modules.get("numpy")
+    if np is not None and (isinstance(a, np.ndarray) or isinstance(b, np.ndarray)):
         return (isinstance(a, np.ndarray) and isinstance(b, np.ndarray)
                 and a.dtype.kind == b.dtype.kind and a.shape == b.shape
                 and bool(np.array_equal(a, b)))
@@ -160,7 +163,7 @@ class Expression:
     location: Location = _loc()
 
 
-StateValue = Union[np.ndarray, str, bool, EnumValue, ParamRef, NullValue, ShaderBlock,
+StateValue = Union["np.ndarray", str, bool, EnumValue, ParamRef, NullValue, ShaderBlock,
                    CompileShader, Expression, "SamplerState"]
 
 

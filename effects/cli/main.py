@@ -8,11 +8,12 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from typing import Sequence
-
-from rich.console import Console
+from typing import TYPE_CHECKING, Sequence
 
 from effects.errors import EffectError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from rich.console import Console   # imported when a command runs: --help needs none of it
 
 EXIT_OK, EXIT_INVALID, EXIT_BAD_INPUT = 0, 1, 2
 
@@ -166,6 +167,7 @@ def _cmd_render(args, console: Console) -> int:
                              scene=args.scene, size=size, params=params, policy=args.policy,
                              strict=args.strict)
     except NoValidTechnique as exc:
+        from rich.console import Console
         Console(stderr=True, highlight=False).print(str(exc), markup=False, soft_wrap=True)
         return EXIT_INVALID
     ms = (time.perf_counter() - start) * 1000.0
@@ -248,24 +250,28 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _stderr() -> "Console":
+    from rich.console import Console
+    return Console(stderr=True, highlight=False)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    console = Console(highlight=False)
-    err = Console(stderr=True, highlight=False)
     try:
         args = build_parser().parse_args(argv)
-        return args.run(args, console)
+        from rich.console import Console
+        return args.run(args, Console(highlight=False))
     except UsageError as exc:
-        err.print(str(exc), markup=False)
+        _stderr().print(str(exc), markup=False)
         return EXIT_BAD_INPUT
     except EffectError as exc:
-        err.print(exc.report(), markup=False, soft_wrap=True)
+        _stderr().print(exc.report(), markup=False, soft_wrap=True)
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:
         return 130
     except Exception as exc:  # a bug of ours, not bad input: say so briefly
         if os.environ.get("EFFECTS_DEBUG"):
             raise
-        err.print(f"effects: internal error: {type(exc).__name__}: {exc} "
+        _stderr().print(f"effects: internal error: {type(exc).__name__}: {exc} "
                   "(set EFFECTS_DEBUG=1 for the traceback)", markup=False)
         return EXIT_BAD_INPUT
 

@@ -7,7 +7,7 @@ technique the policy refused (max-passes, max-cost), with the policy's reason.
 """
 from __future__ import annotations
 
-from typing import Mapping, Sequence
+from typing import TYPE_CHECKING, Mapping, Sequence
 
 from rich import box
 from rich.console import Console
@@ -15,9 +15,12 @@ from rich.table import Table
 from rich.text import Text
 
 from effects.caps import GENERATIONS, CapsProfile
-from effects.model import Effect, Technique
-from effects.validate.select import PolicyLike, as_policy, choose
-from effects.validate.technique import Validation, software_vs_version, validate_technique
+
+if TYPE_CHECKING:  # pragma: no cover
+    # Validation (and numpy with it) loads when a table needs it: `effects profiles` does not.
+    from effects.model import Effect, Technique
+    from effects.validate.select import PolicyLike
+    from effects.validate.technique import Validation
 
 
 def technique_name(tech: Technique | None) -> str:
@@ -28,6 +31,7 @@ def technique_name(tech: Technique | None) -> str:
 
 def validate_all(effect: Effect, profile: CapsProfile) -> list[Validation]:
     """Every technique of `effect` validated on `profile`, in file order."""
+    from effects.validate.technique import validate_technique
     return [validate_technique(effect, t, profile) for t in effect.techniques]
 
 
@@ -44,6 +48,7 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
         console.print(Text(f"{effect.path}: the effect has no techniques, so no card can render it"),
                       soft_wrap=True)
         return False
+    from effects.validate.select import as_policy, choose
     pol = as_policy(policy)
     results = {p.name: validate_all(effect, p) for p in profiles}
     table = Table(title=effect.path, show_lines=True, header_style="bold")
@@ -92,6 +97,7 @@ def _print_details(effect: Effect, profiles: Sequence[CapsProfile],
 def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
            policy: PolicyLike = "first") -> dict:
     """{effect: {profile: {"technique": name|None, "passes": n, "rejected": {tech: [reason...]}}}}"""
+    from effects.validate.select import as_policy, choose
     pol = as_policy(policy)
     out: dict = {}
     for path, effect in effects.items():
@@ -143,6 +149,7 @@ def _version(v: tuple[int, int]) -> str:
 
 def profile_row(p: CapsProfile) -> dict[str, str]:
     """The key caps of a card, as `effects profiles` shows them."""
+    from effects.validate.shaders import software_vs_version
     bump = [label for bit, label in (("BUMPENVMAP", "EMBM"), ("DOTPRODUCT3", "dot3"))
             if p.has("TextureOpCaps", bit)]
     maps = [label for bit, label in (("CUBEMAP", "cube"), ("VOLUMEMAP", "3D"))
