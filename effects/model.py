@@ -380,6 +380,67 @@ class _ParameterIndex:
                         self.sampler_dims.setdefault(bound.value.name, p.type.dim)
 
 
+class RecordedReads:
+    """A view of an effect that notes every parameter looked up through it (by name, and the
+    sampler binding of a texture). Validation and lowering read parameters only this way, so
+    a result computed through the view depends on the effect's structure (its techniques, which
+    copies of the effect share) and on these reads alone; `still_holds` checks them again, at
+    the cost of what was read rather than of every parameter the file declares."""
+
+    def __init__(self, effect: Effect) -> None:
+        self.effect, self.path = effect, effect.path
+        self._reads: dict[tuple[str, str], Any] = {}
+
+    def parameter(self, name: str) -> Parameter | None:
+        param = self.effect.parameter(name)
+        self._reads[("parameter", name)] = param
+        return param
+
+    def sampler_dim_of(self, texture: str) -> str | None:
+        dim = self.effect.sampler_dim_of(texture)
+        self._reads[("sampler_dim_of", texture)] = dim
+        return dim
+
+    def __getattr__(self, name: str) -> Any:   # techniques, technique(), warnings ...
+        return getattr(self.effect, name)
+
+    def snapshot(self) -> tuple:
+        return tuple((what, name, _fingerprint(value)) for (what, name), value in self._reads.items())
+
+
+def still_holds(effect: Effect, snapshot: tuple) -> bool:
+    """Whether every read of a `RecordedReads.snapshot` gives the same answer on `effect`."""
+    for what, name, fp in snapshot:
+        if not _same_fingerprint(_fingerprint(getattr(effect, what)(name)), fp):
+            return False
+    return True
+
+
+def _fingerprint(value: Any) -> tuple:
+    """A parameter as validation and lowering see it: its type (an untyped texture takes the
+    kind of what is bound), annotations (`string Type`) and value: arrays by bytes, other
+    objects (shader blocks, sampler states, lists of them) by identity; a plain value as is."""
+    if not isinstance(value, Parameter):
+        return ("plain", value)
+    v = value.value
+    if hasattr(v, "tobytes") and hasattr(v, "dtype"):
+        held: tuple = ("array", v.dtype.str, v.shape, v.tobytes())
+    elif v is None or isinstance(v, (str, int, float, bool)):
+        held = ("plain", type(v), v)
+    else:
+        held = ("object", v)
+    return ("parameter", value.type, value.annotations, held)
+
+
+def _same_fingerprint(a: tuple, b: tuple) -> bool:
+    if a[0] != b[0] or a[0] == "plain":
+        return a == b
+    if a[1] != b[1] or (a[2] is not b[2] and a[2] != b[2]):
+        return False
+    va, vb = a[3], b[3]
+    return va[0] == vb[0] and (va[1] is vb[1] if va[0] == "object" else va == vb)
+
+
 def _find_annotation(annotations: list[Annotation], name: str) -> Annotation | None:
     for a in annotations:
         if a.name.lower() == name.lower():

@@ -16,9 +16,12 @@ from effects.passprogram import PassProgram, RenderState, TextureBinding
 from effects.host.textures import Texture
 
 
-def test_threaded_chunks_give_the_same_image():
-    # Enough triangles for several parallel rasterise-and-shade chunks, overlapping so the
-    # in-order merge matters (blending is order dependent), and a texture with helper pixels.
+@pytest.mark.parametrize("band_pixels", [1 << 30, 1 << 10, 200])
+def test_bands_and_threads_give_the_same_image(monkeypatch, band_pixels):
+    # Bands of rows (one, 16, many of two rows each) on one thread and on two, against the
+    # whole frame as one band: overlapping triangles so the in-order merge matters (blending is
+    # order dependent), a texture with helper pixels, and an odd height for a short last band.
+    from backends.reference import renderer
     rng = np.random.default_rng(11)
     count = 3000
     centre = rng.uniform(-1, 1, (count, 2))
@@ -38,14 +41,28 @@ def test_threaded_chunks_give_the_same_image():
               for n in range(5)]
     textures = {"tex": Texture("2d", "A32B32G32R32F", levels)}
     images = []
-    for threads in (1, 2):
+    for threads, band in ((1, 1 << 30), (1, band_pixels), (2, band_pixels)):
+        monkeypatch.setattr(renderer, "BAND_PIXELS", band)
         backend = create_backend("numpy", threads=threads)
-        backend.begin_frame((64, 64))
+        backend.begin_frame((64, 61))
         backend.draw(program, {"position": pos, "texcoord0": uv}, np.arange(len(xy)), "list",
                      textures)
         images.append(backend.end_frame())
+    assert len(renderer.band_rows((64, 61), 1)) == {1 << 30: 1, 1 << 10: 4, 200: 16}[band_pixels]
     np.testing.assert_array_equal(images[0], images[1])
+    np.testing.assert_array_equal(images[0], images[2])
     assert len(np.unique(images[0][..., 0])) > 50
+
+
+def test_band_rows_cover_the_frame_in_even_steps():
+    from backends.reference.renderer import band_rows
+    for size, threads in (((64, 64), 1), ((64, 64), 2), ((2048, 2048), 2), ((7, 3), 2), ((1, 1), 4)):
+        bands = band_rows(size, threads)
+        assert bands[0][0] == 0 and bands[-1][1] == size[1]
+        assert all(a[1] == b[0] for a, b in zip(bands, bands[1:]))
+        assert all(y0 % 2 == 0 for y0, _ in bands)
+    assert len(band_rows((64, 64), 2)) == 1 and len(band_rows((128, 128), 2)) == 2
+    assert max(y1 - y0 for y0, y1 in band_rows((2048, 2048), 2)) * 2048 <= 1 << 16
 
 
 # --------------------------------------------------------------------------------------------

@@ -274,8 +274,9 @@ def merge(fb: Framebuffer, state: RenderState, pixels: np.ndarray, color: np.nda
             color2 = None if color2 is None else color2[keep]
     if len(pixels) == 0:
         return
-    width, height = fb.size
-    split = layers(pixels, width * height)
+    # Layers over the span of pixels this merge touches (a band of rows), not the whole frame.
+    lo = int(pixels.min())
+    split = layers(pixels - lo, int(pixels.max()) - lo + 1)
     if len(split) == 1:   # no pixel hit twice: one layer holding every row, in order
         _merge_layer(fb, state, pixels, color, depth, front, color2)
         return

@@ -143,7 +143,18 @@ def rasterize(clip_pos: np.ndarray, varyings: dict[str, np.ndarray], triangles: 
               size: tuple[int, int], cull: str = "CCW", *, flat: tuple[str, ...] = (),
               depth_bias: float = 0.0, slope_scale_depth_bias: float = 0.0,
               quads: bool = True) -> QuadFragments:
-    """Rasterise a triangle list.
+    """Rasterise a triangle list (see `setup_triangles`): the whole frame as one band."""
+    setup = setup_triangles(clip_pos, varyings, triangles, size, cull, flat=flat,
+                            depth_bias=depth_bias, slope_scale_depth_bias=slope_scale_depth_bias,
+                            quads=quads)
+    return setup if isinstance(setup, QuadFragments) else setup.rows()
+
+
+def setup_triangles(clip_pos: np.ndarray, varyings: dict[str, np.ndarray], triangles: np.ndarray,
+                    size: tuple[int, int], cull: str = "CCW", *, flat: tuple[str, ...] = (),
+                    depth_bias: float = 0.0, slope_scale_depth_bias: float = 0.0,
+                    quads: bool = True) -> "TriangleSetup | QuadFragments":
+    """Clip, project, cull and orient a triangle list; empty fragments when nothing is left.
 
     `clip_pos` (N, 4) in D3D clip space, `varyings` name -> (N, k), `triangles` (M, 3) vertex
     indices in draw order, `size` (W, H). `cull` is D3DCULL's NONE, CW or CCW (the default culls
@@ -202,23 +213,74 @@ def rasterize(clip_pos: np.ndarray, varyings: dict[str, np.ndarray], triangles: 
         X, Y = fx[tris], fy[tris]
         area = np.abs(area)
 
-    quad_tri, qx, qy, covered = _cover(X, Y, width, height)
-    if len(quad_tri) == 0:
-        return QuadFragments.empty(dims, quads)
-    return _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs,
-                        source, front, names, dims, flat_cols, provoking,
-                        depth_bias, slope_scale_depth_bias, quads)
+    y_lo = np.maximum(-((-Y.min(axis=1)) // _ONE), 0)          # first pixel row, ceil
+    y_hi = np.minimum(Y.max(axis=1) // _ONE, height - 1)        # last pixel row
+    return TriangleSetup(size, tris, X, Y, area, sz, inv_w, attrs, source, front, names, dims,
+                         flat_cols, provoking, depth_bias, slope_scale_depth_bias, quads,
+                         y_lo, y_hi)
 
 
-def _cover(X: np.ndarray, Y: np.ndarray, width: int, height: int):
-    """Exact coverage of clockwise triangles (T, 3) fixed-point vertices, by quad rows.
+@dataclass
+class TriangleSetup:
+    """A draw's triangles clipped, projected, culled and oriented: what rasterising any band of
+    pixel rows needs. Built once per draw; `rows` rasterises one band."""
+
+    size: tuple[int, int]
+    tris: np.ndarray
+    X: np.ndarray
+    Y: np.ndarray
+    area: np.ndarray
+    sz: np.ndarray
+    inv_w: np.ndarray
+    attrs: np.ndarray
+    source: np.ndarray
+    front: np.ndarray
+    names: list[str]
+    dims: dict[str, int]
+    flat_cols: np.ndarray
+    provoking: np.ndarray | None
+    depth_bias: float
+    slope_bias: float
+    quads: bool
+    y_lo: np.ndarray      # (T,) first and last pixel row each triangle can cover
+    y_hi: np.ndarray
+
+    def rows(self, y0: int = 0, y1: int | None = None) -> QuadFragments:
+        """The fragments in pixel rows [y0, y1) (y0 even, so quads stay whole): the same
+        rows, in the same order, as the whole frame's fragments restricted to those rows."""
+        height = self.size[1]
+        y1 = height if y1 is None else min(int(y1), height)
+        if y0 % 2:
+            raise ValueError(f"a band starts on an even row, not {y0}")
+        sel = (self.y_hi >= y0) & (self.y_lo < y1)
+        if not sel.any():
+            return QuadFragments.empty(self.dims, self.quads)
+        part = None if sel.all() else np.nonzero(sel)[0]
+
+        def pick(a):
+            return a if part is None else a[part]
+
+        tris, X, Y = pick(self.tris), pick(self.X), pick(self.Y)
+        quad_tri, qx, qy, covered = _cover(X, Y, self.size[0], y1, y0)
+        if len(quad_tri) == 0:
+            return QuadFragments.empty(self.dims, self.quads)
+        return _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, pick(self.area), self.sz,
+                            self.inv_w, self.attrs, pick(self.source), pick(self.front),
+                            self.names, self.dims, self.flat_cols,
+                            self.provoking,
+                            self.depth_bias, self.slope_bias, self.quads)
+
+
+def _cover(X: np.ndarray, Y: np.ndarray, width: int, height: int, y0: int = 0):
+    """Exact coverage of clockwise triangles (T, 3) fixed-point vertices, by quad rows, in the
+    pixel rows [y0, height) (y0 even).
 
     For each pair of pixel rows a triangle spans, every edge function E(x) = c - dy*256*x is
     solved for the range of integer x where E >= bias (bias 0 on top and left edges, 1 on the
     others: the top-left rule), giving the covered span of each row. Returns the quads (triangle
     index, quad origin x, y, (Q, 4) coverage) in triangle order, then y, then x.
     """
-    y_lo = np.maximum(-((-Y.min(axis=1)) // _ONE), 0)          # ceil, clamped to the viewport
+    y_lo = np.maximum(-((-Y.min(axis=1)) // _ONE), y0)         # ceil, clamped to the band
     y_hi = np.minimum(Y.max(axis=1) // _ONE, height - 1)
     qy0 = y_lo & ~1
     nrows = np.where(y_hi >= y_lo, (y_hi - qy0) // 2 + 1, 0)

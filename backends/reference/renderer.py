@@ -1,11 +1,12 @@
 """The NumPy reference back end: the ground truth every other back end is compared with.
 
-A draw runs the vertex program over all vertices at once, rasterises the triangles into 2x2
-quads (`rasterize`), runs the fragment program over every quad row with sampler callbacks that
-see whole quads (`sampler`), and merges the covered, unkilled fragments into the frame's render
-target in draw order (`output`). Big draws are cut into consecutive triangle chunks that are
-rasterised and shaded on a small thread pool (NumPy releases the GIL inside its kernels) and
-merged in order; a draw of a few large triangles is instead shaded in parallel chunks of rows.
+A draw runs the vertex program over all vertices at once, sets the triangles up once (clip,
+project, cull: `rasterize.setup_triangles`), then works band by band of pixel rows: rasterises
+the band into 2x2 quads, runs the fragment program over every quad row with sampler callbacks
+that see whole quads (`sampler`), and merges the band's covered, unkilled fragments into the
+render target in draw order (`output`). Bands hold disjoint pixels, so they are shaded and
+merged on a small thread pool (NumPy releases the GIL inside its kernels) in any order, and a
+band's size, not the frame's, bounds the memory a draw takes beyond the frame's own buffers.
 Helper pixels are shaded only when the fragment program samples a texture.
 
 Conventions beyond `effects.backend`:
@@ -35,14 +36,29 @@ from effects.passprogram import PassProgram, TextureBinding
 from effects.backend import DrawError, register_backend, triangle_list
 from backends.reference import output
 from backends.reference.evaluate import evaluate, input_components
-from backends.reference.rasterize import QuadFragments, rasterize
+from backends.reference.rasterize import QuadFragments, TriangleSetup, setup_triangles
 from backends.reference.sampler import SamplerSettings, sample
 
 _COLOR_VARYINGS = ("color0", "color1")
 _DEFAULTS = {"color0": np.ones(4, np.float32), "color1": np.zeros(4, np.float32)}
 _DEFAULT_VALUE = np.array([0, 0, 0, 1], np.float32)
 _CHUNK_ROWS = 4 * 8192       # rows shaded per chunk, whole quads (temporaries stay small)
-_TRIANGLES_PER_CHUNK = 1024  # fewest triangles worth a parallel rasterise-and-shade task
+BAND_PIXELS = 1 << 16        # pixels per band of rows: bounds a band's fragments (~7 MiB of
+                             # them at the ~110 bytes a fragment costs in flight)
+PARALLEL_PIXELS = 1 << 12    # the smallest band worth a thread of its own
+
+
+def band_rows(size: tuple[int, int], threads: int = 1) -> list[tuple[int, int]]:
+    """Row ranges [y0, y1) that cover a frame: about BAND_PIXELS each, and at least one per
+    thread where each would still hold PARALLEL_PIXELS; every band starts on an even row, so
+    2x2 quads are never cut."""
+    width, height = size
+    bands = -(-width * height // BAND_PIXELS)
+    if threads > 1:
+        bands = max(bands, min(threads, width * height // PARALLEL_PIXELS))
+    rows = max(2, -(-height // max(1, bands)))
+    rows += rows % 2
+    return [(y0, min(y0 + rows, height)) for y0 in range(0, height, rows)]
 
 
 def sampler_settings(binding: TextureBinding) -> SamplerSettings:
@@ -150,18 +166,24 @@ class ReferenceBackend:
         clip, varyings = _vertex_stage(program.vertex, streams, uniforms, count)
         stage = _FragmentStage(program, clip, _needed_varyings(program.fragment, varyings),
                                uniforms, sampler_callbacks(program, textures), fb.size)
-        # Triangles in consecutive chunks, rasterised and shaded in parallel, merged in order
-        # (all of a chunk's fragments precede the next chunk's, so draw order is kept).
-        pieces = max(1, min(2 * self.threads, len(tris) // _TRIANGLES_PER_CHUNK))
-        if self.threads > 1 and pieces > 1:
-            bounds = np.linspace(0, len(tris), pieces + 1).astype(int)
-            chunks = [tris[bounds[i]:bounds[i + 1]] for i in range(pieces)]
-            results = list(self._executor().map(lambda t: stage.run(t, None), chunks))
-        else:
-            results = [stage.run(tris, self._executor() if self.threads > 1 else None)]
-        for result in results:
+        setup = stage.setup(tris)
+        if setup is None:
+            return
+        # Bands of pixel rows: each is rasterised, shaded and merged on its own (a band's
+        # fragments hold only its rows, so memory stays bounded by the band, not the frame),
+        # and bands touch disjoint pixels, so they run in parallel and merge without order.
+        bands = band_rows(fb.size, self.threads)
+
+        def one(rows: tuple[int, int]) -> None:
+            result = stage.run(setup.rows(*rows))
             if result is not None:
                 output.merge(fb, state, *result)
+
+        if self.threads > 1 and len(bands) > 1:
+            list(self._executor().map(one, bands))
+        else:
+            for rows in bands:
+                one(rows)
 
     def _executor(self) -> ThreadPoolExecutor:
         if self._pool is None:
@@ -190,17 +212,23 @@ class _FragmentStage:
         # Helper pixels are shaded only when an op needs quad derivatives (its row says).
         self.quads = any(OPS[instr.op].needs_quads for instr in program.fragment.instrs)
 
-    def run(self, tris: np.ndarray, pool: ThreadPoolExecutor | None):
-        """(pixels, colour, depth, front, colour2) of the covered, unkilled fragments of
-        `tris` in draw order, or None."""
+    def setup(self, tris: np.ndarray) -> TriangleSetup | None:
+        """The draw's triangles ready for rasterising bands of rows, or None (nothing left)."""
         state = self.state
         flat = _COLOR_VARYINGS if state.shade_mode == "FLAT" else ()
-        frags = rasterize(self.clip, self.needed, tris, self.size, state.cull_mode, flat=flat,
-                          depth_bias=state.depth_bias,
-                          slope_scale_depth_bias=state.slope_scale_depth_bias, quads=self.quads)
+        setup = setup_triangles(self.clip, self.needed, tris, self.size, state.cull_mode,
+                                flat=flat, depth_bias=state.depth_bias,
+                                slope_scale_depth_bias=state.slope_scale_depth_bias,
+                                quads=self.quads)
+        return setup if isinstance(setup, TriangleSetup) else None
+
+    def run(self, frags: QuadFragments):
+        """(pixels, colour, depth, front, colour2) of the covered, unkilled fragments of
+        `frags` in draw order, or None."""
+        state = self.state
         if frags.count == 0:
             return None
-        colour, colour2, depth_out, killed = self._shade(frags, pool)
+        colour, colour2, depth_out, killed = self._shade(frags)
         keep = frags.covered
         if killed is not None:
             keep = keep & ~killed
@@ -216,9 +244,9 @@ class _FragmentStage:
         return (pixels, color, depth, frags.front[rows],
                 None if colour2 is None else colour2[rows])
 
-    def _shade(self, frags: QuadFragments, pool: ThreadPoolExecutor | None):
-        """Run the fragment program over every row in chunks of whole quads (on `pool` when
-        given). Returns colour0, colour1 or None, the depth output or None, killed or None."""
+    def _shade(self, frags: QuadFragments):
+        """Run the fragment program over every row in chunks of whole quads. Returns colour0,
+        colour1 or None, the depth output or None, killed or None."""
         fragment = self.program.fragment
         chunks = [(s, min(s + _CHUNK_ROWS, frags.count))
                   for s in range(0, frags.count, _CHUNK_ROWS)]
@@ -229,10 +257,7 @@ class _FragmentStage:
             return evaluate(fragment, inputs, self.callbacks, count=stop - start,
                             quads=self.quads)
 
-        if pool is not None and len(chunks) > 1:
-            results = list(pool.map(run, chunks))
-        else:
-            results = [run(c) for c in chunks]
+        results = [run(c) for c in chunks]
         outputs = fragment.output_map
 
         def gather(name):

@@ -113,6 +113,34 @@ def no_valid_technique(effect: Effect, profile: "CapsProfile", policy: Any = "fi
     return NoValidTechnique(message, Location(effect.path, 1, 1), reasons=reasons)
 
 
+_SELECTIONS: dict[tuple, tuple] = {}
+_SELECTIONS_SIZE = 64
+
+
+def _selected(effect: Effect, profile: "CapsProfile", policy: Any) -> "Validation | None":
+    """`select_validation(effect, profile, policy)`, remembered across Runtimes: each
+    `effects.render()` call makes a Runtime over a fresh copy of the parameters, and the copy
+    shares the techniques. The selection is made again only when a parameter that validation
+    read differs (`effects.model.RecordedReads`); the same Validation object comes back, so
+    the lowering cache (which keys on it) hits too."""
+    from effects.model import RecordedReads, still_holds
+    from effects.validate.select import select_validation
+    try:
+        key = (id(effect.techniques), id(profile), policy)
+        hit = _SELECTIONS.get(key)
+    except TypeError:   # an unhashable policy object: no memory
+        return select_validation(effect, profile, policy)
+    if hit is not None and hit[0] is effect.techniques and hit[1] is profile and still_holds(effect, hit[2]):
+        return hit[3]
+    reads = RecordedReads(effect)
+    chosen = select_validation(reads, profile, policy)  # type: ignore[arg-type]
+    _SELECTIONS.pop(key, None)
+    if len(_SELECTIONS) >= _SELECTIONS_SIZE:
+        _SELECTIONS.pop(next(iter(_SELECTIONS)))
+    _SELECTIONS[key] = (effect.techniques, profile, reads.snapshot(), chosen)
+    return chosen
+
+
 @dataclass
 class Frame:
     """A finished render and what made it."""
@@ -294,13 +322,12 @@ class Runtime:
     # -- technique -------------------------------------------------------------------------
     def select(self, technique: Technique | str | None = None, policy: Any = "first") -> Technique:
         """The named technique (valid or not), or the one the card selects."""
-        from effects.validate.select import select_validation
         if technique is not None:
             named = technique if isinstance(technique, Technique) else self.effect.technique(technique)
             if self.validation is not None and self.validation.technique is not named:
                 self.validation = None
             return named
-        chosen = select_validation(self.effect, self.profile, policy)
+        chosen = _selected(self.effect, self.profile, policy)
         if chosen is None:
             raise no_valid_technique(self.effect, self.profile, policy)
         self.validation = chosen

@@ -45,7 +45,7 @@ from effects.ir import Builder, Program
 from effects.lower.stages import FogSetup, FragmentInputs, StageSetup, apply_fog, lower_cascade
 from effects.lower.vertex import LightSetup, TexCoordSetup, VertexSetup, lower_vertex
 from effects.model import (CompileShader, Effect, NullValue, Parameter, ParamRef,
-                    ShaderBlock, Technique)
+                    RecordedReads, ShaderBlock, Technique, still_holds)
 from effects.passprogram import PassProgram, RenderState, TextureBinding
 from effects.precision import lowering_options
 from effects.stage_ops import MAX_STAGES, TCI_MODES, TCI_SET_MASK, TCI_SHIFT, TTFF_PROJECTED
@@ -81,12 +81,12 @@ def lower_pass(effect: Effect, technique: Technique, pass_index: int,
     # A validation's device state was applied when the technique was validated (sampler states
     # included): the program is good for that validation object only.
     if hit is not None and hit[0] is technique and hit[3] is validation \
-            and _still_reads(effect, hit[1]):
+            and still_holds(effect, hit[1]):
         return hit[2]
     if not 0 <= pass_index < len(technique.passes):
         raise EffectError(f"technique '{technique.name}' has no pass {pass_index} (it has "
                           f"{len(technique.passes)})", technique.location)
-    reads = _ReadLog(effect)
+    reads = RecordedReads(effect)
     state = _pass_state(reads, technique, pass_index, validation,  # type: ignore[arg-type]
                         host_states(host) if host else None)
     program = _lower(reads, state, profile, vertex_colors)  # type: ignore[arg-type]
@@ -139,57 +139,9 @@ def _cache_key(technique: Technique, pass_index: int, profile: "CapsProfile",
     and compared on a hit, so a recycled id cannot match. The effect is not in the key: a
     Runtime's copy of an effect shares its techniques, so `effects.render()` called again hits.
     What the program depends on beyond that, the parameters it read, is checked by
-    `_still_reads` on a hit: only those, so the check costs what the pass reads, not what the
+    `still_holds` on a hit: only those, so the check costs what the pass reads, not what the
     file declares."""
     return (id(technique), pass_index, profile.name, vertex_colors)
-
-
-class _ReadLog:
-    """The effect as lowering sees it: every parameter looked up by name is noted, so a cache
-    hit can check that exactly those still hold what the program was lowered from."""
-
-    def __init__(self, effect: Effect) -> None:
-        self.effect, self.path = effect, effect.path
-        self.read: dict[str, Parameter | None] = {}
-
-    def parameter(self, name: str) -> Parameter | None:
-        param = self.effect.parameter(name)
-        self.read[name] = param
-        return param
-
-    def snapshot(self) -> tuple:
-        return tuple((name, _fingerprint(p)) for name, p in self.read.items())
-
-
-def _fingerprint(param: Parameter | None) -> tuple:
-    """What lowering takes from a parameter: its type (an untyped texture takes the kind of what
-    is bound) and annotations (`string Type`), and its value: numbers by bytes, other objects
-    (shader blocks, sampler states) by identity, as the parameter digest that preceded this did."""
-    if param is None:
-        return ()
-    v = param.value
-    if isinstance(v, np.ndarray):
-        value: Any = ("array", v.dtype.str, v.shape, v.tobytes())
-    elif v is None or isinstance(v, (str, int, float, bool)):
-        value = ("plain", type(v), v)
-    else:
-        value = ("object", v)    # compared by identity in _same
-    return (param.type, param.annotations, value)
-
-
-def _same(a: tuple, b: tuple) -> bool:
-    if len(a) != len(b):
-        return False
-    if not a:
-        return True
-    if a[0] != b[0] or a[1] is not b[1] and a[1] != b[1]:
-        return False
-    va, vb = a[2], b[2]
-    return va[0] == vb[0] and (va[1] is vb[1] if va[0] == "object" else va == vb)
-
-
-def _still_reads(effect: Effect, snapshot: tuple) -> bool:
-    return all(_same(_fingerprint(effect.parameter(name)), fp) for name, fp in snapshot)
 
 
 # --------------------------------------------------------------------------------------------
