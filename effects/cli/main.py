@@ -88,7 +88,21 @@ def _add_matrix(sub) -> None:
     p.add_argument("--policy", default="first", help="selection policy: first, quality, cost, "
                    "max-passes=N, comma-separated (default: first, as D3DX)")
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    p.add_argument("--render", metavar="SHEET.png",
+                   help="also draw the contact sheet: each cell the picture the card draws, or why not")
+    p.add_argument("--size", metavar="WxH", default="96x96", help="cell size for --render (default 96x96)")
+    p.add_argument("--scene", metavar="SCENE.yaml",
+                   help="scene for --render (default: NAME.yaml beside NAME.fx, else the default scene)")
+    p.add_argument("--backend", "-b", default="numpy", metavar="NAME", help="back end for --render")
+    _add_batch(p)
     p.set_defaults(run=_cmd_matrix)
+
+
+def _add_batch(p) -> None:
+    p.add_argument("--jobs", "-j", type=int, default=None, metavar="N",
+                   help="worker processes for the renders (default: every core)")
+    p.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+                   help="run the renders on this Dask distributed scheduler (pip install 'effects[dask]')")
 
 
 def _cmd_matrix(args, console: Console) -> int:
@@ -96,11 +110,26 @@ def _cmd_matrix(args, console: Console) -> int:
     from effects.frontend.loader import load_effect
     from effects.cli.report import matrix, print_matrix
     effects = {path: load_effect(path) for path in args.files}
-    result = matrix(effects, _profiles(args.profile), args.policy)
+    profiles = _profiles(args.profile)
+    result = matrix(effects, profiles, args.policy)
     if args.json:
         print(json.dumps(result, indent=2))
     else:
         print_matrix(result, console)
+    if args.render:
+        from effects.cli.sheet import render_sheet
+        if args.jobs is not None and args.jobs < 1:
+            raise UsageError("effects matrix: error: --jobs must be at least 1")
+        size = _parse_size(args.size, "matrix")
+        if min(size) < 1 or max(size) > 1024:
+            raise UsageError(f"effects matrix: error: --size {args.size!r}: cells are 1 to 1024 pixels a side")
+        names = list(args.profile) or [p.name for p in profiles]   # as given: workers load them
+        render_sheet(list(args.files), names, args.render, size=size, scene=args.scene,
+                     backend=args.backend, policy=args.policy, jobs=args.jobs,
+                     scheduler=args.scheduler, progress=not args.json)
+        if not args.json:
+            console.print(f"contact sheet: {len(args.files)} effects x {len(profiles)} cards "
+                          f"-> {args.render}", markup=False, highlight=False, soft_wrap=True)
     return EXIT_OK
 
 
@@ -142,12 +171,12 @@ def _add_render(sub) -> None:
     p.set_defaults(run=_cmd_render)
 
 
-def _parse_size(text: str | None) -> tuple[int, int] | None:
+def _parse_size(text: str | None, command: str = "render") -> tuple[int, int] | None:
     if text is None:
         return None
     w, x, h = text.lower().partition("x")
     if not x or not w.strip().isdigit() or not h.strip().isdigit():
-        raise UsageError(f"effects render: error: --size {text!r}: expected WxH, e.g. 320x240")
+        raise UsageError(f"effects {command}: error: --size {text!r}: expected WxH, e.g. 320x240")
     return int(w), int(h)
 
 

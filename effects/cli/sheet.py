@@ -1,0 +1,104 @@
+"""`effects matrix --render SHEET.png`: the contact sheet of effects × cards.
+
+One row per effect, one column per card; each cell is the picture the card draws with the
+technique it selects (its name under it), or the reason it draws none, as text. The cells
+are independent renders, run by `effects.host.batch.run_jobs` on a process pool (`--jobs`) or
+on Dask (`--scheduler`), with a progress bar on stderr.
+"""
+from __future__ import annotations
+
+import os
+import textwrap
+from typing import Any, Sequence
+
+from effects.errors import Location, SceneError
+from effects.host.batch import Cell, CellJob, render_cell, run_jobs
+
+_LABEL_H = 14           # a line of PIL's default bitmap font, with spacing
+_HEADER_W = 120         # the effect-name column
+_BACKGROUND, _INK, _FAINT = (32, 32, 36), (230, 230, 230), (150, 150, 160)
+
+
+def scene_for(effect_path: str, scene: str | None) -> str | None:
+    """The scene a cell draws in: the one named, else `NAME.yaml` beside `NAME.fx` (the way
+    fxfiles/sdk8_style.yaml supplies what a DX8 file cannot declare), else the default."""
+    if scene is not None:
+        return scene
+    beside = os.path.splitext(effect_path)[0] + ".yaml"
+    return beside if os.path.isfile(beside) else None
+
+
+def sheet_jobs(files: Sequence[str], profiles: Sequence[str], size: tuple[int, int],
+               scene: str | None = None, backend: str = "numpy",
+               policy: str = "first") -> list[CellJob]:
+    return [CellJob(f, p, size, scene_for(f, scene), backend, policy) for f in files for p in profiles]
+
+
+def render_sheet(files: Sequence[str], profiles: Sequence[str], out: str, *,
+                 size: tuple[int, int] = (96, 96), scene: str | None = None,
+                 backend: str = "numpy", policy: str = "first", jobs: int | None = None,
+                 scheduler: Any = None, progress: bool = True) -> list[Cell]:
+    """Render every cell, compose the sheet and write it to `out` (PNG); returns the cells."""
+    todo = sheet_jobs(files, profiles, size, scene, backend, policy)
+    if progress:
+        from rich.console import Console
+        from rich.progress import Progress
+        with Progress(console=Console(stderr=True), transient=True) as bar:
+            task = bar.add_task(f"{len(files)} effects × {len(profiles)} cards", total=len(todo))
+            cells = run_jobs(render_cell, todo, jobs=jobs, scheduler=scheduler,
+                             progress=lambda done, total: bar.update(task, completed=done))
+    else:
+        cells = run_jobs(render_cell, todo, jobs=jobs, scheduler=scheduler)
+    image = compose(cells, files, profiles, size)
+    try:
+        image.save(out)
+    except (OSError, ValueError) as exc:
+        raise SceneError(f"cannot write the sheet: {exc}", Location(out, 1, 1)) from None
+    return cells
+
+
+def compose(cells: Sequence[Cell], files: Sequence[str], profiles: Sequence[str],
+            size: tuple[int, int]):
+    """The sheet as a PIL image: a header row of card names, then a row per effect."""
+    from PIL import Image, ImageDraw
+    w, h = size
+    cell_h = h + _LABEL_H
+    sheet = Image.new("RGB", (_HEADER_W + w * len(profiles), _LABEL_H + cell_h * len(files)),
+                      _BACKGROUND)
+    draw = ImageDraw.Draw(sheet)
+    for c, name in enumerate(profiles):
+        draw.text((_HEADER_W + c * w + 2, 1), _fit(os.path.basename(name), w), fill=_INK)
+    by_key = {(cell.effect, cell.profile): cell for cell in cells}
+    for r, path in enumerate(files):
+        top = _LABEL_H + r * cell_h
+        draw.text((2, top + h // 2), _fit(os.path.basename(path), _HEADER_W), fill=_INK)
+        for c, profile in enumerate(profiles):
+            left = _HEADER_W + c * w
+            cell = by_key[(path, profile)]
+            if cell.image is not None:
+                # RGBA render target shown opaque, as `effects render` writes it
+                picture = Image.fromarray(cell.image, "RGBA").convert("RGB")
+                sheet.paste(picture, (left, top))
+                draw.text((left + 2, top + h), _fit(cell.technique or "", w), fill=_FAINT)
+            else:
+                _reason(draw, cell.reason or "", left, top, w, cell_h)
+    return sheet
+
+
+def _fit(text: str, width: int) -> str:
+    """`text` cut to what fits `width` pixels of the 6-pixel default font."""
+    chars = max(1, width // 6)
+    text = _latin1(text)
+    return text if len(text) <= chars else text[:chars - 2] + ".."
+
+
+def _latin1(text: str) -> str:
+    # PIL's default bitmap font draws Latin-1 only
+    return text.encode("latin-1", "replace").decode("latin-1")
+
+
+def _reason(draw, text: str, left: int, top: int, w: int, h: int) -> None:
+    """The reason a card draws nothing, wrapped into the cell."""
+    lines = textwrap.wrap(_latin1(text), max(4, (w - 4) // 6))[: max(1, (h - 2) // 11)]
+    for k, line in enumerate(lines):
+        draw.text((left + 2, top + 2 + 11 * k), line, fill=(220, 120, 110))

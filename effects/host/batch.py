@@ -1,0 +1,166 @@
+"""Batch work that scales out: independent renders run on a process pool or on Dask.
+
+    cells = run_jobs(render_cell, [CellJob("fxfiles/phong.fx", "geforce3"), ...], jobs=4)
+
+`run_jobs` hands each job to `fn` and returns the results in job order:
+- `jobs=1`: in this process, one after another;
+- `jobs=N` (default: every core): a `concurrent.futures.ProcessPoolExecutor` of N workers
+  (NumPy work holds the GIL between kernels, so processes, not threads, scale it);
+- `scheduler="tcp://HOST:PORT"` (or a `distributed.Client`): on an existing Dask distributed
+  cluster (the optional extra `effects[dask]`); the jobs and results travel pickled.
+`progress(done, total)` is called as jobs finish, in whatever order they finish.
+
+`render_cell` is one cell of the contact sheet: the picture a card draws for an effect (the
+technique it selects), or why it draws none. A worker loads each effect and card once.
+"""
+from __future__ import annotations
+
+import os
+import threading
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass
+from typing import Any, Callable, Iterable, Sequence, TypeVar
+
+from effects.errors import EffectError, Location
+
+J = TypeVar("J")
+R = TypeVar("R")
+
+
+def default_jobs() -> int:
+    """Every core this process may run on."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover (not Linux)
+        return max(1, os.cpu_count() or 1)
+
+
+def run_jobs(fn: Callable[[J], R], items: Iterable[J], *, jobs: int | None = None,
+             scheduler: Any = None,
+             progress: Callable[[int, int], None] | None = None) -> list[R]:
+    """`[fn(item) for item in items]`, run as the module docstring says."""
+    todo = list(items)
+    report = progress or (lambda done, total: None)
+    if scheduler is not None:
+        return _on_dask(fn, todo, scheduler, report)
+    workers = default_jobs() if jobs is None else int(jobs)
+    if workers < 1:
+        raise ValueError(f"jobs must be at least 1, not {jobs}")
+    workers = min(workers, max(1, len(todo)))
+    if workers == 1:
+        results = []
+        for n, item in enumerate(todo, 1):
+            results.append(fn(item))
+            report(n, len(todo))
+        return results
+    out: list[Any] = [None] * len(todo)
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        futures = {pool.submit(fn, item): i for i, item in enumerate(todo)}
+        for n, future in enumerate(as_completed(futures), 1):
+            out[futures[future]] = future.result()
+            report(n, len(todo))
+    return out
+
+
+def _on_dask(fn: Callable[[J], R], todo: Sequence[J], scheduler: Any,
+             report: Callable[[int, int], None]) -> list[R]:
+    try:
+        from distributed import Client, as_completed as dask_completed
+    except ImportError:
+        raise EffectError("--scheduler needs Dask distributed: pip install 'effects[dask]'",
+                          Location("<scheduler>", 1, 1)) from None
+    own = not isinstance(scheduler, Client)
+    try:
+        client = Client(scheduler, timeout=10) if own else scheduler
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise EffectError(f"cannot reach the Dask scheduler {scheduler}: {exc}",
+                          Location("<scheduler>", 1, 1)) from None
+    try:
+        futures = client.map(fn, list(todo), pure=False)
+        index = {f.key: i for i, f in enumerate(futures)}
+        out: list[Any] = [None] * len(todo)
+        for n, future in enumerate(dask_completed(futures), 1):
+            out[index[future.key]] = future.result()
+            report(n, len(todo))
+        return out
+    finally:
+        if own:
+            client.close()
+
+
+# --------------------------------------------------------------------------------------------
+# One cell of the contact sheet
+
+
+@dataclass(frozen=True)
+class CellJob:
+    effect: str                      # path of the .fx file
+    profile: str                     # card name or YAML path
+    size: tuple[int, int] = (96, 96)
+    scene: str | None = None         # scene YAML path, or None for the default scene
+    backend: str = "numpy"
+    policy: str = "first"
+
+
+@dataclass(frozen=True)
+class Cell:
+    """What a card draws: `image` (H x W x 4 uint8) and the technique, or `reason` (text)."""
+
+    effect: str
+    profile: str
+    technique: str | None
+    image: Any = None
+    reason: str | None = None
+
+
+_EFFECTS: dict[tuple[str, float], Any] = {}
+
+
+def _effect(path: str):
+    """The effect at `path`, loaded once per worker (again when the file changes)."""
+    from effects.frontend.loader import load_effect
+    key = (os.path.abspath(path), os.stat(path).st_mtime)
+    if key not in _EFFECTS:
+        _EFFECTS[key] = load_effect(path)
+    return _EFFECTS[key]
+
+
+_LOCAL = threading.local()
+
+
+def _backend(name: str) -> Any:
+    """A back end of this thread's own: a back end holds the frame being drawn, and a Dask
+    worker runs several cells at once on threads. The NumPy one shades on one thread, as the
+    pool already keeps every core busy."""
+    backends = _LOCAL.__dict__.setdefault("backends", {})
+    if name not in backends:
+        from effects.backend import create_backend
+        try:
+            backends[name] = create_backend(name, threads=1) if name in ("numpy", "reference") \
+                else create_backend(name)
+        except EffectError:
+            raise
+        except Exception as exc:  # no GL context, a missing driver
+            raise EffectError(f"cannot start the {name!r} back end: {type(exc).__name__}: {exc}",
+                              Location("<backend>", 1, 1)) from None
+    return backends[name]
+
+
+def render_cell(job: CellJob) -> Cell:
+    """The picture `job.profile` draws for `job.effect`, or the reason it draws none (the first
+    reason of the first technique, or the error the render raised)."""
+    from effects.caps import load_profile
+    from effects.errors import NoValidTechnique
+    from effects.host.runtime import render_frame
+    try:
+        effect = _effect(job.effect)
+        profile = load_profile(job.profile)
+        frame = render_frame(effect, profile, backend=_backend(job.backend), scene=job.scene,
+                             size=job.size, policy=job.policy)
+    except NoValidTechnique as exc:
+        reasons = [r for rs in exc.reasons.values() for r in rs]
+        why = str(reasons[0]) if reasons else str(exc).splitlines()[0]
+        return Cell(job.effect, job.profile, None, reason=f"no valid technique: {why}")
+    except (EffectError, OSError) as exc:
+        return Cell(job.effect, job.profile, None, reason=str(exc).splitlines()[0])
+    return Cell(job.effect, job.profile, frame.technique.name or "<anonymous>", image=frame.image)
