@@ -271,3 +271,19 @@ def test_missing_height_image_is_reported_at_the_annotation(tmp_path):
     assert str(info.value).startswith("fx/phong.fx:94:5: error: height image not found")
     with pytest.raises(SceneError, match="expected an edge length"):
         T.procedural("normalization_cube:big")
+
+
+def test_the_texture_caches_are_bounded_by_bytes_least_recently_used_first():
+    from effects.host.lru import ByteLRU
+    levels = lambda n: T.Texture("2d", "A8R8G8B8", [np.zeros((n, n, 4), np.float32)])  # noqa: E731
+    cache = ByteLRU(max_bytes=3 * 16 * 16 * 4 * 4)       # three 16x16 float textures
+    for key in "abc":
+        cache.put(key, levels(16))
+    assert cache.get("a") is not None                    # a is now the most recent
+    cache.put("d", levels(16))                           # evicts b, the least recent
+    assert "b" not in cache and all(k in cache for k in "acd")
+    for n in range(100):                                 # many small ones fit together
+        cache.put(("small", n), levels(1))
+    assert sum(1 for n in range(100) if ("small", n) in cache) == 100
+    cache.put("huge", levels(64))                        # bigger than the bound: not kept
+    assert "huge" not in cache and cache.bytes <= cache.max_bytes

@@ -30,7 +30,6 @@ hemisphere shaders, which read the occlusion from v7.z; cast over the mesh on fi
 """
 from __future__ import annotations
 
-import threading
 
 import os
 from dataclasses import dataclass
@@ -45,6 +44,7 @@ from effects.host import brdf as _brdf  # noqa: F401  (registers the brdf_factor
 from effects.model import Effect, Parameter
 from effects.host.scene import InlineMesh, Scene
 from effects import limits
+from effects.host.lru import DEFAULT_TEXTURE_BYTES, ByteLRU
 from effects.host.texture_files import load_texture
 from effects.host.textures import PROCEDURAL, Texture, procedural
 from effects.untrusted import confine
@@ -90,12 +90,12 @@ def stand_in_texture(kind: str) -> Texture:
 
 
 class TextureCache:
-    """Texture files by (absolute path, modification time, kind): a changed file reloads."""
+    """Texture files by (absolute path, modification time, kind): a changed file reloads.
+    Bounded by the bytes of the textures kept (least recently used out first), so an effect
+    with many small textures does not thrash it and a few big ones do not pin memory."""
 
-    def __init__(self, limit: int = 64) -> None:
-        self.limit = limit
-        self._entries: dict[tuple, Texture] = {}
-        self._lock = threading.Lock()
+    def __init__(self, max_bytes: int = DEFAULT_TEXTURE_BYTES) -> None:
+        self._entries = ByteLRU(max_bytes)
         self.loads = 0   # files actually read (tests and the viewer's log use it)
 
     def load(self, path: str, kind: str | None, at: Location) -> Texture:
@@ -114,10 +114,7 @@ class TextureCache:
             # Say which parameter wanted it: the error's own location is the image file.
             raise SceneError(f"{exc.message} ({full})", at) from None
         self.loads += 1
-        with self._lock:  # loads happen on the viewer's worker and render threads
-            if len(self._entries) >= self.limit:
-                self._entries.pop(next(iter(self._entries)))
-            self._entries[key] = texture
+        self._entries.put(key, texture)
         return texture
 
 

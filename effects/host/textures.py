@@ -22,7 +22,6 @@ Conventions (all of this module, `effects.host.pixel_formats` and `effects.host.
 """
 from __future__ import annotations
 
-import functools
 import os
 from dataclasses import dataclass
 from typing import Callable
@@ -33,6 +32,7 @@ from effects import limits
 from effects.untrusted import confine
 from effects.host import pixel_formats
 from effects.host.images import read_image
+from effects.host.lru import ByteLRU
 from effects.errors import Location, SceneError
 
 KINDS = ("1d", "2d", "3d", "cube")
@@ -583,8 +583,19 @@ def _height_from_image(path: str, where: Location) -> np.ndarray:
     return read_image(path, "L", where, "height image").astype(np.float32) / 255.0
 
 
-@functools.lru_cache(maxsize=64)
+_PROCEDURAL_CACHE = ByteLRU()   # by bytes: a 64-entry bound thrashed on effects with many
+
+
 def _procedural_cached(base: str, arg: str, size: int, path: str, stamp: float) -> Texture:
+    key = (base, arg, size, path, stamp)
+    hit = _PROCEDURAL_CACHE.get(key)
+    if hit is None:
+        hit = _make_procedural(base, arg, size, path)
+        _PROCEDURAL_CACHE.put(key, hit)
+    return hit
+
+
+def _make_procedural(base: str, arg: str, size: int, path: str) -> Texture:
     entry = PROCEDURAL[base]
     heights = None
     if entry.takes_height:
