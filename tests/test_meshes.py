@@ -217,3 +217,53 @@ def test_by_name(tmp_path):
         M.by_name("donut")
     with pytest.raises(SceneError, match="mesh file not found"):
         M.by_name("gone.obj", base_dir=str(tmp_path))
+
+
+# -- the vectorised .obj reader ---------------------------------------------------------------
+
+_OBJ_GRID = "".join(f"v {x * 0.5} {y * 0.25} {(x * y) % 3 * 0.1}\n" for y in range(4) for x in range(4))
+_OBJ_UV = "".join(f"vt {x / 3} {y / 3}\n" for y in range(4) for x in range(4))
+_OBJ_N = "".join(f"vn 0 {1 + x % 2} {y % 2}\n" for y in range(4) for x in range(4))
+
+
+def _faces(form: str) -> str:
+    out = []
+    for y in range(3):
+        for x in range(3):
+            a, b, c, d = (y * 4 + x + 1, y * 4 + x + 2, y * 4 + x + 5, y * 4 + x + 6)
+            for tri in ((a, c, b), (b, c, d)):
+                out.append("f " + " ".join(form.format(i=i, t=(i % 16) + 1, n=17 - i) for i in tri))
+    return "\n".join(out) + "\n"
+
+
+@pytest.mark.parametrize("header, form", [
+    (_OBJ_GRID, "{i}"), (_OBJ_GRID + _OBJ_UV, "{i}/{t}"), (_OBJ_GRID + _OBJ_N, "{i}//{n}"),
+    ("# a comment\no grid\n" + _OBJ_GRID + _OBJ_UV + _OBJ_N + "s 1\r\n", "{i}/{t}/{n}"),
+])
+def test_fast_obj_reader_makes_the_per_line_readers_mesh(tmp_path, monkeypatch, header, form):
+    from effects.host import obj_fast
+    path = tmp_path / "m.obj"
+    path.write_text(header + _faces(form))
+    assert obj_fast.parse(path.read_bytes()) is not None
+    fast = M.load_obj(path)
+    monkeypatch.setattr(obj_fast, "parse", lambda raw: None)
+    slow = M.load_obj(path)
+    for name in ("positions", "normals", "uv", "tangents", "binormals", "indices"):
+        np.testing.assert_array_equal(getattr(fast, name), getattr(slow, name))
+
+
+@pytest.mark.parametrize("text", [
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3 4\n",               # a quad
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n",                       # negative indices
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 # a comment\n",              # a comment after it
+    "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n",                          # a face before its vertex
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1/1 3/1\n",         # mixed corner forms
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1 2/1/1/1 3/1/1\n",  # 2 + 4 fields
+    "v 0 0 0\nv 1 0 0\nv 0 x 0\nf 1 2 3\n",                          # a bad number
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n",                          # out of range
+    "  v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",                        # indented
+    "v 0 0 0\nv 1 0\u00a0 0\nv 0 1 0\nf 1 2 3\n",                    # odd whitespace
+])
+def test_fast_obj_reader_leaves_irregular_files_to_the_per_line_reader(text):
+    from effects.host import obj_fast
+    assert obj_fast.parse(text.encode()) is None
