@@ -196,11 +196,10 @@ def _cmd_render(args, console: Console) -> int:
                              scene=args.scene, size=size, params=params, policy=args.policy,
                              strict=args.strict)
     except NoValidTechnique as exc:
-        from rich.console import Console
-        Console(stderr=True, highlight=False).print(str(exc), markup=False, soft_wrap=True)
+        _stderr().print(str(exc), markup=False, soft_wrap=True)
         return EXIT_INVALID
     ms = (time.perf_counter() - start) * 1000.0
-    err = Console(stderr=True, highlight=False)
+    err = _stderr()
     for warning in [*effect.warnings, *frame.warnings]:
         err.print(warning.report(), markup=False, soft_wrap=True, style="yellow")
     image = frame.image if args.alpha else opaque(frame.image)
