@@ -1,0 +1,283 @@
+"""Cost as the work grows (issue 15): each row of the issue's table, measured side by side in
+one run, with the fitted exponent where the work grows, and the goal.
+
+    .venv/bin/python benchmarks/bench_scale.py [--quick] [--only ROW,...]
+
+Rows (names for --only):
+  validate   every technique of a generated 1k / 10k / 30k-line effect on the 19 cards
+  lower      every pass of a generated 1k / 10k / 100k-line effect (30k with --quick)
+  render     effects.render() called again vs a reused Runtime, 64x64 NumPy; memory over 1,000 calls
+  frame      NumPy Phong frame (phong.fx on the radeon9700) 64/128/512, 1 and 2 threads
+  startup    `effects --help`, `import effects`, `effects profiles`, `effects matrix fxfiles/*.fx`
+  memory     peak memory of a process that draws one 2048x2048 NumPy frame
+  mesh       a 1M-triangle .obj with tangent frames; sphere() of 1M triangles
+  textures   Runtime construction over an effect with 100 textures
+  sheet      `effects matrix --render` contact sheet, all fxfiles x 19 cards: --jobs 1 vs 2, Dask
+Times are the minimum of several runs (the least disturbed by other work on the machine);
+the exponent is the least-squares slope of log(time) over log(lines).
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import tracemalloc
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "benchmarks"))
+
+import effects  # noqa: E402
+from bench_load import make_effect  # noqa: E402
+from effects.caps import list_profiles, load_profile  # noqa: E402
+
+ROWS: list[tuple[str, str, str, str]] = []   # (work, figures, exponent, goal)
+
+
+def row(work: str, figures: str, exponent: str, goal: str) -> None:
+    ROWS.append((work, figures, exponent, goal))
+    print(f"{work:<44} {figures:<46} {exponent:<10} {goal}", flush=True)
+
+
+def best(fn, runs: int = 3) -> float:
+    times = []
+    for _ in range(runs):
+        start = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def exponent(sizes, times) -> float:
+    xs, ys = [math.log(s) for s in sizes], [math.log(t) for t in times]
+    mx, my = statistics.fmean(xs), statistics.fmean(ys)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+
+
+def ms(seconds: float) -> str:
+    return f"{seconds * 1000:.1f} ms" if seconds < 1 else f"{seconds:.2f} s"
+
+
+def _verdict(ok: bool) -> str:
+    return "ok" if ok else "MISSED"
+
+
+# -- rows --------------------------------------------------------------------------------------
+
+def bench_validate(quick: bool) -> None:
+    cards = [load_profile(p) for p in list_profiles()]
+    sizes = [1000, 10000] if quick else [1000, 10000, 30000]
+    times = []
+    for n in sizes:
+        effect = effects.load_effect(make_effect(n))
+        times.append(best(lambda: [effect.validate(t, c) for c in cards for t in effect.techniques],
+                          3 if n <= 10000 else 1))
+    ratio = times[1] / times[0]
+    row(f"validate on {len(cards)} cards, {' → '.join(f'{n // 1000}k' for n in sizes)} lines",
+        " → ".join(ms(t) for t in times), f"{exponent(sizes, times):.2f}",
+        f"10k ≤ 11× 1k: {ratio:.1f}× {_verdict(ratio <= 11)}")
+
+
+def bench_lower(quick: bool) -> None:
+    from effects.lower.passes import clear_cache, lower_pass
+    card = load_profile("radeon9700")
+    sizes = [1000, 10000, 30000] if quick else [1000, 10000, 100000]
+    times = []
+    for n in sizes:
+        effect = effects.load_effect(make_effect(n))
+
+        def lower_all():
+            clear_cache()
+            for t in effect.techniques:
+                for i in range(len(t.passes)):
+                    try:
+                        lower_pass(effect, t, i, card)
+                    except effects.EffectError:
+                        pass
+        times.append(best(lower_all, 3 if n <= 10000 else 1))
+    last = times[-1] / times[0]
+    limit = 1.1 * sizes[-1] / sizes[0]
+    row(f"lower every pass, {' → '.join(f'{n // 1000}k' for n in sizes)} lines",
+        " → ".join(ms(t) for t in times), f"{exponent(sizes, times):.2f}",
+        f"{sizes[-1] // 1000}k ≤ {limit:.0f}× 1k: {last:.0f}× {_verdict(last <= limit)}")
+
+
+def bench_render() -> None:
+    from effects.host.runtime import Runtime
+    effect = effects.load_effect(str(ROOT / "fxfiles" / "phong.fx"))
+    card = load_profile("radeon9700")
+    runtime = Runtime(effect, card, size=(64, 64))
+    runtime.render()
+    effects.render(effect, card, size=(64, 64))
+    reused = best(lambda: [runtime.render() for _ in range(20)], 5) / 20
+    again = best(lambda: [effects.render(effect, card, size=(64, 64)) for _ in range(20)], 5) / 20
+    tracemalloc.start()
+    for _ in range(100):
+        effects.render(effect, card, size=(64, 64))
+    before = tracemalloc.get_traced_memory()[0]
+    for _ in range(900):
+        effects.render(effect, card, size=(64, 64))
+    growth = tracemalloc.get_traced_memory()[0] - before
+    tracemalloc.stop()
+    ratio = again / reused
+    row("effects.render() again, 64² NumPy", f"{ms(again)} vs Runtime {ms(reused)} ({ratio:.2f}×)",
+        "", f"≤ 1.2×: {_verdict(ratio <= 1.2)}; +{growth / 1024:.0f} KiB over calls 100-1000")
+
+
+def bench_frame() -> None:
+    from effects.backend import create_backend
+    from effects.host.runtime import Runtime
+    effect = effects.load_effect(str(ROOT / "fxfiles" / "phong.fx"))
+    card = load_profile("radeon9700")
+    for size in (64, 128, 512):
+        out = {}
+        for threads in (1, 2):
+            runtime = Runtime(effect, card, size=(size, size),
+                              backend=create_backend("numpy", threads=threads))
+            runtime.render()
+            frames = 30 if size < 512 else 5
+            out[threads] = best(lambda: [runtime.render() for _ in range(frames)], 3) / frames
+        goal = {64: ("1 thread ≤ 2.5 ms", out[1] <= 0.0025), 128: ("2 threads ≤ 1 thread", out[2] <= out[1] * 1.05),
+                512: ("≤ 23 ms (today)", min(out.values()) <= 0.023)}[size]
+        row(f"NumPy Phong frame {size}²", f"1 thread {ms(out[1])}, 2 threads {ms(out[2])}", "",
+            f"{goal[0]}: {_verdict(goal[1])}")
+
+
+def _command(*argv: str, runs: int = 5) -> float:
+    def once():
+        subprocess.run([sys.executable, *argv], cwd=ROOT, check=True, capture_output=True)
+    return best(once, runs)
+
+
+def bench_startup() -> None:
+    files = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "fxfiles").glob("*.fx"))
+    bare = _command("-c", "pass")
+    helps = _command("-m", "effects", "--help")
+    imports = _command("-c", "import effects")
+    profiles = _command("-m", "effects", "profiles")
+    matrix = _command("-m", "effects", "matrix", *files, runs=3)
+    row("effects --help / import effects", f"{ms(helps)} / {ms(imports)} (python alone {ms(bare)})", "",
+        f"--help ≤ 60 ms: {_verdict(helps <= 0.060)}")
+    row(f"effects profiles / matrix ({len(files)} files × 19 cards)", f"{ms(profiles)} / {ms(matrix)}", "",
+        f"matrix ≤ 300 ms: {_verdict(matrix <= 0.300)}")
+
+
+_PEAK = """
+import resource, sys
+sys.path.insert(0, {root!r})
+import effects
+from effects.host.runtime import Runtime
+runtime = Runtime(effects.load_effect({fx!r}), "radeon9700", size=(2048, 2048))
+runtime.render()
+print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
+"""
+
+
+def bench_memory() -> None:
+    script = _PEAK.format(root=str(ROOT), fx=str(ROOT / "fxfiles" / "phong.fx"))
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True)
+    peak = int(out.stdout.split()[-1]) / 1024
+    row("NumPy frame at 2048²: peak memory of the process", f"{peak:.0f} MiB", "",
+        f"≤ 200 MiB: {_verdict(peak <= 200)}")
+
+
+def _grid_obj(path: str, cells: int) -> int:
+    import numpy as np
+    u = np.linspace(0, 1, cells + 1)
+    uu, vv = np.meshgrid(u, u)
+    p = np.stack([uu * 4 - 2, np.sin(uu * 6) * np.cos(vv * 5) * 0.3, vv * 4 - 2], -1).reshape(-1, 3)
+    t = np.stack([uu, vv], -1).reshape(-1, 2)
+    idx = np.arange((cells + 1) ** 2).reshape(cells + 1, cells + 1) + 1
+    a, b, c, d = idx[:-1, :-1], idx[:-1, 1:], idx[1:, :-1], idx[1:, 1:]
+    tris = np.concatenate([np.stack([a, c, b], -1).reshape(-1, 3), np.stack([b, c, d], -1).reshape(-1, 3)])
+    with open(path, "w") as fh:
+        fh.write("".join(f"v {x:.6f} {y:.6f} {z:.6f}\n" for x, y, z in p))
+        fh.write("".join(f"vt {x:.6f} {y:.6f}\n" for x, y in t))
+        fh.write("vn 0 1 0\n")
+        fh.write("".join(f"f {i}/{i}/1 {j}/{j}/1 {k}/{k}/1\n" for i, j, k in tris))
+    return len(tris)
+
+
+def bench_mesh() -> None:
+    from effects.host.meshes import load_obj, sphere
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "grid.obj")
+        count = _grid_obj(path, 707)
+        obj = best(lambda: load_obj(path), 1)
+    ball = best(lambda: sphere(500, 1000), 1)
+    row(f"{count / 1e6:.1f}M-triangle .obj / sphere() mesh, with tangent frames", f"{ms(obj)} / {ms(ball)}", "",
+        f".obj ≤ 1.5 s: {_verdict(obj <= 1.5)}")
+
+
+def bench_textures() -> None:
+    from effects.host.runtime import Runtime
+    decls = "\n".join(f'texture T{i} < string Procedural = "power_table:{8 + i}"; >;' for i in range(100))
+    passes = "\n".join(f"pass P{i} {{ Texture[0] = <T{i}>; }}" for i in range(100))
+    effect = effects.load_effect(f"{decls}\ntechnique t {{ {passes} }}")
+    card = load_profile("radeon9700")
+
+    def make():
+        runtime = Runtime(effect, card, size=(8, 8))
+        for i in range(100):
+            runtime.texture(f"T{i}")
+    make()
+    row("Runtime over an effect with 100 textures", f"{ms(best(make, 3))} per construction", "",
+        "no reload once cached")
+
+
+def bench_sheet() -> None:
+    files = sorted(str(p) for p in (ROOT / "fxfiles").glob("*.fx"))
+    try:
+        from effects.cli.sheet import render_sheet
+    except ImportError:
+        row("contact sheet --jobs 1 vs 2", "n/a (no effects.cli.sheet)", "", "")
+        return
+    cards = list_profiles()
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "sheet.png")
+        one = best(lambda: render_sheet(files, cards, out, size=(64, 64), jobs=1, progress=False), 1)
+        two = best(lambda: render_sheet(files, cards, out, size=(64, 64), jobs=2, progress=False), 1)
+        dask = "n/a (no dask)"
+        try:
+            from distributed import Client, LocalCluster
+            with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as cluster, \
+                    Client(cluster) as client:
+                render_sheet(files, cards, out, size=(64, 64), scheduler=client, progress=False)
+                dask = ms(best(lambda: render_sheet(files, cards, out, size=(64, 64), scheduler=client,
+                                                    progress=False), 1))
+        except ImportError:
+            pass
+    speedup = one / two
+    row(f"contact sheet, {len(files)} effects × {len(cards)} cards, 64²",
+        f"--jobs 1 {ms(one)}, --jobs 2 {ms(two)} ({speedup:.2f}×); Dask 2 workers {dask}", "",
+        f"--jobs 2 ≥ 1.7×: {_verdict(speedup >= 1.7)}")
+
+
+BENCHES = {"validate": bench_validate, "lower": bench_lower, "render": bench_render,
+           "frame": bench_frame, "startup": bench_startup, "memory": bench_memory,
+           "mesh": bench_mesh, "textures": bench_textures, "sheet": bench_sheet}
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="smaller effects for the growth rows")
+    ap.add_argument("--only", default="", help="comma-separated row names (see the docstring)")
+    args = ap.parse_args(argv)
+    names = [n for n in args.only.split(",") if n] or list(BENCHES)
+    print(f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}, Python {sys.version.split()[0]}")
+    print(f"{'work':<44} {'figures':<46} {'exponent':<10} goal")
+    for name in names:
+        bench = BENCHES[name]
+        bench(args.quick) if name in ("validate", "lower") else bench()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
