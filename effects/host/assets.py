@@ -101,10 +101,12 @@ class TextureCache:
     def load(self, path: str, kind: str | None, at: Location) -> Texture:
         full = os.path.abspath(path)
         try:
-            stamp = os.stat(full).st_mtime_ns
+            info = os.stat(full)
         except OSError:
             raise MissingTexture(f"texture file not found: {path}", at) from None
-        key = (full, stamp, kind)
+        # The mtime alone is not enough: Linux stamps files with a coarse clock (a few ms), so
+        # two saves in one tick look alike; size and inode (an atomic save makes a new one) too.
+        key = (full, info.st_mtime_ns, info.st_size, info.st_ino, kind)
         hit = self._entries.get(key)
         if hit is not None:
             return hit
