@@ -98,6 +98,10 @@ BOUNDS = {
     ("hemisphere.fx", "HemisphereVertex_vs11"): Bound("lod", _LOD),
     ("hemisphere.fx", "HemispherePerPixel_ps11"): Bound("lod", _LOD),
     ("hemisphere.fx", "HemisphereOcclusion_ps11"): Bound("lod", _LOD),
+    ("multilight.fx", "MultiLight_ps30"): Bound(
+        "exact", "no textures: a ps_3_0 loop with aL-indexed constants, float arithmetic"),
+    ("multilight.fx", "MultiLight_ps20"): Bound("exact", "no textures, float arithmetic"),
+    ("multilight.fx", "MultiLight_ff"): Bound("exact", "no textures, per-vertex lighting"),
     ("phong.fx", "SingleTexture"): Bound("lod", _LOD),
     ("phong.fx", "Dot3_dx7"): Bound("lod", _LOD),
     ("phong.fx", "PerPixelPhong_ps11"): Bound("lod", _LOD + "; the N.H^96 table amplifies it"),

@@ -39,6 +39,13 @@ EXPECTED = {
     "brdf": row(dx6=NONE, dx7=NONE, dx8=("tec0", 1), dx9=("tec0", 1)),
     "hemisphere": row(dx6=("HemisphereVertex_vs11", 1), dx7=("HemisphereVertex_vs11", 1),
                       dx8=("HemisphereOcclusion_ps11", 1), dx9=("HemisphereOcclusion_ps11", 1)),
+    # SM3 on the GeForce 6800 and the reference device (and the modern profile); ps_2_0 on
+    # the other DX9 cards; fixed-function lighting below
+    "multilight": row(dx6=("MultiLight_ff", 1), dx7=("MultiLight_ff", 1),
+                      dx8=("MultiLight_ff", 1), geforcefx5900=("MultiLight_ps20", 1),
+                      gma900=("MultiLight_ps20", 1), radeon9700=("MultiLight_ps20", 1),
+                      geforce6800=("MultiLight_ps30", 1), modern=("MultiLight_ps30", 1),
+                      refrast=("MultiLight_ps30", 1)),
     "phong": row(dx6=("SingleTexture", 1), dx7=("Dot3_dx7", 1), dx8=("PerPixelPhong_ps11", 2),
                  dx9=("PerPixelPhong_ps20", 1)),
     "sdk8_style": row(dx6=("TDX6", 1), dx7=("TFF7", 1), geforce3=("TPS1", 1),
@@ -147,7 +154,8 @@ def test_dx6_and_dx7_cards_run_vs_1_1_fallbacks_in_software(loaded):
 
 
 def test_every_chain_ending_in_fixed_function_renders_everywhere(result):
-    for stem in ("hemisphere", "phong", "sdk8_style", "sdk9_style", "specular_bump"):
+    for stem in ("hemisphere", "multilight", "phong", "sdk8_style", "sdk9_style",
+                 "specular_bump"):
         assert all(cell["technique"] for cell in result[stem].values()), stem
 
 
