@@ -408,6 +408,8 @@ FX_COUNTS = {
                       (None, [17])],
     "hemisphere.fx": [("HemisphereOcclusion_ps11", [17]), ("HemispherePerPixel_ps11", [17]),
                       ("HemisphereVertex_vs11", [20]), ("SingleTexture", [21])],
+    "multilight.fx": [("MultiLight_ps30", [13]), ("MultiLight_ps20", [13]),
+                      ("MultiLight_ff", [34])],
     "phong.fx": [("PerPixelPhong_ps20", [14]), ("PerPixelPhong_ps11", [18, 14]),
                  ("Dot3_dx7", [30]), ("SingleTexture", [34])],
     "specular_bump.fx": [("Specular_ps20", [10]), ("SpecularTable_ps11", [19]),
