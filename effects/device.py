@@ -68,6 +68,8 @@ class DeviceState:
                 for inner in sampler.states:
                     self.apply(inner, index_override=index or 0)
             return
+        if isinstance(assignment.value, NullValue) and info is not None and info.type == "matrix":
+            return  # `WorldTransform[0] = 0;`: NULL sets nothing (see the effect builder)
         self.values[_key(assignment.name, index)] = assignment
 
     # -- reading ----------------------------------------------------------------------------
@@ -108,8 +110,9 @@ class DeviceState:
             if param is None:
                 return value
             v = param.value
-            if value.index is not None and isinstance(v, (list, tuple)) and value.index < len(v):
-                v = v[value.index]
+            if value.index is not None and isinstance(v, (list, tuple, np.ndarray)) \
+                    and param.array and value.index < len(v):
+                v = v[value.index]   # `<g_vLightPos[0]>`: one element of an array parameter
             if isinstance(v, np.ndarray) and v.shape == ():
                 return v.item()
             return v if v is not None else value

@@ -49,6 +49,8 @@ class Builder:
         self.nlines = len(self.map_lines)
         self.warnings: list = []
         self.param_names: set[str] = set()
+        self.typedefs: dict[str, TypeSpec] = {}
+        self.built: dict[str, Parameter] = {}   # parameters so far, for `[N]` and `= m[3][2]`
         from effects import states  # the states table; imported late so the parser loads without it
         self.states = states
 
@@ -84,7 +86,9 @@ class Builder:
         seen_tech: dict[str, Token] = {}
         for item in items:
             if isinstance(item, RawParam):
-                effect.parameters.append(self.parameter(item, structs))
+                param = self.parameter(item, structs)
+                effect.parameters.append(param)
+                self.built[param.name] = param
             elif isinstance(item, RawBlock):
                 if item.name is not None:
                     prior = seen_tech.get(item.name.value)
@@ -94,6 +98,8 @@ class Builder:
                                          item.name)
                     seen_tech[item.name.value] = item.name
                 effect.techniques.append(self.technique(item))
+            elif item[0] == "typedef":
+                self.typedef(item[1], structs)
             elif item[0] == "struct":
                 c = item[1]
                 structs.add(c[1].value)
@@ -111,20 +117,73 @@ class Builder:
 
     # -- parameters -----------------------------------------------------------------------
     def type_of(self, tok: Token, structs: set[str]) -> TypeSpec:
-        spec = resolve_type(tok.value, structs)
+        spec = self.typedefs.get(tok.value) or resolve_type(tok.value, structs)
         if spec is None:
             raise self.error(ParseError, f"unknown type '{tok.value}'", tok)
         return spec
 
+    def typedef(self, c: list, structs: set[str]) -> None:
+        """`typedef float4 COLOR;` (an array typedef is not kept: nothing real uses one)."""
+        _, _, type_tok, name_tok, dims, _ = c
+        if dims:
+            raise self.error(ParseError, f"typedef '{name_tok.value}': array typedefs are not "
+                             "supported", name_tok)
+        self.typedefs[name_tok.value] = self.type_of(type_tok, structs)
+
     def parameter(self, raw: RawParam, structs: set[str]) -> Parameter:
         spec = self.type_of(raw.type, structs)
-        dims = tuple(self.small_int(t, "array size") for t in raw.dims)
-        if any(d == 0 for d in dims):
-            raise self.error(ParseError, "array size must be at least 1", raw.dims[0])
         name = raw.name.value
+        dims = self.dims(raw.dims, spec, raw.value, name)
         value = None if raw.value is None else self.param_value(spec, dims, raw.value, name)
         return Parameter(name, spec, tuple(t.value.lower() for t in raw.storage), dims,
-                         raw.semantic, self.annotations(raw.annotations), value, self.loc(raw.name))
+                         _semantic(raw.semantic), self.annotations(raw.annotations), value,
+                         self.loc(raw.name))
+
+    def dims(self, raws: list, spec: TypeSpec, value: V | None, name: str) -> tuple[int, ...]:
+        """Array sizes: `[4]`; `[N]` with N a constant parameter declared before (a macro is
+        already a number); `[]` sized by the initializer."""
+        dims = []
+        for d in raws:
+            if isinstance(d, Token):
+                dims.append(self.small_int(d, "array size"))
+            elif d[0] == "named":
+                dims.append(self.named_size(d[1]))
+            else:
+                dims.append(self.unsized(spec, value, name, d[1]))
+        if any(n == 0 for n in dims):
+            first = raws[0] if isinstance(raws[0], Token) else raws[0][1]
+            raise self.error(ParseError, "array size must be at least 1", first)
+        return tuple(dims)
+
+    def named_size(self, tok: Token) -> int:
+        param = self.built.get(tok.value)
+        value = None if param is None else param.value
+        if not isinstance(value, np.ndarray) or value.size != 1 or value.dtype.kind not in "iuf" \
+                or float(value.reshape(-1)[0]) != int(value.reshape(-1)[0]):
+            raise self.error(ParseError, f"array size '{tok.value}' is not a constant integer "
+                             "declared before (a static const int or a macro)", tok)
+        size = int(value.reshape(-1)[0])
+        if not 0 <= size <= 65535:
+            raise self.error(ParseError, f"array size {size} is too large", tok)
+        return size
+
+    def unsized(self, spec: TypeSpec, value: V | None, name: str, tok: Token) -> int:
+        if value is None or value.kind != "list":
+            raise self.error(ParseError, f"'{name}[]' needs an initializer list to give its "
+                             "size", tok)
+        per = max(1, math.prod(type_shape(spec))) if spec.is_numeric else 1
+        if len(value.data) > 0 and all(item.kind == "list" for item in value.data):
+            return len(value.data)  # {{...}, {...}}: one list per element
+        if spec.is_numeric:
+            try:
+                count = len(self.flatten(value, []))
+            except _NotConstant:
+                count = len(value.data) * per
+            if count % per:
+                raise self.error(ParseError, f"'{name}[]': {count} values do not fill whole "
+                                 f"{spec.spelling} elements", value)
+            return count // per
+        return len(value.data)
 
     def small_int(self, tok: Token, what: str) -> int:
         value = int_value(tok.value)
@@ -134,10 +193,11 @@ class Builder:
 
     def annotations(self, raws: list) -> list[Annotation]:
         out = []
-        for type_tok, name_tok, v in raws:
+        for type_tok, name_tok, v, raw_dims in raws:
             spec = self.type_of(type_tok, set())
+            dims = self.dims(raw_dims, spec, v, name_tok.value) if raw_dims else ()
             out.append(Annotation(spec, name_tok.value,
-                                  self.param_value(spec, (), v, name_tok.value),
+                                  self.param_value(spec, dims, v, name_tok.value),
                                   self.loc(name_tok)))
         return out
 
@@ -185,6 +245,9 @@ class Builder:
                          f"'{self.text_of(v)[:40]}'", v)
 
     def numeric(self, spec: TypeSpec, dims: tuple[int, ...], v: V, name: str) -> Any:
+        ref = self.constant_reference(v)
+        if ref is not None:
+            v = ref
         try:
             flat = self.flatten(v, [])
         except _NotConstant:
@@ -226,11 +289,42 @@ class Builder:
             raise self.error(ParseError, f"a value for '{name}' does not fit in 64 bits", v)
         return np.array(ints, dtype=dtype).reshape(shape)
 
+    def constant_reference(self, v: V) -> V | None:
+        """`= world[3][2]`, `= Other`, `= (float4)0` over a constant earlier parameter: that
+        value, as a list of numbers (D3DX evaluates such initializers when it loads)."""
+        if v.kind == "cast":
+            inner = self.constant_reference(v.data[1])
+            return inner if inner is not None else v.data[1]
+        if v.kind == "name":
+            name, index = v.data, []
+        elif v.kind == "index" and v.data[1].kind == "int":
+            name, index = v.data[0], [v.data[1].data]
+        elif v.kind == "mindex":
+            name, index = v.data
+        else:
+            return None
+        param = self.built.get(name)
+        if param is None or not isinstance(param.value, np.ndarray):
+            return None
+        value = param.value
+        try:
+            for i in index:
+                value = value[i]
+        except IndexError:
+            raise self.error(ParseError, f"index out of range: '{self.text_of(v)[:40]}' "
+                             f"({param.name} is {param.type.spelling}"
+                             f"{''.join(f'[{d}]' for d in param.array)})", v) from None
+        numbers = [x.item() for x in np.asarray(value).reshape(-1)]
+        return V("list", [V("float" if isinstance(x, float) else "int", x, v.start, v.end,
+                            v.line, v.column) for x in numbers], v.start, v.end, v.line, v.column)
+
     def flatten(self, v: V, out: list) -> list:
         """Numbers of a constant initializer in order; raises _NotConstant otherwise."""
         kind = v.kind
         if kind in ("int", "float", "bool"):
             out.append(v.data)
+        elif kind == "cast":
+            self.flatten(v.data[1], out)
         elif kind in ("list", "paren"):
             for item in v.data:
                 self.flatten(item, out)
@@ -326,8 +420,18 @@ class Builder:
             return StateAssignment(name, self.unknown_value(raw.value), index, False, where)
         self.check_index(info, index, context, raw, where)
         stage = {"vertexshader": "vertex", "pixelshader": "pixel"}.get(info.type)
-        value = self.states.coerce_state_value(info, self.state_raw(raw.value, stage),
-                                               self.loc(raw.value), self.param_names)
+        value_raw = self.state_raw(raw.value, stage)
+        if type(value_raw) is int and value_raw == 0 and (stage is not None
+                                                          or info.type == "matrix"):
+            # `PixelShader = 0;`, `WorldTransform[0] = 0;`: D3DX reads a literal 0 for a
+            # shader or matrix state as NULL (no shader: the fixed-function pipeline; a NULL
+            # matrix sets nothing, so the device keeps the transform it has)
+            null = NullValue(self.loc(raw.value))
+            if info.type == "matrix":
+                return StateAssignment(info.name, null, index, True, where)
+            value_raw = null
+        value = self.states.coerce_state_value(info, value_raw, self.loc(raw.value),
+                                               self.param_names)
         return StateAssignment(info.name, value, index, True, where)
 
     def complain(self, message: str, where: Location) -> None:
@@ -361,7 +465,15 @@ class Builder:
             if all(o.kind in ("name", "int") for o in v.data):
                 return [o.data for o in v.data]
         elif kind == "ref":
+            if isinstance(v.data, tuple):   # `<g_vLightPos[0]>`
+                return ParamRef(v.data[0], True, v.data[1], self.loc(v))
             return ParamRef(v.data, True, None, self.loc(v))
+        elif kind == "cast":
+            inner = self.state_raw(v.data[1], stage)
+            if isinstance(inner, (int, float)) and not isinstance(inner, bool):
+                return float(inner) if v.data[0].lower().startswith(("float", "half", "double")) \
+                    else inner
+            return inner
         elif kind == "index":
             name, idx = v.data
             if idx.kind == "int":
@@ -405,3 +517,11 @@ class Builder:
             return EnumValue(tuple(str(x).upper() for x in raw), None, self.loc(v))
         return raw
 
+
+
+def _semantic(semantics: list[str]) -> str | None:
+    """The semantic of `: WORLD : register(c0)` (the register only when there is nothing else)."""
+    if not semantics:
+        return None
+    named = [s for s in semantics if not s.lower().startswith("register(")]
+    return named[0] if named else semantics[0]

@@ -59,6 +59,7 @@ _KEYWORDS = {
     "technique": "TECHNIQUE", "pass": "PASS", "compile": "COMPILE",
     "sampler_state": "SAMPLER_STATE", "stateblock_state": "STATEBLOCK_STATE",
     "struct": "STRUCT", "null": "NULL", "true": "TRUE", "false": "FALSE",
+    "typedef": "TYPEDEF",
 }
 STORAGE_CLASSES = ("shared", "static", "uniform", "const", "extern", "volatile",
                    "row_major", "column_major", "inline")
@@ -68,6 +69,11 @@ _KEYWORDS.update({s: "STORAGE" for s in STORAGE_CLASSES})
 _BRACE_SCAN_RE = re.compile(r'[{}]|//[^\n]*|/\*.*?(?:\*/|\Z)|"(?:[^"\\\n]|\\.)*"', re.S)
 _PAREN_SCAN_RE = re.compile(r'[()]|//[^\n]*|/\*.*?(?:\*/|\Z)|"(?:[^"\\\n]|\\.)*"', re.S)
 _GAP_RE = re.compile(r"(?:\s+|//[^\n]*|/\*.*?\*/)*", re.S)
+# `matrix<float, 4, 3>` / `vector<float, 3>`: one type-name token, written without blanks.
+_TEMPLATE_RE = re.compile(r"<\s*([A-Za-z_][A-Za-z0-9_]*)\s*(?:,\s*([0-9]+)\s*)?(?:,\s*([0-9]+)\s*)?>")
+# `(float4)`, `(int)`: a cast to a numeric type, read as one token when a value follows.
+_CAST_RE = re.compile(r"\(\s*((?:bool|int|uint|half|float|double|dword)(?:[1-4](?:x[1-4])?)?)\s*\)"
+                      r"(?=(?:\s|//[^\n]*\n|/\*.*?\*/)*[-+!~0-9.({A-Za-z_])", re.S | re.I)
 
 _OPENERS = {"LBRACE": "RBRACE", "LPAR": "RPAR", "LSQB": "RSQB"}
 _CLOSERS = frozenset(("RBRACE", "RPAR", "RSQB"))
@@ -75,7 +81,7 @@ _HEADERS = frozenset(("TECHNIQUE", "PASS", "SAMPLER_STATE", "STATEBLOCK_STATE"))
 _LIST_OPENERS = frozenset(("EQUAL", "COMMA", "LBRACE", "LPAR"))
 # Token kinds the lexer keeps track of (everything else is just passed on).
 _BOOKKEPT = frozenset(("LBRACE", "LPAR", "LSQB", "RBRACE", "RPAR", "RSQB", "LT", "GT", "EQUAL",
-                       "SEMI", "MINUS", "BANG", "TILDE", "PLUS")) | _HEADERS
+                       "SEMI", "COMMA", "MINUS", "BANG", "TILDE", "PLUS")) | _HEADERS
 # lark's Token constructor without its keyword-argument shim (older lark: the class itself).
 _make_token = getattr(Token, "_future_new", Token)
 _PREFIX_OPS = frozenset(("MINUS", "BANG", "TILDE", "PLUS"))
@@ -174,6 +180,10 @@ class EffectLexer:
                 kw = keywords.get(low)
                 if kw is not None:
                     kind = kw
+                elif (low == "matrix" or low == "vector") and \
+                        (t := _TEMPLATE_RE.match(text, _GAP_RE.match(text, end).end())):
+                    end = t.end()
+                    value = f"{value}<{','.join(g for g in t.groups() if g)}>"
                 elif low == "asm" or low == "decl":
                     gap = _GAP_RE.match(text, end).end()
                     if text.startswith("{", gap):
@@ -186,6 +196,9 @@ class EffectLexer:
                     pending.name = value
             elif kind == "P":
                 kind = punct[value]
+                if kind == "LPAR" and prev != "NAME" and (cast := _CAST_RE.match(text, start)):
+                    end = cast.end()
+                    kind, value = "CAST", text[start:end]
                 if kind == "SLASH" and text.startswith("/*", start):
                     raise Located("unterminated comment: '/*' has no closing '*/'", line, col)
             elif kind != "STRING" and len(value) > MAX_LITERAL_LENGTH:  # INDEX too: `[999...]`
@@ -240,6 +253,8 @@ class EffectLexer:
                 if top and not in_ann:
                     if kind == "EQUAL":
                         stmt_eq = True
+                    elif kind == "COMMA":   # the next declarator of `float a = 1, b < ... >;`
+                        stmt_eq = False
                     elif kind == "SEMI" or kind == "FUNC_BODY" or kind == "STRUCT_BODY":
                         stmt_eq = stmt_params = False
                         self.decl_name = None

@@ -91,6 +91,7 @@ TERMINAL_WORDS = {
     "TRUE": "'true'", "FALSE": "'false'", "ASM": "an asm block", "DECL": "a decl block",
     "FUNC_BODY": "a function body", "STRUCT_BODY": "a struct body",
     "PARAMS": "a parameter list", "$END": "end of file", "INDEX": "an index such as [0]",
+    "TYPEDEF": "'typedef'", "CAST": "a cast such as (float4)",
     **{v: f"'{k}'" for k, v in PUNCT.items()}, "OP2": "an operator",
 }
 # Preferred order when several terminals are listed.
@@ -153,11 +154,19 @@ def syntax_message(exc: UnexpectedToken, lexer: EffectLexer) -> tuple[str, int, 
     if lexer.closed_annotation_at == tok.start_pos or (lexer.annotation is not None
                                    and lexer.annotation_depth == len(lexer.open)):
         ctx = "annotation"
+    # An array size may follow a declared name (`float a[4]`, `[N]`, `[]`) and an index a
+    # reference (`<L[0]>`): true, but not what a user who forgot the '=', ';' or '>' needs
+    # to hear (a state's index stays: `Lighting TRUE` may have meant `Lighting[0]`).
+    if expected & {"INDEX", "LSQB"} and tok.type not in ("LSQB", "INDEX") and (
+            ctx in ("top", "annotation") or "GT" in expected):
+        expected -= {"INDEX", "LSQB"}
     # LALR merges look-aheads of similar states: drop closers that cannot close anything here.
     closers = {"RBRACE", "RPAR", "RSQB"}
     keep = {inner.closer} if inner is not None else set()
     expected -= closers - keep
 
+    # An array size may follow any declared name (`float a[4]`, `[N]`, `[]`): true, but not
+    # what a user who forgot the '=' or the ';' needs to hear.
     if "SEMI" in expected and not expected & {"NAME", "PASS", "TECHNIQUE", "$END"}:
         what = {"annotation": "annotation", "pass": "state assignment",
                 "sampler_state": "state assignment",

@@ -50,6 +50,25 @@ class _Branch:
     seen_else: bool = False
 
 
+def _splice_continuations(lines: list[str]) -> None:
+    """A backslash ending a line outside a directive joins the next line to it, as C's
+    translation phase 2 does (NVIDIA files break long annotation strings so): the joined text
+    stays on the first line and the lines it took are left empty, so line numbers hold.
+    Directives read their own continuations (`directive`)."""
+    i, n = 0, len(lines)
+    while i < n:
+        line = lines[i]
+        directive = line.lstrip(" \t\f\v").startswith("#")
+        j = i
+        while lines[j].endswith("\\") and j + 1 < n:
+            j += 1
+        if j > i and not directive:
+            lines[i] = "".join(part[:-1] for part in lines[i:j]) + lines[j]
+            for k in range(i + 1, j + 1):
+                lines[k] = ""
+        i = j + 1
+
+
 @dataclass
 class _File:
     path: str
@@ -105,6 +124,8 @@ class _Preprocessor:
         lines = self._strip_comments(text, path).split("\n")
         if spliced and len(lines) > 1 and lines[-1] == "":
             lines.pop()  # the newline ending an included file does not add a line
+        if "\\\n" in text:
+            _splice_continuations(lines)
         unit = _File(path, real, lines, depth)
         out, line_map = self.out, self.smap.lines
         macros, defined = self.macros, self.macros.defined  # `defined` is never replaced, only changed

@@ -80,7 +80,9 @@ class Shapes(Transformer):
     def items(self, c):
         if not c:
             return []
-        if not isinstance(c[1], Token):  # a free-standing ';' adds nothing
+        if isinstance(c[1], list):        # the declarators of one declaration
+            c[0].extend(c[1])
+        elif not isinstance(c[1], Token):  # a free-standing ';' adds nothing
             c[0].append(c[1])
         return c[0]
 
@@ -108,14 +110,28 @@ class Shapes(Transformer):
     def name(self, c): return _tok_v("name", c[0].value, c[0])
 
     def const_index(self, c):
+        if len(c) > 2:  # `world[3][2]`
+            return _span_v("mindex", (c[0].value, [int_value(t.value) for t in c[1:]]),
+                           c[0], c[-1])
         return _span_v("index", (c[0].value, _tok_v("int", int_value(c[1].value), c[1])),
                        c[0], c[1])
+
+    def angle_index_ref(self, c):  # `<g_vLightPos[0]>`
+        return _span_v("ref", (c[1].value, int_value(c[2].value)), c[0], c[3])
+
+    def cast(self, c):  # `(float4)0`: the type, and the value it converts
+        return _span_v("cast", (c[0].value.strip("() \t"), c[1]), c[0], c[1])
+
+    def ann_paren(self, c):  # `string Format = (FMT);`: the value inside
+        inner = c[1]
+        return V(inner.kind, inner.data, inner.start, inner.end, inner.line, inner.column)
 
     def index(self, c): return _span_v("index", (c[0].value, c[2]), c[0], c[3])
     def call(self, c): return _span_v("call", (c[0].value, c[2] or []), c[0], c[3])
     def paren(self, c): return _span_v("paren", c[1], c[0], c[2])
     def angle_ref(self, c): return _span_v("ref", c[1].value, c[0], c[2])
-    def list(self, c): return _span_v("list", c[1] or [], c[0], c[3])
+    def list(self, c): return _span_v("list", c[1], c[0], c[2])
+    def list_items(self, c): return c[::2]
     def args(self, c): return c[::2]
 
     def neg(self, c):
@@ -147,15 +163,24 @@ class Shapes(Transformer):
     def pass_block(self, c): return RawBlock(c[0], c[1], c[2] or [], c[4])
     def technique(self, c): return RawBlock(c[0], c[1], c[2] or [], c[4])
     def annotations(self, c): return c[1:-1]
-    def annotation(self, c): return (c[0], c[1], c[3])
+    def annotation(self, c): return (c[0], c[1], c[4], c[2])
     def initializer(self, c): return c[1]
     def semantic(self, c): return c[1].value
     def register_semantic(self, c): return f"{c[1].value}({c[3].value})"
+    def semantics(self, c): return c
     def storage(self, c): return c
     def dims(self, c): return c
+    def named_dim(self, c): return ("named", c[1])
+    def unsized_dim(self, c): return ("unsized", c[0])
+
+    def declarator(self, c): return c
 
     def param_decl(self, c):
-        return RawParam(c[0], c[1], c[2], c[3], c[4], c[5] or [], c[6])
+        storage, type_tok, declarators = c[0], c[1], c[2::2]
+        return [RawParam(storage, type_tok, d[0], d[1], d[2], d[3] or [], d[4])
+                for d in declarators]
+
+    def typedef(self, c): return ("typedef", c)
 
     def func_def(self, c): return ("function", c)
     def struct_def(self, c): return ("struct", c)

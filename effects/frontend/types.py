@@ -10,6 +10,7 @@ __all__ = ["type_shape", "resolve_type"]
 _NUMERIC_RE = re.compile(r"(bool|int|uint|half|float|double|dword)([1-4])?(?:x([1-4]))?")
 _BASE_OF = {"bool": "bool", "int": "int", "uint": "dword", "half": "half", "float": "float",
             "double": "float", "dword": "dword"}
+_TEMPLATE_RE = re.compile(r"(?:matrix|vector)<([a-z]+)(?:,([1-4]))?(?:,([1-4]))?>")
 _OBJECT_TYPES = {
     "string": ("string", ""), "texture": ("texture", ""), "texture1d": ("texture", "1D"),
     "texture2d": ("texture", "2D"), "texture3d": ("texture", "3D"),
@@ -42,6 +43,19 @@ def type_shape(spec: TypeSpec) -> tuple[int, ...]:
 def resolve_type(name: str, structs: set[str] = frozenset()) -> TypeSpec | None:
     """The TypeSpec a type name denotes, or None when no such type exists."""
     low = name.lower()
+    template = _TEMPLATE_RE.fullmatch(low)
+    if template:  # `matrix<float,4,3>` is float4x3, `vector<float,3>` float3
+        base, a, b = template.groups()
+        if low.startswith("vector") and b is None:
+            spelled = f"{base}{a or 4}"
+        elif low.startswith("matrix") and (a is None) == (b is None):
+            spelled = f"{base}{a or 4}x{b or 4}"
+        else:
+            return None
+        spec = resolve_type(spelled)
+        if spec is None or not spec.is_numeric:
+            return None
+        return TypeSpec(spec.base, spec.rows, spec.cols, spelling=spelled)
     if low == "vector":
         return TypeSpec("float", 1, 4, spelling=name)
     if low == "matrix":
