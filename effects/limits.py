@@ -49,12 +49,12 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
     Limit("texture_texels", 4096 * 1024, "texels", "texels of one texture's top level"),
     Limit("effect_texels", 16 * 1024 * 1024, "texels", "texels of all textures one render binds"),
     # meshes
-    Limit("mesh_file_bytes", 64 * _MIB, "bytes", "size of one .obj file"),
-    Limit("mesh_vertices", 1_000_000, "vertices", "vertices of one mesh"),
+    Limit("mesh_file_bytes", 32 * _MIB, "bytes", "size of one .obj file"),
+    Limit("mesh_vertices", 500_000, "vertices", "vertices of one mesh"),
     Limit("mesh_indices", 3_000_000, "indices", "indices of one mesh (3 per triangle)"),
     # render targets, per back end (the reference rasteriser holds ~200 bytes per pixel)
-    Limit("target_pixels_numpy", 2048 * 2048, "pixels", "render-target pixels on the numpy back end"),
-    Limit("target_pixels_gl", 8192 * 8192, "pixels", "render-target pixels on the gl back end"),
+    Limit("target_pixels_numpy", 2048 * 1024, "pixels", "render-target pixels on the numpy back end"),
+    Limit("target_pixels_gl", 4096 * 4096, "pixels", "render-target pixels on the gl back end"),
 ]}
 
 _overrides: dict[str, int] = {}

@@ -613,10 +613,19 @@ UNKNOWN_STATES = [
 def test_a_state_bound_to_a_parameter_without_value_never_crashes(state, decl):
     body = f"ColorOp[0] = Modulate;\nTexture[0] = <T>;\n{state} = <u>;"
     effect, _ = effect_with_pass(body, decl + "\ntexture T;")
+    wanted = {"Texture[0]": "texture u;", "PixelShader": "pixelshader u;",
+              "VertexShader": "vertexshader u;"}.get(state, "int u;")
     for name in CARDS:
         v = validate_technique(effect, effect.techniques[0], card(name))
-        # whatever else the card says, the unknown value itself is never a reason
-        assert not any(r.subject.startswith(state) for r in v.reasons), v.reasons
+        # whatever else the card says, an unknown value of the right type is never a reason;
+        # a parameter of the wrong type is the one reason about the state (issue 14)
+        about = [r for r in v.reasons if r.subject.startswith(state)]
+        if decl == wanted:
+            assert about == [], v.reasons
+        else:
+            assert [r.message.split(";")[0] for r in about] == [f"{state} = <u> needs a "
+                                                                f"{'number' if wanted == 'int u;' else wanted.split()[0]}"
+                                                                + ("" if wanted == "int u;" else " parameter")], v.reasons
         assert all(str(r).startswith("pass p0 (line ") for r in v.reasons)
 
 

@@ -41,7 +41,24 @@ def _add_validate(sub) -> None:
                    help="preprocessor macro")
     p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
                    help="include search folder")
+    _add_confinement(p, strict=False)
     p.set_defaults(run=_cmd_validate)
+
+
+def _add_confinement(p, strict: bool = True) -> None:
+    """--include-root (and --strict) for every command that loads an effect (DESIGN.md)."""
+    p.add_argument("--include-root", metavar="DIR", default=None,
+                   help="confine every file the effect reads (includes, ResourceName, Procedural "
+                        "images, scene textures) to this folder")
+    if strict:
+        p.add_argument("--strict", action="store_true", help="unknown state names are errors")
+
+
+def _include_root(args) -> str | None:
+    root = getattr(args, "include_root", None)
+    if root is not None and not os.path.isdir(root):
+        raise UsageError(f"effects {args.command}: error: --include-root {root!r} is not a folder")
+    return root
 
 
 def _defines(items: Sequence[str]) -> dict[str, str]:
@@ -55,7 +72,7 @@ def _defines(items: Sequence[str]) -> dict[str, str]:
 def _load(args):
     from effects.frontend.loader import load_effect
     return load_effect(args.file, defines=_defines(getattr(args, "defines", [])),
-                       include_dirs=getattr(args, "include_dirs", []),
+                       include_dirs=getattr(args, "include_dirs", []), include_root=_include_root(args),
                        strict=getattr(args, "strict", False))
 
 
@@ -95,6 +112,7 @@ def _add_matrix(sub) -> None:
                    help="scene for --render (default: NAME.yaml beside NAME.fx, else the default scene)")
     p.add_argument("--backend", "-b", default="numpy", metavar="NAME", help="back end for --render")
     _add_batch(p)
+    _add_confinement(p)
     p.set_defaults(run=_cmd_matrix)
 
 
@@ -109,7 +127,8 @@ def _cmd_matrix(args, console: Console) -> int:
     import json
     from effects.frontend.loader import load_effect
     from effects.cli.report import matrix, print_matrix
-    effects = {path: load_effect(path) for path in args.files}
+    root = _include_root(args)
+    effects = {path: load_effect(path, include_root=root, strict=args.strict) for path in args.files}
     profiles = _profiles(args.profile)
     result = matrix(effects, profiles, args.policy)
     if args.json:
@@ -168,6 +187,7 @@ def _add_render(sub) -> None:
                    help="preprocessor macro")
     p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
                    help="include search folder")
+    _add_confinement(p)
     p.set_defaults(run=_cmd_render)
 
 
@@ -180,6 +200,27 @@ def _parse_size(text: str | None, command: str = "render") -> tuple[int, int] | 
     return int(w), int(h)
 
 
+def _check_output(path: str) -> None:
+    """-o must name a .png file in an existing folder: said before any rendering is done."""
+    if os.path.isdir(path):
+        raise UsageError(f"effects render: error: -o {path!r} is a folder; name the PNG to write, "
+                         "e.g. -o out.png")
+    if os.path.splitext(path)[1].lower() != ".png":
+        raise UsageError(f"effects render: error: -o {path!r}: the output is a PNG; name it "
+                         "OUT.png")
+    folder = os.path.dirname(path) or "."
+    if not os.path.isdir(folder):
+        raise UsageError(f"effects render: error: -o {path!r}: no folder {folder!r}")
+
+
+def _check_backend(name: str) -> None:
+    from effects.backend import available_backends
+    known = available_backends()
+    if name not in known:
+        raise UsageError(f"effects render: error: unknown back end {name!r} "
+                         f"(back ends: {', '.join(known)})")
+
+
 def _cmd_render(args, console: Console) -> int:
     import time
     from PIL import Image
@@ -187,6 +228,8 @@ def _cmd_render(args, console: Console) -> int:
     from effects.host.runtime import render_frame
     from effects.host.semantics import parse_assignments
     size = _parse_size(args.size)
+    _check_output(args.output)
+    _check_backend(args.backend)
     params = parse_assignments(args.assignments)
     effect = _load(args)
     profile = _profiles([args.profile])[0]
@@ -246,6 +289,7 @@ def _add_view(sub) -> None:
                    help="preprocessor macro")
     p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
                    help="include search folder")
+    _add_confinement(p)
     p.set_defaults(run=_cmd_view)
 
 
@@ -264,7 +308,7 @@ def _cmd_view(args, console: Console) -> int:
         args.file, profile=args.profile, technique=args.technique, mesh=args.mesh,
         view=args.view, exit_after=args.exit_after, screenshot=args.screenshot, size=size,
         tour=args.tour, polling=args.poll, defines=_defines(args.defines),
-        include_dirs=args.include_dirs))
+        include_dirs=args.include_dirs, include_root=_include_root(args), strict=args.strict))
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -287,7 +331,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
         from rich.console import Console
-        return args.run(args, Console(highlight=False))
+        code = args.run(args, Console(highlight=False))
+        sys.stdout.flush()   # a closed pipe is found here, inside the handlers below
+        return code
     except UsageError as exc:
         _stderr().print(str(exc), markup=False)
         return EXIT_BAD_INPUT
@@ -296,6 +342,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:
         return 130
+    except BrokenPipeError:
+        # `effects matrix --json | head`: the reader left. Say nothing, as Unix tools do, and
+        # point stdout at /dev/null so the interpreter's final flush does not complain.
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 128 + 13   # the status of a process ended by SIGPIPE
     except Exception as exc:  # a bug of ours, not bad input: say so briefly
         if os.environ.get("EFFECTS_DEBUG"):
             raise

@@ -60,4 +60,7 @@ def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str,
         loc = pre.source_map.locate(1, 1)
         raise pre.source_map.error_at(EffectError, "input nests too deeply to parse", loc) from None
     effect.include_root = None if include_root is None else os.fspath(include_root)
+    from effects.frontend.references import reference_problems
+    for location, message in reference_problems(effect):
+        effect.warnings.append(pre.source_map.warning_at(message, location))
     return effect

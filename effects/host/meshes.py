@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from effects import limits, untrusted
 from effects.errors import Location, SceneError
 from effects.host import obj_fast
 
@@ -466,11 +467,8 @@ def load_obj(path: str | os.PathLike[str]) -> Mesh:
     the normal). Errors are `SceneError`s at the offending line and column.
     """
     path = os.fspath(path)
-    try:
-        with open(path, "rb") as fh:
-            raw = fh.read()
-    except OSError as exc:
-        raise SceneError(f"cannot read .obj file: {exc.strerror}", Location(path, 1, 1)) from None
+    raw = untrusted.read_file(path, ".obj file", SceneError, "mesh_file_bytes")
+    check_obj_counts(raw, Location(path, 1, 1))
     fast = obj_fast.parse(raw)
     if fast is not None:   # the common, regular shape, read whole with numpy
         positions, uv, tris, normals = fast
@@ -549,6 +547,17 @@ def load_obj(path: str | os.PathLike[str]) -> Mesh:
     uv[:, 1] = 1.0 - uv[:, 1]
     normals = np.asarray(out_n) if any_vn and all(np.any(n) for n in out_n) else None
     return make_mesh(out_p, uv, tris, normals, name=os.path.basename(path))
+
+
+def check_obj_counts(raw: bytes, where: Location) -> None:
+    """The `mesh_vertices` and `mesh_indices` limits, from a count of `v` and `f` lines made
+    before any line is parsed (a 10M-vertex file is refused, not half read)."""
+    raw = b"\n" + raw
+    vertices = raw.count(b"\nv ") + raw.count(b"\nv\t")
+    faces = raw.count(b"\nf ") + raw.count(b"\nf\t")
+    limits.check("mesh_vertices", vertices, where, "the .obj file's vertex list", SceneError)
+    limits.check("mesh_indices", 3 * faces, where, "the .obj file's faces (3 per triangle at least)",
+                 SceneError)
 
 
 def _is_float(token: str) -> bool:

@@ -37,6 +37,7 @@ import numpy as np
 from effects.host.assets import (DEFAULT_TEXTURE_CACHE, Geometry, MissingTexture, TextureCache,
                                  TextureSource, check_texture_budget, declared_kind, geometry,
                                  resolve_texture, stand_in_texture)
+from effects import limits
 from effects.errors import EffectError, EffectWarning, Location, NoValidTechnique, SceneError
 from effects.model import Effect, Parameter, Technique
 from effects.host.scene import MAX_SIZE, Scene, load_scene
@@ -92,6 +93,14 @@ def _check_size(size: Any) -> tuple[int, int]:
         raise SceneError(f"size {size!r} must be (width, height), whole numbers from 1 to {MAX_SIZE}",
                          Location("<size>", 1, 1))
     return w, h
+
+
+def _check_target(size: tuple[int, int], backend: str) -> None:
+    """The render target against its back end's `target_pixels_<name>` limit, if it has one."""
+    name = f"target_pixels_{backend}"
+    if name in limits.LIMITS:
+        limits.check(name, size[0] * size[1], Location("<size>", 1, 1),
+                     f"a {size[0]} x {size[1]} render target on the {backend} back end", SceneError)
 
 
 def no_valid_technique(effect: Effect, profile: "CapsProfile", policy: Any = "first") -> NoValidTechnique:
@@ -172,6 +181,7 @@ class Runtime:
         self.profile = _as_profile(profile)
         self.scene: Scene = load_scene(scene)
         self.size = _check_size(size if size is not None else self.scene.size)
+        _check_target(self.size, backend if isinstance(backend, str) else getattr(backend, "name", ""))
         # What an application sets with SetTransform before Begin, from the scene's camera
         # (EffectEdit and FX Composer do): a fixed-function pass that sets no transforms of
         # its own then draws the mesh where the camera sees it.
@@ -355,7 +365,28 @@ class Runtime:
         """Lower the current pass with the parameter values now set."""
         if self._pass is None or self.technique is None:
             raise RuntimeError("commit_changes outside begin_pass/end_pass")
-        self._program = self.lower(self.technique, self._pass)
+        try:
+            self._program = self.lower(self.technique, self._pass)
+        except EffectError:
+            raise
+        except Exception as exc:
+            raise self._not_renderable(exc) from exc
+
+    def _not_renderable(self, exc: Exception) -> Exception:
+        """Lowering and the back ends assume a technique the card validates. A forced technique
+        the card rejects may break that assumption anywhere (an `oT8` no stream feeds): then the
+        error is the validator's first reason, located, not the internal exception. A valid
+        technique that fails is our bug, and `exc` goes on as it is."""
+        technique = self.technique or self.technique_drawn
+        if technique is None:
+            return exc
+        validation = self.effect.validate(technique, self.profile)
+        if validation.ok or not validation.reasons:
+            return exc
+        reason = validation.reasons[0]
+        card = self.profile.display_name or self.profile.name
+        return EffectError(f"technique {technique.name or '<anonymous>'} cannot be rendered on {card}, "
+                           f"which rejects it: {reason.message}", reason.location)
 
     def geometry(self) -> Geometry:
         """The scene's vertex streams for this effect (built once)."""
@@ -375,7 +406,12 @@ class Runtime:
         geo = geo or self.geometry()
         textures = {b.texture: self.used_texture(b.texture) for b in program.textures
                     if b.texture is not None}
-        (backend or self.backend).draw(program, geo.streams, geo.indices, geo.primitive, textures)
+        try:
+            (backend or self.backend).draw(program, geo.streams, geo.indices, geo.primitive, textures)
+        except EffectError:
+            raise
+        except Exception as exc:
+            raise self._not_renderable(exc) from exc
 
     def end_pass(self) -> None:
         self._pass, self._program = None, None

@@ -51,6 +51,7 @@ from typing import Any, Callable, Iterable
 from effects.caps import FIELDS, CapsProfile, Quirk, bit_prefix
 from effects.device import DeviceState, pass_states
 from effects.errors import Location
+from effects.frontend.references import pass_reference_problems
 from effects.model import Effect, EnumValue, Expression, NullValue, ParamRef, Pass, Technique
 from effects.validate.framebuffer import FrameBufferChecks
 from effects.validate.shaders import ShaderChecks, software_vs_version
@@ -220,7 +221,14 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
         self.check_textures(ps is not None)
         self.check_framebuffer()
         self.check_quirks()
+        self.check_references()
         return self.report
+
+    def check_references(self) -> None:
+        """`Texture[0] = <Nope>`, `<Tint>` a float4: no card runs a pass naming what is not there."""
+        for location, message in pass_reference_problems(self.effect, self.pass_):
+            self.fail(location, message.split(" = ", 1)[0], "a declared parameter of the state's type",
+                      "not in the effect", message)
 
     def shader(self, name: str) -> tuple[Any, Location] | None:
         """The shader in force (None for the fixed-function pipeline), with its location."""

@@ -51,6 +51,8 @@ class ViewerOptions:
     polling: bool = False            # watch by polling only (file systems without inotify)
     defines: dict[str, str] = field(default_factory=dict)
     include_dirs: Sequence[str] = ()
+    include_root: str | None = None  # confine every file the effect reads (load_effect's)
+    strict: bool = False
 
 
 @dataclass
@@ -97,7 +99,8 @@ class Viewer:
         self._shots = 0
         self._selection_seen = self.state.selection_generation
         self._announced = False
-        self._load_options = {"defines": options.defines, "include_dirs": tuple(options.include_dirs)}
+        self._load_options = {"defines": options.defines, "include_dirs": tuple(options.include_dirs),
+                              "include_root": options.include_root, "strict": options.strict}
 
     # -- set-up -----------------------------------------------------------------------------
     def _initial_build(self) -> LoadedEffect | None:
@@ -212,6 +215,18 @@ class Viewer:
             self.reloader.stop()
             self.reference.stop()
             self.window.destroy()
+        return self.exit_code()
+
+    _screenshot_failed = False
+
+    def exit_code(self) -> int:
+        """As the other commands: 2 when the file (as it is at exit) does not load or the
+        screenshot could not be written, 1 when nothing could be drawn, else 0."""
+        if self.status.error is not None or self.loaded is None or self._screenshot_failed:
+            return 2
+        if self.loaded.technique is None or self.loaded.prepare_error is not None \
+                or self.status.render_error is not None:
+            return 1
         return 0
 
     def _idle(self) -> bool:
@@ -393,8 +408,9 @@ class Viewer:
         image = np.frombuffer(data, np.uint8).reshape(bh, bw, 3)[::-1]
         try:
             Image.fromarray(image).save(path)
-        except (OSError, ValueError) as exc:
+        except (OSError, ValueError, KeyError) as exc:   # KeyError: Pillow knows no such extension
             self.say(f"screenshot: {path} failed: {exc}")
+            self._screenshot_failed = True
             return
         self.say(f"screenshot: {path}")
 

@@ -61,6 +61,9 @@ class _Checker(PS1Rules):
 
     # -- def / dcl -----------------------------------------------------------------------------
     def _setup_statements(self) -> None:
+        for at in self.p.phase_locations:   # `phase` splits a ps_1_4 shader; no other version has it
+            if self.v not in _versions_of("phase"):
+                self.err(_not_available("phase", self.v), at)
         seen: set[tuple[str, int | None]] = set()
         for cd in self.p.def_statements:
             reg = cd.register
