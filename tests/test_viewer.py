@@ -117,7 +117,10 @@ def test_viewer_starts_on_every_effect_and_shows_every_card(path, tmp_path):
                            "--screenshot", str(shot), "--exit-after", "60")
     viewer.expect(lambda l: l.startswith(f"view: {rel} on {start}: "), "view: ...")
     rc = viewer.finish()
-    assert rc == 0, "\n".join(viewer.lines)
+    # exit 1 (as `effects render`) when the card shown last runs none of the techniques
+    last = (CARDS[CARDS.index(start):] + CARDS[:CARDS.index(start)])[-1]
+    runs = effects.load_effect(path).find_valid_technique(effects.load_profile(last)) is not None
+    assert rc == (0 if runs else 1), "\n".join(viewer.lines)
     selected = [l.split(":")[1].strip() for l in viewer.lines if l.startswith("select: ")]
     tour = CARDS[CARDS.index(start):] + CARDS[:CARDS.index(start)]
     assert selected == tour[1:], "\n".join(viewer.lines)
@@ -208,6 +211,29 @@ def test_forced_technique_the_card_cannot_run_shows_its_reason(flat):
                     "not valid here: pass P0 (line 15): ColorOp[0] = DotProduct3 needs "
                     "D3DTEXOPCAPS_DOTPRODUCT3; the RIVA TNT2 does not have it")
     assert viewer.finish() == 0
+
+
+def test_exit_codes_say_what_happened(flat, tmp_path):
+    """As the other commands: 2 for a file that does not load (or a screenshot that cannot be
+    written), 1 for nothing drawable, 0 otherwise."""
+    viewer = ViewerProcess(str(flat / "missing.fx"), "--size", SIZE, "--exit-after", "0.3")
+    viewer.expect(lambda l: l.startswith("view:"), "view: ... failed")
+    assert viewer.finish() == 2
+    viewer = ViewerProcess(str(flat / "flat.fx"), "--profile", "tnt2", "--technique", "Nope",
+                           "--size", SIZE, "--exit-after", "0.3")
+    assert "no technique named 'Nope'" in viewer.expect(lambda l: l.startswith("view:"), "view:")
+    assert viewer.finish() == 2
+    viewer = ViewerProcess(str(flat / "flat.fx"), "--profile", "tnt2", "--mesh", "quad",
+                           "--size", SIZE, "--exit-after", "0.3",
+                           "--screenshot", str(tmp_path / "no" / "such" / "dir.png"))
+    viewer.expect(lambda l: l.startswith("screenshot:"), "screenshot: ... failed")
+    assert viewer.finish() == 2
+    root = tmp_path / "root"
+    root.mkdir()
+    viewer = ViewerProcess(str(flat / "flat.fx"), "--include-root", str(root), "--size", SIZE,
+                           "--exit-after", "0.3")
+    assert "escapes the include root" in viewer.expect(lambda l: l.startswith("view:"), "view:")
+    assert viewer.finish() == 2
 
 
 def test_bad_arguments_are_usage_errors():
