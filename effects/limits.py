@@ -45,7 +45,7 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
     Limit("inherit_depth", 16, "levels", "profiles in one `inherit` chain"),
     # textures: level 0 texels counting every cube face and volume slice
     Limit("texture_file_bytes", 256 * _MIB, "bytes", "size of one texture file"),
-    Limit("texture_edge", 8192, "texels", "width, height or depth of one texture"),
+    Limit("texture_edge", 8192, "texels along an edge", "width, height or depth of one texture"),
     Limit("texture_texels", 4096 * 1024, "texels", "texels of one texture's top level"),
     Limit("effect_texels", 16 * 1024 * 1024, "texels", "texels of all textures one render binds"),
     # meshes

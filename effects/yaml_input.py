@@ -38,7 +38,8 @@ class Constructor(yaml.constructor.SafeConstructor):
     def construct_object(self, node: yaml.Node, deep: bool = False) -> Any:
         try:
             return super().construct_object(node, deep)
-        except (ValueError, TypeError, OverflowError, ArithmeticError) as exc:
+        except (ValueError, TypeError, OverflowError, ArithmeticError, AttributeError) as exc:
+            # AttributeError: `!!timestamp x` (SafeConstructor reads a regex match it did not get)
             value = node.value if isinstance(node, yaml.ScalarNode) else node.tag
             raise yaml.constructor.ConstructorError(
                 None, None, f"cannot read {brief(value)} as {node.tag.rsplit(':', 1)[-1]}: "
@@ -54,7 +55,10 @@ class Constructor(yaml.constructor.SafeConstructor):
 
 Constructor.add_constructor("tag:yaml.org,2002:int", Constructor.construct_yaml_int)
 
-_Parser = getattr(yaml, "CParser", None)
+try:   # PyYAML exports CSafeLoader, not the CParser it is made of
+    from yaml.cyaml import CParser as _Parser
+except ImportError:  # pragma: no cover - PyYAML built without libyaml
+    _Parser = None
 
 
 if _Parser is not None:

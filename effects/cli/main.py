@@ -86,7 +86,7 @@ def _cmd_validate(args, console: Console) -> int:
     from effects.cli.summary import print_effect_summary
     effect = _load(args)
     for warning in effect.warnings:
-        console.print(warning.report(), markup=False, highlight=False, style="yellow")
+        console.print(warning.report(), markup=False, highlight=False, style="yellow", soft_wrap=True)
     if not args.profile:
         print_effect_summary(effect, console)
         console.print("Name cards with --profile P (see `effects profiles`) to see which can run "
@@ -335,7 +335,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         sys.stdout.flush()   # a closed pipe is found here, inside the handlers below
         return code
     except UsageError as exc:
-        _stderr().print(str(exc), markup=False)
+        _stderr().print(str(exc), markup=False, soft_wrap=True)   # one line, as argparse prints it
         return EXIT_BAD_INPUT
     except EffectError as exc:
         _stderr().print(exc.report(), markup=False, soft_wrap=True)

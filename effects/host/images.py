@@ -8,6 +8,7 @@ error from 179 M) is turned into the same located error instead of reaching stde
 from __future__ import annotations
 
 import os
+import struct
 import warnings
 
 import numpy as np
@@ -22,13 +23,15 @@ def read_image(path: str, mode: str, where: Location, what: str = "image") -> np
     untrusted.check_regular(path, what, SceneError, where, "texture_file_bytes")
     try:
         with warnings.catch_warnings():
-            warnings.simplefilter("error", Image.DecompressionBombWarning)
+            # our own limits below are far stricter than Pillow's warning; keep it off stderr
+            warnings.simplefilter("ignore", Image.DecompressionBombWarning)
             with Image.open(path) as img:
                 width, height = img.size
                 limits.check_texture(width, height, 1, where, f"{what} {os.path.basename(path)}", SceneError)
                 return np.asarray(img.convert(mode))
-    except (Image.DecompressionBombError, Image.DecompressionBombWarning) as exc:
-        raise SceneError(f"cannot read {what}: {exc} (Pillow's decompression-bomb guard; the "
-                         f"texture_texels limit is {limits.get('texture_texels'):,})", where) from None
-    except (OSError, UnidentifiedImageError, ValueError, SyntaxError, EOFError) as exc:
+    except Image.DecompressionBombError as exc:   # raised by Image.open itself, past 179 M pixels
+        raise SceneError(f"cannot read {what}: {exc} (Pillow's decompression-bomb guard, beyond "
+                         f"this framework's texture_texels limit of {limits.get('texture_texels'):,})",
+                         where) from None
+    except (OSError, UnidentifiedImageError, ValueError, SyntaxError, EOFError, struct.error) as exc:
         raise SceneError(f"cannot read {what}: {exc}", where) from None
