@@ -187,7 +187,7 @@ def _add_render(sub) -> None:
                    help="preprocessor macro")
     p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
                    help="include search folder")
-    _add_confinement(p)
+    _add_confinement(p, strict=False)
     p.set_defaults(run=_cmd_render)
 
 
