@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from effects.caps import load_profile
 from effects.device import pass_states
 from effects.errors import EffectError, ParseError
 from effects.frontend.loader import load_effect
@@ -118,3 +119,50 @@ def test_construct_misuse_is_a_located_error(source, where, message):
     with pytest.raises(ParseError) as err:
         load_effect(source)
     assert f"<string>:{where}: error: {message}" in str(err.value)
+
+
+# -- assembly that is not Direct3D assembly -------------------------------------------------
+
+NOT_D3D = """technique ARB { pass P { PixelShader = asm { !!ARBfp1.0
+MOV result.color, fragment.color;
+END }; } }
+technique NoVersion { pass P { VertexShader = asm { mov oPos, v0 }; } }
+"""
+
+
+@pytest.mark.parametrize("profile", ["refrast", "radeon9700", "geforce3"])
+def test_assembly_that_is_not_direct3d_is_rejected_at_validation(profile):
+    effect = load_effect(NOT_D3D)
+    profile = load_profile(profile)
+    arb = effect.validate("ARB", profile)
+    assert not arb.ok
+    assert len(arb.reasons) == 1 and str(arb.reasons[0]).endswith(
+        "PixelShader: the asm block is an OpenGL ARB program ('!!ARBfp1.0'), not Direct3D "
+        "shader assembly")
+    assert arb.reasons[0].location.line == 1
+    none = effect.validate("NoVersion", profile)
+    assert not none.ok and "does not start with a version token" in str(none.reasons[0])
+    assert none.reasons[0].location.line == 4
+
+
+HASH_LINE = """technique Hash { pass P { PixelShader = asm {
+    ps.1.1
+  # the engine's remark
+    mov r0, v0
+}; } }"""
+
+
+def test_a_hash_line_in_asm_is_a_located_warning_and_strict_an_error():
+    effect = load_effect(HASH_LINE)
+    assert [str(w) for w in effect.warnings] == [
+        "<string>:3:3: warning: '# the engine's remark' in an asm block is not a preprocessor "
+        "directive; D3DX's assembler rejects it (ignored here)"]
+    assert effect.validate("Hash", load_profile("geforce3")).ok
+    with pytest.raises(ParseError, match=r"<string>:3:3: error: '# the engine's remark' in an "
+                                         r"asm block .* D3DX's assembler rejects it"):
+        load_effect(HASH_LINE, strict=True)
+
+
+def test_an_unknown_directive_outside_asm_stays_an_error():
+    with pytest.raises(EffectError, match="unknown preprocessor directive '#frob'"):
+        load_effect("#frob\nfloat x;")

@@ -342,6 +342,8 @@ class Builder:
         brace = tok.value.index("{")
         body = tok.value[brace + 1:-1]
         line, col = self.lexer.position(tok.start_pos + brace + 1)
+        if "#" in body:
+            body = self.hash_lines(body, tok.start_pos + brace + 1)
         version = None
         stage = stage_hint or "pixel"
         m = _VERSION_RE.match(body, _ASM_GAP_RE.match(body).end())
@@ -351,6 +353,27 @@ class Builder:
             stage = "vertex" if kind == "vs" else "pixel"
         decl = self.vertex_decl(decl_tok) if decl_tok is not None else None
         return ShaderBlock(stage, version, body, decl, self.smap.locate(line, col))
+
+    def hash_lines(self, body: str, base: int) -> str:
+        """A line of an asm block starting with '#' that the preprocessor did not take as a
+        directive (some engines' files carry `# ...` remarks there): D3DX's assembler rejects
+        it; here it is a warning and the line is dropped, an error when strict."""
+        out = []
+        offset = 0
+        for text in body.split("\n"):
+            stripped = text.lstrip()
+            if stripped.startswith("#"):
+                line, col = self.lexer.position(base + offset + len(text) - len(stripped))
+                where = self.smap.locate(line, col)
+                message = (f"'{stripped[:40]}' in an asm block is not a preprocessor directive; "
+                           "D3DX's assembler rejects it (ignored here)")
+                if self.strict:
+                    raise self.smap.error_at(ParseError, message, where)
+                self.warnings.append(self.smap.warning_at(message, where))
+                text = " " * len(text)
+            out.append(text)
+            offset += len(text) + 1
+        return "\n".join(out)
 
     def vertex_decl(self, tok: Token) -> tuple[VertexDeclElement, ...]:
         """DX8 `decl { stream 0; float v0[3]; D3DCOLOR v5; skip 2; }` (a skip is an element

@@ -50,6 +50,9 @@ class _Branch:
     seen_else: bool = False
 
 
+_ASM_OPEN = re.compile(r"\basm\s*\{", re.I)
+
+
 def _splice_continuations(lines: list[str]) -> None:
     """A backslash ending a line outside a directive joins the next line to it, as C's
     translation phase 2 does (NVIDIA files break long annotation strings so): the joined text
@@ -235,10 +238,26 @@ class _Preprocessor:
         elif name == "line":
             pass  # kept as an empty line: our own map already knows where every line came from
         elif name or text[rest:].strip():
+            if self._inside_asm_block():
+                # Not a directive but a line some engines' asm blocks carry: passed on as it
+                # is, for the effect builder to warn about (D3DX rejects it).
+                self.out.append(text)
+                self.smap.lines.append((path, i + 1))
+                self.emit_blank(path, i + 2, used - 1)
+                return i + used
             word = name or text[rest:].split()[0][:40]
             raise self.error(f"unknown preprocessor directive '#{word}'", hash_at)
         self.emit_blank(path, i + 1, used)
         return i + used
+
+    def _inside_asm_block(self) -> bool:
+        """Whether the text emitted so far ends inside an `asm { ...` block (asm bodies hold no
+        braces, so: the last `asm {` has no `}` after it). Only asked for unknown directives."""
+        tail = "\n".join(self.out[-400:])
+        found = None
+        for found in _ASM_OPEN.finditer(tail):
+            pass
+        return found is not None and "}" not in tail[found.end():]
 
     def conditional(self, unit: _File, name: str, text: str, rest: int, span: Span,
                     hash_at: Location) -> None:

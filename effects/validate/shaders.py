@@ -36,9 +36,25 @@ def software_vs_version(profile: CapsProfile) -> tuple[int, int]:
 class ShaderChecks:
     """The pixel and vertex shader checks of a pass."""
 
+    def not_direct3d(self, value: Any, loc: Location, state_name: str) -> bool:
+        """An asm block without a version token is not Direct3D assembly (an OpenGL ARB
+        program `!!ARBfp1.0`, a body missing `ps.1.1`): D3DX cannot assemble it."""
+        if not isinstance(value, ShaderBlock) or value.version is not None:
+            return False
+        first = value.source.strip().split(None, 1)[0][:20] if value.source.strip() else ""
+        why = (f"is an OpenGL ARB program ('{first}'), not Direct3D shader assembly"
+               if first.startswith("!!ARB") else
+               "does not start with a version token (such as ps.1.1 or vs_2_0), so it is not "
+               "Direct3D shader assembly")
+        self.fail(_block_location(value, loc), state_name, "a Direct3D assembly shader",
+                  "not Direct3D assembly", f"{state_name}: the asm block {why}")
+        return True
+
     def check_pixel_shader(self, shader: tuple[Any, Location]) -> None:
         value, loc = shader
         have = self.profile.pixel_shader_version
+        if self.not_direct3d(value, loc, "PixelShader"):
+            return
         version = _shader_version(value)
         if version is None:
             return
@@ -59,6 +75,8 @@ class ShaderChecks:
 
     def check_vertex_shader(self, shader: tuple[Any, Location]) -> None:
         value, loc = shader
+        if self.not_direct3d(value, loc, "VertexShader"):
+            return
         version = _shader_version(value)
         if version is None:
             return
