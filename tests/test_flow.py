@@ -334,3 +334,38 @@ def test_sm3_colour_interpolators_are_not_clamped(backend, version, expected):
     backend.draw(passp, streams, indices, primitive, {})
     image = backend.end_frame()
     np.testing.assert_allclose(image[..., :3], expected)
+
+
+# -- the cards' flow-control caps ---------------------------------------------------------------
+
+def _vs_effect(body: str):
+    from effects import load_effect
+    return load_effect("technique T { pass P { VertexShader = asm {\nvs_2_0\ndcl_position v0\n"
+                       "defi i0, 2, 0, 1, 0\nmov r0, v0\n" + body + "\nmov oPos, r0\n}; } }")
+
+
+def test_static_flow_depth_is_the_cards_vs20caps():
+    from effects import load_profile
+    one = _vs_effect("loop aL, i0\nadd r0, r0, c0\nendloop")
+    two = _vs_effect("loop aL, i0\nrep i0\nadd r0, r0, c0\nendrep\nendloop")
+    r9700, fx = load_profile("radeon9700"), load_profile("geforcefx5900")
+    assert one.validate("T", r9700).ok                 # the issue's loop: valid, and renders
+    hardware = one.validate("T", r9700).pass_reports[0]
+    assert not hardware.software_vertex_processing
+    assert two.validate("T", fx).ok and not two.validate("T", fx).pass_reports[0] \
+        .software_vertex_processing                    # StaticFlowControlDepth 4
+    # StaticFlowControlDepth 1: over the hardware's limit, so software vertex processing
+    nested = two.validate("T", r9700)
+    assert nested.ok and nested.pass_reports[0].software_vertex_processing
+
+
+def test_dynamic_flow_depth_is_the_cards_ps20caps():
+    from effects import load_effect, load_profile
+    effect = load_effect("technique T { pass P { PixelShader = asm {\nps_2_x\ndcl t0\n"
+                         "def c0, 0, 0, 0, 1\nmov r0, c0\nif_lt t0.x, c0.x\nmov r0, t0\n"
+                         "endif\nmov oC0, r0\n}; } }")
+    assert effect.validate("T", load_profile("geforce6800")).ok
+    result = effect.validate("T", load_profile("geforcefx5900"))   # ps_2_a: depth 0
+    assert not result.ok
+    assert "the pixel shader nests dynamic flow control 1 deep; the GeForce FX 5900 has " \
+        "DynamicFlowControlDepth 0" in [str(r).split("): ", 1)[1] for r in result.reasons]

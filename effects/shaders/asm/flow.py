@@ -73,6 +73,30 @@ def dynamic_blocks(instrs: list) -> list[tuple[int, int]]:
     return found
 
 
+def nesting(instrs: list) -> tuple[int, int]:
+    """(static, dynamic) flow-control nesting depths, as the caps count them
+    (D3DVSHADERCAPS2_0 / D3DPSHADERCAPS2_0): static = loop, rep, if b#, call / callnz b#;
+    dynamic = if_comp, if p0, break_comp, breakp, callnz p0."""
+    static = dynamic = most_static = most_dynamic = 0
+    stack = []
+    for instr in instrs:
+        op = instr.opcode
+        divergent = _divergent(instr)
+        if op in OPENS:
+            kind = "dynamic" if op == "if" and divergent else "static"
+            stack.append(kind)
+        elif op in OPENS.values() and stack:
+            stack.pop()
+        static = stack.count("static")
+        dynamic = stack.count("dynamic")
+        if op in ("break", "breakp", "callnz") and divergent:
+            dynamic += 1
+        elif op in ("call", "callnz"):
+            static += 1
+        most_static, most_dynamic = max(most_static, static), max(most_dynamic, dynamic)
+    return most_static, most_dynamic
+
+
 def _divergent(instr: Instruction) -> bool:
     """A condition that may differ between fragments: a comparison or a predicate."""
     return instr.comparison is not None or any(op.kind == "p" for op in instr.srcs)

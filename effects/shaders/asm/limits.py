@@ -10,6 +10,7 @@ from typing import Iterator
 
 from effects.errors import AsmError, Location
 from effects.model import ShaderBlock
+from effects.shaders.asm import flow
 from effects.shaders.asm.check import check
 from effects.shaders.asm.parser import assemble
 from effects.shaders.asm.program import AsmProgram
@@ -85,6 +86,7 @@ def card_limit_violations(program: AsmProgram, profile, *, software: bool = Fals
             if used and program.version < (3, 0) and flag not in flags:
                 yield (first, program.name, f"D3DPS20CAPS_{flag}", "not in PS20Caps.Caps",
                        f"the pixel shader uses {what}")
+    yield from _flow_depths(program, profile, first, software)
     if program.kind == "ps":
         outputs = stats.highest.get("oC", 0) + 1
         rts = profile.get("NumSimultaneousRTs", 1) or 1
@@ -114,6 +116,25 @@ def card_limit_violations(program: AsmProgram, profile, *, software: bool = Fals
             if temps is not None and highest_r > temps:
                 yield (first, program.name, f"VS20Caps.NumTemps >= {highest_r}", f"NumTemps {temps}",
                        f"the vertex shader uses temporaries up to r{highest_r - 1}")
+
+
+def _flow_depths(program: AsmProgram, profile, first: Location, software: bool
+                 ) -> Iterator[Violation]:
+    """The card's flow-control nesting depths for 2_x shaders (PS20Caps / VS20Caps
+    StaticFlowControlDepth and DynamicFlowControlDepth; 3_0 requires the maxima)."""
+    if program.version < (2, 0) or program.version >= (3, 0) or (software and
+                                                                 program.kind == "vs"):
+        return
+    field = "PS20Caps" if program.kind == "ps" else "VS20Caps"
+    caps = profile.get(field) or {}
+    static, dynamic = flow.nesting(program.instructions)
+    what = "pixel" if program.kind == "ps" else "vertex"
+    for name, used in (("StaticFlowControlDepth", static), ("DynamicFlowControlDepth", dynamic)):
+        limit = caps.get(name)
+        if limit is not None and used > limit:
+            kind = "static" if name.startswith("Static") else "dynamic"
+            yield (first, program.name, f"{field}.{name} >= {used}", f"{name} {limit}",
+                   f"the {what} shader nests {kind} flow control {used} deep")
 
 
 def _slot_limit(program: AsmProgram, profile, field: str, what: str,
