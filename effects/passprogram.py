@@ -33,7 +33,7 @@ class RenderState:
     # Rasterisation
     cull_mode: str = "CCW"                 # NONE | CW | CCW (which winding is culled)
     fill_mode: str = "SOLID"               # POINT | WIREFRAME | SOLID
-    shade_mode: str = "GOURAUD"            # FLAT | GOURAUD
+    shade_mode: str = "GOURAUD"            # FLAT | GOURAUD | PHONG (lit per pixel by the lowering)
     scissor_test_enable: bool = False
     clip_plane_enable: int = 0             # bit i enables user clip plane i
     # Alpha test: compares the 8-bit output alpha with alpha_ref (0..255)

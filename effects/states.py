@@ -320,7 +320,8 @@ _RENDER_STATES = (
     # ZEnable: TRUE when the device has an automatic depth buffer, which every render here has.
     _rs("ZEnable", 7, "enum", _ev(D3DZBUFFERTYPE, "True"), D3DZBUFFERTYPE),
     _rs("FillMode", 8, "enum", _ev(D3DFILLMODE, "Solid"), D3DFILLMODE),
-    _rs("ShadeMode", 9, "enum", _ev(D3DSHADEMODE, "Gouraud"), D3DSHADEMODE),
+    _rs("ShadeMode", 9, "enum", _ev(D3DSHADEMODE, "Gouraud"), D3DSHADEMODE, limit=CapsLimit(
+        "ShadeCaps", "COLORPHONGRGB", lambda v: v == "PHONG", what="lights per pixel")),
     _rs("ZWriteEnable", 14, "bool", True, limit=CapsLimit(
         "PrimitiveMiscCaps", "MASKZ", lambda v: not v, what="turns depth writes off")),
     _rs("AlphaTestEnable", 15, "bool", False),

@@ -95,6 +95,8 @@ BOUNDS = {
         "exact", "point sampling, no mip maps, ps.1.1 fixed point; a view vector on a texel "
         "boundary may take the neighbour texel of a smooth factor map (measured: 1 pixel, 3/255)",
         max_abs=4, outliers=4),
+    ("fast_phong.fx", "Phong"): Bound("exact", "no textures; per-pixel lighting in float"),
+    ("fast_phong.fx", "Gouraud"): Bound("exact", "no textures; vertex lighting"),
     ("hemisphere.fx", "HemisphereVertex_vs11"): Bound("lod", _LOD),
     ("hemisphere.fx", "HemispherePerPixel_ps11"): Bound("lod", _LOD),
     ("hemisphere.fx", "HemisphereOcclusion_ps11"): Bound("lod", _LOD),

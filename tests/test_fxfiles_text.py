@@ -18,6 +18,7 @@ FX_DIR = Path(__file__).resolve().parent.parent / "fxfiles"
 EXPECTED_TECHNIQUES: dict[str, list[str | None]] = {
     "brdf.fx": ["tec0"],
     "wood.fx": ["Wood_ps20"],
+    "fast_phong.fx": ["Phong", "Gouraud"],
     "phong.fx": ["PerPixelPhong_ps20", "PerPixelPhong_ps11", "Dot3_dx7", "SingleTexture"],
     "specular_bump.fx": ["Specular_ps20", "SpecularTable_ps11", "SpecularMultiply_ps11",
                          "Dot3_dx7", "BumpEnvMap_dx6", "Emboss_dx6", "SingleTexture"],

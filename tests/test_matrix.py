@@ -37,6 +37,9 @@ NONE = (None, 0)
 # (technique, passes) per card, as read from each file's fallback chain and the cards' caps.
 EXPECTED = {
     "brdf": row(dx6=NONE, dx7=NONE, dx8=("tec0", 1), dx9=("tec0", 1)),
+    # ShadeMode = Phong needs D3DPSHADECAPS_COLORPHONGRGB, which only refrast reports
+    "fast_phong": row(dx6=("Gouraud", 1), dx7=("Gouraud", 1), dx8=("Gouraud", 1),
+                      dx9=("Gouraud", 1), refrast=("Phong", 1)),
     "hemisphere": row(dx6=("HemisphereVertex_vs11", 1), dx7=("HemisphereVertex_vs11", 1),
                       dx8=("HemisphereOcclusion_ps11", 1), dx9=("HemisphereOcclusion_ps11", 1)),
     # SM3 on the GeForce 6800 and the reference device (and the modern profile); ps_2_0 on

@@ -401,6 +401,7 @@ def test_effect_files_come_from_the_preprocessor(tmp_path):
 # Counts read from the files by hand: {file: [(technique, [states per pass...]), ...]}.
 FX_COUNTS = {
     "brdf.fx": [("tec0", [24])],
+    "fast_phong.fx": [("Phong", [27]), ("Gouraud", [27])],
     "wood.fx": [("Wood_ps20", [2])],
     "sdk9_style.fx": [("Marble_ps20", [17, 10]), ("Marble_ps11", [18]), ("Marble_dx7", [25]),
                       ("Marble_dx6", [19])],

@@ -42,8 +42,10 @@ from effects.errors import EffectError, Location
 from effects.shaders.asm import assemble_cached
 from effects.shaders.asm import lower as asm_lower
 from effects.ir import Builder, Program
-from effects.lower.stages import FogSetup, FragmentInputs, StageSetup, apply_fog, lower_cascade
-from effects.lower.vertex import LightSetup, TexCoordSetup, VertexSetup, lower_vertex
+from effects.lower.stages import (FogSetup, FragmentInputs, StageSetup, active_stages, apply_fog,
+                                  lower_cascade)
+from effects.lower.vertex import (PHONG_SLOTS, LightSetup, TexCoordSetup, VertexSetup,
+                                   lower_pixel_lighting, lower_vertex)
 from effects.model import (CompileShader, Effect, NullValue, Parameter, ParamRef,
                     RecordedReads, ShaderBlock, Technique, still_holds)
 from effects.passprogram import PassProgram, RenderState, TextureBinding
@@ -156,12 +158,16 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     pixel_shader = _shader(state, "PixelShader")
     vertex_shader = _shader(state, "VertexShader")
 
+    lit = None
     if pixel_shader is None:
         fb = Builder("fragment")
         stages = read_stages(effect, state)
+        if vertex_shader is None and _per_pixel_lighting(state):
+            lit = lower_pixel_lighting(read_vertex(effect, state, [], fog, vertex_colors),
+                                       uniforms, fb)
         inputs = FragmentInputs(tfactor=state.get_color("TextureFactor"),
                                 specular_enable=state.get_bool("SpecularEnable"),
-                                uniforms=uniforms)
+                                uniforms=uniforms, lit=lit)
         color = lower_cascade(fb, stages, inputs, options)
         fb.output("color0", apply_fog(fb, color, fog, uniforms, options))
         fragment = fb.build()
@@ -184,6 +190,14 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
 
     needed = sorted(int(i.name[len("texcoord"):]) for i in fragment.inputs
                     if i.kind == "varying" and i.name.startswith("texcoord"))
+    if pixel_shader is None and lit is not None:   # the Phong varyings are not stage coordinates
+        used = len(active_stages(stages))
+        if used > PHONG_SLOTS[0]:
+            raise EffectError(f"ShadeMode = Phong interpolates the normal and position in texture "
+                              f"coordinates {PHONG_SLOTS[0]} and {PHONG_SLOTS[1]}: a Phong pass "
+                              f"may use {PHONG_SLOTS[0]} texture stages, this one uses {used}",
+                              state.where("ShadeMode"))
+        needed = [n for n in needed if n not in PHONG_SLOTS]
     if vertex_shader is None:
         vertex = lower_vertex(read_vertex(effect, state, needed, fog, vertex_colors), uniforms)
     else:
@@ -387,7 +401,13 @@ def read_vertex(effect: Effect, state: DeviceState, stages: list[int],
         ambient_source=state.get_enum("AmbientMaterialSource"),
         emissive_source=state.get_enum("EmissiveMaterialSource"),
         specular_enable=state.get_bool("SpecularEnable"), local_viewer=state.get_bool("LocalViewer"),
-        normalize_normals=state.get_bool("NormalizeNormals"), texcoords=tuple(texcoords), fog=fog)
+        normalize_normals=state.get_bool("NormalizeNormals"),
+        per_pixel_lighting=_per_pixel_lighting(state), texcoords=tuple(texcoords), fog=fog)
+
+
+def _per_pixel_lighting(state: DeviceState) -> bool:
+    """ShadeMode = Phong with the fixed-function lighting on: the pass lights per pixel."""
+    return state.get_enum("ShadeMode") == "PHONG" and state.get_bool("Lighting")
 
 
 def texture_binding(effect: Effect, state: DeviceState, sampler: int, kind: str) -> TextureBinding:

@@ -84,6 +84,9 @@ class FragmentInputs:
     tfactor: tuple[float, float, float, float] = (1.0, 1.0, 1.0, 1.0)
     specular_enable: bool = False
     uniforms: dict[str, tuple[float, ...]] = field(default_factory=dict)
+    # (diffuse, specular) values computed in the fragment program (per-pixel lighting,
+    # ShadeMode = Phong) instead of the interpolated vertex colours
+    lit: tuple[int, int] | None = None
 
 
 def effective_ops(stage: StageSetup) -> tuple[str, tuple[int, int, int], str, tuple[int, int, int]]:
@@ -122,7 +125,7 @@ class _Cascade:
     def __init__(self, b: Builder, stages: list[StageSetup], inputs: FragmentInputs,
                  options: LoweringOptions) -> None:
         self.b, self.stages, self.inputs, self.options = b, stages, inputs, options
-        self.diffuse = b.varying("color0", "COLOR0")
+        self.diffuse = inputs.lit[0] if inputs.lit else b.varying("color0", "COLOR0")
         self.current = self.diffuse
         self.temp = b.const(0.0)
         self.stage: StageSetup = stages[0] if stages else None  # type: ignore[assignment]
@@ -136,7 +139,7 @@ class _Cascade:
         return self.b.uniform("tfactor", "TEXTUREFACTOR")
 
     def specular(self) -> Value:
-        return self.b.varying("color1", "COLOR1")
+        return self.inputs.lit[1] if self.inputs.lit else self.b.varying("color1", "COLOR1")
 
     def constant(self) -> Value:
         name = f"stage{self.stage.index}_constant"

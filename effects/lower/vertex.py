@@ -91,6 +91,7 @@ class VertexSetup:
     specular_enable: bool = False
     local_viewer: bool = True
     normalize_normals: bool = False
+    per_pixel_lighting: bool = False     # ShadeMode = Phong: lighting moves to the fragment
     texcoords: tuple[TexCoordSetup, ...] = ()
     fog: FogSetup = FogSetup()
 
@@ -113,10 +114,11 @@ def _vec4(v) -> Vec4:
 
 
 class _VertexLowering:
-    def __init__(self, setup: VertexSetup, uniforms: dict[str, tuple[float, ...]]) -> None:
+    def __init__(self, setup: VertexSetup, uniforms: dict[str, tuple[float, ...]],
+                 builder: Builder | None = None) -> None:
         self.s = setup
         self.u = uniforms
-        self.b = Builder("vertex")
+        self.b = builder or Builder("vertex")
         self._normal: Value | None = None
 
     def uniform(self, name: str, value, semantic: str = "") -> Value:
@@ -148,9 +150,18 @@ class _VertexLowering:
         self.eye = self.transform(position, self.matrix("world_view", s.world_view))
         self.clip = self.transform(self.eye, self.matrix("projection", s.projection))
         b.output("position", self.clip)
-        diffuse, specular = self.colors()
-        b.output("color0", b.saturate(diffuse))
-        b.output("color1", b.saturate(specular))
+        if s.per_pixel_lighting and s.lighting:
+            # Phong: the fragment program lights (`lower_pixel_lighting`) from the camera-space
+            # position and normal interpolated here; the vertex colours pass through for the
+            # material sources
+            b.output("color0", b.saturate(b.varying("color0", "COLOR0")))
+            b.output("color1", b.saturate(b.varying("color1", "COLOR1")))
+            b.output(PHONG_EYE, self.eye)
+            b.output(PHONG_NORMAL, self.normal())
+        else:
+            diffuse, specular = self.colors()
+            b.output("color0", b.saturate(diffuse))
+            b.output("color1", b.saturate(specular))
         for tc in s.texcoords:
             b.output(f"texcoord{tc.stage}", self.texcoord(tc))
         fog = self.fog()
@@ -314,6 +325,38 @@ class _VertexLowering:
             return distance
         self.u["fog_params"] = fog.params
         return fog_factor(b, distance, fog.vertex_mode, b.uniform("fog_params", "FOG"))
+
+
+# The varyings of per-pixel (ShadeMode = Phong) lighting: camera-space position and normal, in
+# the last two texture-coordinate interpolators (a Phong pass may use stages 0-5).
+PHONG_SLOTS = (6, 7)
+PHONG_EYE, PHONG_NORMAL = (f"texcoord{n}" for n in PHONG_SLOTS)
+
+
+class _PixelLighting(_VertexLowering):
+    """The vertex lighting equations evaluated in the fragment program, per pixel, from the
+    interpolated camera-space position and the interpolated normal normalised at each pixel:
+    Phong shading, which Direct3D named (D3DSHADE_PHONG) and no device built."""
+
+    def __init__(self, setup: VertexSetup, uniforms: dict[str, tuple[float, ...]],
+                 builder: Builder) -> None:
+        super().__init__(setup, uniforms, builder)
+        self.eye = builder.varying(PHONG_EYE, PHONG_EYE.upper())
+
+    def normal(self) -> Value:
+        if self._normal is None:
+            n = self.b.varying(PHONG_NORMAL, PHONG_NORMAL.upper())
+            self._normal = self.b.nrm(self.b.merge(n, self.const(0.0), "w"))
+        return self._normal
+
+
+def lower_pixel_lighting(setup: VertexSetup, uniforms: dict[str, tuple[float, ...]],
+                         builder: Builder) -> tuple[Value, Value]:
+    """(diffuse, specular) of the fixed-function lighting, per pixel, in `builder` (a fragment
+    program); saturated as the vertex colours are."""
+    lighting = _PixelLighting(setup, uniforms, builder)
+    diffuse, specular = lighting.colors()
+    return builder.saturate(diffuse), builder.saturate(specular)
 
 
 def _unit(v: np.ndarray) -> tuple[float, float, float]:
