@@ -1,4 +1,4 @@
-"""The `effects` command line: validate, matrix, render, view, profiles.
+"""The `effects` command line: validate, matrix, render, view, profiles, doctor.
 
 Exit codes (DESIGN.md): 0 ok, 1 invalid or not renderable, 2 bad input or usage.
 No Python traceback reaches a user: every `EffectError` is printed located, with its line.
@@ -311,6 +311,33 @@ def _cmd_view(args, console: Console) -> int:
         include_dirs=args.include_dirs, include_root=_include_root(args), strict=args.strict))
 
 
+def _add_doctor(sub) -> None:
+    p = sub.add_parser("doctor", help="what an effect needs from a host that it does not get")
+    p.add_argument("file", help="effect file (.fx)")
+    p.add_argument("--profile", "-p", default="radeon9700", metavar="P",
+                   help="caps profile whose selected technique is examined (default: radeon9700)")
+    p.add_argument("--technique", "-t", metavar="T", help="examine this technique instead")
+    p.add_argument("--scene", "-s", metavar="SCENE.yaml", help="the scene a render would use")
+    p.add_argument("--set", dest="assignments", action="append", default=[], metavar="NAME=VALUE",
+                   help="a parameter value, as render takes it (repeatable)")
+    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
+                   help="preprocessor macro")
+    p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
+                   help="include search folder")
+    p.set_defaults(run=_cmd_doctor)
+
+
+def _cmd_doctor(args, console: Console) -> int:
+    from effects.cli.doctor import diagnose, print_diagnosis
+    from effects.host.semantics import parse_assignments
+    effect = _load(args)
+    profile = _profiles([args.profile])[0]
+    d = diagnose(effect, profile, scene=args.scene, params=parse_assignments(args.assignments),
+                 technique=args.technique)
+    print_diagnosis(d, args.file, profile.display_name or profile.name, console)
+    return EXIT_OK
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="effects", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
@@ -319,6 +346,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_render(sub)
     _add_profiles(sub)
     _add_view(sub)
+    _add_doctor(sub)
     return parser
 
 

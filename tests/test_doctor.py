@@ -1,0 +1,46 @@
+"""`effects doctor`: what an effect needs from a host that it does not get."""
+from __future__ import annotations
+
+from effects.cli.main import main
+
+NEEDY = """float4x4 Wvp : WorldViewProjection;
+float4 Tint;
+float Gloss < float UIMin = 0; float UIMax = 2; >;
+texture Base;
+texture Map : RenderColorTarget;
+sampler S = sampler_state { Texture = <Base>; };
+technique T < string Script = "RenderPort=x; Pass=P;"; > {
+    pass P { Sampler[0] = <S>; TextureFactor = 0xffffffff; }
+}
+"""
+
+
+def test_doctor_names_unbound_parameters_stand_ins_and_unsupported_commands(tmp_path, capsys):
+    path = tmp_path / "needy.fx"
+    path.write_text(NEEDY)
+    assert main(["doctor", str(path), "-p", "geforce2"]) == 0
+    out = capsys.readouterr().out
+    assert f"{path} on GeForce2 GTS:" in out
+    assert "technique T (1 pass)" in out
+    assert "Wvp <- semantic WORLDVIEWPROJECTION" in out
+    assert "Gloss <- the middle of its UIMin..UIMax range" in out
+    assert f"Tint (declared at {path}:2:8)" in out
+    assert "Base: stand-in checker:8" in out
+    assert f"{path}:4:9: warning: texture parameter Base: nothing supplies it" in out
+    assert f"script commands not run:\n    {path}:7:22: RenderPort=x" in out
+    assert "Map" not in out.split("textures the passes sample:")[1]   # not sampled
+
+
+def test_doctor_of_a_complete_effect_says_nothing_is_missing(tmp_path, capsys):
+    path = tmp_path / "ok.fx"
+    path.write_text('float4x4 Wvp : WORLDVIEWPROJECTION;\ntechnique T { pass P { } }\n')
+    assert main(["doctor", str(path), "--set", "Wvp=" + ",".join(["1"] * 16)]) == 0
+    out = capsys.readouterr().out
+    assert "Wvp <- --set / scene params" in out
+    assert "nothing missing" in out
+
+
+def test_doctor_on_bad_input_exits_2(tmp_path, capsys):
+    path = tmp_path / "bad.fx"
+    path.write_text("technique {")
+    assert main(["doctor", str(path)]) == 2
