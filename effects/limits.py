@@ -14,6 +14,7 @@ a block, `with effects.limits.raised(texture_texels=N): ...`.
 from __future__ import annotations
 
 import os
+import sys
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Iterator
@@ -67,6 +68,14 @@ def env_name(name: str) -> str:
 
 def get(name: str) -> int:
     """The value of limit `name` now: set_limit's, else the environment's, else the default."""
+    value = _value(name)
+    if name == "literal_digits":   # Python itself converts no more (sys.set_int_max_str_digits)
+        python = getattr(sys, "get_int_max_str_digits", lambda: 0)()
+        value = min(value, python) if python else value
+    return value
+
+
+def _value(name: str) -> int:
     limit = LIMITS[name]
     if name in _overrides:
         return _overrides[name]

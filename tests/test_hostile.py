@@ -46,7 +46,7 @@ EXPECTED: dict[str, tuple[str, str]] = {
     "effect_utf16_bom_broken": ("error", "is not valid UTF-16-LE"),
     "include_fan_out": ("error", "limit include_count"),
     "include_total_bytes": ("error", "limit included_bytes"),
-    "include_fifo": ("error", "cannot open include file 'pipe.fxh'"),
+    "include_fifo": ("error", "cannot read include file 'pipe.fxh': "),
     "if_integer_5000_digits": ("error", "limit literal_digits"),
     "array_size_5000_digits": ("error", "number literal is too long"),
     "asm_register_5000_digits": ("value", "limit literal_digits"),
@@ -431,3 +431,75 @@ def test_a_closed_pipe_ends_quietly_as_unix_tools_do():
     err = proc.stderr.read().decode()
     assert proc.wait(60) == 141, err
     assert err == ""
+
+
+@pytest.mark.parametrize("argv, code", [
+    (["validate", "{fx}"], 0),
+    (["validate", "{fx}", "-p", "tnt2"], 0),
+    (["validate", "{dot3}", "-p", "tnt2"], 1),
+    (["validate", "{tmp}/missing.fx"], 2),
+    (["matrix", "{fx}", "-p", "tnt2", "--json"], 0),
+    (["matrix", "{tmp}/missing.fx"], 2),
+    (["render", "{fx}", "-p", "tnt2", "--size", "4x4", "-o", "{tmp}/o.png"], 0),
+    (["render", "{dot3}", "-p", "tnt2", "--size", "4x4", "-o", "{tmp}/o.png"], 1),
+    (["render", "{fx}", "-p", "tnt2", "-t", "Nope", "-o", "{tmp}/o.png"], 2),
+    (["profiles"], 0),
+    (["profiles", "extra"], 2),
+    (["frobnicate"], 2),
+    ([], 2),
+])
+def test_every_command_exits_0_1_or_2(argv, code, tmp_path, capsys):
+    (tmp_path / "e.fx").write_text(FLAT)
+    (tmp_path / "dot3.fx").write_text("technique t { pass p { ColorOp[0] = DotProduct3; } }\n")
+    fill = {"fx": str(tmp_path / "e.fx"), "dot3": str(tmp_path / "dot3.fx"), "tmp": str(tmp_path)}
+    got, out, err = _cli(*[a.format(**fill) for a in argv], capsys=capsys)
+    assert got == code, (out, err)
+    assert "Traceback" not in err and "internal error" not in err
+
+
+@pytest.mark.slow
+def test_every_bundled_technique_forced_on_a_card_that_rejects_it_renders_or_says_why():
+    """Rendering a technique validation rejects (render's --technique): a picture or a located
+    EffectError naming the reason, never an internal exception."""
+    outcomes = {"rendered": 0, "refused": 0}
+    for path in sorted((ROOT / "fxfiles").glob("*.fx")):
+        effect = effects.load_effect(str(path))
+        for technique in effect.techniques:
+            for name in ("tnt2", "geforce3"):
+                card = effects.load_profile(name)
+                if effect.validate(technique, card).ok:
+                    continue
+                try:
+                    image = effects.render(effect, card, technique=technique.name, size=(8, 8))
+                    assert image.shape == (8, 8, 4)
+                    outcomes["rendered"] += 1
+                except EffectError as exc:
+                    _assert_located(exc)
+                    outcomes["refused"] += 1
+    assert outcomes["rendered"] > 10 and outcomes["refused"] > 3, outcomes
+
+
+def test_the_readme_states_every_limit_and_its_default():
+    readme = (ROOT / "README.md").read_text()
+    section = readme.split("## Untrusted effects", 1)[1].split("\n## ", 1)[0]
+    for limit in limits.LIMITS.values():
+        assert f"| `{limit.name}` | {limit.default:,} {limit.unit} | {limit.what} |" in section, limit.name
+
+
+def test_a_limit_is_raised_by_the_environment_or_in_code(monkeypatch):
+    default = limits.LIMITS["literal_digits"].default
+    assert limits.get("literal_digits") == default
+    monkeypatch.setenv("EFFECTS_LIMIT_LITERAL_DIGITS", "3000")
+    assert limits.get("literal_digits") == 3000
+    effects.load_effect("#if " + "1" * 2500 + "\n#endif\n" + FLAT)
+    monkeypatch.setenv("EFFECTS_LIMIT_LITERAL_DIGITS", "6000")   # past Python's own 4,300
+    assert limits.get("literal_digits") == min(6000, sys.get_int_max_str_digits() or 6000)
+    monkeypatch.setenv("EFFECTS_LIMIT_LITERAL_DIGITS", "not a number")
+    assert limits.get("literal_digits") == default
+    with limits.raised(literal_digits=3):
+        assert limits.get("literal_digits") == 3
+        with pytest.raises(EffectError, match="limit literal_digits"):
+            effects.load_effect("#if 1234\n#endif\n")
+    assert limits.get("literal_digits") == default
+    with pytest.raises(KeyError):
+        limits.set_limit("no_such_limit", 1)

@@ -363,6 +363,11 @@ class _Preprocessor:
             candidate = os.path.normpath(os.path.join(folder, local))
             if os.path.isfile(candidate):
                 return self._inside_root(candidate, name, location)
+            if os.path.exists(candidate) and not os.path.isdir(candidate):   # a FIFO, a device: say so
+                try:
+                    untrusted.check_regular(candidate, f"include file '{name}'", PreprocessError, location)
+                except PreprocessError as exc:
+                    raise self.error(exc.message, location) from None
         if os.path.isabs(local):
             raise self.error(f"cannot open include file '{name}'", location)
         searched = ", ".join(dict.fromkeys(folders))
