@@ -157,7 +157,7 @@ class KernelContext(Protocol):
     def input_columns(self, name: str) -> list: ...
 
     def sample(self, index: int, coord: np.ndarray, kind: str, bias: np.ndarray | None,
-               lod: np.ndarray | None) -> np.ndarray: ...
+               lod: np.ndarray | None, grad: tuple | None = None) -> np.ndarray: ...
 
     def kill(self, mask: np.ndarray) -> None: ...
 
@@ -372,6 +372,10 @@ def _check_sample(attrs: Mapping[str, Any]) -> None:
         raise IRError("sample takes at most one of proj, bias, lod (each reads coord.w)")
 
 
+def _check_sample_grad(attrs: Mapping[str, Any]) -> None:
+    _check_sample({**attrs, "proj": False, "bias": False, "lod": False})
+
+
 _COORD = {"1d": "x", "2d": "xy", "3d": "xyz", "cube": "xyz"}
 _PROJ_COORD = {"1d": "xw", "2d": "xyw", "3d": "xyzw"}
 
@@ -399,6 +403,19 @@ def _glsl_sample(args: Sequence[str], attrs: Mapping[str, Any]) -> str:
     if attrs["lod"]:
         return f"textureLod({s}, {coord}, {c}.w)"
     return f"texture({s}, {coord})"
+
+
+def _sample_grad(ctx: KernelContext, args: Sequence[np.ndarray], attrs: Mapping[str, Any]
+                 ) -> np.ndarray:
+    return ctx.sample(attrs["sampler"], np.asarray(args[0], np.float32), attrs["kind"], None,
+                      None, grad=(np.asarray(args[1], np.float32),
+                                  np.asarray(args[2], np.float32)))
+
+
+def _glsl_sample_grad(args: Sequence[str], attrs: Mapping[str, Any]) -> str:
+    swz = _COORD[attrs["kind"]]
+    c, dx, dy = (f"{a}.{swz}" for a in args)
+    return f"textureGrad(sampler{attrs['sampler']}, {c}, {dx}, {dy})"
 
 
 def _kill(ctx: KernelContext, args: Sequence[np.ndarray], attrs: Mapping[str, Any]) -> None:
@@ -624,6 +641,10 @@ _OP_ROWS = [
         flow="close", loop=True),
     _op("break", 1, _no_kernel, "if ({0}.x != 0.0) break;",
         "leave the innermost loop where a.x != 0", has_result=False, flow="exit"),
+    _op("sample_grad", 3, _sample_grad, _glsl_sample_grad,
+        "texel of sampler `sampler` at coord a, its LOD from the explicit screen gradients b "
+        "(d coord / dx) and c (d coord / dy) (D3D texldd)", names_sampler=True,
+        attrs=(("sampler", REQUIRED), ("kind", "2d")), check=_check_sample_grad),
     _op("kill", 1, _kill, _glsl_kill,
         "discard the fragment where any of `components` is < 0 (texkill: ps.1.x tests xyz, "
         "ps.2.0 xyzw)", attrs=(("components", "xyzw"),),
@@ -932,6 +953,13 @@ class Builder:
 
     def endloop(self) -> None: self.emit("endloop")
     def break_(self, cond: int) -> None: self.emit("break", cond)
+
+    def sample_grad(self, sampler: int, coord: int, ddx: int, ddy: int, kind: str = "2d"
+                    ) -> int:
+        binding = SamplerBinding(sampler, kind)
+        if self._samplers.setdefault(sampler, binding) != binding:
+            raise IRError(f"sampler {sampler} used as {kind} and {self._samplers[sampler].kind}")
+        return self.emit("sample_grad", coord, ddx, ddy, sampler=sampler, kind=kind)
 
     def kill(self, a: int, components: str = "xyzw") -> None:
         if self.stage != "fragment":

@@ -369,3 +369,30 @@ def test_dynamic_flow_depth_is_the_cards_ps20caps():
     assert not result.ok
     assert "the pixel shader nests dynamic flow control 1 deep; the GeForce FX 5900 has " \
         "DynamicFlowControlDepth 0" in [str(r).split("): ", 1)[1] for r in result.reasons]
+
+
+def test_texldd_takes_the_lod_from_its_gradients(backend):
+    # A 4x4 texture with three mip levels of one colour each (red, green, blue), point mip
+    # filtering: d coord/dx = (g, 0) is 4g texels per pixel, LOD log2(4g): g = 0 -> level 0,
+    # g = 0.5 -> level 1 (LOD 1), g = 1 -> level 2 (LOD 2).
+    from effects.host.textures import Texture
+    from effects.passprogram import TextureBinding
+    levels = [np.broadcast_to(np.array(c, np.float32), (n, n, 4)).copy()
+              for c, n in (((1, 0, 0, 1), 4), ((0, 1, 0, 1), 2), ((0, 0, 1, 1), 1))]
+    texture = Texture("2d", "A32B32G32R32F", levels)
+    src = """ps_3_0
+    dcl vPos.xy
+    dcl_2d s0
+    def c1, 0, 0, 0, 0
+    def c2, 0.25, 0.25, 0, 0
+    texldd r0, c2, s0, c0, c1
+    mov oC0, r0
+    """
+    fragment = program(src)
+    binding = TextureBinding(0, "t", min_filter="POINT", mag_filter="POINT", mip_filter="POINT")
+    for g, expected in ((0.0, (1, 0, 0, 1)), (0.5, (0, 1, 0, 1)), (1.0, (0, 0, 1, 1))):
+        passp = PassProgram(fragment, render_state=NO_CULL, textures=(binding,),
+                            uniforms=PassProgram.pack_uniforms({"c0": [g, 0, 0, 0]}))
+        backend.begin_frame((2, 2), (0, 0, 0, 0), 1.0, 0, format=FLOAT)
+        backend.draw(passp, *quad(), {"t": texture})
+        np.testing.assert_array_equal(backend.end_frame()[0, 0], expected, err_msg=str(g))

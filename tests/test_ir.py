@@ -186,7 +186,8 @@ _ROW_ATTRS = {"swizzle": {"pattern": "wxzy"}, "merge": {"mask": "yw"}, "clamp": 
 
 
 @pytest.mark.parametrize("name", [n for n, info in OPS.items()
-                                  if info.arity and info.has_result and not info.needs_quads])
+                                  if info.arity and info.has_result and not info.needs_quads
+                                  and not info.names_sampler])
 def test_demand_column_is_what_the_kernel_reads(name):
     # The row's demand rule (and its per-component flag) is checked against its own kernel:
     # changing an argument component the rule says is unread leaves every wanted component
@@ -262,8 +263,8 @@ def every_op_fragment_program() -> Program:
     a, c, d = b.varying("a"), b.varying("b"), b.uniform("u")
     acc = b.const((0.25, 0.5, 0.75, 1.0))
     for name, info in OPS.items():
-        if info.arity == 0 or not info.has_result or name in ("sample", "swizzle", "merge",
-                                                              "clamp", "quantize"):
+        if info.arity == 0 or not info.has_result or info.names_sampler or name in (
+                "swizzle", "merge", "clamp", "quantize"):
             continue
         acc = b.add(acc, b.emit(name, *[a, c, d][:info.arity]))
     acc = b.merge(acc, b.swizzle(a, "wzyx"), "yw")
@@ -304,7 +305,7 @@ ATTRS = {"swizzle": {"pattern": "wxzy"}, "merge": {"mask": "xz"},
          "clamp": {"lo": -1.0, "hi": 0.5}, "quantize": {"bits": 8}}
 # (ops that need 2x2 quads are checked by rendering: tests/test_flow.py)
 ARITH = [n for n, info in OPS.items() if info.arity > 0 and info.has_result
-         and not info.needs_quads]
+         and not info.needs_quads and not info.names_sampler]
 
 
 @pytest.mark.parametrize("op", ARITH)

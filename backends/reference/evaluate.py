@@ -71,11 +71,12 @@ class _Context:
         return _input_columns(name, self.inputs[name], self.count)
 
     def sample(self, index: int, coord: np.ndarray, kind: str, bias: np.ndarray | None,
-               lod: np.ndarray | None) -> np.ndarray:
+               lod: np.ndarray | None, grad: tuple | None = None) -> np.ndarray:
         fn = self.samplers.get(index)
         if fn is None:
             return np.broadcast_to(_UNBOUND_TEXEL, (self.count, 4))
-        texels = np.asarray(fn(coord, kind=kind, bias=bias, lod=lod), dtype=np.float32)
+        extra = {} if grad is None else {"grad": grad}    # (d coord/dx, d coord/dy) rows
+        texels = np.asarray(fn(coord, kind=kind, bias=bias, lod=lod, **extra), dtype=np.float32)
         if texels.shape != (self.count, 4):
             raise IRError(f"sampler {index} returned shape {texels.shape}, "
                           f"expected {(self.count, 4)}")
@@ -149,9 +150,10 @@ def _arg_demand(instr: Instr, wanted: frozenset, sample_reads=None) -> tuple[fro
     the op row's demand rule, or for a sampling op the caller's `sample_reads` when given
     (what the sampler callback reads of its coordinate)."""
     info = OPS[instr.op]
-    if info.names_sampler and sample_reads is not None:
-        return (sample_reads(instr),)
-    return info.arg_demand(wanted, instr.attr_map)
+    demand = info.arg_demand(wanted, instr.attr_map)
+    if info.names_sampler and sample_reads is not None:   # its first argument: the coordinate
+        return (sample_reads(instr), *demand[1:])
+    return demand
 
 
 def _demand(program: Program, sample_reads: Callable[[Instr], frozenset] | None = None

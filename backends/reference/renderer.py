@@ -37,7 +37,7 @@ from effects.backend import DrawError, register_backend, triangle_list
 from backends.reference import output
 from backends.reference.evaluate import evaluate, input_components
 from backends.reference.rasterize import QuadFragments, TriangleSetup, setup_triangles
-from backends.reference.sampler import SamplerSettings, sample
+from backends.reference.sampler import SamplerSettings, gradient_lod, sample
 
 _COLOR_VARYINGS = ("color0", "color1")
 _DEFAULTS = {"color0": np.ones(4, np.float32), "color1": np.zeros(4, np.float32)}
@@ -92,9 +92,12 @@ def _srgb_levels(level: np.ndarray) -> np.ndarray:
 
 
 def _make_callback(texture_kind: str, levels: list[np.ndarray], settings: SamplerSettings):
-    def callback(coord: np.ndarray, *, kind: str | None = None, bias=None, lod=None):
+    def callback(coord: np.ndarray, *, kind: str | None = None, bias=None, lod=None, grad=None):
         # `kind` is what the program declared; PassProgram checks it against the binding, and
-        # the texture itself decides how it is addressed.
+        # the texture itself decides how it is addressed. Explicit gradients (texldd) give
+        # the LOD per row, as the quad differences would.
+        if grad is not None:
+            lod = gradient_lod(texture_kind, levels, *grad)
         return sample(texture_kind, levels, coord, settings, bias, lod)
     return callback
 
@@ -332,7 +335,7 @@ def _sampler_reads(instr) -> frozenset:
     kind's coordinates, and w where it projects, biases or sets the LOD."""
     attrs = instr.attr_map
     reads = set(range(_COORDINATES[attrs["kind"]]))
-    if attrs["proj"] or attrs["bias"] or attrs["lod"]:
+    if attrs.get("proj") or attrs.get("bias") or attrs.get("lod"):
         reads.add(3)
     return frozenset(reads)
 

@@ -259,6 +259,24 @@ def quad_lod(coords: Sequence[np.ndarray], sizes: Sequence[int], log2=np.log2) -
         return (0.5 * log2(np.maximum(rho_x, rho_y))).astype(np.float32)
 
 
+def gradient_lod(kind: str, levels: Sequence[np.ndarray], ddx: np.ndarray, ddy: np.ndarray
+                 ) -> np.ndarray:
+    """Per-row LOD from explicit screen gradients of the coordinate (texldd, GLSL
+    textureGrad): log2 of the longer of the d/dx and d/dy texel vectors, as quad_lod. A cube
+    map's gradients are taken on its face size in all three directions (an approximation)."""
+    shape = np.shape(levels[0])                      # (... , H, W, 4)
+    count = {"1d": 1, "2d": 2, "3d": 3, "cube": 1}[kind]
+    sizes = tuple(shape[-2 - i] for i in range(count))     # W, H, D
+    if kind == "cube":
+        sizes *= 3
+    rho_x = rho_y = 0.0
+    for i, n in enumerate(sizes):
+        rho_x = rho_x + (ddx[:, i] * np.float32(n)) ** 2
+        rho_y = rho_y + (ddy[:, i] * np.float32(n)) ** 2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return (0.5 * np.log2(np.maximum(rho_x, rho_y))).astype(np.float32)
+
+
 def _lod(coords: Sequence[np.ndarray], sizes: Sequence[int], count: int, s: SamplerSettings,
          bias: np.ndarray | float | None, lod: np.ndarray | None) -> np.ndarray:
     if lod is not None:

@@ -313,8 +313,7 @@ _TEXTURE = [
                                    ("texldb", "d = sample(sampler b, a.xyz, lod bias a.w)",
                                     {"bias": True}))],
     _row("texldd", PS2X | PS3, "dsSss", "tex", "d = sample(sampler b, a, ddx = c, ddy = e)",
-         slots=3, dst_kinds=R, src_kinds=(None, S),
-         lowers=NotLowered("gradients are not lowered yet")),
+         slots=3, dst_kinds=R, src_kinds=(None, S), lowers=Handler(tx.texldd)),
     _row("texldl", PS3 | VS3, "dsS", "tex", "d = sample(sampler b, a.xyz, lod a.w)", slots=2,
          src_kinds=(None, S), lowers=Handler(partial(tx.texld, lod=True))),
 ]

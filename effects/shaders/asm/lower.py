@@ -43,7 +43,11 @@ Decisions (sources: ../shared/reference/semantics.md §2-4, caps.md §1):
 - Relative constant addressing c[a0.x + n] selects among c0 .. c(constants_min - 1) of the
   version (96 for vs_1_1, 256 for vs_2_0+); an index outside reads (0, 0, 0, 0). A program
   that addresses relatively needs all of those registers (`constant_registers`).
-- Flow control, predication, gradients and texldd are not lowered yet (`lowering_problems`).
+- Flow control (flow.py) lowers to the IR's structured blocks; predicated instructions write
+  only where the predicate holds; dsx/dsy are the IR's ddx/ddy and texldd samples with
+  explicit gradients. `lowering_problems` names what does not lower: integer / boolean
+  constants the application sets (no defi / defb), an early ret, relative addressing of
+  v# / o#, gradients inside dynamic flow control (X4014), and any row marked NotLowered.
 """
 from __future__ import annotations
 
@@ -93,14 +97,14 @@ class ShaderContext:
 
 
 def lower_pixel_shader(program: AsmProgram, ctx: ShaderContext) -> Program:
-    """The fragment IR of a ps_1_x / ps_2_x (/ ps_3_0 without flow control) program."""
+    """The fragment IR of a ps_1_x / ps_2_x / ps_3_0 program."""
     if program.kind != "ps":
         raise AsmError(f"{program.name} is not a pixel shader", program.location)
     return _Lowering(program, ctx, "fragment").run()
 
 
 def lower_vertex_shader(program: AsmProgram, ctx: ShaderContext) -> Program:
-    """The vertex IR of a vs_1_1 / vs_2_x / vs_3_0 program (without flow control)."""
+    """The vertex IR of a vs_1_1 / vs_2_x / vs_3_0 program."""
     if program.kind != "vs":
         raise AsmError(f"{program.name} is not a vertex shader", program.location)
     return _Lowering(program, ctx, "vertex").run()

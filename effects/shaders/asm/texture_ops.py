@@ -154,6 +154,14 @@ def texcrd(lo: Lowering, instr: Instruction, reads: dict) -> None:
     lo.write(instr, lo.source(instr.srcs[0], reads))
 
 
+def texldd(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    """texldd d, coord, s#, ddx, ddy: sample with the LOD of the given screen gradients."""
+    coord, ddx, ddy = (lo.source(instr.srcs[k], reads) for k in (0, 2, 3))
+    stage = instr.srcs[1].index
+    lo.write(instr, lo.b.sample_grad(stage, coord, ddx, ddy, lo.sampler_kind(stage)),
+             computed=False)
+
+
 def texld(lo: Lowering, instr: Instruction, reads: dict, **flags: bool) -> None:
     """texld and its forms; `flags` (proj, bias, lod) come from the row."""
     coord = lo.source(instr.srcs[0], reads)
