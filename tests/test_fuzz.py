@@ -71,4 +71,4 @@ def test_mutated_effect_loads_or_reports_a_located_error(name, kind, seed):
         err.report()  # formats without raising
     else:
         effect.to_source()  # whatever parsed can be printed
-    assert time.perf_counter() - start < 1.0
+    assert time.perf_counter() - start < 5.0   # the untrusted-input bound (issue 14)

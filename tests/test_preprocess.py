@@ -158,7 +158,7 @@ def test_endless_and_exploding_macros_are_located_errors():
     chain = "".join(f"#define A{i} A{i + 1} A{i + 1}\n" for i in range(40)) + "x = A0;"
     start = time.perf_counter()
     message = error(chain)
-    assert time.perf_counter() - start < 2
+    assert time.perf_counter() - start < 5.0   # the untrusted-input bound (issue 14)
     assert message.startswith("<string>:41:5: error: expansion of macro ")
     assert message.endswith("is too large (more than 300000 tokens)")
 
