@@ -50,7 +50,7 @@ def test_a_cell_is_the_render_or_the_reason():
     np.testing.assert_array_equal(cell.image, expected)
     none = render_cell(CellJob(WOOD, "tnt2", (24, 16)))
     assert none.image is None and none.technique is None
-    assert none.reason.startswith("no valid technique: ") and "PixelShader" in none.reason
+    assert "PixelShader" in none.reason
 
 
 def test_process_pool_and_dask_draw_the_same_cells():

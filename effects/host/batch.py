@@ -160,7 +160,7 @@ def render_cell(job: CellJob) -> Cell:
     except NoValidTechnique as exc:
         reasons = [r for rs in exc.reasons.values() for r in rs]
         why = str(reasons[0]) if reasons else str(exc).splitlines()[0]
-        return Cell(job.effect, job.profile, None, reason=f"no valid technique: {why}")
+        return Cell(job.effect, job.profile, None, reason=why)   # the first reason, as cells are small
     except (EffectError, OSError) as exc:
         return Cell(job.effect, job.profile, None, reason=str(exc).splitlines()[0])
     return Cell(job.effect, job.profile, frame.technique.name or "<anonymous>", image=frame.image)
