@@ -493,9 +493,11 @@ class Builder:
             return ParamRef(v.data, True, None, self.loc(v))
         elif kind == "cast":
             inner = self.state_raw(v.data[1], stage)
-            if isinstance(inner, (int, float)) and not isinstance(inner, bool):
-                return float(inner) if v.data[0].lower().startswith(("float", "half", "double")) \
-                    else inner
+            spec = resolve_type(v.data[0])
+            if isinstance(inner, (int, float)) and not isinstance(inner, bool) and spec:
+                value = float(inner) if spec.base in ("float", "half") else inner
+                n = spec.rows * spec.cols
+                return value if n == 1 else tuple([value] * n)  # (float4)0.9: every component
             return inner
         elif kind == "index":
             name, idx = v.data
