@@ -181,15 +181,7 @@ class DeviceState:
 
     def get_bool(self, name: str, index: int | None = None) -> bool:
         """Whether the state is on; a value the application has not set yet, or NULL, is off."""
-        value = self.get(name, index)
-        if value is None or isinstance(value, (ParamRef, Expression, NullValue)):
-            return False
-        if isinstance(value, EnumValue):
-            return bool(value.value)
-        if isinstance(value, (bool, int, float)):
-            return bool(value)
-        flat = np.ravel(np.asarray(value))
-        return bool(flat.size) and bool(flat[0])
+        return is_on(self.get(name, index))
 
     def get_enum(self, name: str, index: int | None = None, default: Any = _RAISE) -> str:
         """The canonical enum name (upper case, no prefix) of the value in force."""
@@ -254,6 +246,20 @@ class DeviceState:
             raise EffectError(f"{name}: expected a 4x4 matrix, got {array.size} value(s)",
                               self.where(name, index))
         return array.reshape(4, 4)
+
+
+def is_on(value: Any) -> bool:
+    """A bool state's value (as `DeviceState.get` gives it) read as on or off."""
+    if type(value) is bool:
+        return value
+    if value is None or isinstance(value, (ParamRef, Expression, NullValue)):
+        return False
+    if isinstance(value, EnumValue):
+        return bool(value.value)
+    if isinstance(value, (int, float)):
+        return bool(value)
+    flat = np.ravel(np.asarray(value))
+    return bool(flat.size) and bool(flat[0])
 
 
 _READERS: dict[str, Any] = {

@@ -13,10 +13,22 @@ from typing import Any
 import numpy as np
 
 from effects import states as state_table
+from effects.device import is_on
+from effects.model import EnumValue, Expression, ParamRef
 from effects.validate.values import spelled
 
-# The limited render states in table order (the order their reasons are reported in).
-_LIMITED = tuple(row for row in state_table.STATES if row.limit is not None and row.kind == "render")
+
+
+def _default_name(row: state_table.StateInfo) -> Any:
+    default = state_table.default_value(row)
+    return default.names[0] if isinstance(default, EnumValue) and default.names else default
+
+
+# The limited render states in table order (the order their reasons are reported in), each
+# with its D3D9 default and the bit that default needs (most need none, so most rows a pass
+# leaves alone cost one dictionary lookup).
+_LIMITED = tuple((row, _default_name(row), row.limit.bit_for(_default_name(row)))
+                 for row in state_table.STATES if row.limit is not None and row.kind == "render")
 
 
 class FrameBufferChecks:
@@ -24,30 +36,41 @@ class FrameBufferChecks:
 
     def enabled(self, name: str) -> bool:
         """Whether a bool state is on (a value the application has not set yet is off)."""
-        return not self.unknown(name) and self.state.get_bool(name)
+        value = self.state.get(name)
+        if isinstance(value, (ParamRef, Expression)):
+            return not self.unknown(name)   # notes why it is not checked; False
+        return is_on(value)
 
     def check_framebuffer(self) -> None:
         stencil = self.check_stencil_buffer()
-        for row in _LIMITED:
+        gates: dict[str, bool] = {}
+
+        def gated(names: tuple[str, ...]) -> bool:
+            for name in names:
+                if name not in gates:
+                    gates[name] = self.enabled(name)
+                if not gates[name]:
+                    return False
+            return True
+
+        assigned = self.state.values
+        for row, default, default_bit in _LIMITED:
             limit = row.limit
             assert limit is not None
             if limit.field == "StencilCaps" and not stencil:
                 continue
-            if self.state.assignment(row.name) is not None:
-                if not all(self.enabled(gate) for gate in limit.gate) or self.unknown(row.name):
+            if (row.name, None) in assigned:
+                if not gated(limit.gate) or self.unknown(row.name):
                     continue
                 value = self._limited_value(row)
                 bit = limit.bit_for(value)
             else:
                 # A default is checked only behind a gate, and only when it needs a bit.
-                if not limit.gate:
+                if not limit.gate or default_bit is None or not gated(limit.gate):
                     continue
-                value = self._limited_value(row)
-                bit = limit.bit_for(value)
-                if bit is None or not all(self.enabled(gate) for gate in limit.gate):
-                    continue
-            if bit is None:
-                continue
+                value, bit = default, default_bit
+            if bit is None or self.has_reliable_bit(limit.field, bit):
+                continue   # the common case: nothing to say, no message built
             shown = spelled(row.name, value) if isinstance(value, str) else _shown_scalar(value)
             what = limit.describe(value)
             subject = f"{row.name} = {shown}" + (f" ({what})" if what else "")

@@ -171,6 +171,11 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
     def card(self) -> str:
         return self.profile.display_name or self.profile.name
 
+    def has_reliable_bit(self, caps_field: str, bit: str) -> bool:
+        """Whether `need_bit` would pass without a word: the card has the bit, no quirk on it."""
+        return (bit in (FIELDS[caps_field].table or {}) and self.profile.has(caps_field, bit)
+                and (caps_field, bit) not in self.unreliable_bits)
+
     def need_bit(self, caps_field: str, bit: str, subject: str, location: Location) -> None:
         """Fail unless the card reports `bit` in `caps_field` and no error quirk disowns it;
         messages name the bit with its header prefix (`effects.caps.bit_prefix`)."""

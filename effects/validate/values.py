@@ -3,9 +3,12 @@ whether a state is indexed. (Values are read with the device state's typed reade
 `effects.device.DeviceState.get_*`, the ones lowering uses.)"""
 from __future__ import annotations
 
+from functools import lru_cache
+
 from effects import states as state_table
 
 
+@lru_cache(maxsize=4096)
 def spelled(state_name: str, enum_name: str) -> str:
     """An enum value of a state as the D3D docs spell it ('BUMPENVMAP' → 'BumpEnvMap')."""
     info = state_table.lookup_state(state_name)
