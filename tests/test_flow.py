@@ -396,3 +396,11 @@ def test_texldd_takes_the_lod_from_its_gradients(backend):
         backend.begin_frame((2, 2), (0, 0, 0, 0), 1.0, 0, format=FLOAT)
         backend.draw(passp, *quad(), {"t": texture})
         np.testing.assert_array_equal(backend.end_frame()[0, 0], expected, err_msg=str(g))
+
+
+def test_an_unclosed_block_is_a_validation_reason_not_a_crash():
+    from effects import load_effect, load_profile
+    effect = load_effect("technique T { pass P { PixelShader = asm {\nps_3_0\ndcl vPos.xy\n"
+                         "def c0, 1, 1, 1, 1\nif_lt vPos.x, c0.x\nmov oC0, c0\n}; } }")
+    result = effect.validate("T", load_profile("geforce6800"))
+    assert [str(r) for r in result.reasons] == ["pass P (line 5): if is never closed by endif"]

@@ -155,7 +155,12 @@ def _written(instrs: list, body: range, labels: dict[int, int], seen: frozenset 
 def lowering_problems(program: AsmProgram) -> list[AsmError]:
     """Every instruction of `program` that does not lower, located, with the reason: its
     row says `NotLowered`, or it uses a register, an addressing form or a flow-control form
-    the lowering does not handle. Empty means `lower_*_shader` lowers it."""
+    the lowering does not handle. Empty means `lower_*_shader` lowers it. A program the
+    checker rejects (an unclosed block ...) gets the checker's reason instead."""
+    from effects.shaders.asm.check import check
+    errors = check(program)
+    if errors:
+        return errors
     problems = []
     depth = 0
     dynamic = flow.dynamic_blocks(program.instructions)
