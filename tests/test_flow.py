@@ -404,3 +404,54 @@ def test_an_unclosed_block_is_a_validation_reason_not_a_crash():
                          "def c0, 1, 1, 1, 1\nif_lt vPos.x, c0.x\nmov oC0, c0\n}; } }")
     result = effect.validate("T", load_profile("geforce6800"))
     assert [str(r) for r in result.reasons] == ["pass P (line 5): if is never closed by endif"]
+
+
+# -- golden printed IR and GLSL of a flow-control program (a change in lowering shows as a diff)
+
+GOLDEN = __import__("pathlib").Path(__file__).parent / "golden"
+GOLDEN_SRC = """ps_3_0
+dcl vPos.xy
+defi i0, 2, 0, 1, 0
+def c0, 1, 0, 0, 0
+def c1, 0.5, 0.5, 0.5, 1
+def c4, 4, 4, 4, 4
+mov r0, c1
+setp_lt p0, vPos.x, c4
+loop aL, i0
+    add r0.x, r0.x, c[aL].x
+    break_ge r0.x, vPos.y
+endloop
+if_lt vPos.x, c4.x
+    (p0) mul r0.y, r0.y, c0.x
+else
+    texkill -c1
+endif
+mov oC0, r0
+"""
+
+
+@pytest.mark.parametrize("kind", ["ir", "glsl"])
+def test_flow_program_golden(kind):
+    import os
+    from backends.gl.glsl import fragment_shader
+    prog = program(GOLDEN_SRC)
+    text = str(prog) if kind == "ir" else fragment_shader(prog)
+    path = GOLDEN / kind / ("flow_loop_if_predicate." + ("txt" if kind == "ir" else "frag"))
+    if os.environ.get("UPDATE_GOLDEN"):
+        path.write_text(text)
+    assert path.exists(), f"{path} missing: run with UPDATE_GOLDEN=1"
+    assert text == path.read_text()
+
+
+def test_flow_golden_program_draws_its_hand_values(backend):
+    # r0.x = 0.5 + c0.x (1) = 1.5, then breaks where 1.5 >= vPos.y (rows 0, 1); rows 2, 3 add
+    # c1.x (0.5) too: 2.0. Columns px >= 4 take the else: texkill -c1 kills them (clear 0.25).
+    fragment = program(GOLDEN_SRC)
+    passp = PassProgram(fragment, render_state=NO_CULL)
+    backend.begin_frame((8, 4), (0.25, 0.25, 0.25, 0.25), 1.0, 0, format=FLOAT)
+    backend.draw(passp, *quad(), {})
+    image = backend.end_frame()
+    expected = np.where(np.arange(4)[:, None] < 2, 1.5, 2.0) * np.ones((4, 4))
+    np.testing.assert_array_equal(image[:, :4, 0], expected)
+    np.testing.assert_array_equal(image[:, :4, 1:], np.broadcast_to([0.5, 0.5, 1], (4, 4, 3)))
+    assert (image[:, 4:] == 0.25).all()
