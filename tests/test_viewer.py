@@ -213,6 +213,18 @@ def test_forced_technique_the_card_cannot_run_shows_its_reason(flat):
     assert viewer.finish() == 0
 
 
+def test_a_stand_in_texture_is_warned_about_once(tmp_path):
+    path = tmp_path / "bare.fx"
+    path.write_text("texture Base;\nsampler S = sampler_state { Texture = <Base>; };\n"
+                    "technique T { pass P { Sampler[0] = <S>; Lighting = false; } }\n")
+    viewer = ViewerProcess(str(path), "--profile", "geforce2", "--size", SIZE,
+                           "--exit-after", "1.0")
+    line = viewer.expect(lambda l: ": warning: " in l, "PATH:LINE:COL: warning: ...")
+    assert line.startswith(f"{path}:1:9: warning: texture parameter Base: nothing supplies it")
+    assert viewer.finish() == 0
+    assert sum(": warning: " in l for l in viewer.lines) == 1
+
+
 def test_exit_codes_say_what_happened(flat, tmp_path):
     """As the other commands: 2 for a file that does not load (or a screenshot that cannot be
     written), 1 for nothing drawable, 0 otherwise."""

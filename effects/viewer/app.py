@@ -28,7 +28,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from effects.errors import EffectError
-from effects.viewer.reload import LoadedEffect, Reloader, ReloadResult, build_effect, effect_builder, error_text
+from effects.viewer.reload import LoadedEffect, Reloader, ReloadResult, build_effect, effect_builder, error_text, loaded_warnings
 from effects.viewer.state import DIFFERENCE_SCALE, MESHES, VIEWS, ViewerState
 
 DEFAULT_CARD = "radeon9700"
@@ -99,6 +99,7 @@ class Viewer:
         self._shots = 0
         self._selection_seen = self.state.selection_generation
         self._announced = False
+        self._warned: set[str] = set()
         self._load_options = {"defines": options.defines, "include_dirs": tuple(options.include_dirs),
                               "include_root": options.include_root, "strict": options.strict}
 
@@ -265,6 +266,10 @@ class Viewer:
             self._swapped_selection = self.state.selection_generation
 
     def _swap(self, loaded: LoadedEffect) -> None:
+        for warning in loaded_warnings(loaded):
+            if str(warning) not in self._warned:  # each once, not at every reselect
+                self._warned.add(str(warning))
+                self.say(str(warning))
         self.loaded = loaded
         self.status.loaded = loaded
         self.status.error = None

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Callable
 
 from imgui_bundle import imgui
 
-from effects.viewer.reload import error_text
+from effects.viewer.reload import error_text, loaded_warnings
 from effects.viewer.state import DIFFERENCE_SCALE, MESHES, VIEW_TITLES, VIEWS, ViewerState
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -157,12 +157,6 @@ def _techniques(state: ViewerState, status: Status) -> None:
         imgui.unindent()
         if opened:
             imgui.tree_pop()
-
-
-def loaded_warnings(loaded) -> list:
-    """The effect's load warnings and what the host stood in for (a texture nobody supplies)."""
-    runtime_warnings = getattr(loaded.runtime, "warnings", None) or []
-    return [*loaded.effect.warnings, *runtime_warnings]
 
 
 def _view(state: ViewerState, status: Status) -> None:

@@ -200,6 +200,13 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
                         forced_rejected, watched_files(effect), prepare_error, runtime, scene_key)
 
 
+def loaded_warnings(loaded: LoadedEffect) -> list:
+    """The effect's load warnings and what the host stood in for (a texture nobody supplies),
+    which the panel lists and the console prints once each."""
+    runtime_warnings = getattr(loaded.runtime, "warnings", None) or []
+    return [*loaded.effect.warnings, *runtime_warnings]
+
+
 def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
             scene: Any = None, validation: "Validation | None" = None
             ) -> tuple[Any, list["PassProgram"]]:
