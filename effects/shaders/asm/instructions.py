@@ -28,7 +28,7 @@ from effects.shaders.asm import rewrites as rw
 from effects.shaders.asm import texture_ops as tx
 from effects.shaders.asm.rewrites import Tree
 from effects.shaders.asm.versions import (PS1, PS10_13, PS12_13, PS13, PS14, PS2, PS20, PS2X, PS3, VS, VS1, VS2,
-                       VS3, Group)
+                       VS3, Group, group)
 
 # Operand roles, in order (dst first when the instruction has one):
 #   d  destination register          s  vector source         x  scalar source (one component)
@@ -136,6 +136,10 @@ PS_ALL = PS1 | PS2 | PS3
 PS2UP = PS2 | PS3
 VS2UP = VS2 | VS3
 FLOW_VERSIONS = VS2UP | PS2X | PS3
+# The predicate register p0 (setp, breakp, predicated instructions): not in vs_2_0 or ps_2_b;
+# the loop counter aL (loop / endloop): vertex shaders 2_0+ and ps_3_0 only (versions.py).
+PREDICATE_VERSIONS = group("ps_2_x", "ps_2_a", "vs_2_x", "vs_2_a") | PS3 | VS3
+LOOP_VERSIONS = VS2UP | PS3
 T = ("t",)
 R = ("r",)
 TR = ("t", "r")
@@ -238,7 +242,7 @@ _ARITH = [
          lowers=_ir("ddx", "a"), gradient=True),
     _row("dsy", PS2X | PS3, "ds", "arith", "d = d(a)/dy (screen-space gradient)", slots=2,
          lowers=_ir("ddy", "a"), gradient=True),
-    _row("setp", PS2X | PS3 | VS2UP, "dss", "flow", "p0 = a <cmp> b per component",
+    _row("setp", PREDICATE_VERSIONS, "dss", "flow", "p0 = a <cmp> b per component",
          dst_kinds=("p",), lowers=Handler(fl.setp)),
 ]
 
@@ -326,9 +330,9 @@ _FLOW = [
     _row("ret", FLOW_VERSIONS, "", "flow", "return", slots=1, lowers=NO_CODE, ends_body=True),
     _row("label", FLOW_VERSIONS, "l", "flow", "subroutine entry", slots=0, lowers=NO_CODE,
          ends_body=True),
-    _row("loop", FLOW_VERSIONS, "LI", "flow", "loop i.x times, aL from i.y step i.z", slots=3,
+    _row("loop", LOOP_VERSIONS, "LI", "flow", "loop i.x times, aL from i.y step i.z", slots=3,
          lowers=Handler(fl.loop)),
-    _row("endloop", FLOW_VERSIONS, "", "flow", "end of loop", slots=2,
+    _row("endloop", LOOP_VERSIONS, "", "flow", "end of loop", slots=2,
          lowers=Handler(fl.endloop)),
     _row("rep", FLOW_VERSIONS, "I", "flow", "repeat i.x times", slots=3,
          lowers=Handler(fl.rep)),
@@ -340,7 +344,7 @@ _FLOW = [
     _row("endif", FLOW_VERSIONS, "", "flow", "end of if", slots=1, lowers=Handler(fl.endif)),
     _row("break", FLOW_VERSIONS, "", "flow", "leave the loop (break_cmp a, b: if a <cmp> b)",
          slots=1, lowers=Handler(fl.break_)),
-    _row("breakp", FLOW_VERSIONS, "p", "flow", "leave the loop if p0", slots=3,
+    _row("breakp", PREDICATE_VERSIONS, "p", "flow", "leave the loop if p0", slots=3,
          lowers=Handler(fl.break_)),
 ]
 
