@@ -223,6 +223,10 @@ def test_a_stand_in_texture_is_warned_about_once(tmp_path):
     assert line.startswith(f"{path}:1:9: warning: texture parameter Base: nothing supplies it")
     assert viewer.finish() == 0
     assert sum(": warning: " in l for l in viewer.lines) == 1
+    from effects.viewer.reload import build_effect
+    loaded = build_effect(str(path), effects.load_profile("geforce2"), keep_prepare_error=True,
+                          strict=True)
+    assert "texture parameter Base: nothing supplies it" in str(loaded.prepare_error)
 
 
 def test_exit_codes_say_what_happened(flat, tmp_path):

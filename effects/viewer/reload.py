@@ -191,7 +191,8 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     runtime = None
     if chosen is not None and lower:
         try:
-            runtime, programs = prepare(effect, chosen, profile, scene, chosen_validation)
+            runtime, programs = prepare(effect, chosen, profile, scene, chosen_validation,
+                                        strict=bool(load_options.get("strict")))
         except Exception as exc:  # noqa: BLE001 - a bug of ours must not close the viewer either
             if not keep_prepare_error:
                 raise
@@ -208,15 +209,16 @@ def loaded_warnings(loaded: LoadedEffect) -> list:
 
 
 def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
-            scene: Any = None, validation: "Validation | None" = None
+            scene: Any = None, validation: "Validation | None" = None, *, strict: bool = False
             ) -> tuple[Any, list["PassProgram"]]:
     """Everything that can fail before a technique draws, done now (off the render thread):
     bind the scene, lower every pass (from `validation`'s device states when given), load the
     textures the passes sample, build the streams. Returns the Runtime that did it (its
     lowered passes cached, its validation kept, its textures and streams loaded; it has no
-    back end) and the lowered passes."""
+    back end) and the lowered passes. `strict`: a texture nothing supplies is an error (kept
+    as the prepare error: the panel shows it) instead of a stand-in with a warning."""
     from effects.host.runtime import Runtime
-    runtime = Runtime(effect, profile, scene=scene, backend=None)
+    runtime = Runtime(effect, profile, scene=scene, backend=None, strict=strict)
     runtime.validation = validation
     programs = [runtime.lower(technique, i) for i in range(len(technique.passes))]
     for program in programs:
