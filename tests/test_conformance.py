@@ -66,7 +66,9 @@ ROUNDING = 2          # /255: float evaluation order, 8-bit rounding of a value 
 
 # Cards with no valid technique for an effect, and why (the test checks the reasons).
 NO_TECHNIQUE = {
-    "wood.fx": (set(CARDS), "needs HLSL compilation"),
+    "wood.fx": ({"g400", "rage128", "tnt2", "voodoo3", "voodoo5", "geforce2", "geforce256",
+                 "geforce4mx", "i865g", "radeon7500", "geforce3", "geforce4ti", "radeon8500"},
+                "PixelShader is ps_2_0"),
     "brdf.fx": ({"g400", "rage128", "tnt2", "voodoo3", "voodoo5", "geforce2", "geforce256",
                  "geforce4mx", "i865g", "radeon7500"}, "no pixel shader hardware"),
 }

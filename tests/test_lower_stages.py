@@ -411,8 +411,8 @@ def test_shader_pass_gets_its_constants_from_the_pass_state():
     close(shade(pp), (0.5, 0.25, 1.0, 1.0))
 
 
-def test_hlsl_compile_is_a_clear_error_until_hlsl_is_compiled():
-    with pytest.raises(EffectError, match=r"lowering of HLSL \(compile ps_2_0 f\) is not available yet"):
+def test_hlsl_compile_of_a_missing_function_is_a_located_error():
+    with pytest.raises(EffectError, match=r"X3501: 'f': entrypoint not found"):
         lower("PixelShader = compile ps_2_0 f();", technique="ps")
 
 

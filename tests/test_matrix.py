@@ -53,15 +53,14 @@ EXPECTED = {
                  dx9=("PerPixelPhong_ps20", 1)),
     "sdk8_style": row(dx6=("TDX6", 1), dx7=("TFF7", 1), geforce3=("TPS1", 1),
                       geforce4ti=("TPS1", 1), radeon8500=("TPS4", 1), dx9=("TPS4", 1)),
-    # Marble_ps20 and Wood_ps20 compile HLSL, which the framework cannot do yet: no card can
-    # create their shaders, so DX9 cards fall back (sdk9_style) or have nothing (wood).
+    # Marble_ps20 and Wood_ps20 compile HLSL (vs_1_1 + ps_2_0): every DX9 card runs them.
     "sdk9_style": row(dx6=("Marble_dx6", 1), dx7=("Marble_dx7", 1), dx8=("Marble_ps11", 1),
-                      dx9=("Marble_ps11", 1)),
+                      dx9=("Marble_ps20", 2)),
     "specular_bump": row(g400=("BumpEnvMap_dx6", 1), rage128=("Emboss_dx6", 2),
                          tnt2=("Emboss_dx6", 2), voodoo3=("Emboss_dx6", 2),
                          voodoo5=("Emboss_dx6", 2), dx7=("Dot3_dx7", 1),
                          dx8=("SpecularTable_ps11", 1), dx9=("Specular_ps20", 1)),
-    "wood": row(dx6=NONE, dx7=NONE, dx8=NONE, dx9=NONE),
+    "wood": row(dx6=NONE, dx7=NONE, dx8=NONE, dx9=("Wood_ps20", 1)),
 }
 
 

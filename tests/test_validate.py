@@ -649,21 +649,24 @@ float4 VS(float4 p : POSITION) : POSITION { return p; }
 """
 
 
-def test_hlsl_is_checked_by_profile_then_rejected_until_it_can_be_compiled():
+def test_hlsl_is_checked_by_profile_then_compiled_and_judged_by_its_assembly():
     body = "VertexShader = compile vs_1_1 VS();\nPixelShader = compile ps_2_0 PS();"
     on_gf3, _ = validate(body, card("geforce3"), HLSL)
     assert [r.message for r in on_gf3.reasons] == [
-        "PixelShader is ps_2_0; the GeForce3 runs pixel shaders up to ps_1_1",
-        "VertexShader = compile vs_1_1 VS() needs HLSL compilation, which this framework does "
-        "not do yet, so the shader cannot be created"]
+        "PixelShader is ps_2_0; the GeForce3 runs pixel shaders up to ps_1_1"]
     on_r300, _ = validate(body, card("radeon9700"), HLSL)
-    assert [r.message for r in on_r300.reasons] == [
-        "PixelShader = compile ps_2_0 PS() needs HLSL compilation, which this framework does "
-        "not do yet, so the shader cannot be created",
-        "VertexShader = compile vs_1_1 VS() needs HLSL compilation, which this framework does "
-        "not do yet, so the shader cannot be created"]
+    assert on_r300.ok, on_r300.reasons
     on_gma, _ = validate(body, card("gma900"), HLSL)
-    assert not on_gma.ok and on_gma.pass_reports[0].software_vertex_processing
+    assert on_gma.ok and on_gma.pass_reports[0].software_vertex_processing
+
+
+def test_hlsl_that_does_not_compile_rejects_the_technique_at_its_line():
+    body = "PixelShader = compile ps_2_0 Bad();"
+    source = "float4 Bad() : COLOR\n{\n    return foo;\n}\n"
+    v, _ = validate(body, card("radeon9700"), source)
+    assert not v.ok
+    assert [r.message for r in v.reasons] == ["X3004: undeclared identifier 'foo'"]
+    assert (v.reasons[0].location.line, v.reasons[0].location.column) == (3, 12)
 
 
 # --- quirks ---------------------------------------------------------------------------------------

@@ -47,7 +47,7 @@ from effects.lower.stages import (FogSetup, FragmentInputs, StageSetup, active_s
 from effects.lower.vertex import (PHONG_SLOTS, LightSetup, TexCoordSetup, VertexSetup,
                                    lower_pixel_lighting, lower_vertex)
 from effects.model import (CompileShader, Effect, NullValue, Parameter, ParamRef,
-                    RecordedReads, ShaderBlock, Technique, still_holds)
+                    RecordedReads, ShaderBlock, StateAssignment, Technique, still_holds)
 from effects.passprogram import PassProgram, RenderState, TextureBinding
 from effects.precision import lowering_options
 from effects.stage_ops import MAX_STAGES, TCI_MODES, TCI_SET_MASK, TCI_SHIFT, TTFF_PROJECTED
@@ -157,6 +157,8 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     fog = read_fog(state)
     pixel_shader = _shader(state, "PixelShader")
     vertex_shader = _shader(state, "VertexShader")
+    if isinstance(pixel_shader, CompileShader):
+        state = state.copy()   # the compiled shader binds its samplers (may be the validation's state)
 
     lit = None
     if pixel_shader is None:
@@ -175,7 +177,7 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
         if fog.source != "none":
             raise EffectError("fog after a pixel shader is not lowered yet",
                               state.where("FogEnable"))
-        program = _assemble(pixel_shader, "pixel")
+        program, compiled = _assemble(effect, state, pixel_shader, "pixel")
         ctx = asm_lower.ShaderContext(
             options, sampler_kinds={s: k for s in range(MAX_STAGES)
                                     if (k := _texture_kind(effect, state, s))},
@@ -186,6 +188,7 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
         uniforms.update(_shader_constants(state, "PixelShaderConstant",
                                           asm_lower.constant_registers(program),
                                           PIXEL_CONSTANT_PREFIX))
+        uniforms.update(_compiled_constants(effect, compiled, PIXEL_CONSTANT_PREFIX))
         uniforms.update(_bump_uniforms(state))
 
     needed = sorted(int(i.name[len("texcoord"):]) for i in fragment.inputs
@@ -201,13 +204,14 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     if vertex_shader is None:
         vertex = lower_vertex(read_vertex(effect, state, needed, fog, vertex_colors), uniforms)
     else:
-        program = _assemble(vertex_shader, "vertex")
+        program, compiled = _assemble(effect, state, vertex_shader, "vertex")
         ctx = asm_lower.ShaderContext(options, decl=getattr(vertex_shader, "decl", None),
                                       constant_prefix=VERTEX_CONSTANT_PREFIX)
         vertex = asm_lower.lower_vertex_shader(program, ctx)
         uniforms.update(_shader_constants(state, "VertexShaderConstant",
                                           asm_lower.constant_registers(program),
                                           VERTEX_CONSTANT_PREFIX))
+        uniforms.update(_compiled_constants(effect, compiled, VERTEX_CONSTANT_PREFIX))
 
     declared = {i.name for prog in (fragment, vertex) for i in prog.inputs if i.kind == "uniform"}
     textures = tuple(texture_binding(effect, state, s.index, s.kind) for s in fragment.samplers)
@@ -230,16 +234,33 @@ def _shader(state: DeviceState, name: str) -> Any:
     return value
 
 
-def _assemble(shader: Any, stage: str) -> "AsmProgram":
-    """The assembled program of a shader value; HLSL is compiled by a later stage."""
+def _assemble(effect: Effect, state: DeviceState, shader: Any,
+              stage: str) -> tuple["AsmProgram", Any]:
+    """The assembled program of a shader value, and the compiled HLSL shader (or None). An
+    HLSL shader's sampler parameters are bound to the sampler registers the compiler gave
+    them, as D3DX does when it sets the shader (`Sampler[s#] = (param)` in effect terms)."""
     location = getattr(shader, "location", None) or Location("<effect>", 1, 1)
     if isinstance(shader, CompileShader):
-        raise EffectError(f"lowering of HLSL (compile {shader.profile} {shader.function}) is "
-                          "not available yet", location)
+        from effects.shaders.hlsl import compile_state
+        compiled = compile_state(effect, shader)
+        if stage == "pixel":
+            for name, register in compiled.samplers.items():
+                state.apply(StateAssignment("Sampler", ParamRef(name), index=register,
+                                            location=location))
+        return compiled.program, compiled
     if not isinstance(shader, ShaderBlock):
         raise EffectError(f"cannot lower a {stage} shader given as {type(shader).__name__}",
                           location)
-    return assemble_cached(shader)
+    return assemble_cached(shader), None
+
+
+def _compiled_constants(effect: Effect, compiled: Any, prefix: str) -> dict[str, tuple[float, ...]]:
+    """Uniforms c# of a compiled HLSL shader from the parameters its register table names
+    (these win over PixelShaderConstant assignments, as the shader sets them when it runs)."""
+    if compiled is None:
+        return {}
+    from effects.shaders.hlsl.registers import constant_values
+    return {f"{prefix}{n}": row for n, row in constant_values(effect, compiled).items()}
 
 
 _CONSTANT_FAMILIES = {"VertexShaderConstant": ("VertexShaderConstant", "VertexShaderConstantF",

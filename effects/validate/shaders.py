@@ -1,7 +1,7 @@
 """Shader checks: the version against the card (a vertex shader newer than the hardware's runs
 in software vertex processing where the card offers it), every assembly rule of that version,
-the card's own limits, and HLSL `compile` shaders, which are rejected until the framework can
-compile them.
+the card's own limits. HLSL `compile` shaders are compiled for their target
+(effects.shaders.hlsl) and the assembly they compile to is judged by the same rules.
 
 A mixin of `validate._PassChecker`: it uses the checker's state, profile, report
 and reason helpers (fail, need_bit, where, unknown ...)."""
@@ -68,9 +68,6 @@ class ShaderChecks:
                       f"PixelShaderVersion {_version_text(have)}",
                       f"PixelShader is {label}; the {self.card()} {limit}")
             return
-        if isinstance(value, CompileShader):
-            self.note_hlsl("PixelShader", value)
-            return
         self.check_assembly(value, "PixelShader")
 
     def check_vertex_shader(self, shader: tuple[Any, Location]) -> None:
@@ -96,10 +93,6 @@ class ShaderChecks:
                       f"VertexShader is {label}; the {self.card()} {limit} and {offer}")
             return
         in_software = version > hardware
-        if isinstance(value, CompileShader):
-            self.report.software_vertex_processing = in_software
-            self.note_hlsl("VertexShader", value)
-            return
         if not in_software and software >= version and self.assembly_problems(value, software=False):
             # over the hardware's limits (constants, temporaries): software processing runs it
             if not self.assembly_problems(value, software=True):
@@ -110,35 +103,27 @@ class ShaderChecks:
         self.check_assembly(value, "VertexShader", software=in_software)
 
     def assembly_problems(self, value: Any, software: bool) -> bool:
-        """Whether an asm shader breaks its version's rules or the card's limits."""
-        if not isinstance(value, ShaderBlock):
-            return False
-        from effects.shaders.asm import assemble_cached, card_limit_violations, check_cached
+        """Whether a shader breaks its version's rules or the card's limits."""
+        from effects.shaders.asm import card_limit_violations, check_cached
         try:
-            program = assemble_cached(value)
+            program = shader_program(self.effect, value)
         except EffectError:
             return True
+        if program is None:
+            return False
         return bool(check_cached(program)) or any(
             True for _ in card_limit_violations(program, self.profile, software=software))
 
-    def note_hlsl(self, state_name: str, value: CompileShader) -> None:
-        # D3DX rejects a technique whose shader fails to create (Wine's ValidateTechnique);
-        # this framework captures HLSL functions but cannot compile them yet, so it cannot
-        # create the shader on any card. Saying so beats selecting a technique nothing can draw.
-        self.fail(value.location, f"{state_name} = compile {value.profile} {value.function}()",
-                  "an HLSL compiler", "none in this framework yet",
-                  f"{state_name} = compile {value.profile} {value.function}() needs HLSL "
-                  "compilation, which this framework does not do yet, so the shader cannot be "
-                  "created")
-
     def check_assembly(self, value: Any, state_name: str, software: bool = False) -> None:
-        if not isinstance(value, ShaderBlock):
-            return
-        from effects.shaders.asm import assemble_cached, card_limit_violations, check_cached
+        from effects.shaders.asm import card_limit_violations, check_cached
         try:
-            program = assemble_cached(value)
+            program = shader_program(self.effect, value)
         except EffectError as err:
-            self.fail(err.location, state_name, "valid shader assembly", "assembly error", err.message)
+            what = "HLSL that compiles" if isinstance(value, CompileShader) else "valid shader assembly"
+            self.fail(err.location, state_name, what, "compile error" if isinstance(value, CompileShader)
+                      else "assembly error", err.message)
+            return
+        if program is None:
             return
         errors = check_cached(program)
         for err in errors:
@@ -154,6 +139,18 @@ class ShaderChecks:
         for loc, subject, requirement, card_value, message in card_limit_violations(
                 program, self.profile, software=software):
             self.fail(loc, subject, requirement, card_value, f"{message}; the {self.card()} has {card_value}")
+
+
+def shader_program(effect: Any, value: Any) -> Any:
+    """The assembled program of an asm block or of a `compile` state (compiled for its
+    target), or None for anything else."""
+    if isinstance(value, ShaderBlock):
+        from effects.shaders.asm import assemble_cached
+        return assemble_cached(value)
+    if isinstance(value, CompileShader):
+        from effects.shaders.hlsl import compile_state
+        return compile_state(effect, value).program
+    return None
 
 
 def _shader_version(value: Any) -> tuple[int, int] | None:

@@ -26,9 +26,10 @@ What is checked, and what is not:
   software or mixed vertex processing, up to the runtime's software version), every
   assembly rule of that version, and the card's own limits (instruction slots, temporaries,
   constants, dependent reads, render-target outputs; a vertex shader over the hardware's
-  limits runs in software where the card offers it). An HLSL `compile ps_2_0 f()` is checked
-  by its profile, and then rejected: the framework cannot compile HLSL yet, and D3DX rejects
-  a technique whose shader fails to create.
+  limits runs in software where the card offers it). An HLSL `compile ps_2_0 f()` is compiled for
+  its profile (effects.shaders.hlsl) and its assembly is judged by the same rules; a
+  function that does not compile rejects the technique, as D3DX rejects a technique whose
+  shader fails to create.
 - Card quirks (caps.py's vocabulary): severity `error` rejects, `warning` is reported in
   `Validation.warnings` and rejects nothing.
 A state whose value is a parameter without a value (or a preshader expression) cannot be

@@ -1,0 +1,262 @@
+"""Value-level arithmetic for the target: conversions, operators, comparisons and selects.
+
+Each helper builds the DAG nodes the target has instructions for: a comparison is `cmp` on a
+difference in pixel shaders and `slt`/`sge` in vertex shaders; a select (the flattened `if`,
+`?:`) is `cmp` where the target has it, `lrp` where it has that, else `mad`; saturate is a
+`_sat` move, or min/max where the version has no `_sat` (vs_1_1, vs_2_0).
+"""
+from __future__ import annotations
+
+from typing import Any, Callable
+
+from effects.errors import Location
+from effects.shaders.hlsl.context import Context
+from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.values import Value, component, operand, split, splat
+from effects.shaders.hlsl.types import BOOL, HType, RANKS, common_base, scalar, shape_of, vector
+
+
+class Arith:
+    def __init__(self, ctx: Context, error: Callable[[str, Any], Exception],
+                 warn: Callable[[str, Location], None]) -> None:
+        self.ctx = ctx
+        self.g = ctx.graph
+        self.error = error
+        self.warn = warn
+
+    # -- building blocks -------------------------------------------------------------------
+    def const(self, *values: float) -> Operand:
+        return self.g.const(tuple(values))
+
+    def op(self, name: str, args: list[Operand], loc: Location, width: int | None = None) -> Operand:
+        return self.g.op(name, args, width, loc)
+
+    def lanes(self, name: str, comps_list: list[list[Operand]], loc: Location) -> list[Operand]:
+        """A component-wise op over equally long component lists, as one vector node."""
+        ops = [operand(self.g, comps) for comps in comps_list]
+        return split(self.op(name, ops, loc))
+
+    def scalar_lanes(self, name: str, comps_list: list[list[Operand]], loc: Location) -> list[Operand]:
+        """A scalar-only instruction (rcp, rsq, exp, log, pow): one node per component."""
+        n = len(comps_list[0])
+        return [self.op(name, [c[i] for c in comps_list], loc, 1) for i in range(n)]
+
+    # -- conversions ------------------------------------------------------------------------
+    def convert(self, v: Value, t: HType, loc: Location, explicit: bool = False) -> Value:
+        if v.type == t and v.type.row_major == t.row_major:
+            return v
+        if not t.numeric or not v.type.numeric:
+            if t.kind == v.type.kind and t.name == v.type.name and t.kind in ("struct", "sampler", "array"):
+                return v
+            raise self.error(f"X3017: cannot {'convert' if explicit else 'implicitly convert'} "
+                             f"from '{v.type}' to '{t}'", loc)
+        comps = v.comps
+        if len(comps) == 1 and t.size > 1:
+            comps = comps * t.size
+        elif len(comps) != t.size:
+            if v.type.kind == "matrix" and t.kind == "matrix" and v.type.rows >= t.rows \
+                    and v.type.cols >= t.cols:
+                comps = [comps[i * v.type.cols + j] for i in range(t.rows) for j in range(t.cols)]
+            elif len(comps) > t.size and t.kind != "matrix" and v.type.kind != "matrix":
+                comps = comps[:t.size]
+            elif len(comps) > t.size and t.size == 1:
+                comps = comps[:1]
+            else:
+                raise self.error(f"X3017: cannot {'convert' if explicit else 'implicitly convert'}"
+                                 f" from '{v.type}' to '{t}'", loc)
+            if not explicit:
+                self.warn("X3206: implicit truncation of vector type", loc)
+        comps = self.convert_base(comps, v.type.base, t.base, loc)
+        return Value(t, comps)
+
+    def convert_base(self, comps: list[Operand], src: str, dst: str, loc: Location) -> list[Operand]:
+        if dst == "bool" and src != "bool":
+            return self.compare("!=", comps, [self.const(0.0)] * len(comps), loc)
+        if dst in ("int", "uint") and src not in ("int", "uint", "bool"):
+            return self.trunc(comps, loc)
+        return comps
+
+    def trunc(self, comps: list[Operand], loc: Location) -> list[Operand]:
+        # toward zero: x - frc(x) is floor; negative non-integers add one back
+        fl = self.floor(comps, loc)
+        if all(c.const_values() is not None for c in fl):
+            import math
+            return [self.const(float(math.trunc(c.const_values()[0]))) for c in comps]
+        neg = self.compare("<", comps, [self.const(0.0)] * len(comps), loc)
+        frac = self.lanes("frc", [comps], loc)
+        nonint = self.compare("!=", frac, [self.const(0.0)] * len(comps), loc)
+        fix = self.lanes("mul", [neg, nonint], loc)
+        return self.lanes("add", [fl, fix], loc)
+
+    def floor(self, comps: list[Operand], loc: Location) -> list[Operand]:
+        return self.lanes("add", [comps, [c.neg() for c in self.frc(comps, loc)]], loc)
+
+    def frc(self, comps: list[Operand], loc: Location) -> list[Operand]:
+        if self.ctx.target.name == "vs_1_1":
+            # vs_1_1's frc macro writes .y or .xy only: one component at a time in .y
+            out = []
+            for c in comps:
+                r = self.op("frc", [Operand(c.node, (c.swizzle[0],) * 2, c.negate)], loc, 2)
+                out.append(component(r, 1))
+            return out
+        return self.lanes("frc", [comps], loc)
+
+    # -- operators --------------------------------------------------------------------------
+    def broadcast(self, a: Value, b: Value, loc: Location, what: str) -> tuple[list[Operand], list[Operand], HType]:
+        """Both operands at a common shape (a scalar spreads; longer vectors truncate, X3206)."""
+        ta, tb = a.type, b.type
+        if not ta.numeric or not tb.numeric:
+            raise self.error(f"X3020: type mismatch: '{what}' needs numeric operands, not "
+                             f"'{ta}' and '{tb}'", loc)
+        base = common_base(ta.base, tb.base)
+        if ta.size == 1 and tb.size > 1:
+            return a.comps * tb.size, b.comps, tb.with_base(base)
+        if tb.size == 1 and ta.size > 1:
+            return a.comps, b.comps * ta.size, ta.with_base(base)
+        if ta.kind == tb.kind == "matrix":
+            rows, cols = min(ta.rows, tb.rows), min(ta.cols, tb.cols)
+            if (rows, cols) != (ta.rows, ta.cols) or (rows, cols) != (tb.rows, tb.cols):
+                self.warn("X3206: implicit truncation of vector type", loc)
+            t = shape_of(rows, cols, base)
+            pick = lambda v, tt: [v.comps[i * tt.cols + j] for i in range(rows) for j in range(cols)]
+            return pick(a, ta), pick(b, tb), t
+        if ta.kind == "matrix" or tb.kind == "matrix":
+            if ta.size != tb.size:
+                raise self.error(f"X3020: type mismatch between '{ta}' and '{tb}'", loc)
+            return a.comps, b.comps, (ta if ta.kind == "matrix" else tb).with_base(base)
+        n = min(ta.size, tb.size)
+        if ta.size != tb.size:
+            self.warn("X3206: implicit truncation of vector type", loc)
+        return a.comps[:n], b.comps[:n], vector(base, n)
+
+    def binary(self, opname: str, a: Value, b: Value, loc: Location) -> Value:
+        if opname in ("&&", "||"):
+            ca, cb, t = self.broadcast(self.to_bool(a, loc), self.to_bool(b, loc), loc, opname)
+            comps = self.lanes("mul" if opname == "&&" else "max", [ca, cb], loc)
+            return Value(t.with_base("bool"), comps)
+        ca, cb, t = self.broadcast(a, b, loc, opname)
+        if opname in ("<", ">", "<=", ">=", "==", "!="):
+            return Value(t.with_base("bool"), self.compare(opname, ca, cb, loc))
+        if t.base == "bool":
+            t = t.with_base("int")
+        if opname == "+":
+            comps = self.lanes("add", [ca, cb], loc)
+        elif opname == "-":
+            comps = self.lanes("add", [ca, [c.neg() for c in cb]], loc)
+        elif opname == "*":
+            comps = self.lanes("mul", [ca, cb], loc)
+        elif opname == "/":
+            comps = self.divide(ca, cb, loc)
+            if t.base in ("int", "uint"):
+                comps = self.trunc(comps, loc)
+        elif opname == "%":
+            comps = self.fmod(ca, cb, loc)
+        elif opname in ("&", "|", "^", "<<", ">>"):
+            comps = self.bitwise(opname, ca, cb, loc)
+        else:
+            raise self.error(f"X3000: operator '{opname}' is not supported", loc)
+        return Value(t, comps)
+
+    def divide(self, ca: list[Operand], cb: list[Operand], loc: Location) -> list[Operand]:
+        if all(c.const_values() is not None for c in cb):
+            inv = [self.const(1.0 / c.const_values()[0]) if c.const_values()[0] else
+                   self.const(float("inf")) for c in cb]
+        else:
+            inv = self.scalar_lanes("rcp", [cb], loc)
+        return self.lanes("mul", [ca, inv], loc)
+
+    def fmod(self, ca: list[Operand], cb: list[Operand], loc: Location) -> list[Operand]:
+        q = self.divide(ca, cb, loc)
+        # fxc's fmod: the remainder has the sign of a: b * frc(|a/b|) with a's sign
+        aq = self.lanes("abs", [q], loc) if self.ctx.target.has("abs") else \
+            self.lanes("max", [q, [c.neg() for c in q]], loc)
+        fr = self.frc(aq, loc)
+        sgn = self.select(self.compare("<", q, [self.const(0.0)] * len(q), loc),
+                          [c.neg() for c in fr], fr, loc)
+        return self.lanes("mul", [sgn, cb], loc)
+
+    def bitwise(self, opname: str, ca: list[Operand], cb: list[Operand], loc: Location) -> list[Operand]:
+        out = []
+        for x, y in zip(ca, cb):
+            vx, vy = x.const_values(), y.const_values()
+            if vx is None or vy is None:
+                raise self.error(f"X3535: bitwise operation '{opname}' needs integer hardware; "
+                                 f"{self.ctx.target.name} has none (only constant operands fold)", loc)
+            a, b = int(vx[0]), int(vy[0])
+            r = {"&": a & b, "|": a | b, "^": a ^ b, "<<": a << b, ">>": a >> b}[opname]
+            out.append(self.const(float(r)))
+        return out
+
+    # -- comparisons and selects ------------------------------------------------------------
+    def compare(self, opname: str, ca: list[Operand], cb: list[Operand], loc: Location) -> list[Operand]:
+        """0/1 per component."""
+        if self.ctx.target.has("cmp"):
+            # cmp d, a, b = d >= 0 ? a : b
+            one, zero = [self.const(1.0)] * len(ca), [self.const(0.0)] * len(ca)
+            if opname in (">=", "<"):
+                d = self.lanes("add", [ca, [c.neg() for c in cb]], loc)
+            elif opname in ("<=", ">"):
+                d = self.lanes("add", [cb, [c.neg() for c in ca]], loc)
+            else:
+                diff = self.lanes("add", [ca, [c.neg() for c in cb]], loc)
+                d = [c.neg() for c in self.lanes("abs", [diff], loc)] if self.ctx.target.has("abs") \
+                    else [c.neg() for c in self.lanes("mul", [diff, diff], loc)]
+            t, f = (one, zero) if opname in (">=", "<=", "==") else (zero, one)
+            return self.lanes("cmp", [d, t, f], loc)
+        if opname == "<":
+            return self.lanes("slt", [ca, cb], loc)
+        if opname == ">=":
+            return self.lanes("sge", [ca, cb], loc)
+        if opname == ">":
+            return self.lanes("slt", [cb, ca], loc)
+        if opname == "<=":
+            return self.lanes("sge", [cb, ca], loc)
+        ge = self.lanes("sge", [ca, cb], loc)
+        le = self.lanes("sge", [cb, ca], loc)
+        eq = self.lanes("mul", [ge, le], loc)
+        if opname == "==":
+            return eq
+        return self.lanes("add", [[self.const(1.0)] * len(eq), [c.neg() for c in eq]], loc)
+
+    def select(self, cond: list[Operand], a: list[Operand], b: list[Operand], loc: Location) -> list[Operand]:
+        """cond ? a : b per component, for 0/1 conditions."""
+        out_a, out_b = list(a), list(b)
+        if len(cond) == 1 and len(a) > 1:
+            cond = cond * len(a)
+        consts = [c.const_values() for c in cond]
+        if all(v is not None for v in consts):
+            return [x if v[0] else y for v, x, y in zip(consts, out_a, out_b)]  # type: ignore[index]
+        if all(x.sig() == y.sig() for x, y in zip(out_a, out_b)):
+            return out_a
+        if self.ctx.target.has("cmp"):
+            # a condition made by compare() is cmp(d, 1, 0) or cmp(d, 0, 1): select on d
+            node = cond[0].node
+            if all(c.node is node for c in cond) and node.op == "cmp" and not cond[0].negate:
+                t, f = node.args[1].const_values(), node.args[2].const_values()
+                lanes = [c.swizzle[0] for c in cond]
+                d = node.args[0].pick(tuple(lanes))
+                if t is not None and f is not None and all(t[i] == 1 and f[i] == 0 for i in lanes):
+                    return split(self.op("cmp", [d, operand(self.g, out_a), operand(self.g, out_b)], loc))
+                if t is not None and f is not None and all(t[i] == 0 and f[i] == 1 for i in lanes):
+                    return split(self.op("cmp", [d, operand(self.g, out_b), operand(self.g, out_a)], loc))
+            return self.lanes("cmp", [[c.neg() for c in cond], out_b, out_a], loc)
+        if self.ctx.target.has("lrp") and self.ctx.target.kind == "vs":
+            return self.lanes("lrp", [cond, out_a, out_b], loc)
+        diff = self.lanes("add", [out_a, [c.neg() for c in out_b]], loc)
+        return self.lanes("mad", [cond, diff, out_b], loc)
+
+    def to_bool(self, v: Value, loc: Location) -> Value:
+        if v.type.base == "bool":
+            return v
+        return Value(v.type.with_base("bool"),
+                     self.compare("!=", v.comps, [self.const(0.0)] * len(v.comps), loc))
+
+    def logical_not(self, comps: list[Operand], loc: Location) -> list[Operand]:
+        return self.lanes("add", [[self.const(1.0)] * len(comps), [c.neg() for c in comps]], loc)
+
+    def saturate(self, comps: list[Operand], loc: Location) -> list[Operand]:
+        if self.ctx.target.rules.saturate and self.ctx.target.kind == "ps" or \
+                self.ctx.target.name == "vs_3_0":
+            return self.lanes("sat", [comps], loc)
+        lo = self.lanes("max", [comps, [self.const(0.0)] * len(comps)], loc)
+        return self.lanes("min", [lo, [self.const(1.0)] * len(comps)], loc)

@@ -1,0 +1,59 @@
+"""The code generator's instruction records, shared by codegen.py and legalize.py."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from typing import Any
+
+from effects.errors import Location, UNKNOWN_LOCATION
+
+_SAMPLER_DCL = {"2d": "2d", "1d": "2d", "3d": "volume", "cube": "cube"}
+
+
+@dataclass
+class Reg:
+    """A register: kind 'r' (virtual until allocated), 'c', 'v', 't', 's', 'o...'."""
+    kind: str
+    index: int | None
+
+    def text(self, alloc: dict[int, int]) -> str:
+        if self.kind == "vr":
+            return f"r{alloc[self.index]}"  # type: ignore[index]
+        return f"{self.kind}{'' if self.index is None else self.index}"
+
+
+@dataclass
+class Src:
+    reg: Reg
+    lanes: dict[int, int]          # instruction lane -> register lane
+    negate: bool = False
+    fixed: tuple[int, ...] | None = None   # full swizzle when the lanes do not say (scalars)
+
+
+@dataclass
+class Instr:
+    opcode: str
+    dst: Reg | None
+    mask: tuple[int, ...]
+    srcs: list[Src]
+    location: Location = UNKNOWN_LOCATION
+    saturate: bool = False
+    sampler: str | None = None
+
+
+@dataclass
+class Output:
+    register: str                   # 'oPos' 'oC0' 'oT1' ...
+    comps: list[Any]             # dag Operands
+    location: Location = UNKNOWN_LOCATION
+
+
+@dataclass
+class Generated:
+    lines: list[str]
+    locations: list[Location]       # per line (UNKNOWN for headers)
+    constants: dict[str, tuple[int, int]] = field(default_factory=dict)   # param -> (c#, count)
+    samplers: dict[str, int] = field(default_factory=dict)                # param -> s#
+    defs: dict[int, tuple[float, ...]] = field(default_factory=dict)
+
+

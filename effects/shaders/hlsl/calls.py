@@ -1,0 +1,110 @@
+"""User function calls: overload resolution as fxc does it, then inlining.
+
+Overloads: a candidate whose parameter count fits (defaults included) is scored by the
+conversions its arguments need (exact 0, promotion of the base 1, scalar spread 2,
+truncation 3); the lowest total wins, and two candidates with the same score are ambiguous
+(X3067). Inlining binds `in` parameters to converted copies of the arguments, starts `out`
+parameters at zero, runs the body in a new frame, and writes `out`/`inout` parameters back
+to the argument l-values.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import lark
+
+from effects.shaders.hlsl.context import FunctionDef, resolve_type
+from effects.shaders.hlsl.lvalues import store
+from effects.shaders.hlsl.types import HType, RANKS
+from effects.shaders.hlsl.values import Frame, Value
+
+MAX_DEPTH = 32
+
+
+def parameters(ev: Any, fdef: FunctionDef) -> list[tuple[str, HType, str, Any, Any]]:
+    """(name, type, direction, default tree, semantic tree) per parameter."""
+    params = fdef.tree.children[3]
+    out = []
+    for p in (params.children if params is not None else []):
+        mods, spec, name, dims, sem, default = p.children
+        words = [str(m) for m in mods.children] if mods is not None else []
+        direction = "inout" if "inout" in words else "out" if "out" in words else \
+            "uniform" if "uniform" in words else "in"
+        t = ev.array_of(resolve_type(ev.ctx, spec, fdef.origin, mods), dims)
+        out.append((str(name), t, direction, default, sem))
+    return out
+
+
+def return_type(ctx: Any, fdef: FunctionDef) -> HType:
+    spec = fdef.tree.children[1].children[0]
+    if isinstance(spec, lark.Token):
+        return HType("void")
+    return resolve_type(ctx, spec, fdef.origin)
+
+
+def _cost(arg: HType, param: HType) -> int | None:
+    if arg == param:
+        return 0
+    if not arg.numeric or not param.numeric:
+        return 0 if (arg.kind == param.kind and arg.name == param.name) else None
+    if arg.size == param.size and arg.kind == param.kind or \
+            (arg.size == param.size and {arg.kind, param.kind} <= {"scalar", "vector"}):
+        return 0 if arg.base == param.base else 1
+    if arg.size == 1:
+        return 2
+    if arg.size > param.size:
+        return 3
+    return None
+
+
+def resolve_overload(ev: Any, fdefs: list[FunctionDef], args: list[Value], where: Any) -> FunctionDef | None:
+    scored = []
+    for fdef in fdefs:
+        params = parameters(ev, fdef)
+        required = sum(1 for p in params if p[3] is None)
+        if not required <= len(args) <= len(params):
+            continue
+        costs = [_cost(a.type, p[1]) for a, p in zip(args, params)]
+        if any(c is None for c in costs):
+            continue
+        scored.append((sum(costs), fdef))  # type: ignore[arg-type]
+    if not scored:
+        return None
+    scored.sort(key=lambda s: s[0])
+    if len(scored) > 1 and scored[0][0] == scored[1][0]:
+        raise ev.error(f"X3067: '{fdefs[0].name}': ambiguous function call", where)
+    return scored[0][1]
+
+
+def inline_call(ev: Any, fdef: FunctionDef, args: list[Value], arg_trees: list[Any], where: Any) -> Value:
+    if ev.depth >= MAX_DEPTH:
+        raise ev.error(f"X3500: recursive call to '{fdef.name}' (recursion is not allowed)", where)
+    params = parameters(ev, fdef)
+    callee = ev.spawn(fdef.origin)
+    callee.depth = ev.depth + 1
+    callee.mask = ev.active()
+    ret_type = return_type(ev.ctx, fdef)
+    callee.frames.append(Frame(ret_type))
+    for k, (name, t, direction, default, _sem) in enumerate(params):
+        if k < len(args):
+            value = args[k]
+        else:
+            value = callee.expr(default)
+        loc = ev.at(arg_trees[k]) if k < len(arg_trees) else fdef.origin.at(default)
+        if direction == "out":
+            bound = callee.zero(t)
+        else:
+            bound = ev.a.convert(value, t, loc)
+        callee.declare(name, t, bound, const=False)
+    body = fdef.tree.children[-1]
+    callee.block_in_frame(body)
+    for k, (name, t, direction, _d, _s) in enumerate(params):
+        if direction in ("out", "inout") and k < len(arg_trees):
+            result = callee.scopes[0][name].value
+            target = arg_trees[k]
+            current = ev.expr(target)
+            store(ev, target, ev.a.convert(result, current.type, ev.at(target)))
+    frame = callee.frames[-1]
+    if ret_type.kind != "void" and frame.retval is None:
+        raise fdef.origin.error(f"X3080: '{fdef.name}': function must return a value", fdef.tree)
+    return frame.retval if frame.retval is not None else Value(ret_type)

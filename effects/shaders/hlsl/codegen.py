@@ -1,0 +1,350 @@
+"""Code generation: the DAG the outputs reach, as Direct3D assembly for the target.
+
+1. combine: `add(mul(a, b), c)` with a single-use mul becomes `mad`; a single-use
+   instruction followed by `sat` takes `_sat` where the version has it;
+2. homes: each node gets a place — an input register, a constant (uniform or `def`),
+   or a temporary; a node used only by a `pack` (a vector built from pieces) writes its
+   lanes of the pack's register directly (so `dp4 r0.x` ... `dp4 r0.w`), and in vertex
+   shaders straight into the output register;
+3. emit in node order (already topological), with the version's rules on sources: ps_2_0
+   swizzles, read ports (one constant in vs_1_1, one t#/v# in ps_2_0), texld coordinates
+   in a register without swizzle, oC# written by mov;
+4. temporaries are allocated by linear scan over the emitted code.
+Each instruction keeps the HLSL location of the node it comes from.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from effects.errors import Location, UNKNOWN_LOCATION
+from effects.shaders.asm.versions import IDENTITY, PS20_SWIZZLES
+from effects.shaders.hlsl.context import Context
+from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg, Src
+from effects.shaders.hlsl.dag import Node, Operand, SHAPED
+from effects.shaders.hlsl.legalize import finish
+
+COMPONENTS = "xyzw"
+# ops whose result lanes can be placed anywhere (component-wise or one scalar result)
+_LANEWISE = {"add", "mul", "mad", "min", "max", "frc", "abs", "cmp", "lrp", "slt", "sge", "mov",
+             "sat", "dsx", "dsy"}
+_SCALAR = {"rcp", "rsq", "exp", "log", "pow"}
+_REDUCE = {"dp3": 3, "dp4": 4, "dp2add": 2}
+_TEX = {"tex": "texld", "texldp": "texldp", "texldb": "texldb", "texldl": "texldl", "texldd": "texldd"}
+
+
+class CodeGen:
+    def __init__(self, ctx: Context, inputs: dict[str, str], outputs: list[Output],
+                 constant_registers: dict[str, int], sampler_registers: dict[str, int],
+                 register_sizes: dict[str, int]) -> None:
+        self.ctx = ctx
+        self.target = ctx.target
+        self.rules = ctx.target.rules
+        self.inputs = inputs                     # input key -> dcl line
+        self.outputs = outputs
+        self.instrs: list[Instr] = []
+        self.home: dict[int, tuple[Reg, dict[int, int]]] = {}
+        self.next_vr = 0
+        self.const_regs = dict(constant_registers)
+        self.register_sizes = register_sizes
+        self.sampler_regs = dict(sampler_registers)
+        self.defs: dict[int, list[float | None]] = {}
+
+    # -- registers --------------------------------------------------------------------------
+    def temp(self) -> Reg:
+        self.next_vr += 1
+        return Reg("vr", self.next_vr - 1)
+
+    def uniform_reg(self, name: str, offset: int) -> Reg:
+        if name not in self.const_regs:
+            start = self._free_constant(self.register_sizes.get(name, 1))
+            self.const_regs[name] = start
+        return Reg("c", self.const_regs[name] + offset)
+
+    def _taken(self) -> set[int]:
+        taken = set(self.defs)
+        for name, start in self.const_regs.items():
+            taken.update(range(start, start + self.register_sizes.get(name, 1)))
+        return taken
+
+    def _free_constant(self, count: int) -> int:
+        taken = self._taken()
+        k = 0
+        while any(k + i in taken for i in range(count)):
+            k += 1
+        return k
+
+    def const_src(self, values: list[float]) -> Src:
+        """A `def` constant holding `values` (one per instruction lane used)."""
+        if len(set(values)) == 1:
+            v = values[0]
+            for reg, slots in self.defs.items():       # a lane already holding it
+                for lane, x in enumerate(slots):
+                    if x == v:
+                        return Src(Reg("c", reg), {}, fixed=(lane,) * 4)
+            for reg, slots in self.defs.items():       # a free lane of a scalar pool register
+                if getattr(slots, "pool", False) or None in slots:
+                    for lane, x in enumerate(slots):
+                        if x is None:
+                            slots[lane] = v
+                            return Src(Reg("c", reg), {}, fixed=(lane,) * 4)
+            reg = self._free_constant(1)
+            self.defs[reg] = [v, None, None, None]
+            return Src(Reg("c", reg), {}, fixed=(0,) * 4)
+        want = tuple(values) + (values[-1],) * (4 - len(values))
+        for reg, slots in self.defs.items():
+            if tuple(slots) == want:
+                return Src(Reg("c", reg), {}, fixed=IDENTITY)
+        reg = self._free_constant(1)
+        self.defs[reg] = list(want)
+        return Src(Reg("c", reg), {}, fixed=IDENTITY)
+
+    # -- analysis ---------------------------------------------------------------------------
+    def reachable(self) -> list[Node]:
+        seen: dict[int, Node] = {}
+        stack = [c.node for o in self.outputs for c in o.comps] + [k.node for k in self.ctx.kills]
+        while stack:
+            n = stack.pop()
+            if n.id in seen:
+                continue
+            seen[n.id] = n
+            stack.extend(a.node for a in n.args)
+        return sorted(seen.values(), key=lambda n: n.id)
+
+    def count_uses(self, nodes: list[Node]) -> None:
+        for n in nodes:
+            n.uses = 0
+        for n in nodes:
+            for a in n.args:
+                a.node.uses += 1
+        for o in self.outputs:
+            for c in o.comps:
+                c.node.uses += 1
+
+    def combine(self, nodes: list[Node]) -> None:
+        """mul + add -> mad where the mul has no other use."""
+        self.count_uses(nodes)
+        for n in nodes:
+            if n.op != "add":
+                continue
+            for k in (0, 1):
+                m = n.args[k]
+                if m.node.op == "mul" and m.node.uses == 1 and m.node.width >= m.width:
+                    a, b = m.node.args
+                    a2, b2 = a.pick(m.swizzle), b.pick(m.swizzle)
+                    if m.negate:
+                        a2 = a2.neg()
+                    n.op, n.args = "mad", (a2, b2, n.args[1 - k])
+                    m.node.uses = 0
+                    break
+
+    # -- emission ---------------------------------------------------------------------------
+    def place(self, op: Operand, lanes: list[int], reduce: bool = False) -> Src:
+        """A source reading operand lanes: instruction lane i reads op lane i (or, for
+        reductions, source lanes 0..k-1)."""
+        node = op.node
+        if node.op == "const":
+            vals = [node.value[op.swizzle[i]] * (-1 if op.negate else 1) for i in lanes]  # type: ignore[index]
+            src = self.const_src([float(v) for v in vals])
+            if src.fixed is not None and len(set(vals)) > 1:
+                src.lanes = {i: k for k, i in enumerate(lanes)}
+                src.fixed = None
+            return src
+        reg, where = self.home[node.id]
+        return Src(reg, {i: where[op.swizzle[i]] for i in lanes}, op.negate)
+
+    def home_of(self, node: Node) -> tuple[Reg, dict[int, int]]:
+        if node.id not in self.home:
+            self.home[node.id] = (self.temp(), {c: c for c in range(node.width)})
+        return self.home[node.id]
+
+    def emit(self, opcode: str, dst: Reg | None, mask: tuple[int, ...], srcs: list[Src],
+             loc: Location, sampler: str | None = None, saturate: bool = False) -> None:
+        self.instrs.append(Instr(opcode, dst, mask, srcs, loc, saturate, sampler))
+
+    def generate(self) -> Generated:
+        nodes = self.reachable()
+        self.combine(nodes)
+        nodes = self.reachable()
+        self.count_uses(nodes)
+        self.coalesce(nodes)
+        for n in nodes:
+            self.node(n)
+        for k in self.ctx.kills:
+            src_op = k.node.args[0]
+            reg = self.temp()
+            width = src_op.width
+            src = self.place(src_op, [min(i, width - 1) for i in range(4)])
+            src.lanes = {i: src.lanes.get(min(i, width - 1), 0) for i in range(4)} if src.fixed is None else src.lanes
+            self.emit("mov", reg, (0, 1, 2, 3), [src], k.node.location)
+            self.emit("texkill", reg, (0, 1, 2, 3), [], k.node.location)
+        for o in self.outputs:
+            self.output(o)
+        return finish(self)
+
+    def coalesce(self, nodes: list[Node]) -> None:
+        for n in nodes:
+            if n.op == "input" or n.op == "uniform" or n.op == "const":
+                continue
+        for p in nodes:
+            if p.op != "pack":
+                continue
+            reg = self.home_of(p)[0]
+            self._coalesce_into(p.args, reg, p.location, lambda lane: lane)
+        self.out_regs: dict[str, Reg] = {}
+        for o in self.outputs:
+            # vertex shaders compute straight into the output; oC# and oDepth take a mov
+            reg = Reg(*_split_reg(o.register)) if self.target.kind == "vs" else self.temp()
+            self.out_regs[o.register] = reg
+            self._coalesce_into(tuple(o.comps), reg, o.location, lambda lane: lane)
+
+    def _coalesce_into(self, comps: tuple[Operand, ...], reg: Reg, loc: Location, lane_of) -> None:
+        by_node: dict[int, list[tuple[int, int]]] = {}
+        for lane, c in enumerate(comps):
+            if c.negate:
+                continue
+            by_node.setdefault(c.node.id, []).append((c.swizzle[0], lane))
+        for c in comps:
+            node = c.node
+            pairs = by_node.get(node.id)
+            if not pairs or node.id in self.home:
+                continue
+            uses_here = sum(1 for x in comps if x.node is node)
+            movable = (node.op in _LANEWISE and not (node.op == "frc" and self.target.name == "vs_1_1")) or (node.width == 1 and (node.op in _SCALAR or node.op in _REDUCE))
+            comps_used = [p[0] for p in pairs]
+            if movable and node.uses == uses_here and len(set(comps_used)) == len(comps_used) \
+                    and len(pairs) == uses_here:
+                self.home[node.id] = (reg, {comp: lane_of(lane) for comp, lane in pairs})
+                node.__dict__["coalesced"] = True
+
+    def node(self, n: Node) -> None:
+        op = n.op
+        if op == "const":
+            return
+        if op == "input":
+            self.home[n.id] = (Reg(*_split_reg(n.key[1])), {c: c for c in range(4)})
+            return
+        if op == "uniform":
+            self.home[n.id] = (self.uniform_reg(*n.key), {c: c for c in range(4)})
+            return
+        if op == "kill":
+            return
+        if op == "pack":
+            reg, _ = self.home_of(n)
+            groups: dict[tuple, list[tuple[int, Operand]]] = {}
+            for lane, c in enumerate(n.args):
+                if self.home.get(c.node.id, (None,))[0] is reg and getattr(c.node, "coalesced", False):
+                    continue
+                key = (c.node.id, c.negate) if c.node.op != "const" else ("const",)
+                groups.setdefault(key, []).append((lane, c))
+            for items in groups.values():
+                lanes = [lane for lane, _ in items]
+                src = self._gather(items)
+                self.emit("mov", reg, tuple(lanes), [src], n.location)
+            return
+        reg, where = self.home_of(n)
+        lanes_out = sorted(where.items(), key=lambda kv: kv[1])    # (comp, register lane)
+        if op in _TEX:
+            srcs = [self.place(a, list(range(a.width))) for a in n.args]
+            self.emit(_TEX[op], reg, (0, 1, 2, 3), srcs, n.location, sampler=n.key[0])
+            return
+        if op in SHAPED and op not in _REDUCE:
+            widths = SHAPED[op][0]
+            srcs = [self.place(a, list(range(w))) for a, w in zip(n.args, widths)]
+            for s in srcs:
+                s.lanes = {i: s.lanes[i] for i in s.lanes}
+            mask = tuple(sorted(where[c] for c in range(n.width)))
+            if op == "sincos":
+                if self.rules.major < 3:
+                    srcs += [self.const_src([-1.5500992e-06, -2.1701389e-05, 0.0026041667, 0.00026041668]),
+                             self.const_src([-0.020833334, -0.125, 1.0, 0.5])]
+                    srcs[1].fixed, srcs[2].fixed = IDENTITY, IDENTITY
+                srcs[0].fixed = (srcs[0].lanes[0],) * 4
+            self.emit(op, reg, mask, srcs, n.location)
+            return
+        if op in _REDUCE:
+            k = _REDUCE[op]
+            srcs = [self.place(a, list(range(k))) for a in n.args[:2]]
+            if op == "dp2add":
+                srcs.append(self.place(n.args[2], [0]))
+                srcs[2].fixed = (srcs[2].lanes.get(0, 0),) * 4 if srcs[2].fixed is None else srcs[2].fixed
+            mask = tuple(sorted(lane for _, lane in lanes_out))
+            self.emit(op, reg, mask, srcs, n.location)
+            return
+        if op in _SCALAR:
+            srcs = [self.place(a, [0]) for a in n.args]
+            for s in srcs:
+                if s.fixed is None:
+                    s.fixed = (s.lanes[0],) * 4
+            mask = tuple(sorted(lane for _, lane in lanes_out))
+            self.emit(op, reg, mask, srcs, n.location)
+            return
+        # component-wise: instruction lane L computes node comp c where where[c] = L
+        mask = tuple(lane for _, lane in lanes_out)
+        srcs = []
+        for a in n.args:
+            width = a.width
+            s = self._lanewise(a, lanes_out)
+            srcs.append(s)
+        opcode = "mov" if op == "sat" else op
+        self.emit(opcode, reg, mask, srcs, n.location, saturate=op == "sat")
+
+    def _lanewise(self, a: Operand, lanes_out: list[tuple[int, int]]) -> Src:
+        node = a.node
+        if node.op == "const":
+            vals = {lane: node.value[a.swizzle[min(c, a.width - 1)]] * (-1 if a.negate else 1)  # type: ignore[index]
+                    for c, lane in lanes_out}
+            if len(set(vals.values())) == 1:
+                return self.const_src([next(iter(vals.values()))])
+            full = [vals.get(l, next(iter(vals.values()))) for l in range(4)]
+            src = self.const_src([float(x) for x in full])
+            src.lanes, src.fixed = {l: l for l in vals}, None
+            return src
+        reg, where = self.home[node.id]
+        return Src(reg, {lane: where[a.swizzle[min(c, a.width - 1)]] for c, lane in lanes_out}, a.negate)
+
+    def _gather(self, items: list[tuple[int, Operand]]) -> Src:
+        first = items[0][1]
+        if first.node.op == "const":
+            vals = {lane: c.const_values()[0] for lane, c in items}  # type: ignore[index]
+            if len(set(vals.values())) == 1:
+                return self.const_src([next(iter(vals.values()))])
+            full = [vals.get(l, next(iter(vals.values()))) for l in range(4)]
+            src = self.const_src([float(x) for x in full])
+            src.lanes, src.fixed = {l: l for l in vals}, None
+            return src
+        reg, where = self.home[first.node.id]
+        return Src(reg, {lane: where[c.swizzle[0]] for lane, c in items}, first.negate)
+
+    def output(self, o: Output) -> None:
+        final = Reg(*_split_reg(o.register))
+        reg = self.out_regs[o.register]
+        comps = list(o.comps)
+        if o.register.startswith("oC"):
+            comps += [comps[-1]] * (4 - len(comps))
+        pending = [(lane, c) for lane, c in enumerate(comps)
+                   if not (lane < len(o.comps) and self.home.get(c.node.id, (None,))[0] is reg)]
+        if self.target.kind == "ps" and len(pending) == len(comps):
+            first = comps[0].node
+            home = self.home.get(first.id)
+            if home is not None and all(c.node is first and not c.negate for c in comps) \
+                    and home[0].kind in ("vr", "t", "v"):
+                src = Src(home[0], {l: home[1][c.swizzle[0]] for l, c in enumerate(comps)})
+                self.emit("mov", final, (0, 1, 2, 3) if o.register.startswith("oC") else (0,),
+                          [src], o.location)
+                return
+        groups: dict[tuple, list[tuple[int, Operand]]] = {}
+        for lane, c in pending:
+            key = (c.node.id, c.negate) if c.node.op != "const" else ("const",)
+            groups.setdefault(key, []).append((lane, c))
+        for items in groups.values():
+            self.emit("mov", reg, tuple(l for l, _ in items), [self._gather(items)], o.location)
+        if self.target.kind == "ps":
+            mask = (0, 1, 2, 3) if o.register.startswith("oC") else (0,)
+            self.emit("mov", final, mask, [Src(reg, {l: l for l in mask})], o.location)
+
+
+def _split_reg(name: str) -> tuple[str, int | None]:
+    head = name.rstrip("0123456789")
+    tail = name[len(head):]
+    return head, int(tail) if tail else None

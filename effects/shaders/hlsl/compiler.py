@@ -1,0 +1,323 @@
+"""compile_shader: an effect's HLSL function compiled for a target, as fxc did.
+
+    shader = compile_shader(effect, "Wood", "ps_2_0")          # or compile_state(effect, cs)
+    shader.text        # the assembly (vs_1_1 ... ps_3_0)
+    shader.program     # that text assembled (effects.shaders.asm), located in the HLSL
+    shader.constants   # parameter -> (first c#, count): what the pass must load
+    shader.samplers    # sampler parameter -> s#
+
+The assembly then goes through the assembler's own checks and the card's limits like any
+hand-written shader; each instruction of `program` is located at the HLSL line it comes from.
+"""
+from __future__ import annotations
+
+import re
+import threading
+from dataclasses import dataclass, field
+from typing import Any
+
+from effects.errors import AsmError, EffectError, EffectWarning, Location
+from effects.model import CompileShader, Effect, ShaderBlock
+from effects.shaders.asm import AsmProgram, assemble
+from effects.shaders.hlsl.calls import parameters, return_type
+from effects.shaders.hlsl.asmcode import Output
+from effects.shaders.hlsl.codegen import CodeGen
+from effects.shaders.hlsl.context import Context, load_context, register_binding
+from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.evaluate import Evaluator, Frame
+from effects.shaders.hlsl.parse import HlslError, Origin, parse
+from effects.shaders.hlsl.types import HType, register_count
+from effects.shaders.hlsl.values import Value, split
+
+_SEMANTIC = re.compile(r"^([A-Za-z_]+?)(\d*)$")
+_VS_OUT = {"POSITION": "oPos", "COLOR": "oD", "TEXCOORD": "oT", "FOG": "oFog", "PSIZE": "oPts"}
+
+
+@dataclass
+class CompiledShader:
+    function: str
+    target: str
+    text: str
+    program: AsmProgram
+    constants: dict[str, tuple[int, int]]
+    samplers: dict[str, int]
+    lines: list[Location]                       # per line of `text`
+    warnings: list[EffectWarning] = field(default_factory=list)
+    types: dict[str, HType] = field(default_factory=dict)
+
+    @property
+    def stage(self) -> str:
+        return "vertex" if self.target.startswith("vs") else "pixel"
+
+
+def split_semantic(text: str) -> tuple[str, int]:
+    m = _SEMANTIC.match(text.strip())
+    if not m:
+        return text.upper(), 0
+    return m.group(1).upper(), int(m.group(2) or 0)
+
+
+_CACHE: dict[tuple, CompiledShader | EffectError] = {}
+_LOCK = threading.Lock()
+
+
+def compile_state(effect: Effect, value: CompileShader) -> CompiledShader:
+    """The shader of a `compile` state (memoised on the effect's text and the arguments)."""
+    key = (effect.path, tuple((f.name, f.source, f.location) for f in effect.functions),
+           tuple((s.name, s.source) for s in effect.structs),
+           tuple((p.name, p.type, p.storage, p.semantic, p.array,
+                  repr(p.value) if "static" in p.storage else None) for p in effect.parameters),
+           value.profile, value.function, value.args, value.location)
+    with _LOCK:
+        hit = _CACHE.get(key)
+    if hit is None:
+        try:
+            hit = compile_shader(effect, value.function, value.profile, value.args, value.location)
+        except EffectError as err:
+            hit = err
+        with _LOCK:
+            if len(_CACHE) > 256:
+                _CACHE.pop(next(iter(_CACHE)))
+            _CACHE[key] = hit
+    if isinstance(hit, EffectError):
+        raise hit
+    return hit
+
+
+def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...] = (),
+                   where: Location | None = None) -> CompiledShader:
+    where = where or Location(effect.path, 1, 1)
+    ctx = load_context(effect, target.lower())
+    fdefs = ctx.functions.get(entry)
+    if not fdefs:
+        raise HlslError(f"X3501: '{entry}': entrypoint not found", where)
+    fdef = fdefs[0]
+    ev = Evaluator(ctx, fdef.origin)
+    rtype = return_type(ctx, fdef)
+    ev.frames.append(Frame(rtype))
+    params = parameters(ev, fdef)
+    compile_args = list(args)
+    binder = _Binder(ctx, ev)
+    outs: list[tuple[str, HType, Any, Any]] = []
+    for name, t, direction, default, sem in params:
+        sem_text = sem.children[0] if sem is not None and sem.data != "register" else None
+        if direction == "uniform":
+            if compile_args:
+                text = compile_args.pop(0)
+                value = _compile_argument(ctx, ev, text, t, where)
+            elif default is not None:
+                value = ev.a.convert(ev.expr(default), t, ev.at(default))
+            else:
+                value = binder.uniform_param(name, t)
+            ev.declare(name, t, value)
+        elif direction == "out":
+            ev.declare(name, t, ev.zero(t))
+            outs.append((name, t, sem_text, sem))
+        else:
+            value = binder.input(t, str(sem_text) if sem_text is not None else None,
+                                 fdef.origin.at(sem if sem is not None else fdef.tree), name)
+            ev.declare(name, t, value)
+            if direction == "inout":
+                outs.append((name, t, sem_text, sem))
+    if compile_args:
+        raise HlslError(f"X3013: '{entry}': too many compile arguments ({len(args)})", where)
+    ev.block(fdef.tree.children[-1])
+    frame = ev.frames[-1]
+    outputs: list[Output] = []
+    fsem = fdef.tree.children[4]
+    if rtype.kind != "void":
+        if frame.retval is None:
+            raise fdef.origin.error(f"X3080: '{entry}': function must return a value", fdef.tree)
+        binder.outputs(frame.retval, str(fsem.children[0]) if fsem is not None else None,
+                       fdef.origin.at(fdef.tree), outputs)
+    for name, t, sem_text, sem in outs:
+        binder.outputs(ev.scopes[0][name].value if name in ev.scopes[0] else ev.lookup(name).value,
+                       str(sem_text) if sem_text is not None else None,
+                       fdef.origin.at(sem if sem is not None else fdef.tree), outputs)
+    if ctx.target.kind == "ps" and not any(o.register.startswith("oC") for o in outputs):
+        raise fdef.origin.error(f"X4507: '{entry}': a pixel shader must write a COLOR output", fdef.tree)
+    if ctx.target.kind == "vs" and not any(o.register in ("oPos", "o0") and o.register == "oPos"
+                                           or o.register.startswith("o") for o in outputs):
+        raise fdef.origin.error(f"X4502: '{entry}': a vertex shader must write POSITION", fdef.tree)
+    constants, sizes = _constant_registers(ctx, outputs)
+    samplers = {name: int(b[1:]) for name in ctx.samplers_used
+                if (b := _explicit(ctx, name, "s")) is not None}
+    cg = CodeGen(ctx, binder.dcls, outputs, constants, samplers, sizes)
+    cg.output_dcls = binder.output_dcls  # type: ignore[attr-defined]
+    generated = cg.generate()
+    text = "\n".join(generated.lines) + "\n"
+    program = _assemble(text, ctx, generated.lines, generated.locations, fdef, where)
+    return CompiledShader(entry, ctx.target.name, text, program, generated.constants,
+                          generated.samplers, generated.locations, list(ctx.warnings),
+                          dict(ctx.uniforms_used))
+
+
+def _explicit(ctx: Context, name: str, kind: str) -> str | None:
+    p = ctx.effect.parameter(name)
+    if p is None or not p.semantic:
+        return None
+    m = re.match(r"(?i)^register\(\s*([a-z]+)(\d+)\s*\)$", p.semantic.strip())
+    if m and m.group(1).lower() == kind:
+        return f"{kind}{m.group(2)}"
+    return None
+
+
+def _constant_registers(ctx: Context, outputs: list[Output]) -> tuple[dict[str, int], dict[str, int]]:
+    """fxc's order: explicit register(c#) bindings, then the uniforms by first use."""
+    seen: dict[int, Any] = {}
+    stack = [c.node for o in outputs for c in o.comps] + [k.node for k in ctx.kills]
+    order: list[str] = []
+    while stack:
+        n = stack.pop()
+        if n.id in seen:
+            continue
+        seen[n.id] = n
+        stack.extend(a.node for a in n.args)
+    for n in sorted(seen.values(), key=lambda n: n.id):
+        if n.op == "uniform" and n.key[0] not in order:
+            order.append(n.key[0])
+    sizes = {name: register_count(ctx.uniforms_used.get(name) or HType("scalar")) for name in order}
+    regs: dict[str, int] = {}
+    taken: set[int] = set()
+    for name in order:
+        b = _explicit(ctx, name, "c")
+        if b is not None:
+            regs[name] = int(b[1:])
+            taken.update(range(regs[name], regs[name] + sizes[name]))
+    for name in order:
+        if name in regs:
+            continue
+        k = 0
+        while any(k + i in taken for i in range(sizes[name])):
+            k += 1
+        regs[name] = k
+        taken.update(range(k, k + sizes[name]))
+    return regs, sizes
+
+
+def _compile_argument(ctx: Context, ev: Evaluator, text: str, t: HType, where: Location) -> Value:
+    origin = Origin(where, text)
+    tree = parse(text, "initializer", origin)
+    sub = ev.spawn(origin)
+    value = sub.a.convert(sub.expr(tree), t, where)
+    if value.type.numeric and value.const_values() is None:
+        raise HlslError(f"X3013: compile argument '{text}' is not a compile-time constant", where)
+    return value
+
+
+def _assemble(text: str, ctx: Context, lines: list[str], locations: list[Location],
+              fdef: Any, where: Location) -> AsmProgram:
+    block = ShaderBlock("vertex" if ctx.target.kind == "vs" else "pixel", ctx.target.name, text,
+                        location=Location(f"<{fdef.name}:{ctx.target.name}>", 1, 1))
+    try:
+        program = assemble(block)
+    except AsmError as err:   # a code generator bug: say where it came from
+        k = err.location.line - 1
+        loc = locations[k] if 0 <= k < len(locations) and locations[k].line else fdef.origin.at(fdef.tree)
+        raise HlslError(f"internal: the generated {ctx.target.name} code does not assemble: "
+                        f"{err.message} ({lines[k] if 0 <= k < len(lines) else ''})", loc) from None
+    entry_loc = fdef.origin.at(fdef.tree)
+
+    def relocate(loc: Location) -> Location:
+        k = loc.line - 1
+        found = locations[k] if 0 <= k < len(locations) else None
+        return found if found is not None and found.line else entry_loc
+    for ins in program.instructions:
+        ins.location = relocate(ins.location)
+        for op in ins.operands:
+            op.location = ins.location
+    for d in program.dcls:
+        d.location = entry_loc
+        d.register.location = entry_loc
+    for cd in program.def_statements:
+        cd.location = entry_loc
+        cd.register.location = entry_loc
+    program.location = entry_loc
+    program.origin = Location(entry_loc.path, 0, 1)
+    program.source_lines = ()
+    return program
+
+
+class _Binder:
+    """Entry-point inputs and outputs by semantic, per target."""
+
+    def __init__(self, ctx: Context, ev: Evaluator) -> None:
+        self.ctx = ctx
+        self.ev = ev
+        self.dcls: dict[str, str] = {}
+        self.output_dcls: list[str] = []
+        self.next_v = 0
+        self.next_o = 0
+
+    def uniform_param(self, name: str, t: HType) -> Value:
+        from effects.shaders.hlsl.expressions import uniform_value
+        key = f"${name}"
+        self.ctx.uniforms_used.setdefault(key, t)
+        return uniform_value(self.ev, key, t, 0)
+
+    def input(self, t: HType, semantic: str | None, loc: Location, name: str) -> Value:
+        if t.kind == "struct":
+            out = Value(t)
+            for fname, ft, fsem in t.fields:
+                out.fields[fname] = self.input(ft, fsem, loc, f"{name}.{fname}")
+            return out
+        if semantic is None:
+            raise HlslError(f"X4502: input '{name}' of the entry point has no semantic", loc)
+        usage, index = split_semantic(semantic)
+        target = self.ctx.target
+        if target.kind == "ps" and target.rules.major < 3:
+            if usage == "COLOR":
+                reg = f"v{index}"
+            elif usage == "TEXCOORD":
+                reg = f"t{index}"
+            else:
+                raise HlslError(f"X4502: invalid ps_2_0 input semantic '{semantic}'", loc)
+            self.dcls[reg] = f"dcl {reg}"
+        else:
+            key = (usage, index)
+            reg = None
+            for r, d in self.dcls.items():
+                if d.endswith(f" {r}") and getattr(self, "_keys", {}).get(r) == key:
+                    reg = r
+            if reg is None:
+                reg = f"v{self.next_v}"
+                self.next_v += 1
+                self.__dict__.setdefault("_keys", {})[reg] = key
+                usage_text = usage.lower() + (str(index) if index else "")
+                if usage_text.startswith("sv_"):
+                    usage_text = usage_text[3:]
+                self.dcls[reg] = f"dcl_{usage_text} {reg}"
+        if not t.numeric:
+            raise HlslError(f"X4502: input '{name}' must be numeric, not '{t}'", loc)
+        node = self.ctx.graph.leaf("input", ("input", reg), 4, loc)
+        comps = [Operand(node.node, (min(i, 3),)) for i in range(t.size)]
+        return Value(t, comps)
+
+    def outputs(self, value: Value, semantic: str | None, loc: Location, out: list[Output]) -> None:
+        if value.type.kind == "struct":
+            for fname, ft, fsem in value.type.fields:
+                self.outputs(value.fields[fname], fsem, loc, out)
+            return
+        if semantic is None:
+            raise HlslError("X4503: output of the entry point has no semantic", loc)
+        usage, index = split_semantic(semantic)
+        target = self.ctx.target
+        if target.kind == "ps":
+            if usage == "COLOR":
+                reg = f"oC{index}"
+            elif usage == "DEPTH":
+                reg = "oDepth"
+            else:
+                raise HlslError(f"X4503: invalid pixel shader output semantic '{semantic}'", loc)
+        elif target.rules.major < 3:
+            if usage not in _VS_OUT:
+                raise HlslError(f"X4503: invalid vertex shader output semantic '{semantic}'", loc)
+            reg = _VS_OUT[usage] + (str(index) if usage in ("COLOR", "TEXCOORD") else "")
+        else:
+            reg = f"o{self.next_o}"
+            self.next_o += 1
+            self.output_dcls.append(f"dcl_{usage.lower()}{index if index else ''} {reg}")
+        comps = list(value.comps)
+        if usage == "POSITION" and len(comps) < 4:
+            comps = comps + [self.ctx.graph.const((1.0,))] * (4 - len(comps))
+        out.append(Output(reg, comps, loc))

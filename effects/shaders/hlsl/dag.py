@@ -1,0 +1,196 @@
+"""The compiler's middle: a hash-consed DAG of vector operations close to shader assembly.
+
+Every node is one assembly-level operation (add, mul, mad, dp3, cmp, lrp, texld ...) on
+operands that are (node, swizzle, negate): so source swizzles and negation are free, as in
+the assembly, and the code generator turns each node into one instruction. Building a node
+whose operands are all constants computes it instead (constant folding and propagation);
+an identical node is built once (common subexpressions); code is generated only for what
+the outputs reach (dead-code elimination). The front end has already inlined calls, unrolled
+loops and turned `if` into selects, so the DAG has no control flow.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+import numpy as np
+
+from effects.errors import Location, UNKNOWN_LOCATION
+
+
+@dataclass(eq=False)
+class Node:
+    op: str
+    args: tuple["Operand", ...]
+    width: int
+    key: Any = None                  # leaves: ('input', sem) / ('uniform', name, row) / tex
+    value: tuple[float, ...] | None = None      # constants
+    location: Location = UNKNOWN_LOCATION       # the HLSL expression it comes from
+    id: int = 0
+    uses: int = field(default=0, repr=False)
+
+    @property
+    def is_const(self) -> bool:
+        return self.op == "const"
+
+
+@dataclass(frozen=True, eq=False)
+class Operand:
+    node: Node
+    swizzle: tuple[int, ...]
+    negate: bool = False
+
+    @property
+    def width(self) -> int:
+        return len(self.swizzle)
+
+    def sig(self) -> tuple:
+        return (self.node.id, self.swizzle, self.negate)
+
+    def const_values(self) -> tuple[float, ...] | None:
+        if self.node.value is None:
+            return None
+        v = tuple(self.node.value[i] for i in self.swizzle)
+        return tuple(-x for x in v) if self.negate else v
+
+    def neg(self) -> "Operand":
+        return Operand(self.node, self.swizzle, not self.negate)
+
+    def pick(self, swizzle: tuple[int, ...]) -> "Operand":
+        return Operand(self.node, tuple(self.swizzle[i] for i in swizzle), self.negate)
+
+
+def _safe(f: Callable[..., float]) -> Callable[..., float]:
+    def g(*a: float) -> float:
+        try:
+            r = f(*a)
+        except (ValueError, ZeroDivisionError, OverflowError):
+            r = math.inf
+        return float(r)
+    return g
+
+
+def _log2(x: float) -> float:
+    return -math.inf if x == 0 else math.log2(abs(x))
+
+
+# Component-wise folding kernels: op -> scalar function of the lane's arguments.
+LANE_KERNELS: dict[str, Callable[..., float]] = {
+    "mov": lambda a: a, "add": lambda a, b: a + b, "mul": lambda a, b: a * b,
+    "mad": lambda a, b, c: a * b + c, "min": min, "max": max,
+    "frc": lambda a: a - math.floor(a), "abs": abs,
+    "rcp": _safe(lambda a: math.inf if a == 0 else 1.0 / a),
+    "rsq": _safe(lambda a: math.inf if a == 0 else 1.0 / math.sqrt(abs(a))),
+    "exp": _safe(lambda a: 2.0 ** a), "log": _safe(_log2),
+    "pow": _safe(lambda a, b: abs(a) ** b),
+    "cmp": lambda a, b, c: b if a >= 0 else c, "lrp": lambda a, b, c: a * b + (1 - a) * c,
+    "sat": lambda a: min(max(a, 0.0), 1.0),
+    "slt": lambda a, b: 1.0 if a < b else 0.0, "sge": lambda a, b: 1.0 if a >= b else 0.0,
+}
+# Reductions and other shapes: op -> (argument widths, result width, kernel on arrays).
+SHAPED: dict[str, tuple[tuple[int, ...], int, Callable[..., list[float]]]] = {
+    "dp3": ((3, 3), 1, lambda a, b: [float(np.dot(a, b))]),
+    "dp4": ((4, 4), 1, lambda a, b: [float(np.dot(a, b))]),
+    "dp2add": ((2, 2, 1), 1, lambda a, b, c: [float(np.dot(a, b) + c[0])]),
+    "crs": ((3, 3), 3, lambda a, b: [float(x) for x in np.cross(a, b)]),
+    "nrm": ((3,), 3, lambda a: [float(x) for x in (a / math.sqrt(float(np.dot(a, a))))]
+            if float(np.dot(a, a)) else [math.inf] * 3),
+    "sincos": ((1,), 2, lambda a: [math.cos(a[0]), math.sin(a[0])]),
+}
+# Leaves and side effects that never fold.
+OPAQUE = {"input", "uniform", "tex", "texldp", "texldb", "texldl", "texldd", "dsx", "dsy",
+          "kill", "pack"}
+
+
+class Graph:
+    """Builds nodes, folding constants and sharing identical ones."""
+
+    def __init__(self) -> None:
+        self.nodes: list[Node] = []
+        self._index: dict[tuple, Node] = {}
+
+    def _new(self, node: Node, sig: tuple) -> Node:
+        hit = self._index.get(sig)
+        if hit is not None:
+            return hit
+        node.id = len(self.nodes)
+        self.nodes.append(node)
+        self._index[sig] = node
+        return node
+
+    def const(self, values: tuple[float, ...], location: Location = UNKNOWN_LOCATION) -> Operand:
+        values = tuple(float(v) + 0.0 for v in values)   # -0.0 -> 0.0
+        node = self._new(Node("const", (), len(values), value=values, location=location),
+                         ("const", values))
+        return Operand(node, tuple(range(len(values))))
+
+    def leaf(self, op: str, key: Any, width: int, location: Location = UNKNOWN_LOCATION,
+             args: tuple[Operand, ...] = ()) -> Operand:
+        sig = (op, key, width, tuple(a.sig() for a in args))
+        node = self._new(Node(op, args, width, key=key, location=location), sig)
+        return Operand(node, tuple(range(width)))
+
+    def op(self, op: str, args: list[Operand], width: int | None = None,
+           location: Location = UNKNOWN_LOCATION) -> Operand:
+        """The operand of `op(args)`, folded when every argument is a constant."""
+        shaped = SHAPED.get(op)
+        if width is None:
+            width = shaped[1] if shaped else max(a.width for a in args)
+        consts = [a.const_values() for a in args]
+        if op not in OPAQUE and all(c is not None for c in consts):
+            return self.const(tuple(_fold(op, consts, width)), location)
+        simplified = _simplify(self, op, args, consts)
+        if simplified is not None:
+            return simplified
+        sig = (op, width, tuple(a.sig() for a in args))
+        node = self._new(Node(op, tuple(args), width, location=location), sig)
+        return Operand(node, tuple(range(width)))
+
+
+def _fold(op: str, consts: list[Any], width: int) -> list[float]:
+    shaped = SHAPED.get(op)
+    if shaped is not None:
+        arrays = [np.array(c[:n], dtype=np.float64) for c, n in zip(consts, shaped[0])]
+        return shaped[2](*arrays)
+    kernel = LANE_KERNELS[op]
+    return [kernel(*(c[i] if len(c) > 1 else c[0] for c in consts)) for i in range(width)]
+
+
+def _all(values: tuple[float, ...] | None, x: float) -> bool:
+    return values is not None and all(v == x for v in values)
+
+
+def _simplify(g: Graph, op: str, args: list[Operand], consts: list[Any]) -> Operand | None:
+    """x*1, x+0, x*0 and friends (fxc folds them too)."""
+    if op == "mul":
+        for a, b, cb in ((args[0], args[1], consts[1]), (args[1], args[0], consts[0])):
+            if _all(cb, 1.0) and a.width >= b.width:
+                return a
+            if _all(cb, -1.0) and a.width >= b.width:
+                return a.neg()
+            if _all(cb, 0.0):
+                return g.const((0.0,) * max(a.width, b.width))
+    if op == "add":
+        for a, b, cb in ((args[0], args[1], consts[1]), (args[1], args[0], consts[0])):
+            if _all(cb, 0.0) and a.width >= b.width:
+                return a
+    if op == "mad":
+        if _all(consts[2], 0.0):
+            return g.op("mul", args[:2])
+        if _all(consts[0], 0.0) or _all(consts[1], 0.0):
+            return args[2] if args[2].width >= max(args[0].width, args[1].width) else None
+        if _all(consts[1], 1.0) and args[0].width == args[2].width:
+            return g.op("add", [args[0], args[2]])
+    if op == "mov":
+        return args[0]
+    if op == "rcp" and args[0].node.op == "rcp" and not args[0].negate:
+        return args[0].node.args[0]
+    if op == "lrp" and consts[0] is not None:
+        if _all(consts[0], 1.0):
+            return args[1]
+        if _all(consts[0], 0.0):
+            return args[2]
+    if op == "cmp" and args[1].sig() == args[2].sig():
+        return args[1]
+    return None

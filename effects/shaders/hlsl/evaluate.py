@@ -1,0 +1,357 @@
+"""The typed front end: evaluates the entry function symbolically over the DAG.
+
+Evaluating, rather than translating, gives fxc's passes for free: every call is inlined
+(arguments bound by value, `out`/`inout` copied back), a loop is unrolled by running it until
+its condition is a compile-time false (X3511 after 1024 iterations), and an `if` on a value
+not known at compile time runs both branches under a predicate so that every assignment
+becomes a select (flattening: `cmp`/`lrp`). `return`, `break`, `continue` and `discard` under
+such a predicate set their own predicates. Real flow control for targets that have it is
+not generated: every target gets the flattened form.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import lark
+
+from effects.errors import Location
+from effects.shaders.hlsl.arith import Arith
+from effects.shaders.hlsl.calls import inline_call
+from effects.shaders.hlsl.expressions import evaluate_expr
+from effects.shaders.hlsl.context import Context, FunctionDef, array_of, resolve_type
+from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.parse import Origin
+from effects.shaders.hlsl.types import BOOL, FLOAT, HType, INT, builtin, scalar, shape_of, vector
+from effects.shaders.hlsl.values import (Frame, Loop, Value, Var, build_value, count_components,
+                                          operand, split)
+
+MAX_ITERATIONS = 1024
+_SWIZZLE = {c: i for i, c in enumerate("xyzw")} | {c: i for i, c in enumerate("rgba")}
+
+
+class Evaluator:
+    def __init__(self, ctx: Context, origin: Origin) -> None:
+        self.ctx = ctx
+        self.g = ctx.graph
+        self.origin = origin
+        self.a = Arith(ctx, self.error, self.warn)
+        self.scopes: list[dict[str, Var]] = [{}]
+        self.frames: list[Frame] = []
+        self.loops: list[Loop] = []
+        self.mask: Operand | None = None       # path predicate (None: always)
+        self.depth = 0
+
+    def spawn(self, origin: Origin) -> "Evaluator":
+        """An evaluator for another text (a called function, a compile argument)."""
+        return Evaluator(self.ctx, origin)
+
+    def const_int(self, tree: Any) -> int:
+        values = self.expr(tree).const_values()
+        if values is None:
+            raise self.error("X3013: expression is not a compile-time constant", tree)
+        return int(values[0])
+
+    def array_of(self, t: HType, dims: Any) -> HType:
+        return array_of(t, [self.const_int(d) for d in dims.children])
+
+    # -- diagnostics ------------------------------------------------------------------------
+    def at(self, item: Any) -> Location:
+        return item if isinstance(item, Location) else self.origin.at(item)
+
+    def error(self, message: str, item: Any) -> Exception:
+        return self.origin.error(message, self.at(item))
+
+    def warn(self, message: str, loc: Location) -> None:
+        w = self.origin.warning(message, loc)
+        if w not in self.ctx.warnings:
+            self.ctx.warnings.append(w)
+
+    # -- predicates -------------------------------------------------------------------------
+    def _and(self, p: Operand | None, q: Operand | None) -> Operand | None:
+        if p is None:
+            return q
+        if q is None:
+            return p
+        return self.g.op("mul", [p, q], 1)
+
+    def _or(self, p: Operand | None, q: Operand | None) -> Operand:
+        if p is None:
+            return q  # type: ignore[return-value]
+        if q is None:
+            return p
+        return self.g.op("max", [p, q], 1)
+
+    def _not(self, p: Operand | None) -> Operand | None:
+        if p is None:
+            return None
+        return self.g.op("add", [self.g.const((1.0,)), p.neg()], 1)
+
+    def active(self) -> Operand | None:
+        """The predicate under which a statement runs now (None: always)."""
+        p = self.mask
+        if self.frames and self.frames[-1].returned is not None:
+            p = self._and(p, self._not(self.frames[-1].returned))
+        if self.loops:
+            loop = self.loops[-1]
+            p = self._and(p, self._not(loop.broken))
+            p = self._and(p, self._not(loop.continued))
+        if p is not None and p.const_values() == (1.0,):
+            return None
+        return p
+
+    def dead(self) -> bool:
+        p = self.active()
+        return p is not None and p.const_values() == (0.0,)
+
+    def merge(self, old: Value, new: Value, p: Operand | None, loc: Location) -> Value:
+        if p is None:
+            return new
+        if new.type.numeric:
+            return Value(new.type, self.a.select([p], new.comps, old.comps, loc))
+        if new.type.kind == "struct":
+            return Value(new.type, fields={k: self.merge(old.fields[k], new.fields[k], p, loc)
+                                           for k in new.fields})
+        if new.type.kind == "array":
+            return Value(new.type, elements=[self.merge(o, n, p, loc)
+                                             for o, n in zip(old.elements, new.elements)])
+        return new
+
+    # -- variables --------------------------------------------------------------------------
+    def lookup(self, name: str) -> Var | None:
+        for scope in reversed(self.scopes):
+            if name in scope:
+                return scope[name]
+        return None
+
+    def declare(self, name: str, t: HType, value: Value, const: bool = False) -> None:
+        self.scopes[-1][name] = Var(t, value, const)
+
+    def zero(self, t: HType) -> Value:
+        if t.numeric:
+            return Value(t, [self.g.const((0.0,))] * t.size)
+        if t.kind == "struct":
+            return Value(t, fields={n: self.zero(ft) for n, ft, _ in t.fields})
+        if t.kind == "array":
+            return Value(t, elements=[self.zero(t.element) for _ in range(t.length)])  # type: ignore[arg-type]
+        return Value(t)
+
+    # -- statements -------------------------------------------------------------------------
+    def block(self, tree: lark.Tree) -> None:
+        self.scopes.append({})
+        try:
+            for stmt in tree.children:
+                if self.dead():
+                    break
+                self.stmt(stmt)
+        finally:
+            self.scopes.pop()
+
+    def stmt(self, tree: Any) -> None:
+        kind = tree.data
+        handler = getattr(self, f"s_{kind}", None)
+        if handler is None:
+            raise self.error(f"X3000: unsupported statement '{kind}'", tree)
+        handler(tree)
+
+    def s_block(self, tree: lark.Tree) -> None:
+        self.block(tree)
+
+    def s_empty(self, tree: lark.Tree) -> None:
+        pass
+
+    def s_expr_stmt(self, tree: lark.Tree) -> None:
+        self.expr(tree.children[0])
+
+    def s_var_decl(self, tree: lark.Tree) -> None:
+        mods, spec, *decls = tree.children
+        base = resolve_type(self.ctx, spec, self.origin, mods)
+        is_const = mods is not None and any(str(m) == "const" for m in mods.children)
+        for d in decls:
+            name, dims, _sem, init = d.children
+            t = self.array_of(base, dims)
+            if init is None:
+                value = self.zero(t)
+            else:
+                value = self.initial(init, t)
+            self.declare(str(name), t, value, is_const)
+
+    def initial(self, init: Any, t: HType) -> Value:
+        if isinstance(init, lark.Tree) and init.data == "init_list":
+            return self.from_list(self.flatten_list(init), t, init)
+        return self.a.convert(self.expr(init), t, self.at(init))
+
+    def flatten_list(self, init: Any) -> list[Operand]:
+        if isinstance(init, lark.Tree) and init.data == "init_list":
+            out: list[Operand] = []
+            for child in init.children:
+                if child is None:
+                    continue
+                if isinstance(child, lark.Tree) and child.data == "init_list" and \
+                        len(child.children) and child.children[0] is not None and \
+                        isinstance(child.children[0], lark.Tree) and child.children[0].data == "init_list":
+                    out.extend(self.flatten_list(child))
+                else:
+                    out.extend(self.flatten_list(child) if isinstance(child, lark.Tree)
+                               and child.data == "init_list" else self.expr(child).comps)
+            return out
+        return self.expr(init).comps
+
+    def from_list(self, comps: list[Operand], t: HType, where: Any) -> Value:
+        need = count_components(t)
+        if len(comps) == 1 and need > 1 and t.numeric:
+            comps = comps * need
+        if len(comps) != need:
+            raise self.error(f"X3017: initializer has {len(comps)} values, '{t}' needs {need}", where)
+        return build_value(t, comps)
+
+    def s_typedef(self, tree: lark.Tree) -> None:
+        _, mods, spec, name, dims = tree.children
+        t = self.array_of(resolve_type(self.ctx, spec, self.origin, mods), dims)
+        self.ctx.__dict__.setdefault("typedefs", {})[str(name)] = t
+
+    def s_if_stmt(self, tree: lark.Tree) -> None:
+        self._if(tree.children[2], tree.children[3], None)
+
+    def s_if_else(self, tree: lark.Tree) -> None:
+        self._if(tree.children[2], tree.children[3], tree.children[5])
+
+    def _if(self, cond_tree: Any, then: Any, other: Any) -> None:
+        cond = self.condition(cond_tree)
+        value = cond.const_values()
+        if value is not None:
+            branch = then if value[0] else other
+            if branch is not None:
+                self.scoped(branch)
+            return
+        saved = self.mask
+        self.mask = self._and(saved, cond)
+        self.scoped(then)
+        if other is not None:
+            self.mask = self._and(saved, self._not(cond))
+            self.scoped(other)
+        self.mask = saved
+
+    def scoped(self, stmt: Any) -> None:
+        self.scopes.append({})
+        try:
+            self.stmt(stmt)
+        finally:
+            self.scopes.pop()
+
+    def condition(self, tree: Any) -> Operand:
+        v = self.expr(tree)
+        if not v.type.numeric:
+            raise self.error(f"X3020: a condition needs a scalar, not '{v.type}'", tree)
+        if v.type.size > 1:
+            self.warn("X3206: implicit truncation of vector type", self.at(tree))
+        return self.a.to_bool(Value(v.type.with_base(v.type.base) if v.type.size == 1 else
+                                    scalar(v.type.base), v.comps[:1]), self.at(tree)).comps[0]
+
+    def s_for_stmt(self, tree: lark.Tree) -> None:
+        _attrs, _tok, init, cond, step, body = tree.children
+        self.scopes.append({})
+        try:
+            if init is not None:
+                for child in init.children:
+                    if child is None:
+                        continue
+                    if child.data == "var_decl":
+                        self.s_var_decl(child)
+                    else:
+                        for e in child.children:
+                            self.expr(e)
+            self._loop(tree, cond, body, step, test_first=True)
+        finally:
+            self.scopes.pop()
+
+    def s_while_stmt(self, tree: lark.Tree) -> None:
+        self._loop(tree, tree.children[2], tree.children[3], None, test_first=True)
+
+    def s_do_stmt(self, tree: lark.Tree) -> None:
+        self._loop(tree, tree.children[4], tree.children[2], None, test_first=False)
+
+    def _loop(self, tree: Any, cond: Any, body: Any, step: Any, test_first: bool) -> None:
+        loop = Loop()
+        saved = self.mask
+        self.loops.append(loop)
+        try:
+            for i in range(MAX_ITERATIONS + 1):
+                if i == MAX_ITERATIONS:
+                    raise self.error(f"X3511: unable to unroll loop, loop does not appear to "
+                                     f"terminate in a timely manner ({MAX_ITERATIONS} "
+                                     "iterations); real loops are not generated yet", tree)
+                if cond is not None and (test_first or i > 0):
+                    c = self.condition(cond)
+                    v = c.const_values()
+                    if v is not None and not v[0]:
+                        break
+                    if v is None:
+                        # a condition known only at run time: the rest runs under it
+                        loop.broken = self._or(loop.broken, self._and(self.active(), self._not(c)))
+                if self.dead():
+                    break
+                loop.continued = None
+                self.scoped(body)
+                loop.continued = None
+                if self.dead():
+                    break
+                if step is not None:
+                    for e in step.children:
+                        self.expr(e)
+        finally:
+            self.loops.pop()
+            self.mask = saved
+
+    def s_break_stmt(self, tree: lark.Tree) -> None:
+        if not self.loops:
+            raise self.error("X3518: break must be inside a loop", tree)
+        loop = self.loops[-1]
+        loop.broken = self._or(loop.broken, self.active() or self.g.const((1.0,)))
+
+    def s_continue_stmt(self, tree: lark.Tree) -> None:
+        if not self.loops:
+            raise self.error("X3519: continue must be inside a loop", tree)
+        loop = self.loops[-1]
+        loop.continued = self._or(loop.continued, self.active() or self.g.const((1.0,)))
+
+    def s_return_stmt(self, tree: lark.Tree) -> None:
+        frame = self.frames[-1]
+        expr = tree.children[1]
+        p = self.active()
+        if expr is not None:
+            if frame.return_type.kind == "void":
+                raise self.error("X3079: void functions cannot return a value", expr)
+            v = self.a.convert(self.expr(expr), frame.return_type, self.at(expr))
+            frame.retval = v if frame.retval is None else self.merge(frame.retval, v, p, self.at(tree))
+        elif frame.return_type.kind != "void":
+            raise self.error("X3080: function must return a value", tree)
+        frame.returned = self._or(frame.returned, p or self.g.const((1.0,)))
+
+    def s_discard_stmt(self, tree: lark.Tree) -> None:
+        self.kill([self.g.const((-1.0,))], self.at(tree))
+
+    def kill(self, comps: list[Operand], loc: Location) -> None:
+        if self.ctx.target.kind != "ps":
+            raise self.error("X3536: discard and clip are pixel-shader only", loc)
+        p = self.active()
+        if p is not None:
+            comps = self.a.select([p], comps, [self.g.const((0.0,))] * len(comps), loc)
+        op = operand(self.g, comps)
+        self.ctx.kills.append(self.g.leaf("kill", None, op.width, loc, (op,)))
+
+    # -- expressions live in expressions.py --------------------------------------------------
+    def expr(self, tree: Any) -> Value:
+        return evaluate_expr(self, tree)
+
+    # -- calls ------------------------------------------------------------------------------
+    def call_user(self, fdef: FunctionDef, args: list[Value], arg_trees: list[Any], where: Any) -> Value:
+        return inline_call(self, fdef, args, arg_trees, where)
+
+
+def _block_in_frame(self: Evaluator, body: lark.Tree) -> None:
+    """Run a function body: its statements see the parameters (scope 0) and its own locals."""
+    self.block(body)
+
+
+Evaluator.block_in_frame = _block_in_frame  # type: ignore[attr-defined]

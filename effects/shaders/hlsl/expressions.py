@@ -1,0 +1,270 @@
+"""Expressions: literals, names (locals, then the effect's globals), operators, swizzles,
+indexing, constructors, casts, assignment (read-modify-write of the named variable, merged
+under the current predicate) and calls (user functions first, then intrinsics)."""
+from __future__ import annotations
+
+import re
+from typing import Any
+
+import lark
+import numpy as np
+
+from effects.shaders.hlsl.context import parameter_type, resolve_type, static_value
+from effects.shaders.hlsl.parse import Origin, parse
+from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.types import BOOL, FLOAT, INT, HType, builtin, scalar, shape_of, vector
+from effects.shaders.hlsl.calls import resolve_overload
+from effects.shaders.hlsl.intrinsics import INTRINSICS, call_intrinsic
+from effects.shaders.hlsl.lvalues import const_index, store, swizzle_lanes
+from effects.shaders.hlsl.values import Value, build_value, count_components, split
+
+
+
+def evaluate_expr(ev: Any, tree: Any) -> Value:
+    if isinstance(tree, lark.Token):
+        raise ev.error(f"X3000: unexpected '{tree}'", tree)
+    handler = _HANDLERS.get(tree.data)
+    if handler is None:
+        raise ev.error(f"X3000: unsupported expression '{tree.data}'", tree)
+    return handler(ev, tree)
+
+
+def _float(ev: Any, tree: lark.Tree) -> Value:
+    text = str(tree.children[0]).rstrip("fFhH")
+    base = "half" if str(tree.children[0])[-1:] in "hH" else "float"
+    return Value(scalar("float" if base == "float" else "half"), [ev.g.const((float(text),))])
+
+
+def _int(ev: Any, tree: lark.Tree) -> Value:
+    text = str(tree.children[0]).rstrip("uUlL")
+    n = int(text, 16) if text.lower().startswith("0x") else int(text)
+    return Value(INT, [ev.g.const((float(n),))])
+
+
+def _bool(ev: Any, tree: lark.Tree) -> Value:
+    return Value(BOOL, [ev.g.const((1.0 if str(tree.children[0]) == "true" else 0.0,))])
+
+
+def _var(ev: Any, tree: lark.Tree) -> Value:
+    name = str(tree.children[0])
+    var = ev.lookup(name)
+    if var is not None:
+        return var.value
+    return global_value(ev, name, tree)
+
+
+def global_value(ev: Any, name: str, where: Any) -> Value:
+    ctx = ev.ctx
+    cache = ctx.__dict__.setdefault("global_values", {})
+    if name in cache:
+        return cache[name]
+    param = ctx.effect.parameter(name)
+    if param is None:
+        raise ev.error(f"X3004: undeclared identifier '{name}'", where)
+    t = parameter_type(ctx, param)
+    if t.kind == "sampler":
+        value = Value(t, sampler=name)
+        ctx.samplers_used.setdefault(name, t.base)
+    elif t.kind in ("texture", "string"):
+        raise ev.error(f"X3004: '{name}' is a {t.kind}; shaders read textures through samplers", where)
+    elif "static" in param.storage:
+        numbers = static_value(param)
+        if numbers is None and param.value is not None and hasattr(param.value, "text"):
+            origin = Origin(param.value.location, param.value.text)
+            sub = ev.spawn(origin)
+            comps = sub.flatten_list(parse(param.value.text, "initializer", origin))
+            numbers = np.array([c.const_values()[0] if c.const_values() else 0.0 for c in comps])
+        n = count_components(t)
+        flat = list(numbers) if numbers is not None else [0.0] * n
+        flat = (flat + [0.0] * n)[:n]
+        value = build_value(t, [ev.g.const((float(x),)) for x in flat])
+    else:
+        value = uniform_value(ev, name, t, 0)
+        ctx.uniforms_used.setdefault(name, t)
+    cache[name] = value
+    return value
+
+
+def uniform_value(ev: Any, name: str, t: HType, offset: int) -> Value:
+    """A uniform's value over its constant registers (offsets relative to its first)."""
+    from effects.shaders.hlsl.types import register_count
+    g = ev.g
+    reg = lambda k: g.leaf("uniform", (name, offset + k), 4)
+    if t.kind in ("scalar", "vector"):
+        r = reg(0)
+        return Value(t, [Operand(r.node, (i,)) for i in range(t.size)])
+    if t.kind == "matrix":
+        if t.row_major:
+            regs = [reg(i) for i in range(t.rows)]
+            comps = [Operand(regs[i].node, (j,)) for i in range(t.rows) for j in range(t.cols)]
+        else:
+            regs = [reg(j) for j in range(t.cols)]
+            comps = [Operand(regs[j].node, (i,)) for i in range(t.rows) for j in range(t.cols)]
+        return Value(t, comps)
+    if t.kind == "array":
+        size = register_count(t.element)  # type: ignore[arg-type]
+        return Value(t, elements=[uniform_value(ev, name, t.element, offset + k * size)  # type: ignore[arg-type]
+                                  for k in range(t.length)])
+    if t.kind == "struct":
+        out = Value(t)
+        k = offset
+        for fname, ft, _ in t.fields:
+            out.fields[fname] = uniform_value(ev, name, ft, k)
+            k += register_count(ft)
+        return out
+    return Value(t)
+
+
+def _binary(ev: Any, tree: lark.Tree) -> Value:
+    a, op, b = tree.children
+    return ev.a.binary(str(op), ev.expr(a), ev.expr(b), ev.at(op))
+
+
+def _prefix(ev: Any, tree: lark.Tree) -> Value:
+    op, x = tree.children
+    v = ev.expr(x)
+    loc = ev.at(op)
+    if not v.type.numeric:
+        raise ev.error(f"X3022: operator '{op}' needs a numeric operand, not '{v.type}'", op)
+    if str(op) == "-":
+        t = v.type.with_base("int") if v.type.base == "bool" else v.type
+        return Value(t, [c.neg() for c in v.comps])
+    if str(op) == "+":
+        return v
+    if str(op) == "!":
+        b = ev.a.to_bool(v, loc)
+        return Value(b.type, ev.a.logical_not(b.comps, loc))
+    consts = v.const_values()
+    if consts is None:
+        raise ev.error(f"X3535: bitwise operation '~' needs integer hardware; "
+                       f"{ev.ctx.target.name} has none", op)
+    return Value(v.type, [ev.g.const((float(~int(c)),)) for c in consts])
+
+
+def _incdec(ev: Any, tree: lark.Tree, post: bool) -> Value:
+    target, op = (tree.children[0], tree.children[1]) if post else (tree.children[1], tree.children[0])
+    old = ev.expr(target)
+    one = Value(INT, [ev.g.const((1.0,))])
+    new = ev.a.binary("+" if str(op) == "++" else "-", old, one, ev.at(op))
+    store(ev, target, ev.a.convert(new, old.type, ev.at(op)))
+    return old if post else new
+
+
+def _assign(ev: Any, tree: lark.Tree) -> Value:
+    target, op, rhs = tree.children
+    value = ev.expr(rhs)
+    if str(op) != "=":
+        value = ev.a.binary(str(op)[:-1], ev.expr(target), value, ev.at(op))
+    current = ev.expr(target)
+    value = ev.a.convert(value, current.type, ev.at(rhs))
+    store(ev, target, value)
+    return value
+
+
+def _member(ev: Any, tree: lark.Tree) -> Value:
+    base_tree, name = tree.children
+    base = ev.expr(base_tree)
+    if base.type.kind == "struct":
+        if str(name) not in base.fields:
+            raise ev.error(f"X3018: invalid subscript '{name}'", name)
+        return base.fields[str(name)]
+    if not base.type.numeric:
+        raise ev.error(f"X3018: invalid subscript '{name}' on '{base.type}'", name)
+    lanes = swizzle_lanes(ev, base.type, str(name), name)
+    return Value(vector(base.type.base, len(lanes)), [base.comps[k] for k in lanes])
+
+
+def _index(ev: Any, tree: lark.Tree) -> Value:
+    base_tree, index_tree = tree.children
+    base = ev.expr(base_tree)
+    k = const_index(ev, index_tree, base.type)
+    t = base.type
+    if t.kind == "array":
+        return base.elements[k]
+    if t.kind == "matrix":
+        return Value(vector(t.base, t.cols), base.comps[k * t.cols:(k + 1) * t.cols])
+    if t.kind == "vector":
+        return Value(scalar(t.base), [base.comps[k]])
+    raise ev.error(f"X3121: array, matrix, vector, or indexable object type expected in index "
+                   f"expression, not '{t}'", tree)
+
+
+def _construct(ev: Any, tree: lark.Tree) -> Value:
+    t = builtin(str(tree.children[0]))
+    return _construct_as(ev, t, tree.children[1], tree)
+
+
+def _construct_matrix(ev: Any, tree: lark.Tree) -> Value:
+    base = builtin(str(tree.children[1]))
+    t = shape_of(int(tree.children[2]), int(tree.children[3]), base.base if base else "float")
+    return _construct_as(ev, t, tree.children[4], tree)
+
+
+def _construct_vector(ev: Any, tree: lark.Tree) -> Value:
+    base = builtin(str(tree.children[1]))
+    t = vector(base.base if base else "float", int(tree.children[2]))
+    return _construct_as(ev, t, tree.children[3], tree)
+
+
+def _construct_as(ev: Any, t: HType | None, args: Any, tree: Any) -> Value:
+    if t is None or not t.numeric:
+        raise ev.error("X3037: constructors only defined for numeric base types", tree)
+    comps: list[Operand] = []
+    for a in (args.children if args is not None else []):
+        v = ev.expr(a)
+        if not v.type.numeric:
+            raise ev.error(f"X3017: cannot convert from '{v.type}' to '{t}'", a)
+        comps.extend(ev.a.convert_base(v.comps, v.type.base, t.base, ev.at(a)))
+    if len(comps) == 1 and t.size > 1:
+        comps = comps * t.size
+    if len(comps) != t.size:
+        raise ev.error(f"X3014: incorrect number of arguments to numeric-type constructor "
+                       f"('{t}' needs {t.size} values, given {len(comps)})", tree)
+    return Value(t, comps)
+
+
+def _cast(ev: Any, tree: lark.Tree) -> Value:
+    t = resolve_type(ev.ctx, tree.children[0], ev.origin)
+    return ev.a.convert(ev.expr(tree.children[1]), t, ev.at(tree), explicit=True)
+
+
+def _ternary(ev: Any, tree: lark.Tree) -> Value:
+    cond_tree, a_tree, b_tree = tree.children
+    cond = ev.expr(cond_tree)
+    a, b = ev.expr(a_tree), ev.expr(b_tree)
+    loc = ev.at(tree)
+    ca, cb, t = ev.a.broadcast(a, b, loc, "?:")
+    c = ev.a.to_bool(cond, loc).comps
+    if len(c) == 1:
+        c = c * len(ca)
+    elif len(c) != len(ca):
+        c = (c * len(ca))[:len(ca)]
+    return Value(t, ev.a.select(c, ca, cb, loc))
+
+
+def _call(ev: Any, tree: lark.Tree) -> Value:
+    name_tok, args = tree.children
+    name = str(name_tok)
+    arg_trees = list(args.children) if args is not None else []
+    values = [ev.expr(a) for a in arg_trees]
+    fdefs = ev.ctx.functions.get(name)
+    if fdefs:
+        fdef = resolve_overload(ev, fdefs, values, tree)
+        if fdef is not None:
+            return ev.call_user(fdef, values, arg_trees, tree)
+    if name in INTRINSICS:
+        return call_intrinsic(ev, name, values, arg_trees, tree)
+    if fdefs:
+        shown = ", ".join(str(v.type) for v in values)
+        raise ev.error(f"X3013: '{name}': no matching {len(values)} parameter function "
+                       f"(arguments: {shown})", name_tok)
+    raise ev.error(f"X3004: undeclared identifier '{name}'", name_tok)
+
+
+_HANDLERS = {
+    "float_lit": _float, "int_lit": _int, "bool_lit": _bool, "var": _var, "binary": _binary,
+    "prefix": _prefix, "pre_incdec": lambda ev, t: _incdec(ev, t, False),
+    "post_incdec": lambda ev, t: _incdec(ev, t, True), "assign": _assign, "member": _member,
+    "index": _index, "construct": _construct, "construct_matrix": _construct_matrix,
+    "construct_vector": _construct_vector, "cast": _cast, "ternary": _ternary, "call": _call,
+}

@@ -1,0 +1,453 @@
+"""The intrinsic functions: one row per name (argument count, how it is built).
+
+Each builder returns a Value from the argument Values, using the instructions the target has
+(`pow` or exp/log, `nrm` or rsq, `crs` or mul/mad, `lrp` or mad, `dp2add` or mad ...). Where
+the target cannot compute an intrinsic at all the error names it and the target.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any, Callable
+
+from effects.errors import Location
+from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.types import BOOL, FLOAT, HType, scalar, shape_of, vector
+from effects.shaders.hlsl.lvalues import store
+from effects.shaders.hlsl.values import Value, component, operand, split
+
+
+def _float(v: Value) -> HType:
+    t = v.type
+    return t.with_base("float") if t.base not in ("float", "half", "double") else t
+
+
+def _comps(ev: Any, v: Value, loc: Location) -> list[Operand]:
+    if not v.type.numeric:
+        raise ev.error(f"X3013: a numeric argument is needed, not '{v.type}'", loc)
+    return v.comps
+
+
+def _unary(build: Callable[[Any, list[Operand], Location], list[Operand]]):
+    def f(ev: Any, args: list[Value], loc: Location) -> Value:
+        return Value(_float(args[0]), build(ev, _comps(ev, args[0], loc), loc))
+    return f
+
+
+def _binary(build: Callable[[Any, list[Operand], list[Operand], Location], list[Operand]]):
+    def f(ev: Any, args: list[Value], loc: Location) -> Value:
+        ca, cb, t = ev.a.broadcast(args[0], args[1], loc, "intrinsic")
+        return Value(t.with_base("float") if t.base not in ("float", "half") else t, build(ev, ca, cb, loc))
+    return f
+
+
+def _abs(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    if ev.ctx.target.has("abs"):
+        return ev.a.lanes("abs", [c], loc)
+    return ev.a.lanes("max", [c, [x.neg() for x in c]], loc)
+
+
+def _rsq(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    return ev.a.scalar_lanes("rsq", [c], loc)
+
+
+def _sqrt(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    return ev.a.scalar_lanes("rcp", [_rsq(ev, c, loc)], loc)
+
+
+def _exp2(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    return ev.a.scalar_lanes("exp", [c], loc)
+
+
+def _log2(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    return ev.a.scalar_lanes("log", [c], loc)
+
+
+def _scale(ev: Any, c: list[Operand], k: float, loc: Location) -> list[Operand]:
+    return ev.a.lanes("mul", [c, [ev.a.const(k)] * len(c)], loc)
+
+
+def _pow(ev: Any, a: list[Operand], b: list[Operand], loc: Location) -> list[Operand]:
+    if ev.ctx.target.has("pow"):
+        return ev.a.scalar_lanes("pow", [a, b], loc)
+    if ev.ctx.target.rules.is_ps1:
+        raise ev.error(f"{ev.ctx.target.name} cannot compute pow of a non-constant exponent", loc)
+    return _exp2(ev, ev.a.lanes("mul", [b, _log2(ev, a, loc)], loc), loc)
+
+
+def _floor(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    return ev.a.floor(c, loc)
+
+
+def _ceil(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    return [x.neg() for x in ev.a.floor([x.neg() for x in c], loc)]
+
+
+def _round(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    return ev.a.floor(ev.a.lanes("add", [c, [ev.a.const(0.5)] * len(c)], loc), loc)
+
+
+def _sign(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    zero = [ev.a.const(0.0)] * len(c)
+    pos = ev.a.compare(">", c, zero, loc)
+    neg = ev.a.compare("<", c, zero, loc)
+    return ev.a.lanes("add", [pos, [x.neg() for x in neg]], loc)
+
+
+def _lerp(ev: Any, args: list[Value], loc: Location) -> Value:
+    a, b, s = args
+    ca, cb, t = ev.a.broadcast(a, b, loc, "lerp")
+    cs = s.comps * len(ca) if len(s.comps) == 1 else s.comps[:len(ca)]
+    if ev.ctx.target.has("lrp") and not ev.ctx.target.rules.is_ps1:
+        return Value(t, ev.a.lanes("lrp", [cs, cb, ca], loc))
+    diff = ev.a.lanes("add", [cb, [x.neg() for x in ca]], loc)
+    return Value(t, ev.a.lanes("mad", [cs, diff, ca], loc))
+
+
+def _clamp(ev: Any, args: list[Value], loc: Location) -> Value:
+    x, lo, hi = args
+    v = Value(x.type, ev.a.lanes("max", list(ev.a.broadcast(x, lo, loc, "clamp")[:2]), loc))
+    ca, cb, t = ev.a.broadcast(v, hi, loc, "clamp")
+    return Value(t, ev.a.lanes("min", [ca, cb], loc))
+
+
+def _step(ev: Any, args: list[Value], loc: Location) -> Value:
+    ca, cx, t = ev.a.broadcast(args[0], args[1], loc, "step")
+    return Value(t.with_base("float"), ev.a.compare(">=", cx, ca, loc))
+
+
+def _smoothstep(ev: Any, args: list[Value], loc: Location) -> Value:
+    a, b, x = args
+    n = max(a.type.size, b.type.size, x.type.size)
+    ext = lambda v: v.comps * n if len(v.comps) == 1 else v.comps[:n]
+    ca, cb, cx = ext(a), ext(b), ext(x)
+    num = ev.a.lanes("add", [cx, [c.neg() for c in ca]], loc)
+    den = ev.a.lanes("add", [cb, [c.neg() for c in ca]], loc)
+    t = ev.a.saturate(ev.a.divide(num, den, loc), loc)
+    k = ev.a.lanes("mad", [t, [ev.a.const(-2.0)] * n, [ev.a.const(3.0)] * n], loc)
+    return Value(vector("float", n), ev.a.lanes("mul", [ev.a.lanes("mul", [t, t], loc), k], loc))
+
+
+def dot(ev: Any, a: list[Operand], b: list[Operand], loc: Location) -> Operand:
+    n = len(a)
+    if n == 1:
+        return ev.a.op("mul", [a[0], b[0]], loc)
+    if n in (3, 4):
+        return ev.a.op(f"dp{n}", [operand(ev.g, a), operand(ev.g, b)], loc)
+    if n == 2 and ev.ctx.target.has("dp2add"):
+        return ev.a.op("dp2add", [operand(ev.g, a), operand(ev.g, b), ev.a.const(0.0)], loc)
+    acc = ev.a.op("mul", [a[0], b[0]], loc)
+    for x, y in zip(a[1:], b[1:]):
+        acc = ev.a.op("mad", [x, y, acc], loc)
+    return acc
+
+
+def _dot(ev: Any, args: list[Value], loc: Location) -> Value:
+    ca, cb, _ = ev.a.broadcast(args[0], args[1], loc, "dot")
+    return Value(FLOAT, [dot(ev, ca, cb, loc)])
+
+
+def _length(ev: Any, args: list[Value], loc: Location) -> Value:
+    c = args[0].comps
+    return Value(FLOAT, _sqrt(ev, [dot(ev, c, c, loc)], loc))
+
+
+def _distance(ev: Any, args: list[Value], loc: Location) -> Value:
+    ca, cb, _ = ev.a.broadcast(args[0], args[1], loc, "distance")
+    d = ev.a.lanes("add", [ca, [x.neg() for x in cb]], loc)
+    return Value(FLOAT, _sqrt(ev, [dot(ev, d, d, loc)], loc))
+
+
+def _normalize(ev: Any, args: list[Value], loc: Location) -> Value:
+    c = args[0].comps
+    if len(c) == 3 and ev.ctx.target.has("nrm"):
+        return Value(args[0].type, split(ev.a.op("nrm", [operand(ev.g, c)], loc)))
+    inv = _rsq(ev, [dot(ev, c, c, loc)], loc)[0]
+    return Value(_float(args[0]), ev.a.lanes("mul", [c, [inv] * len(c)], loc))
+
+
+def _cross(ev: Any, args: list[Value], loc: Location) -> Value:
+    a, b = args[0].comps[:3], args[1].comps[:3]
+    if ev.ctx.target.has("crs"):
+        return Value(vector("float", 3), split(ev.a.op("crs", [operand(ev.g, a), operand(ev.g, b)], loc)))
+    p = lambda v, s: [v[i] for i in s]
+    first = ev.a.lanes("mul", [p(a, (1, 2, 0)), p(b, (2, 0, 1))], loc)
+    return Value(vector("float", 3),
+                 ev.a.lanes("mad", [[x.neg() for x in p(a, (2, 0, 1))], p(b, (1, 2, 0)), first], loc))
+
+
+def _reflect(ev: Any, args: list[Value], loc: Location) -> Value:
+    i, n = args[0].comps, args[1].comps
+    d = dot(ev, n, i, loc)
+    d2 = ev.a.op("add", [d, d], loc)
+    return Value(args[0].type, ev.a.lanes("mad", [[d2.neg()] * len(n), n, i], loc))
+
+
+def _mul(ev: Any, args: list[Value], loc: Location) -> Value:
+    a, b = args
+    ta, tb = a.type, b.type
+    if ta.size == 1 or tb.size == 1:
+        ca, cb, t = ev.a.broadcast(a, b, loc, "mul")
+        return Value(t, ev.a.lanes("mul", [ca, cb], loc))
+    if ta.kind != "matrix" and tb.kind != "matrix":
+        ca, cb, _ = ev.a.broadcast(a, b, loc, "mul")
+        return Value(FLOAT, [dot(ev, ca, cb, loc)])
+    rows_a = [a.comps] if ta.kind != "matrix" else \
+        [a.comps[i * ta.cols:(i + 1) * ta.cols] for i in range(ta.rows)]
+    k_a = len(rows_a[0])
+    if tb.kind == "matrix":
+        k_b, cols = tb.rows, tb.cols
+        col = lambda j: [b.comps[k * cols + j] for k in range(k_b)]
+        brows = [b.comps[k * cols:(k + 1) * cols] for k in range(k_b)]
+    else:  # matrix * column vector
+        k_b, cols = tb.size, 1
+        col = lambda j: list(b.comps)
+        brows = [[c] for c in b.comps]
+    k = min(k_a, k_b)
+    if k_a != k_b:
+        ev.warn("X3206: implicit truncation of vector type", loc)
+    out_rows = []
+    for row in rows_a:
+        row = row[:k]
+        columns = [col(j)[:k] for j in range(cols)]
+        single = all(len({id(c.node) for c in cc}) == 1 for cc in columns)
+        if (single and k in (3, 4)) or cols == 1:
+            out_rows.append([dot(ev, row, cc, loc) for cc in columns])
+        else:   # a sum of scaled rows: mul then mad
+            acc = ev.a.lanes("mul", [[row[0]] * cols, brows[0]], loc)
+            for x, br in zip(row[1:], brows[1:k]):
+                acc = ev.a.lanes("mad", [[x] * cols, br, acc], loc)
+            out_rows.append(acc)
+    if ta.kind != "matrix":
+        return Value(vector("float", cols), out_rows[0])
+    if tb.kind != "matrix":
+        return Value(vector("float", len(out_rows)), [r[0] for r in out_rows])
+    return Value(shape_of(len(out_rows), cols, "float"), [c for r in out_rows for c in r])
+
+
+def _transpose(ev: Any, args: list[Value], loc: Location) -> Value:
+    t = args[0].type
+    if t.kind != "matrix":
+        return args[0]
+    comps = [args[0].comps[i * t.cols + j] for j in range(t.cols) for i in range(t.rows)]
+    return Value(shape_of(t.cols, t.rows, t.base), comps)
+
+
+def _determinant(ev: Any, args: list[Value], loc: Location) -> Value:
+    t = args[0].type
+    n = t.rows
+    if t.kind != "matrix" or t.rows != t.cols:
+        raise ev.error("X3013: determinant needs a square matrix", loc)
+    m = [[args[0].comps[i * n + j] for j in range(n)] for i in range(n)]
+
+    def det(rows: list[list[Operand]]) -> Operand:
+        if len(rows) == 1:
+            return rows[0][0]
+        acc = None
+        for j in range(len(rows)):
+            minor = [r[:j] + r[j + 1:] for r in rows[1:]]
+            term = ev.a.op("mul", [rows[0][j], det(minor)], loc)
+            term = term if j % 2 == 0 else term.neg()
+            acc = term if acc is None else ev.a.op("add", [acc, term], loc)
+        return acc  # type: ignore[return-value]
+    return Value(FLOAT, [det(m)])
+
+
+def _sincos_parts(ev: Any, c: list[Operand], loc: Location) -> tuple[list[Operand], list[Operand]]:
+    t = ev.ctx.target
+    if not t.has("sincos"):
+        raise ev.error(f"{t.name} cannot compute sin/cos (no sincos instruction; the Taylor "
+                       "expansion fxc used for vs_1_1 is not generated)", loc)
+    sins, coss = [], []
+    for x in c:
+        if t.rules.major < 3:
+            # sincos of shader model 2 wants its argument in [-pi, pi]
+            x = ev.a.op("mad", [x, ev.a.const(1 / (2 * math.pi)), ev.a.const(0.5)], loc)
+            x = ev.a.frc([x], loc)[0]
+            x = ev.a.op("mad", [x, ev.a.const(2 * math.pi), ev.a.const(-math.pi)], loc)
+        r = ev.a.op("sincos", [x], loc, 2)
+        coss.append(component(r, 0))
+        sins.append(component(r, 1))
+    return sins, coss
+
+
+def _sin(ev: Any, args: list[Value], loc: Location) -> Value:
+    return Value(_float(args[0]), _sincos_parts(ev, args[0].comps, loc)[0])
+
+
+def _cos(ev: Any, args: list[Value], loc: Location) -> Value:
+    return Value(_float(args[0]), _sincos_parts(ev, args[0].comps, loc)[1])
+
+
+def _tan(ev: Any, args: list[Value], loc: Location) -> Value:
+    s, c = _sincos_parts(ev, args[0].comps, loc)
+    return Value(_float(args[0]), ev.a.divide(s, c, loc))
+
+
+def _out(ev: Any, trees: list[Any], k: int, value: Value) -> None:
+    current = ev.expr(trees[k])
+    store(ev, trees[k], ev.a.convert(value, current.type, ev.at(trees[k])))
+
+
+def _lit(ev: Any, args: list[Value], loc: Location) -> Value:
+    ndl, ndh, m = (a.comps[0] for a in args)
+    zero = ev.a.const(0.0)
+    diffuse = ev.a.op("max", [ndl, zero], loc)
+    both = ev.a.lanes("mul", [ev.a.compare(">", [ndl], [zero], loc), ev.a.compare(">", [ndh], [zero], loc)], loc)
+    spec = _pow(ev, [ev.a.op("max", [ndh, zero], loc)], [m], loc)
+    spec = ev.a.select(both, spec, [zero], loc)
+    one = ev.a.const(1.0)
+    return Value(vector("float", 4), [one, diffuse, spec[0], one])
+
+
+def _any_all(kind: str):
+    def f(ev: Any, args: list[Value], loc: Location) -> Value:
+        b = ev.a.to_bool(args[0], loc).comps
+        acc = b[0]
+        for x in b[1:]:
+            acc = ev.a.op("max" if kind == "any" else "mul", [acc, x], loc)
+        return Value(BOOL, [acc])
+    return f
+
+
+def _derivative(op: str):
+    def f(ev: Any, args: list[Value], loc: Location) -> Value:
+        if not ev.ctx.target.has(op):
+            raise ev.error(f"{ev.ctx.target.name} has no gradient instructions ({op}); "
+                           "ddx/ddy need ps_2_a or ps_3_0", loc)
+        return Value(_float(args[0]), ev.a.lanes(op, [args[0].comps], loc))
+    return f
+
+
+def _fwidth(ev: Any, args: list[Value], loc: Location) -> Value:
+    dx = _derivative("dsx")(ev, args, loc).comps
+    dy = _derivative("dsy")(ev, args, loc).comps
+    return Value(_float(args[0]), ev.a.lanes("add", [_abs(ev, dx, loc), _abs(ev, dy, loc)], loc))
+
+
+_TEX_KINDS = {"1D": ("1d", 1), "2D": ("2d", 2), "3D": ("3d", 3), "CUBE": ("cube", 3)}
+
+
+def _texture(dim: str, variant: str):
+    kind, n = _TEX_KINDS[dim]
+
+    def f(ev: Any, args: list[Value], loc: Location) -> Value:
+        s = args[0]
+        if s.type.kind != "sampler" or s.sampler is None:
+            raise ev.error(f"X3013: tex{dim}{variant}: the first argument must be a sampler", loc)
+        t = ev.ctx.target
+        if t.rules.is_ps1 or t.kind == "vs" and t.rules.major < 3:
+            if t.kind == "vs":
+                raise ev.error(f"{t.name} cannot sample textures (vertex texture fetch needs vs_3_0)", loc)
+        width = 4 if variant in ("proj", "bias", "lod") else n
+        coord = list(args[1].comps)
+        if len(coord) < width:
+            raise ev.error(f"X3013: tex{dim}{variant} needs a float{width} coordinate", loc)
+        if len(coord) > width:
+            ev.warn("X3206: implicit truncation of vector type", loc)
+        coord = coord[:width]
+        op = {"": "tex", "proj": "texldp", "bias": "texldb", "lod": "texldl", "grad": "texldd"}[variant]
+        if op != "tex" and not t.has(op):
+            raise ev.error(f"{t.name} has no {op} (tex{dim}{variant})", loc)
+        extra: tuple[Operand, ...] = ()
+        if variant == "grad":
+            extra = (operand(ev.g, (args[2].comps + [ev.a.const(0.0)] * 4)[:4]),
+                     operand(ev.g, (args[3].comps + [ev.a.const(0.0)] * 4)[:4]))
+        ev.ctx.samplers_used.setdefault(s.sampler, kind)
+        r = ev.g.leaf(op, (s.sampler, kind), 4, loc, (operand(ev.g, coord),) + extra)
+        return Value(vector("float", 4), split(r))
+    return f
+
+
+def _clip(ev: Any, args: list[Value], loc: Location) -> Value:
+    ev.kill(list(args[0].comps), loc)
+    return Value(HType("void"))
+
+
+def _ubyte4(ev: Any, args: list[Value], loc: Location) -> Value:
+    c = args[0].comps
+    swz = [c[2], c[1], c[0], c[3]]
+    return Value(vector("int", 4), ev.a.trunc(_scale(ev, swz, 255.001953, loc), loc))
+
+
+def _modf(ev: Any, args: list[Value], loc: Location, trees: list[Any]) -> Value:
+    c = args[0].comps
+    ip = ev.a.trunc(c, loc)
+    _out(ev, trees, 1, Value(args[0].type, ip))
+    return Value(args[0].type, ev.a.lanes("add", [c, [x.neg() for x in ip]], loc))
+
+
+def _sincos(ev: Any, args: list[Value], loc: Location, trees: list[Any]) -> Value:
+    s, c = _sincos_parts(ev, args[0].comps, loc)
+    _out(ev, trees, 1, Value(_float(args[0]), s))
+    _out(ev, trees, 2, Value(_float(args[0]), c))
+    return Value(HType("void"))
+
+
+def _saturate(ev: Any, args: list[Value], loc: Location) -> Value:
+    return Value(_float(args[0]), ev.a.saturate(args[0].comps, loc))
+
+
+LN2, LOG2E, LOG10_2 = math.log(2.0), math.log2(math.e), math.log10(2.0)
+
+# name -> (argument counts, builder(ev, args, loc) or (ev, args, loc, trees) when it writes
+# an out argument)
+INTRINSICS: dict[str, tuple[tuple[int, ...], Callable[..., Value], bool]] = {
+    "abs": ((1,), _unary(_abs), False),
+    "sqrt": ((1,), _unary(_sqrt), False),
+    "rsqrt": ((1,), _unary(_rsq), False),
+    "exp2": ((1,), _unary(_exp2), False),
+    "exp": ((1,), _unary(lambda ev, c, loc: _exp2(ev, _scale(ev, c, LOG2E, loc), loc)), False),
+    "log2": ((1,), _unary(_log2), False),
+    "log": ((1,), _unary(lambda ev, c, loc: _scale(ev, _log2(ev, c, loc), LN2, loc)), False),
+    "log10": ((1,), _unary(lambda ev, c, loc: _scale(ev, _log2(ev, c, loc), LOG10_2, loc)), False),
+    "frac": ((1,), _unary(lambda ev, c, loc: ev.a.frc(c, loc)), False),
+    "floor": ((1,), _unary(_floor), False),
+    "ceil": ((1,), _unary(_ceil), False),
+    "round": ((1,), _unary(_round), False),
+    "trunc": ((1,), _unary(lambda ev, c, loc: ev.a.trunc(c, loc)), False),
+    "sign": ((1,), _unary(_sign), False),
+    "saturate": ((1,), _saturate, False),
+    "degrees": ((1,), _unary(lambda ev, c, loc: _scale(ev, c, 180 / math.pi, loc)), False),
+    "radians": ((1,), _unary(lambda ev, c, loc: _scale(ev, c, math.pi / 180, loc)), False),
+    "pow": ((2,), _binary(_pow), False),
+    "min": ((2,), _binary(lambda ev, a, b, loc: ev.a.lanes("min", [a, b], loc)), False),
+    "max": ((2,), _binary(lambda ev, a, b, loc: ev.a.lanes("max", [a, b], loc)), False),
+    "fmod": ((2,), _binary(lambda ev, a, b, loc: ev.a.fmod(a, b, loc)), False),
+    "ldexp": ((2,), _binary(lambda ev, a, b, loc: ev.a.lanes("mul", [a, _exp2(ev, b, loc)], loc)), False),
+    "clamp": ((3,), _clamp, False),
+    "lerp": ((3,), _lerp, False),
+    "step": ((2,), _step, False),
+    "smoothstep": ((3,), _smoothstep, False),
+    "dot": ((2,), _dot, False),
+    "length": ((1,), _length, False),
+    "distance": ((2,), _distance, False),
+    "normalize": ((1,), _normalize, False),
+    "cross": ((2,), _cross, False),
+    "reflect": ((2,), _reflect, False),
+    "mul": ((2,), _mul, False),
+    "transpose": ((1,), _transpose, False),
+    "determinant": ((1,), _determinant, False),
+    "sin": ((1,), _sin, False),
+    "cos": ((1,), _cos, False),
+    "tan": ((1,), _tan, False),
+    "sincos": ((3,), _sincos, True),
+    "modf": ((2,), _modf, True),
+    "lit": ((3,), _lit, False),
+    "any": ((1,), _any_all("any"), False),
+    "all": ((1,), _any_all("all"), False),
+    "ddx": ((1,), _derivative("dsx"), False),
+    "ddy": ((1,), _derivative("dsy"), False),
+    "fwidth": ((1,), _fwidth, False),
+    "clip": ((1,), _clip, False),
+    "D3DCOLORtoUBYTE4": ((1,), _ubyte4, False),
+    **{f"tex{dim}{variant}": ((4,) if variant == "grad" else (2,), _texture(dim, variant), False)
+       for dim in _TEX_KINDS for variant in ("", "proj", "bias", "lod", "grad")},
+}
+
+
+def call_intrinsic(ev: Any, name: str, args: list[Value], trees: list[Any], where: Any) -> Value:
+    counts, build, writes = INTRINSICS[name]
+    loc = ev.at(where)
+    if len(args) not in counts:
+        raise ev.error(f"X3013: '{name}': no matching {len(args)} parameter intrinsic function", where)
+    return build(ev, args, loc, trees) if writes else build(ev, args, loc)

@@ -1,0 +1,210 @@
+"""The version's rules on the emitted code, then temporaries, then the text.
+
+- read ports: an instruction reading more distinct registers of a kind than the version
+  allows (one c# in vs_1_1, one t#/v# in ps_2_0) reads the extra ones through a mov;
+- texture coordinates and texkill operands are registers read without swizzle;
+- swizzles: ps_2_0 and ps_2_b take identity, replicate and three fixed swizzles only; any
+  other lane selection is built into a temporary one component at a time;
+- temporaries: linear scan, lowest free register first, a register reused from the
+  instruction where its last value dies.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from effects.errors import Location, UNKNOWN_LOCATION
+from effects.shaders.asm.versions import IDENTITY, PS20_SWIZZLES
+from effects.shaders.hlsl.asmcode import Generated, Instr, Reg, Src, _SAMPLER_DCL
+
+COMPONENTS = "xyzw"
+_TEXLD = {"texld", "texldp", "texldb", "texldl", "texldd"}
+
+
+def _lanes_needed(ins: Instr, src: Src) -> dict[int, int]:
+    if src.fixed is not None:
+        return {i: src.fixed[i] for i in range(4)}
+    return dict(src.lanes)
+
+
+def _choose(needed: dict[int, int], rule: str) -> tuple[int, ...] | None:
+    if not needed:
+        return IDENTITY
+    if rule == "any":
+        last = needed[max(needed)]
+        full = []
+        for i in range(4):
+            full.append(needed.get(i, full[-1] if full else needed[min(needed)]))
+        if all(needed.get(i, i) == i for i in range(4)) and all(needed[i] == i for i in needed):
+            return IDENTITY
+        return tuple(full)
+    candidates = [IDENTITY] + [(k,) * 4 for k in range(4)] + sorted(PS20_SWIZZLES - {IDENTITY})
+    for cand in candidates:
+        if all(cand[i] == v for i, v in needed.items()):
+            return cand
+    return None
+
+
+def finish(cg: Any) -> Generated:
+    rules = cg.rules
+    rule = "ps20" if rules.swizzles == "ps20" else "any"
+    out: list[Instr] = []
+    for ins in cg.instrs:
+        # read ports
+        if ins.opcode not in ("texkill",):
+            seen: dict[str, list[str]] = {}
+            for s in ins.srcs:
+                kind = s.reg.kind
+                if kind not in rules.read_ports:
+                    continue
+                names = seen.setdefault(kind, [])
+                key = f"{kind}{s.reg.index}"
+                if key in names:
+                    continue
+                if len(names) >= rules.read_ports[kind]:
+                    tmp = cg.temp()
+                    out.append(Instr("mov", tmp, (0, 1, 2, 3), [Src(s.reg, {i: i for i in range(4)})],
+                                     ins.location))
+                    for other in ins.srcs:
+                        if other.reg is s.reg or (other.reg.kind == kind and other.reg.index == s.reg.index):
+                            other.reg = tmp
+                    continue
+                names.append(key)
+        # texture coordinates: a register read whole
+        if ins.opcode in _TEXLD and cg.target.kind == "ps" and cg.rules.major == 2:
+            for k, s in enumerate(ins.srcs):
+                needed = _lanes_needed(ins, s)
+                if s.reg.kind in ("vr", "t") and all(v == i for i, v in needed.items()) \
+                        and not s.negate:
+                    continue
+                tmp = cg.temp()
+                _copy(cg, out, tmp, s, ins.location, rule)
+                ins.srcs[k] = Src(tmp, {i: i for i in range(4)})
+        # swizzles
+        for k, s in enumerate(ins.srcs):
+            needed = _lanes_needed(ins, s)
+            if _choose(needed, rule) is None:
+                tmp = cg.temp()
+                _copy(cg, out, tmp, s, ins.location, rule)
+                ins.srcs[k] = Src(tmp, {i: i for i in needed}, False)
+        out.append(ins)
+    cg.instrs = out
+    return _text(cg)
+
+
+def _copy(cg: Any, out: list[Instr], tmp: Reg, s: Src, loc: Location, rule: str) -> None:
+    """tmp.lane = s.reg.<lane it needs>, one mov per source lane (replicate swizzles)."""
+    needed = _lanes_needed(Instr("mov", None, (), []), s)
+    if _choose(needed, rule) is not None:
+        out.append(Instr("mov", tmp, tuple(sorted(needed)), [Src(s.reg, needed, s.negate)], loc))
+        return
+    by_source: dict[int, list[int]] = {}
+    for lane, src_lane in needed.items():
+        by_source.setdefault(src_lane, []).append(lane)
+    for src_lane, lanes in by_source.items():
+        out.append(Instr("mov", tmp, tuple(sorted(lanes)), [Src(s.reg, {}, s.negate, fixed=(src_lane,) * 4)], loc))
+
+
+def _allocate(instrs: list[Instr]) -> dict[int, int]:
+    first: dict[int, int] = {}
+    last: dict[int, int] = {}
+    for i, ins in enumerate(instrs):
+        for reg in [ins.dst] + [s.reg for s in ins.srcs]:
+            if reg is not None and reg.kind == "vr":
+                first.setdefault(reg.index, i)  # type: ignore[arg-type]
+                last[reg.index] = i  # type: ignore[index]
+    alloc: dict[int, int] = {}
+    active: list[tuple[int, int]] = []     # (end, physical)
+    free: list[int] = []
+    count = 0
+    for vr in sorted(first, key=lambda v: (first[v], v)):
+        start = first[vr]
+        for end, phys in list(active):
+            if end <= start and end != start or (end == start and _dies_before_write(instrs[start], vr)):
+                active.remove((end, phys))
+                free.append(phys)
+        free.sort()
+        if free:
+            phys = free.pop(0)
+        else:
+            phys, count = count, count + 1
+        alloc[vr] = phys
+        active.append((last[vr], phys))
+    return alloc
+
+
+def _dies_before_write(ins: Instr, vr: int) -> bool:
+    # a register whose last read is this instruction may be this instruction's destination
+    return False
+
+
+def _swizzle_text(sw: tuple[int, ...]) -> str:
+    if sw == IDENTITY:
+        return ""
+    letters = [COMPONENTS[i] for i in sw]
+    while len(letters) > 1 and letters[-1] == letters[-2]:
+        letters.pop()
+    return "." + "".join(letters)
+
+
+def _src_text(s: Src, alloc: dict[int, int], rule: str, ins: Instr) -> str:
+    sw = _choose(_lanes_needed(ins, s), rule) or IDENTITY
+    return f"{'-' if s.negate else ''}{s.reg.text(alloc)}{_swizzle_text(sw)}"
+
+
+def _text(cg: Any) -> Generated:
+    rule = "ps20" if cg.rules.swizzles == "ps20" else "any"
+    alloc = _allocate(cg.instrs)
+    lines: list[str] = [cg.target.name]
+    locs: list[Location] = [UNKNOWN_LOCATION]
+    for reg in sorted(cg.defs):
+        vals = [0.0 if v is None else v for v in cg.defs[reg]]
+        lines.append(f"def c{reg}, " + ", ".join(_num(v) for v in vals))
+        locs.append(UNKNOWN_LOCATION)
+    used_inputs: dict[str, None] = {}
+    samplers: dict[str, int] = dict(cg.sampler_regs)
+    for ins in cg.instrs:
+        for s in ins.srcs:
+            if s.reg.kind in ("v", "t"):
+                used_inputs.setdefault(f"{s.reg.kind}{s.reg.index}")
+        if ins.sampler is not None and ins.sampler not in samplers:
+            taken = set(samplers.values())
+            k = 0
+            while k in taken:
+                k += 1
+            samplers[ins.sampler] = k
+    for name in sorted(used_inputs, key=lambda n: (n[0], int(n[1:]))):
+        lines.append(cg.inputs.get(name, f"dcl {name}"))
+        locs.append(UNKNOWN_LOCATION)
+    for dcl in getattr(cg, "output_dcls", []):
+        lines.append(dcl)
+        locs.append(UNKNOWN_LOCATION)
+    kinds = cg.ctx.samplers_used
+    for name, k in sorted(samplers.items(), key=lambda kv: kv[1]):
+        if any(i.sampler == name for i in cg.instrs):
+            lines.append(f"dcl_{_SAMPLER_DCL.get(kinds.get(name, '2d'), '2d')} s{k}")
+            locs.append(UNKNOWN_LOCATION)
+    for ins in cg.instrs:
+        op = ins.opcode + ("_sat" if ins.saturate else "")
+        if ins.opcode == "texkill":
+            lines.append(f"texkill {ins.dst.text(alloc)}")  # type: ignore[union-attr]
+            locs.append(ins.location)
+            continue
+        dst = ins.dst.text(alloc) if ins.dst is not None else ""
+        mask = "" if tuple(ins.mask) == (0, 1, 2, 3) else "." + "".join(COMPONENTS[i] for i in ins.mask)
+        if ins.dst is not None and ins.dst.kind == "oPos" and False:
+            mask = ""
+        srcs = [_src_text(s, alloc, rule, ins) for s in ins.srcs]
+        if ins.sampler is not None:
+            srcs.insert(1, f"s{samplers[ins.sampler]}")
+        lines.append(f"{op} {dst}{mask}, " + ", ".join(srcs))
+        locs.append(ins.location)
+    used_c = {name: (start, cg.register_sizes.get(name, 1)) for name, start in cg.const_regs.items()}
+    return Generated(lines, locs, used_c, {n: k for n, k in samplers.items()
+                                           if any(i.sampler == n for i in cg.instrs)},
+                     {r: tuple(0.0 if v is None else v for v in vals) for r, vals in cg.defs.items()})
+
+
+def _num(v: float) -> str:
+    if v == int(v) and abs(v) < 1e7:
+        return f"{int(v)}"
+    return f"{v:.9g}"

@@ -1,0 +1,80 @@
+"""The HLSL grammar (grammar/hlsl.lark), built once, and located syntax errors.
+
+A captured function's text starts at `Function.location`; the preprocessor keeps directive
+lines as blank lines, so line k of the text is file line `location.line + k - 1` (column
+offset on the first line only).
+"""
+from __future__ import annotations
+
+import threading
+from importlib import resources
+from typing import Any
+
+import lark
+
+from effects.errors import EffectError, EffectWarning, Location
+
+
+class HlslError(EffectError):
+    """An HLSL function does not compile (fxc's error number leads the message)."""
+
+
+_LOCK = threading.Lock()
+_PARSER: lark.Lark | None = None
+
+
+def parser() -> lark.Lark:
+    global _PARSER
+    with _LOCK:
+        if _PARSER is None:
+            text = resources.files("effects.shaders.hlsl").joinpath("grammar/hlsl.lark").read_text()
+            _PARSER = lark.Lark(text, parser="lalr", lexer="contextual",
+                                start=["function_def", "struct_def", "initializer"],
+                                propagate_positions=True, maybe_placeholders=True)
+        return _PARSER
+
+
+class Origin:
+    """Maps (line, column) in a captured text to the .fx file."""
+
+    def __init__(self, base: Location, text: str, source_lines: dict[str, list[str]] | None = None) -> None:
+        self.base = base
+        self.lines = text.split("\n")
+
+    def loc(self, line: int, column: int) -> Location:
+        col = column + (self.base.column - 1 if line == 1 else 0)
+        return Location(self.base.path, self.base.line + line - 1, col)
+
+    def line_text(self, line: int) -> str | None:
+        if 1 <= line <= len(self.lines):
+            pad = " " * (self.base.column - 1) if line == 1 else ""
+            return pad + self.lines[line - 1]
+        return None
+
+    def at(self, item: Any) -> Location:
+        """The file location of a lark Token or Tree."""
+        if isinstance(item, lark.Token):
+            return self.loc(item.line or 1, item.column or 1)
+        meta = getattr(item, "meta", None)
+        if meta is not None and not meta.empty:
+            return self.loc(meta.line, meta.column)
+        return self.loc(1, 1)
+
+    def error(self, message: str, item: Any) -> HlslError:
+        loc = item if isinstance(item, Location) else self.at(item)
+        return HlslError(message, loc, source_line=self.line_text(loc.line - self.base.line + 1))
+
+    def warning(self, message: str, loc: Location) -> EffectWarning:
+        return EffectWarning(message, loc, self.line_text(loc.line - self.base.line + 1))
+
+
+def parse(text: str, start: str, origin: Origin) -> lark.Tree:
+    try:
+        return parser().parse(text, start=start)
+    except lark.exceptions.UnexpectedInput as exc:
+        line, col = getattr(exc, "line", 1) or 1, getattr(exc, "column", 1) or 1
+        token = getattr(exc, "token", None)
+        what = f"'{token}'" if token else "end of input" if token is not None else "this"
+        if isinstance(exc, lark.exceptions.UnexpectedCharacters):
+            what = f"'{text[exc.pos_in_stream]}'" if exc.pos_in_stream < len(text) else "end"
+        raise origin.error(f"X3000: syntax error: unexpected {what}", origin.loc(line, col)) from None

@@ -1,0 +1,75 @@
+"""The constant registers a compiled shader reads, filled from the effect's parameter values.
+
+fxc's packing (the same as `types.register_count`): a scalar or vector takes one register
+(padded with zeros), a matrix one register per column (per row when row_major), each array
+element and struct member starts a new register. A uniform parameter of the entry point that
+no compile argument fixed (`$name`) and a parameter without a value read zero, as in D3DX.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from effects.model import Effect, Expression
+from effects.shaders.hlsl.types import HType, register_count
+
+Row = tuple[float, float, float, float]
+
+
+def _rows(t: HType, flat: list[float]) -> tuple[list[Row], int]:
+    """Registers of a value of type `t` from its numbers in declaration order; also how many
+    numbers it consumed."""
+    if t.kind in ("scalar", "vector"):
+        vals = (flat[:t.size] + [0.0] * 4)[:4]
+        return [tuple(vals)], t.size  # type: ignore[list-item]
+    if t.kind == "matrix":
+        m = np.zeros((t.rows, t.cols))
+        got = np.array((flat[:t.size] + [0.0] * t.size)[:t.size]).reshape(t.rows, t.cols)
+        m[:, :] = got
+        regs = m if t.row_major else m.T
+        return [tuple((list(r) + [0.0] * 4)[:4]) for r in regs], t.size  # type: ignore[misc]
+    if t.kind == "array" and t.element is not None:
+        out: list[Row] = []
+        used = 0
+        for _ in range(t.length):
+            rows, n = _rows(t.element, flat[used:])
+            out += rows
+            used += n
+        return out, used
+    if t.kind == "struct":
+        out, used = [], 0
+        for _, ft, _ in t.fields:
+            rows, n = _rows(ft, flat[used:])
+            out += rows
+            used += n
+        return out, used
+    return [], 0
+
+
+def parameter_numbers(effect: Effect, name: str) -> list[float] | None:
+    p = effect.parameter(name)
+    if p is None or p.value is None:
+        return None
+    v = p.value
+    if isinstance(v, Expression):
+        from effects.shaders.hlsl.preshader import initializer_numbers
+        return initializer_numbers(v.text, v.location, effect)
+    if isinstance(v, (list, tuple)):
+        return [float(x) for x in np.asarray(v, dtype=np.float64).reshape(-1)]
+    try:
+        return [float(x) for x in np.asarray(v, dtype=np.float64).reshape(-1)]
+    except (TypeError, ValueError):
+        return None
+
+
+def constant_values(effect: Effect, shader: Any) -> dict[int, Row]:
+    """c# -> four floats for every uniform register the shader reads."""
+    out: dict[int, Row] = {}
+    for name, (start, count) in shader.constants.items():
+        t = shader.types.get(name)
+        flat = parameter_numbers(effect, name) if not name.startswith("$") else None
+        rows = _rows(t, flat)[0] if (t is not None and flat is not None) else []
+        for k in range(count):
+            out[start + k] = rows[k] if k < len(rows) else (0.0, 0.0, 0.0, 0.0)
+    return out

@@ -1,0 +1,119 @@
+"""HLSL types: scalars, vectors, matrices, structs, arrays, samplers, as one frozen dataclass.
+
+A numeric value holds `rows * cols` components in row-major order (a vector is one row), so
+swizzles, matrix swizzles (`._m00_m11`) and component-wise arithmetic read the same list.
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+# Conversion rank: an operation between two bases takes the higher one (fxc's rule).
+RANKS = {"bool": 0, "int": 1, "uint": 2, "dword": 2, "half": 3, "float": 4, "double": 5}
+SAMPLER_KINDS = {"sampler": "2d", "sampler1d": "1d", "sampler2d": "2d", "sampler3d": "3d",
+                 "samplercube": "cube", "sampler_state": "2d"}
+TEXTURE_NAMES = {"texture", "texture1d", "texture2d", "texture3d", "texturecube"}
+_NUMERIC = re.compile(r"^(bool|int|uint|half|float|double|dword)([1-4])?(?:x([1-4]))?$")
+
+
+@dataclass(frozen=True)
+class HType:
+    kind: str                        # 'scalar' 'vector' 'matrix' 'struct' 'array' 'sampler'
+                                     # 'texture' 'string' 'void'
+    base: str = "float"              # numeric base; sampler kind for samplers
+    rows: int = 1
+    cols: int = 1
+    name: str = ""                   # struct name
+    fields: tuple[tuple[str, "HType", str | None], ...] = ()   # struct members (semantic)
+    element: "HType | None" = None   # arrays
+    length: int = 0
+    row_major: bool = field(default=False, compare=False)
+
+    @property
+    def numeric(self) -> bool:
+        return self.kind in ("scalar", "vector", "matrix")
+
+    @property
+    def size(self) -> int:
+        return self.rows * self.cols
+
+    def with_base(self, base: str) -> "HType":
+        return HType(self.kind, base, self.rows, self.cols)
+
+    def __str__(self) -> str:
+        if self.kind == "scalar":
+            return self.base
+        if self.kind == "vector":
+            return f"{self.base}{self.cols}"
+        if self.kind == "matrix":
+            return f"{self.base}{self.rows}x{self.cols}"
+        if self.kind == "struct":
+            return self.name
+        if self.kind == "array":
+            return f"{self.element}[{self.length}]"
+        return self.kind if self.kind != "sampler" else "sampler"
+
+
+def scalar(base: str = "float") -> HType:
+    return HType("scalar", base)
+
+
+def vector(base: str, n: int) -> HType:
+    return scalar(base) if n == 1 else HType("vector", base, 1, n)
+
+
+def matrix(base: str, rows: int, cols: int) -> HType:
+    return HType("matrix", base, rows, cols)
+
+
+FLOAT, INT, BOOL, VOID = scalar("float"), scalar("int"), scalar("bool"), HType("void")
+
+
+def builtin(name: str) -> HType | None:
+    """The type a built-in name spells (`float4x3`, `half2`, `sampler2D`, `matrix`)."""
+    low = name.lower()
+    if low in SAMPLER_KINDS:
+        return HType("sampler", SAMPLER_KINDS[low])
+    if low in TEXTURE_NAMES:
+        return HType("texture")
+    if low == "string":
+        return HType("string")
+    if low == "void":
+        return VOID
+    if low == "matrix":
+        return matrix("float", 4, 4)
+    if low == "vector":
+        return vector("float", 4)
+    m = _NUMERIC.match(name)
+    if not m:
+        return None
+    base = "uint" if m.group(1) == "dword" else m.group(1)
+    if m.group(3):
+        return matrix(base, int(m.group(2)), int(m.group(3)))
+    if m.group(2):
+        return vector(base, int(m.group(2)))
+    return scalar(base)
+
+
+def shape_of(rows: int, cols: int, base: str) -> HType:
+    if rows == 1:
+        return vector(base, cols)
+    return matrix(base, rows, cols)
+
+
+def common_base(a: str, b: str) -> str:
+    return a if RANKS.get(a, 4) >= RANKS.get(b, 4) else b
+
+
+def register_count(t: HType, row_major: bool = False) -> int:
+    """Constant registers a uniform of this type takes (fxc packing: each array element,
+    struct member and matrix column (row, for row_major) starts a register)."""
+    if t.kind in ("scalar", "vector"):
+        return 1
+    if t.kind == "matrix":
+        return t.rows if (row_major or t.row_major) else t.cols
+    if t.kind == "array" and t.element is not None:
+        return t.length * register_count(t.element, row_major)
+    if t.kind == "struct":
+        return sum(register_count(f[1], row_major) for f in t.fields)
+    return 0

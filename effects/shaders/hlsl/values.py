@@ -1,0 +1,113 @@
+"""Values of the symbolic evaluation: a type and, for numbers, one operand per component.
+
+The front end evaluates the entry function over these (inlining every call), so a variable's
+value is the list of DAG operands its components hold right now; assigning replaces them.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from effects.shaders.hlsl.dag import Graph, Operand
+from effects.shaders.hlsl.types import HType, scalar, vector
+
+
+@dataclass
+class Value:
+    type: HType
+    comps: list[Operand] = field(default_factory=list)        # numeric: rows*cols, row-major
+    fields: dict[str, "Value"] = field(default_factory=dict)   # structs
+    elements: list["Value"] = field(default_factory=list)      # arrays
+    sampler: str | None = None                                 # samplers: the parameter name
+
+    def copy(self) -> "Value":
+        return Value(self.type, list(self.comps), {k: v.copy() for k, v in self.fields.items()},
+                     [e.copy() for e in self.elements], self.sampler)
+
+    def const_values(self) -> tuple[float, ...] | None:
+        out = []
+        for c in self.comps:
+            v = c.const_values()
+            if v is None:
+                return None
+            out.append(v[0])
+        return tuple(out)
+
+
+def component(op: Operand, i: int) -> Operand:
+    return Operand(op.node, (op.swizzle[i],), op.negate)
+
+
+def split(op: Operand) -> list[Operand]:
+    return [component(op, i) for i in range(op.width)]
+
+
+def operand(g: Graph, comps: list[Operand]) -> Operand:
+    """One operand holding `comps` as its lanes: a swizzle of one node when they share it,
+    a constant when all are constants, otherwise a `pack` of them."""
+    first = comps[0]
+    if all(c.node is first.node and c.negate == first.negate for c in comps):
+        return Operand(first.node, tuple(c.swizzle[0] for c in comps), first.negate)
+    values = [c.const_values() for c in comps]
+    if all(v is not None for v in values):
+        return g.const(tuple(v[0] for v in values))  # type: ignore[index]
+    return g.leaf("pack", None, len(comps), args=tuple(comps))
+
+
+def splat(op: Operand, n: int) -> Operand:
+    return Operand(op.node, (op.swizzle[0],) * n, op.negate) if op.width == 1 else op
+
+
+def numeric(t: HType, op: Operand) -> Value:
+    return Value(t, split(op))
+
+
+def const_value(g: Graph, values: list[float], base: str = "float") -> Value:
+    t = vector(base, len(values)) if len(values) > 1 else scalar(base)
+    return Value(t, split(g.const(tuple(values))))
+
+
+def count_components(t: HType) -> int:
+    if t.numeric:
+        return t.size
+    if t.kind == "struct":
+        return sum(count_components(ft) for _, ft, _ in t.fields)
+    if t.kind == "array":
+        return t.length * count_components(t.element)  # type: ignore[arg-type]
+    return 0
+
+
+def build_value(t: HType, comps: list[Operand]) -> Value:
+    if t.numeric:
+        return Value(t, list(comps))
+    out = Value(t)
+    k = 0
+    if t.kind == "struct":
+        for name, ft, _ in t.fields:
+            n = count_components(ft)
+            out.fields[name] = build_value(ft, comps[k:k + n])
+            k += n
+    elif t.kind == "array":
+        n = count_components(t.element)  # type: ignore[arg-type]
+        out.elements = [build_value(t.element, comps[i * n:(i + 1) * n]) for i in range(t.length)]  # type: ignore[arg-type]
+    return out
+
+
+@dataclass
+class Frame:
+    """One inlined call: its return value and the predicate 'has returned'."""
+    return_type: HType
+    retval: Value | None = None
+    returned: Operand | None = None
+
+
+@dataclass
+class Loop:
+    broken: Operand | None = None
+    continued: Operand | None = None
+
+
+@dataclass
+class Var:
+    type: HType
+    value: Value
+    const: bool = False
