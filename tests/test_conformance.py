@@ -116,6 +116,12 @@ BOUNDS = {
     ("sdk8_style.fx", "TPS4"): Bound("lod", _LOD),
     ("sdk9_style.fx", "Marble_dx6"): Bound("lod", _LOD),
     ("sdk9_style.fx", "Marble_dx7"): Bound("lod", _LOD),
+    ("sdk9_style.fx", "Marble_ps20"): Bound(
+        "lod", _LOD + "; the vein ramp is read at a filtered noise value, as in Marble_ps11 "
+        "(see 3.): a few pixels within 8/255", max_abs=8, outliers=4),
+    ("wood.fx", "Wood_ps20"): Bound(
+        "exact", "no mip maps, but frac() of a ring position read from a filtered noise volume "
+        "(as in 3.) moves a ring edge by a pixel: a few pixels within 8/255", max_abs=8, outliers=4),
     ("sdk9_style.fx", "Marble_ps11"): Bound(
         "exact", "no mip filtering, but texreg2gb reads a steep vein ramp at a filtered "
         "value (see 3.): a few pixels within 8/255", max_abs=8, outliers=4),
@@ -140,6 +146,9 @@ def params_for(effect_name: str) -> dict:
     if effect_name == "sdk8_style.fx":
         return {"tBas": procedural("checker"), "tNrm": procedural("sobel_normals"),
                 "tEnv": procedural("environment:32"), "tDrt": procedural("gloss")}
+    if effect_name == "wood.fx":   # the chapter leaves the colours and directions to the application
+        return {"ambient_color": [1, 1, 1], "diffuse_color": [1, 1, 1],
+                "specular_color": [0.5, 0.5, 0.5], "L": [0.577, 0.577, 0.577], "I": [0, 0, -1]}
     return {}
 
 
