@@ -13,12 +13,21 @@ import numpy as np
 import pytest
 
 import effects
+from effects.backend import create_backend
 from effects.errors import EffectError
 
 ROOT = Path(__file__).resolve().parent.parent
 BACKENDS = ("numpy", "gl")
 SIZE = (8, 8)
 QUAD = {"mesh": "quad", "size": list(SIZE)}
+
+
+@pytest.fixture(scope="module", params=BACKENDS)
+def backend(request):
+    """Each back end made for this module (not the process-wide shared one)."""
+    made = create_backend(request.param)
+    yield made
+    made.close()
 
 
 def effect_for(functions: str, ps: str = "compile ps_2_0 PS()", vs: str | None = None,
@@ -42,7 +51,6 @@ def pixel_uv(x: int, y: int) -> tuple[float, float]:
     return x / SIZE[0], y / SIZE[1]
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
 def test_constant_arithmetic_folds_and_renders(backend):
     fx = effect_for("""
 float4 PS() : COLOR
@@ -56,7 +64,6 @@ float4 PS() : COLOR
     assert np.allclose(img[3, 3], (0.25, 0.125, 0.5, 1.0), atol=1.5 / 255)
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
 def test_texcoord_input_swizzles_and_write_masks(backend):
     fx = effect_for("""
 float4 PS(float2 uv : TEXCOORD0) : COLOR
@@ -73,7 +80,6 @@ float4 PS(float2 uv : TEXCOORD0) : COLOR
         assert np.allclose(img[y, x], (v, u, u * v, 1.0), atol=1.5 / 255), (x, y)
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
 def test_if_is_flattened_into_a_select(backend):
     fx = effect_for("""
 float4 PS(float2 uv : TEXCOORD0) : COLOR
@@ -91,7 +97,6 @@ float4 PS(float2 uv : TEXCOORD0) : COLOR
     assert np.allclose(img[4, 1], (1, 0, 0, 1)) and np.allclose(img[4, 6], (0, 0, 1, 1))
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
 def test_loops_unroll_and_user_functions_inline_with_out_parameters(backend):
     fx = effect_for("""
 void accumulate(in float x, inout float sum, out float last) { sum += x; last = x; }
@@ -110,7 +115,6 @@ float4 PS(float2 uv : TEXCOORD0) : COLOR
     assert np.allclose(img[2, 5], (u * 7 / 8, u, 0, 1), atol=1.5 / 255)
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("layout", ["", "row_major"])
 def test_matrix_majorness_and_mul(backend, layout):
     # mul(v, M) with M = [[1,2,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]] / 4: (x/4, (2x + y)/4, ...)
@@ -126,7 +130,6 @@ float4 PS(float2 uv : TEXCOORD0) : COLOR
     assert np.allclose(img[6, 2], (u / 4, (2 * u + v) / 4, 0.5, 0.25), atol=1.5 / 255)
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
 def test_structs_and_intrinsics(backend):
     fx = effect_for("""
 struct PS_IN { float2 uv : TEXCOORD0; float4 color : COLOR0; };
@@ -146,7 +149,6 @@ PS_OUT PS(PS_IN i)
     assert np.allclose(img[y, x], want, atol=1.5 / 255)
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
 def test_wood_renders_for_ps_2_0(backend):
     fx = effects.load_effect(str(ROOT / "fxfiles" / "wood.fx"))
     params = {"ambient_color": "1,1,1", "diffuse_color": "1,1,1", "specular_color": "0.5,0.5,0.5",
