@@ -476,7 +476,9 @@ def test_every_bundled_technique_forced_on_a_card_that_rejects_it_renders_or_say
                 except EffectError as exc:
                     _assert_located(exc)
                     outcomes["refused"] += 1
-    assert outcomes["rendered"] > 10 and outcomes["refused"] > 3, outcomes
+    # Since HLSL compiles (effects.shaders.hlsl), every bundled technique forced on these cards
+    # lowers and renders; what refused before were the `compile` shaders.
+    assert outcomes["rendered"] > 25, outcomes
 
 
 def test_the_readme_states_every_limit_and_its_default():
