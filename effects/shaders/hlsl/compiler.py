@@ -92,6 +92,12 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
     if not fdefs:
         raise HlslError(f"X3501: '{entry}': entrypoint not found", where)
     fdef = fdefs[0]
+    if ctx.target.rules.is_ps1:
+        # ps_1_x has no dcl, no oC#, a texture read per texcoord register and fixed-point
+        # arithmetic: a separate code generator that is not written yet
+        raise fdef.origin.error(f"the HLSL compiler does not generate {ctx.target.name} code yet "
+                                "(it does vs_1_1-vs_3_0 and ps_2_0-ps_3_0); compile the function "
+                                "for ps_2_0 or write the ps_1_x shader in assembly", fdef.tree)
     ev = Evaluator(ctx, fdef.origin)
     rtype = return_type(ctx, fdef)
     ev.frames.append(Frame(rtype))
