@@ -53,6 +53,9 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
     Limit("mesh_file_bytes", 32 * _MIB, "bytes", "size of one .obj file"),
     Limit("mesh_vertices", 500_000, "vertices", "vertices of one mesh"),
     Limit("mesh_indices", 3_000_000, "indices", "indices of one mesh (3 per triangle)"),
+    # shaders: nested rep / loop counts multiply (four nested 255s are 4e9 iterations)
+    Limit("shader_loop_iterations", 65_536, "iterations",
+          "body runs of the innermost of nested rep / loop blocks (the counts' product)"),
     # render targets, per back end (the reference rasteriser holds ~200 bytes per pixel)
     Limit("target_pixels_numpy", 2048 * 1024, "pixels", "render-target pixels on the numpy back end"),
     Limit("target_pixels_gl", 4096 * 4096, "pixels", "render-target pixels on the gl back end"),

@@ -455,3 +455,30 @@ def test_flow_golden_program_draws_its_hand_values(backend):
     np.testing.assert_array_equal(image[:, :4, 0], expected)
     np.testing.assert_array_equal(image[:, :4, 1:], np.broadcast_to([0.5, 0.5, 1], (4, 4, 3)))
     assert (image[:, 4:] == 0.25).all()
+
+
+def test_nested_loop_iterations_are_bounded_by_a_named_limit():
+    # rep 255 inside rep 255 (65,025 runs) is within the default; a third level is not
+    import effects.limits
+    nest = "ps_3_0\ndefi i0, 255, 0, 0, 0\ndef c0, 1, 1, 1, 1\nmov r0, c0\n{open}add r0, r0, c0\n{close}mov oC0, r0"
+    two = nest.format(open="rep i0\n" * 2, close="endrep\n" * 2)
+    three = nest.format(open="rep i0\n" * 3, close="endrep\n" * 3)
+    prog = lambda s: assemble(ShaderBlock("pixel", None, s, location=Location("t.fx", 1, 1)))
+    assert lowering_problems(prog(two)) == []
+    (problem,) = lowering_problems(prog(three))
+    assert str(problem).startswith("t.fx:7:1: error: rep (nested 3 deep) has 16,581,375 "
+                                   "iterations; the limit is 65,536 (limit shader_loop_iterations")
+    with effects.limits.raised(shader_loop_iterations=17_000_000):
+        assert lowering_problems(prog(three)) == []
+
+
+def test_recursive_and_too_deep_calls_are_located_problems():
+    prog = lambda s: assemble(ShaderBlock("pixel", None, s, location=Location("t.fx", 1, 1)))
+    recursive = "ps_3_0\ndef c0, 1, 1, 1, 1\nmov r0, c0\ncall l0\nmov oC0, r0\nret\n" \
+                "label l0\ncall l0\nret"
+    (problem,) = lowering_problems(prog(recursive))
+    assert str(problem) == ("t.fx:4:1: error: call l0: calls nest deeper than 4 (or recurse), "
+                            "which Direct3D does not allow")
+    chain = "".join(f"label l{k}\ncall l{k + 1}\nret\n" for k in range(4)) + "label l4\nret"
+    deep = "ps_3_0\ndef c0, 1, 1, 1, 1\nmov r0, c0\ncall l0\nmov oC0, r0\nret\n" + chain
+    assert [p.location.line for p in lowering_problems(prog(deep))] == [4]

@@ -19,7 +19,9 @@ Decisions:
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
+
+from effects import limits
 
 from effects.errors import AsmError
 from effects.ir import MAX_LOOP_COUNT
@@ -100,6 +102,66 @@ def nesting(instrs: list) -> tuple[int, int]:
 def _divergent(instr: Instruction) -> bool:
     """A condition that may differ between fragments: a comparison or a predicate."""
     return instr.comparison is not None or any(op.kind == "p" for op in instr.srcs)
+
+
+def iteration_problems(program: Any) -> list[AsmError]:
+    """Nested rep / loop blocks whose counts multiply past the `shader_loop_iterations`
+    limit (effects.limits): the reference evaluator and GL would run them all."""
+    found, counts = [], []
+    for instr in program.instructions:
+        if instr.opcode in ("rep", "loop"):
+            reg = instr.srcs[-1]
+            values = program.int_defs.get(reg.index, (0,))
+            counts.append(min(max(int(values[0]), 0), MAX_LOOP_COUNT))
+            total = 1
+            for n in counts:
+                total *= n
+            if total > limits.get("shader_loop_iterations"):
+                found.append(AsmError(limits.message("shader_loop_iterations", total,
+                                                     f"{instr.opcode} (nested {len(counts)} deep)"),
+                                      instr.location))
+        elif instr.opcode in ("endrep", "endloop") and counts:
+            counts.pop()
+    return found
+
+
+MAX_CALL_DEPTH = 4    # D3D9: call / callnz nest at most 4 deep (vs_3_0, ps_3_0; 2_x caps <= 4)
+
+
+def call_problems(instrs: list) -> list[AsmError]:
+    """Calls to a missing label, recursion, and call chains deeper than D3D's nesting limit:
+    the lowering inlines every call, so each would not lower (or would blow up)."""
+    labels = {ins.srcs[0].index: k for k, ins in enumerate(instrs)
+              if ins.opcode == "label" and ins.srcs}
+
+    def body_calls(start: int) -> list:
+        calls = []
+        for k in range(start, len(instrs)):
+            if instrs[k].info.ends_body:
+                break
+            if instrs[k].opcode in ("call", "callnz") and instrs[k].srcs:
+                calls.append(instrs[k])
+        return calls
+
+    def depth(label: int, path: tuple) -> int:
+        if label in path:
+            return MAX_CALL_DEPTH + 1                 # recursion: D3D forbids it
+        start = labels.get(label)
+        if start is None:
+            return 1
+        inner = [depth(c.srcs[0].index, path + (label,)) for c in body_calls(start + 1)]
+        return 1 + max(inner, default=0)
+
+    found = []
+    for call in body_calls(0):
+        target = call.srcs[0].index
+        if target not in labels:
+            found.append(AsmError(f"{call.opcode}: l{target} has no label", call.location))
+        elif depth(target, ()) > MAX_CALL_DEPTH:
+            found.append(AsmError(f"{call.opcode} l{target}: calls nest deeper than "
+                                  f"{MAX_CALL_DEPTH} (or recurse), which Direct3D does not "
+                                  "allow", call.location))
+    return found
 
 
 def loop_count(lo: Lowering, reg: Operand) -> tuple[int, int, int]:

@@ -130,7 +130,6 @@ def constant_registers(program: AsmProgram) -> set[int]:
 # Registers a source may read in the lowering; ps_3_0 vPos / vFace are fragment builtins.
 _READABLE = frozenset({"c", "v", "t", "r", "a", "aL", "p", "b", "vPos", "vFace"})
 _BUILTINS = {"vPos": "vpos", "vFace": "vface"}
-_MAX_CALL_DEPTH = 16
 
 
 def _written(instrs: list, body: range, labels: dict[int, int], seen: frozenset = frozenset()
@@ -161,7 +160,7 @@ def lowering_problems(program: AsmProgram) -> list[AsmError]:
     errors = check(program)
     if errors:
         return errors
-    problems = []
+    problems = flow.iteration_problems(program) + flow.call_problems(program.instructions)
     depth = 0
     dynamic = flow.dynamic_blocks(program.instructions)
     for pos, instr in enumerate(program.instructions):
@@ -297,7 +296,7 @@ class _Lowering:
         start = self.labels.get(label.index)
         if start is None:
             raise AsmError(f"l{label.index} has no label", label.location)
-        if start in self.calls or len(self.calls) >= _MAX_CALL_DEPTH:
+        if start in self.calls or len(self.calls) >= flow.MAX_CALL_DEPTH:
             raise AsmError(f"call l{label.index}: recursive or too deep", label.location)
         self.calls.append(start)
         pos = self.pos
