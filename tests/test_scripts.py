@@ -140,3 +140,44 @@ def test_an_unknown_command_warns_and_strict_fails():
     with pytest.raises(EffectError, match="RenderPort=x is not supported"):
         Runtime(effects.load_effect(text), "geforce2", scene={"mesh": "quad"}, size=(4, 4),
                 strict=True).render()
+
+
+def test_an_empty_script_external_draws_nothing():
+    text = """float4 Black = {0, 0, 0, 1};
+    technique T < string Script = "RenderColorTarget0=; ClearSetColor=Black; Clear=Color;"
+                                  "ScriptExternal=;"; > { pass P { } }"""
+    frame = render_frame(effects.load_effect(text), "geforce2", scene={"mesh": "sphere"},
+                         size=(8, 8))
+    assert (frame.image[..., :3] == 0).all() and (frame.image[..., 3] == 255).all()
+    assert not frame.warnings
+
+
+RESUME = """
+texture A : RenderColorTarget;
+texture B : RenderColorTarget;
+float4 Black = {0, 0, 0, 1};
+technique T < string Script =
+        "RenderColorTarget0=A; ClearSetColor=Black; Clear=Color; Pass=Add;"
+        "RenderColorTarget0=B; Clear=Color; Pass=Add;"
+        "RenderColorTarget0=A; Pass=Add;"
+        "RenderColorTarget0=; Clear=Color; Pass=Show;"; > {
+    pass Add < string Script = "Draw=Buffer;"; > {
+        Lighting = false; TextureFactor = 0xff404040; ZEnable = false;
+        ColorOp[0] = SelectArg1; ColorArg1[0] = TFactor; AlphaOp[0] = SelectArg1; AlphaArg1[0] = TFactor;
+        AlphaBlendEnable = true; SrcBlend = One; DestBlend = One;
+    }
+    pass Show < string Script = "Draw=Buffer;"; > {
+        AlphaBlendEnable = false; Texture[0] = <A>; MinFilter[0] = Point; MagFilter[0] = Point;
+        ColorOp[0] = SelectArg1; ColorArg1[0] = Texture; AlphaOp[0] = SelectArg1; AlphaArg1[0] = Texture;
+    }
+}
+"""
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_target_drawn_into_again_without_a_clear_keeps_its_picture(backend):
+    # A gets 0x40 twice, with B drawn in between: 0x80 on the screen
+    frame = render_frame(effects.load_effect(RESUME), "geforce2", backend=backend,
+                         scene={"mesh": "quad"}, size=(16, 8))
+    assert (frame.image[..., 0] == 128).all(), np.unique(frame.image[..., 0])
+    assert not frame.warnings

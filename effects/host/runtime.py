@@ -197,6 +197,7 @@ class Runtime:
         self._textures: dict[str, Texture | None] = {}
         self._geometry: Geometry | None = None
         self._scene_runtime: Runtime | None = None
+        self._copy_runtime: Runtime | None = None
         self._bind(params or {})
         self.technique: Technique | None = None
         self._programs: list["PassProgram"] = []
@@ -318,6 +319,15 @@ class Runtime:
     def set_target_texture(self, name: str, texture: Texture) -> None:
         """What a script drew into render-target texture parameter `name`."""
         self._textures[name] = texture
+
+    def copy_runtime(self) -> "Runtime":
+        """A runtime for the host's picture copy (`effects.host.scripts.COPY_PICTURE`)."""
+        if self._copy_runtime is None:
+            from effects.frontend.loader import load_effect
+            from effects.host.scripts import COPY_PICTURE
+            self._copy_runtime = Runtime(load_effect(COPY_PICTURE), self.profile,
+                                         scene={"mesh": "quad"}, size=self.size, backend=None)
+        return self._copy_runtime
 
     def scene_material_runtime(self) -> "Runtime":
         """A runtime drawing this scene with the host's plain material (`ScriptExternal`)."""

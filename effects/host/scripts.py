@@ -14,7 +14,7 @@ FX Composer and NVIDIA's shader library write, on a technique and its passes, a
 | `Draw=Geometry` | draw the scene's mesh with the current pass |
 | `Draw=Buffer` | draw a full-screen quad (clip space, identity transforms; uv 0..1, row 0 at v = 0) |
 | `LoopByCount=P` … `LoopEnd=` | repeat the commands between, `P` (a parameter or a number) times |
-| `ScriptExternal=color` | draw the scene there: the mesh with a plain lit, checker-textured material (`SCENE_MATERIAL`), as FX Composer draws the rest of its scene |
+| `ScriptExternal=color` | draw the scene there: the mesh with a plain lit, checker-textured material (`SCENE_MATERIAL`), as FX Composer draws the rest of its scene; `ScriptExternal=` (empty) draws nothing |
 | `Technique=T`, `ScriptSignature=`, `ScriptOrder=`… | not run (a warning; `effects doctor` lists them) |
 
 Render-target textures are texture parameters with the `RenderColorTarget` or
@@ -67,6 +67,18 @@ technique Scene { pass P0 {
     MagFilter[0] = Linear; MipFilter[0] = Linear;
     ColorOp[0] = Modulate; ColorArg1[0] = Texture; ColorArg2[0] = Diffuse;
     AlphaOp[0] = SelectArg1; AlphaArg1[0] = Diffuse;
+} }
+"""
+
+
+# The host's copy of a target's earlier picture back into it (see ScriptRunner._restore).
+COPY_PICTURE = """
+texture Picture;
+technique Copy { pass P0 {
+    Lighting = false; ZEnable = false; CullMode = None; AlphaBlendEnable = false;
+    Texture[0] = <Picture>; MinFilter[0] = Point; MagFilter[0] = Point; MipFilter[0] = None;
+    AddressU[0] = Clamp; AddressV[0] = Clamp;
+    ColorOp[0] = SelectArg1; ColorArg1[0] = Texture; AlphaOp[0] = SelectArg1; AlphaArg1[0] = Texture;
 } }
 """
 
@@ -149,9 +161,14 @@ def target_format(param: Parameter) -> str:
     return "A8R8G8B8"
 
 
-def quad_geometry() -> Geometry:
-    """The full-screen quad of `Draw=Buffer`: clip-space corners, uv (0, 0) at the top left."""
+def quad_geometry(half_pixel: tuple[int, int] | None = None) -> Geometry:
+    """The full-screen quad of `Draw=Buffer`: clip-space corners, uv (0, 0) at the top left;
+    with `half_pixel` = (w, h), moved half a pixel up-left so pixel centres meet texel centres
+    (the D3D9 offset an application applies for a 1:1 copy)."""
     position = np.array([[-1, 1, 0, 1], [1, 1, 0, 1], [-1, -1, 0, 1], [1, -1, 0, 1]], np.float32)
+    if half_pixel is not None:
+        position[:, 0] -= 1.0 / half_pixel[0]
+        position[:, 1] += 1.0 / half_pixel[1]
     uv = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], np.float32)
     streams = {"position": position, "normal": np.tile([0, 0, -1], (4, 1)).astype(np.float32),
                "color0": np.ones((4, 4), np.float32), "color1": np.zeros((4, 4), np.float32),
@@ -197,11 +214,25 @@ class ScriptRunner:
         if self.open:
             return
         size, fmt = self._frame_of(self.target)
-        if self.target in self.kept and not self.clear_pending:
-            self.warn(f"script draws into {self.target or 'the back buffer'} again without "
-                      "clearing it; its earlier picture is not kept", self.technique.location)
+        resume = self.target in self.kept and not self.clear_pending
         self.rt.backend.begin_frame(size, self.clear_color, self.clear_depth, 0, format=fmt)
         self.open, self.drawn_since_open, self.clear_pending = True, False, False
+        if resume:
+            self._restore(size)
+
+    def _restore(self, size: tuple[int, int]) -> None:
+        """Drawing into a target again without clearing it: its earlier picture is still
+        there on a device, so it is copied back first (a point-sampled quad shifted by half a
+        pixel, so each pixel centre reads its own texel). Its depth is not kept."""
+        if self.target is None:
+            image = self.back_buffer
+            picture = make_texture(image.astype(np.float32) / 255.0, mips=False)
+        else:
+            picture = self.rt.used_texture(self.target)
+        copier = self.rt.copy_runtime()
+        copier.set_target_texture("Picture", picture)
+        program = copier.lower(copier.effect.techniques[0], 0, host=IDENTITY_HOST)
+        copier.draw_program(program, quad_geometry(size), backend=self.rt.backend)
 
     def _close(self) -> None:
         if not self.open:
@@ -312,8 +343,10 @@ class ScriptRunner:
         elif name == "LoopEnd":
             raise EffectError("script: LoopEnd without LoopByCount", c.location)
         elif name == "ScriptExternal":
-            if value.lower() in ("", "color"):
+            if value.lower() == "color":
                 self.draw_scene(c)
+            elif not value:
+                pass  # `ScriptExternal=;`: hands control back to the host, nothing to draw
             else:
                 self.warn(f"script command ScriptExternal={value} is not supported; ignored",
                           c.location)
