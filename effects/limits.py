@@ -49,6 +49,8 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
     Limit("texture_edge", 8192, "texels along an edge", "width, height or depth of one texture"),
     Limit("texture_texels", 4096 * 1024, "texels", "texels of one texture's top level"),
     Limit("effect_texels", 16 * 1024 * 1024, "texels", "texels of all textures one render binds"),
+    # a generator evaluates noise or lighting per texel: about ten times a decoded file's cost
+    Limit("procedural_texels", 128 * 1024, "texels", "texels of one procedural texture's top level"),
     # meshes
     Limit("mesh_file_bytes", 32 * _MIB, "bytes", "size of one .obj file"),
     Limit("mesh_vertices", 500_000, "vertices", "vertices of one mesh"),

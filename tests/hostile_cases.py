@@ -410,6 +410,12 @@ def procedural_noise3d_4096(d):
 
 
 @case
+def procedural_noise3d_51(d):
+    return _render('texture V < string Procedural = "noise3d:51"; string Type = "3D"; >;\n'
+                   "technique t { pass p { Texture[0] = <V>; } }", d)
+
+
+@case
 def procedural_sky_cube_huge(d):
     return _render('textureCUBE C < string Procedural = "sky_cube:100000"; >;\n'
                    "technique t { pass p { Texture[0] = <C>; } }", d)
@@ -429,6 +435,38 @@ def effect_texel_budget(d):
                        'texture B < string Procedural = "gloss"; int Width = 64; >;\n'
                        "technique t { pass p { Texture[0] = <A>; Texture[1] = <B>;\n"
                        "ColorOp[1] = Modulate; } }", d)
+
+
+# Just inside the limits: what they allow must itself fit in 5 s and 1 GiB.
+
+@case
+def png_at_the_texel_limit(d):
+    from PIL import Image
+    Image.new("RGB", (2048, 2048), (10, 20, 30)).save(d / "t.png")
+    return lambda: _load_texture(d / "t.png").levels[0].shape
+
+
+@case
+def dds_cube_at_the_texel_limit(d):
+    (d / "t.dds").write_bytes(_dds(836, 836, 1, b"\0" * 836 * 836 * 4 * 6, caps2=0xFE00))
+    return lambda: _load_texture(d / "t.dds").levels[0].shape
+
+
+@case
+def procedural_volume_at_the_texel_limit(d):
+    return lambda: _render('texture V < string Procedural = "noise3d:50"; string Type = "3D"; >;\n'
+                           "technique t { pass p { Texture[0] = <V>; } }", d).shape
+
+
+@case
+def procedural_stones_at_the_texel_limit(d):
+    return lambda: _render('texture H < string Procedural = "sobel_normals:stones"; int Width = 362; >;\n'
+                           "technique t { pass p { Texture[0] = <H>; } }", d, technique="t").shape
+
+
+@case
+def render_at_the_numpy_target_limit(d):
+    return lambda: _render(FLAT, d, size=(2048, 1024)).shape
 
 
 # ---------------------------------------------------------------------------------------------

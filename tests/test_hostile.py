@@ -85,6 +85,7 @@ EXPECTED: dict[str, tuple[str, str]] = {
     "npy_truncated": ("error", ".npy texture is truncated"),
     "texture_fifo": ("error", "is a FIFO"),
     "procedural_noise3d_4096": ("error", "(4096 x 4096 x 4096) has 68,719,476,736 texels"),
+    "procedural_noise3d_51": ("error", "limit procedural_texels"),
     "procedural_sky_cube_huge": ("error", "limit texture_edge"),
     "procedural_width_annotation_huge": ("error", "limit texture_edge"),
     "effect_texel_budget": ("error", "limit effect_texels"),
@@ -96,6 +97,11 @@ EXPECTED: dict[str, tuple[str, str]] = {
                                       "'pass p (line 1): Texture[0] = <Nope> names no parameter"),
     "wrongly_typed_reference": ("value", "Texture[0] = <Tint> needs a texture parameter; Tint (line 1) is a float4"),
     "phase_in_ps11": ("value", "phase is not available in ps_1_1"),
+    "png_at_the_texel_limit": ("value", "(2048, 2048, 4)"),
+    "dds_cube_at_the_texel_limit": ("value", "(6, 836, 836, 4)"),
+    "procedural_volume_at_the_texel_limit": ("value", "(8, 8, 4)"),
+    "procedural_stones_at_the_texel_limit": ("value", "(8, 8, 4)"),
+    "render_at_the_numpy_target_limit": ("value", "(1024, 2048, 4)"),
 }
 
 
@@ -391,6 +397,7 @@ FLAT = "technique t { pass p { Lighting = False; } }\n"
     (["matrix", "{escape}", "--include-root", "{tmp}/root"], "escapes the include root"),
     (["render", "{escape}", "-p", "geforce3", "--include-root", "{tmp}/root", "-o", "{tmp}/o.png"],
      "escapes the include root"),
+    (["doctor", "{escape}", "--include-root", "{tmp}/root"], "escapes the include root"),
     (["validate", "{fx}", "-p", "{tmp}/pipe.fx"], "is a FIFO"),
     (["matrix", "{fx}", "-p", "/dev/zero"], "/dev/zero is a device"),
 ])
@@ -405,6 +412,18 @@ def test_bad_input_exits_2_with_a_clear_message(argv, words, tmp_path, capsys):
     assert code == 2, (out, err)
     assert words.format(**fill) in err, err
     assert "Traceback" not in err and "<unknown>:0:0" not in err
+
+
+def test_every_command_that_loads_an_effect_takes_include_root_and_strict():
+    from effects.cli.main import build_parser
+    parser = build_parser()
+    commands = next(a for a in parser._actions if a.dest == "command").choices
+    loading = {name: sub for name, sub in commands.items()
+               if any(a.dest in ("file", "files") for a in sub._actions)}
+    assert {"validate", "matrix", "render", "view", "doctor"} <= set(loading)
+    for name, sub in loading.items():
+        options = {o for a in sub._actions for o in a.option_strings}
+        assert {"--include-root", "--strict"} <= options, name
 
 
 def test_include_root_on_the_command_line_lets_inside_files_load(tmp_path, capsys):

@@ -324,6 +324,7 @@ def _add_doctor(sub) -> None:
                    help="preprocessor macro")
     p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
                    help="include search folder")
+    _add_confinement(p)
     p.set_defaults(run=_cmd_doctor)
 
 
