@@ -1,7 +1,6 @@
 // Look-alike of an XNA game's effect (written for this project, not copied): HLSL only,
 // parameters without semantics the game sets by name, a technique of `compile` shaders.
-// It loads and validates with a located reason until the HLSL compiler lands; then it
-// renders (World/View/Projection must then be set with --set or by the scene's params).
+// World/View/Projection are set with --set or the scene's params, as the game set them.
 
 float4x4 World;
 float4x4 View;
@@ -29,7 +28,7 @@ technique Sprite
 {
     pass Pass1
     {
-        VertexShader = compile vs_1_1 SpriteVS();
-        PixelShader = compile ps_1_1 SpritePS();
+        VertexShader = compile vs_2_0 SpriteVS();
+        PixelShader = compile ps_2_0 SpritePS();
     }
 }
