@@ -231,9 +231,10 @@ class Parameter:
 
     @property
     def declared_texture_kind(self) -> str | None:
-        """'2d', '1d', 'cube' or '3d' as a texture parameter's `string Type` (or `TextureType`)
-        annotation or its type (textureCUBE) says; None for an untyped `texture`."""
-        for key in ("Type", "TextureType"):
+        """'2d', '1d', 'cube' or '3d' as a texture parameter's `string Type` (or `TextureType`,
+        or FX Composer's `ResourceType`) annotation or its type (textureCUBE) says; None for an
+        untyped `texture`."""
+        for key in ("Type", "TextureType", "ResourceType"):
             ann = self.annotation(key)
             if ann is not None and isinstance(ann.value, str) and ann.value.upper() in TEXTURE_KINDS:
                 return TEXTURE_KINDS[ann.value.upper()]

@@ -110,6 +110,14 @@ BOUNDS = {
     ("phong.fx", "Dot3_dx7"): Bound("lod", _LOD),
     ("phong.fx", "PerPixelPhong_ps11"): Bound("lod", _LOD + "; the N.H^96 table amplifies it"),
     ("phong.fx", "PerPixelPhong_ps20"): Bound("lod", _LOD + "; pow() amplifies it"),
+    ("shadows.fx", "Lit_ff"): Bound("exact", "no textures; vertex lighting"),
+    ("shadows.fx", "Shadow4_Linear8"): Bound(
+        "exact", "a point-sampled cube render target drawn by the same back end, no mip maps"),
+    ("shadows.fx", "Shadow4_R32F"): Bound(
+        "exact", "a point-sampled R32F cube render target drawn by the same back end; where "
+        "the sphere shadows itself near its terminator, a look-up compares within rounding of "
+        "the 0.97 margin and one of the four samples may go either way (measured: 1 pixel, "
+        "9/255)", max_abs=12, outliers=2),
     ("sdk8_style.fx", "TDX6"): Bound("exact", "bilinear without mip filtering"),
     ("sdk8_style.fx", "TFF7"): Bound("lod", _LOD),
     ("sdk8_style.fx", "TPS1"): Bound("lod", _LOD),

@@ -181,3 +181,38 @@ def test_a_target_drawn_into_again_without_a_clear_keeps_its_picture(backend):
                          scene={"mesh": "quad"}, size=(16, 8))
     assert (frame.image[..., 0] == 128).all(), np.unique(frame.image[..., 0])
     assert not frame.warnings
+
+
+CUBE = """
+float4 Origin = {0, 0, 0, 1};
+float4 Black = {0, 0, 0, 1};
+float4x4 WVP : WORLDVIEWPROJECTION;
+texture Cube : RENDERCOLORTARGET < string ResourceType = "Cube"; string Format = "R32F";
+                                   int Width = 8; string CubeOrigin = "Origin"; >;
+technique T < string Script = "RenderColorTarget0=Cube; ClearSetColor=Black; Clear=Color;"
+                              "Pass=P; RenderColorTarget0=;"; > {
+    pass P < string Script = "Draw=Buffer;"; > {
+        Lighting = false; TextureFactor = 0xff808080; ZEnable = false;
+        ColorOp[0] = SelectArg1; ColorArg1[0] = TFactor; AlphaOp[0] = SelectArg1; AlphaArg1[0] = TFactor;
+    }
+}
+"""
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_cube_render_target_is_drawn_face_by_face(backend):
+    rt = Runtime(effects.load_effect(CUBE), "refrast", scene={"mesh": "sphere"}, size=(4, 4),
+                 backend=backend)
+    frame = rt.render()
+    assert frame.passes == 1 and not frame.warnings
+    cube = rt.texture("Cube")
+    assert cube.kind == "cube" and cube.format == "R32F"
+    level = cube.levels[0]
+    assert level.shape[:3] == (6, 8, 8)
+    np.testing.assert_allclose(level[..., 0], 128 / 255, atol=1e-6)   # every face drawn
+
+
+def test_a_cube_target_without_an_origin_is_an_error():
+    text = CUBE.replace('string CubeOrigin = "Origin";', "")
+    with pytest.raises(EffectError, match="CubeOrigin"):
+        render_frame(effects.load_effect(text), "refrast", scene={"mesh": "sphere"}, size=(4, 4))

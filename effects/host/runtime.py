@@ -42,7 +42,8 @@ from effects.errors import EffectError, EffectWarning, Location, NoValidTechniqu
 from effects.model import Effect, Parameter, Technique
 from effects.host.scene import MAX_SIZE, Scene, load_scene
 from effects.host.semantics import bind_scene, coerce_value, lookup_parameter, ui_defaults
-from effects.host.scripts import is_render_target, target_format, target_size
+from effects.host.scripts import (cube_size, is_cube_target, is_render_target, target_format,
+                                  target_size)
 from effects.host.textures import Texture, make_texture
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -280,9 +281,14 @@ class Runtime:
         if texture is None and is_render_target(self._param(name)):
             # a render target sampled before anything was drawn into it: cleared to black
             param = self._param(name)
-            w, h = target_size(param, self.size)
-            texture = make_texture(np.zeros((h, w, 4), np.float32), target_format(param),
-                                   mips=False, name=name)
+            if is_cube_target(param):
+                n = cube_size(param)
+                texture = make_texture(np.zeros((6, n, n, 4), np.float32), target_format(param),
+                                       kind="cube", mips=False, name=name)
+            else:
+                w, h = target_size(param, self.size)
+                texture = make_texture(np.zeros((h, w, 4), np.float32), target_format(param),
+                                       mips=False, name=name)
             self._textures[name] = texture
         elif texture is None:
             param = self._param(name)

@@ -24,6 +24,16 @@ format `string Format = "..."` where a back end can render it (else A8R8G8B8). A
 a `Script` annotation draws only what its script says; without one, every pass once, as D3DX.
 Each target is drawn in one back-end frame (`effects.backend`): switching targets ends the
 frame and the finished picture becomes that texture parameter's texture (one mip level).
+
+Cube render targets (FX Composer's spelling: `string ResourceType = "Cube"` on the target, or a
+`textureCUBE` declaration) are drawn face by face, as a host draws an omni light's shadow map:
+their size is `int Width` (or `Dimensions`, square; default 256), and `string CubeOrigin = "P"`
+names the float3/float4 parameter the faces look out from (a light position).
+The draws a script makes into the cube are kept until the target is switched, then replayed
+into each of the six faces (`effects.backend.render_cube_faces`, D3D face order) with the host's
+view transform and every parameter with a transform semantic (WORLDVIEWPROJECTION, VIEW, ...)
+set to the face's: a left-handed look-at from the origin along CUBE_FACE_VIEWS, and a 90° square
+perspective over `float2 CubeDepthRange = {near, far}` (default {0.05, 100}).
 """
 from __future__ import annotations
 
@@ -32,10 +42,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from effects.backend import TARGET_FORMATS
+import math
+
+from effects.backend import CUBE_FACE_VIEWS, TARGET_FORMATS, render_cube_faces
 from effects.errors import EffectError, EffectWarning, Location
 from effects.model import Annotation, Effect, Parameter, Technique
 from effects.host.assets import Geometry
+from effects.host.scene import look_at_lh, perspective_fov_lh
+from effects.host.semantics import bind_transforms
 from effects.host.textures import make_texture
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -152,6 +166,47 @@ def target_size(param: Parameter, frame: tuple[int, int]) -> tuple[int, int]:
     return frame
 
 
+DEFAULT_CUBE_SIZE = 256
+DEFAULT_CUBE_RANGE = (0.05, 100.0)
+
+
+def is_cube_target(param: Parameter) -> bool:
+    """A render target drawn as a cube map: `ResourceType = "Cube"` or a textureCUBE."""
+    return param.declared_texture_kind == "cube"
+
+
+def cube_size(param: Parameter) -> int:
+    dims = param.annotation("Dimensions") or param.annotation("Width")
+    if dims is not None and not isinstance(dims.value, str) and _numbers(dims.value):
+        return max(1, int(_numbers(dims.value)[0]))
+    return DEFAULT_CUBE_SIZE
+
+
+def cube_face_matrices(param: Parameter, effect: Effect, world: np.ndarray) -> list[dict[str, np.ndarray]]:
+    """world/view/projection of each face (D3D order) of cube target `param`."""
+    at = param.location
+    origin_ann = param.annotation("CubeOrigin")
+    if origin_ann is None or not isinstance(origin_ann.value, str):
+        raise EffectError(f"cube render target {param.name} needs string CubeOrigin = \"P\" "
+                          "naming the parameter its faces look out from", at)
+    origin_param = effect.parameter(origin_ann.value)
+    if origin_param is None or origin_param.value is None or not origin_param.type.is_numeric:
+        raise EffectError(f"cube render target {param.name}: CubeOrigin {origin_ann.value!r} is "
+                          "not a numeric parameter with a value", origin_ann.location)
+    origin = (_numbers(origin_param.value) + [0.0, 0.0, 0.0])[:3]
+    near, far = DEFAULT_CUBE_RANGE
+    rng = param.annotation("CubeDepthRange")
+    if rng is not None and not isinstance(rng.value, str) and len(_numbers(rng.value)) >= 2:
+        near, far = _numbers(rng.value)[:2]
+    if not 0 < near < far:
+        raise EffectError(f"cube render target {param.name}: CubeDepthRange needs 0 < near < far",
+                          rng.location if rng is not None else at)
+    projection = perspective_fov_lh(math.pi / 2, 1.0, near, far)
+    eye = np.asarray(origin, np.float64)
+    return [{"world": world, "view": look_at_lh(eye, eye + look, up), "projection": projection}
+            for look, up in CUBE_FACE_VIEWS]
+
+
 def target_format(param: Parameter) -> str:
     fmt = param.annotation("Format")
     if fmt is not None and isinstance(fmt.value, str):
@@ -196,6 +251,7 @@ class ScriptRunner:
         self.kept: set[str | None] = set()      # targets holding a finished picture
         self.draws = 0
         self.passes_drawn = 0
+        self.cube_draws: list[tuple[int, bool]] = []   # (pass, full-screen?) kept for the faces
 
     # -- targets ---------------------------------------------------------------------------
     def _target_param(self, name: str, at: Location) -> Parameter:
@@ -208,14 +264,30 @@ class ScriptRunner:
         if name is None:
             return self.rt.size, "A8R8G8B8"
         param = self.rt.effect.parameter(name)
+        if is_cube_target(param):
+            return (cube_size(param),) * 2, target_format(param)
         return target_size(param, self.rt.size), target_format(param)
+
+    def _cube(self) -> Parameter | None:
+        """The current target's parameter when it is a cube target."""
+        if self.target is None:
+            return None
+        param = self.rt.effect.parameter(self.target)
+        return param if is_cube_target(param) else None
 
     def _open(self) -> None:
         if self.open:
             return
         size, fmt = self._frame_of(self.target)
         resume = self.target in self.kept and not self.clear_pending
-        self.rt.backend.begin_frame(size, self.clear_color, self.clear_depth, 0, format=fmt)
+        if self._cube() is None:
+            self.rt.backend.begin_frame(size, self.clear_color, self.clear_depth, 0, format=fmt)
+        else:   # drawn at _close, face by face, with the clear values set now
+            if resume:
+                self.warn(f"script draws into cube target {self.target} again without "
+                          "clearing it; its earlier faces are not kept", self.technique.location)
+                resume = False
+            self.cube_draws, self.cube_clear = [], (self.clear_color, self.clear_depth)
         self.open, self.drawn_since_open, self.clear_pending = True, False, False
         if resume:
             self._restore(size)
@@ -234,8 +306,48 @@ class ScriptRunner:
         program = copier.lower(copier.effect.techniques[0], 0, host=IDENTITY_HOST)
         copier.draw_program(program, quad_geometry(size), backend=self.rt.backend)
 
+    def _abandon(self) -> None:
+        """Drop the open frame (a Clear after drawing, or an error)."""
+        if self.open and self._cube() is None:
+            self.rt.backend.end_frame()
+        self.open, self.cube_draws = False, []
+
+    def _close_cube(self, param: Parameter) -> None:
+        faces = cube_face_matrices(param, self.rt.effect, self.rt.scene.world)
+        saved = {p.name: p.value for p in self.rt.effect.parameters}
+        draws = list(self.cube_draws)
+
+        def draw_face(face: int) -> None:
+            m = faces[face]
+            for name, value in bind_transforms(self.rt.effect, m).items():
+                self.rt.effect.parameter(name).value = value
+            host = {"WorldTransform": m["world"], "ViewTransform": m["view"],
+                    "ProjectionTransform": m["projection"]}
+            for index, buffer in draws:
+                program = self.rt.lower(self.technique, index,
+                                        host=IDENTITY_HOST if buffer else host)
+                self.rt.draw_program(program, quad_geometry() if buffer else None)
+
+        _, fmt = self._frame_of(self.target)
+        color, depth = self.cube_clear
+        try:
+            texels = render_cube_faces(self.rt.backend, cube_size(param), draw_face, format=fmt,
+                                       clear_color=color, clear_depth=depth)
+        finally:
+            for p in self.rt.effect.parameters:
+                p.value = saved[p.name]
+        self.open, self.cube_draws = False, []
+        self.kept.add(self.target)
+        values = texels.astype(np.float32) / 255.0 if texels.dtype == np.uint8 else texels
+        self.rt.set_target_texture(self.target, make_texture(values, fmt, kind="cube", mips=False,
+                                                             name=self.target))
+
     def _close(self) -> None:
         if not self.open:
+            return
+        cube = self._cube()
+        if cube is not None:
+            self._close_cube(cube)
             return
         image = self.rt.backend.end_frame()
         self.open = False
@@ -265,8 +377,7 @@ class ScriptRunner:
                 self._open()             # a script that never drew to the screen: cleared
             self._close()
         except BaseException:
-            if self.open:
-                self.rt.backend.end_frame()
+            self._abandon()
             raise
         return self.back_buffer  # type: ignore[return-value]
 
@@ -322,16 +433,14 @@ class ScriptRunner:
                                   c.location)
             if self.open and self.drawn_since_open:
                 if what == "color":
-                    self.rt.backend.end_frame()   # what was drawn is cleared away
-                    self.open = False
+                    self._abandon()               # what was drawn is cleared away
                 else:
                     self.warn(f"script: Clear={value} after drawing into the same target is "
                               "not supported (the colour would be lost); ignored", c.location)
                     return
             self.clear_pending = True
             if self.open and not self.drawn_since_open:
-                self.rt.backend.end_frame()       # reopen with the clear values now set
-                self.open = False
+                self._abandon()                   # reopen with the clear values now set
         elif name == "Pass":
             index = self._pass_index(c)
             p = self.technique.passes[index]
@@ -380,11 +489,19 @@ class ScriptRunner:
         self._count_draw(c)
         self._open()
         buffer = what == "buffer"
+        if self._cube() is not None:      # drawn into every face when the target closes
+            self.cube_draws.append((pass_index, buffer))
+            self.drawn_since_open = True
+            return
         program = self.rt.lower(self.technique, pass_index, host=IDENTITY_HOST if buffer else None)
         self.rt.draw_program(program, quad_geometry() if buffer else None)
         self.drawn_since_open = True
 
     def draw_scene(self, c: Command) -> None:
+        if self._cube() is not None:
+            self.warn("script: ScriptExternal into a cube render target is not supported; "
+                      "ignored", c.location)
+            return
         self._count_draw(c)
         self._open()
         scene_rt = self.rt.scene_material_runtime()
@@ -416,5 +533,6 @@ def render_targets(effect: Effect) -> list[Parameter]:
 
 
 __all__ = ["Command", "parse_script", "script_of", "technique_script", "ScriptRunner",
-           "render_targets", "target_size", "target_format", "unsupported_commands",
+           "render_targets", "target_size", "target_format", "is_cube_target", "cube_size",
+           "cube_face_matrices", "unsupported_commands",
            "quad_geometry", "SCENE_MATERIAL"]

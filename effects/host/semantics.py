@@ -163,22 +163,35 @@ def binds(semantic: str) -> bool:
     return semantic in VALUE_SEMANTICS or matrix_semantic(semantic) is not None
 
 
-def bind_scene(effect: Effect, scene: Scene, size: tuple[int, int] | None = None) -> dict[str, Any]:
-    """Values for every parameter the scene supplies: by semantic, or for DX8 files by the
-    conventional names above. Returns name -> value (matrices as float32 4x4)."""
-    values, m = scene_values(scene, size)
-    bound: dict[str, Any] = {}
+def bind_transforms(effect: Effect, m: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """Values of the parameters with a transform semantic (WORLDVIEWPROJECTION, VIEWI...) for
+    the world/view/projection matrices `m`: the scene's camera, or a cube render target's
+    face view while a script draws into it (`effects.host.scripts`)."""
+    bound: dict[str, np.ndarray] = {}
     for param in effect.parameters:
         semantic = parameter_semantic(param)
         if not semantic or param.array:
             continue
         matrix = _matrix_for(semantic, m)
-        if matrix is not None:
-            if param.type.rows == 4 and param.type.cols == 4:
-                bound[param.name] = matrix.astype(np.float32)
-            elif param.type.rows >= 3 and param.type.cols >= 3:  # float4x3, float3x3
-                bound[param.name] = matrix[:param.type.rows, :param.type.cols].astype(np.float32)
-        elif semantic in values and param.type.is_numeric:
+        if matrix is None:
+            continue
+        if param.type.rows == 4 and param.type.cols == 4:
+            bound[param.name] = matrix.astype(np.float32)
+        elif param.type.rows >= 3 and param.type.cols >= 3:  # float4x3, float3x3
+            bound[param.name] = matrix[:param.type.rows, :param.type.cols].astype(np.float32)
+    return bound
+
+
+def bind_scene(effect: Effect, scene: Scene, size: tuple[int, int] | None = None) -> dict[str, Any]:
+    """Values for every parameter the scene supplies: by semantic, or for DX8 files by the
+    conventional names above. Returns name -> value (matrices as float32 4x4)."""
+    values, m = scene_values(scene, size)
+    bound: dict[str, Any] = bind_transforms(effect, m)
+    for param in effect.parameters:
+        semantic = parameter_semantic(param)
+        if not semantic or param.array or param.name in bound:
+            continue
+        if matrix_semantic(semantic) is None and semantic in values and param.type.is_numeric:
             if semantic in _LIGHT_SEMANTICS and not scene.light_given and param.value is not None:
                 continue
             bound[param.name] = values[semantic](param)

@@ -191,7 +191,10 @@ class TextureChecks:
             return
         usage = {"CUBE": "cube", "3D": "volume"}.get(kind or "", "texture")
         wanted = [usage]
-        if _annotation_bool(param, "RenderTarget"):
+        # a render target: `bool RenderTarget = true`, or a DXSAS script's target (semantic
+        # RENDERCOLORTARGET), which the card must create with D3DUSAGE_RENDERTARGET
+        if _annotation_bool(param, "RenderTarget") or \
+                (param.semantic or "").upper() == "RENDERCOLORTARGET":
             wanted.append("rendertarget")
         if any(self.state.get_enum(f, unit, default=None) in ("LINEAR", "ANISOTROPIC", "PYRAMIDALQUAD", "GAUSSIANQUAD")
                for f in ("MinFilter", "MagFilter", "MipFilter")):
