@@ -68,7 +68,9 @@ def test_process_pool_and_dask_draw_the_same_cells():
             assert (a.effect, a.profile, a.technique, a.reason) == (b.effect, b.profile, b.technique, b.reason)
             if a.image is not None:
                 np.testing.assert_array_equal(a.image, b.image)
-    assert sum(c.image is not None for c in alone) == 3 and sum(c.reason is not None for c in alone) == 3
+    # phong.fx on all three cards, wood.fx's HLSL Wood_ps20 on the Radeon 9700 only
+    drawn = [(c.effect, c.profile) for c in alone if c.image is not None]
+    assert len(drawn) == 4 and sum(c.reason is not None for c in alone) == 2, drawn
 
 
 def test_sheet_layout_places_each_cell_under_its_card():
