@@ -348,6 +348,8 @@ def build_parser() -> argparse.ArgumentParser:
     _add_profiles(sub)
     _add_view(sub)
     _add_doctor(sub)
+    from effects.cli.compile import add_compile
+    add_compile(sub, _load)
     return parser
 
 
