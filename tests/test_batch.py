@@ -16,7 +16,7 @@ from effects.host.batch import CellJob, render_cell, run_jobs
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PHONG = os.path.join(ROOT, "fxfiles", "phong.fx")
-WOOD = os.path.join(ROOT, "fxfiles", "wood.fx")      # HLSL only: no card draws it yet
+WOOD = os.path.join(ROOT, "fxfiles", "wood.fx")      # HLSL ps_2_0 only: a DX9 card draws it
 CARDS = ["tnt2", "geforce3", "radeon9700"]
 
 
