@@ -68,9 +68,24 @@ class Origin:
         return EffectWarning(message, loc, self.line_text(loc.line - self.base.line + 1))
 
 
+_TREES: dict[tuple[str, str], lark.Tree] = {}
+TREE_CACHE = 512
+
+
 def parse(text: str, start: str, origin: Origin) -> lark.Tree:
+    """The tree of `text` (kept by text: validation compiles one function for many cards and
+    targets; the evaluator never changes a tree)."""
+    key = (text, start)
+    hit = _TREES.get(key)
+    if hit is not None:
+        return hit
     try:
-        return parser().parse(text, start=start)
+        tree = parser().parse(text, start=start)
+        with _LOCK:
+            if len(_TREES) >= TREE_CACHE:
+                _TREES.pop(next(iter(_TREES)))
+            _TREES[key] = tree
+        return tree
     except lark.exceptions.UnexpectedInput as exc:
         line, col = getattr(exc, "line", 1) or 1, getattr(exc, "column", 1) or 1
         token = getattr(exc, "token", None)
