@@ -186,3 +186,60 @@ def test_over_the_slot_limit_is_a_located_reason():
     v = fx.validate("T", effects.load_profile("radeon9700"))
     assert not v.ok
     assert any("arithmetic" in r.message and "64" in r.message for r in v.reasons), v.reasons
+
+
+# One intrinsic family per row: an HLSL expression of u, v (the texture coordinate at pixel
+# (5, 3): u = 5/8, v = 3/8) and the value Python computes for it (kept inside [0, 1]).
+U, V = 5 / 8, 3 / 8
+INTRINSIC_CASES = [
+    ("pow(u, 2.5)", U ** 2.5),
+    ("exp2(-u) + log2(1 + v) * 0.25", 2 ** -U + math.log2(1 + V) * 0.25),
+    ("sqrt(u) * rsqrt(4 * v)", math.sqrt(U) / math.sqrt(4 * V)),
+    ("clamp(u * 2 - 0.5, 0.2, 0.6) + min(u, v) - max(u, v) * 0.5", min(max(U * 2 - .5, .2), .6) + V - U / 2),
+    ("step(0.5, u) * 0.5 + step(u, v) * 0.25", 0.5),
+    ("abs(v - u) + sign(v - u) * 0.125 + 0.125", abs(V - U) - 0.125 + 0.125),
+    ("floor(u * 4) / 8 + ceil(v * 4) / 8", math.floor(U * 4) / 8 + math.ceil(V * 4) / 8),
+    ("fmod(u * 3, 0.75)", math.fmod(U * 3, 0.75)),
+    ("length(float2(u, v)) * 0.5 + distance(u, v)", math.hypot(U, V) * 0.5 + abs(U - V)),
+    ("dot(normalize(float3(u, v, 1)), float3(0, 0, 1))", 1 / math.sqrt(U * U + V * V + 1)),
+    ("cross(float3(u, 0, 0), float3(0, v, 0)).z", U * V),
+    ("reflect(float3(u, -v, 0), float3(0, 1, 0)).y", V),
+    ("sin(u) * 0.5 + cos(v) * 0.25", math.sin(U) * 0.5 + math.cos(V) * 0.25),
+    ("determinant(float2x2(u, v, 0.25, 1)) + transpose(float2x2(0, u, v, 0))[0][1]", U - V * 0.25 + V),
+    ("lerp(u, v, 0.25) + smoothstep(0.0, 2.0, u)", U + (V - U) * 0.25 + (U / 2) ** 2 * (3 - U)),
+    ("(u > v ? 0.75 : 0.25) * (any(float2(0, u)) ? 1 : 0) * (all(float2(0, u)) ? 0 : 1)", 0.75),
+    ("round(u * 3) / 4 + trunc(v * 3) / 4", round(U * 3) / 4 + math.trunc(V * 3) / 4),
+    ("frac(-u)", (-U) % 1.0),
+]
+
+
+@pytest.mark.parametrize("expression, expected", INTRINSIC_CASES, ids=[c[0] for c in INTRINSIC_CASES])
+def test_intrinsic_families(backend, expression, expected):
+    fx = effect_for(f"""
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{{
+    float u = uv.x, v = uv.y;
+    return float4({expression}, 0, 0, 1);
+}}""")
+    img = render(fx, backend)
+    assert 0 <= expected <= 1, expected
+    assert img[3, 5, 0] == pytest.approx(expected, abs=2.5 / 255), (expression, fx_asm(fx, "PS", "ps_2_0"))
+
+
+def test_texture_read_through_a_sampler(backend):
+    from effects.host.textures import procedural
+    fx = effect_for("""
+float4 PS(float2 uv : TEXCOORD0) : COLOR { return tex2D(Checker, uv * 0.5 + 1.0 / 128) * Scale; }""",
+                    params="texture T; float Scale = 0.5;\n"
+                           "sampler2D Checker = sampler_state { Texture = <T>; MinFilter = Point; "
+                           "MagFilter = Point; MipFilter = None; };")
+    checker = procedural("checker")
+    img = effects.render(fx, "radeon9700", technique="T", backend=backend, scene=QUAD,
+                         params={"T": checker})
+    text = fx_asm(fx, "PS", "ps_2_0")
+    assert "texld" in text and "dcl_2d s0" in text
+    texels = checker.levels[0]   # 64 x 64: pixel x reads texel 4x + 1/2 (a texel centre, no tie)
+    for y in range(SIZE[1]):
+        for x in range(SIZE[0]):
+            want = texels[4 * y, 4 * x] * 0.5
+            assert np.allclose(img[y, x] / 255.0, want, atol=1.5 / 255), (x, y, img[y, x], want)
