@@ -442,8 +442,8 @@ def test_warnings_of_bad_references_reach_the_user(tmp_path, capsys):
 
 
 def test_a_closed_pipe_ends_quietly_as_unix_tools_do():
-    proc = subprocess.Popen([sys.executable, "-m", "effects", "matrix", "--json",
-                             *sorted(str(p) for p in (ROOT / "fxfiles").glob("*.fx"))],
+    proc = subprocess.Popen([sys.executable, "-m", "effects", "matrix", "--json", "-p", "tnt2",
+                             str(ROOT / "fxfiles" / "phong.fx")],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=ROOT)
     assert proc.stdout is not None and proc.stderr is not None
     proc.stdout.close()            # the reader leaves before the table is written (`| true`)
