@@ -481,19 +481,35 @@ _STAGE_STATES = (
 )
 
 
-def _ss(name: str, code: int, type_: str, default: object, enum: EnumTable | None = None) -> StateInfo:
+def _ss(name: str, code: int, type_: str, default: object, enum: EnumTable | None = None,
+        limit: CapsLimit | None = None) -> StateInfo:
     # In a pass `MinFilter[n]` (the DX8 texture-stage spelling); inside sampler_state no index.
-    return StateInfo(name, "sampler", type_, enum, "optional", MAX_SAMPLERS - 1, code, default)
+    return StateInfo(name, "sampler", type_, enum, "optional", MAX_SAMPLERS - 1, code, default,
+                     limit=limit)
+
+
+def _filter_limit(prefix: str, filters: Iterable[str]) -> CapsLimit:
+    # D3DPTFILTERCAPS_MINF* / MAGF* / MIPF*: a filter without such a bit no card reports. The
+    # field is the 2D one; cube and volume textures read CubeTextureFilterCaps /
+    # VolumeTextureFilterCaps where the card lists them (effects.validate.textures).
+    return CapsLimit("TextureFilterCaps", renamed={f: f"{prefix}{f}" for f in filters})
+
+
+_MINMAG_FILTERS = ("POINT", "LINEAR", "ANISOTROPIC", "PYRAMIDALQUAD", "GAUSSIANQUAD")
+_ADDRESS = CapsLimit("TextureAddressCaps")
 
 
 _SAMPLER_STATES = (
-    _ss("AddressU", 1, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS),
-    _ss("AddressV", 2, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS),
-    _ss("AddressW", 3, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS),
+    _ss("AddressU", 1, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS, _ADDRESS),
+    _ss("AddressV", 2, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS, _ADDRESS),
+    _ss("AddressW", 3, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS, _ADDRESS),
     _ss("BorderColor", 4, "color", 0),
-    _ss("MagFilter", 5, "enum", _ev(D3DTEXTUREFILTERTYPE, "Point"), D3DTEXTUREFILTERTYPE),
-    _ss("MinFilter", 6, "enum", _ev(D3DTEXTUREFILTERTYPE, "Point"), D3DTEXTUREFILTERTYPE),
-    _ss("MipFilter", 7, "enum", _ev(D3DTEXTUREFILTERTYPE, "None"), D3DTEXTUREFILTERTYPE),
+    _ss("MagFilter", 5, "enum", _ev(D3DTEXTUREFILTERTYPE, "Point"), D3DTEXTUREFILTERTYPE,
+        _filter_limit("MAGF", _MINMAG_FILTERS)),
+    _ss("MinFilter", 6, "enum", _ev(D3DTEXTUREFILTERTYPE, "Point"), D3DTEXTUREFILTERTYPE,
+        _filter_limit("MINF", _MINMAG_FILTERS)),
+    _ss("MipFilter", 7, "enum", _ev(D3DTEXTUREFILTERTYPE, "None"), D3DTEXTUREFILTERTYPE,
+        _filter_limit("MIPF", ("POINT", "LINEAR"))),
     _ss("MipMapLodBias", 8, "float", 0.0),
     _ss("MaxMipLevel", 9, "int", 0),
     _ss("MaxAnisotropy", 10, "int", 1),

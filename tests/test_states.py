@@ -482,6 +482,11 @@ def test_every_caps_limit_names_a_bit_field_and_its_bits():
                    ("SrcBlendAlpha", "SRCCOLOR2"), ("SrcBlendAlpha", "INVSRCCOLOR2"),
                    ("DestBlendAlpha", "SRCCOLOR2"), ("DestBlendAlpha", "INVSRCCOLOR2")}
     limited = [row for row in STATES if row.limit is not None]
+    # D3DTEXF_NONE turns a filter off; the cubic, convolution (and, for mipmaps, the
+    # anisotropic and quad) filters have no D3DPTFILTERCAPS bit: no card reports them.
+    no_caps_bit |= {(row.name, value) for row in limited if row.limit.field == "TextureFilterCaps"
+                    for value in row.enum.values if value not in row.limit.renamed}
+    assert ("MipFilter", "ANISOTROPIC") in no_caps_bit and ("MinFilter", "LINEAR") not in no_caps_bit
     assert {row.name for row in limited} >= {"SrcBlend", "ZFunc", "AlphaFunc", "StencilPass",
                                              "CCW_StencilFail", "CullMode", "BlendOp"}
     for row in limited:

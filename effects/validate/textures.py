@@ -10,7 +10,8 @@ from typing import Any
 
 import numpy as np
 
-from effects.caps import FORMATS
+from effects import states as state_table
+from effects.caps import FIELDS, FORMATS
 from effects.errors import EffectError
 from effects.model import Effect, Parameter, ParamRef, SamplerState, ShaderBlock
 from effects.stage_ops import (MAX_SAMPLERS, TA_TEXTURE, TCI_CAMERA_SPACE, TCI_SHIFT,
@@ -18,15 +19,11 @@ from effects.stage_ops import (MAX_SAMPLERS, TA_TEXTURE, TCI_CAMERA_SPACE, TCI_S
 from effects.validate.stages import _args_read, _stage_op
 from effects.validate.values import spelled
 
-# Enum names are the states table's canonical names (no prefix); caps bits are the
-# D3D*CAPS_ names without prefix, which mostly coincide. Sources: d3d9types.h / d3d9caps.h as
-# documented (D3DTEXTUREFILTERTYPE, D3DPTFILTERCAPS ...).
-_FILTER_BITS = {  # (state, D3DTEXF name) -> D3DPTFILTERCAPS bit; other pairs no card accepts
-    **{("MinFilter", f): f"MINF{f}" for f in ("POINT", "LINEAR", "ANISOTROPIC", "PYRAMIDALQUAD", "GAUSSIANQUAD")},
-    **{("MagFilter", f): f"MAGF{f}" for f in ("POINT", "LINEAR", "ANISOTROPIC", "PYRAMIDALQUAD", "GAUSSIANQUAD")},
-    **{("MipFilter", f): f"MIPF{f}" for f in ("POINT", "LINEAR")},
-}
-# Filter caps field per texture kind (a card without the field uses TextureFilterCaps).
+# The filter and address bits each value needs are the sampler states' rows in effects.states
+# (StateInfo.limit); the field depends on the texture's kind. Filter caps field per texture
+# kind (a card without the field uses TextureFilterCaps).
+_LIMITS = {name: state_table.lookup_state(name).limit
+           for name in ("MinFilter", "MagFilter", "MipFilter", "AddressU", "AddressV", "AddressW")}
 _FILTER_FIELD = {"CUBE": "CubeTextureFilterCaps", "3D": "VolumeTextureFilterCaps"}
 # ps_1_1-1_3 instructions that look up a cube map (the ps_1_x instruction pages).
 _CUBE_LOOKUPS_PS1 = frozenset({"texm3x3tex", "texm3x3spec", "texm3x3vspec"})
@@ -227,8 +224,8 @@ class TextureChecks:
             if value is None or value == "NONE":
                 continue
             subject = f"{name}[{unit}] = {spelled(name, value)}"
-            bit = _FILTER_BITS.get((name, value))
-            if bit is None:
+            bit = _LIMITS[name].bit_for(value)
+            if bit not in (FIELDS["TextureFilterCaps"].table or {}):
                 self.fail(self.where(name, unit), subject, f"a {name} the card filters with",
                           f"not in {filter_field}",
                           f"{subject} is not a {name[:3].lower()}ification filter a Direct3D 9 "
@@ -255,7 +252,8 @@ class TextureChecks:
                 continue
             value = self.state.get_enum(name, unit, default=None)
             if value:
-                self.need_bit(address_field, value, f"{name}[{unit}] = {spelled(name, value)}",
+                self.need_bit(address_field, _LIMITS[name].bit_for(value),
+                              f"{name}[{unit}] = {spelled(name, value)}",
                               self.where(name, unit))
 
 
