@@ -180,12 +180,18 @@ def test_implicit_truncation_warns_x3206():
 
 
 def test_over_the_slot_limit_is_a_located_reason():
+    # each sin() is a range reduction (mad, frc, mad) and the 8-slot sincos macro: the 8th
+    # line's sincos crosses ps_2_0's 64 arithmetic slots, and the reason stands at that line
     body = "\n".join(f"    x = sin(x) * 1.01 + {k}.0 / 64;" for k in range(12))
     fx = effect_for("float4 PS(float2 uv : TEXCOORD0) : COLOR\n{\n    float x = uv.x;\n"
                     + body + "\n    return x;\n}")
     v = fx.validate("T", effects.load_profile("radeon9700"))
     assert not v.ok
-    assert any("arithmetic" in r.message and "64" in r.message for r in v.reasons), v.reasons
+    first = v.reasons[0]
+    assert first.message == ("ps_2_0 allows 64 arithmetic instruction slots; this sincos takes 8 "
+                             "and brings the count to 71")
+    assert (first.location.line, first.location.column) == (10, 9)   # the line of k = 5
+    assert "the Radeon 9700 has NumInstructionSlots 96" in v.reasons[1].message
 
 
 # One intrinsic family per row: an HLSL expression of u, v (the texture coordinate at pixel
