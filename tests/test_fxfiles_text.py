@@ -26,6 +26,7 @@ EXPECTED_TECHNIQUES: dict[str, list[str | None]] = {
                       "SingleTexture"],
     "sdk8_style.fx": ["TPS4", "TPS1", "TFF7", "TDX6", None],
     "sdk9_style.fx": ["Marble_ps20", "Marble_ps11", "Marble_dx7", "Marble_dx6"],
+    "sdk9_hlsl.fx": ["Scene_ps20", "Scene_ps14", "Scene_ps11", "Scene_ff"],
 }
 
 # The chapter's printed BRDF programs, instruction by instruction (comments dropped), typed

@@ -405,6 +405,7 @@ FX_COUNTS = {
     "wood.fx": [("Wood_ps20", [2])],
     "shadows.fx": [("Shadow4_R32F", [8, 13]), ("Shadow1_R32F", [8, 13]),
                    ("Shadow4_Linear8", [9, 14]), ("Lit_ff", [18])],
+    "sdk9_hlsl.fx": [("Scene_ps20", [2]), ("Scene_ps14", [2]), ("Scene_ps11", [2]), ("Scene_ff", [18])],
     "sdk9_style.fx": [("Marble_ps20", [17, 10]), ("Marble_ps11", [18]), ("Marble_dx7", [25]),
                       ("Marble_dx6", [19])],
     "sdk8_style.fx": [("TPS4", [21]), ("TPS1", [21]), ("TFF7", [38]), ("TDX6", [28]),
