@@ -78,6 +78,11 @@ THUMBS = [
 TEAPOT = [("hemisphere", "HemisphereOcclusion_ps11", "geforce3"),
           ("hemisphere", "HemispherePerPixel_ps11", "geforce3")]
 
+# shadows.fx in its own occluder scene (a floor and a cube under a point light; the default
+# sphere would shadow only its own unlit side): file name + _scene.
+SHADOWS = [("Shadow4_R32F", "refrast"), ("Shadow1_R32F", "refrast"),
+           ("Shadow4_Linear8", "radeon9700"), ("Lit_ff", "geforce3")]
+
 # The banding close-ups: the specular term alone (black Earth, flat normal map, white
 # specular colour), the 32 x 32 pixels around the highlight of a 128 x 128 render, enlarged
 # four times without filtering so each pixel shows.
@@ -104,6 +109,7 @@ def main() -> None:
                                scene={"mesh": "teapot"})
         small = Image.fromarray(image[..., :3]).resize((128, 128), Image.LANCZOS)
         save(np.asarray(small), f"{effect}_{technique}_{card}_teapot.png")
+    shadows()
     fx = effects.load_effect(os.path.join(FX, "specular_bump.fx"))
     for technique, card in CLOSE_UPS:
         image = effects.render(fx, card, technique=technique, size=(128, 128),
@@ -112,6 +118,15 @@ def main() -> None:
         y0, x0 = int(np.clip(y - 16, 0, 96)), int(np.clip(x - 16, 0, 96))
         crop = image[y0:y0 + 32, x0:x0 + 32]
         save(np.repeat(np.repeat(crop, 4, axis=0), 4, axis=1), f"highlight_{technique}_{card}.png")
+
+
+def shadows() -> None:
+    fx = effects.load_effect(os.path.join(FX, "shadows.fx"))
+    for technique, card in SHADOWS:
+        image = effects.render(fx, card, technique=technique, size=(256, 256),
+                               scene=os.path.join(FX, "shadows.yaml"))
+        small = Image.fromarray(image[..., :3]).resize((128, 128), Image.LANCZOS)
+        save(np.asarray(small), f"shadows_{technique}_{card}_scene.png")
 
 
 if __name__ == "__main__":
