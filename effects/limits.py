@@ -58,8 +58,8 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
     # shaders: nested rep / loop counts multiply (four nested 255s are 4e9 iterations)
     Limit("shader_loop_iterations", 65_536, "iterations",
           "body runs of the innermost of nested rep / loop blocks (the counts' product)"),
-    # render targets, per back end (the reference rasteriser holds ~200 bytes per pixel)
-    Limit("target_pixels_numpy", 2048 * 1024, "pixels", "render-target pixels on the numpy back end"),
+    # render targets, per back end (the reference works in bands: 2048² peaks near 160 MiB)
+    Limit("target_pixels_numpy", 2048 * 2048, "pixels", "render-target pixels on the numpy back end"),
     Limit("target_pixels_gl", 4096 * 4096, "pixels", "render-target pixels on the gl back end"),
 ]}
 
