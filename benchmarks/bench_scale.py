@@ -278,6 +278,10 @@ def _raise_limits() -> None:
     except ImportError:   # older code without limits
         return
     limits.set_limit("source_bytes", 1 << 30)
+    # the 1M-triangle .obj row is over the default mesh limits on purpose
+    limits.set_limit("mesh_file_bytes", 1 << 30)
+    limits.set_limit("mesh_vertices", 1 << 24)
+    limits.set_limit("mesh_indices", 1 << 26)
 
 
 def main(argv: list[str] | None = None) -> int:
