@@ -249,3 +249,15 @@ float4 PS(float2 uv : TEXCOORD0) : COLOR { return tex2D(Checker, uv * 0.5 + 1.0 
         for x in range(SIZE[0]):
             want = texels[4 * y, 4 * x] * 0.5
             assert np.allclose(img[y, x] / 255.0, want, atol=1.5 / 255), (x, y, img[y, x], want)
+
+
+def test_wood_scene_file_supplies_what_the_application_set(backend):
+    """fxfiles/wood.yaml gives the same values as the test above, so `effects render
+    fxfiles/wood.fx --scene fxfiles/wood.yaml` draws the wood rather than black."""
+    from effects.host.scene import load_scene
+    fx = effects.load_effect(str(ROOT / "fxfiles" / "wood.fx"))
+    scene = load_scene(str(ROOT / "fxfiles" / "wood.yaml"))
+    img = effects.render(fx, "radeon9700", backend=backend, scene=scene, size=(64, 64))
+    centre = img[32, 32].astype(int)
+    assert img[0, 0, :3].tolist() == [0, 0, 0]
+    assert centre[0] > centre[1] > centre[2] > 0
