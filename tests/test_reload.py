@@ -32,6 +32,17 @@ def folder(tinted_effect):
     return tinted_effect.parent
 
 
+def save(path, text: str) -> None:
+    """Write an edit atomically. A plain write truncates first, and on a loaded 2-core machine
+    the watcher can read the empty file in between: an empty effect loads "ok" with no
+    technique, an empty include fails, and the next result a test expects is the one after.
+    Tests about the write itself (the burst, the truncated image) write plainly."""
+    tmp = f"{path}.part"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
 def write_png(path, rgb):
     # Atomically: Pillow writes a PNG in several chunks, and on a loaded machine the watcher can
     # hash the half-written file, build after the write completes, then see the rest as a
@@ -81,7 +92,7 @@ def test_initial_build_selects_lowers_and_lists_its_files(folder):
 def test_good_edit_of_an_include_reloads_with_the_new_value(folder):
     reloader, _ = start_reloader(folder)
     try:
-        (folder / "tint.fxh").write_text(tint("0xff00ff00"))
+        save((folder / "tint.fxh"), tint("0xff00ff00"))
         result = expect_result(reloader)
         assert result.ok and result.kind == "reload"
         assert result.changed == (str(folder / "tint.fxh"),)
@@ -100,14 +111,14 @@ def test_truncated_write_fails_located_keeps_last_good_then_recovers(folder):
     effect = path.read_text()
     try:
         cut = effect.index("AlphaOp[0]")      # line 11: the pass and technique are left open
-        path.write_text(effect[:cut])
+        save(path, effect[:cut])
         bad = expect_result(reloader)
         assert not bad.ok and bad.loaded is None
         line = bad.log_line()
         assert line.startswith(f"reload: {path} failed: {path}:")
         assert re.search(r":\d+:\d+: error: ", line), line
         assert reloader.last_good is good
-        path.write_text(effect.replace("TINT;", "0xff0000ff;"))
+        save(path, effect.replace("TINT;", "0xff0000ff;"))
         fixed = expect_result(reloader)
         assert fixed.ok and tfactor(fixed.loaded) == (0.0, 0.0, 1.0, 1.0)
         assert reloader.last_good is fixed.loaded
@@ -124,7 +135,7 @@ def test_delete_then_recreate(folder):
         gone = expect_result(reloader)
         assert gone.log_line() == (f"reload: {path} failed: {path}:1:1: error: cannot read "
                                    "effect file: No such file or directory")
-        path.write_text(effect.replace("TINT;", "0xff00ffff;"))
+        save(path, effect.replace("TINT;", "0xff00ffff;"))
         back = expect_result(reloader)
         assert back.ok and tfactor(back.loaded) == (0.0, 1.0, 1.0, 1.0)
         expect_quiet(reloader)
@@ -167,7 +178,7 @@ def test_unchanged_content_does_not_reload(folder):
     reloader, _ = start_reloader(folder)
     try:
         path = folder / "flat.fx"
-        path.write_text(path.read_text())                  # saved without edits
+        save(path, path.read_text())                  # saved without edits
         os.utime(folder / "tint.fxh")                      # touched
         tmp = folder / "x.tmp"                             # atomic save of the same bytes
         tmp.write_text(tint("0xffff0000"))
@@ -195,12 +206,12 @@ def test_texture_image_change_reloads(folder):
 def test_new_include_is_watched_after_the_reload_that_added_it(folder):
     reloader, _ = start_reloader(folder)
     try:
-        (folder / "more.fxh").write_text("#define OTHER 1\n")
+        save((folder / "more.fxh"), "#define OTHER 1\n")
         path = folder / "flat.fx"
-        path.write_text('#include "more.fxh"\n' + path.read_text())
+        save(path, '#include "more.fxh"\n' + path.read_text())
         assert expect_result(reloader).ok
         assert str(folder / "more.fxh") in reloader.watcher.paths
-        (folder / "more.fxh").write_text("#define OTHER 2\n")
+        save((folder / "more.fxh"), "#define OTHER 2\n")
         assert expect_result(reloader).changed == (str(folder / "more.fxh"),)
     finally:
         reloader.stop()
@@ -292,7 +303,7 @@ def test_unchanged_textures_are_not_read_again_and_a_changed_one_is(folder):
     reloader, _ = start_reloader(folder)
     try:
         before = reloader.last_good.runtime.texture("Base")
-        (folder / "tint.fxh").write_text(tint("0xff00ff00"))
+        save((folder / "tint.fxh"), tint("0xff00ff00"))
         after_edit = expect_result(reloader).loaded.runtime.texture("Base")
         assert after_edit is before
         write_png(folder / "base.png", (0, 0, 255))
