@@ -1,4 +1,4 @@
-"""The `effects` command line: validate, matrix, render, view, profiles, doctor.
+"""The `effects` command line: validate, matrix, render, view, profiles, doctor, compile.
 
 Exit codes (DESIGN.md): 0 ok, 1 invalid or not renderable, 2 bad input or usage.
 No Python traceback reaches a user: every `EffectError` is printed located, with its line.
