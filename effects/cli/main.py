@@ -37,12 +37,17 @@ def _add_validate(sub) -> None:
                    help="caps profile name or YAML path (repeatable; default: the model summary only)")
     p.add_argument("--why", action="store_true", help="list every reason, not just the first")
     p.add_argument("--strict", action="store_true", help="unknown state names are errors")
+    _add_preprocessor_options(p)
+    _add_confinement(p, strict=False)
+    p.set_defaults(run=_cmd_validate)
+
+
+def _add_preprocessor_options(p) -> None:
+    """-D and -I, for the commands that load one effect file."""
     p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
                    help="preprocessor macro")
     p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
                    help="include search folder")
-    _add_confinement(p, strict=False)
-    p.set_defaults(run=_cmd_validate)
 
 
 def _add_confinement(p, strict: bool = True) -> None:
@@ -183,10 +188,7 @@ def _add_render(sub) -> None:
                         "target's alpha is not a picture's transparency)")
     p.add_argument("--strict", action="store_true",
                    help="unknown state names, and textures nothing supplies, are errors")
-    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
-                   help="preprocessor macro")
-    p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
-                   help="include search folder")
+    _add_preprocessor_options(p)
     _add_confinement(p, strict=False)
     p.set_defaults(run=_cmd_render)
 
@@ -285,10 +287,7 @@ def _add_view(sub) -> None:
     p.add_argument("--size", default=None, metavar="WxH", help="window size (default: 1040x600)")
     p.add_argument("--poll", action="store_true",
                    help="watch files by polling (for file systems without change events)")
-    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
-                   help="preprocessor macro")
-    p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
-                   help="include search folder")
+    _add_preprocessor_options(p)
     _add_confinement(p)
     p.set_defaults(run=_cmd_view)
 
@@ -320,10 +319,7 @@ def _add_doctor(sub) -> None:
     p.add_argument("--scene", "-s", metavar="SCENE.yaml", help="the scene a render would use")
     p.add_argument("--set", dest="assignments", action="append", default=[], metavar="NAME=VALUE",
                    help="a parameter value, as render takes it (repeatable)")
-    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
-                   help="preprocessor macro")
-    p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
-                   help="include search folder")
+    _add_preprocessor_options(p)
     _add_confinement(p)
     p.set_defaults(run=_cmd_doctor)
 
