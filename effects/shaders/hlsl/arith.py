@@ -12,8 +12,8 @@ from typing import Any, Callable
 from effects.errors import Location
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.dag import Operand
-from effects.shaders.hlsl.values import Value, component, operand, split, splat
-from effects.shaders.hlsl.types import BOOL, HType, RANKS, common_base, scalar, shape_of, vector
+from effects.shaders.hlsl.values import Value, component, operand, split
+from effects.shaders.hlsl.types import HType, common_base, shape_of, vector
 
 
 class Arith:

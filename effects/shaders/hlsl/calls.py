@@ -15,7 +15,7 @@ import lark
 
 from effects.shaders.hlsl.context import FunctionDef, resolve_type
 from effects.shaders.hlsl.lvalues import store
-from effects.shaders.hlsl.types import HType, RANKS
+from effects.shaders.hlsl.types import HType
 from effects.shaders.hlsl.values import Frame, Value
 
 MAX_DEPTH = 32

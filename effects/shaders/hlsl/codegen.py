@@ -14,14 +14,12 @@ Each instruction keeps the HLSL location of the node it comes from.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Any
 
-from effects.errors import Location, UNKNOWN_LOCATION
-from effects.shaders.asm.versions import IDENTITY, PS20_SWIZZLES
+from effects.errors import Location
+from effects.shaders.asm.versions import IDENTITY
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg, Src
-from effects.shaders.hlsl.dag import Node, Operand, SHAPED
+from effects.shaders.hlsl.dag import SHAPED, Node, Operand, reachable
 from effects.shaders.hlsl.legalize import finish
 
 COMPONENTS = "xyzw"
@@ -101,15 +99,8 @@ class CodeGen:
 
     # -- analysis ---------------------------------------------------------------------------
     def reachable(self) -> list[Node]:
-        seen: dict[int, Node] = {}
-        stack = [c.node for o in self.outputs for c in o.comps] + [k.node for k in self.ctx.kills]
-        while stack:
-            n = stack.pop()
-            if n.id in seen:
-                continue
-            seen[n.id] = n
-            stack.extend(a.node for a in n.args)
-        return sorted(seen.values(), key=lambda n: n.id)
+        return reachable([c.node for o in self.outputs for c in o.comps]
+                         + [k.node for k in self.ctx.kills])
 
     def count_uses(self, nodes: list[Node]) -> None:
         for n in nodes:
@@ -283,7 +274,6 @@ class CodeGen:
         mask = tuple(lane for _, lane in lanes_out)
         srcs = []
         for a in n.args:
-            width = a.width
             s = self._lanewise(a, lanes_out)
             srcs.append(s)
         opcode = "mov" if op == "sat" else op

@@ -22,12 +22,12 @@ from effects.shaders.asm import AsmProgram, assemble
 from effects.shaders.hlsl.calls import parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.codegen import CodeGen
-from effects.shaders.hlsl.context import Context, load_context, register_binding
-from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.context import Context, load_context
+from effects.shaders.hlsl.dag import Operand, reachable
 from effects.shaders.hlsl.evaluate import Evaluator, Frame
 from effects.shaders.hlsl.parse import HlslError, Origin, parse
 from effects.shaders.hlsl.types import HType, register_count
-from effects.shaders.hlsl.values import Value, split
+from effects.shaders.hlsl.values import Value
 
 _SEMANTIC = re.compile(r"^([A-Za-z_]+?)(\d*)$")
 _VS_OUT = {"POSITION": "oPos", "COLOR": "oD", "TEXCOORD": "oT", "FOG": "oFog", "PSIZE": "oPts"}
@@ -170,16 +170,8 @@ def _explicit(ctx: Context, name: str, kind: str) -> str | None:
 
 def _constant_registers(ctx: Context, outputs: list[Output]) -> tuple[dict[str, int], dict[str, int]]:
     """fxc's order: explicit register(c#) bindings, then the uniforms by first use."""
-    seen: dict[int, Any] = {}
-    stack = [c.node for o in outputs for c in o.comps] + [k.node for k in ctx.kills]
     order: list[str] = []
-    while stack:
-        n = stack.pop()
-        if n.id in seen:
-            continue
-        seen[n.id] = n
-        stack.extend(a.node for a in n.args)
-    for n in sorted(seen.values(), key=lambda n: n.id):
+    for n in reachable([c.node for o in outputs for c in o.comps] + [k.node for k in ctx.kills]):
         if n.op == "uniform" and n.key[0] not in order:
             order.append(n.key[0])
     sizes = {name: register_count(ctx.uniforms_used.get(name) or HType("scalar")) for name in order}

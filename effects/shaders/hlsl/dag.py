@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any, Callable, Iterable
 
 import numpy as np
 
@@ -33,6 +33,19 @@ class Node:
     @property
     def is_const(self) -> bool:
         return self.op == "const"
+
+
+def reachable(roots: Iterable[Node]) -> list[Node]:
+    """Every node the roots depend on (themselves included), once each, in creation order."""
+    seen: dict[int, Node] = {}
+    stack = list(roots)
+    while stack:
+        n = stack.pop()
+        if n.id in seen:
+            continue
+        seen[n.id] = n
+        stack.extend(a.node for a in n.args)
+    return sorted(seen.values(), key=lambda n: n.id)
 
 
 @dataclass(frozen=True, eq=False)

@@ -10,7 +10,6 @@ not generated: every target gets the flattened form.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Any
 
 import lark
@@ -22,9 +21,9 @@ from effects.shaders.hlsl.expressions import evaluate_expr
 from effects.shaders.hlsl.context import Context, FunctionDef, array_of, resolve_type
 from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.parse import Origin
-from effects.shaders.hlsl.types import BOOL, FLOAT, HType, INT, builtin, scalar, shape_of, vector
+from effects.shaders.hlsl.types import HType, scalar
 from effects.shaders.hlsl.values import (Frame, Loop, Value, Var, build_value, count_components,
-                                          operand, split)
+                                          operand)
 
 MAX_ITERATIONS = 1024
 _SWIZZLE = {c: i for i, c in enumerate("xyzw")} | {c: i for i, c in enumerate("rgba")}

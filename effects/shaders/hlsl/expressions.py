@@ -3,7 +3,6 @@ indexing, constructors, casts, assignment (read-modify-write of the named variab
 under the current predicate) and calls (user functions first, then intrinsics)."""
 from __future__ import annotations
 
-import re
 from typing import Any
 
 import lark
@@ -12,11 +11,11 @@ import numpy as np
 from effects.shaders.hlsl.context import parameter_type, resolve_type, static_value
 from effects.shaders.hlsl.parse import Origin, parse
 from effects.shaders.hlsl.dag import Operand
-from effects.shaders.hlsl.types import BOOL, FLOAT, INT, HType, builtin, scalar, shape_of, vector
+from effects.shaders.hlsl.types import BOOL, INT, HType, builtin, scalar, shape_of, vector
 from effects.shaders.hlsl.calls import resolve_overload
 from effects.shaders.hlsl.intrinsics import INTRINSICS, call_intrinsic
 from effects.shaders.hlsl.lvalues import const_index, store, swizzle_lanes
-from effects.shaders.hlsl.values import Value, build_value, count_components, split
+from effects.shaders.hlsl.values import Value, build_value, count_components
 
 
 

@@ -11,7 +11,7 @@ from typing import Any, Callable
 
 from effects.errors import Location
 from effects.shaders.hlsl.dag import Operand
-from effects.shaders.hlsl.types import BOOL, FLOAT, HType, scalar, shape_of, vector
+from effects.shaders.hlsl.types import BOOL, FLOAT, HType, shape_of, vector
 from effects.shaders.hlsl.lvalues import store
 from effects.shaders.hlsl.values import Value, component, operand, split
 

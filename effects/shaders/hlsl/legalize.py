@@ -30,7 +30,6 @@ def _choose(needed: dict[int, int], rule: str) -> tuple[int, ...] | None:
     if not needed:
         return IDENTITY
     if rule == "any":
-        last = needed[max(needed)]
         full = []
         for i in range(4):
             full.append(needed.get(i, full[-1] if full else needed[min(needed)]))

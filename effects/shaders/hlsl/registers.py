@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from effects.model import Effect, Expression
-from effects.shaders.hlsl.types import HType, register_count
+from effects.shaders.hlsl.types import HType
 
 Row = tuple[float, float, float, float]
 
