@@ -62,7 +62,7 @@ def make_effect(lines: int = 1000) -> str:
                 "        {",
                 "            vs.1.1",
                 "            dcl_position v0",
-                f"            m4x4 oPos, v0, c0",
+                "            m4x4 oPos, v0, c0",
                 "            mov oD0, c4",
                 "        };",
                 "        PixelShader = <SharedPS>;" if p else "        PixelShader = asm { ps.1.1 mov r0, v0 };",

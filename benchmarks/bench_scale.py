@@ -22,7 +22,6 @@ import argparse
 import gc
 import math
 import os
-import resource
 import statistics
 import subprocess
 import sys

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from typing import Callable, Mapping, Protocol
 
 from effects.ir import Builder
-from effects.states import (D3DTA, D3DTEXTURETRANSFORMFLAGS, D3DTSS_TCI, MAX_SAMPLERS, MAX_STAGES,
+from effects.states import (D3DTA, D3DTEXTURETRANSFORMFLAGS, D3DTSS_TCI, MAX_SAMPLERS, MAX_STAGES,  # noqa: F401 (re-exported)
                             TCI_SHIFT)
 
 

@@ -18,7 +18,7 @@ from backends.reference.evaluate import evaluate
 from effects.shaders.asm import assemble, check
 from effects.shaders.asm.lower import (ShaderContext, constant_registers, lower_pixel_shader,
                                        lower_vertex_shader, lowering_problems)
-from effects.errors import AsmError, EffectError, Location
+from effects.errors import AsmError, Location
 from effects.model import ShaderBlock, VertexDeclElement
 from effects.precision import LoweringOptions
 from test_asm_parse import SEEDS, VALID

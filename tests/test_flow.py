@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from effects.backend import create_backend
-from effects.errors import AsmError, Location
+from effects.errors import Location
 from effects.ir import IRError
 from effects.model import ShaderBlock
 from effects.passprogram import PassProgram, RenderState

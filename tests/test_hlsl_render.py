@@ -118,13 +118,13 @@ float4 PS(float2 uv : TEXCOORD0) : COLOR
 @pytest.mark.parametrize("layout", ["", "row_major"])
 def test_matrix_majorness_and_mul(backend, layout):
     # mul(v, M) with M = [[1,2,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]] / 4: (x/4, (2x + y)/4, ...)
-    fx = effect_for(f"""
+    fx = effect_for("""
 float4 PS(float2 uv : TEXCOORD0) : COLOR
-{{
+{
     float4 v = float4(uv, 0.5, 1);
     float4 r = mul(v, M);
     return float4(r.xy, M._m01, M[1][1]);
-}}""", params=f"{layout} float4x4 M = {{ 0.25, 0.5, 0, 0,  0, 0.25, 0, 0,  0, 0, 0.25, 0,  0, 0, 0, 0.25 }};")
+}""", params=f"{layout} float4x4 M = {{ 0.25, 0.5, 0, 0,  0, 0.25, 0, 0,  0, 0, 0.25, 0,  0, 0, 0, 0.25 }};")
     img = render(fx, backend)
     u, v = pixel_uv(2, 6)
     assert np.allclose(img[6, 2], (u / 4, (2 * u + v) / 4, 0.5, 0.25), atol=1.5 / 255)

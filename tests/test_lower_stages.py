@@ -3,7 +3,6 @@ worked out by hand from the D3D formulas (semantics.md section 1)."""
 from __future__ import annotations
 
 import os
-import sys
 from pathlib import Path
 
 import numpy as np

@@ -3,7 +3,6 @@ per render and across passes, parameter values, textures and vertex streams."""
 from __future__ import annotations
 
 import os
-import textwrap
 
 import numpy as np
 import pytest

@@ -9,7 +9,7 @@ import pytest
 
 from effects import load_effect
 from effects.errors import SceneError
-from effects.host.scene import InlineMesh, Scene, load_scene, look_at_lh, perspective_fov_lh
+from effects.host.scene import InlineMesh, load_scene, look_at_lh, perspective_fov_lh
 from effects.host.semantics import bind_scene, coerce_value, parse_assignments
 
 

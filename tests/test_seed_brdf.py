@@ -8,7 +8,6 @@ import os
 import numpy as np
 import pytest
 
-import effects
 from effects.errors import SceneError
 from effects.host import brdf
 from effects.host.textures import procedural
@@ -40,7 +39,6 @@ def test_the_factored_brdf_draws_the_brdf():
     # over the pixels where light and eye are both above the surface, scaled by what the
     # peak-1 maps lose (factor_scale): mean error 2/255, correlation 0.996, the highlight
     # within 3 pixels of the exact one.
-    fx = effects.load_effect(os.path.join(FXFILES, "brdf.fx"))
     params = {f"BRDFTexture{i}": procedural(f"brdf_factor:phong:{f}")
               for i, f in enumerate(brdf.FACTORS, start=1)}
     params.update(ObjectTexture=pictures.WHITE, MaterialColor=[1.0, 1.0, 1.0, 1.0])

@@ -228,7 +228,6 @@ class _FragmentStage:
     def run(self, frags: QuadFragments):
         """(pixels, colour, depth, front, colour2) of the covered, unkilled fragments of
         `frags` in draw order, or None."""
-        state = self.state
         if frags.count == 0:
             return None
         colour, colour2, depth_out, killed = self._shade(frags)

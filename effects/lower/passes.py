@@ -41,7 +41,7 @@ from effects.device import DeviceState, host_states, pass_states
 from effects.errors import EffectError, Location
 from effects.shaders.asm import assemble_cached
 from effects.shaders.asm import lower as asm_lower
-from effects.ir import Builder, Program
+from effects.ir import Builder
 from effects.lower.stages import (FogSetup, FragmentInputs, StageSetup, active_stages, apply_fog,
                                   lower_cascade)
 from effects.lower.vertex import (PHONG_SLOTS, LightSetup, TexCoordSetup, VertexSetup,

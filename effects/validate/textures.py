@@ -13,7 +13,7 @@ import numpy as np
 from effects import states as state_table
 from effects.caps import FIELDS, FORMATS
 from effects.errors import EffectError
-from effects.model import Effect, Parameter, ParamRef, SamplerState, ShaderBlock
+from effects.model import Effect, Parameter, ParamRef, ShaderBlock
 from effects.stage_ops import (MAX_SAMPLERS, TA_TEXTURE, TCI_CAMERA_SPACE, TCI_SHIFT,
                                TTFF_COUNT_MASK, TTFF_PROJECTED)
 from effects.validate.stages import _args_read, _stage_op

@@ -27,7 +27,7 @@ from effects.shaders.asm import flow as fl
 from effects.shaders.asm import rewrites as rw
 from effects.shaders.asm import texture_ops as tx
 from effects.shaders.asm.rewrites import Tree
-from effects.shaders.asm.versions import (PS1, PS10_13, PS12_13, PS13, PS14, PS2, PS20, PS2X, PS3, VS, VS1, VS2,
+from effects.shaders.asm.versions import (PS1, PS10_13, PS12_13, PS13, PS14, PS2, PS2X, PS3, VS, VS1, VS2,
                        VS3, Group, group)
 
 # Operand roles, in order (dst first when the instruction has one):
