@@ -172,6 +172,33 @@ def test_undeclared_identifier_is_located_in_the_fx_file():
     assert (info.value.line, info.value.column) == (4, 12)
 
 
+_POSITION_INPUT = """struct VSOut
+{
+    float4 position : POSITION0;
+    float2 uv : TEXCOORD0;
+};
+float4 PS(VSOut input) : COLOR0
+{
+    return float4(%s, 0, 1);
+}"""
+
+
+def test_an_unread_position_input_is_accepted_as_fxc_does(backend):
+    # XNA effects reuse the vertex-output struct, POSITION0 and all, as the pixel input
+    fx = effect_for(_POSITION_INPUT % "input.uv")
+    img = render(fx, backend)
+    u, v = pixel_uv(3, 5)
+    assert np.allclose(img[5, 3], (u, v, 0, 1), atol=1.5 / 255)
+
+
+def test_a_read_position_input_is_x4502_at_the_entry_point():
+    fx = effect_for(_POSITION_INPUT % "input.position.xy")
+    with pytest.raises(EffectError) as info:
+        fx_asm(fx, "PS", "ps_2_0")
+    assert info.value.message == "X4502: invalid ps_2_0 input semantic 'POSITION0'"
+    assert (info.value.line, info.value.column) == (7, 1)     # the entry's signature
+
+
 def test_implicit_truncation_warns_x3206():
     fx = effect_for("float4 PS(float4 c : COLOR0) : COLOR\n{\n    float3 x = c;\n    return float4(x, 1);\n}")
     from effects.shaders.hlsl import compile_shader

@@ -23,7 +23,7 @@ from effects.shaders.hlsl.calls import parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.codegen import CodeGen
 from effects.shaders.hlsl.context import Context, load_context
-from effects.shaders.hlsl.dag import Operand, reachable
+from effects.shaders.hlsl.dag import Node, Operand, reachable
 from effects.shaders.hlsl.evaluate import Evaluator, Frame
 from effects.shaders.hlsl.parse import HlslError, Origin, parse
 from effects.shaders.hlsl.types import HType, register_count
@@ -145,7 +145,12 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
     if ctx.target.kind == "vs" and not any(o.register in ("oPos", "o0") and o.register == "oPos"
                                            or o.register.startswith("o") for o in outputs):
         raise fdef.origin.error(f"X4502: '{entry}': a vertex shader must write POSITION", fdef.tree)
-    constants, sizes = _constant_registers(ctx, outputs)
+    nodes = reachable([c.node for o in outputs for c in o.comps] + [k.node for k in ctx.kills])
+    for n in nodes:
+        if n.op == "input" and n.key[0] == "unmapped":
+            raise HlslError(f"X4502: invalid {ctx.target.name} input semantic '{n.key[1]}'",
+                            n.location)
+    constants, sizes = _constant_registers(ctx, nodes)
     samplers = {name: int(b[1:]) for name in ctx.samplers_used
                 if (b := _explicit(ctx, name, "s")) is not None}
     cg = CodeGen(ctx, binder.dcls, outputs, constants, samplers, sizes)
@@ -168,10 +173,11 @@ def _explicit(ctx: Context, name: str, kind: str) -> str | None:
     return None
 
 
-def _constant_registers(ctx: Context, outputs: list[Output]) -> tuple[dict[str, int], dict[str, int]]:
-    """fxc's order: explicit register(c#) bindings, then the uniforms by first use."""
+def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int], dict[str, int]]:
+    """fxc's order: explicit register(c#) bindings, then the uniforms by first use (`nodes`:
+    what the outputs reach, in creation order)."""
     order: list[str] = []
-    for n in reachable([c.node for o in outputs for c in o.comps] + [k.node for k in ctx.kills]):
+    for n in nodes:
         if n.op == "uniform" and n.key[0] not in order:
             order.append(n.key[0])
     sizes = {name: register_count(ctx.uniforms_used.get(name) or HType("scalar")) for name in order}
@@ -269,7 +275,10 @@ class _Binder:
             elif usage == "TEXCOORD":
                 reg = f"t{index}"
             else:
-                raise HlslError(f"X4502: invalid ps_2_0 input semantic '{semantic}'", loc)
+                # fxc accepts a pixel input it cannot map (the POSITION0 of a vertex-output struct
+                # reused as the pixel input, as most XNA effects do) as long as nothing reads it
+                node = self.ctx.graph.leaf("input", ("unmapped", semantic), 4, loc)
+                return Value(t, [Operand(node.node, (min(i, 3),)) for i in range(t.size)])
             self.dcls[reg] = f"dcl {reg}"
         else:
             key = (usage, index)
