@@ -34,6 +34,8 @@ PRIMITIVES = ("list", "strip", "fan")
 TARGET_FORMATS = {
     "A8R8G8B8": (False, 4),
     "X8R8G8B8": (False, 3),
+    "R16F": (True, 1),
+    "G16R16F": (True, 2),
     "R32F": (True, 1),
     "G32R32F": (True, 2),
     "A16B16G16R16F": (True, 4),

@@ -15,8 +15,14 @@
 //   Shadow1_R32F     the same with one look-up (his first listing). Any card that runs it
 //                    also runs Shadow4_R32F, so a card never selects it; render it by name
 //                    (`effects render ... -t Shadow1_R32F`)
-//   Shadow4_Linear8  ps.2.0 cards without float cube render targets (Radeon 9700, GeForce FX,
-//                    GeForce 6800: "some pixel shader 2.0 hardware doesn't support floating
+//   Shadow4_R16F     ps.2.0 cards with a half-float but no single-float cube render target
+//                    (GeForce 6800 in caps_profiles: R16F cube + rendertarget, R32F not as a
+//                    cube): the same squared distance and four look-ups in an R16F cube map.
+//                    A half holds it to 1 part in 2048 (10-bit mantissa), far inside the 3 %
+//                    bias; its largest value is 65504, so the map clears to FarAway16 (past a
+//                    distance of 244 nothing is shadowed)
+//   Shadow4_Linear8  ps.2.0 cards without float cube render targets (Radeon 9700, GeForce FX:
+//                    "some pixel shader 2.0 hardware doesn't support floating
 //                    point cubemaps"): his advice, the linear distance, here divided by
 //                    ShadowRange into an A8R8G8B8 cube map; the same 0.97 factor (8 bits of
 //                    a 10-unit range are 0.04 units, under 3 % of any distance past 1.4)
@@ -72,6 +78,7 @@ float ShadowSpread
 float InverseShadowRange < string UIName = "1 / shadow range (8-bit fallback)"; > = 0.1;
 
 float4 FarAway = { 1.0e6, 1.0e6, 1.0e6, 1.0e6 };   // nothing drawn there: never in shadow
+float4 FarAway16 = { 60000.0, 60000.0, 60000.0, 60000.0 };   // under the half maximum 65504
 float4 White = { 1.0, 1.0, 1.0, 1.0 };             // the linear map's "nothing": the full range
 float4 Background = { 0.05, 0.05, 0.08, 1.0 };
 float OneDepth = 1.0;
@@ -80,6 +87,15 @@ texture ShadowCube32 : RENDERCOLORTARGET
 <
     string ResourceType = "Cube";
     string Format = "R32F";
+    int Width = 256;
+    string CubeOrigin = "LightPosition";
+    float2 CubeDepthRange = { 0.05, 50.0 };
+>;
+
+texture ShadowCube16 : RENDERCOLORTARGET
+<
+    string ResourceType = "Cube";
+    string Format = "R16F";
     int Width = 256;
     string CubeOrigin = "LightPosition";
     float2 CubeDepthRange = { 0.05, 50.0 };
@@ -99,6 +115,13 @@ texture ShadowCube8 : RENDERCOLORTARGET
 sampler ShadowSampler32 = sampler_state
 {
     Texture = <ShadowCube32>;
+    MinFilter = Point; MagFilter = Point; MipFilter = None;
+    AddressU = Clamp; AddressV = Clamp; AddressW = Clamp;
+};
+
+sampler ShadowSampler16 = sampler_state
+{
+    Texture = <ShadowCube16>;
     MinFilter = Point; MagFilter = Point; MipFilter = None;
     AddressU = Clamp; AddressV = Clamp; AddressW = Clamp;
 };
@@ -344,6 +367,41 @@ technique Shadow1_R32F
         PixelShaderConstantF[2] = <AmbientColor>;
         PixelShaderConstantF[3] = <SurfaceColor>;
         PixelShader = <Light1PS>;
+    }
+}
+
+technique Shadow4_R16F
+<
+    int Quality = 3;
+    float Cost = 48;
+    string Script = "RenderColorTarget0=ShadowCube16; ClearSetColor=FarAway16; ClearSetDepth=OneDepth;"
+                    "Clear=Color; Clear=Depth; Pass=ShadowPass;"
+                    "RenderColorTarget0=; ClearSetColor=Background; Clear=Color; Clear=Depth;"
+                    "Pass=LightPass;";
+>
+{
+    pass ShadowPass
+    {
+        CullMode = None; ZEnable = true; ZWriteEnable = true;
+        VertexShader = <ShadowVS>;
+        VertexShaderConstantF[0] = <WorldViewProjection>;
+        VertexShaderConstantF[4] = <World>;
+        VertexShaderConstantF[8] = <LightPosition>;
+        PixelShader = <ShadowSquaredPS>;
+    }
+    pass LightPass
+    {
+        CullMode = None; ZEnable = true; ZWriteEnable = true;
+        VertexShader = <LightVS>;
+        VertexShaderConstantF[0] = <WorldViewProjection>;
+        VertexShaderConstantF[4] = <World>;
+        VertexShaderConstantF[8] = <LightPosition>;
+        VertexShaderConstantF[9] = <ShadowSpread>;
+        Sampler[3] = (ShadowSampler16);
+        PixelShaderConstantF[1] = <ShadowFactors4>;
+        PixelShaderConstantF[2] = <AmbientColor>;
+        PixelShaderConstantF[3] = <SurfaceColor>;
+        PixelShader = <Light4PS>;
     }
 }
 

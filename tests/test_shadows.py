@@ -186,7 +186,7 @@ def test_the_bias_removes_acne_on_the_lit_floor(effect, backend):
 
 
 def test_back_ends_agree(effect):
-    for technique in ("Shadow1_R32F", "Shadow4_R32F", "Shadow4_Linear8"):
+    for technique in ("Shadow1_R32F", "Shadow4_R32F", "Shadow4_R16F", "Shadow4_Linear8"):
         a = draw(effect, "numpy", technique)
         b = draw(effect, "gl", technique)
         off = np.abs(a - b) > 2
@@ -204,7 +204,7 @@ def test_linear_fallback_casts_the_same_shadow(effect, backend):
 @pytest.mark.parametrize("card, technique", [
     ("refrast", "Shadow4_R32F"), ("modern", "Shadow4_R32F"),
     ("radeon9700", "Shadow4_Linear8"), ("geforcefx5900", "Shadow4_Linear8"),
-    ("geforce6800", "Shadow4_Linear8"), ("geforce3", "Lit_ff"), ("tnt2", "Lit_ff")])
+    ("geforce6800", "Shadow4_R16F"), ("geforce3", "Lit_ff"), ("tnt2", "Lit_ff")])
 def test_cards_without_float_cube_targets_fall_back(effect, card, technique):
     from effects.validate.select import find_valid_technique
     chosen = find_valid_technique(effect, load_profile(card))
@@ -212,3 +212,31 @@ def test_cards_without_float_cube_targets_fall_back(effect, card, technique):
     if card in ("radeon9700", "geforce6800"):
         reasons = effect.validate(effect.technique("Shadow4_R32F"), load_profile(card)).reasons
         assert any("R32F" in r.message and "cube" in r.message for r in reasons)
+    if card in ("radeon9700", "geforcefx5900"):    # R16F without the cube usage
+        reasons = effect.validate(effect.technique("Shadow4_R16F"), load_profile(card)).reasons
+        assert any("R16F" in r.message and "cube" in r.message for r in reasons)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_half_float_fallback_casts_the_shadow_of_the_single_float_map(effect, backend):
+    """Shadow4_R16F (GeForce 6800): the squared distance in halves, 1 part in 2048, is the
+    R32F technique's shadow within a few edge pixels, and the floor clear of acne."""
+    half = draw(effect, backend, "Shadow4_R16F")
+    single = draw(effect, backend, "Shadow4_R32F")
+    assert (np.abs(half - single) > 2).sum() <= 0.01 * (single < DARK).sum()
+    x, z = floor_coordinates()
+    lit = np.maximum(np.abs(x), np.abs(z)) > 4 / 3 + 0.25
+    assert ((half < DARK) & lit).sum() == 0
+
+
+def test_half_float_map_holds_the_squared_distance_rounded_to_halves(effect):
+    from effects.host.scripts import ScriptRunner
+    rt = Runtime(effect, "geforce6800", scene=scene(), backend="numpy")
+    ScriptRunner(rt, effect.technique("Shadow4_R16F")).run()
+    texels = rt.texture("ShadowCube16").levels[0][..., 0]
+    assert texels.shape == (6, 256, 256)
+    assert (texels[2] == 60000.0).all()                      # +Y: only sky, the half clear
+    assert texels[3, 128, 128] == np.float16((LIGHT_Y - TOP) ** 2)   # 2.25 is a half exactly
+    floor = texels[3][(texels[3] > 2.5) & (texels[3] < 1e4)]
+    assert len(floor) > 1000
+    assert (floor.astype(np.float16).astype(np.float32) == floor).all()   # stored as halves

@@ -30,6 +30,8 @@ from backends.gl.textures import TextureCache, TextureKindError
 TARGET_GL_FORMATS = {
     "A8R8G8B8": (G.RGBA8, G.UNSIGNED_BYTE, np.uint8),
     "X8R8G8B8": (G.RGB8, G.UNSIGNED_BYTE, np.uint8),
+    "R16F": (G.R16F, G.FLOAT, np.float32),
+    "G16R16F": (G.RG16F, G.FLOAT, np.float32),
     "R32F": (G.R32F, G.FLOAT, np.float32),
     "G32R32F": (G.RG32F, G.FLOAT, np.float32),
     "A16B16G16R16F": (G.RGBA16F, G.FLOAT, np.float32),

@@ -90,7 +90,7 @@ def encode(values: np.ndarray, format: str) -> np.ndarray:
     is_float, channels = TARGET_FORMATS[format]
     if is_float:
         out = np.array(values, np.float32)
-        if format == "A16B16G16R16F":
+        if "16F" in format:      # R16F, G16R16F, A16B16G16R16F: s10e5 halves
             out = out.astype(np.float16).astype(np.float32)
         out[:, channels:] = 1
         return out
