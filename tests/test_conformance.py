@@ -113,6 +113,9 @@ BOUNDS = {
     ("shadows.fx", "Lit_ff"): Bound("exact", "no textures; vertex lighting"),
     ("shadows.fx", "Shadow4_Linear8"): Bound(
         "exact", "a point-sampled cube render target drawn by the same back end, no mip maps"),
+    ("shadows.fx", "Shadow4_R16F"): Bound(
+        "exact", "a point-sampled R16F cube render target drawn by the same back end; as "
+        "Shadow4_R32F near the sphere's terminator", max_abs=12, outliers=2),
     ("shadows.fx", "Shadow4_R32F"): Bound(
         "exact", "a point-sampled R32F cube render target drawn by the same back end; where "
         "the sphere shadows itself near its terminator, a look-up compares within rounding of "

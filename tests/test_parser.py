@@ -404,7 +404,7 @@ FX_COUNTS = {
     "fast_phong.fx": [("Phong", [27]), ("Gouraud", [27])],
     "wood.fx": [("Wood_ps20", [2])],
     "shadows.fx": [("Shadow4_R32F", [8, 13]), ("Shadow1_R32F", [8, 13]),
-                   ("Shadow4_Linear8", [9, 14]), ("Lit_ff", [18])],
+                   ("Shadow4_R16F", [8, 13]), ("Shadow4_Linear8", [9, 14]), ("Lit_ff", [18])],
     "sdk9_hlsl.fx": [("Scene_ps20", [2]), ("Scene_ps14", [2]), ("Scene_ps11", [2]), ("Scene_ff", [18])],
     "sdk9_style.fx": [("Marble_ps20", [17, 10]), ("Marble_ps11", [18]), ("Marble_dx7", [25]),
                       ("Marble_dx6", [19])],
