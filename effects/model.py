@@ -247,9 +247,12 @@ TEXTURE_KINDS = {"2D": "2d", "1D": "1d", "CUBE": "cube", "3D": "3d", "VOLUME": "
 
 @dataclass
 class Struct:
+    """A user type for HLSL: a `struct` or a global `typedef` (its name and exact text)."""
+
     name: str
     source: str  # exact text of the declaration
     location: Location = _loc()
+    row_major: bool = False  # declared under `#pragma pack_matrix(row_major)`
 
 
 @dataclass
@@ -260,6 +263,7 @@ class Function:
     return_type: str
     source: str
     location: Location = _loc()
+    row_major: bool = False  # declared under `#pragma pack_matrix(row_major)`
 
 
 @dataclass

@@ -100,20 +100,33 @@ class Builder:
                 effect.techniques.append(self.technique(item))
             elif item[0] == "typedef":
                 self.typedef(item[1], structs)
+                # kept with the structs, in order, for the HLSL functions that name it
+                c = item[1]
+                effect.structs.append(Struct(c[3].value, self.text[c[0].start_pos:c[5].end_pos],
+                                             self.loc(c[0]), self.row_major_at(c[0].line)))
             elif item[0] == "struct":
                 c = item[1]
                 structs.add(c[1].value)
                 effect.structs.append(Struct(c[1].value, self.text[c[0].start_pos:c[3].end_pos],
-                                             self.loc(c[0])))
+                                             self.loc(c[0]), self.row_major_at(c[0].line)))
             else:
                 c = item[1]
                 first = c[0][0] if c[0] else c[1]
                 effect.functions.append(Function(c[2].value, c[1].value,
                                                  self.text[first.start_pos:c[5].end_pos],
-                                                 self.loc(first)))
+                                                 self.loc(first), self.row_major_at(first.line)))
         effect.warnings = self.warnings
         effect.files = tuple(self.pre.files)
         return effect
+
+    def row_major_at(self, line: int) -> bool:
+        """Whether `#pragma pack_matrix(row_major)` is in force at `line` of the text."""
+        row = False
+        for at, is_row in self.pre.pack_matrix:
+            if at > line:
+                break
+            row = is_row
+        return row
 
     # -- parameters -----------------------------------------------------------------------
     def type_of(self, tok: Token, structs: set[str]) -> TypeSpec:
@@ -135,7 +148,11 @@ class Builder:
         name = raw.name.value
         dims = self.dims(raw.dims, spec, raw.value, name)
         value = None if raw.value is None else self.param_value(spec, dims, raw.value, name)
-        return Parameter(name, spec, tuple(t.value.lower() for t in raw.storage), dims,
+        storage = tuple(t.value.lower() for t in raw.storage)
+        if spec.rows > 1 and "column_major" not in storage and "row_major" not in storage \
+                and self.row_major_at(raw.name.line):
+            storage += ("row_major",)     # the pragma's default, made explicit
+        return Parameter(name, spec, storage, dims,
                          _semantic(raw.semantic), self.annotations(raw.annotations), value,
                          self.loc(raw.name))
 

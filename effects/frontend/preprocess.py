@@ -36,6 +36,8 @@ __all__ = ["preprocess", "MAX_INCLUDE_DEPTH", "MAX_EXPANSION_TOKENS", "MAX_MACRO
 _NEWLINE = re.compile(r"\r\n?")
 _COMMENT_OR_STRING = re.compile(r'"[^"\\\n]*(?:\\.[^"\\\n]*)*"?|//[^\n]*|/\*.*?(?:\*/|\Z)', re.S)
 _DIRECTIVE = re.compile(r"[ \t\f\v]*#[ \t\f\v]*([A-Za-z_][A-Za-z0-9_]*)?")
+_PACK_MATRIX = re.compile(r"[ \t\f\v]*pack_matrix[ \t\f\v]*\([ \t\f\v]*(row_major|column_major)"
+                          r"[ \t\f\v]*\)[ \t\f\v]*(?://.*|/\*.*)?$")
 _CONDITIONALS = frozenset({"if", "ifdef", "ifndef", "elif", "else", "endif"})
 
 
@@ -100,9 +102,20 @@ class _Preprocessor:
         self.once: set[str] = set()
         self.include_count = 0
         self.included_bytes = 0
+        self.pack_matrix: list[tuple[int, bool]] = []
 
     def error(self, message: str, location: Location) -> PreprocessError:
         return self.smap.error_at(PreprocessError, message, location)
+
+    def pack_matrix_pragma(self, text: str, rest: int, span: Span) -> None:
+        """`#pragma pack_matrix(row_major)`: the default majorness of the matrices declared
+        after it (fxc's); recorded at the output line the directive's blank line takes."""
+        m = _PACK_MATRIX.match(text, rest)
+        if m is None:
+            at = text.index("pack_matrix", rest)
+            raise self.error("#pragma pack_matrix expects (row_major) or (column_major)",
+                             span.location(at))
+        self.pack_matrix.append((len(self.out) + 1, m.group(1) == "row_major"))
 
     # ----------------------------------------------------------------- files and lines
 
@@ -235,6 +248,8 @@ class _Preprocessor:
         elif name == "pragma":
             if text[rest:].split() == ["once"] and unit.real is not None:
                 self.once.add(unit.real)
+            elif text[rest:].split("(")[0].strip() == "pack_matrix":
+                self.pack_matrix_pragma(text, rest, span)
         elif name == "line":
             pass  # kept as an empty line: our own map already knows where every line came from
         elif name or text[rest:].strip():
@@ -413,4 +428,4 @@ def preprocess(text: str, path: str = "<string>", *, defines: Mapping[str, str] 
     finally:
         if collecting:
             gc.enable()
-    return Preprocessed("\n".join(pre.out), pre.smap, tuple(pre.files))
+    return Preprocessed("\n".join(pre.out), pre.smap, tuple(pre.files), tuple(pre.pack_matrix))

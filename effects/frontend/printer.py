@@ -29,15 +29,24 @@ _IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 def print_effect(effect: Effect) -> str:
     """Effect source text for `effect`."""
     out: list[str] = []
+    packing = [False]      # `#pragma pack_matrix` in force in the printed text
+
+    def pack(row_major: bool) -> None:
+        if row_major != packing[0]:
+            out.append(f"#pragma pack_matrix({'row_major' if row_major else 'column_major'})")
+            packing[0] = row_major
     for struct in effect.structs:
+        pack(struct.row_major)
         out.append(struct.source.rstrip() + "\n")
     if effect.structs:
         out.append("")
+    pack(False)   # parameters carry their majorness as a qualifier
     for param in effect.parameters:
         out.append(_parameter(param))
     if effect.parameters:
         out.append("")
     for function in effect.functions:
+        pack(function.row_major)
         out.append(function.source.rstrip() + "\n")
     for technique in effect.techniques:
         out.append(_technique(technique))

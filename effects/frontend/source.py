@@ -63,3 +63,5 @@ class Preprocessed:
     text: str
     source_map: SourceMap
     files: tuple[str, ...] = ()
+    # `#pragma pack_matrix`: (line of `text` it stands on, True for row_major), in order
+    pack_matrix: tuple[tuple[int, bool], ...] = ()

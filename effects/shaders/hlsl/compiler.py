@@ -63,8 +63,8 @@ _LOCK = threading.Lock()
 
 def compile_state(effect: Effect, value: CompileShader) -> CompiledShader:
     """The shader of a `compile` state (memoised on the effect's text and the arguments)."""
-    key = (effect.path, tuple((f.name, f.source, f.location) for f in effect.functions),
-           tuple((s.name, s.source) for s in effect.structs),
+    key = (effect.path, tuple((f.name, f.source, f.location, f.row_major) for f in effect.functions),
+           tuple((s.name, s.source, s.row_major) for s in effect.structs),
            tuple((p.name, p.type, p.storage, p.semantic, p.array,
                   repr(p.value) if "static" in p.storage else None) for p in effect.parameters),
            value.profile, value.function, value.args, value.location)
@@ -201,7 +201,7 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
 
 def _compile_argument(ctx: Context, ev: Evaluator, text: str, t: HType, where: Location) -> Value:
     origin = Origin(where, text)
-    tree = parse(text, "initializer", origin)
+    tree = parse(text, "initializer", origin, ctx.type_names)
     sub = ev.spawn(origin)
     value = sub.a.convert(sub.expr(tree), t, where)
     if value.type.numeric and value.const_values() is None:

@@ -55,6 +55,14 @@ class Context:
     samplers_used: dict[str, str] = field(default_factory=dict)     # name -> kind
     kills: list[Operand] = field(default_factory=list)
     struct_origins: dict[str, Origin] = field(default_factory=dict)
+    typedefs: dict[str, HType] = field(default_factory=dict)
+    type_names: frozenset[str] = frozenset()     # what the HLSL lexer reads as TYPENAME
+
+
+def type_names(effect: Effect) -> frozenset[str]:
+    """The effect's user type names: its structs and global typedefs (both kept, in order, in
+    `effect.structs`)."""
+    return frozenset(s.name for s in effect.structs)
 
 
 def load_context(effect: Effect, target_name: str) -> Context:
@@ -62,14 +70,21 @@ def load_context(effect: Effect, target_name: str) -> Context:
     if rules is None:
         raise HlslError(f"X3507: unknown compile target '{target_name}'", Location(effect.path, 1, 1))
     ctx = Context(effect, Target(target_name, rules))
+    names = ctx.type_names = type_names(effect)
     for s in effect.structs:
-        origin = Origin(s.location, s.source)
-        tree = parse(s.source, "struct_def", origin)
+        origin = Origin(s.location, s.source, row_major=s.row_major)
+        if s.source.lstrip().startswith("typedef"):      # a global `typedef float4 COLOR;`
+            tree = parse(s.source, "typedef_decl", origin, names)
+            _, mods, spec, name, dims = tree.children
+            ctx.typedefs[s.name] = array_of(resolve_type(ctx, spec, origin, mods),
+                                            literal_sizes(dims, origin))
+            continue
+        tree = parse(s.source, "struct_def", origin, names)
         ctx.structs[s.name] = struct_type(ctx, tree, origin)
         ctx.struct_origins[s.name] = origin
     for f in effect.functions:
-        origin = Origin(f.location, f.source)
-        tree = parse(f.source, "function_def", origin)
+        origin = Origin(f.location, f.source, row_major=f.row_major)
+        tree = parse(f.source, "function_def", origin, names)
         ctx.functions.setdefault(f.name, []).append(FunctionDef(f.name, tree, origin, f))
     return ctx
 
@@ -121,7 +136,9 @@ def literal_sizes(dims: lark.Tree, origin: Origin) -> list[int]:
 
 
 def resolve_type(ctx: Context, tree: lark.Tree, origin: Origin, mods: Any = None) -> HType:
-    row_major = mods is not None and any(str(m) == "row_major" for m in mods.children)
+    said = {str(m) for m in mods.children} if mods is not None else set()
+    # an explicit qualifier, else the `#pragma pack_matrix` the text was declared under
+    row_major = "row_major" in said or (origin.row_major and "column_major" not in said)
     kind = tree.data
     if kind == "builtin_type":
         t = builtin(str(tree.children[0]))
@@ -134,7 +151,7 @@ def resolve_type(ctx: Context, tree: lark.Tree, origin: Origin, mods: Any = None
         t = vector(base.base if base else "float", int(tree.children[2]))
     else:
         name = str(tree.children[0])
-        t = ctx.structs.get(name) or ctx.__dict__.setdefault("typedefs", {}).get(name)
+        t = ctx.structs.get(name) or ctx.typedefs.get(name)
         if t is None:
             raise origin.error(f"X3000: unrecognized identifier '{name}' (not a type)", tree)
     if row_major and t.kind == "matrix":

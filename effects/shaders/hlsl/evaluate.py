@@ -204,10 +204,10 @@ class Evaluator:
             raise self.error(f"X3017: initializer has {len(comps)} values, '{t}' needs {need}", where)
         return build_value(t, comps)
 
-    def s_typedef(self, tree: lark.Tree) -> None:
+    def s_typedef_decl(self, tree: lark.Tree) -> None:
         _, mods, spec, name, dims = tree.children
         t = self.array_of(resolve_type(self.ctx, spec, self.origin, mods), dims)
-        self.ctx.__dict__.setdefault("typedefs", {})[str(name)] = t
+        self.ctx.typedefs[str(name)] = t
 
     def s_if_stmt(self, tree: lark.Tree) -> None:
         self._if(tree.children[2], tree.children[3], None)

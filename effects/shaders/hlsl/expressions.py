@@ -71,7 +71,8 @@ def global_value(ev: Any, name: str, where: Any) -> Value:
         if numbers is None and param.value is not None and hasattr(param.value, "text"):
             origin = Origin(param.value.location, param.value.text)
             sub = ev.spawn(origin)
-            comps = sub.flatten_list(parse(param.value.text, "initializer", origin))
+            comps = sub.flatten_list(parse(param.value.text, "initializer", origin,
+                                                  ctx.type_names))
             numbers = np.array([c.const_values()[0] if c.const_values() else 0.0 for c in comps])
         n = count_components(t)
         flat = list(numbers) if numbers is not None else [0.0] * n
@@ -224,7 +225,44 @@ def _construct_as(ev: Any, t: HType | None, args: Any, tree: Any) -> Value:
 
 def _cast(ev: Any, tree: lark.Tree) -> Value:
     t = resolve_type(ev.ctx, tree.children[0], ev.origin)
-    return ev.a.convert(ev.expr(tree.children[1]), t, ev.at(tree), explicit=True)
+    v = ev.expr(tree.children[1])
+    if t.numeric and v.type.numeric:
+        return ev.a.convert(v, t, ev.at(tree), explicit=True)
+    return _cast_flat(ev, v, t, tree)
+
+
+def _leaves(v: Value) -> list[tuple[Operand, str]]:
+    """A value's numbers in declaration order, each with its base type."""
+    if v.type.numeric:
+        return [(c, v.type.base) for c in v.comps]
+    if v.type.kind == "struct":
+        return [leaf for f in v.fields.values() for leaf in _leaves(f)]
+    return [leaf for e in v.elements for leaf in _leaves(e)]
+
+
+def _leaf_bases(t: HType) -> list[str]:
+    if t.numeric:
+        return [t.base] * t.size
+    if t.kind == "struct":
+        return [b for _, ft, _ in t.fields for b in _leaf_bases(ft)]
+    if t.kind == "array":
+        return _leaf_bases(t.element) * t.length   # type: ignore[arg-type]
+    return []
+
+
+def _cast_flat(ev: Any, v: Value, t: HType, tree: Any) -> Value:
+    """A cast to or from a struct or array, as fxc does it: `(VS_OUTPUT)0` sets every member
+    to the scalar; otherwise the numbers are taken in declaration order, the source having at
+    least as many as the destination (each converted to its member's base type)."""
+    bases = _leaf_bases(t)
+    src = _leaves(v) if v.type.numeric or v.type.kind in ("struct", "array") else []
+    if not bases or not src or (len(src) != 1 and len(src) < len(bases)):
+        raise ev.error(f"X3017: cannot convert from '{v.type}' to '{t}'", tree)
+    if len(src) == 1:
+        src = src * len(bases)
+    loc = ev.at(tree)
+    comps = [ev.a.convert_base([c], base, want, loc)[0] for (c, base), want in zip(src, bases)]
+    return build_value(t, comps)
 
 
 def _ternary(ev: Any, tree: lark.Tree) -> Value:

@@ -21,6 +21,31 @@ class HlslError(EffectError):
 
 _LOCK = threading.Lock()
 _PARSER: lark.Lark | None = None
+_LOCAL = threading.local()     # the type names of the text being parsed now
+
+
+class _TypeNames:
+    """fxc's lexer knows the user type names (structs and typedefs declared so far): a NAME
+    that is one becomes TYPENAME, so `(VS_OUTPUT)0` is a cast and `(x)` stays an expression.
+    A `typedef` in the text adds its name for the rest of the text."""
+
+    always_accept = ("NAME",)
+
+    def process(self, stream):
+        names = set(getattr(_LOCAL, "names", ()))
+        after_typedef = False
+        for tok in stream:
+            if tok.type == "NAME":
+                if tok.value in names:
+                    tok = lark.Token.new_borrow_pos("TYPENAME", tok.value, tok)
+                elif after_typedef:            # `typedef float3 V;`: V names a type from here
+                    names.add(tok.value)
+                    after_typedef = False
+            elif tok.type == "TYPEDEF":
+                after_typedef = True
+            elif tok.type == "SEMICOLON":
+                after_typedef = False
+            yield tok
 
 
 def parser() -> lark.Lark:
@@ -29,7 +54,8 @@ def parser() -> lark.Lark:
         if _PARSER is None:
             text = resources.files("effects.shaders.hlsl").joinpath("grammar/hlsl.lark").read_text()
             _PARSER = lark.Lark(text, parser="lalr", lexer="contextual",
-                                start=["function_def", "struct_def", "initializer"],
+                                start=["function_def", "struct_def", "typedef_decl",
+                                       "initializer"], postlex=_TypeNames(),
                                 propagate_positions=True, maybe_placeholders=True)
         return _PARSER
 
@@ -37,9 +63,11 @@ def parser() -> lark.Lark:
 class Origin:
     """Maps (line, column) in a captured text to the .fx file."""
 
-    def __init__(self, base: Location, text: str, source_lines: dict[str, list[str]] | None = None) -> None:
+    def __init__(self, base: Location, text: str, source_lines: dict[str, list[str]] | None = None,
+                 row_major: bool = False) -> None:
         self.base = base
         self.lines = text.split("\n")
+        self.row_major = row_major     # the text stands under `#pragma pack_matrix(row_major)`
 
     def loc(self, line: int, column: int) -> Location:
         col = column + (self.base.column - 1 if line == 1 else 0)
@@ -68,18 +96,20 @@ class Origin:
         return EffectWarning(message, loc, self.line_text(loc.line - self.base.line + 1))
 
 
-_TREES: dict[tuple[str, str], lark.Tree] = {}
+_TREES: dict[tuple[str, str, frozenset[str]], lark.Tree] = {}
 TREE_CACHE = 512
 
 
-def parse(text: str, start: str, origin: Origin) -> lark.Tree:
-    """The tree of `text` (kept by text: validation compiles one function for many cards and
-    targets; the evaluator never changes a tree)."""
-    key = (text, start)
+def parse(text: str, start: str, origin: Origin, type_names: frozenset[str] = frozenset()) -> lark.Tree:
+    """The tree of `text`, where `type_names` are the user types declared before it (kept by
+    text and names: validation compiles one function for many cards and targets; the
+    evaluator never changes a tree)."""
+    key = (text, start, type_names)
     hit = _TREES.get(key)
     if hit is not None:
         return hit
     try:
+        _LOCAL.names = type_names
         tree = parser().parse(text, start=start)
         with _LOCK:
             if len(_TREES) >= TREE_CACHE:

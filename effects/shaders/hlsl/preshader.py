@@ -9,11 +9,11 @@ from effects.shaders.hlsl.parse import Origin, parse
 
 def initializer_numbers(text: str, location: Location, effect: Effect | None = None) -> list[float]:
     """The numbers of a constant initialiser, in order (X3013 if it is not constant)."""
-    from effects.shaders.hlsl.context import Context, Target
+    from effects.shaders.hlsl.context import Context, Target, type_names
     from effects.shaders.asm.versions import VERSIONS
     from effects.shaders.hlsl.evaluate import Evaluator
     origin = Origin(location, text)
-    tree = parse(text, "initializer", origin)
+    tree = parse(text, "initializer", origin, type_names(effect) if effect else frozenset())
     ctx = Context(effect or Effect(location.path), Target("vs_3_0", VERSIONS["vs_3_0"]))
     ev = Evaluator(ctx, origin)
     comps = ev.flatten_list(tree)
