@@ -612,7 +612,8 @@ _OP_ROWS = [
         check=_check_quantize),
     _op("sample", 1, _sample, _glsl_sample,
         "texel of sampler `sampler` (a `kind` texture) at coord. proj: xyz / w first; bias: "
-        "LOD bias coord.w; lod: explicit LOD coord.w. Unbound samplers read (0, 0, 0, 1)",
+        "LOD bias coord.w; lod: explicit LOD coord.w (the only form a vertex program may use: "
+        "vs_3_0 texldl). Unbound samplers read (0, 0, 0, 1)",
         check=_check_sample, names_sampler=True, needs_quads=True,
         attrs=(("sampler", REQUIRED), ("kind", "2d"), ("proj", False), ("bias", False),
                ("lod", False))),
@@ -728,6 +729,9 @@ def check_program(program: Program) -> None:
                               f"{instr.attr('kind')}")
         if program.stage not in info.stages:
             raise IRError(f"{instr.op} is only valid in {' and '.join(info.stages)} programs")
+        if program.stage == "vertex" and info.needs_quads and not instr.attr_map.get("lod"):
+            # a vertex has no neighbours to difference: its lookups name their LOD (texldl)
+            raise IRError(f"{instr.op} in a vertex program needs an explicit lod")
         if info.has_result != (instr.dest is not None):
             raise IRError(f"{instr.op}: dest must be {'an id' if info.has_result else 'None'}")
         if info.assigns and instr.args[0] not in variables:

@@ -96,7 +96,9 @@ class PassProgram:
     """One pass, lowered. `vertex` None means the positions stream is already in D3D clip
     space and every stream passes straight to the fragment program as the varying of the same
     name (what back-end tests use; lowering always produces a vertex program).
-    `uniforms` is (name, vec4) pairs: constant registers, one row of a matrix each."""
+    `uniforms` is (name, vec4) pairs: constant registers, one row of a matrix each.
+    `textures` binds the samplers of both programs; the vertex program's are other slots
+    than the fragment program's (vs_3_0 vertex textures are samplers 257-260)."""
 
     fragment: Program
     vertex: Program | None = None
@@ -112,7 +114,10 @@ class PassProgram:
         slots = [t.sampler for t in self.textures]
         if len(set(slots)) != len(slots):
             raise IRError(f"sampler slots bound twice: {slots}")
-        for binding in self.fragment.samplers:
+        vertex_samplers = self.vertex.samplers if self.vertex is not None else ()
+        if {s.index for s in vertex_samplers} & {s.index for s in self.fragment.samplers}:
+            raise IRError("a sampler slot is sampled by both the vertex and the fragment program")
+        for binding in (*self.fragment.samplers, *vertex_samplers):
             texture = self.texture(binding.index)
             if texture is not None and texture.kind != binding.kind:
                 raise IRError(f"sampler {binding.index}: program samples {binding.kind}, "

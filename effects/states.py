@@ -44,6 +44,11 @@ MAX_SAMPLERS = 16
 TCI_SHIFT = 16
 # D3DDMAPSAMPLER and D3DVERTEXTEXTURESAMPLER0-3: sampler numbers above the 16 pixel samplers.
 VERTEX_SAMPLER_INDICES = range(256, 261)
+# D3DVERTEXTEXTURESAMPLER0 (= D3DDMAPSAMPLER + 1): vs_3_0's s0..s3 are samplers 257..260, so a
+# pass binds them as `Sampler[257] = <s>` / `Texture[257]`, and lowered vertex programs sample
+# IR sampler 257 + n.
+VERTEX_TEXTURE_SAMPLER0 = 257
+VERTEX_TEXTURE_SAMPLERS = 4
 
 
 # ---------------------------------------------------------------------------------------------

@@ -13,7 +13,8 @@ from effects.caps import (GENERATIONS, PROFILE_DIR, TEXOPCAPS, bits_mask, list_p
 
 ALL_CARDS = ["tnt2", "voodoo3", "voodoo5", "rage128", "g400", "geforce256", "geforce2",
              "geforce4mx", "radeon7500", "i865g", "geforce3", "geforce4ti", "radeon8500",
-             "radeon9700", "geforcefx5900", "gma900", "geforce6800", "refrast", "modern"]
+             "radeon9700", "geforcefx5900", "gma900", "geforce6800", "refrast", "modern",
+             "radeonx1800"]
 
 # A complete minimal profile; tests append or replace lines to break it at known places.
 MINIMAL = """\
@@ -43,7 +44,7 @@ def error_of(path: Path) -> ProfileError:
 
 # --- the bundled set --------------------------------------------------------------------------
 
-def test_list_profiles_names_the_nineteen_cards_by_generation_then_name():
+def test_list_profiles_names_the_twenty_cards_by_generation_then_name():
     names = list_profiles()
     assert sorted(names) == sorted(ALL_CARDS)
     assert names == [
@@ -52,7 +53,7 @@ def test_list_profiles_names_the_nineteen_cards_by_generation_then_name():
         "geforce3",
         "geforce4ti", "radeon8500",
         "geforcefx5900", "gma900", "radeon9700",
-        "geforce6800", "modern", "refrast",
+        "geforce6800", "modern", "radeonx1800", "refrast",
     ]
 
 
@@ -106,6 +107,7 @@ RECORD = {
     "geforce6800": (True, True, (3, 0), (3, 0)),
     "refrast": (True, True, (3, 0), (3, 0)),
     "modern": (True, True, (3, 0), (3, 0)),
+    "radeonx1800": (True, True, (3, 0), (3, 0)),
 }
 
 

@@ -1,6 +1,6 @@
 """Conformance: every bundled effect on every card, drawn by both back ends, must agree.
 
-For each fxfiles/*.fx x each of the 19 cards, the technique the card selects is rendered at
+For each fxfiles/*.fx x each of the 20 cards, the technique the card selects is rendered at
 63 x 63 in the default scene by the NumPy reference and by the GL back end (llvmpipe in CI).
 Every case must reach PSNR >= 40 dB, and each case also has a per-pixel bound (`BOUNDS`,
 one row per selected technique, with the reason). The reference is the ground truth; every
@@ -236,7 +236,7 @@ def is_llvmpipe(gl) -> bool:
 
 
 def test_every_card_and_effect_is_covered():
-    assert len(CARDS) == 19
+    assert len(CARDS) == 20
     assert {"brdf.fx", "hemisphere.fx", "phong.fx", "sdk8_style.fx", "sdk9_style.fx",
             "specular_bump.fx", "wood.fx"} <= set(EFFECTS)
 

@@ -1,4 +1,4 @@
-"""The bundled effects on the 19 cards: which technique each card selects (D3DX order), the
+"""The bundled effects on the 20 cards: which technique each card selects (D3DX order), the
 DX6 → DX9 pattern of the chapter, and the matrix's JSON shape."""
 from __future__ import annotations
 
@@ -19,7 +19,8 @@ CARDS = list_profiles()
 DX6 = ["g400", "rage128", "tnt2", "voodoo3", "voodoo5"]
 DX7 = ["geforce2", "geforce256", "geforce4mx", "i865g", "radeon7500"]
 DX8 = ["geforce3", "geforce4ti", "radeon8500"]
-DX9 = ["geforcefx5900", "gma900", "radeon9700", "geforce6800", "modern", "refrast"]
+DX9 = ["geforcefx5900", "gma900", "radeon9700", "geforce6800", "modern", "radeonx1800",
+       "refrast"]
 
 
 def row(**by_card) -> dict[str, tuple[str | None, int]]:
@@ -48,7 +49,7 @@ EXPECTED = {
                       dx8=("MultiLight_ff", 1), geforcefx5900=("MultiLight_ps20", 1),
                       gma900=("MultiLight_ps20", 1), radeon9700=("MultiLight_ps20", 1),
                       geforce6800=("MultiLight_ps30", 1), modern=("MultiLight_ps30", 1),
-                      refrast=("MultiLight_ps30", 1)),
+                      radeonx1800=("MultiLight_ps30", 1), refrast=("MultiLight_ps30", 1)),
     "phong": row(dx6=("SingleTexture", 1), dx7=("Dot3_dx7", 1), dx8=("PerPixelPhong_ps11", 2),
                  dx9=("PerPixelPhong_ps20", 1)),
     # an R32F cube render target on refrast and modern only; the other ps_2_0 cards take the
@@ -57,7 +58,8 @@ EXPECTED = {
     "shadows": row(dx6=("Lit_ff", 1), dx7=("Lit_ff", 1), dx8=("Lit_ff", 1),
                    geforcefx5900=("Shadow4_Linear8", 2), gma900=("Shadow4_Linear8", 2),
                    radeon9700=("Shadow4_Linear8", 2), geforce6800=("Shadow4_R16F", 2),
-                   modern=("Shadow4_R32F", 2), refrast=("Shadow4_R32F", 2)),
+                   radeonx1800=("Shadow4_Linear8", 2), modern=("Shadow4_R32F", 2),
+                   refrast=("Shadow4_R32F", 2)),
     "sdk8_style": row(dx6=("TDX6", 1), dx7=("TFF7", 1), geforce3=("TPS1", 1),
                       geforce4ti=("TPS1", 1), radeon8500=("TPS4", 1), dx9=("TPS4", 1)),
     # Marble_ps20 and Wood_ps20 compile HLSL (vs_1_1 + ps_2_0): every DX9 card runs them.

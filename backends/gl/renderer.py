@@ -213,7 +213,7 @@ class GLBackend:
             vao.render(moderngl.TRIANGLES, vertices=tris.size)
             gl.check("drawing")
         finally:
-            self._leave_state(sorted(_sampler_units(program)))
+            self._leave_state(sorted(_sampler_units(program).values()))
 
     def _fill(self, name: str, array: np.ndarray) -> moderngl.Buffer:
         """The buffer kept for `name`, given fresh storage (orphaned, so a draw still using
@@ -320,6 +320,7 @@ class GLBackend:
         gl = self.gl
         used = {s.index: s.kind for p in (program.vertex, program.fragment) if p is not None
                 for s in p.samplers}
+        units = _sampler_units(program)
         # Upload first: an upload binds its texture, which must not displace the ones bound
         # to the units below.
         resolved = [(index, *self._texture_for(program, index, kind, textures))
@@ -328,13 +329,14 @@ class GLBackend:
             sampler = self._samplers.get(key)
             if sampler is None:
                 sampler = self._samplers[key] = create_sampler(gl, key)
-            gl.glActiveTexture(G.TEXTURE0 + index)
+            unit = units[index]
+            gl.glActiveTexture(G.TEXTURE0 + unit)
             gl.glBindTexture(gl_texture.target, gl_texture.name)
             gl.glTexParameteri(gl_texture.target, G.TEXTURE_BASE_LEVEL, key.base_level)
-            gl.glBindSampler(index, sampler)
+            gl.glBindSampler(unit, sampler)
             uniform = shader.get(f"sampler{index}", None)
             if uniform is not None:
-                uniform.value = index
+                uniform.value = unit
         gl.glActiveTexture(G.TEXTURE0)
 
     def _texture_for(self, program: PassProgram, index: int, kind: str,
@@ -392,9 +394,17 @@ def fragment_options(program: PassProgram, float_target: bool) -> glsl.FragmentO
         srgb_write=bool(state.srgb_write_enable and not float_target))
 
 
-def _sampler_units(program: PassProgram) -> set[int]:
-    return {s.index for p in (program.vertex, program.fragment) if p is not None
-            for s in p.samplers}
+def _sampler_units(program: PassProgram) -> dict[int, int]:
+    """Sampler index -> GL texture unit. A pixel sampler n keeps unit n; other slots (the
+    vertex program's, 257 and up) take the units after the highest pixel one, in order, so
+    both stages' samplers fit GL's combined units."""
+    fragment = sorted({s.index for s in program.fragment.samplers})
+    others = sorted({s.index for s in program.vertex.samplers} - set(fragment)
+                    if program.vertex is not None else ())
+    units = {index: index for index in fragment}
+    first = max(fragment, default=-1) + 1
+    units.update({index: first + k for k, index in enumerate(others)})
+    return units
 
 
 def _compare_index(state: RenderState) -> int:

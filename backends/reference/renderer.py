@@ -68,12 +68,14 @@ def sampler_settings(binding: TextureBinding) -> SamplerSettings:
                            binding.mip_filter, binding.mip_lod_bias, binding.max_mip_level)
 
 
-def sampler_callbacks(program: PassProgram, textures: Mapping[str, object]) -> dict:
-    """Sampler index -> callback(coord, kind=, bias=, lod=) for every bound slot the fragment
-    program samples. The texture's own kind decides the lookup; unbound slots get no callback
-    (the evaluator reads (0, 0, 0, 1) there)."""
+def sampler_callbacks(program: PassProgram, textures: Mapping[str, object],
+                      stage: Program | None = None) -> dict:
+    """Sampler index -> callback(coord, kind=, bias=, lod=) for every bound slot the program
+    `stage` (the fragment program by default; the vertex program for vertex textures) samples.
+    The texture's own kind decides the lookup; unbound slots get no callback (the evaluator
+    reads (0, 0, 0, 1) there)."""
     callbacks = {}
-    for used in program.fragment.samplers:
+    for used in (program.fragment if stage is None else stage).samplers:
         binding = program.texture(used.index)
         if binding is None or binding.texture is None or binding.texture not in textures:
             continue
@@ -166,7 +168,9 @@ class ReferenceBackend:
         count = _vertex_count(streams)
         if len(tris) and (tris.min() < 0 or tris.max() >= count):
             raise DrawError(f"indices out of range for {count} vertices")
-        clip, varyings = _vertex_stage(program.vertex, streams, uniforms, count)
+        vertex_samplers = (sampler_callbacks(program, textures, program.vertex)
+                           if program.vertex is not None and program.vertex.samplers else {})
+        clip, varyings = _vertex_stage(program.vertex, streams, uniforms, count, vertex_samplers)
         stage = _FragmentStage(program, clip, _needed_varyings(program.fragment, varyings),
                                uniforms, sampler_callbacks(program, textures), fb.size)
         setup = stage.setup(tris)
@@ -289,8 +293,10 @@ def _vertex_count(streams: Mapping[str, np.ndarray]) -> int:
 
 
 def _vertex_stage(vertex: Program | None, streams: Mapping[str, np.ndarray], uniforms: dict,
-                  count: int) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-    """Clip-space positions (N, 4) and the varyings (name -> (N, k) float32)."""
+                  count: int, samplers: Mapping | None = None
+                  ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """Clip-space positions (N, 4) and the varyings (name -> (N, k) float32). `samplers`: the
+    vertex program's texture lookups (vs_3_0 texldl), each at the LOD the program names."""
     if vertex is None:
         outputs = {name: np.asarray(v, np.float32) for name, v in streams.items()}
     else:
@@ -302,7 +308,7 @@ def _vertex_stage(vertex: Program | None, streams: Mapping[str, np.ndarray], uni
                 inputs[item.name] = streams[item.name]
             else:
                 inputs[item.name] = _DEFAULTS.get(item.name, _DEFAULT_VALUE)
-        outputs = evaluate(vertex, inputs, count=count).outputs
+        outputs = evaluate(vertex, inputs, samplers or {}, count=count).outputs
         if "position" not in outputs:
             raise DrawError("the vertex program writes no position")
     position = np.asarray(outputs["position"], np.float64)

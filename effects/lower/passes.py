@@ -27,6 +27,8 @@ its columns, i.e. transposed, so `m4x4 oPos, v0, c4` computes the row-vector pro
 the DX8 files expect; uniforms `vs_c<n>` and `ps_c<n>`, as the two shaders have separate
 constant files), the bump-environment state of each stage (uniforms `bumpenv<n>` and
 `bumpenvl<n>`), the kind of texture bound to each sampler, and TTFF_PROJECTED per stage.
+A vs_3_0 shader's samplers are the vertex texture samplers 257-260 (`Sampler[257] = <s>`, or an
+HLSL vertex shader's sampler registers + 257, as D3DX binds them), bound like pixel ones.
 Fixed-function fog after a pixel shader is not lowered yet (a clear error, not a wrong picture).
 """
 from __future__ import annotations
@@ -51,6 +53,7 @@ from effects.model import (CompileShader, Effect, NullValue, Parameter, ParamRef
 from effects.passprogram import PassProgram, RenderState, TextureBinding
 from effects.precision import lowering_options
 from effects.stage_ops import MAX_STAGES, TCI_MODES, TCI_SET_MASK, TCI_SHIFT, TTFF_PROJECTED
+from effects.states import VERTEX_TEXTURE_SAMPLER0
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.shaders.asm import AsmProgram
@@ -157,7 +160,7 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     fog = read_fog(state)
     pixel_shader = _shader(state, "PixelShader")
     vertex_shader = _shader(state, "VertexShader")
-    if isinstance(pixel_shader, CompileShader):
+    if isinstance(pixel_shader, CompileShader) or isinstance(vertex_shader, CompileShader):
         state = state.copy()   # the compiled shader binds its samplers (may be the validation's state)
 
     lit = None
@@ -214,7 +217,8 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
         uniforms.update(_compiled_constants(effect, compiled, VERTEX_CONSTANT_PREFIX))
 
     declared = {i.name for prog in (fragment, vertex) for i in prog.inputs if i.kind == "uniform"}
-    textures = tuple(texture_binding(effect, state, s.index, s.kind) for s in fragment.samplers)
+    textures = tuple(texture_binding(effect, state, s.index, s.kind)
+                     for s in (*fragment.samplers, *vertex.samplers))
     return PassProgram(fragment=fragment, vertex=vertex, render_state=read_render_state(state),
                        textures=textures,
                        uniforms=PassProgram.pack_uniforms(
@@ -243,10 +247,11 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any,
     if isinstance(shader, CompileShader):
         from effects.shaders.hlsl import compile_state
         compiled = compile_state(effect, shader)
-        if stage == "pixel":
-            for name, register in compiled.samplers.items():
-                state.apply(StateAssignment("Sampler", ParamRef(name), index=register,
-                                            location=location))
+        # a vs_3_0 shader's s# are the vertex texture samplers D3DVERTEXTEXTURESAMPLER0 + n
+        base = 0 if stage == "pixel" else VERTEX_TEXTURE_SAMPLER0
+        for name, register in compiled.samplers.items():
+            state.apply(StateAssignment("Sampler", ParamRef(name), index=base + register,
+                                        location=location))
         return compiled.program, compiled
     if not isinstance(shader, ShaderBlock):
         raise EffectError(f"cannot lower a {stage} shader given as {type(shader).__name__}",

@@ -58,6 +58,7 @@ from effects.validate.framebuffer import FrameBufferChecks
 from effects.validate.shaders import ShaderChecks, software_vs_version
 from effects.validate.stages import StageChecks
 from effects.validate.textures import TextureChecks, texture_kind
+from effects.validate.vertex_textures import VertexTextureChecks
 from effects.stage_ops import TA_TEXTURE
 from effects.validate.values import _is_indexed, spelled
 
@@ -137,7 +138,8 @@ class Validation:
         return [f"pass {p.name}: {n}" for p in self.pass_reports for n in p.notes]
 
 
-class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
+class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
+                   VertexTextureChecks):
     """Runs every check for one pass and collects its reasons."""
 
     def __init__(self, effect: Effect, technique: Technique, p: Pass, index: int,
@@ -224,6 +226,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks):
             self.check_pixel_shader(ps)
         if vs is not None:
             self.check_vertex_shader(vs)
+            self.check_vertex_textures(vs)
         self.check_textures(ps is not None)
         self.check_framebuffer()
         self.check_quirks()

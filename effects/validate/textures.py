@@ -213,8 +213,11 @@ class TextureChecks:
                 if quirk is not None:
                     self.quirk_hit(quirk, loc, f"{subject} Format = {name}")
 
-    def check_sampler_states(self, unit: int, kind: str | None) -> None:
-        filter_field = _FILTER_FIELD.get(kind or "", "TextureFilterCaps")
+    def check_sampler_states(self, unit: int, kind: str | None,
+                             filter_field: str | None = None) -> None:
+        """Filters against the kind's filter caps (or `filter_field`: a vertex texture's are
+        VertexTextureFilterCaps), mipmapping, anisotropy and address modes."""
+        filter_field = filter_field or _FILTER_FIELD.get(kind or "", "TextureFilterCaps")
         if self.profile.get(filter_field) is None:
             filter_field = "TextureFilterCaps"
         for name in ("MinFilter", "MagFilter", "MipFilter"):

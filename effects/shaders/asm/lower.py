@@ -28,6 +28,8 @@ Decisions (sources: ../shared/reference/semantics.md §2-4, caps.md §1):
   TTFF_PROJECTED (ctx.projected) applies to ps_1_1-1_3 `tex`/`texbem(l)` only (1.4 uses _dw).
 - ps_1_x t# in 1.1-1.3 holds what texture instructions wrote; in 1.4 and ps_2_0 a t# source is
   the interpolated texture coordinate `texcoord#`. v# are `color0`/`color1`.
+- vs_3_0 samples (texldl) its s0-s3 as IR samplers 257-260 (D3DVERTEXTEXTURESAMPLER0-3, the
+  numbers a pass binds them by), never the pixel samplers of the same register number.
 - Sampler kinds: ps_2_0+ from dcl_2d/dcl_cube/dcl_volume; ps_1_x from ctx.sampler_kinds,
   defaulting to '2d', or 'cube' for the texm3x3tex/spec/vspec family.
 - Vertex inputs are named by their dcl usage (position, normal, texcoord0, color0 ...; an
@@ -59,6 +61,7 @@ from effects.errors import AsmError
 from effects.ir import COMPONENTS, OUTPUTS, Builder, Program
 from effects.model import VertexDeclElement
 from effects.precision import LoweringOptions
+from effects.states import VERTEX_TEXTURE_SAMPLER0
 from effects.shaders.asm import flow
 from effects.shaders.asm.instructions import Handler, NoCode, NotLowered, Rewrite
 from effects.shaders.asm.program import AsmProgram, Instruction, Operand
@@ -567,7 +570,13 @@ class _Lowering:
         return self.ctx.sampler_kinds.get(stage, default)
 
     def sample(self, stage: int, coord: int, default: str = "2d", **flags: bool) -> int:
-        return self.b.sample(stage, coord, self.sampler_kind(stage, default), **flags)
+        return self.b.sample(self.sampler_index(stage), coord, self.sampler_kind(stage, default),
+                             **flags)
+
+    def sampler_index(self, register: int) -> int:
+        """The IR sampler of s#: the pixel sampler of that number, or in a vertex shader the
+        vertex texture sampler D3DVERTEXTEXTURESAMPLER0 + n (257 + n), a separate unit."""
+        return register + VERTEX_TEXTURE_SAMPLER0 if self.b.stage == "vertex" else register
 
     def projected_coord(self, stage: int) -> int:
         """tc(stage), divided by w first when that stage is PROJECTED (texbem order)."""
