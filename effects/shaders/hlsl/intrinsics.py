@@ -252,22 +252,42 @@ def _determinant(ev: Any, args: list[Value], loc: Location) -> Value:
     return Value(FLOAT, [det(m)])
 
 
+# vs_1_1 has no sincos: fxc expanded a polynomial there. Ours: Taylor series about 0 on the
+# argument reduced to [-pi, pi], to x^13 for sin and x^14 for cos (the first term left out
+# bounds the error: pi^15/15! = 2.2e-5, pi^16/16! = 4.3e-6), evaluated by Horner in x^2.
+_SIN_TERMS = [(-1) ** k / math.factorial(2 * k + 1) for k in range(7)]
+_COS_TERMS = [(-1) ** k / math.factorial(2 * k) for k in range(8)]
+
+
 def _sincos_parts(ev: Any, c: list[Operand], loc: Location) -> tuple[list[Operand], list[Operand]]:
     t = ev.ctx.target
+    if not t.has("sincos") and t.kind != "vs":
+        raise ev.error(f"{t.name} cannot compute sin/cos (no sincos instruction)", loc)
+    if t.rules.major < 3:
+        # sincos of shader model 2 (and our vs_1_1 series) wants its argument in [-pi, pi]
+        x = ev.a.lanes("mad", [c, [ev.a.const(1 / (2 * math.pi))] * len(c),
+                               [ev.a.const(0.5)] * len(c)], loc)
+        x = ev.a.frc(x, loc)
+        c = ev.a.lanes("mad", [x, [ev.a.const(2 * math.pi)] * len(c),
+                               [ev.a.const(-math.pi)] * len(c)], loc)
     if not t.has("sincos"):
-        raise ev.error(f"{t.name} cannot compute sin/cos (no sincos instruction; the Taylor "
-                       "expansion fxc used for vs_1_1 is not generated)", loc)
+        return _series(ev, c, _SIN_TERMS, loc, odd=True), _series(ev, c, _COS_TERMS, loc, odd=False)
     sins, coss = [], []
     for x in c:
-        if t.rules.major < 3:
-            # sincos of shader model 2 wants its argument in [-pi, pi]
-            x = ev.a.op("mad", [x, ev.a.const(1 / (2 * math.pi)), ev.a.const(0.5)], loc)
-            x = ev.a.frc([x], loc)[0]
-            x = ev.a.op("mad", [x, ev.a.const(2 * math.pi), ev.a.const(-math.pi)], loc)
         r = ev.a.op("sincos", [x], loc, 2)
         coss.append(component(r, 0))
         sins.append(component(r, 1))
     return sins, coss
+
+
+def _series(ev: Any, x: list[Operand], terms: list[float], loc: Location, odd: bool) -> list[Operand]:
+    """sum terms[k] * x^(2k) (times x when `odd`), one vector mad per term."""
+    n = len(x)
+    x2 = ev.a.lanes("mul", [x, x], loc)
+    acc = [ev.a.const(terms[-1])] * n
+    for coefficient in reversed(terms[:-1]):
+        acc = ev.a.lanes("mad", [acc, x2, [ev.a.const(coefficient)] * n], loc)
+    return ev.a.lanes("mul", [acc, x], loc) if odd else acc
 
 
 def _sin(ev: Any, args: list[Value], loc: Location) -> Value:
