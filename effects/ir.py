@@ -821,6 +821,7 @@ class Builder:
         self._scopes: list[list[tuple]] = []
         self._loops = 0
         self.clamp_colors = True        # see Program.clamp_colors
+        self.renumbered: dict[int, int] = {}   # set by build
 
     # -- the generic entry point
     def emit(self, op: str, *args: int, **attrs: Any) -> int | None:
@@ -977,12 +978,16 @@ class Builder:
 
     def build(self, prune: bool = True) -> Program:
         """The program. `prune` drops instructions no output or kill needs (and the inputs and
-        samplers only they used) and renumbers values densely in order."""
+        samplers only they used) and renumbers values densely in order; `renumbered` then maps
+        each kept value of the builder to its number in the program (a lowering that names a
+        value to a back end, as `PassProgram.lighting` does, names it by that number)."""
         order = OUTPUTS[self.stage]
         outputs = sorted(self._outputs.items(), key=lambda item: order.index(item[0]))
         instrs = self._instrs
         if prune:
-            instrs, outputs = _prune(instrs, outputs)
+            instrs, outputs, self.renumbered = _prune(instrs, outputs)
+        else:
+            self.renumbered = {i.dest: i.dest for i in instrs if i.dest is not None}
         used_inputs = {i.attr("name") for i in instrs if OPS[i.op].names_input}
         used_samplers = {i.attr("sampler") for i in instrs if OPS[i.op].names_sampler}
         return Program(
@@ -995,7 +1000,7 @@ class Builder:
 
 
 def _prune(instrs: list[Instr], outputs: list[tuple[str, int]]
-           ) -> tuple[list[Instr], list[tuple[str, int]]]:
+           ) -> tuple[list[Instr], list[tuple[str, int]], dict[int, int]]:
     live = {value for _, value in outputs}
     kept = []
     for instr in reversed(instrs):
@@ -1006,7 +1011,7 @@ def _prune(instrs: list[Instr], outputs: list[tuple[str, int]]
     renumber = {instr.dest: n for n, instr in enumerate(i for i in kept if i.dest is not None)}
     renumbered = [Instr(None if i.dest is None else renumber[i.dest], i.op,
                         tuple(renumber[a] for a in i.args), i.attrs) for i in kept]
-    return renumbered, [(name, renumber[value]) for name, value in outputs]
+    return renumbered, [(name, renumber[value]) for name, value in outputs], renumber
 
 
 # --------------------------------------------------------------------------------------------

@@ -92,6 +92,49 @@ class TextureBinding:
 
 
 @dataclass(frozen=True)
+class DirectionalLight:
+    """One directional light of `PixelLighting`, in camera space: the unit vector toward the
+    light and its diffuse and specular colours."""
+
+    direction: tuple[float, float, float]
+    diffuse: Color
+    specular: Color
+
+
+@dataclass(frozen=True)
+class PixelLighting:
+    """The fixed-function lighting a ShadeMode = Phong pass evaluates per pixel, as data, for a
+    back end that shades it its own way (the reference's Bishop-Weimer Taylor form). The
+    fragment program computes the same lighting exactly (normalised interpolated normal), so a
+    back end may ignore this. The lowering gives it only where every light is directional and
+    every material colour comes from the material (the paper's model: L constant over a
+    triangle); the values of the D3D lighting equations (`effects.lower.vertex`) become:
+
+        diffuse  = sat(base + material_diffuse * sum_i sat(N.L_i) diffuse_i), alpha
+                   material_diffuse's
+        specular = sat(material_specular * sum_i [N.L_i > 0] [N.H_i > 0] (N.H_i)^power
+                   specular_i)
+
+    with N the interpolated camera-space normal (varying `normal`, xyz), H_i the half vector of
+    L_i and the eye direction: (0, 0, -1) or, with `local_viewer`, toward the eye from the
+    interpolated camera-space position (varying `position`). `diffuse_value` and
+    `specular_value` are the numbers of the fragment program's values that hold them (None:
+    the program does not read it, or SpecularEnable is off and the vertex specular passes
+    through)."""
+
+    diffuse_value: int | None
+    specular_value: int | None
+    normal: str
+    position: str
+    lights: tuple[DirectionalLight, ...]
+    base: Color                  # emissive + material ambient * (Ambient + the lights' ambient)
+    material_diffuse: Color
+    material_specular: Color
+    power: float
+    local_viewer: bool
+
+
+@dataclass(frozen=True)
 class PassProgram:
     """One pass, lowered. `vertex` None means the positions stream is already in D3D clip
     space and every stream passes straight to the fragment program as the varying of the same
@@ -105,6 +148,7 @@ class PassProgram:
     render_state: RenderState = RenderState()
     textures: tuple[TextureBinding, ...] = ()
     uniforms: tuple[tuple[str, tuple[float, float, float, float]], ...] = ()
+    lighting: PixelLighting | None = None
 
     def __post_init__(self) -> None:
         if self.fragment.stage != "fragment":
@@ -125,6 +169,12 @@ class PassProgram:
         for name, value in self.uniforms:
             if len(value) != 4:
                 raise IRError(f"uniform {name} must have 4 components")
+        if self.lighting is not None:
+            values = {i.dest for i in self.fragment.instrs if i.dest is not None}
+            named = (self.lighting.diffuse_value, self.lighting.specular_value)
+            if any(v is not None and v not in values for v in named):
+                raise IRError(f"PassProgram.lighting names values {named} the fragment "
+                              "program does not have")
 
     def texture(self, sampler: int) -> TextureBinding | None:
         for binding in self.textures:

@@ -1,11 +1,13 @@
 // fast_phong.fx -- Phong shading of the fixed-function pipeline: Gary Bishop and David M.
 // Weimer, "Fast Phong Shading" (SIGGRAPH 1986). Direct3D named the shade mode
 // (D3DSHADE_PHONG, with the caps bits D3DPSHADECAPS_COLORPHONGRGB / SPECULARPHONGRGB) and no
-// card ever shaded with it; here the reference rasteriser (`refrast`) reports the bit and
-// evaluates the vertex lighting equations per pixel with the normal interpolated and
-// normalised at every pixel, which the GL back end draws the same way. (The paper's faster
-// Taylor form of the same shading is measured in backends/reference/fast_phong.py and
-// benchmarks/bench_fast_phong.py.) Techniques in fallback order:
+// card ever shaded with it; here the reference rasteriser (`refrast`) reports the bit. The
+// lowering evaluates the vertex lighting equations per pixel with the normal interpolated and
+// normalised at every pixel, which the GL back end draws; the NumPy reference back end draws
+// the same lighting by the paper's Taylor form (a second-order series of N.L/|N| and
+// N.H/(|N||H|) per triangle, the power from an 8K table), with the eye at infinity or, as
+// LocalViewer = True says here, at a finite distance (backends/reference/taylor_lighting.py;
+// the error against exact Phong: tests/test_shade_phong.py). Techniques in fallback order:
 //
 //   Phong      ShadeMode = Phong: per-pixel lighting (refrast only)
 //   Gouraud    the same lighting per vertex, interpolated (every card)

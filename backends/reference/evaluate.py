@@ -156,12 +156,13 @@ def _arg_demand(instr: Instr, wanted: frozenset, sample_reads=None) -> tuple[fro
     return demand
 
 
-def _demand(program: Program, sample_reads: Callable[[Instr], frozenset] | None = None
-            ) -> list[frozenset]:
+def _demand(program: Program, sample_reads: Callable[[Instr], frozenset] | None = None,
+            given: frozenset = frozenset()) -> list[frozenset]:
     """Per instruction, the components of its result that some instruction or output reads
     (kill and other effects count as reading what they read; a sample reads its whole
-    coordinate unless `sample_reads` says otherwise)."""
-    found = _DEMAND_CACHE.get((id(program), sample_reads))
+    coordinate unless `sample_reads` says otherwise). The values in `given` are supplied by
+    the caller: they read nothing."""
+    found = _DEMAND_CACHE.get((id(program), sample_reads, given))
     if found is not None and found[0] is program:
         return found[1]
     if has_flow(program):      # variables and loops: every component of every value counts
@@ -174,24 +175,25 @@ def _demand(program: Program, sample_reads: Callable[[Instr], frozenset] | None 
         instr = program.instrs[index]
         wanted = _ALL if instr.dest is None else need.get(instr.dest, frozenset())
         per_instr[index] = wanted
-        if not wanted:
+        if not wanted or instr.dest in given:
             continue
         for arg, arg_need in zip(instr.args, _arg_demand(instr, wanted, sample_reads)):
             need[arg] = need.get(arg, frozenset()) | arg_need
     if len(_DEMAND_CACHE) > 1024:
         _DEMAND_CACHE.clear()
-    _DEMAND_CACHE[(id(program), sample_reads)] = (program, per_instr)
+    _DEMAND_CACHE[(id(program), sample_reads, given)] = (program, per_instr)
     return per_instr
 
 
 def input_components(program: Program,
-                     sample_reads: Callable[[Instr], frozenset] | None = None
-                     ) -> dict[str, frozenset]:
+                     sample_reads: Callable[[Instr], frozenset] | None = None,
+                     given: frozenset = frozenset()) -> dict[str, frozenset]:
     """Input name -> the components (0 = x) the program's outputs and effects depend on.
     `sample_reads(instr)` gives the coordinate components a sample instruction's callback
-    reads (default: all four, since a callback sees the whole vec4)."""
+    reads (default: all four, since a callback sees the whole vec4); the values in `given`
+    are supplied (`evaluate(..., given=)`), so what only they read is not needed."""
     reads: dict[str, frozenset] = {}
-    for instr, wanted in zip(program.instrs, _demand(program, sample_reads)):
+    for instr, wanted in zip(program.instrs, _demand(program, sample_reads, given)):
         if OPS[instr.op].names_input:
             name = instr.attr("name")
             reads[name] = reads.get(name, frozenset()) | wanted
@@ -343,11 +345,17 @@ def _row_count(program: Program, inputs: Mapping[str, np.ndarray], count: int | 
 
 def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
              samplers: Mapping[int, SamplerFn] | None = None, *,
-             count: int | None = None, quads: bool = False) -> EvalResult:
+             count: int | None = None, quads: bool = False,
+             given: Mapping[int, np.ndarray] | None = None) -> EvalResult:
     """Evaluate `program` over N rows. `inputs` maps every declared input name to an (N, k)
     array (varyings, builtins) or a (k,) vector (uniforms, broadcast); `count` gives N when no
     input is per row. `quads`: the rows are whole 2x2 quads (rasteriser order), which
-    gradient ops (ddx, ddy) need."""
+    gradient ops (ddx, ddy) need. `given` maps value numbers to (N, 4) rows used in place of
+    computing them (what only they read is not run): how the reference shades a Phong pass's
+    lighting its own way (`PassProgram.lighting`); not with control flow."""
+    given = given or {}
+    if given and has_flow(program):
+        raise IRError("given values need a program without control flow")
     missing = [i.name for i in program.inputs if i.name not in inputs]
     if missing:
         raise IRError(f"missing inputs: {', '.join(missing)}")
@@ -358,9 +366,12 @@ def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
         if has_flow(program):
             _run_structured(ctx, program, values)
         else:
-            for instr, wanted in zip(program.instrs, _demand(program)):
+            for instr, wanted in zip(program.instrs, _demand(program, None, frozenset(given))):
                 if not wanted:           # nothing reads it
                     values[instr.dest] = [None] * 4
+                    continue
+                if instr.dest in given:
+                    values[instr.dest] = _from_rows(given[instr.dest])
                     continue
                 result = _run(ctx, instr, [values[a] for a in instr.args], wanted)
                 if instr.dest is not None:

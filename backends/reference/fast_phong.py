@@ -47,7 +47,7 @@ class Light:
     table_size: int = 1024
 
 
-def _poly_mul(p: np.ndarray, q: np.ndarray) -> np.ndarray:
+def poly_mul(p: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Product of two (T, 6) second-order polynomials, truncated at second order."""
     c0, cx, cy, cxx, cxy, cyy = (p[:, k] for k in range(6))
     d0, dx, dy, dxx, dxy, dyy = (q[:, k] for k in range(6))
@@ -57,7 +57,7 @@ def _poly_mul(p: np.ndarray, q: np.ndarray) -> np.ndarray:
                      c0 * dyy + cy * dy + cyy * d0], axis=1)
 
 
-def _linear_dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def linear_dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """(T, 6) polynomial of the dot product of two linearly interpolated vectors, each given
     as (A, B, C): (T, 3, 3) rows = the x, y and constant coefficients."""
     ax, ay, a0 = a[:, 0], a[:, 1], a[:, 2]
@@ -75,9 +75,9 @@ def taylor_quotient(numerator: np.ndarray, denominator: np.ndarray) -> np.ndarra
     q0 = denominator[:, 0]
     delta = denominator / q0[:, None]
     delta[:, 0] = 0.0
-    inv_sqrt = -0.5 * delta + 0.375 * _poly_mul(delta, delta)
+    inv_sqrt = -0.5 * delta + 0.375 * poly_mul(delta, delta)
     inv_sqrt[:, 0] += 1.0
-    return _poly_mul(numerator, inv_sqrt) / np.sqrt(q0)[:, None]
+    return poly_mul(numerator, inv_sqrt) / np.sqrt(q0)[:, None]
 
 
 def interpolation_planes(xy: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -232,17 +232,17 @@ def pixel_values(prep: Prepared, light: Light, mode: str) -> np.ndarray:
         table = power_table(light.exponent, light.table_size)
         constant = np.array([0.0, 0.0, 1.0])[None, :, None]
         l_plane = np.broadcast_to(L, n_plane.shape) * constant
-        n_sq = _linear_dot(n_plane, n_plane)
-        diffuse = forward_differences(taylor_quotient(_linear_dot(n_plane, l_plane), n_sq), spans)
+        n_sq = linear_dot(n_plane, n_plane)
+        diffuse = forward_differences(taylor_quotient(linear_dot(n_plane, l_plane), n_sq), spans)
         if finite:
             # the paper's H(x, y) = V(x, y) + L, V interpolating the (unit) vertex eye vectors
             h_plane = v_plane + l_plane
-            denominator = _poly_mul(n_sq, _linear_dot(h_plane, h_plane))
+            denominator = poly_mul(n_sq, linear_dot(h_plane, h_plane))
         else:
             h = L + np.asarray(light.eye, np.float64)
             h_plane = np.broadcast_to(h / np.linalg.norm(h), n_plane.shape) * constant
             denominator = n_sq
-        n_dot_h = forward_differences(taylor_quotient(_linear_dot(n_plane, h_plane), denominator),
+        n_dot_h = forward_differences(taylor_quotient(linear_dot(n_plane, h_plane), denominator),
                                       spans)
         return (light.ambient + light.diffuse * np.maximum(diffuse, 0.0)
                 + light.specular * table_lookup(table, n_dot_h))

@@ -47,6 +47,7 @@ class QuadFragments:
     front: np.ndarray      # (N,) bool: the triangle is front-facing (clockwise on screen)
     varyings: dict[str, np.ndarray]
     quads: bool = True
+    tri: np.ndarray | None = None   # (N,) int64: the row's triangle in its TriangleSetup
 
     @property
     def count(self) -> int:
@@ -264,11 +265,14 @@ class TriangleSetup:
         quad_tri, qx, qy, covered = _cover(X, Y, self.size[0], y1, y0)
         if len(quad_tri) == 0:
             return QuadFragments.empty(self.dims, self.quads)
-        return _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, pick(self.area), self.sz,
-                            self.inv_w, self.attrs, pick(self.source), pick(self.front),
-                            self.names, self.dims, self.flat_cols,
-                            self.provoking,
-                            self.depth_bias, self.slope_bias, self.quads)
+        frags = _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, pick(self.area), self.sz,
+                             self.inv_w, self.attrs, pick(self.source), pick(self.front),
+                             self.names, self.dims, self.flat_cols,
+                             self.provoking,
+                             self.depth_bias, self.slope_bias, self.quads)
+        if part is not None and frags.tri is not None:
+            frags.tri = part[frags.tri]
+        return frags
 
 
 def _cover(X: np.ndarray, Y: np.ndarray, width: int, height: int, y0: int = 0):
@@ -420,4 +424,5 @@ def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs, 
             col += dims[n]
     else:
         rows = {n: np.zeros((count, 0), np.float32) for n in names}
-    return QuadFragments(x, y, covered, depth, per_row(source), per_row(front), rows, quads)
+    return QuadFragments(x, y, covered, depth, per_row(source), per_row(front), rows, quads,
+                         row_tri)

@@ -20,6 +20,9 @@ Conventions beyond `effects.backend`:
 - Fog and the fixed-function specular add are not applied here: lowering folds both into the
   programs (`effects.lower.passes`), so the fragment program's colour is final.
 - The fragment 'depth' output (oDepth) replaces the interpolated depth, saturated.
+- ShadeMode = Phong with `PassProgram.lighting`: the lit diffuse and specular the fragment
+  program names are shaded by Bishop and Weimer's Taylor form (`taylor_lighting`) and given
+  to the program in place of its exact normalised-normal lighting (which GL draws).
 """
 from __future__ import annotations
 
@@ -36,7 +39,9 @@ from effects.passprogram import PassProgram, TextureBinding
 from effects.backend import DrawError, register_backend, triangle_list
 from backends.reference import output
 from backends.reference.evaluate import evaluate, input_components
-from backends.reference.rasterize import QuadFragments, TriangleSetup, setup_triangles
+from backends.reference import taylor_lighting
+from backends.reference.rasterize import (SUBPIXEL_BITS, QuadFragments, TriangleSetup,
+                                          setup_triangles)
 from backends.reference.sampler import SamplerSettings, gradient_lod, sample
 
 _COLOR_VARYINGS = ("color0", "color1")
@@ -218,6 +223,9 @@ class _FragmentStage:
         self.size = size
         # Helper pixels are shaded only when an op needs quad derivatives (its row says).
         self.quads = any(OPS[instr.op].needs_quads for instr in program.fragment.instrs)
+        lighting = program.lighting
+        self.lighting = lighting if self.state.shade_mode == "PHONG" else None
+        self.taylor: taylor_lighting.TaylorLighting | None = None
 
     def setup(self, tris: np.ndarray) -> TriangleSetup | None:
         """The draw's triangles ready for rasterising bands of rows, or None (nothing left)."""
@@ -227,7 +235,30 @@ class _FragmentStage:
                                 flat=flat, depth_bias=state.depth_bias,
                                 slope_scale_depth_bias=state.slope_scale_depth_bias,
                                 quads=self.quads)
-        return setup if isinstance(setup, TriangleSetup) else None
+        if not isinstance(setup, TriangleSetup):
+            return None
+        if self.lighting is not None:
+            self.taylor = self._taylor(setup)
+        return setup
+
+    def _taylor(self, setup: TriangleSetup) -> taylor_lighting.TaylorLighting:
+        """The Taylor series of the kept triangles, from their clipped vertices' normal and
+        (for a local viewer) position varyings."""
+        lighting = self.lighting
+        columns, col = {}, 0
+        for name in setup.names:
+            columns[name] = slice(col, col + setup.dims[name])
+            col += setup.dims[name]
+        wanted = (lighting.normal, lighting.position) if lighting.local_viewer else (lighting.normal,)
+        if any(setup.dims.get(v, 0) < 3 for v in wanted):
+            raise DrawError(f"PassProgram.lighting reads the varyings {wanted}, xyz; the fragment "
+                            f"program interpolates {setup.dims}")
+        corners = setup.attrs[setup.tris].astype(np.float64)           # (T, 3, K)
+        normal = corners[..., columns[lighting.normal]][..., :3]
+        position = (corners[..., columns[lighting.position]][..., :3] if lighting.local_viewer
+                    else None)
+        xy = np.stack([setup.X, setup.Y], axis=-1) / float(1 << SUBPIXEL_BITS)
+        return taylor_lighting.prepare(lighting, xy, setup.inv_w[setup.tris], normal, position)
 
     def run(self, frags: QuadFragments):
         """(pixels, colour, depth, front, colour2) of the covered, unkilled fragments of
@@ -261,7 +292,7 @@ class _FragmentStage:
             start, stop = bounds
             inputs = _fragment_inputs(fragment, frags, start, stop, self.uniforms)
             return evaluate(fragment, inputs, self.callbacks, count=stop - start,
-                            quads=self.quads)
+                            quads=self.quads, given=self._given(frags, start, stop))
 
         results = [run(c) for c in chunks]
         outputs = fragment.output_map
@@ -281,6 +312,18 @@ class _FragmentStage:
             killed = np.concatenate([np.zeros(b - a, bool) if r.killed is None else r.killed
                                      for r, (a, b) in zip(results, chunks)])
         return colour, gather("color1"), None if depth is None else depth[:, 0], killed
+
+
+    def _given(self, frags: QuadFragments, start: int, stop: int) -> dict | None:
+        """The Taylor form's lit values for rows [start, stop), by value number."""
+        if self.taylor is None:
+            return None
+        rows = slice(start, stop)
+        diffuse, specular = taylor_lighting.shade(
+            self.taylor, frags.tri[rows], frags.x[rows].astype(np.float64),
+            frags.y[rows].astype(np.float64))
+        values = {self.lighting.diffuse_value: diffuse, self.lighting.specular_value: specular}
+        return {k: v for k, v in values.items() if k is not None}
 
 
 def _vertex_count(streams: Mapping[str, np.ndarray]) -> int:

@@ -47,7 +47,7 @@ from effects.ir import Builder
 from effects.lower.stages import (FogSetup, FragmentInputs, StageSetup, active_stages, apply_fog,
                                   lower_cascade)
 from effects.lower.vertex import (PHONG_SLOTS, LightSetup, TexCoordSetup, VertexSetup,
-                                   lower_pixel_lighting, lower_vertex)
+                                   lower_pixel_lighting, lower_vertex, pixel_lighting)
 from effects.model import (CompileShader, Effect, NullValue, Parameter, ParamRef,
                     RecordedReads, ShaderBlock, StateAssignment, Technique, still_holds)
 from effects.passprogram import PassProgram, RenderState, TextureBinding
@@ -163,19 +163,21 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     if isinstance(pixel_shader, CompileShader) or isinstance(vertex_shader, CompileShader):
         state = state.copy()   # the compiled shader binds its samplers (may be the validation's state)
 
-    lit = None
+    lit = lighting = None
     if pixel_shader is None:
         fb = Builder("fragment")
         stages = read_stages(effect, state)
         if vertex_shader is None and _per_pixel_lighting(state):
-            lit = lower_pixel_lighting(read_vertex(effect, state, [], fog, vertex_colors),
-                                       uniforms, fb)
+            lit_setup = read_vertex(effect, state, [], fog, vertex_colors)
+            lit = lower_pixel_lighting(lit_setup, uniforms, fb)
         inputs = FragmentInputs(tfactor=state.get_color("TextureFactor"),
                                 specular_enable=state.get_bool("SpecularEnable"),
                                 uniforms=uniforms, lit=lit)
         color = lower_cascade(fb, stages, inputs, options)
         fb.output("color0", apply_fog(fb, color, fog, uniforms, options))
         fragment = fb.build()
+        if lit is not None:     # the lit values by their numbers in the built program
+            lighting = pixel_lighting(lit_setup, *(fb.renumbered.get(v) for v in lit))
     else:
         if fog.source != "none":
             raise EffectError("fog after a pixel shader is not lowered yet",
@@ -222,7 +224,8 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     return PassProgram(fragment=fragment, vertex=vertex, render_state=read_render_state(state),
                        textures=textures,
                        uniforms=PassProgram.pack_uniforms(
-                           {k: v for k, v in uniforms.items() if k in declared}))
+                           {k: v for k, v in uniforms.items() if k in declared}),
+                       lighting=lighting)
 
 
 def _shader(state: DeviceState, name: str) -> Any:

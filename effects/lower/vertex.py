@@ -33,6 +33,7 @@ import numpy as np
 
 from effects.ir import Builder
 from effects.lower.stages import FogSetup, fog_factor
+from effects.passprogram import DirectionalLight, PixelLighting
 from effects.stage_ops import TTFF_COUNT_MASK
 
 Vec4 = tuple[float, float, float, float]
@@ -357,6 +358,38 @@ def lower_pixel_lighting(setup: VertexSetup, uniforms: dict[str, tuple[float, ..
     lighting = _PixelLighting(setup, uniforms, builder)
     diffuse, specular = lighting.colors()
     return builder.saturate(diffuse), builder.saturate(specular)
+
+
+def pixel_lighting(setup: VertexSetup, diffuse_value: int | None,
+                   specular_value: int | None) -> PixelLighting | None:
+    """The per-pixel lighting of `setup` as data (`PixelLighting`), naming the fragment
+    program's lit values; None where the model is not the one the data describes: a light
+    that is not directional (L varies over the triangle) or a material colour read from the
+    vertex colours (ColorVertex with a COLOR1/COLOR2 source)."""
+    s = setup
+    if not s.specular_enable:
+        specular_value = None
+    if diffuse_value is None and specular_value is None:   # the program reads neither
+        return None
+    if any(light.type != "DIRECTIONAL" for light in s.lights):
+        return None
+    sources = [s.diffuse_source, s.ambient_source, s.emissive_source]
+    if s.specular_enable:
+        sources.append(s.specular_source)
+    if s.color_vertex and any(src in ("COLOR1", "COLOR2") for src in sources):
+        return None
+    view3 = np.asarray(s.view, np.float64)[:3, :3]
+    ambient = np.array(s.ambient, np.float64)
+    lights = []
+    for light in s.lights:
+        ambient = ambient + np.array(light.ambient, np.float64)   # attenuation 1
+        to_light = _unit(-np.asarray(light.direction, np.float64) @ view3)
+        lights.append(DirectionalLight(to_light, _vec4(light.diffuse), _vec4(light.specular)))
+    base = np.array(s.material_ambient, np.float64) * ambient + np.array(s.material_emissive)
+    return PixelLighting(diffuse_value, specular_value,
+                         PHONG_NORMAL, PHONG_EYE, tuple(lights), _vec4(base),
+                         _vec4(s.material_diffuse), _vec4(s.material_specular),
+                         float(s.material_power), bool(s.local_viewer))
 
 
 def _unit(v: np.ndarray) -> tuple[float, float, float]:
