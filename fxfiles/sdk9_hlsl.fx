@@ -3,9 +3,13 @@
 // hardware generation by the technique that uses them, the best first. `uniform bool
 // Specular` is a compile-time argument: the ps_2_0 build has the specular term, the ps_1_x
 // builds leave it out (fxc could not fit pow() there). Each compile is judged against its own
-// target; this framework's HLSL compiler does not generate ps_1_x code yet, so those two
-// techniques are rejected with that reason and DX8 cards fall back to the fixed-function
-// technique (written by hand, as the SDK samples did for DX7 cards).
+// target: ps_1_4 runs on the Radeon 8500, ps_1_1 on the GeForce3/4 Ti, and DX7 cards fall back
+// to the fixed-function technique (written by hand, as the SDK samples did for DX7 cards).
+//
+// `uniform bool Biased` is the DX8 half of the chain: a ps_1_x shader cannot renormalise
+// (no rsq) and ps_1_1-1_3 read a texture coordinate as a value through `texcoord`, which clamps
+// it to [0, 1]; so the vs_1_1 builds write the unit normal biased into [0, 1] and the pixel
+// function expands it with 2 * n - 1, which compiles to the _bx2 source modifier.
 
 float4x4 WorldViewProjection : WORLDVIEWPROJECTION;
 float4x4 World               : WORLD;
@@ -39,13 +43,15 @@ struct VS_OUTPUT
     float3 ToEye    : TEXCOORD2;   // world space
 };
 
-VS_OUTPUT SceneVS(float4 Pos : POSITION, float3 Normal : NORMAL, float2 Tex : TEXCOORD0)
+VS_OUTPUT SceneVS(float4 Pos : POSITION, float3 Normal : NORMAL, float2 Tex : TEXCOORD0,
+                  uniform bool Biased)
 {
     VS_OUTPUT o;
     float3 worldPos = mul(Pos, World).xyz;
+    float3 n = mul(Normal, (float3x3)World);
     o.Position = mul(Pos, WorldViewProjection);
     o.Tex      = Tex;
-    o.Normal   = mul(Normal, (float3x3)World);
+    o.Normal   = Biased ? normalize(n) * 0.5 + 0.5 : n;
     o.ToEye    = EyePosition.xyz - worldPos;
     return o;
 }
@@ -53,7 +59,8 @@ VS_OUTPUT SceneVS(float4 Pos : POSITION, float3 Normal : NORMAL, float2 Tex : TE
 float4 ScenePS(float2 Tex : TEXCOORD0, float3 Normal : TEXCOORD1, float3 ToEye : TEXCOORD2,
                uniform bool Specular) : COLOR0
 {
-    float3 N = normalize(Normal);
+    // ps_2_0 renormalises the interpolated normal; ps_1_x expands the biased one (_bx2)
+    float3 N = Specular ? normalize(Normal) : 2 * Normal - 1;
     float diffuse = saturate(dot(N, LightDirection));
     float4 color = tex2D(DiffuseSampler, Tex) * (MaterialAmbient + MaterialDiffuse * diffuse);
     if (Specular)
@@ -72,7 +79,7 @@ technique Scene_ps20
 {
     pass P0
     {
-        VertexShader = compile vs_2_0 SceneVS();
+        VertexShader = compile vs_2_0 SceneVS(false);
         PixelShader  = compile ps_2_0 ScenePS(true);
     }
 }
@@ -84,7 +91,7 @@ technique Scene_ps14
 {
     pass P0
     {
-        VertexShader = compile vs_1_1 SceneVS();
+        VertexShader = compile vs_1_1 SceneVS(true);
         PixelShader  = compile ps_1_4 ScenePS(false);
     }
 }
@@ -96,7 +103,7 @@ technique Scene_ps11
 {
     pass P0
     {
-        VertexShader = compile vs_1_1 SceneVS();
+        VertexShader = compile vs_1_1 SceneVS(true);
         PixelShader  = compile ps_1_1 ScenePS(false);
     }
 }

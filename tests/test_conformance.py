@@ -129,6 +129,8 @@ BOUNDS = {
     ("sdk9_style.fx", "Marble_dx7"): Bound("lod", _LOD),
     ("sdk9_hlsl.fx", "Scene_ps20"): Bound("lod", _LOD + "; pow() amplifies it"),
     ("sdk9_hlsl.fx", "Scene_ff"): Bound("lod", _LOD),
+    ("sdk9_hlsl.fx", "Scene_ps14"): Bound("lod", _LOD),
+    ("sdk9_hlsl.fx", "Scene_ps11"): Bound("lod", _LOD),
     ("sdk9_style.fx", "Marble_ps20"): Bound(
         "lod", _LOD + "; the vein ramp is read at a filtered noise value, as in Marble_ps11 "
         "(see 3.): a few pixels within 8/255", max_abs=8, outliers=4),

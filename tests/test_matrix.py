@@ -63,9 +63,10 @@ EXPECTED = {
     "sdk8_style": row(dx6=("TDX6", 1), dx7=("TFF7", 1), geforce3=("TPS1", 1),
                       geforce4ti=("TPS1", 1), radeon8500=("TPS4", 1), dx9=("TPS4", 1)),
     # Marble_ps20 and Wood_ps20 compile HLSL (vs_1_1 + ps_2_0): every DX9 card runs them.
-    # one HLSL function per stage, compiled for vs_2_0/ps_2_0, vs_1_1/ps_1_4 and ps_1_1: the
-    # ps_1_x builds are refused (no ps_1_x code generator yet), so DX8 cards take Scene_ff
-    "sdk9_hlsl": row(dx6=("Scene_ff", 1), dx7=("Scene_ff", 1), dx8=("Scene_ff", 1),
+    # one HLSL function per stage, compiled for vs_2_0/ps_2_0, vs_1_1/ps_1_4 and ps_1_1: each
+    # DX8 card runs the ps_1_x build its pixel shader version has
+    "sdk9_hlsl": row(dx6=("Scene_ff", 1), dx7=("Scene_ff", 1), geforce3=("Scene_ps11", 1),
+                     geforce4ti=("Scene_ps11", 1), radeon8500=("Scene_ps14", 1),
                      dx9=("Scene_ps20", 1)),
     "sdk9_style": row(dx6=("Marble_dx6", 1), dx7=("Marble_dx7", 1), dx8=("Marble_ps11", 1),
                       dx9=("Marble_ps20", 2)),

@@ -22,6 +22,7 @@ from effects.shaders.asm import AsmProgram, assemble
 from effects.shaders.hlsl.calls import parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.codegen import CodeGen
+from effects.shaders.hlsl.codegen_ps1 import generate_ps1
 from effects.shaders.hlsl.context import Context, load_context
 from effects.shaders.hlsl.dag import Node, Operand, reachable
 from effects.shaders.hlsl.evaluate import Evaluator, Frame
@@ -92,12 +93,8 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
     if not fdefs:
         raise HlslError(f"X3501: '{entry}': entrypoint not found", where)
     fdef = fdefs[0]
-    if ctx.target.rules.is_ps1:
-        # ps_1_x has no dcl, no oC#, a texture read per texcoord register and fixed-point
-        # arithmetic: a separate code generator that is not written yet
-        raise fdef.origin.error(f"the HLSL compiler does not generate {ctx.target.name} code yet "
-                                "(it does vs_1_1-vs_3_0 and ps_2_0-ps_3_0); compile the function "
-                                "for ps_2_0 or write the ps_1_x shader in assembly", fdef.tree)
+    if ctx.target.name == "ps_1_0":
+        raise HlslError("X3507: fxc compiles HLSL for ps_1_1 and later, not ps_1_0", where)
     ev = Evaluator(ctx, fdef.origin)
     rtype = return_type(ctx, fdef)
     ev.frames.append(Frame(rtype))
@@ -153,9 +150,13 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
     constants, sizes = _constant_registers(ctx, nodes)
     samplers = {name: int(b[1:]) for name in ctx.samplers_used
                 if (b := _explicit(ctx, name, "s")) is not None}
-    cg = CodeGen(ctx, binder.dcls, outputs, constants, samplers, sizes)
-    cg.output_dcls = binder.output_dcls  # type: ignore[attr-defined]
-    generated = cg.generate()
+    if ctx.target.rules.is_ps1:
+        # no dcl, no oC#, one texture read per stage, modifiers: a generator of its own
+        generated = generate_ps1(ctx, outputs, constants, samplers, sizes)
+    else:
+        cg = CodeGen(ctx, binder.dcls, outputs, constants, samplers, sizes)
+        cg.output_dcls = binder.output_dcls  # type: ignore[attr-defined]
+        generated = cg.generate()
     text = "\n".join(generated.lines) + "\n"
     program = _assemble(text, ctx, generated.lines, generated.locations, fdef, where)
     return CompiledShader(entry, ctx.target.name, text, program, generated.constants,

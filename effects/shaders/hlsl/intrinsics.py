@@ -97,7 +97,7 @@ def _lerp(ev: Any, args: list[Value], loc: Location) -> Value:
     a, b, s = args
     ca, cb, t = ev.a.broadcast(a, b, loc, "lerp")
     cs = s.comps * len(ca) if len(s.comps) == 1 else s.comps[:len(ca)]
-    if ev.ctx.target.has("lrp") and not ev.ctx.target.rules.is_ps1:
+    if ev.ctx.target.has("lrp"):
         return Value(t, ev.a.lanes("lrp", [cs, cb, ca], loc))
     diff = ev.a.lanes("add", [cb, [x.neg() for x in ca]], loc)
     return Value(t, ev.a.lanes("mad", [cs, diff, ca], loc))

@@ -70,6 +70,10 @@ def constant_values(effect: Effect, shader: Any) -> dict[int, Row]:
         t = shader.types.get(name)
         flat = parameter_numbers(effect, name) if not name.startswith("$") else None
         rows = _rows(t, flat)[0] if (t is not None and flat is not None) else []
+        if rows and t is not None and t.kind == "scalar" and shader.target.startswith("ps_1"):
+            # ps_1_1-1_3 cannot select .x of a register: a scalar is loaded replicated (what
+            # D3DX's preshader did for DX8 targets), and codegen_ps1 reads it so
+            rows = [(rows[0][0],) * 4]
         for k in range(count):
             out[start + k] = rows[k] if k < len(rows) else (0.0, 0.0, 0.0, 0.0)
     return out

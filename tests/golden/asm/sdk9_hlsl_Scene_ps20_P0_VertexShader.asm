@@ -5,13 +5,13 @@ dcl_texcoord v2
 dp4 r0.x, v0, c0
 dp4 r1.x, v0, c1
 dp4 r2.x, v0, c2
+dp3 oT1.x, v1, c0
+dp3 oT1.y, v1, c1
+dp3 oT1.z, v1, c2
 dp4 oPos.x, v0, c4
 dp4 oPos.y, v0, c5
 dp4 oPos.z, v0, c6
 dp4 oPos.w, v0, c7
-dp3 oT1.x, v1, c0
-dp3 oT1.y, v1, c1
-dp3 oT1.z, v1, c2
 mov r3.x, -r0
 mov r3.y, -r1.x
 mov r3.z, -r2.x

@@ -1,0 +1,798 @@
+"""ps_1_1–ps_1_4 code generation: what fxc made of a simple HLSL pixel function for DX8 cards.
+
+The DAG (dag.py) is mapped onto the DX8 pixel pipeline (semantics.md §2):
+- texture reads come first: `tex t#` samples stage # at TEXCOORD# (ps_1_1–1_3); `texld r#, t#`
+  samples stage # into r# (ps_1_4), and a read at computed coordinates is a phase-2
+  `texld r#, r#` after `phase` (one level of dependent read, the only one ps_1_4 has);
+- a TEXCOORD read as a value is `texcoord t#` (clamped to [0, 1]: a located warning) or
+  `texcrd r#.rgb, t#`; COLOR inputs are v0/v1; uniforms are c0–c7 and literals `def`
+  constants, which must lie in [-1, 1] (the ps_1_x constant range);
+- add, mul, mad, lrp, dp3, dp4 (1_2+), cmp (1_2+) and mov, with the idioms of ps1_idioms.py
+  as source modifiers, result shifts and `_sat`; a scalar is held replicated in every lane (dp3
+  writes it so), since ps_1_1–1_3 read no component but .a and .b alone (dp3 with a unit vector
+  extracts one);
+- vectors built from parts (`float4(c.rgb, 1)`) are written through the .rgb/.a masks, with
+  mul/mad by 0/1 masks where lanes of one .rgb group come from different values;
+- the result goes to r0; temporaries are r0–r1 (r0–r5 in ps_1_4), allocated by live range.
+Anything else is X4532 ("cannot map expression to pixel shader instruction set", fxc's words)
+at the HLSL expression; slot counts are left to the assembler's checks like hand-written code.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from effects.errors import EffectWarning, Location, UNKNOWN_LOCATION
+from effects.shaders.hlsl.asmcode import Generated, Output, Reg
+from effects.shaders.hlsl.context import Context
+from effects.shaders.hlsl.dag import Node, Operand, reachable
+from effects.shaders.hlsl.parse import HlslError
+from effects.shaders.hlsl.ps1_idioms import power_of_two, source_idiom
+
+RGBA = "rgba"
+FULL = (0, 1, 2, 3)
+_SHIFT_TEXT = {1: "_x2", 2: "_x4", 3: "_x8", -1: "_d2", -2: "_d4", -3: "_d8"}
+_LANEWISE = {"add", "mul", "mad", "lrp", "cmp"}
+# DAG ops ps_1_x has no instruction for: what the message names
+_REFUSED = {
+    "rcp": "per-pixel division or sqrt (rcp)", "rsq": "normalize, length or rsqrt (rsq)",
+    "nrm": "normalize (nrm)", "exp": "exp/exp2 (exp)", "log": "log/log2 (log)",
+    "pow": "pow of a non-constant exponent", "frc": "frac/floor/fmod (frc)",
+    "min": "min (or a clamp/comparison built on it)", "max": "max (or a clamp/comparison built on it)",
+    "abs": "abs", "slt": "comparison instruction (cmp needs ps_1_2)", "sge": "comparison instruction (cmp needs ps_1_2)",
+    "dsx": "ddx", "dsy": "ddy", "crs": "cross (crs)", "sincos": "sin/cos", "dp2add": "dp2add",
+    "texldp": "tex2Dproj", "texldb": "tex2Dbias", "texldl": "tex2Dlod", "texldd": "tex2Dgrad",
+}
+
+
+class RegisterConflict(Exception):
+    """Two values pinned to one register are live at once (retried with r0 written last)."""
+
+
+@dataclass
+class Src:
+    reg: Reg
+    lane: int | None = None        # a replicated lane (.a, .b; .r/.g in ps_1_4); None: as held
+    mod: str = ""                  # bx2 | bias | x2 | invert
+    neg: bool = False
+
+
+@dataclass
+class Ins:
+    opcode: str
+    dst: Reg | None
+    mask: tuple[int, ...]
+    srcs: list[Src]
+    loc: Location = UNKNOWN_LOCATION
+    shift: int = 0
+    sat: bool = False
+    texture: bool = False
+    coissue: bool = False
+
+
+@dataclass
+class Home:
+    reg: Reg
+    scalar: bool = False           # replicated in every lane
+    phase: int = 2
+    lanes: int = 4                 # lanes that hold the value (texcrd: .rgb)
+    mask: tuple[int, ...] | None = None   # the mask it is written with (coalesced outputs)
+
+
+@dataclass
+class _State:
+    alias: dict[int, Operand] = field(default_factory=dict)    # shift/sat absorbed: the producer
+    folded: dict[int, tuple[Operand, str]] = field(default_factory=dict)   # source modifiers
+    shift: dict[int, int] = field(default_factory=dict)
+    sat: set[int] = field(default_factory=set)
+
+
+class Ps1CodeGen:
+    def __init__(self, ctx: Context, outputs: list[Output], constant_registers: dict[str, int],
+                 register_sizes: dict[str, int], sampler_registers: dict[str, int]) -> None:
+        self.ctx = ctx
+        self.v = ctx.target.name
+        self.rules = ctx.target.rules
+        self.ps14 = self.rules.is_ps14
+        self.outputs = outputs
+        self.const_regs = dict(constant_registers)
+        self.sizes = register_sizes
+        self.explicit_samplers = sampler_registers
+
+    # -- driver ---------------------------------------------------------------------------------
+    def generate(self) -> Generated:
+        try:
+            return self._generate(out_direct=True)
+        except RegisterConflict:
+            return self._generate(out_direct=False)
+
+    def _generate(self, out_direct: bool) -> Generated:
+        self.instrs: list[Ins] = []
+        self.home: dict[int, Home] = {}
+        self.defs: dict[int, list[float | None]] = {}
+        self.precolor: dict[int, int] = {}
+        self.vr_loc: dict[int, Location] = {}
+        self.next_vr = 0
+        self.samplers: dict[str, int] = {}
+        self.used_uniforms: set[str] = set()
+        self.extracted: dict[tuple[int, int], Home] = {}
+        self.phase = 2
+        self.s = _State()
+        self._input_homes: dict[str, Home] = {}
+        out = self._the_output()
+        if self.ctx.kills:
+            self.fail("clip/discard (texkill reads texture coordinates only)", self.ctx.kills[0].node.location)
+        comps = list(out.comps) + [out.comps[-1]] * (4 - len(out.comps))
+        nodes = reachable([c.node for c in comps])
+        self.readers = _readers(nodes, comps)
+        if _combine(nodes, self.readers):
+            nodes = reachable([c.node for c in comps])
+            self.readers = _readers(nodes, comps)
+        self._analyse(nodes)
+        p1 = self._p1 = self._phase_one(nodes)
+        self.out_home = Home(Reg("vr", self.temp(out.location, pin=0 if out_direct else None)))
+        pending = self._coalesce_output(comps, out.location)
+        live = self._live(comps)
+        arith = [n for n in nodes if self._emitted(n) and n.id in live]
+        tex = [n for n in nodes if n.op == "tex" and n.id in live]
+        values = self._inputs_read_as_values(arith, comps)
+        if p1:
+            self.phase = 1
+            self._textures([n for n in tex if n.id in p1], {k: w for k, w in values.items() if w == 1})
+            for n in arith:
+                if n.id in p1:
+                    self.compute(n)
+            self.instrs.append(Ins("phase", None, (), [], texture=True))
+            self.phase = 2
+        self._textures([n for n in tex if n.id not in p1],
+                       {k: w for k, w in values.items() if k not in self._input_homes})
+        for n in arith:
+            if n.id not in p1:
+                self.compute(n)
+        self.assemble_lanes(self.out_home, pending, out.location)
+        if not out_direct:
+            self.instrs.append(Ins("mov", Reg("vr", self.temp(out.location, pin=0)), FULL,
+                                   [Src(self.out_home.reg)], out.location))
+        return self._text()
+
+    def fail(self, what: str, loc: Location) -> HlslError:
+        raise HlslError(f"X4532: cannot map expression to pixel shader instruction set: {self.v} "
+                        f"has no {what}", loc)
+
+    def refuse(self, message: str, loc: Location) -> HlslError:
+        raise HlslError(f"X4532: cannot map expression to pixel shader instruction set: "
+                        f"{message}", loc)
+
+    def temp(self, loc: Location, pin: int | None = None) -> int:
+        self.next_vr += 1
+        vr = self.next_vr - 1
+        self.vr_loc[vr] = loc
+        if pin is not None:
+            self.precolor[vr] = pin
+        return vr
+
+    def _the_output(self) -> Output:
+        for o in self.outputs:
+            if o.register != "oC0":
+                what = "a depth output" if o.register == "oDepth" else f"a second colour output ({o.register})"
+                self.fail(f"{what}: ps_1_x writes only r0", o.location)
+        return self.outputs[0]
+
+    # -- analysis -------------------------------------------------------------------------------
+    def _analyse(self, nodes: list[Node]) -> None:
+        """Which nodes fold into their readers' source modifiers and which into their
+        producer's shift or _sat (fxc's modifier idioms)."""
+        for n in nodes:
+            if n.op in ("const", "input", "uniform", "tex", "pack"):
+                continue
+            if n.op == "mul" and self._shift_absorbed(n):
+                continue             # a shift of its producer before an x2 source modifier
+            idiom = source_idiom(n, self.v)
+            if idiom is not None and self._can_fold(n, *idiom):
+                self.s.folded[n.id] = idiom
+            elif n.op == "sat" and self._absorbs(n.args[0], n, lambda p: p.id not in self.s.sat):
+                self.s.alias[n.id] = n.args[0]
+                self.s.sat.add(self.resolve(n.args[0])[0].node.id)
+
+    def _shift_absorbed(self, n: Node) -> bool:
+        """y * 2^k as y's own instruction shift (mul_x2, add_d2 ...) where nothing else reads y."""
+        for y, k in ((n.args[0], n.args[1]), (n.args[1], n.args[0])):
+            shift = power_of_two(k.const_values(), self.rules.shifts)
+            if shift is not None and self._absorbs(y, n, lambda p: p.id not in self.s.shift
+                                                   and p.id not in self.s.sat):
+                self.s.alias[n.id] = y
+                self.s.shift[self.resolve(y)[0].node.id] = shift
+                return True
+        return False
+
+    def _live(self, comps: list[Operand]) -> set[int]:
+        """The nodes the result reads once modifiers are folded (an idiom's own mul or add
+        is not computed)."""
+        live: set[int] = set()
+        stack = [self.resolve(c)[0].node for c in comps]
+        while stack:
+            n = stack.pop()
+            if n.id not in live:
+                live.add(n.id)
+                stack.extend(self.resolve(a)[0].node for a in n.args)
+        return live
+
+    def _can_fold(self, n: Node, x: Operand, mod: str) -> bool:
+        base, inner_mod = self.resolve(x)
+        if inner_mod or base.node.op == "const":
+            return False
+        if self.ps14 and base.node.op == "uniform":
+            return False             # ps_1_4 takes no source modifier on a constant
+        for reader, op in self.readers.get(n.id, []):
+            if reader is not None and reader.op in ("tex",) + tuple(_REFUSED):
+                return False
+            if mod == "invert" and op.negate:
+                return False
+        return True
+
+    def _absorbs(self, y: Operand, n: Node, free) -> bool:
+        """Whether `n` (a shift or saturate of y) can be y's own instruction modifier."""
+        base, mod = self.resolve(y)
+        p = base.node
+        if mod or base.negate or p.op in ("const", "input", "uniform", "tex", "pack") \
+                or p.op in _REFUSED or base.swizzle != tuple(range(p.width)) or y.width != p.width:
+            return False
+        users = self._readers_through_aliases(p)
+        return len(users) == 1 and users[0] is n and free(p)
+
+    def _readers_through_aliases(self, node: Node) -> list[Node | None]:
+        out: list[Node | None] = []
+        for reader, _ in self.readers.get(node.id, []):
+            if reader is not None and reader.id in self.s.alias:
+                out.extend(self._readers_through_aliases(reader))
+            else:
+                out.append(reader)
+        return out
+
+    def resolve(self, op: Operand) -> tuple[Operand, str]:
+        """The operand a reader really reads (through absorbed shifts/saturates) and the
+        source modifier it reads it with."""
+        op = self._unalias(op)
+        hit = self.s.folded.get(op.node.id)
+        if hit is None:
+            return op, ""
+        inner, mod = hit
+        picked = inner.pick(op.swizzle)
+        return self._unalias(Operand(picked.node, picked.swizzle, op.negate)), mod
+
+    def _unalias(self, op: Operand) -> Operand:
+        while op.node.id in self.s.alias:
+            target = self.s.alias[op.node.id].pick(op.swizzle)
+            op = Operand(target.node, target.swizzle, op.negate != target.negate)
+        return op
+
+    def _emitted(self, n: Node) -> bool:
+        return n.op not in ("const", "input", "uniform", "tex") and n.id not in self.s.folded \
+            and n.id not in self.s.alias and not (n.op in _REFUSED and n.op.startswith("tex"))
+
+    def _phase_one(self, nodes: list[Node]) -> set[int]:
+        """ps_1_4: the nodes a dependent read's coordinates need (phase 1)."""
+        p1: set[int] = set()
+        for n in nodes:
+            if n.op in _REFUSED and n.op.startswith("tex"):
+                self.fail(_REFUSED[n.op], n.location)
+            if n.op != "tex":
+                continue
+            coord, _ = self.resolve(n.args[0])
+            if coord.node.op == "input":
+                continue
+            if not self.ps14:
+                self.fail("texture read at computed coordinates (a dependent read needs ps_1_4, "
+                          "or the texbem/texm3x* instructions fxc did not generate)", n.location)
+            stack = [coord.node]
+            while stack:
+                m = stack.pop()
+                if m.id in p1:
+                    continue
+                if m.op == "tex" and self.resolve(m.args[0])[0].node.op != "input":
+                    self.refuse(f"{self.v} allows one level of dependent texture read; this read's "
+                                "coordinates come from another dependent read", n.location)
+                if m.op == "input" and m.key[1].startswith("v"):
+                    self.refuse(f"{self.v} reads colour inputs (v#) only in phase 2, after the "
+                                "dependent reads", m.location)
+                p1.add(m.id)
+                if m.op != "tex":
+                    stack.extend(a.node for a in m.args)
+        return p1
+
+    def _inputs_read_as_values(self, arith: list[Node], comps: list[Operand]) -> dict[str, int]:
+        """t# inputs read by arithmetic: register -> first phase that reads them."""
+        found: dict[str, int] = {}
+        p1 = self._p1
+
+        def visit(op: Operand, phase: int) -> None:
+            base, _ = self.resolve(op)
+            if base.node.op == "input" and base.node.key[1].startswith("t"):
+                found[base.node.key[1]] = min(found.get(base.node.key[1], 2), phase)
+        for n in arith:
+            for a in n.args:
+                visit(a, 1 if n.id in p1 else 2)
+        for c in comps:
+            visit(c, 2)
+        return found
+
+    def _coalesce_output(self, comps: list[Operand], loc: Location) -> list[tuple[int, Operand]]:
+        """Compute a value straight into r0 where it fills whole .rgb/.a/.rgba of the result."""
+        by: dict[int, list[int]] = {}
+        for lane, c in enumerate(comps):
+            base, mod = self.resolve(c)
+            if not mod and not base.negate and (base.swizzle[0] == lane or base.node.width == 1):
+                by.setdefault(base.node.id, []).append(lane)
+        done: set[int] = set()
+        for lanes_of in by.values():
+            lanes = tuple(lanes_of)
+            base = self.resolve(comps[lanes[0]])[0].node
+            if not self._emitted(base) or base.op == "pack" or base.id in self.home:
+                continue
+            mask = self._mask_for_lanes(lanes)
+            if mask is None or not self._only_output_reads(base):
+                continue
+            if base.op in ("dp3", "dp4") and mask == (3,) and not self.ps14:
+                continue
+            self.home[base.id] = Home(self.out_home.reg, base.width == 1, mask=mask)
+            done.update(lanes)
+        return [(lane, c) for lane, c in enumerate(comps) if lane not in done]
+
+    def _only_output_reads(self, node: Node) -> bool:
+        return all(r is None for r in self._readers_through_aliases(node))
+
+    def _mask_for_lanes(self, lanes: tuple[int, ...]) -> tuple[int, ...] | None:
+        if self.ps14:
+            return tuple(sorted(lanes))
+        s = set(lanes)
+        return (0, 1, 2) if s == {0, 1, 2} else (3,) if s == {3} else FULL if s == set(FULL) else None
+
+    def mask_for(self, width: int) -> tuple[int, ...]:
+        if width in (1, 4):
+            return FULL
+        return tuple(range(width)) if self.ps14 else (0, 1, 2)
+
+    # -- textures -------------------------------------------------------------------------------
+    def _textures(self, tex: list[Node], values: dict[str, int]) -> None:
+        for n in tex:
+            self._sample(n)
+        for reg in sorted(values):
+            m = int(reg[1:])
+            if self.ps14:
+                vr = self.temp(UNKNOWN_LOCATION)
+                self.instrs.append(Ins("texcrd", Reg("vr", vr), (0, 1, 2), [Src(Reg("t", m))], texture=True))
+                self._input_homes[reg] = Home(Reg("vr", vr), phase=self.phase, lanes=3)
+                continue
+            if any(self.home.get(t.id) and self.home[t.id].reg.kind == "t" and self.home[t.id].reg.index == m
+                   for t in tex):
+                self.refuse(f"TEXCOORD{m} is both sampled and read as a value; {self.v} loads each "
+                            f"t register once (tex or texcoord)", self._input_loc(reg, reader=True))
+            self.instrs.append(Ins("texcoord", Reg("t", m), FULL, [], texture=True))
+            self._input_homes[reg] = Home(Reg("t", m))
+            # a located warning: the value read is clamped, unlike in HLSL
+            warning = EffectWarning(f"{self.v} reads TEXCOORD{m} as a value through texcoord, which "
+                                    "clamps it to [0, 1]", self._input_loc(reg))
+            if warning not in self.ctx.warnings:
+                self.ctx.warnings.append(warning)
+
+    def _input_loc(self, reg: str, reader: bool = False) -> Location:
+        """Where the input is declared, or (reader) the first expression reading it as a value."""
+        for n in self.ctx.graph.nodes:
+            if n.op == "input" and n.key[1] == reg:
+                users = [r for r, _ in self.readers.get(n.id, []) if r is not None and r.op != "tex"]
+                return users[0].location if reader and users else n.location
+        return UNKNOWN_LOCATION
+
+    def _sample(self, n: Node) -> None:
+        name = n.key[0]
+        coord, mod = self.resolve(n.args[0])
+        explicit = self.explicit_samplers.get(name)
+        if not self.ps14:
+            m = int(coord.node.key[1][1:]) if coord.node.op == "input" and \
+                coord.node.key[1].startswith("t") else -1
+            if m < 0 or mod or coord.negate or coord.swizzle != tuple(range(coord.width)):
+                self.fail("texture read at this coordinate: ps_1_1-1_3 sample stage # at TEXCOORD# "
+                          "as interpolated (no swizzle, modifier or colour input)", n.location)
+            stage, dst = m, Reg("t", m)
+            ins = Ins("tex", dst, FULL, [], n.location, texture=True)
+        else:
+            taken = set(self.samplers.values()) | {s for s in self.explicit_samplers.values()}
+            stage = explicit if explicit is not None else next(
+                (k for k in range(6) if k not in taken), 6)
+            if stage > 5:
+                self.refuse(f"{self.v} has 6 texture stages; this is the 7th texture read", n.location)
+            dst = Reg("vr", self.temp(n.location, pin=stage))
+            if coord.node.op == "input":
+                if not coord.node.key[1].startswith("t"):
+                    self.fail("texture read at colour-input coordinates", n.location)
+                src = Src(Reg("t", int(coord.node.key[1][1:])))
+            else:
+                home = self.home.get(coord.node.id)
+                if home is None or mod or coord.negate or coord.swizzle != tuple(range(coord.width)):
+                    self.fail("dependent read at coordinates with a swizzle or modifier", n.location)
+                src = Src(home.reg)
+            ins = Ins("texld", dst, FULL, [src], n.location, texture=True)
+        if explicit is not None and explicit != stage:
+            self.refuse(f"sampler '{name}' is bound to s{explicit}, but {self.v} samples it at "
+                        f"stage {stage}", n.location)
+        if self.samplers.get(name, stage) != stage or any(
+                s == stage and k != name for k, s in self.samplers.items()):
+            self.refuse(f"sampler '{name}' is read at two texture stages; each {self.v} stage has "
+                        "one sampler (use one coordinate per sampler)", n.location)
+        self.samplers[name] = stage
+        self.instrs.append(ins)
+        self.home[n.id] = Home(dst, phase=self.phase)
+
+    # -- arithmetic -----------------------------------------------------------------------------
+    def compute(self, n: Node) -> None:
+        op = n.op
+        if op in _REFUSED:
+            self.fail(_REFUSED[op], n.location)
+        home = self.home.get(n.id)
+        if home is None:
+            home = Home(Reg("vr", self.temp(n.location)), n.width == 1, self.phase)
+            self.home[n.id] = home
+        if op == "pack":
+            self.assemble_lanes(home, list(enumerate(n.args)), n.location)
+            return
+        mask = home.mask or self.mask_for(n.width)
+        home.phase = self.phase
+        shift, sat = self.s.shift.get(n.id, 0), n.id in self.s.sat
+        if op == "sat":
+            op, sat, args = "mov", True, [n.args[0]]
+        elif op == "mul" and self._scaled(n) is not None:
+            y, k, s = self._scaled(n)  # type: ignore[misc]
+            shift += s
+            args = [y] if k is None else [y, k]
+            op = "mov" if k is None else "mul"
+        else:
+            args = list(n.args)
+        if op in ("dp3", "dp4"):
+            if op == "dp4" and not self.ctx.target.has("dp4"):
+                self.fail("dp4 (a 4-component dot product needs ps_1_2)", n.location)
+            width = int(op[2])
+            srcs = [self.read(a, {i: i for i in range(width)}, n.location) for a in args]
+        elif op in _LANEWISE or op == "mov":
+            if op == "cmp" and not self.ctx.target.has("cmp"):
+                self.fail("cmp (a select or comparison needs ps_1_2)", n.location)
+            need = {lane: (0 if n.width == 1 else lane) for lane in mask if n.width == 1 or lane < n.width}
+            srcs = [self.read(a, need, n.location) for a in args]
+        else:
+            self.fail(op, n.location)
+        if op == "add" and self.ps14:
+            op, srcs = _sub_for_negated_constant(op, srcs)
+        self.emit(Ins(op, home.reg, mask, srcs, n.location, shift, sat))
+
+    def _scaled(self, n: Node) -> tuple[Operand, Operand | None, int] | None:
+        """mul by a literal outside [-1, 1]: (y, the literal scaled into range or None, shift)."""
+        for y, k in ((n.args[0], n.args[1]), (n.args[1], n.args[0])):
+            vals = k.const_values()
+            if vals is None or y.node.op == "const":
+                continue
+            s = power_of_two(vals, self.rules.shifts)
+            if s is not None:
+                return y, None, s
+            big = max(abs(v) for v in vals)
+            if big <= 1:
+                return None
+            for s in sorted(x for x in self.rules.shifts if x > 0):
+                if big / 2 ** s <= 1:
+                    g = self.ctx.graph
+                    return y, g.const(tuple(v / 2 ** s for v in vals)), s
+        return None
+
+    def emit(self, ins: Ins) -> None:
+        """Append, reading extra constants/inputs through a mov when an instruction reads more
+        distinct registers of a kind than the version's read ports allow."""
+        for kind in ("c", "v", "t"):
+            limit = self.rules.read_ports.get(kind)
+            seen: list[int | None] = []
+            for k, s in enumerate(ins.srcs):
+                if s.reg.kind != kind or s.reg.index in seen:
+                    continue
+                if limit is not None and len(seen) >= limit:
+                    vr = self.temp(ins.loc)
+                    self.instrs.append(Ins("mov", Reg("vr", vr), FULL, [Src(s.reg)], ins.loc))
+                    for other in ins.srcs:
+                        if other.reg == s.reg:
+                            other.reg = Reg("vr", vr)
+                    continue
+                seen.append(s.reg.index)
+        self.instrs.append(ins)
+
+    # -- sources --------------------------------------------------------------------------------
+    def read(self, op: Operand, need: dict[int, int], loc: Location) -> Src:
+        """A source giving, at instruction lane L, component need[L] of `op`."""
+        base, mod = self.resolve(op)
+        comps = {lane: base.swizzle[min(c, base.width - 1)] for lane, c in need.items()}
+        return self.read_resolved(base, mod, comps, loc)
+
+    def read_resolved(self, base: Operand, mod: str, comps: dict[int, int], loc: Location) -> Src:
+        node = base.node
+        if node.op == "const":
+            sign = -1.0 if base.negate else 1.0
+            return Src(self.def_reg({lane: sign * node.value[c] for lane, c in comps.items()}, loc))  # type: ignore[index]
+        home = self._home_of(node, loc)
+        neg = base.negate
+        if self.ps14 and home.reg.kind == "v" and self.phase == 1:
+            self.refuse(f"{self.v} reads colour inputs (v#) only in phase 2", loc)
+        if any(c >= home.lanes for c in comps.values()) and not home.scalar:
+            self.refuse(f"{self.v}'s texcrd gives a texture coordinate's .xyz only; .w is not read", loc)
+        across = self.ps14 and home.phase == 1 and self.phase == 2
+        if home.scalar:
+            return Src(home.reg, 2 if across and 3 in comps else None, mod, neg)
+        if all(lane == c for lane, c in comps.items()):
+            if across and 3 in comps:
+                self.refuse(f"{self.v} keeps only .rgb of a register across phase; this reads the .a "
+                            "of a value computed before the dependent read", loc)
+            return Src(home.reg, None, mod, neg)
+        picked = set(comps.values())
+        if len(picked) == 1:
+            k = picked.pop()
+            if k in (2, 3) or self.ps14:
+                if across and k == 3:
+                    self.refuse(f"{self.v} keeps only .rgb of a register across phase", loc)
+                return Src(home.reg, k, mod, neg)
+            return Src(self._extract(node, k, home, loc).reg, None, mod, neg)
+        order = "".join("xyzw"[comps[lane]] for lane in sorted(comps))
+        self.fail(f"swizzle .{order} (ps_1_x sources take .rgba, .a or .b only)", loc)
+        raise AssertionError  # pragma: no cover
+
+    def _extract(self, node: Node, k: int, home: Home, loc: Location) -> Home:
+        """Component k replicated: dp3 with a unit vector (ps_1_1-1_3 cannot select .r/.g)."""
+        key = (node.id, k)
+        if key not in self.extracted:
+            vr = self.temp(loc)
+            unit = self.def_reg({i: 1.0 if i == k else 0.0 for i in range(3)}, loc)
+            self.emit(Ins("dp3", Reg("vr", vr), FULL, [Src(home.reg), Src(unit)], loc))
+            self.extracted[key] = Home(Reg("vr", vr), True, self.phase)
+        return self.extracted[key]
+
+    def _home_of(self, node: Node, loc: Location) -> Home:
+        if node.id in self.home:
+            return self.home[node.id]
+        if node.op == "input":
+            reg = node.key[1]
+            if reg.startswith("v"):
+                return Home(Reg("v", int(reg[1:])))
+            return self._input_homes[reg]
+        if node.op == "uniform":
+            name, row = node.key
+            index = self.const_regs[name] + row
+            if index > 7:
+                self.refuse(f"'{name.lstrip('$')}' is in c{index}; {self.v} has c0-c7", loc)
+            self.used_uniforms.add(name)
+            t = self.ctx.uniforms_used.get(name)
+            return Home(Reg("c", index), t is not None and t.kind == "scalar")
+        raise HlslError(f"internal: no register holds the value of this {node.op}", loc)
+
+    def def_reg(self, lanes: dict[int, float], loc: Location) -> Reg:
+        for v in lanes.values():
+            if not -1.0 <= v <= 1.0:
+                self.refuse(f"the literal {v:g} is outside [-1, 1], the range of {self.v} constants",
+                            loc)
+        taken = {self.const_regs[n] + k for n in self.const_regs for k in range(self.sizes.get(n, 1))}
+        for reg, slots in self.defs.items():
+            if all(slots[lane] in (None, v) for lane, v in lanes.items()):
+                for lane, v in lanes.items():
+                    slots[lane] = v
+                return Reg("c", reg)
+        free = next((k for k in range(8) if k not in taken and k not in self.defs), None)
+        if free is None:
+            self.refuse(f"{self.v} has 8 constant registers; this literal needs a ninth", loc)
+        slots: list[float | None] = [None] * 4
+        for lane, v in lanes.items():
+            slots[lane] = v
+        self.defs[free] = slots  # type: ignore[index]
+        return Reg("c", free)  # type: ignore[arg-type]
+
+    # -- vectors from parts -----------------------------------------------------------------------
+    def assemble_lanes(self, home: Home, items: list[tuple[int, Operand]], loc: Location) -> None:
+        if not items:
+            return
+        groups: dict[tuple, dict[int, int]] = {}
+        bases: dict[tuple, tuple[Operand, str]] = {}
+        consts: dict[int, float] = {}
+        for lane, op in items:
+            base, mod = self.resolve(op)
+            if base.node.op == "const":
+                consts[lane] = base.const_values()[0]  # type: ignore[index]
+                continue
+            key = (base.node.id, base.negate, mod)
+            groups.setdefault(key, {})[lane] = base.swizzle[0]
+            bases[key] = (base, mod)
+        dst = home.reg
+        if self.ps14:
+            for key, comps in groups.items():
+                base, mod = bases[key]
+                self.emit(Ins("mov", dst, tuple(sorted(comps)), [self.read_resolved(
+                    _whole(base), mod, comps, loc)], loc))
+            if consts:
+                self.emit(Ins("mov", dst, tuple(sorted(consts)), [Src(self.def_reg(consts, loc))], loc))
+            return
+        if len(groups) == 1 and not consts and set(next(iter(groups.values()))) == set(FULL):
+            key, comps = next(iter(groups.items()))
+            base, mod = bases[key]
+            self.emit(Ins("mov", dst, FULL, [self.read_resolved(_whole(base), mod, comps, loc)], loc))
+            return
+        alpha = [(k, c) for k, c in groups.items() if 3 in c]
+        if 3 in consts:
+            self.emit(Ins("mov", dst, (3,), [Src(self.def_reg({3: consts.pop(3)}, loc))], loc))
+        for key, comps in alpha:
+            base, mod = bases[key]
+            self.emit(Ins("mov", dst, (3,), [self.read_resolved(_whole(base), mod, {3: comps.pop(3)}, loc)], loc))
+        rgb = [(k, c) for k, c in groups.items() if c]
+        if not rgb:
+            if consts:
+                self.emit(Ins("mov", dst, (0, 1, 2), [Src(self.def_reg(consts, loc))], loc))
+            return
+        if len(rgb) == 1 and not consts:
+            key, comps = rgb[0]
+            base, mod = bases[key]
+            self.emit(Ins("mov", dst, (0, 1, 2), [self.read_resolved(_whole(base), mod, comps, loc)], loc))
+            return
+        for i, (key, comps) in enumerate(rgb):
+            base, mod = bases[key]
+            src = self.read_resolved(_whole(base), mod, comps, loc)
+            select = Src(self.def_reg({lane: 1.0 if lane in comps else 0.0 for lane in range(3)}, loc))
+            if i == 0:
+                if consts:
+                    fill = Src(self.def_reg({lane: consts.get(lane, 0.0) for lane in range(3)}, loc))
+                    self.emit(Ins("mad", dst, (0, 1, 2), [src, select, fill], loc))
+                else:
+                    self.emit(Ins("mul", dst, (0, 1, 2), [src, select], loc))
+            else:
+                self.emit(Ins("mad", dst, (0, 1, 2), [src, select, Src(dst)], loc))
+
+    # -- registers and text ------------------------------------------------------------------------
+    def _allocate(self) -> dict[int, int]:
+        first: dict[int, int] = {}
+        last: dict[int, int] = {}
+        for i, ins in enumerate(self.instrs):
+            for reg in [ins.dst] + [s.reg for s in ins.srcs]:
+                if reg is not None and reg.kind == "vr":
+                    first.setdefault(reg.index, i)  # type: ignore[arg-type]
+                    last[reg.index] = i  # type: ignore[index]
+        count = self.rules.registers["r"]
+        alloc: dict[int, int] = {}
+
+        def clash(vr: int, phys: int) -> bool:
+            return any(p == phys and first[o] < last[vr] and first[vr] < last[o]
+                       for o, p in alloc.items())
+        order = sorted(first, key=lambda v: (v not in self.precolor, first[v], v))
+        for vr in order:
+            if vr in self.precolor:
+                if clash(vr, self.precolor[vr]):
+                    raise RegisterConflict()
+                alloc[vr] = self.precolor[vr]
+                continue
+            phys = next((p for p in range(count) if not clash(vr, p)), None)
+            if phys is None:
+                raise HlslError(f"X4532: cannot map expression to pixel shader instruction set: "
+                                f"{self.v} has {count} temporary registers (r0-r{count - 1}) and "
+                                "this value needs another one", self.vr_loc.get(vr, UNKNOWN_LOCATION))
+            alloc[vr] = phys
+        return alloc
+
+    def _pair(self) -> None:
+        """Co-issue an .a-only instruction with the .rgb-only one before it (one slot for the
+        two, as DX8 shaders did); both read the registers as they were before the pair."""
+        prev = None
+        for ins in self.instrs:
+            masks = {tuple(ins.mask), tuple(prev.mask)} if prev is not None else set()
+            if prev is not None and not ins.texture and not prev.texture and not prev.coissue \
+                    and masks == {(3,), (0, 1, 2)} \
+                    and all(s.reg != prev.dst for s in ins.srcs) \
+                    and all(s.reg != ins.dst for s in prev.srcs):
+                ins.coissue = True
+                prev = None
+                continue
+            prev = ins
+
+    def _text(self) -> Generated:
+        self._pair()
+        alloc = self._allocate()
+        lines = [self.v]
+        locs = [UNKNOWN_LOCATION]
+        for reg in sorted(self.defs):
+            vals = [0.0 if v is None else v for v in self.defs[reg]]
+            lines.append(f"def c{reg}, " + ", ".join(_num(v) for v in vals))
+            locs.append(UNKNOWN_LOCATION)
+        for ins in self.instrs:
+            if _no_op(ins, alloc):
+                continue
+            lines.append(_ins_text(ins, alloc))
+            locs.append(ins.loc)
+        constants = {n: (self.const_regs[n], self.sizes.get(n, 1)) for n in self.const_regs
+                     if n in self.used_uniforms}
+        return Generated(lines, locs, constants, dict(self.samplers),
+                         {r: tuple(0.0 if v is None else v for v in vals) for r, vals in self.defs.items()})
+
+
+def _no_op(ins: Ins, alloc: dict[int, int]) -> bool:
+    """mov r#, r# of the same register, as read: left by r0 being both a sample and the result."""
+    if ins.opcode != "mov" or ins.shift or ins.sat or ins.coissue or len(ins.srcs) != 1:
+        return False
+    s, d = ins.srcs[0], ins.dst
+    return (d is not None and s.reg.kind == d.kind == "vr" and alloc[s.reg.index] == alloc[d.index]  # type: ignore[index]
+            and s.lane is None and not s.mod and not s.neg)
+
+
+def _whole(base: Operand) -> Operand:
+    """The node read through an identity swizzle (component maps are given separately)."""
+    return Operand(base.node, tuple(range(max(base.node.width, 1))), base.negate)
+
+
+def _sub_for_negated_constant(op: str, srcs: list[Src]) -> tuple[str, list[Src]]:
+    # ps_1_4 takes no modifier on c#: a - c is `sub`
+    a, b = srcs
+    if a.reg.kind == "c" and a.neg and not b.neg:
+        a, b = b, a
+    if b.reg.kind == "c" and b.neg:
+        return "sub", [a, Src(b.reg, b.lane, b.mod, False)]
+    return op, srcs
+
+
+def _combine(nodes: list[Node], readers: dict[int, list[tuple[Node | None, Operand]]]) -> bool:
+    """add(mul(a, b), c) -> mad(a, b, c) where the mul has no other reader and no literal out
+    of the constant range (a mul by 2 or 4 is a result shift, kept for _analyse)."""
+    changed = False
+    for n in nodes:
+        if n.op != "add":
+            continue
+        for k in (0, 1):
+            m = n.args[k]
+            users = readers.get(m.node.id, [])
+            if m.node.op != "mul" or len(users) != 1 or m.node.width < m.width or any(
+                    v is not None and any(abs(x) > 1 for x in v)
+                    for v in (a.const_values() for a in m.node.args)):
+                continue
+            a, b = (x.pick(m.swizzle) for x in m.node.args)
+            n.op, n.args = "mad", (a.neg() if m.negate else a, b, n.args[1 - k])
+            changed = True
+            break
+    return changed
+
+
+def _readers(nodes: list[Node], comps: list[Operand]) -> dict[int, list[tuple[Node | None, Operand]]]:
+    out: dict[int, list[tuple[Node | None, Operand]]] = {}
+    for n in nodes:
+        for a in n.args:
+            out.setdefault(a.node.id, []).append((n, a))
+    for c in comps:
+        out.setdefault(c.node.id, []).append((None, c))
+    return out
+
+
+def _src_text(s: Src, alloc: dict[int, int]) -> str:
+    reg = f"r{alloc[s.reg.index]}" if s.reg.kind == "vr" else f"{s.reg.kind}{s.reg.index}"  # type: ignore[index]
+    if s.mod == "invert":
+        text = f"1-{reg}"
+    else:
+        text = reg + (f"_{s.mod}" if s.mod else "")
+    if s.lane is not None:
+        text += "." + RGBA[s.lane]
+    return ("-" if s.neg else "") + text
+
+
+def _ins_text(ins: Ins, alloc: dict[int, int]) -> str:
+    if ins.opcode == "phase":
+        return "phase"
+    dst = ""
+    if ins.dst is not None:
+        dst = f"r{alloc[ins.dst.index]}" if ins.dst.kind == "vr" else f"{ins.dst.kind}{ins.dst.index}"  # type: ignore[index]
+        if tuple(ins.mask) != FULL:
+            dst += "." + "".join(RGBA[i] for i in ins.mask)
+    op = ins.opcode + _SHIFT_TEXT.get(ins.shift, "") + ("_sat" if ins.sat else "")
+    parts = [dst] + [_src_text(s, alloc) for s in ins.srcs]
+    return ("+" if ins.coissue else "") + f"{op} " + ", ".join(parts)
+
+
+def _num(v: float) -> str:
+    if v == int(v):
+        return f"{int(v)}"
+    return f"{v:.9g}"
+
+
+def generate_ps1(ctx: Context, outputs: list[Output], constant_registers: dict[str, int],
+                 register_sizes: dict[str, int], sampler_registers: dict[str, int]) -> Generated:
+    """The ps_1_x assembly of a compiled pixel function (see the module docstring)."""
+    return Ps1CodeGen(ctx, outputs, constant_registers, register_sizes, sampler_registers).generate()

@@ -1,0 +1,265 @@
+"""HLSL compiled for ps_1_1-ps_1_4 (codegen_ps1), rendered on DX8 cards on both back ends.
+
+Each case is a pixel function on the full-screen quad of test_hlsl_render (texture coordinate
+u = x/8 left to right, v = y/8 top to bottom; vertex diffuse from the scene), run on the
+GeForce3 (ps_1_1, about 8-bit fixed point in [-1, 1]), GeForce4 Ti (ps_1_3) or Radeon 8500
+(ps_1_4); the expected colours are worked out here from the HLSL. Then the assembly of a few
+functions as golden text, and every construct ps_1_x cannot express as a located error.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import effects
+from effects.backend import create_backend
+from effects.errors import EffectError
+from effects.host.textures import make_texture
+from effects.shaders.asm import check
+from effects.shaders.hlsl.compiler import compile_shader
+
+BACKENDS = ("numpy", "gl")
+SIZE = (8, 8)
+DIFFUSE = (0.5, 0.75, 1.0, 1.0)
+QUAD = {"mesh": "quad", "size": list(SIZE), "vertex": {"diffuse": list(DIFFUSE)}}
+CARD = {"ps_1_1": "geforce3", "ps_1_3": "geforce4ti", "ps_1_4": "radeon8500"}
+TOL = 2.5 / 255      # DX8 fixed point: a step or two of the 8-bit grid
+PARAMS = """
+texture T;
+sampler2D Checker = sampler_state { Texture = <T>; MinFilter = Point; MagFilter = Point;
+                                    MipFilter = None; AddressU = Clamp; AddressV = Clamp; };
+float4 K0 = { 0.5, 0.25, 0.0, 1.0 };
+float4 K1 = { 0.0, 1.0, 0.5, 0.5 };
+float3 L = { 0.5, 0.25, 0.0 };
+float Scale = 0.5;
+"""
+# 4 x 4 texels, each a distinct colour: odd pixels of the quad read a texel centre (no tie)
+TEXELS = np.stack(list(np.meshgrid(np.linspace(0, 1, 4), np.linspace(1, 0, 4))) +
+                  [np.full((4, 4), 0.5), np.ones((4, 4))], axis=-1)
+
+
+@pytest.fixture(scope="module", params=BACKENDS)
+def backend(request):
+    made = create_backend(request.param)
+    yield made
+    made.close()
+
+
+def effect_for(function: str, target: str) -> effects.Effect:
+    return effects.load_effect(f"{PARAMS}\n{function}\n"
+                               f"technique T {{ pass P {{ Lighting = False; PixelShader = compile {target} PS(); }} }}\n")
+
+
+def render(function: str, target: str, backend) -> np.ndarray:
+    fx = effect_for(function, target)
+    img = effects.render(fx, CARD[target], technique="T", backend=backend, scene=QUAD,
+                         params={"T": make_texture(TEXELS, mips=False)})
+    return img.astype(np.float64) / 255.0
+
+
+def asm(function: str, target: str) -> str:
+    shader = compile_shader(effect_for(function, target), "PS", target)
+    assert check(shader.program) == [], shader.text     # the version's own rules hold
+    return shader.text
+
+
+def uv(x: int, y: int) -> tuple[float, float]:
+    return x / SIZE[0], y / SIZE[1]
+
+
+def each_pixel(img: np.ndarray, want, target: str, text: str) -> None:
+    for y in range(SIZE[1]):
+        for x in range(SIZE[0]):
+            expected = np.clip(np.asarray(want(*uv(x, y)), np.float64), 0, 1)
+            assert np.allclose(img[y, x], expected, atol=TOL), (target, x, y, img[y, x], expected, text)
+
+
+@pytest.mark.parametrize("target", ["ps_1_1", "ps_1_4"])
+def test_texture_times_colour_input(backend, target):
+    fn = "float4 PS(float2 uv : TEXCOORD0, float4 c : COLOR0) : COLOR { return tex2D(Checker, uv) * c; }"
+    img = render(fn, target, backend)
+    text = asm(fn, target)
+    assert ("tex t0" if target == "ps_1_1" else "texld r0, t0") in text
+    for y in range(1, SIZE[1], 2):
+        for x in range(1, SIZE[0], 2):
+            want = TEXELS[y // 2, x // 2] * DIFFUSE
+            assert np.allclose(img[y, x], want, atol=TOL), (x, y, img[y, x], want, text)
+
+
+@pytest.mark.parametrize("target", ["ps_1_1", "ps_1_4"])
+def test_expand_dot3_saturate(backend, target):
+    # 2*n - 1 is _bx2; saturate(dot()) is dp3_sat; the scalar is replicated in every lane
+    fn = """float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float3 n = float3(uv, 0.5);
+    return saturate(dot(2 * n - 1, L));
+}"""
+    text = asm(fn, target)
+    assert "dp3_sat" in text and "_bx2" in text, text
+    img = render(fn, target, backend)
+    each_pixel(img, lambda u, v: [0.5 * (2 * u - 1) + 0.25 * (2 * v - 1)] * 4, target, text)
+
+
+@pytest.mark.parametrize("target", ["ps_1_1", "ps_1_4"])
+def test_lerp_by_one_component(backend, target):
+    # lrp; ps_1_1 cannot select .x of t0 alone, so a dp3 with (1, 0, 0) extracts it
+    fn = "float4 PS(float2 uv : TEXCOORD0) : COLOR { return lerp(K0, K1, uv.x); }"
+    text = asm(fn, target)
+    assert "lrp" in text and (("dp3" in text) == (target == "ps_1_1")), text
+    k0, k1 = np.array([0.5, 0.25, 0, 1]), np.array([0, 1, 0.5, 0.5])
+    img = render(fn, target, backend)
+    each_pixel(img, lambda u, v: k0 + (k1 - k0) * u, target, text)
+
+
+@pytest.mark.parametrize("target", ["ps_1_1", "ps_1_4"])
+def test_parts_of_a_vector_through_masks(backend, target):
+    # float4(uv, 0, 1): .rgb through a 0/1 mask and a mad (ps_1_1) or the .ba mask (ps_1_4)
+    fn = "float4 PS(float2 uv : TEXCOORD0) : COLOR { return float4(uv, 0, 1); }"
+    text = asm(fn, target)
+    img = render(fn, target, backend)
+    each_pixel(img, lambda u, v: [u, v, 0, 1], target, text)
+
+
+def test_shifts_invert_and_scalar_uniform(backend):
+    # uv.x*Scale (a scalar uniform), *4 with saturate (mul_x4_sat), *0.5 (_d2), 1-x (invert)
+    fn = """float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 o;
+    o.r = uv.x * Scale;
+    o.g = saturate(uv.x * uv.y * 4);
+    o.b = (uv.x + uv.y) * 0.5;
+    o.a = 1 - uv.y;
+    return o;
+}"""
+    text = asm(fn, "ps_1_4")
+    assert "mul_x4_sat" in text and "add_d2" in text and "1-r" in text, text
+    img = render(fn, "ps_1_4", backend)
+    each_pixel(img, lambda u, v: [u * 0.5, min(u * v * 4, 1), (u + v) / 2, 1 - v], "ps_1_4", text)
+
+
+@pytest.mark.parametrize("target", ["ps_1_3", "ps_1_4"])
+def test_select_is_cmp(backend, target):
+    fn = "float4 PS(float2 uv : TEXCOORD0) : COLOR { return uv.x > 0.5 ? K0 : K1; }"
+    text = asm(fn, target)
+    assert "cmp" in text, text
+    img = render(fn, target, backend)
+    img[:, 4] = [0.5, 0.25, 0, 1]     # u = 0.5 exactly: d = 0 is a tie the interpolation decides
+    each_pixel(img, lambda u, v: [0.5, 0.25, 0, 1] if u >= 0.5 else [0, 1, 0.5, 0.5], target, text)
+
+
+def test_ps14_dependent_read_in_phase_two(backend):
+    fn = "float4 PS(float2 uv : TEXCOORD0) : COLOR { return tex2D(Checker, uv * 0.5 + 0.0625); }"
+    text = asm(fn, "ps_1_4")
+    assert text.splitlines()[-2:] == ["phase", "texld r0, r0"], text
+    img = render(fn, "ps_1_4", backend)
+    for y in range(SIZE[1]):
+        for x in range(SIZE[0]):
+            u, v = uv(x, y)      # the read is at u/2 + 1/16: texel floor(2u + 1/4) of 4
+            want = TEXELS[int(4 * (v * 0.5 + 0.0625)), int(4 * (u * 0.5 + 0.0625))]
+            assert np.allclose(img[y, x], want, atol=TOL), (x, y, img[y, x], want)
+
+
+# -- golden assembly -----------------------------------------------------------------------------
+
+GOLDEN = {
+    ("ps_1_1", """float4 PS(float2 uv : TEXCOORD0, float3 n : TEXCOORD1, float4 c : COLOR0) : COLOR
+{
+    float4 col = tex2D(Checker, uv) * c * saturate(dot(2 * n - 1, L));
+    col.a = 1;
+    return col;
+}"""): """ps_1_1
+def c1, 0, 0, 0, 1
+tex t0
+texcoord t1
+mul r0, t0, v0
+dp3_sat r1, t1_bx2, c0
+mul r0.rgb, r0, r1
++mov r0.a, c1
+""",
+    ("ps_1_4", """float4 PS(float2 uv : TEXCOORD0, float4 c : COLOR0) : COLOR
+{
+    return tex2D(Checker, uv) * c * 2;
+}"""): """ps_1_4
+texld r0, t0
+mul_x2 r0, r0, v0
+""",
+    ("ps_1_1", """float4 PS(float2 uv : TEXCOORD0) : COLOR { return float4(uv, 0, 1); }"""): """ps_1_1
+def c0, 1, 1, 0, 1
+def c1, 0, 0, 0, 0
+texcoord t0
+mov r0.a, c0
++mad r0.rgb, t0, c0, c1
+""",
+}
+
+
+@pytest.mark.parametrize("target, fn", list(GOLDEN))
+def test_golden_assembly(target, fn):
+    assert asm(fn, target) == GOLDEN[(target, fn)]
+
+
+def test_texcoord_read_as_a_value_warns_of_the_clamp():
+    fx = effect_for("float4 PS(float2 uv : TEXCOORD0) : COLOR { return float4(uv, 0, 1); }", "ps_1_1")
+    shader = compile_shader(fx, "PS", "ps_1_1")
+    assert [str(w) for w in shader.warnings] == [
+        f"<string>:{PARAMS.count(chr(10)) + 2}:21: warning: ps_1_1 reads TEXCOORD0 as a value "
+        "through texcoord, which clamps it to [0, 1]"]
+
+
+# -- what ps_1_x cannot express ------------------------------------------------------------------
+
+REFUSED = [
+    ("ps_1_1", "return float4(normalize(float3(uv, 1)), 1);", 18,
+     "ps_1_1 has no normalize, length or rsqrt (rsq)"),
+    ("ps_1_4", "return uv.x / uv.y;", 8, "ps_1_4 has no per-pixel division or sqrt (rcp)"),
+    ("ps_1_1", "return pow(uv.x, uv.y);", 8, "ps_1_1 cannot compute pow of a non-constant exponent"),
+    ("ps_1_1", "return uv.x + 2;", 8, "the literal 2 is outside [-1, 1], the range of ps_1_1 constants"),
+    ("ps_1_1", "return uv.x > 0.5 ? K0 : K1;", 8, "ps_1_1 has no comparison instruction (cmp needs ps_1_2)"),
+    ("ps_1_1", "return tex2D(Checker, uv * 0.5);", 8,
+     "ps_1_1 has no texture read at computed coordinates (a dependent read needs ps_1_4"),
+    ("ps_1_4", "return tex2D(Checker, tex2D(Checker, uv * 0.5).xy);", 8,
+     "ps_1_4 allows one level of dependent texture read"),
+    ("ps_1_1", "return uv.yxyx * K0;", 12, "ps_1_1 has no swizzle .yxyx"),
+    ("ps_1_1", "return tex2D(Checker, uv) + uv.x;", 8, "TEXCOORD0 is both sampled and read as a value"),
+    ("ps_1_1", "return max(K0, uv.x);", 8, "ps_1_1 has no max"),
+]
+
+
+@pytest.mark.parametrize("target, body, column, message", REFUSED)
+def test_refused_with_the_hlsl_location(target, body, column, message):
+    fn = f"float4 PS(float2 uv : TEXCOORD0) : COLOR\n{{\n    {body}\n}}"
+    fx = effect_for(fn, target)
+    with pytest.raises(EffectError) as info:
+        compile_shader(fx, "PS", target)
+    err = info.value
+    assert message in err.message, err.message
+    assert err.message.startswith("X4532: ") or "pow" in message
+    line = PARAMS.count("\n") + 4     # the body line of `fn` in the effect text
+    assert (err.location.line, err.location.column >= column) == (line, True), str(err)
+
+
+def test_temporaries_beyond_r1_are_refused_at_the_value():
+    fn = """float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 o;
+    o.r = uv.x * Scale;
+    o.g = saturate(uv.x * uv.y * 4);
+    o.b = (uv.x + uv.y) * 0.5;
+    o.a = 1 - uv.y;
+    return o;
+}"""
+    with pytest.raises(EffectError, match=r"ps_1_1 has 2 temporary registers \(r0-r1\)") as info:
+        compile_shader(effect_for(fn, "ps_1_1"), "PS", "ps_1_1")
+    assert info.value.location.line > PARAMS.count("\n") + 3
+
+
+def test_nine_arithmetic_instructions_reject_the_technique_at_the_line():
+    body = "\n".join(f"    c = c * K{i % 2};" for i in range(9))
+    fn = f"float4 PS(float4 c : COLOR0) : COLOR\n{{\n{body}\n    return c;\n}}"
+    fx = effect_for(fn, "ps_1_1")
+    validation = fx.validate("T", effects.load_profile("geforce3"))
+    assert not validation.ok
+    [reason] = validation.reasons
+    assert reason.message == "ps_1_1 allows 8 arithmetic instructions; this is the 9th"
+    # the ninth mul, at its HLSL line and operator (the `*` of `c * K0`)
+    assert (reason.location.line, reason.location.column) == (PARAMS.count("\n") + 2 + 10, 11)
