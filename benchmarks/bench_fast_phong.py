@@ -2,7 +2,12 @@
 measured on the NumPy reference's screen-space shader (backends/reference/fast_phong.py):
 a 64 x 128 sphere seen from the front at 1024 x 1024, one directional light, exponent 20.
 
-    .venv/bin/python benchmarks/bench_fast_phong.py [--size 1024] [--repeat 5]
+    .venv/bin/python benchmarks/bench_fast_phong.py [--size 1024] [--repeat 5] [--errors]
+
+`--errors` prints instead the series' error against exact Phong as the vertex normals spread
+(tests/test_fast_phong.py asserts it): per span the median and worst over 150 light (or half)
+directions within 75 degrees of the triangle's mean normal, for the diffuse term and for the
+specular at the paper's exponents and table sizes.
 
 Shading only: the scan conversion and interpolation planes, which every mode shares, are made
 once (`prepare`) and timed apart. The paper's table (microVAX-II, 14620 polygons at 2048^2):
@@ -16,7 +21,8 @@ import time
 
 import numpy as np
 
-from backends.reference.fast_phong import Light, pixel_values, prepare
+from backends.reference.fast_phong import (SPREADS, Light, pixel_values, prepare,
+                                           series_error, spread_normals)
 from effects.host.meshes import sphere
 
 PAPER = {"gouraud": 406.0, "taylor, infinite eye": 767.0, "taylor, finite eye": 850.0,
@@ -45,11 +51,42 @@ def best_of(fn, repeat: int) -> float:
     return min(times)
 
 
+def error_curves(spans=(10, 20, 25, 30, 40, 50, 60, 75, 90), count: int = 150) -> None:
+    rng = np.random.default_rng(1)
+    d = rng.normal(size=(4 * count, 3))
+    d /= np.linalg.norm(d, axis=1, keepdims=True)
+    d[:, 2] = np.abs(d[:, 2])
+    d = d[d[:, 2] > np.cos(np.radians(75))][:count]
+    kinds = {"diffuse": None, "specular n=20, 1K table": (20, 1024),
+             "specular n=164, 8K table": (164, 8192)}
+    print("max |Taylor - Phong| over the triangle, 1/255: median / worst direction")
+    print(f"{'term':26s} {'spread':6s} " + " ".join(f"{s:>12d}" for s in spans))
+    for name, kind in kinds.items():
+        for spread in SPREADS:
+            cells = []
+            for span in spans:
+                normals = spread_normals(span, spread)
+                if kind is None:
+                    lights = [Light(v, eye=np.array([0.0, 0.0, 1.0]), ambient=0.0, diffuse=1.0,
+                                    specular=0.0) for v in d]
+                else:
+                    lights = [Light(v, eye=v, ambient=0.0, diffuse=0.0, specular=1.0,
+                                    exponent=kind[0], table_size=kind[1]) for v in d]
+                e = np.array([series_error(normals, light) * 255 for light in lights])
+                cells.append(f"{np.median(e):5.2f}/{e.max():6.2f}")
+            print(f"{name:26s} {spread:6s} " + " ".join(f"{c:>12s}" for c in cells), flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--size", type=int, default=1024)
     parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--errors", action="store_true",
+                        help="print the series' error against the normals' span instead")
     args = parser.parse_args()
+    if args.errors:
+        error_curves()
+        return
     xy, n, v = front_sphere(args.size)
     to_light = np.array([0.4, 0.5, 0.77]) / np.linalg.norm([0.4, 0.5, 0.77])
     infinite = Light(to_light, eye=np.array([0.0, 0.0, 1.0]))

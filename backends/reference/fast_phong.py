@@ -284,3 +284,43 @@ def _reflect(n: np.ndarray, v: np.ndarray | None, L: np.ndarray, light: Light) -
     diffuse = np.maximum(np.sum(n * L, axis=-1), 0.0)
     n_dot_h = np.clip(np.sum(n * h, axis=-1), 0.0, 1.0)
     return light.ambient + light.diffuse * diffuse + light.specular * n_dot_h ** light.exponent
+
+
+# -- Measuring the series against exact Phong (tests/test_fast_phong.py, and
+# benchmarks/bench_fast_phong.py --errors print the whole curve)
+
+SPREADS = ("cone", "strip")
+
+
+def spread_normals(span_deg: float, spread: str = "cone",
+                   axis: tuple[float, float, float] = (0.0, 0.0, 1.0)) -> np.ndarray:
+    """(3, 3) unit vertex normals about `axis` that are at most `span_deg` apart: 'cone' tilts
+    all three equally, 120 degrees apart in azimuth, so every pair is `span_deg` apart (a
+    triangle of a sphere); 'strip' bends in one direction only, vertex 0 at +span/2 and
+    vertices 1 and 2 at -span/2 (a triangle of a cylinder)."""
+    a = np.asarray(axis, np.float64) / np.linalg.norm(axis)
+    u = np.cross(a, [1.0, 0.0, 0.0]) if abs(a[0]) < 0.9 else np.cross(a, [0.0, 1.0, 0.0])
+    u /= np.linalg.norm(u)
+    w = np.cross(a, u)
+    if spread == "cone":
+        # cos(span) = cos^2 t - sin^2 t / 2 for two normals tilted by t, 120 degrees apart
+        t = np.arccos(np.sqrt((np.cos(np.radians(span_deg)) + 0.5) / 1.5))
+        return np.stack([np.cos(t) * a + np.sin(t) * (np.cos(g) * u + np.sin(g) * w)
+                         for g in np.radians([90.0, 210.0, 330.0])])
+    if spread == "strip":
+        h = np.radians(span_deg) / 2
+        return np.stack([np.cos(h) * a + s * np.sin(h) * u for s in (1.0, -1.0, -1.0)])
+    raise ValueError(f"spread must be one of {SPREADS}, got {spread!r}")
+
+
+def series_error(normals: np.ndarray, light: Light, radius: float = 40.0) -> float:
+    """The largest |Taylor - Phong| (intensity units) over an equilateral screen triangle of
+    circumradius `radius` pixels with vertex normals (3, 3), eye at infinity. The error does
+    not depend on the triangle's size (both are functions of the barycentric position); the
+    size only sets how densely it is sampled."""
+    angles = np.radians([90.0, 210.0, 330.0])
+    xy = radius + 5.0 + radius * np.stack([np.cos(angles), -np.sin(angles)], axis=-1)
+    side = int(2 * radius + 10)
+    prep = prepare(xy[None], np.asarray(normals, np.float64)[None], (side, side))
+    return float(np.abs(pixel_values(prep, light, "taylor")
+                        - pixel_values(prep, light, "phong")).max())
