@@ -274,7 +274,7 @@ def test_missing_height_image_is_reported_at_the_annotation(tmp_path):
 
 
 def test_the_texture_caches_are_bounded_by_bytes_least_recently_used_first():
-    from effects.host.lru import ByteLRU
+    from effects.lru import ByteLRU
     levels = lambda n: T.Texture("2d", "A8R8G8B8", [np.zeros((n, n, 4), np.float32)])  # noqa: E731
     cache = ByteLRU(max_bytes=3 * 16 * 16 * 4 * 4)       # three 16x16 float textures
     for key in "abc":

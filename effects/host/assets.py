@@ -44,7 +44,7 @@ from effects.host import brdf as _brdf  # noqa: F401  (registers the brdf_factor
 from effects.model import Effect, Parameter
 from effects.host.scene import InlineMesh, Scene
 from effects import limits
-from effects.host.lru import DEFAULT_TEXTURE_BYTES, ByteLRU
+from effects.lru import DEFAULT_TEXTURE_BYTES, ByteLRU
 from effects.host.texture_files import load_texture
 from effects.host.textures import PROCEDURAL, Texture, procedural
 from effects.untrusted import confine

@@ -32,7 +32,7 @@ from effects import limits
 from effects.untrusted import confine
 from effects.host import pixel_formats
 from effects.host.images import read_image
-from effects.host.lru import ByteLRU
+from effects.lru import ByteLRU
 from effects.errors import Location, SceneError
 
 KINDS = ("1d", "2d", "3d", "cube")

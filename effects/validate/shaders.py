@@ -130,8 +130,7 @@ class ShaderChecks:
             self.fail(err.location, state_name, "valid shader assembly", "assembly error", err.message)
         # The instruction table's `lowers` column: what does not lower cannot render, so it
         # is not valid on any card (valid means renders). Asked of well-formed programs only.
-        from effects.shaders.asm.lower import lowering_problems
-        for err in ([] if errors else lowering_problems(program)):
+        for err in ([] if errors else program.lowering_problems):
             self.fail(err.location, state_name, "instructions this framework lowers",
                       "not lowered", err.message)
         if program.kind == "ps":

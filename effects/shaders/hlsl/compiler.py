@@ -12,13 +12,13 @@ hand-written shader; each instruction of `program` is located at the HLSL line i
 from __future__ import annotations
 
 import re
-import threading
 from dataclasses import dataclass, field
 from typing import Any
 
 from effects.errors import AsmError, EffectError, EffectWarning, Location
 from effects.model import CompileShader, Effect, ShaderBlock
 from effects.shaders.asm import AsmProgram, assemble
+from effects.shaders.hlsl.cache import cached_compile
 from effects.shaders.hlsl.calls import parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.codegen import CodeGen
@@ -58,31 +58,10 @@ def split_semantic(text: str) -> tuple[str, int]:
     return m.group(1).upper(), int(m.group(2) or 0)
 
 
-_CACHE: dict[tuple, CompiledShader | EffectError] = {}
-_LOCK = threading.Lock()
-
-
 def compile_state(effect: Effect, value: CompileShader) -> CompiledShader:
-    """The shader of a `compile` state (memoised on the effect's text and the arguments)."""
-    key = (effect.path, tuple((f.name, f.source, f.location, f.row_major) for f in effect.functions),
-           tuple((s.name, s.source, s.row_major) for s in effect.structs),
-           tuple((p.name, p.type, p.storage, p.semantic, p.array,
-                  repr(p.value) if "static" in p.storage else None) for p in effect.parameters),
-           value.profile, value.function, value.args, value.location)
-    with _LOCK:
-        hit = _CACHE.get(key)
-    if hit is None:
-        try:
-            hit = compile_shader(effect, value.function, value.profile, value.args, value.location)
-        except EffectError as err:
-            hit = err
-        with _LOCK:
-            if len(_CACHE) > 256:
-                _CACHE.pop(next(iter(_CACHE)))
-            _CACHE[key] = hit
-    if isinstance(hit, EffectError):
-        raise hit
-    return hit
+    """The shader of a `compile` state, compiled once per distinct input (cache.py)."""
+    return cached_compile(effect, value, lambda: compile_shader(
+        effect, value.function, value.profile, value.args, value.location), EffectError)
 
 
 def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...] = (),

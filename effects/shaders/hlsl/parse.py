@@ -56,7 +56,8 @@ def parser() -> lark.Lark:
             _PARSER = lark.Lark(text, parser="lalr", lexer="contextual",
                                 start=["function_def", "struct_def", "typedef_decl",
                                        "initializer"], postlex=_TypeNames(),
-                                propagate_positions=True, maybe_placeholders=True)
+                                propagate_positions=True, maybe_placeholders=True,
+                                cache=True)
         return _PARSER
 
 

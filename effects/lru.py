@@ -3,7 +3,9 @@
 Textures differ in size by orders of magnitude (a 1x1 stand-in, a 2048^2 cube with mips), so a
 count bound either thrashes on an effect with many small textures or pins gigabytes with a few
 big ones. `ByteLRU` evicts the least recently used entries until the total fits `max_bytes`;
-a value bigger than the bound on its own is returned but not kept.
+a value bigger than the bound on its own is returned but not kept. With `size_of=lambda v: 1`
+the bound is a count (the HLSL compile cache, effects.shaders.hlsl.cache). Shared by the
+layers, so it sits with the contracts.
 """
 from __future__ import annotations
 

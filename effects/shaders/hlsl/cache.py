@@ -1,0 +1,119 @@
+"""The compile cache: one compile per distinct input, across techniques, passes, cards,
+effects and reloads.
+
+A `compile ps_2_0 f(args)` state compiles to the same shader wherever it stands, for whichever
+card validates it, as long as what the compiler reads is the same. The key is exactly that:
+the target, the entry and its compile arguments, and every declaration the entry can reach —
+the functions (all overloads), structs, typedefs and globals named anywhere in the text of what
+is reached, transitively, each with its full text, declaration and location (the shader's
+instructions and warnings are located in them). A name is taken as reached when it appears in
+the text at all (a local that shadows a global reaches the global too): a superset, so the key
+never misses a dependency, and an edit elsewhere in the file (another function, an unrelated
+global, a technique) keeps the entry. Uniform values are not in the key (the shader reads them
+from constant registers at draw time); static globals' values are (they fold into the code).
+
+Errors are cached too, keyed with the `compile` state's location besides (an unknown entry
+point or a bad argument is reported there). Bounded: the least recently used entry goes first.
+"""
+from __future__ import annotations
+
+import dataclasses
+import re
+from functools import lru_cache
+from typing import Any, Callable
+
+from effects.lru import ByteLRU
+from effects.model import CompileShader
+
+CACHE_ENTRIES = 512
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+
+# key -> CompiledShader | EffectError; each entry counts 1 (a 150-line shader is ~1 MiB)
+CACHE = ByteLRU(CACHE_ENTRIES, size_of=lambda value: 1)
+
+
+@lru_cache(maxsize=4096)
+def _names(text: str) -> frozenset[str]:
+    """Every identifier in `text` (kept per text: the same function is keyed once per card)."""
+    return frozenset(_IDENTIFIER.findall(text))
+
+
+def _declaration(obj: Any, value: bool) -> tuple:
+    """A model object (Function, Struct, Parameter) as the compiler reads it: every field,
+    so a field added to the model later is in the key too; a parameter's annotations never
+    matter and its value only when `value` (a static global's initialiser)."""
+    out: list[Any] = [type(obj).__name__]
+    for f in dataclasses.fields(obj):
+        v = getattr(obj, f.name)
+        if f.name == "annotations" or (f.name == "value" and not value):
+            continue
+        if hasattr(v, "tobytes") and hasattr(v, "dtype"):
+            v = ("array", v.dtype.str, v.shape, v.tobytes())
+        else:
+            try:
+                hash(v)
+            except TypeError:       # a list, a sampler_state: by what they print
+                v = ("repr", repr(v))
+        out.append(v)
+    return tuple(out)
+
+
+def compile_key(effect: Any, value: CompileShader) -> tuple:
+    """What the compile of `value` in `effect` depends on (see the module docstring).
+    Parameters are looked up through `effect.parameter`, so a recording view (lowering's)
+    learns which globals the shader depends on."""
+    functions: dict[str, list[Any]] = {}
+    for f in effect.functions:
+        functions.setdefault(f.name, []).append(f)
+    structs: dict[str, list[Any]] = {}
+    for s in effect.structs:
+        structs.setdefault(s.name, []).append(s)
+    parts: list[tuple] = []
+    seen: set[str] = set()
+    todo = [value.function]
+    for arg in value.args:
+        todo.extend(_names(arg))
+    while todo:
+        name = todo.pop()
+        if name in seen:
+            continue
+        seen.add(name)
+        for obj in functions.get(name, []) + structs.get(name, []):
+            parts.append(_declaration(obj, value=False))
+            todo.extend(_names(obj.source))
+        param = effect.parameter(name)
+        if param is not None:
+            static = "static" in param.storage
+            parts.append(_declaration(param, value=static))
+            if param.type.struct:
+                todo.append(param.type.base)
+            text = getattr(param.value, "text", None)
+            if static and isinstance(text, str):     # an initialiser kept as an expression
+                todo.extend(_names(text))
+    where = value.location if value.args else None   # arguments are located at the state
+    return (effect.path, value.profile.lower(), value.function, value.args, where, tuple(parts))
+
+
+def cached_compile(effect: Any, value: CompileShader, compile: Callable[[], Any],
+                   error_type: type[Exception]) -> Any:
+    """`compile()`'s shader for `value`, from the cache when the key was compiled before;
+    a cached error is raised again."""
+    key = compile_key(effect, value)
+    hit = CACHE.get(key)
+    if hit is None:
+        hit = CACHE.get(key + (value.location,))
+    if hit is None:
+        try:
+            hit = compile()
+            CACHE.put(key, hit)
+        except error_type as err:
+            hit = err
+            CACHE.put(key + (value.location,), err)
+    if isinstance(hit, error_type):
+        raise hit
+    return hit
+
+
+def clear() -> None:
+    """Forget every compile (tests; a host that wants the memory back)."""
+    CACHE.clear()
