@@ -130,7 +130,8 @@ class ShaderChecks:
             self.fail(err.location, state_name, "valid shader assembly", "assembly error", err.message)
         # The instruction table's `lowers` column: what does not lower cannot render, so it
         # is not valid on any card (valid means renders). Asked of well-formed programs only.
-        for err in ([] if errors else program.lowering_problems):
+        from effects.shaders.asm.limits import lowering_cached
+        for err in ([] if errors else lowering_cached(program)):
             self.fail(err.location, state_name, "instructions this framework lowers",
                       "not lowered", err.message)
         if program.kind == "ps":

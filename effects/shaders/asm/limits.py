@@ -52,6 +52,16 @@ def check_cached(program: AsmProgram) -> list[AsmError]:
     return hit[1]
 
 
+def lowering_cached(program: AsmProgram) -> list[AsmError]:
+    """`lower.lowering_problems`, once per program object (kept on it, so it goes with it):
+    validation asks per card, and a compiled HLSL shader is one program for every card."""
+    hit = program.__dict__.get("_lowering_problems")
+    if hit is None:
+        from effects.shaders.asm.lower import lowering_problems
+        hit = program.__dict__["_lowering_problems"] = lowering_problems(program)
+    return hit
+
+
 def _caps_flags(profile, field: str) -> set[str]:
     caps = profile.get(field) or {}
     return {str(c).upper() for c in caps.get("Caps", [])}

@@ -158,13 +158,6 @@ class AsmProgram:
         from effects.shaders.asm.stats import compute_stats
         return compute_stats(self)
 
-    @cached_property
-    def lowering_problems(self) -> list:
-        """`lower.lowering_problems(self)`, once per program: validation asks it per card, and
-        a compiled HLSL shader is one program for every card (its compile is cached)."""
-        from effects.shaders.asm.lower import lowering_problems
-        return lowering_problems(self)
-
     def declaration(self, kind: str, index: int) -> Declaration | None:
         for d in self.dcls:
             if d.register.kind == kind and d.register.index == index:
