@@ -142,3 +142,15 @@ def test_the_cache_is_bounded(monkeypatch):
     assert len(cache.CACHE) == 3
     assert compiled(BASE.replace("Gain = 2;", "Gain = 4;")) is shaders[4]      # recent: kept
     assert compiled(BASE.replace("Gain = 2;", "Gain = 0;")) is not shaders[0]  # oldest: evicted
+
+
+def test_a_function_that_does_not_parse_fails_every_compile_of_the_effect():
+    # fxc compiles the whole file: a broken function fails the shaders that never call it
+    broken = BASE.replace("return x * Other;", "return x * ;")
+    good = compiled(BASE)
+    with pytest.raises(EffectError, match="X3000: syntax error") as info:
+        compiled(broken)
+    assert info.value.line == 7
+    assert compiled(BASE) is good                  # fixed again: the first compile still holds
+    with pytest.raises(EffectError, match="X3000: syntax error"):
+        compiled(broken.replace("float Other = 1;", "float Other = 2;"))

@@ -12,6 +12,10 @@ never misses a dependency, and an edit elsewhere in the file (another function, 
 global, a technique) keeps the entry. Uniform values are not in the key (the shader reads them
 from constant registers at draw time); static globals' values are (they fold into the code).
 
+One thing reaches further: as fxc compiles the whole file, a function or struct that does not
+parse or resolve fails every compile of the effect, reached or not. So the key also says
+whether all of them load, and when they do not, holds all of them.
+
 Errors are cached too, keyed with the `compile` state's location besides (an unknown entry
 point or a bad argument is reported there). Bounded: the least recently used entry goes first.
 """
@@ -22,14 +26,18 @@ import re
 from functools import lru_cache
 from typing import Any, Callable
 
+from effects.errors import EffectError
 from effects.lru import ByteLRU
 from effects.model import CompileShader
+from effects.shaders.hlsl.context import load_context
 
 CACHE_ENTRIES = 512
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 # key -> CompiledShader | EffectError; each entry counts 1 (a 150-line shader is ~1 MiB)
 CACHE = ByteLRU(CACHE_ENTRIES, size_of=lambda value: 1)
+# every struct, typedef and function of an effect -> whether they all parse and resolve
+_LOADS = ByteLRU(CACHE_ENTRIES, size_of=lambda value: 1)
 
 
 @lru_cache(maxsize=4096)
@@ -91,7 +99,23 @@ def compile_key(effect: Any, value: CompileShader) -> tuple:
             if static and isinstance(text, str):     # an initialiser kept as an expression
                 todo.extend(_names(text))
     where = value.location if value.args else None   # arguments are located at the state
-    return (effect.path, value.profile.lower(), value.function, value.args, where, tuple(parts))
+    return (effect.path, value.profile.lower(), value.function, value.args, where, tuple(parts),
+            _all_load(effect))
+
+
+def _all_load(effect: Any) -> tuple:
+    """() when every struct, typedef and function of `effect` parses and resolves (a load of
+    the declarations, kept by their texts); else all of them, since the error comes from one."""
+    every = tuple(_declaration(obj, value=False) for obj in [*effect.structs, *effect.functions])
+    ok = _LOADS.get(every)
+    if ok is None:
+        try:
+            load_context(effect, "ps_2_0")
+            ok = True
+        except EffectError:
+            ok = False
+        _LOADS.put(every, ok)
+    return () if ok else every
 
 
 def cached_compile(effect: Any, value: CompileShader, compile: Callable[[], Any],
@@ -117,3 +141,4 @@ def cached_compile(effect: Any, value: CompileShader, compile: Callable[[], Any]
 def clear() -> None:
     """Forget every compile (tests; a host that wants the memory back)."""
     CACHE.clear()
+    _LOADS.clear()
