@@ -186,3 +186,57 @@ technique Wood_ps20
         PixelShader  = compile ps_2_0 Wood();
     }
 }
+
+
+//////////////////////////////////////////////////////////////////////////////
+// added: the rings the shader was written for ///////////////////////////////
+//////////////////////////////////////////////////////////////////////////////
+//
+// The printed `smoothstep` is not RenderMan's: it takes s as is (not (s - a) / (b - a)) and
+// treats a and b as the end values, with unit tangents added. So in `Wood` the line
+//     r = smoothstep(0.0f, 0.8f, r) - smoothstep(0.83f, 1.0f, r);
+// gives 0.63 sV2(r) - 0.83, between -0.83 and -0.2 (sV2 = 3 r^2 - 2 r^3): lerp(lightwood,
+// darkwood, r) then extrapolates past lightwood, and the grain is a faint sawtooth in the
+// light colour (the ring's extremes 1.45 x apart) instead of the dark rings with thin light
+// bands of the Renderman Companion shader. `WoodRings` is `Wood` with RenderMan's smoothstep
+// (0 below a, 1 above b, the Hermite 3t^2 - 2t^3 of t = (s - a) / (b - a) between); cards
+// still select Wood_ps20, the transcription, which comes first. With this file's noise
+// volume (noise3d: 4 lattice cells per unit, 3 octaves) a turbulence of 1 moves the point by
+// up to 10 rings and dissolves them into the noise's contour lines; about 0.1 keeps wood
+// (`--set turbulence=0.1`).
+
+float ring_step(float a, float b, float s)
+{
+    float t = saturate((s - a) / (b - a));
+    return t * t * (3.0f - 2.0f * t);
+}
+
+PS_OUTPUT WoodRings(const PS_INPUT v)
+{
+    float3 PP = v.Position * point_scale;
+    PP += tex3D(NoiseSampler, PP).xyz * turbulence;
+    float r = sqrt(PP.y * PP.y + PP.z * PP.z);
+    r *= ringscale;
+    r += abs(tex3D(NoiseSampler, float3(r, 0.0f, 0.0f)).x * turbulence);
+    r  = frac(r);
+    r = ring_step(0.0f, 0.8f, r) - ring_step(0.83f, 1.0f, r);
+    PS_OUTPUT o;
+    o.Color.rgb = (ambient_color * Ka + diffuse(v.Normal) * Kd) *
+        lerp(lightwood, darkwood, r) * v.Color.a +
+        specular(v.Normal, -I, roughness) * (Ks * (0.3f * r + 0.7f));
+    o.Color.a = v.Color.a;
+    return o;
+}
+
+technique WoodRings_ps20
+<
+    int Quality = 4;
+    float Cost = 3.0;
+>
+{
+    pass p0
+    {
+        VertexShader = compile vs_1_1 WoodVS();
+        PixelShader  = compile ps_2_0 WoodRings();
+    }
+}

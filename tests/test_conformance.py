@@ -137,6 +137,9 @@ BOUNDS = {
     ("wood.fx", "Wood_ps20"): Bound(
         "exact", "no mip maps, but frac() of a ring position read from a filtered noise volume "
         "(as in 3.) moves a ring edge by a pixel: a few pixels within 8/255", max_abs=8, outliers=4),
+    ("wood.fx", "WoodRings_ps20"): Bound(
+        "exact", "as Wood_ps20: a ring edge read from a filtered noise volume moves by a pixel",
+        max_abs=12, outliers=6),
     ("sdk9_style.fx", "Marble_ps11"): Bound(
         "exact", "no mip filtering, but texreg2gb reads a steep vein ramp at a filtered "
         "value (see 3.): a few pixels within 8/255", max_abs=8, outliers=4),

@@ -17,7 +17,7 @@ FX_DIR = Path(__file__).resolve().parent.parent / "fxfiles"
 # File -> techniques in fallback order (None = an anonymous technique).
 EXPECTED_TECHNIQUES: dict[str, list[str | None]] = {
     "brdf.fx": ["tec0"],
-    "wood.fx": ["Wood_ps20"],
+    "wood.fx": ["Wood_ps20", "WoodRings_ps20"],
     "fast_phong.fx": ["Phong", "Gouraud"],
     "phong.fx": ["PerPixelPhong_ps20", "PerPixelPhong_ps11", "Dot3_dx7", "SingleTexture"],
     "specular_bump.fx": ["Specular_ps20", "SpecularTable_ps11", "SpecularMultiply_ps11",
@@ -229,3 +229,19 @@ def test_ps20_blocks_fit_the_version() -> None:
             else:
                 arithmetic += PS2_SLOTS.get(op, 1)
         assert texture <= 32 and arithmetic <= 64, f"{name}: {texture} tex + {arithmetic} arith"
+
+
+def test_every_bundled_effect_is_pictured_on_three_cards_in_the_readme():
+    """The README's pictures: every fxfiles/*.fx on at least three cards (a card is the
+    profile named in the thumbnail's file name), and every picture it shows exists."""
+    import re
+    import effects
+    root = FX_DIR.parent
+    readme = (root / "README.md").read_text()
+    pictures = re.findall(r"!\[[^\]]*\]\((docs/[^)]+\.png)\)", readme)
+    assert pictures and all((root / p).is_file() for p in pictures)
+    profiles = set(effects.list_profiles())
+    for fx in sorted(FX_DIR.glob("*.fx")):
+        cards = {token for p in pictures if p.startswith(f"docs/thumbs/{fx.stem}_")
+                 for token in Path(p).stem.split("_") if token in profiles}
+        assert len(cards) >= 3, (fx.name, sorted(cards))

@@ -288,3 +288,54 @@ def test_wood_scene_file_supplies_what_the_application_set(backend):
     centre = img[32, 32].astype(int)
     assert img[0, 0, :3].tolist() == [0, 0, 0]
     assert centre[0] > centre[1] > centre[2] > 0
+
+
+def _wood_by_hand(ring) -> tuple[np.ndarray, np.ndarray]:
+    """wood.fx at turbulence 0 on the default sphere (128 x 128), 0..255, by hand: the ring
+    position r = frac(10 sqrt(y^2 + z^2)) of the object-space point, `ring(r)` the technique's
+    grain, then the printed shading with wood.yaml's colours (L, eye -I = +z)."""
+    import test_effect_pictures as pictures
+    point, n = pictures.POINT, pictures.NORMAL
+    g = ring(np.mod(10 * np.sqrt(point[..., 1] ** 2 + point[..., 2] ** 2), 1.0))[..., None]
+    light = np.array([0.577, 0.577, 0.577])
+    lightwood, darkwood = np.array([0.3, 0.12, 0.03]), np.array([0.05, 0.01, 0.005])
+    wood = lightwood + g * (darkwood - lightwood)
+    h = pictures.unit(light + np.array([0.0, 0.0, 1.0]))
+    spec = 0.5 * np.maximum(n @ h, 0.0)[..., None] ** 10 * 0.6 * (0.3 * g + 0.7)
+    colour = (0.2 + 0.4 * (n @ light)[..., None]) * wood + spec
+    return np.clip(colour, 0, 1) * 255, pictures.DISC
+
+
+def _printed_grain(r):
+    s2, s3 = r * r, r * r * r
+    v1, t1, v2, t2 = 2 * s3 - 3 * s2 + 1, s3 - 2 * s2 + r, -2 * s3 + 3 * s2, s3 - s2
+    step = lambda a, b: v1 * a + t1 + v2 * b + t2          # noqa: E731  (the printed helper)
+    return step(0.0, 0.8) - step(0.83, 1.0)
+
+
+def _renderman_grain(r):
+    def step(a, b):
+        t = np.clip((r - a) / (b - a), 0, 1)
+        return t * t * (3 - 2 * t)
+    return step(0.0, 0.8) - step(0.83, 1.0)
+
+
+@pytest.mark.parametrize("technique, ring", [("Wood_ps20", _printed_grain),
+                                             ("WoodRings_ps20", _renderman_grain)])
+def test_wood_grain_at_turbulence_zero_is_the_formula(backend, technique, ring):
+    # The printed smoothstep keeps the grain r in [-0.83, -0.2] (lerp extrapolates past
+    # lightwood: a faint sawtooth); RenderMan's gives [0, 1], dark rings with thin light bands.
+    # Measured against the formula over the disc: median 0, a few ring-edge pixels off
+    from effects.host.scene import load_scene
+    fx = effects.load_effect(str(ROOT / "fxfiles" / "wood.fx"))
+    scene = load_scene(str(ROOT / "fxfiles" / "wood.yaml"))
+    img = effects.render(fx, "radeon9700", technique=technique, backend=backend, scene=scene,
+                         size=(128, 128), params={"turbulence": 0.0}).astype(float)
+    want, inner = _wood_by_hand(ring)
+    err = np.abs(img[..., :3] - want)[inner]
+    assert np.median(err) <= 1.0 and np.percentile(err, 90) <= 3.0, (np.median(err), err.max())
+    red = img[..., 0][inner]
+    if technique == "Wood_ps20":
+        assert (_printed_grain(np.linspace(0, 1, 1001)) <= -0.19).all()
+    else:
+        assert red.max() > 2.5 * np.percentile(red, 10)      # light bands against dark wood

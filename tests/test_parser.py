@@ -402,7 +402,7 @@ def test_effect_files_come_from_the_preprocessor(tmp_path):
 FX_COUNTS = {
     "brdf.fx": [("tec0", [24])],
     "fast_phong.fx": [("Phong", [27]), ("Gouraud", [27])],
-    "wood.fx": [("Wood_ps20", [2])],
+    "wood.fx": [("Wood_ps20", [2]), ("WoodRings_ps20", [2])],
     "shadows.fx": [("Shadow4_R32F", [8, 13]), ("Shadow1_R32F", [8, 13]),
                    ("Shadow4_R16F", [8, 13]), ("Shadow4_Linear8", [9, 14]), ("Lit_ff", [18])],
     "sdk9_hlsl.fx": [("Scene_ps20", [2]), ("Scene_ps14", [2]), ("Scene_ps11", [2]), ("Scene_ff", [18])],

@@ -8,6 +8,7 @@ of the banding comparison. Deterministic; run from anywhere:
 from __future__ import annotations
 
 import os
+import tempfile
 
 import numpy as np
 from PIL import Image
@@ -81,7 +82,28 @@ TEAPOT = [("hemisphere", "HemisphereOcclusion_ps11", "geforce3"),
 # shadows.fx in its own occluder scene (a floor and a cube under a point light; the default
 # sphere would shadow only its own unlit side): file name + _scene.
 SHADOWS = [("Shadow4_R32F", "refrast"), ("Shadow1_R32F", "refrast"),
-           ("Shadow4_Linear8", "radeon9700"), ("Lit_ff", "geforce3")]
+           ("Shadow4_R16F", "geforce6800"), ("Shadow4_Linear8", "radeon9700"),
+           ("Lit_ff", "geforce3")]
+
+# Drawn through the command line, as a user would (`effects render`): (effect, technique, card,
+# extra arguments, file name suffix). wood.fx reads its colours and vectors from wood.yaml,
+# what the chapter's application set.
+WOOD = ["--scene", os.path.join(FX, "wood.yaml")]
+CLI = [
+    ("wood", "Wood_ps20", "radeon9700", WOOD, ""),
+    ("wood", "Wood_ps20", "geforcefx5900", WOOD, ""),
+    ("wood", "Wood_ps20", "geforce6800", WOOD, ""),
+    ("wood", "WoodRings_ps20", "radeon9700", WOOD, ""),
+    ("wood", "WoodRings_ps20", "radeon9700", WOOD + ["--set", "turbulence=0.1"], "_turbulence0.1"),
+    ("multilight", "MultiLight_ps30", "geforce6800", [], ""),
+    ("multilight", "MultiLight_ps20", "radeon9700", [], ""),
+    ("multilight", "MultiLight_ff", "geforce3", [], ""),
+    ("multilight", "MultiLight_ff", "tnt2", [], ""),
+    ("sdk9_hlsl", "Scene_ps20", "radeon9700", [], ""),
+    ("sdk9_hlsl", "Scene_ps14", "radeon8500", [], ""),
+    ("sdk9_hlsl", "Scene_ps11", "geforce3", [], ""),
+    ("sdk9_hlsl", "Scene_ff", "tnt2", [], ""),
+]
 
 # The banding close-ups: the specular term alone (black Earth, flat normal map, white
 # specular colour), the 32 x 32 pixels around the highlight of a 128 x 128 render, enlarged
@@ -110,6 +132,7 @@ def main() -> None:
         small = Image.fromarray(image[..., :3]).resize((128, 128), Image.LANCZOS)
         save(np.asarray(small), f"{effect}_{technique}_{card}_teapot.png")
     shadows()
+    command_line()
     fx = effects.load_effect(os.path.join(FX, "specular_bump.fx"))
     for technique, card in CLOSE_UPS:
         image = effects.render(fx, card, technique=technique, size=(128, 128),
@@ -127,6 +150,19 @@ def shadows() -> None:
                                scene=os.path.join(FX, "shadows.yaml"))
         small = Image.fromarray(image[..., :3]).resize((128, 128), Image.LANCZOS)
         save(np.asarray(small), f"shadows_{technique}_{card}_scene.png")
+
+
+def command_line() -> None:
+    from effects.cli.main import main as effects_main
+    with tempfile.TemporaryDirectory() as tmp:
+        for effect, technique, card, extra, suffix in CLI:
+            out = os.path.join(tmp, "frame.png")
+            code = effects_main(["render", os.path.join(FX, f"{effect}.fx"), "-p", card,
+                                 "-t", technique, "--size", "256x256", *extra, "-o", out])
+            if code != 0:
+                raise SystemExit(f"effects render {effect}.fx -t {technique} -p {card}: exit {code}")
+            small = Image.open(out).convert("RGB").resize((128, 128), Image.LANCZOS)
+            save(np.asarray(small), f"{effect}_{technique}_{card}{suffix}.png")
 
 
 if __name__ == "__main__":
