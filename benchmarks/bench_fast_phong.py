@@ -3,6 +3,12 @@ measured on the NumPy reference's screen-space shader (backends/reference/fast_p
 a 64 x 128 sphere seen from the front at 1024 x 1024, one directional light, exponent 20.
 
     .venv/bin/python benchmarks/bench_fast_phong.py [--size 1024] [--repeat 5] [--errors]
+    .venv/bin/python benchmarks/bench_fast_phong.py --renderer [--size 1024] [--repeat 5]
+
+`--renderer` times whole frames of fxfiles/fast_phong.fx (Phong, refrast, the default
+sphere) through the reference back end instead: ShadeMode = Phong by the Taylor form (finite
+eye, as the file's LocalViewer says) against the same pass lit by the normalised normal
+(`ReferenceBackend(phong="normalised")`), and the Gouraud technique, on one thread.
 
 `--errors` prints instead the series' error against exact Phong as the vertex normals spread
 (tests/test_fast_phong.py asserts it): per span the median and worst over 150 light (or half)
@@ -77,15 +83,44 @@ def error_curves(spans=(10, 20, 25, 30, 40, 50, 60, 75, 90), count: int = 150) -
             print(f"{name:26s} {spread:6s} " + " ".join(f"{c:>12s}" for c in cells), flush=True)
 
 
+def renderer_frames(size: int, repeat: int) -> None:
+    from pathlib import Path
+
+    import effects
+    from effects.backend import create_backend
+    from effects.host.runtime import Runtime
+    fx = effects.load_effect(str(Path(__file__).resolve().parent.parent / "fxfiles" / "fast_phong.fx"))
+    rows = {"gouraud (vertex lighting)": ("normalised", "Gouraud"),
+            "taylor, finite eye": ("taylor", "Phong"),
+            "phong (normalised normal), finite eye": ("normalised", "Phong")}
+    times = {}
+    for name, (mode, technique) in rows.items():
+        runtime = Runtime(fx, "refrast", size=(size, size),
+                          backend=create_backend("numpy", threads=1, phong=mode))
+        tech = fx.technique(technique)
+        runtime.render(tech)
+        times[name] = best_of(lambda: runtime.render(tech), repeat)
+    print(f"fast_phong.fx frames at {size}^2 through the reference back end (one thread)")
+    for name, t in times.items():
+        print(f"{name:42s} {t * 1e3:8.1f} ms {t / times['gouraud (vertex lighting)']:6.2f}")
+    ratio = times["phong (normalised normal), finite eye"] / times["taylor, finite eye"]
+    print(f"normalised-normal Phong / Taylor frame: {ratio:.2f}x")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--size", type=int, default=1024)
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--errors", action="store_true",
                         help="print the series' error against the normals' span instead")
+    parser.add_argument("--renderer", action="store_true",
+                        help="time fast_phong.fx frames through the reference back end instead")
     args = parser.parse_args()
     if args.errors:
         error_curves()
+        return
+    if args.renderer:
+        renderer_frames(args.size, args.repeat)
         return
     xy, n, v = front_sphere(args.size)
     to_light = np.array([0.4, 0.5, 0.77]) / np.linalg.norm([0.4, 0.5, 0.77])

@@ -211,3 +211,23 @@ def test_given_values_replace_a_computation_and_what_only_it_reads():
     out = evaluate(program, {"texcoord7": np.zeros((2, 4), np.float32),
                              "color0": np.full((2, 4), 0.5, np.float32)}, given={value: rows})
     assert np.allclose(out.outputs["color0"], 0.75)
+
+
+def test_the_reference_can_light_phong_by_the_normalised_normal_as_gl_does():
+    # ReferenceBackend(phong="normalised") ignores PassProgram.lighting and runs the fragment
+    # program's exact lighting: on the big 60-degree triangle it is GL's picture (the Taylor
+    # form is 22/255 off there)
+    from effects.backend import create_backend
+    text = open(FX).read().replace("LocalViewer       = True;", "LocalViewer       = False;")
+    fx = effects.load_effect(text)
+    scene, position, normal = triangle_scene(60)
+    params = {"LightDirection": [*(-TO_LIGHT), 0.0]}
+    exact = effects.render(fx, "refrast", technique="Phong", scene=scene, params=params,
+                           backend=create_backend("numpy", phong="normalised"))
+    gl = effects.render(fx, "refrast", technique="Phong", scene=scene, params=params,
+                        backend="gl")
+    taylor = effects.render(fx, "refrast", technique="Phong", scene=scene, params=params)
+    assert np.abs(exact.astype(int) - gl.astype(int)).max() <= 1
+    assert np.abs(taylor.astype(int) - gl.astype(int)).max() > 15
+    with pytest.raises(ValueError, match="phong must be one of"):
+        create_backend("numpy", phong="fast")

@@ -154,7 +154,8 @@ def rasterize(clip_pos: np.ndarray, varyings: dict[str, np.ndarray], triangles: 
 def setup_triangles(clip_pos: np.ndarray, varyings: dict[str, np.ndarray], triangles: np.ndarray,
                     size: tuple[int, int], cull: str = "CCW", *, flat: tuple[str, ...] = (),
                     depth_bias: float = 0.0, slope_scale_depth_bias: float = 0.0,
-                    quads: bool = True) -> "TriangleSetup | QuadFragments":
+                    quads: bool = True,
+                    vertex_only: tuple[str, ...] = ()) -> "TriangleSetup | QuadFragments":
     """Clip, project, cull and orient a triangle list; empty fragments when nothing is left.
 
     `clip_pos` (N, 4) in D3D clip space, `varyings` name -> (N, k), `triangles` (M, 3) vertex
@@ -162,6 +163,8 @@ def setup_triangles(clip_pos: np.ndarray, varyings: dict[str, np.ndarray], trian
     counter-clockwise, i.e. back, faces). `flat` names varyings taken from each triangle's first
     vertex (D3DSHADE_FLAT colours). Depth gets DepthBias + SlopeScaleDepthBias * max slope.
     `quads` False returns covered pixels only (no helpers), for programs without derivatives.
+    `vertex_only` names varyings kept at the clipped vertices (`TriangleSetup.attrs`) but not
+    interpolated to the fragments (a back end's own per-triangle setup reads them).
     """
     width, height = size
     cull = cull.upper()
@@ -218,7 +221,7 @@ def setup_triangles(clip_pos: np.ndarray, varyings: dict[str, np.ndarray], trian
     y_hi = np.minimum(Y.max(axis=1) // _ONE, height - 1)        # last pixel row
     return TriangleSetup(size, tris, X, Y, area, sz, inv_w, attrs, source, front, names, dims,
                          flat_cols, provoking, depth_bias, slope_scale_depth_bias, quads,
-                         y_lo, y_hi)
+                         y_lo, y_hi, tuple(vertex_only))
 
 
 @dataclass
@@ -245,6 +248,7 @@ class TriangleSetup:
     quads: bool
     y_lo: np.ndarray      # (T,) first and last pixel row each triangle can cover
     y_hi: np.ndarray
+    vertex_only: tuple[str, ...] = ()
 
     def rows(self, y0: int = 0, y1: int | None = None) -> QuadFragments:
         """The fragments in pixel rows [y0, y1) (y0 even, so quads stay whole): the same
@@ -265,10 +269,16 @@ class TriangleSetup:
         quad_tri, qx, qy, covered = _cover(X, Y, self.size[0], y1, y0)
         if len(quad_tri) == 0:
             return QuadFragments.empty(self.dims, self.quads)
+        names, attrs, flat_cols, provoking = self.names, self.attrs, self.flat_cols, self.provoking
+        if self.vertex_only:
+            names = [n for n in self.names if n not in self.vertex_only]
+            cols = np.concatenate([np.full(self.dims[n], n not in self.vertex_only)
+                                   for n in self.names]).astype(bool)
+            attrs, flat_cols = attrs[:, cols], flat_cols[cols]
+            provoking = None if provoking is None else provoking[:, cols]
         frags = _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, pick(self.area), self.sz,
-                             self.inv_w, self.attrs, pick(self.source), pick(self.front),
-                             self.names, self.dims, self.flat_cols,
-                             self.provoking,
+                             self.inv_w, attrs, pick(self.source), pick(self.front),
+                             names, self.dims, flat_cols, provoking,
                              self.depth_bias, self.slope_bias, self.quads)
         if part is not None and frags.tri is not None:
             frags.tri = part[frags.tri]

@@ -130,13 +130,22 @@ def keep_heap_memory() -> None:
         pass
 
 
+PHONG_MODES = ("taylor", "normalised")
+
+
 class ReferenceBackend:
     """The NumPy renderer. `threads`: fragment shading workers (1 shades inline);
-    `tune_malloc`: call `keep_heap_memory` (faster frames, memory is kept for reuse)."""
+    `tune_malloc`: call `keep_heap_memory` (faster frames, memory is kept for reuse);
+    `phong`: how a ShadeMode = Phong pass with `PassProgram.lighting` is lit, 'taylor'
+    (Bishop and Weimer's series) or 'normalised' (the fragment program's exact lighting, as
+    GL draws it; benchmarks/bench_fast_phong.py --renderer compares the two)."""
 
     name = "numpy"
 
-    def __init__(self, threads: int = 2, tune_malloc: bool = True) -> None:
+    def __init__(self, threads: int = 2, tune_malloc: bool = True, phong: str = "taylor") -> None:
+        if phong not in PHONG_MODES:
+            raise ValueError(f"phong must be one of {PHONG_MODES}, got {phong!r}")
+        self.phong = phong
         self.threads = max(1, int(threads))
         if tune_malloc:
             keep_heap_memory()
@@ -177,7 +186,8 @@ class ReferenceBackend:
                            if program.vertex is not None and program.vertex.samplers else {})
         clip, varyings = _vertex_stage(program.vertex, streams, uniforms, count, vertex_samplers)
         stage = _FragmentStage(program, clip, _needed_varyings(program.fragment, varyings),
-                               uniforms, sampler_callbacks(program, textures), fb.size)
+                               uniforms, sampler_callbacks(program, textures), fb.size,
+                               varyings, taylor=self.phong == "taylor")
         setup = stage.setup(tris)
         if setup is None:
             return
@@ -213,8 +223,10 @@ class _FragmentStage:
     what the output merger needs."""
 
     def __init__(self, program: PassProgram, clip: np.ndarray, needed: dict, uniforms: dict,
-                 callbacks: dict, size: tuple[int, int]) -> None:
+                 callbacks: dict, size: tuple[int, int],
+                 varyings: dict[str, np.ndarray] | None = None, taylor: bool = True) -> None:
         self.program = program
+        self.varyings = varyings if varyings is not None else needed
         self.clip = clip
         self.state = program.render_state
         self.needed = needed
@@ -224,17 +236,28 @@ class _FragmentStage:
         # Helper pixels are shaded only when an op needs quad derivatives (its row says).
         self.quads = any(OPS[instr.op].needs_quads for instr in program.fragment.instrs)
         lighting = program.lighting
-        self.lighting = lighting if self.state.shade_mode == "PHONG" else None
+        self.lighting = lighting if taylor and self.state.shade_mode == "PHONG" else None
         self.taylor: taylor_lighting.TaylorLighting | None = None
 
     def setup(self, tris: np.ndarray) -> TriangleSetup | None:
         """The draw's triangles ready for rasterising bands of rows, or None (nothing left)."""
         state = self.state
         flat = _COLOR_VARYINGS if state.shade_mode == "FLAT" else ()
-        setup = setup_triangles(self.clip, self.needed, tris, self.size, state.cull_mode,
+        needed, vertex_only = self.needed, ()
+        if self.lighting is not None:
+            # the Taylor form reads the normal and position at the vertices only; the fragment
+            # program still interpolates what else reads them
+            lighting = self.lighting
+            given = frozenset(v for v in (lighting.diffuse_value, lighting.specular_value)
+                              if v is not None)
+            per_pixel = _needed_varyings(self.program.fragment, self.varyings, given)
+            vertex_only = tuple(n for n in (lighting.normal, lighting.position)
+                                if n in self.varyings and n not in per_pixel)
+            needed = {**per_pixel, **{n: self.varyings[n][:, :3] for n in vertex_only}}
+        setup = setup_triangles(self.clip, needed, tris, self.size, state.cull_mode,
                                 flat=flat, depth_bias=state.depth_bias,
                                 slope_scale_depth_bias=state.slope_scale_depth_bias,
-                                quads=self.quads)
+                                quads=self.quads, vertex_only=vertex_only)
         if not isinstance(setup, TriangleSetup):
             return None
         if self.lighting is not None:
@@ -388,13 +411,16 @@ def _sampler_reads(instr) -> frozenset:
     return frozenset(reads)
 
 
-def _needed_varyings(fragment: Program,
-                     varyings: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """The varyings to interpolate: those the fragment program reads, cut after the last
-    component it reads (the rest would read as defaults, never used)."""
-    reads = input_components(fragment, _sampler_reads)
-    needed = {i.name: max(reads.get(i.name, ()), default=0) + 1
+def _needed_varyings(fragment: Program, varyings: dict[str, np.ndarray],
+                     given: frozenset = frozenset()) -> dict[str, np.ndarray]:
+    """The varyings to interpolate: those the fragment program reads (apart from what only
+    the `given` values read), cut after the last component it reads (the rest would read as
+    defaults, never used)."""
+    reads = input_components(fragment, _sampler_reads, given)
+    unread = -1 if given else 0          # with given values, a varying only they read is not
+    needed = {i.name: max(reads.get(i.name, ()), default=unread) + 1
               for i in fragment.inputs if i.kind == "varying"}
+    needed = {n: k for n, k in needed.items() if k > 0}
     return {n: varyings[n][:, :needed[n]] for n in sorted(needed) if n in varyings}
 
 

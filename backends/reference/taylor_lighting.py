@@ -24,8 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from backends.reference.fast_phong import (linear_dot, poly_mul, interpolation_planes,
-                                           power_table, table_lookup, taylor_quotient)
+from backends.reference.fast_phong import (interpolation_planes, linear_dot, poly_mul,
+                                           power_table, taylor_quotient)
 from effects.passprogram import PixelLighting
 
 TABLE_ENTRIES = 8192
@@ -33,13 +33,13 @@ TABLE_ENTRIES = 8192
 
 @dataclass
 class TaylorLighting:
-    """Per kept triangle its centroid (T, 2) in pixels and, per light, the (T, 6) series of
-    N.L / |N| and of N.H / (|N| |H|) (terms 1, x, y, x^2, xy, y^2)."""
+    """Per kept triangle its centroid in pixels (2, T) and, per light, the series of N.L / |N|
+    and of N.H / (|N| |H|), (12, T): terms 1, x, y, x^2, xy, y^2 of each, float32 (the
+    component-major layout makes every term one contiguous row)."""
 
     lighting: PixelLighting
-    centre: np.ndarray
-    diffuse: list[np.ndarray]
-    specular: list[np.ndarray]
+    centre_t: np.ndarray
+    series: list[np.ndarray]
     table: np.ndarray
 
 
@@ -76,13 +76,21 @@ def prepare(lighting: PixelLighting, xy: np.ndarray, inv_w: np.ndarray, normal: 
             h_plane = v_plane + one_plane * to_light
             denominator = poly_mul(n_sq, linear_dot(h_plane, h_plane))
         specular.append(taylor_quotient(linear_dot(n_plane, h_plane), denominator))
-    table = power_table(lighting.power, TABLE_ENTRIES)
-    return TaylorLighting(lighting, centre, diffuse, specular, table)
+    table = power_table(lighting.power, TABLE_ENTRIES).astype(np.float32)
+    series = [np.ascontiguousarray(np.concatenate([d, sp], axis=1).T, np.float32)
+              for d, sp in zip(diffuse, specular)]
+    return TaylorLighting(lighting, np.ascontiguousarray(centre.T, np.float32), series, table)
 
 
-def _evaluate(series: np.ndarray, tri: np.ndarray, dx: np.ndarray, dy: np.ndarray) -> np.ndarray:
-    c = series[tri]
-    return c[:, 0] + dx * (c[:, 1] + c[:, 3] * dx + c[:, 4] * dy) + dy * (c[:, 2] + c[:, 5] * dy)
+def _runs(tri: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The distinct triangles of `tri` and how many rows each has: the rasteriser emits a
+    triangle's rows together, so a per-triangle value reaches its rows by a repeat (a copy
+    per run, faster than a gather per row)."""
+    if len(tri) == 0:
+        return tri, np.zeros(0, np.int64)
+    starts = np.flatnonzero(np.diff(tri)) + 1
+    bounds = np.concatenate([[0], starts, [len(tri)]])
+    return tri[bounds[:-1]], np.diff(bounds)
 
 
 def shade(taylor: TaylorLighting, tri: np.ndarray, x: np.ndarray, y: np.ndarray
@@ -91,20 +99,54 @@ def shade(taylor: TaylorLighting, tri: np.ndarray, x: np.ndarray, y: np.ndarray
     at pixels (x, y): the D3D lighting sums of `PixelLighting` with the series for N.L / |N|
     and N.H / (|N| |H|) and the table for the power."""
     lighting = taylor.lighting
-    dx = x - taylor.centre[tri, 0]
-    dy = y - taylor.centre[tri, 1]
+    which, counts = _runs(tri)
+    per_row = lambda a: np.repeat(a[:, which], counts, axis=1)  # noqa: E731  (K, T) -> (K, N)
+    centre = per_row(taylor.centre_t)
+    dx = x.astype(np.float32) - centre[0]
+    dy = y.astype(np.float32) - centre[1]
     n = len(tri)
-    lit_diffuse = np.zeros((n, 4))
-    lit_specular = np.zeros((n, 4))
-    for light, d_series, s_series in zip(lighting.lights, taylor.diffuse, taylor.specular):
-        n_dot_l = _evaluate(d_series, tri, dx, dy)
-        lit_diffuse[:, :3] += np.clip(n_dot_l, 0.0, 1.0)[:, None] * light.diffuse[:3]
+    lit_diffuse = np.zeros((3, n), np.float32)
+    lit_specular = np.zeros((4, n), np.float32)
+    for k, light in enumerate(lighting.lights):
+        c = per_row(taylor.series[k])                  # (12, N): diffuse then specular terms
+        n_dot_l = _poly(c[:6], dx, dy)
+        lit = np.clip(n_dot_l, 0.0, 1.0)
+        for j in range(3):
+            lit_diffuse[j] += lit * np.float32(light.diffuse[j])
         if lighting.specular_value is not None:
-            n_dot_h = _evaluate(s_series, tri, dx, dy)
-            term = table_lookup(taylor.table, n_dot_h) * ((n_dot_l > 0) & (n_dot_h > 0))
-            lit_specular += term[:, None] * np.asarray(light.specular)
-    diffuse = np.asarray(lighting.base, np.float64) + np.asarray(lighting.material_diffuse) * lit_diffuse
+            n_dot_h = _poly(c[6:], dx, dy)
+            term = taylor.table[_table_index(n_dot_h, len(taylor.table))]
+            term[(n_dot_l <= 0) | (n_dot_h <= 0)] = 0.0
+            for j in range(4):
+                lit_specular[j] += term * np.float32(light.specular[j])
+    diffuse = np.empty((n, 4), np.float32)
+    specular = np.empty((n, 4), np.float32)
+    for j in range(3):
+        diffuse[:, j] = lighting.base[j] + lighting.material_diffuse[j] * lit_diffuse[j]
     diffuse[:, 3] = lighting.material_diffuse[3]
-    specular = np.asarray(lighting.material_specular, np.float64) * lit_specular
-    return (np.clip(diffuse, 0.0, 1.0).astype(np.float32),
-            np.clip(specular, 0.0, 1.0).astype(np.float32))
+    for j in range(4):
+        specular[:, j] = lighting.material_specular[j] * lit_specular[j]
+    np.clip(diffuse, 0.0, 1.0, out=diffuse)
+    np.clip(specular, 0.0, 1.0, out=specular)
+    return diffuse, specular
+
+
+def _poly(c: np.ndarray, dx: np.ndarray, dy: np.ndarray) -> np.ndarray:
+    """c0 + c1 x + c2 y + c3 x^2 + c4 xy + c5 y^2, row by row, as (c1 + c3 x + c4 y) x +
+    (c2 + c5 y) y + c0."""
+    out = c[3] * dx
+    out += c[4] * dy
+    out += c[1]
+    out *= dx
+    inner = c[5] * dy
+    inner += c[2]
+    inner *= dy
+    out += inner
+    out += c[0]
+    return out
+
+
+def _table_index(value: np.ndarray, entries: int) -> np.ndarray:
+    """The nearest entry of an `entries` table over [0, 1] (as `fast_phong.table_lookup`)."""
+    k = np.clip(value, 0.0, 1.0) * np.float32(entries - 1)
+    return np.rint(k, out=k).astype(np.int32)
