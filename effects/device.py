@@ -121,6 +121,46 @@ class DeviceState:
     def items(self) -> Iterator[tuple[tuple[str, int | None], StateAssignment]]:
         return iter(self.values.items())
 
+    def int_constants(self, shader: str) -> dict[int, tuple[int, int, int, int]]:
+        """The integer registers i# the pass sets for the 'Vertex' or 'Pixel' shader
+        (`VertexShaderConstantI[n] = int4(...)` or `<param>`: four ints a register, padded
+        with zeros). A register nothing sets, or a parameter without a value, is left out:
+        it reads (0, 0, 0, 0), the device's initial value."""
+        found: dict[int, tuple[int, int, int, int]] = {}
+        for index, flat, _ in self._constant_rows(f"{shader}ShaderConstantI"):
+            rows = np.zeros(-(-flat.size // 4) * 4, np.int64)
+            rows[:flat.size] = np.rint(flat)
+            for k in range(0, rows.size, 4):
+                found[index + k // 4] = tuple(int(v) for v in rows[k:k + 4])  # type: ignore[misc]
+        return found
+
+    def bool_constants(self, shader: str) -> dict[int, bool]:
+        """The boolean registers b# the pass sets (`PixelShaderConstantB[n] = true` or
+        `<param>`: one BOOL a register); unset registers read FALSE, as on the device."""
+        found: dict[int, bool] = {}
+        for index, flat, _ in self._constant_rows(f"{shader}ShaderConstantB"):
+            for k, v in enumerate(flat):
+                found[index + k] = bool(v)
+        return found
+
+    def _constant_rows(self, name: str) -> Iterator[tuple[int, np.ndarray, Location]]:
+        """(first register, the value as a flat float array, where) of each assignment of the
+        constant state `name`, in the order the pass made them (later ones win)."""
+        for (key, index), assignment in self.items():
+            if key != name or index is None:
+                continue
+            value = self.resolve(assignment.value)
+            if isinstance(value, (ParamRef, Expression, NullValue)) or value is None:
+                continue
+            try:
+                flat = np.ravel(np.asarray(value, dtype=np.float64))
+            except (TypeError, ValueError):
+                raise EffectError(f"{name}[{index}] needs numbers, not "
+                                  f"{type(value).__name__}", assignment.location) from None
+            if not np.isfinite(flat).all():
+                raise EffectError(f"{name}[{index}] needs finite numbers", assignment.location)
+            yield index, flat, assignment.location
+
     # -- typed readers (see the module docstring) ------------------------------------------
     def where(self, name: str, index: int | None = None,
               fallback: Location | None = None) -> Location:

@@ -231,12 +231,18 @@ def test_static_if_on_a_boolean_constant(backend):
 
 # -- errors and the IR's structure checks ----------------------------------------------------
 
-def test_constants_the_application_sets_are_located_problems():
-    src = "ps_3_0\nrep i3\nmov r0, c0\nendrep\nmov oC0, c0"
+def test_counts_the_application_sets_lower_and_count_against_the_limit():
+    # i3 without defi: the pass's value (ShaderContext.int_constants), else (0, 0, 0, 0);
+    # the effect-level forms are in test_shader_int_bool_constants.py
+    src = "ps_3_0\nrep i3\nrep i3\nmov r0, c0\nendrep\nendrep\nmov oC0, c0"
     prog = assemble(ShaderBlock("pixel", None, src, location=Location("t.fx", 1, 1)))
-    assert [str(e) for e in lowering_problems(prog)] == [
-        "t.fx:2:5: error: i3 is not set by defi (constants the application sets are not "
-        "lowered yet)"]
+    assert lowering_problems(prog) == [] == lowering_problems(prog, {3: (255, 0, 0, 0)})
+    assert lowering_problems(prog, {3: (255, 0, 0, 0)}) == []       # 65,025 <= 65,536
+    src = src.replace("mov r0", "rep i3\nmov r0").replace("endrep\nendrep", "endrep\nendrep\nendrep")
+    prog = assemble(ShaderBlock("pixel", None, src, location=Location("t.fx", 1, 1)))
+    assert [e.location.line for e in lowering_problems(prog, {3: (255, 0, 0, 0)})] == [4]
+    with pytest.raises(Exception, match="65,536|65536"):
+        lower_pixel_shader(prog, ShaderContext(LoweringOptions(), int_constants={3: (255, 0, 0, 0)}))
 
 
 def test_early_return_is_a_located_problem():

@@ -25,7 +25,9 @@ this module supplies what the pass state says: the constant registers c# (from
 VertexShaderConstant[n] / PixelShaderConstant[n]; a matrix parameter fills four registers with
 its columns, i.e. transposed, so `m4x4 oPos, v0, c4` computes the row-vector product p·M that
 the DX8 files expect; uniforms `vs_c<n>` and `ps_c<n>`, as the two shaders have separate
-constant files), the bump-environment state of each stage (uniforms `bumpenv<n>` and
+constant files), the integer and boolean registers i# / b# (VertexShaderConstantI/B,
+PixelShaderConstantI/B: static values lowered into the program, see asm.lower), the
+bump-environment state of each stage (uniforms `bumpenv<n>` and
 `bumpenvl<n>`), the kind of texture bound to each sampler, and TTFF_PROJECTED per stage.
 A vs_3_0 shader's samplers are the vertex texture samplers 257-260 (`Sampler[257] = <s>`, or an
 HLSL vertex shader's sampler registers + 257, as D3DX binds them), bound like pixel ones.
@@ -188,7 +190,8 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
                                     if (k := _texture_kind(effect, state, s))},
             projected={s: bool(state.get_int("TextureTransformFlags", s) & TTFF_PROJECTED)
                        for s in range(MAX_STAGES)},
-            constant_prefix=PIXEL_CONSTANT_PREFIX)
+            constant_prefix=PIXEL_CONSTANT_PREFIX, int_constants=state.int_constants("Pixel"),
+            bool_constants=state.bool_constants("Pixel"))
         fragment = asm_lower.lower_pixel_shader(program, ctx)
         uniforms.update(_shader_constants(state, "PixelShaderConstant",
                                           asm_lower.constant_registers(program),
@@ -211,7 +214,9 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     else:
         program, compiled = _assemble(effect, state, vertex_shader, "vertex")
         ctx = asm_lower.ShaderContext(options, decl=getattr(vertex_shader, "decl", None),
-                                      constant_prefix=VERTEX_CONSTANT_PREFIX)
+                                      constant_prefix=VERTEX_CONSTANT_PREFIX,
+                                      int_constants=state.int_constants("Vertex"),
+                                      bool_constants=state.bool_constants("Vertex"))
         vertex = asm_lower.lower_vertex_shader(program, ctx)
         uniforms.update(_shader_constants(state, "VertexShaderConstant",
                                           asm_lower.constant_registers(program),

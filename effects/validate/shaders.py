@@ -131,7 +131,12 @@ class ShaderChecks:
         # The instruction table's `lowers` column: what does not lower cannot render, so it
         # is not valid on any card (valid means renders). Asked of well-formed programs only.
         from effects.shaders.asm.limits import lowering_cached
-        for err in ([] if errors else lowering_cached(program)):
+        try:
+            ints = self.state.int_constants("Pixel" if state_name == "PixelShader" else "Vertex")
+        except EffectError as err:
+            self.fail(err.location, state_name, "integer constants", "not numbers", err.message)
+            ints = {}
+        for err in ([] if errors else lowering_cached(program, ints)):
             self.fail(err.location, state_name, "instructions this framework lowers",
                       "not lowered", err.message)
         if program.kind == "ps":

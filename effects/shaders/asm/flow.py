@@ -8,18 +8,19 @@ DirectX 9 assembly reference pages for if_bool / if_comp / if_pred, loop, rep, b
 breakp, call, callnz, label, ret, setp_comp, and the predicate register.
 
 Decisions:
-- Loop and rep counts are the integer constant's x (`defi`), clamped to D3D's 0..255; loop
-  starts aL at i.y and steps it by i.z at the end of each iteration. Integer and boolean
-  constants the application would set (no defi / defb) are not lowered (`lowering_problems`).
+- Loop and rep counts are the integer constant's x (`defi`, else the value the pass sets,
+  ShaderContext.int_constants, else 0), clamped to D3D's 0..255; loop starts aL at i.y and
+  steps it by i.z at the end of each iteration.
 - Conditions are IR values whose x is 1 (true) or 0: if_comp / break_comp compare the x of
-  the (replicated) sources; b# is its defb value; p0.c (or !p0.c) a predicate component.
+  the (replicated) sources; b# is its defb value, else the pass's (ShaderContext.
+  bool_constants), else FALSE; p0.c (or !p0.c) a predicate component.
 - call / callnz are inlined (D3D forbids recursion); a subroutine body runs from its label to
   its ret.
 - Predicated instructions `(p0) op` write, per component, only where p0 (or !p0) is true.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Mapping
 
 from effects import limits
 
@@ -104,14 +105,16 @@ def _divergent(instr: Instruction) -> bool:
     return instr.comparison is not None or any(op.kind == "p" for op in instr.srcs)
 
 
-def iteration_problems(program: Any) -> list[AsmError]:
-    """Nested rep / loop blocks whose counts multiply past the `shader_loop_iterations`
-    limit (effects.limits): the reference evaluator and GL would run them all."""
+def iteration_problems(program: Any, int_constants: Mapping[int, Any] | None = None
+                       ) -> list[AsmError]:
+    """Nested rep / loop blocks whose counts (defi, else `int_constants`, the pass's i#)
+    multiply past the `shader_loop_iterations` limit (effects.limits): the reference
+    evaluator and GL would run them all."""
     found, counts = [], []
     for instr in program.instructions:
         if instr.opcode in ("rep", "loop"):
             reg = instr.srcs[-1]
-            values = program.int_defs.get(reg.index, (0,))
+            values = integer(program, int_constants or {}, reg.index)
             counts.append(min(max(int(values[0]), 0), MAX_LOOP_COUNT))
             total = 1
             for n in counts:
@@ -164,12 +167,17 @@ def call_problems(instrs: list) -> list[AsmError]:
     return found
 
 
+def integer(program: Any, int_constants: Mapping[int, Any], index: int) -> tuple:
+    """i#: the shader's defi, else the pass's value, else (0, 0, 0, 0)."""
+    values = program.int_defs.get(index)
+    if values is None:
+        values = int_constants.get(index, (0, 0, 0, 0))
+    return tuple(values)
+
+
 def loop_count(lo: Lowering, reg: Operand) -> tuple[int, int, int]:
     """(count, start, step) of the integer constant a rep / loop names."""
-    values = lo.p.int_defs.get(reg.index)
-    if values is None:
-        raise AsmError(f"i{reg.index} is not defined by defi (constants the application sets "
-                       "are not lowered yet)", reg.location)
+    values = integer(lo.p, lo.ctx.int_constants, reg.index)
     return min(max(int(values[0]), 0), MAX_LOOP_COUNT), int(values[1]), int(values[2])
 
 
@@ -190,8 +198,7 @@ def truth(lo: Lowering, op: Operand, reads: dict) -> int:
     if op.kind == "b":
         value = lo.p.bool_defs.get(op.index)
         if value is None:
-            raise AsmError(f"b{op.index} is not defined by defb (constants the application "
-                           "sets are not lowered yet)", op.location)
+            value = lo.ctx.bool_constants.get(op.index, False)
         return lo.e.const(1.0 if value else 0.0)
     return predicate(lo, op, reads)
 

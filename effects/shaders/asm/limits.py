@@ -6,7 +6,7 @@ resource use with one card's values (the caps validator turns each violation int
 from __future__ import annotations
 
 from functools import lru_cache
-from typing import Iterator
+from typing import Any, Iterator, Mapping
 
 from effects.errors import AsmError, Location
 from effects.model import ShaderBlock
@@ -52,13 +52,19 @@ def check_cached(program: AsmProgram) -> list[AsmError]:
     return hit[1]
 
 
-def lowering_cached(program: AsmProgram) -> list[AsmError]:
-    """`lower.lowering_problems`, once per program object (kept on it, so it goes with it):
-    validation asks per card, and a compiled HLSL shader is one program for every card."""
-    hit = program.__dict__.get("_lowering_problems")
+def lowering_cached(program: AsmProgram, int_constants: Mapping[int, Any] | None = None
+                    ) -> list[AsmError]:
+    """`lower.lowering_problems`, once per program object and set of pass integer constants
+    (kept on the program, so it goes with it): validation asks per card, and a compiled HLSL
+    shader is one program for every card."""
+    key = tuple(sorted((int_constants or {}).items()))
+    hits = program.__dict__.setdefault("_lowering_problems", {})
+    hit = hits.get(key)
     if hit is None:
         from effects.shaders.asm.lower import lowering_problems
-        hit = program.__dict__["_lowering_problems"] = lowering_problems(program)
+        if len(hits) >= 16:     # a viewer editing the counts: keep a few
+            hits.clear()
+        hit = hits[key] = lowering_problems(program, int_constants)
     return hit
 
 

@@ -47,8 +47,10 @@ Decisions (sources: ../shared/reference/semantics.md §2-4, caps.md §1):
   that addresses relatively needs all of those registers (`constant_registers`).
 - Flow control (flow.py) lowers to the IR's structured blocks; predicated instructions write
   only where the predicate holds; dsx/dsy are the IR's ddx/ddy and texldd samples with
-  explicit gradients. `lowering_problems` names what does not lower: integer / boolean
-  constants the application sets (no defi / defb), an early ret, relative addressing of
+  explicit gradients. Integer and boolean registers the pass sets (ctx.int_constants /
+  bool_constants) are static: their values are lowered in, so the pass is lowered again when
+  they change (lower_pass' parameter check), as a driver recompiles on a static-branch change.
+  `lowering_problems` names what does not lower: an early ret, relative addressing of
   v# / o#, gradients inside dynamic flow control (X4014), and any row marked NotLowered.
 """
 from __future__ import annotations
@@ -97,6 +99,11 @@ class ShaderContext:
     # Uniform name of constant register n is f"{constant_prefix}{n}". A pass lowering both a
     # vertex and a pixel shader gives them different prefixes: their c# are separate files.
     constant_prefix: str = "c"
+    # Integer and boolean registers the pass sets (VertexShaderConstantI/B, PixelShader...):
+    # i# -> (x, y, z, w), b# -> bool. A shader's own defi / defb win, as on the device while
+    # it runs; a register neither sets reads (0, 0, 0, 0) / FALSE.
+    int_constants: Mapping[int, tuple[int, int, int, int]] = field(default_factory=dict)
+    bool_constants: Mapping[int, bool] = field(default_factory=dict)
 
 
 def lower_pixel_shader(program: AsmProgram, ctx: ShaderContext) -> Program:
@@ -154,16 +161,21 @@ def _written(instrs: list, body: range, labels: dict[int, int], seen: frozenset 
     return found
 
 
-def lowering_problems(program: AsmProgram) -> list[AsmError]:
+def lowering_problems(program: AsmProgram,
+                      int_constants: Mapping[int, tuple[int, int, int, int]] | None = None
+                      ) -> list[AsmError]:
     """Every instruction of `program` that does not lower, located, with the reason: its
     row says `NotLowered`, or it uses a register, an addressing form or a flow-control form
     the lowering does not handle. Empty means `lower_*_shader` lowers it. A program the
-    checker rejects (an unclosed block ...) gets the checker's reason instead."""
+    checker rejects (an unclosed block ...) gets the checker's reason instead.
+    `int_constants`: the i# the pass sets (ShaderContext.int_constants), whose loop counts
+    count against the iteration limit."""
     from effects.shaders.asm.check import check
     errors = check(program)
     if errors:
         return errors
-    problems = flow.iteration_problems(program) + flow.call_problems(program.instructions)
+    problems = (flow.iteration_problems(program, int_constants or {})
+                + flow.call_problems(program.instructions))
     depth = 0
     dynamic = flow.dynamic_blocks(program.instructions)
     for pos, instr in enumerate(program.instructions):
@@ -195,11 +207,6 @@ def lowering_problems(program: AsmProgram) -> list[AsmError]:
 def _operand_problems(program: AsmProgram, instr: Instruction) -> list[AsmError]:
     found = []
     roles = instr.info.source_roles
-    for op in instr.srcs:
-        defined = {"i": program.int_defs, "b": program.bool_defs}.get(op.kind)
-        if defined is not None and op.index not in defined:
-            found.append(AsmError(f"{op.name} is not set by def{op.kind} (constants the "
-                                  "application sets are not lowered yet)", op.location))
     for k, op in enumerate(instr.srcs):
         if k < len(roles) and roles[k] not in "sx":
             continue
@@ -275,6 +282,9 @@ class _Lowering:
 
     # -- driver
     def run(self) -> Program:
+        problems = flow.iteration_problems(self.p, self.ctx.int_constants)
+        if problems:              # counts the pass set at render time, past the limit
+            raise problems[0]
         self.lower_from(0)
         self.outputs()
         return self.b.build()
