@@ -83,7 +83,7 @@ class Arith:
             import math
             return [self.const(float(math.trunc(c.const_values()[0]))) for c in comps]
         neg = self.compare("<", comps, [self.const(0.0)] * len(comps), loc)
-        frac = self.lanes("frc", [comps], loc)
+        frac = self.frc(comps, loc)
         nonint = self.compare("!=", frac, [self.const(0.0)] * len(comps), loc)
         fix = self.lanes("mul", [neg, nonint], loc)
         return self.lanes("add", [fl, fix], loc)

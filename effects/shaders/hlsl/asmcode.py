@@ -12,13 +12,16 @@ _SAMPLER_DCL = {"2d": "2d", "1d": "2d", "3d": "volume", "cube": "cube"}
 
 @dataclass
 class Reg:
-    """A register: kind 'r' (virtual until allocated), 'c', 'v', 't', 's', 'o...'."""
+    """A register: kind 'r' (virtual until allocated), 'c', 'v', 't', 's', 'o...', 'a' (a0),
+    'c_rel' (c[a0.x + index])."""
     kind: str
     index: int | None
 
     def text(self, alloc: dict[int, int]) -> str:
         if self.kind == "vr":
             return f"r{alloc[self.index]}"  # type: ignore[index]
+        if self.kind == "c_rel":
+            return f"c[a0.x + {self.index}]" if self.index else "c[a0.x]"
         return f"{self.kind}{'' if self.index is None else self.index}"
 
 

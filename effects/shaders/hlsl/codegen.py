@@ -218,6 +218,9 @@ class CodeGen:
         if op == "uniform":
             self.home[n.id] = (self.uniform_reg(*n.key), {c: c for c in range(4)})
             return
+        if op == "uniform_rel":
+            self.relative_read(n)
+            return
         if op == "kill":
             return
         if op == "pack":
@@ -278,6 +281,23 @@ class CodeGen:
             srcs.append(s)
         opcode = "mov" if op == "sat" else op
         self.emit(opcode, reg, mask, srcs, n.location, saturate=op == "sat")
+
+    def relative_read(self, n: Node) -> None:
+        """c[a0.x + n] copied to a temporary, a0.x loaded first unless it holds this address
+        already (vs_1_1 loads it with mov, which floors; vs_2_0 and up with mova, which
+        rounds: the address is a whole number either way, so both read the same element)."""
+        address = n.args[0]
+        if getattr(self, "a0", None) != address.sig():
+            src = self.place(address, [0])
+            if src.fixed is None:
+                src.fixed = (src.lanes[0],) * 4
+            self.emit("mov" if self.rules.major == 1 else "mova", Reg("a", 0), (0,), [src],
+                      n.location)
+            self.a0 = address.sig()
+        base = self.uniform_reg(n.key[0], n.key[1]).index
+        reg, _ = self.home_of(n)
+        self.emit("mov", reg, (0, 1, 2, 3), [Src(Reg("c_rel", base), {i: i for i in range(4)})],
+                  n.location)
 
     def _lanewise(self, a: Operand, lanes_out: list[tuple[int, int]]) -> Src:
         node = a.node

@@ -158,7 +158,7 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
     what the outputs reach, in creation order)."""
     order: list[str] = []
     for n in nodes:
-        if n.op == "uniform" and n.key[0] not in order:
+        if n.op in ("uniform", "uniform_rel") and n.key[0] not in order:
             order.append(n.key[0])
     sizes = {name: register_count(ctx.uniforms_used.get(name) or HType("scalar")) for name in order}
     regs: dict[str, int] = {}

@@ -85,11 +85,16 @@ def global_value(ev: Any, name: str, where: Any) -> Value:
     return value
 
 
-def uniform_value(ev: Any, name: str, t: HType, offset: int) -> Value:
-    """A uniform's value over its constant registers (offsets relative to its first)."""
+def uniform_value(ev: Any, name: str, t: HType, offset: int, address: Operand | None = None) -> Value:
+    """A uniform's value over its constant registers (offsets relative to its first); with
+    `address`, read relatively: register offset + k is c[a0.x + first + offset + k] with
+    a0.x = address (an array element chosen at run time, vertex shaders only)."""
     from effects.shaders.hlsl.types import register_count
     g = ev.g
-    reg = lambda k: g.leaf("uniform", (name, offset + k), 4)
+    if address is None:
+        reg = lambda k: g.leaf("uniform", (name, offset + k), 4)
+    else:
+        reg = lambda k: g.leaf("uniform_rel", (name, offset + k), 4, args=(address,))
     if t.kind in ("scalar", "vector"):
         r = reg(0)
         return Value(t, [Operand(r.node, (i,)) for i in range(t.size)])
@@ -103,13 +108,13 @@ def uniform_value(ev: Any, name: str, t: HType, offset: int) -> Value:
         return Value(t, comps)
     if t.kind == "array":
         size = register_count(t.element)  # type: ignore[arg-type]
-        return Value(t, elements=[uniform_value(ev, name, t.element, offset + k * size)  # type: ignore[arg-type]
+        return Value(t, elements=[uniform_value(ev, name, t.element, offset + k * size, address)  # type: ignore[arg-type]
                                   for k in range(t.length)])
     if t.kind == "struct":
         out = Value(t)
         k = offset
         for fname, ft, _ in t.fields:
-            out.fields[fname] = uniform_value(ev, name, ft, k)
+            out.fields[fname] = uniform_value(ev, name, ft, k, address)
             k += register_count(ft)
         return out
     return Value(t)
@@ -177,6 +182,10 @@ def _member(ev: Any, tree: lark.Tree) -> Value:
 def _index(ev: Any, tree: lark.Tree) -> Value:
     base_tree, index_tree = tree.children
     base = ev.expr(base_tree)
+    if base.type.kind == "array":
+        index = ev.expr(index_tree)
+        if index.const_values() is None:
+            return _relative_element(ev, base_tree, base.type, index, index_tree)
     k = const_index(ev, index_tree, base.type)
     t = base.type
     if t.kind == "array":
@@ -187,6 +196,33 @@ def _index(ev: Any, tree: lark.Tree) -> Value:
         return Value(scalar(t.base), [base.comps[k]])
     raise ev.error(f"X3121: array, matrix, vector, or indexable object type expected in index "
                    f"expression, not '{t}'", tree)
+
+
+def _relative_element(ev: Any, base_tree: Any, t: HType, index: Value, where: Any) -> Value:
+    """`Bones[i]` with i known only at run time: in a vertex shader, an element of a uniform
+    array read through the address register (c[a0.x + n]; a0.x = i times the registers an
+    element takes, i converted to int first as HLSL does). An address outside the constant
+    file reads (0, 0, 0, 0) (the DirectX 9 docs' address-register page); inside it but past
+    the array, the registers that follow, as on hardware (no bounds check)."""
+    from effects.shaders.hlsl.types import register_count
+    target = ev.ctx.target
+    name = str(base_tree.children[0]) if isinstance(base_tree, lark.Tree) and base_tree.data == "var" else None
+    param = ev.ctx.effect.parameter(name) if name is not None and ev.lookup(name) is None else None
+    if target.kind != "vs" or param is None or "static" in param.storage:
+        where_text = ("pixel shaders have no relative addressing" if target.kind == "ps" else
+                      "only uniform (global, non-static) arrays are indexed through a0")
+        raise ev.error(f"X3512: array index must be a literal expression on {target.name} "
+                       f"({where_text})", where)
+    if not index.type.numeric:
+        raise ev.error(f"X3120: invalid type for index - index must be a scalar, not '{index.type}'", where)
+    if index.type.size > 1:
+        ev.warn("X3206: implicit truncation of vector type", ev.at(where))
+    loc = ev.at(where)
+    i = ev.a.convert_base(index.comps[:1], index.type.base, "int", loc)[0]
+    stride = register_count(t.element)  # type: ignore[arg-type]
+    address = i if stride == 1 else ev.a.op("mul", [i, ev.a.const(float(stride))], loc, 1)
+    global_value(ev, name, base_tree)            # registers the array as used
+    return uniform_value(ev, name, t.element, 0, address)  # type: ignore[arg-type]
 
 
 def _construct(ev: Any, tree: lark.Tree) -> Value:
