@@ -695,16 +695,19 @@ def test_every_row_says_how_it_lowers():
 def test_validation_rejects_what_does_not_lower():
     # A vs_2_0 loop validates and lowers on a Radeon 9700, and so does a rep on an integer
     # constant the application sets (the pass's VertexShaderConstantI, here unset: 0
-    # iterations); what does not lower (an early ret) makes the shader invalid.
+    # iterations).
     from effects import load_effect, load_profile
     text = ("technique T { pass P { VertexShader = asm {\n"
             "vs_2_0\ndcl_position v0\ndefi i0, 3, 0, 1, 0\nmov r0, v0\n"
             "loop aL, i0\nadd r0, r0, c0\nendloop\nrep i1\nendrep\n"
             "mov oPos, r0\n}; } }")
     assert load_effect(text).validate("T", load_profile("radeon9700")).ok
-    effect = load_effect(text.replace("rep i1\nendrep", "call l0\nmov oPos, r0\nret\n"
-                                      "label l0\nrep i1\nret\nendrep\nret"))
-    result = effect.validate("T", load_profile("radeon9700"))
+    # what does not lower (a gradient inside a dynamic if, X4014) makes a shader invalid
+    effect = load_effect("technique T { pass P { PixelShader = asm {\n"
+                         "ps_3_0\ndcl vPos.xy\ndef c0, 4, 0, 0, 0\nif_lt vPos.x, c0.x\n"
+                         "dsx r0, vPos\nendif\nmov oC0, c0\n}; } }")
+    result = effect.validate("T", load_profile("refrast"))
     assert not result.ok
     assert [str(r) for r in result.reasons] == [
-        "pass P (line 14): ret inside if, rep or loop (an early return) is not lowered yet"]
+        "pass P (line 6): dsx: gradients inside dynamic flow control are undefined (X4014: "
+        "move it out of the if or loop, or use texldl / texldd)"]

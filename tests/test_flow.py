@@ -245,11 +245,84 @@ def test_counts_the_application_sets_lower_and_count_against_the_limit():
         lower_pixel_shader(prog, ShaderContext(LoweringOptions(), int_constants={3: (255, 0, 0, 0)}))
 
 
-def test_early_return_is_a_located_problem():
-    src = "ps_3_0\ndefb b0, true\nif b0\nret\nendif\nmov oC0, c0"
+EARLY_RET_IF = """ps_3_0
+dcl vPos.xy
+def c0, 4, 0, 0, 0
+def c1, 1, 0, 0, 0
+def c2, 0, 10, 0, 0
+def c3, 0, 0, 0, 1
+mov r0, c3
+call l0
+add r0.z, r0.z, c1.x
+mov oC0, r0
+ret
+label l0
+add r0, r0, c1
+if_lt vPos.x, c0.x
+ret
+endif
+add r0, r0, c2
+ret
+"""
+
+
+def test_an_early_ret_in_an_if_leaves_the_subroutine(backend):
+    # l0 adds (1, 0, 0, 0), returns where vPos.x < 4, else adds (0, 10, 0, 0); after the call
+    # z += 1 for every pixel: (1, 0, 1) left of x = 4, (1, 10, 1) from there
+    image = draw(backend, EARLY_RET_IF, size=(8, 1))
+    np.testing.assert_array_equal(image[0, :, :3], [[1, 0, 1]] * 4 + [[1, 10, 1]] * 4)
+
+
+def test_an_early_ret_in_a_loop_leaves_the_loop_and_the_subroutine(backend):
+    # rep 5 adds 1 to x and returns once x >= vPos.x: x = max(px, 1) up to 5; pixels whose
+    # loop runs out (px 6, 7) go on to add 100 to y
+    src = """ps_3_0
+    dcl vPos.xy
+    defi i0, 5, 0, 0, 0
+    def c1, 1, 0, 0, 0
+    def c2, 0, 100, 0, 0
+    def c3, 0, 0, 0, 1
+    mov r0, c3
+    call l0
+    mov oC0, r0
+    ret
+    label l0
+    rep i0
+        add r0, r0, c1
+        if_ge r0.x, vPos.x
+            ret
+        endif
+    endrep
+    add r0, r0, c2
+    ret
+    """
+    image = draw(backend, src, size=(8, 1))
+    np.testing.assert_array_equal(image[0, :, :2], [[1, 0], [1, 0], [2, 0], [3, 0], [4, 0],
+                                                    [5, 0], [5, 100], [5, 100]])
+
+
+def test_an_early_ret_in_the_main_program_ends_it(backend):
+    src = """ps_3_0
+    dcl vPos.xy
+    def c0, 2, 0, 0, 0
+    def c1, 1, 0, 0, 1
+    def c2, 0, 1, 0, 1
+    mov oC0, c1
+    if_lt vPos.x, c0.x
+        ret
+    endif
+    mov oC0, c2
+    """
+    image = draw(backend, src, size=(4, 1))
+    np.testing.assert_array_equal(image[0], [[1, 0, 0, 1]] * 2 + [[0, 1, 0, 1]] * 2)
+
+
+def test_gradients_after_an_early_ret_in_a_dynamic_if_are_rejected():
+    src = EARLY_RET_IF.replace("add r0, r0, c2\nret", "dsx r1, vPos\nadd r0, r0, c2\nret")
     prog = assemble(ShaderBlock("pixel", None, src, location=Location("t.fx", 1, 1)))
     assert [str(e) for e in lowering_problems(prog)] == [
-        "t.fx:4:1: error: ret inside if, rep or loop (an early return) is not lowered yet"]
+        "t.fx:17:1: error: dsx: gradients inside dynamic flow control are undefined (X4014: "
+        "move it out of the if or loop, or use texldl / texldd)"]
 
 
 def test_ir_rejects_badly_nested_blocks_and_out_of_scope_values():

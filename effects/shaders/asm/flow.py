@@ -15,7 +15,8 @@ Decisions:
   the (replicated) sources; b# is its defb value, else the pass's (ShaderContext.
   bool_constants), else FALSE; p0.c (or !p0.c) a predicate component.
 - call / callnz are inlined (D3D forbids recursion); a subroutine body runs from its label to
-  its ret.
+  its ret (the first outside every block). A body with an early ret (inside an if, rep or
+  loop) is lowered inside a one-iteration IR loop, the ret being a break out of it (see `ret`).
 - Predicated instructions `(p0) op` write, per component, only where p0 (or !p0) is true.
 """
 from __future__ import annotations
@@ -49,6 +50,34 @@ def block_end(instrs: list, pos: int) -> int:
     raise AsmError(f"{instrs[pos].opcode} is not closed", instrs[pos].location)
 
 
+def body_end(instrs: list, start: int) -> int:
+    """The index of the `ret` or `label` that ends the body (main program or subroutine)
+    starting at `start`, or len(instrs): the first one outside every block. A `ret` inside
+    an if / rep / loop is an early return, not the body's end."""
+    depth = 0
+    for k in range(start, len(instrs)):
+        op = instrs[k].opcode
+        if op in OPENS:
+            depth += 1
+        elif op in OPENS.values():
+            depth -= 1
+        elif instrs[k].info.ends_body and (depth <= 0 or op == "label"):
+            return k
+    return len(instrs)
+
+
+def early_returns(instrs: list, start: int) -> list[int]:
+    """The positions of the early rets (inside a block) of the body starting at `start`."""
+    end, depth, found = body_end(instrs, start), 0, []
+    for k in range(start, end):
+        op = instrs[k].opcode
+        depth += op in OPENS
+        depth -= op in OPENS.values()
+        if op == "ret" and depth > 0:
+            found.append(k)
+    return found
+
+
 def dynamic_blocks(instrs: list) -> list[tuple[int, int]]:
     """(start, end) of the blocks whose fragments may diverge: an if on a comparison or a
     predicate, and a loop or rep with a break on one (a break inside a dynamic if counts);
@@ -62,9 +91,14 @@ def dynamic_blocks(instrs: list) -> list[tuple[int, int]]:
             start = next((k for k, ins in enumerate(instrs) if ins.opcode == "label" and
                           ins.srcs and ins.srcs[0].index == instr.srcs[0].index), None)
             if start is not None:
-                end = next((k for k in range(start + 1, len(instrs))
-                            if instrs[k].info.ends_body), len(instrs))
-                found.append((start, end))
+                found.append((start, body_end(instrs, start + 1)))
+    # after an early ret inside a divergent block, the rest of its body runs for some
+    # fragments only
+    for start in [0] + [k + 1 for k, ins in enumerate(instrs) if ins.opcode == "label"]:
+        end = body_end(instrs, start)
+        for k in early_returns(instrs, start):
+            if any(s < k < e for s, e in list(found)):
+                found.append((k, end))
     branches = list(found)
     for pos, instr in enumerate(instrs):
         if instr.opcode in ("loop", "rep"):
@@ -139,9 +173,7 @@ def call_problems(instrs: list) -> list[AsmError]:
 
     def body_calls(start: int) -> list:
         calls = []
-        for k in range(start, len(instrs)):
-            if instrs[k].info.ends_body:
-                break
+        for k in range(start, body_end(instrs, start)):
             if instrs[k].opcode in ("call", "callnz") and instrs[k].srcs:
                 calls.append(instrs[k])
         return calls
@@ -252,15 +284,35 @@ def endloop(lo: Lowering, instr: Instruction, reads: dict) -> None:
         lo.regs.pop(("aL", 0), None)
     else:
         lo.regs[("aL", 0)] = outer
+    after_loop(lo)
 
 
 def endrep(lo: Lowering, instr: Instruction, reads: dict) -> None:
     lo.loops.pop()
     lo.b.endloop()
+    after_loop(lo)
 
 
 def break_(lo: Lowering, instr: Instruction, reads: dict) -> None:
     lo.b.break_(condition(lo, instr, reads))
+
+
+def ret(lo: Lowering, instr: Instruction, reads: dict) -> None:
+    """An early ret (inside a block; a ret outside every block ends the body before it is
+    lowered): the body runs inside a one-iteration loop (`Lowering.body`), so a ret leaves
+    it with a break; from inside the body's own loops it sets the body's flag first, and
+    each of those loops breaks on the flag when it ends (`after_loop`)."""
+    flag, loops_at_entry = lo.returns[-1]
+    if len(lo.loops) > loops_at_entry:
+        lo.b.assign(flag, lo.e.const(1.0))
+    lo.b.break_(lo.e.const(1.0))
+
+
+def after_loop(lo: Lowering) -> None:
+    """After a loop inside a body with early rets: leave the next loop out too where a ret
+    inside it set the flag."""
+    if lo.returns and len(lo.loops) >= lo.returns[-1][1]:
+        lo.b.break_(lo.returns[-1][0])
 
 
 def call(lo: Lowering, instr: Instruction, reads: dict) -> None:

@@ -50,8 +50,10 @@ Decisions (sources: ../shared/reference/semantics.md §2-4, caps.md §1):
   explicit gradients. Integer and boolean registers the pass sets (ctx.int_constants /
   bool_constants) are static: their values are lowered in, so the pass is lowered again when
   they change (lower_pass' parameter check), as a driver recompiles on a static-branch change.
-  `lowering_problems` names what does not lower: an early ret, relative addressing of
-  v# / o#, gradients inside dynamic flow control (X4014), and any row marked NotLowered.
+  An early ret (inside a block) leaves its body through a one-iteration IR loop (flow.ret).
+  `lowering_problems` names what does not lower: relative addressing of v# / o#, gradients
+  inside dynamic flow control (X4014, counting what follows an early ret inside a dynamic
+  block), and any row marked NotLowered.
 """
 from __future__ import annotations
 
@@ -145,19 +147,17 @@ _BUILTINS = {"vPos": "vpos", "vFace": "vface"}
 def _written(instrs: list, body: range, labels: dict[int, int], seen: frozenset = frozenset()
              ) -> dict[tuple[str, int], Operand]:
     """The registers the instructions in `body` (and the subroutines they call) write; a
-    subroutine's body ends at its ret."""
+    subroutine's body ends at its ret (flow.body_end)."""
     found: dict[tuple[str, int], Operand] = {}
     for k in body:
         instr = instrs[k]
-        if instr.info.ends_body:
-            break
         if instr.dst is not None and not isinstance(instr.info.lowers, NoCode):
             found.setdefault((instr.dst.kind, instr.dst.index or 0), instr.dst)
         if instr.opcode in ("call", "callnz") and instr.srcs:
             start = labels.get(instr.srcs[0].index)
             if start is not None and start not in seen:
-                found.update(_written(instrs, range(start + 1, len(instrs)), labels,
-                                      seen | {start}))
+                found.update(_written(instrs, range(start + 1, flow.body_end(instrs, start + 1)),
+                                      labels, seen | {start}))
     return found
 
 
@@ -176,14 +176,9 @@ def lowering_problems(program: AsmProgram,
         return errors
     problems = (flow.iteration_problems(program, int_constants or {})
                 + flow.call_problems(program.instructions))
-    depth = 0
     dynamic = flow.dynamic_blocks(program.instructions)
     for pos, instr in enumerate(program.instructions):
         lowers = instr.info.lowers
-        if instr.opcode in flow.OPENS:
-            depth += 1
-        elif instr.opcode in flow.OPENS.values():
-            depth -= 1
         if instr.info.gradient and program.kind == "ps" and any(
                 start < pos < end for start, end in dynamic):
             problems.append(AsmError(
@@ -191,9 +186,6 @@ def lowering_problems(program: AsmProgram,
                 "move it out of the if or loop, or use texldl / texldd)", instr.location))
         elif isinstance(lowers, NotLowered):
             problems.append(AsmError(f"{instr.opcode}: {lowers.reason}", instr.location))
-        elif instr.opcode == "ret" and depth > 0:
-            problems.append(AsmError("ret inside if, rep or loop (an early return) is not "
-                                     "lowered yet", instr.location))
         elif isinstance(lowers, NoCode):
             continue
         elif instr.predicate is not None and instr.info.category == "flow":
@@ -277,6 +269,7 @@ class _Lowering:
         self.pos = 0
         self.pred: int | None = None
         self.calls: list[int] = []
+        self.returns: list[tuple[int, int]] = []   # bodies with early rets: (flag, loops open)
         self.labels = {ins.srcs[0].index: k for k, ins in enumerate(program.instructions)
                        if ins.opcode == "label" and ins.srcs}
 
@@ -285,16 +278,31 @@ class _Lowering:
         problems = flow.iteration_problems(self.p, self.ctx.int_constants)
         if problems:              # counts the pass set at render time, past the limit
             raise problems[0]
-        self.lower_from(0)
+        self.lower_body(0)
         self.outputs()
         return self.b.build()
 
-    def lower_from(self, start: int) -> None:
-        """Lower instructions from `start` to the end of the body (a `ret` or `label`, whose
-        rows say `ends_body`, or the end of the program)."""
+    def lower_body(self, start: int) -> None:
+        """Lower the body (main program or subroutine) from `start` to its end (flow.body_end).
+        A body with an early ret runs inside a one-iteration loop the rets break out of
+        (flow.ret); the registers it writes become variables first."""
+        instrs = self.p.instructions
+        end = flow.body_end(instrs, start)
+        wrapped = bool(flow.early_returns(instrs, start))
+        if wrapped:
+            self.enter_range(range(start, end))
+            self.returns.append((self.b.var(self.e.const(0.0)), len(self.loops)))
+            self.b.loop(1)
+        self.lower_from(start, end)
+        if wrapped:
+            self.b.endloop()
+            self.returns.pop()
+
+    def lower_from(self, start: int, end: int) -> None:
+        """Lower instructions start .. end - 1 (co-issued pairs together)."""
         instrs = self.p.instructions
         i = start
-        while i < len(instrs) and not instrs[i].info.ends_body:
+        while i < end:
             group = [instrs[i]]
             while i + len(group) < len(instrs) and instrs[i + len(group)].coissue:
                 group.append(instrs[i + len(group)])
@@ -313,7 +321,7 @@ class _Lowering:
             raise AsmError(f"call l{label.index}: recursive or too deep", label.location)
         self.calls.append(start)
         pos = self.pos
-        self.lower_from(start + 1)
+        self.lower_body(start + 1)
         self.pos = pos
         self.calls.pop()
 
@@ -324,7 +332,14 @@ class _Lowering:
         if subroutine is None:
             body = range(pos + 1, flow.block_end(instrs, pos))
         else:
-            body = range(self.labels.get(subroutine.index, len(instrs)) + 1, len(instrs))
+            start = self.labels.get(subroutine.index, len(instrs)) + 1
+            body = range(start, flow.body_end(instrs, start))
+        self.enter_range(body)
+
+    def enter_range(self, body: range) -> None:
+        """Every register the instructions in `body` (and what they call) may write, moved
+        into an IR variable."""
+        instrs = self.p.instructions
         for key, dst in _written(instrs, body, self.labels).items():
             if key in self.variables:
                 continue
