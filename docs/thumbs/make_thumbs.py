@@ -89,7 +89,11 @@ SHADOWS = [("Shadow4_R32F", "refrast"), ("Shadow1_R32F", "refrast"),
 # extra arguments, file name suffix). wood.fx reads its colours and vectors from wood.yaml,
 # what the chapter's application set.
 WOOD = ["--scene", os.path.join(FX, "wood.yaml")]
+COARSE = ["--scene", os.path.join(FX, "fast_phong_coarse.yaml")]
 CLI = [
+    ("fast_phong", "Phong", "refrast", COARSE, "_coarse"),
+    ("fast_phong", "Phong", "refrast", COARSE + ["--backend", "gl"], "_coarse_gl"),
+    ("fast_phong", "Gouraud", "refrast", COARSE, "_coarse"),
     ("wood", "Wood_ps20", "radeon9700", WOOD, ""),
     ("wood", "Wood_ps20", "geforcefx5900", WOOD, ""),
     ("wood", "Wood_ps20", "geforce6800", WOOD, ""),
