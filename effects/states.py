@@ -614,6 +614,21 @@ for _row in STATES:
         _BY_KEY[_key(_spelling)] = _row
 
 
+# CgFX's (OpenGL's) sampler-state spellings, which engines that compiled one shader source
+# with cgc for both APIs left in their .fx files (Wild Magic 5's `sampler_state { MinFilter =
+# Nearest; WrapS = Clamp; }`). D3DX's effect compiler rejects them; the builder reads them as
+# the Direct3D state or value named here, with a located warning (an error when strict).
+# Names from the CgFX state list and glTexParameter's GL_TEXTURE_WRAP_S/T/R and filter enums.
+CGFX_SAMPLER_STATES = {"wraps": "AddressU", "wrapt": "AddressV", "wrapr": "AddressW"}
+CGFX_SAMPLER_VALUES = {
+    "D3DTEXTUREFILTERTYPE": {"nearest": "Point", "nearestmipmapnearest": "Point",
+                             "nearestmipmaplinear": "Point", "linearmipmapnearest": "Linear",
+                             "linearmipmaplinear": "Linear"},
+    "D3DTEXTUREADDRESS": {"repeat": "Wrap", "clamptoedge": "Clamp", "clamptoborder": "Border",
+                          "mirroredrepeat": "Mirror"},
+}
+
+
 def lookup_state(name: str) -> StateInfo | None:
     """The row for a state name (any case, with or without underscores, DX8 aliases), or None."""
     return _BY_KEY.get(_key(name))

@@ -35,7 +35,7 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
              technique: str | None = None) -> Diagnosis:
     from effects.host.runtime import Runtime
     from effects.host.scripts import is_render_target, unsupported_commands
-    from effects.host.semantics import bind_scene, parameter_semantic, ui_defaults
+    from effects.host.semantics import bind_scene, binding_source, ui_defaults
     runtime = Runtime(effect, profile, scene=scene, params=params or {}, backend=None)
     try:
         chosen = runtime.select(technique)
@@ -51,7 +51,10 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
         if p.name in given:
             d.bound.append((p.name, "--set / scene params"))
         elif p.name in scene_bound:
-            d.bound.append((p.name, f"semantic {parameter_semantic(p)}"))
+            semantic, how = binding_source(p)
+            convention = {"XNA name": "XNA convention", "DX8 name": "DirectX 8 SDK convention"}
+            d.bound.append((p.name, f"bound by name ({convention[how]}) as {semantic}"
+                            if how in convention else f"semantic {semantic}"))
         elif p.name in ui:
             d.bound.append((p.name, "the middle of its UIMin..UIMax range"))
         elif p.type.is_numeric and p.value is None and not p.array:
@@ -70,7 +73,7 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
                 continue
             param = effect.parameter(name)
             before = len(runtime.warnings)
-            texture = runtime.used_texture(name)
+            texture = runtime.used_texture(name, binding.kind)
             if len(runtime.warnings) > before:
                 d.textures.append((name, f"stand-in {texture.name}"))
             elif is_render_target(param):

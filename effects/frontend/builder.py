@@ -449,6 +449,10 @@ class Builder:
         index = None if raw.index is None else self.small_int(raw.index, "state index")
         where = self.loc(name_tok)
         info = self.states.lookup_state(name)
+        if info is None and context == "sampler" and name.lower() in self.states.CGFX_SAMPLER_STATES:
+            info = self.states.lookup_state(self.states.CGFX_SAMPLER_STATES[name.lower()])
+            self.complain(f"'{name}' is CgFX's (OpenGL's) name for {info.name}; D3DX's effect "
+                          f"compiler rejects it; read as {info.name}", where)
         if info is not None and context == "sampler" and info.kind not in ("sampler", "texture"):
             self.complain(f"state '{info.name}' cannot be set inside sampler_state "
                           f"(only sampler states and Texture)", where)
@@ -470,9 +474,25 @@ class Builder:
             if info.type == "matrix":
                 return StateAssignment(info.name, null, index, True, where)
             value_raw = null
+        value_raw = self.cgfx_value(info, value_raw, raw, context)
         value = self.states.coerce_state_value(info, value_raw, self.loc(raw.value),
                                                self.param_names)
         return StateAssignment(info.name, value, index, True, where)
+
+    def cgfx_value(self, info: Any, value_raw: Any, raw: RawState, context: str) -> Any:
+        """A CgFX filter or address spelling (`Nearest`, `Repeat`) in a sampler state, read as
+        the Direct3D value with a warning (`states.CGFX_SAMPLER_VALUES`)."""
+        spellings = self.states.CGFX_SAMPLER_VALUES.get(info.enum.name if info.enum else "")
+        if context != "sampler" or not spellings or not isinstance(value_raw, list) \
+                or len(value_raw) != 1 or not isinstance(value_raw[0], str):
+            return value_raw
+        word = value_raw[0]
+        if info.enum.lookup(word) is not None or word.lower() not in spellings:
+            return value_raw
+        d3d = spellings[word.lower()]
+        self.complain(f"{info.name} = {word}: '{word}' is CgFX's (OpenGL's) spelling; D3DX's "
+                      f"effect compiler rejects it; read as {d3d}", self.loc(raw.value))
+        return [d3d]
 
     def complain(self, message: str, where: Location) -> None:
         if self.strict:

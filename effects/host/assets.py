@@ -50,6 +50,7 @@ from effects.host.textures import PROCEDURAL, Texture, procedural
 from effects.untrusted import confine
 
 STREAM_NAMES = ("position", "normal", "tangent", "binormal", "color0", "color1",
+                "blendweight", "blendindices", "psize",   # DX8 v1, v2, v4 without dcl
                 *(f"texcoord{i}" for i in range(8)))
 ATTRIBUTES = ("position", "normal", "tangent", "binormal", "uv", "diffuse", "specular",
               "uv_occlusion", *(f"tex{i}" for i in range(8)))

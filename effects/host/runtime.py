@@ -272,10 +272,12 @@ class Runtime:
                 raise
             return self._stand_in(param, exc.message, exc.location)
 
-    def used_texture(self, name: str) -> Texture:
+    def used_texture(self, name: str, sampled_as: str | None = None) -> Texture:
         """The texture a draw samples from parameter `name`: the bound one, or a stand-in of
         its kind with a warning when nothing supplies it (FX Composer shows a default
-        texture too; the effect's author meant a picture there, not black)."""
+        texture too; the effect's author meant a picture there, not black). The kind is the
+        parameter's type, else `sampled_as` (the sampler's: an untyped `texture` sampled by
+        a sampler3D gets the noise volume), else 2D."""
         texture = self.texture(name)
         if texture is None and is_render_target(self._param(name)):
             # a render target sampled before anything was drawn into it: cleared to black
@@ -292,12 +294,13 @@ class Runtime:
         elif texture is None:
             param = self._param(name)
             texture = self._stand_in(param, "nothing supplies it (no ResourceName, scene "
-                                     "params or --set value)", param.location)
+                                     "params or --set value)", param.location, sampled_as)
             self._textures[name] = texture
         return texture
 
-    def _stand_in(self, param: Parameter, why: str, at: Location) -> Texture:
-        kind = declared_kind(param) or "2d"
+    def _stand_in(self, param: Parameter, why: str, at: Location,
+                  sampled_as: str | None = None) -> Texture:
+        kind = declared_kind(param) or sampled_as or "2d"
         texture = stand_in_texture(kind)
         message = (f"texture parameter {param.name}: {why}; drawn with a stand-in "
                    f"({texture.name}, {kind})")
@@ -419,7 +422,7 @@ class Runtime:
                      backend: Any = None) -> None:
         """Draw `geo` (default the scene's mesh) with a lowered pass, its textures bound."""
         geo = geo or self.geometry()
-        textures = {b.texture: self.used_texture(b.texture) for b in program.textures
+        textures = {b.texture: self.used_texture(b.texture, b.kind) for b in program.textures
                     if b.texture is not None}
         try:
             (backend or self.backend).draw(program, geo.streams, geo.indices, geo.primitive, textures)

@@ -78,6 +78,25 @@ DX8_NAME_SEMANTICS = {
     "lhtr": "LIGHTDIRECTION", "vlightdir": "LIGHTDIRECTION", "vlgt": "LIGHTDIRECTION",
     "veye": "CAMERAPOSITION",
 }
+# XNA-era effects (and engines' HLSL such as Irrlicht's example) declare `float4x4 World, View,
+# Projection;` with no semantics and the game sets them by name every frame. A parameter with
+# no semantic is bound by its name when, case-insensitively and after a conventional prefix
+# (g_m, g_mat, g_, m_, mat, g, m, x: the SDK samples' g_mWorld, matWorld, mWorldViewProj,
+# xView of Riemer's XNA tutorials), the name is a
+# transform semantic (World, WorldViewProjection, WVP, ViewProj, WorldInverseTranspose,
+# WorldIT ...), one with its inverse/transpose in front (InvWorld, TransWorld, as Irrlicht
+# names them), or one of the vector names below.
+_NAME_PREFIXES = ("g_mat", "g_m", "g_", "m_", "mat", "g", "m", "x")
+_NAME_MATRIX_FORMS = {"invtrans": "INVERSETRANSPOSE", "inversetranspose": "INVERSETRANSPOSE",
+                      "inverse": "INVERSE", "inv": "INVERSE", "transpose": "TRANSPOSE",
+                      "trans": "TRANSPOSE"}
+NAME_VALUES = {
+    "cameraposition": "CAMERAPOSITION", "camerapos": "CAMERAPOSITION",
+    "eyeposition": "CAMERAPOSITION", "eyepos": "CAMERAPOSITION",
+    "lightposition": "LIGHTPOSITION", "lightpos": "LIGHTPOSITION",
+    "lightdirection": "LIGHTDIRECTION", "lightdir": "LIGHTDIRECTION",
+    "lightcolor": "LIGHTCOLOR", "lightcolour": "LIGHTCOLOR",
+}
 _LIGHT_SEMANTICS = {"LIGHTPOSITION", "LIGHT0POSITION", "LIGHTDIRECTION", "LIGHT0DIRECTION",
                     "LIGHTCOLOR", "LIGHTDIFFUSE", "LIGHT0COLOR"}
 
@@ -148,14 +167,44 @@ def _light_object(param: Parameter) -> bool:
     return obj is not None and isinstance(obj.value, str) and "light" in obj.value.lower()
 
 
-def parameter_semantic(param: Parameter) -> str:
-    """The semantic the scene binds the parameter by (upper case): its own, FX Composer's
-    light-object form (`: Position < string Object = "PointLight0"; >` is LIGHTPOSITION), or
-    for DX8 files the one its conventional name stands for."""
+def name_semantic(name: str) -> str | None:
+    """The semantic a parameter without one is bound by for its name (XNA convention, see
+    `_NAME_PREFIXES`): 'World' -> WORLD, 'g_mWVP' -> WORLDVIEWPROJECTION, 'mInvWorld' ->
+    WORLDINVERSE, or None."""
+    key = name.lower()
+    for rest in [key, *(key[len(p):] for p in _NAME_PREFIXES if key.startswith(p) and len(key) > len(p))]:
+        if rest in NAME_VALUES:
+            return NAME_VALUES[rest]
+        found = matrix_semantic(rest)
+        if found is not None:
+            return found[0] + found[1]
+        for form in sorted(_NAME_MATRIX_FORMS, key=len, reverse=True):
+            found = matrix_semantic(rest[len(form):]) if rest.startswith(form) else None
+            if found is not None and found[1] == "":
+                return found[0] + _NAME_MATRIX_FORMS[form]
+    return None
+
+
+def binding_source(param: Parameter) -> tuple[str, str]:
+    """(semantic the scene binds the parameter by, upper case, or '' for none; how it was
+    found: 'semantic', 'light object', 'DX8 name', 'XNA name')."""
     semantic = (param.semantic or "").upper()
     if semantic in OBJECT_LIGHT_SEMANTICS and _light_object(param):
-        return OBJECT_LIGHT_SEMANTICS[semantic]
-    return semantic or DX8_NAME_SEMANTICS.get(param.name.lower(), "").upper()
+        return OBJECT_LIGHT_SEMANTICS[semantic], "light object"
+    if semantic:
+        return semantic, "semantic"
+    if param.name.lower() in DX8_NAME_SEMANTICS:
+        return DX8_NAME_SEMANTICS[param.name.lower()].upper(), "DX8 name"
+    by_name = name_semantic(param.name)
+    return (by_name, "XNA name") if by_name else ("", "")
+
+
+def parameter_semantic(param: Parameter) -> str:
+    """The semantic the scene binds the parameter by (upper case): its own, FX Composer's
+    light-object form (`: Position < string Object = "PointLight0"; >` is LIGHTPOSITION), for
+    DX8 files the one its conventional name stands for, and for a parameter with no semantic
+    the one its name says in the XNA convention (`name_semantic`)."""
+    return binding_source(param)[0]
 
 
 def binds(semantic: str) -> bool:
@@ -226,6 +275,13 @@ def binding_table() -> list[tuple[str, str]]:
     rows.extend(VALUE_SEMANTICS.items())
     rows.extend((f"{s} with `string Object = \"…Light…\"`", VALUE_SEMANTICS[t])
                 for s, t in OBJECT_LIGHT_SEMANTICS.items())
+    rows.append(("no semantic, named World, View, Projection, WorldView, ViewProjection, "
+                 "WorldViewProjection, WVP, WorldInverseTranspose, InvWorld … (any case; "
+                 "prefix g_m, g_mat, g_, m_, mat, g, m or x allowed)",
+                 "bound by name (XNA convention): the matrix that name stands for"))
+    rows.append(("no semantic, named CameraPosition, EyePosition, LightPosition, LightDirection, "
+                 "LightColor (or …Pos, …Dir)", "bound by name (XNA convention): the camera's "
+                 "eye, the scene light's position / direction / colour"))
     return rows
 
 

@@ -224,7 +224,7 @@ def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
     for program in programs:
         for binding in program.textures:
             if binding.texture is not None:
-                runtime.used_texture(binding.texture)
+                runtime.used_texture(binding.texture, binding.kind)
     runtime.geometry()
     return runtime, programs
 

@@ -183,10 +183,11 @@ def _compile_argument(ctx: Context, ev: Evaluator, text: str, t: HType, where: L
     origin = Origin(where, text)
     tree = parse(text, "initializer", origin, ctx.type_names)
     sub = ev.spawn(origin)
-    value = sub.a.convert(sub.expr(tree), t, where)
-    if value.type.numeric and value.const_values() is None:
-        raise HlslError(f"X3013: compile argument '{text}' is not a compile-time constant", where)
-    return value
+    # A literal folds to a constant; a global parameter (NVIDIA's shader library passes
+    # `std_VS(gWorldITXf, gWorldXf, gViewIXf, gWvpXf)`) stays a uniform read, so the entry's
+    # uniform parameter reads that global's constant registers, as fxc compiles it. Only
+    # globals are in scope here, so nothing else can be non-constant.
+    return sub.a.convert(sub.expr(tree), t, where)
 
 
 def _assemble(text: str, ctx: Context, lines: list[str], locations: list[Location],

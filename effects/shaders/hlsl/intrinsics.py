@@ -205,6 +205,10 @@ def _mul(ev: Any, args: list[Value], loc: Location) -> Value:
     k = min(k_a, k_b)
     if k_a != k_b:
         ev.warn("X3206: implicit truncation of vector type", loc)
+    if ta.kind == "matrix" and tb.kind != "matrix":
+        by_columns = _columns_product(ev, rows_a, b.comps, k, loc)
+        if by_columns is not None:
+            return Value(vector("float", len(rows_a)), by_columns)
     out_rows = []
     for row in rows_a:
         row = row[:k]
@@ -222,6 +226,24 @@ def _mul(ev: Any, args: list[Value], loc: Location) -> Value:
     if tb.kind != "matrix":
         return Value(vector("float", len(out_rows)), [r[0] for r in out_rows])
     return Value(shape_of(len(out_rows), cols, "float"), [c for r in out_rows for c in r])
+
+
+def _columns_product(ev: Any, rows: list[list[Any]], v: list[Any], k: int,
+                     loc: Location) -> list[Any] | None:
+    """mul(M, v) for a matrix whose rows are spread over registers but whose columns each sit
+    in one (a column_major uniform, HLSL's default packing: Wild Magic's mul(PVWMatrix, p)):
+    v.x * column 0 + v.y * column 1 ..., a mul and k-1 mads, as fxc emits, instead of gathering
+    every row into a temporary for a dp4. None when the rows are whole registers already."""
+    one_node = lambda comps: len({id(c.node) for c in comps}) == 1
+    if all(one_node(r[:k]) for r in rows):
+        return None
+    columns = [[r[j] for r in rows] for j in range(k)]
+    if not all(one_node(c) for c in columns):
+        return None
+    acc = ev.a.lanes("mul", [columns[0], [v[0]] * len(rows)], loc)
+    for j in range(1, k):
+        acc = ev.a.lanes("mad", [columns[j], [v[j]] * len(rows), acc], loc)
+    return acc
 
 
 def _transpose(ev: Any, args: list[Value], loc: Location) -> Value:

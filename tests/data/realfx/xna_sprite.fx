@@ -1,6 +1,7 @@
 // Look-alike of an XNA game's effect (written for this project, not copied): HLSL only,
 // parameters without semantics the game sets by name, a technique of `compile` shaders.
-// World/View/Projection are set with --set or the scene's params, as the game set them.
+// World/View/Projection: the host binds them by name (the XNA convention), as the game set
+// them; --set or the scene's params override.
 
 float4x4 World;
 float4x4 View;

@@ -1,0 +1,83 @@
+"""Direct3D 10/11 effect files (fx_4_0 / fx_5_0), told apart from the D3DX9 effects this
+framework loads.
+
+Engines that moved to Direct3D 11 kept the `.fx` extension (Kodi's `system/shaders/*_d3d.fx`,
+the SDK's Direct3D 11 tutorials), so a user opens one expecting a picture. Their syntax is not
+D3DX9's: `technique11 { pass { SetPixelShader(CompileShader(ps_4_0, PS())); } }`,
+`SamplerState S { Filter = MIN_MAG_MIP_LINEAR; };`, `cbuffer`, state objects. Parsed as a
+D3DX9 effect, the first of these is a syntax error that names a brace, which says nothing
+useful. `d3d10_error` turns such a failure into an error at the Direct3D 10/11 construct that
+caused it; `d3d10_shader_warning` flags a file with no techniques whose shaders use Direct3D 10
+system-value semantics (a D3D11 shader source compiled on its own, not an effect).
+Keyword lists from the Direct3D 10/11 effect-format documentation (Effect Format, "Effect
+Technique Syntax (Direct3D 11)", "Sampler Type", "Shader Semantics").
+"""
+from __future__ import annotations
+
+import re
+
+from effects.errors import EffectError, EffectWarning, ParseError
+from effects.frontend.source import Preprocessed
+
+# Words only Direct3D 10/11 effects use: technique keywords, constant/texture buffers, state
+# objects, and the pass-state functions. Case-sensitive, as HLSL keywords are. (The lower-case
+# `texture2D` is a D3D9 type too, so texture object names are not in the list.)
+D3D10_WORDS = ("technique10", "technique11", "fxgroup", "cbuffer", "tbuffer", "SamplerState",
+               "SamplerComparisonState", "BlendState", "DepthStencilState", "RasterizerState",
+               "SetVertexShader", "SetPixelShader", "SetGeometryShader", "SetHullShader",
+               "SetDomainShader", "SetComputeShader", "CompileShader", "ConstructGSWithSO")
+_WORD = re.compile(r"\b(" + "|".join(D3D10_WORDS) + r")\b")
+# A system-value semantic after a colon: `: SV_POSITION`, `: SV_Target0`.
+_SV_SEMANTIC = re.compile(r":\s*(SV_[A-Za-z]+\d*)\b")
+# Strings hold no syntax; blank them (keeping offsets) before looking.
+_STRING = re.compile(r'"(?:[^"\\\n]|\\.)*"')
+
+
+def _find(pattern: re.Pattern[str], text: str) -> tuple[str, int, int] | None:
+    """The first match's word and its 1-based (line, column) in `text`."""
+    blanked = _STRING.sub(lambda m: " " * len(m.group(0)), text)
+    m = pattern.search(blanked)
+    if m is None:
+        return None
+    start = m.start(1)
+    line = blanked.count("\n", 0, start) + 1
+    column = start - (blanked.rfind("\n", 0, start) + 1) + 1
+    return m.group(1), line, column
+
+
+def d3d10_error(pre: Preprocessed, error: EffectError) -> EffectError:
+    """`error` (a parse failure) replaced by an error at the first Direct3D 10/11 word, when
+    one comes at or before the place the parse failed; else `error` unchanged."""
+    found = _find(_WORD, pre.text)
+    if found is None:
+        return error
+    word, line, column = found
+    if not _before(pre, line, error):
+        return error
+    return pre.source_map.error(
+        ParseError, f"'{word}' is Direct3D 10/11 effect syntax: this is a Direct3D 10/11 "
+        f"effect (fx_4_0/fx_5_0), not a Direct3D 9 (D3DX9, fx_2_0) one, which is what this "
+        f"framework loads (D3DX9's effect compiler rejects it too); a D3D9 effect writes "
+        f"technique, sampler_state and compile vs_/ps_ targets", line, column)
+
+
+def _before(pre: Preprocessed, line: int, error: EffectError) -> bool:
+    """Whether output line `line` comes before the error's place in the preprocessed text."""
+    for n, origin in enumerate(pre.source_map.lines, start=1):
+        if origin == (error.location.path, error.location.line):
+            return line <= n
+    return False
+
+
+def d3d10_shader_warning(pre: Preprocessed) -> EffectWarning | None:
+    """For a file with no techniques: a warning at its first SV_ semantic, if it has one."""
+    found = _find(_SV_SEMANTIC, pre.text)
+    if found is None:
+        return None
+    word, line, column = found
+    where = pre.source_map.locate(line, column)
+    return pre.source_map.warning_at(
+        f"'{word}' is a Direct3D 10/11 system-value semantic and the file has no techniques: "
+        f"it looks like a Direct3D 10/11 shader source compiled on its own (vs_4_0/ps_4_0), "
+        f"not a D3DX9 effect; an effect needs a technique whose passes compile its functions",
+        where)
