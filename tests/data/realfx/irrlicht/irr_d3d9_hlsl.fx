@@ -5,7 +5,7 @@
 // (the transposed world), mLightPos (the camera's position) and mLightColor (0, 1, 1, 0).
 // The file declares them without semantics, so a host binds them by name (the XNA
 // convention, see the README); the colour and the light at the camera are the example's
-// choice and come from --set / scene params (tests/test_realfx_corpus.py sets them).
+// choice and come from --set / scene params (tests/test_realfx_debian.py sets them).
 // The material's texture goes to stage 0, where the compiled shader's sampler is.
 #include "d3d9.hlsl"
 
