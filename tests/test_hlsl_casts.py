@@ -163,3 +163,21 @@ def test_a_bad_pack_matrix_pragma_is_located():
         effects.load_effect("float4 x;\n  #pragma pack_matrix(diagonal)\n")
     assert info.value.message == "#pragma pack_matrix expects (row_major) or (column_major)"
     assert (info.value.line, info.value.column) == (2, 11)
+
+
+def test_a_member_may_share_a_type_name(backend):
+    fx = effect_for("""
+struct Material { float4 Diffuse : COLOR0; };
+typedef Material MAT;
+struct Holder { Material Material; float4 Pos; };
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    Holder h = (Holder)0.5;
+    MAT m = (MAT)0;
+    m.Diffuse.xy = uv;
+    h.Material.Diffuse.x = 0.25;
+    return m.Diffuse + h.Material.Diffuse * float4(1, 0, 1, 2);   // (u + .25, v, .5, 1)
+}""")
+    img = render(fx, backend)
+    u, v = pixel_uv(2, 5)
+    assert np.allclose(img[5, 2], (u + 0.25, v, 0.5, 1), atol=TOL)

@@ -60,7 +60,7 @@ def const_index(ev: Any, tree: Any, t: HType) -> int:
     v = ev.expr(tree).const_values()
     if v is None:
         raise ev.error(f"X3512: array index must be a literal expression on {ev.ctx.target.name} "
-                       "(relative addressing is not generated yet)", tree)
+                       "(only uniform arrays read in vertex shaders take a run-time index)", tree)
     k = int(v[0])
     n = t.length if t.kind == "array" else t.rows if t.kind == "matrix" else t.size
     if not 0 <= k < n:
