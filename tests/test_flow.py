@@ -317,6 +317,67 @@ def test_an_early_ret_in_the_main_program_ends_it(backend):
     np.testing.assert_array_equal(image[0], [[1, 0, 0, 1]] * 2 + [[0, 1, 0, 1]] * 2)
 
 
+def test_inputs_and_outputs_addressed_by_al(backend):
+    # vs_3_0: aL = 1, 2, 3 sums v[aL] (texcoord0..2 = x, y, z unit vectors) into r0 and
+    # writes each partial sum to o[aL]: o1 = (1,0,0,0), o2 = (1,1,0,0), o3 = (1,1,1,0).
+    # ps_3_0: aL = 0, 1, 2 reads v[aL] (those three) as dp3 with (1, 10, 100) = 1, 11, 111,
+    # adding each to r0 and then multiplying y by 10: x = 1 + 11 + 111 = 123,
+    # y = ((1 * 10 + 11) * 10 + 111) * 10 = 3210.
+    vs_src = """vs_3_0
+    dcl_position v0
+    dcl_texcoord0 v1
+    dcl_texcoord1 v2
+    dcl_texcoord2 v3
+    dcl_position o0
+    dcl_texcoord0 o1
+    dcl_texcoord1 o2
+    dcl_texcoord2 o3
+    defi i0, 3, 1, 1, 0
+    def c0, 0, 0, 0, 0
+    mov o0, v0
+    mov r0, c0
+    loop aL, i0
+        add r0, r0, v[aL]
+        mov o[aL], r0
+    endloop
+    """
+    ps_src = """ps_3_0
+    dcl_texcoord0 v0
+    dcl_texcoord1 v1
+    dcl_texcoord2 v2
+    defi i0, 3, 0, 1, 0
+    def c0, 0, 0, 0, 0
+    def c1, 1, 10, 100, 0
+    mov r0, c0
+    loop aL, i0
+        dp3 r1.x, v[aL], c1
+        add r0, r0, r1.x
+        mul r0.y, r0.y, c1.y
+    endloop
+    mov oC0, r0
+    """
+    vs = assemble(ShaderBlock("vertex", None, vs_src, location=Location("t.fx", 1, 1)))
+    assert [str(e) for e in check(vs) + lowering_problems(vs)] == []
+    from effects.shaders.asm.lower import lower_vertex_shader
+    passp = PassProgram(program(ps_src), vertex=lower_vertex_shader(
+        vs, ShaderContext(LoweringOptions(), constant_prefix="vc")), render_state=NO_CULL)
+    streams, indices, primitive = quad()
+    units = np.eye(4, dtype=np.float32)
+    streams = {"position": np.hstack([streams["position"], np.ones((4, 1), np.float32)]),
+               **{f"texcoord{k}": np.tile(units[k], (4, 1)) for k in range(3)}}
+    backend.begin_frame((2, 2), (0, 0, 0, 0), 1.0, 0, format=FLOAT)
+    backend.draw(passp, streams, indices, primitive, {})
+    image = backend.end_frame()
+    np.testing.assert_array_equal(image.reshape(-1, 4), [[123, 3210, 123, 123]] * 4)
+
+
+def test_relative_inputs_need_al():
+    # D3D indexes v# / o# by aL only (vs_3_0 / ps_3_0); the checker or the lowering says so
+    src = "vs_3_0\ndcl_position v0\ndcl_position o0\nmova a0.x, v0.x\nmov o0, v[a0.x]"
+    prog = assemble(ShaderBlock("vertex", None, src, location=Location("t.fx", 1, 1)))
+    assert [e.location.line for e in check(prog) or lowering_problems(prog)] == [5]
+
+
 def test_gradients_after_an_early_ret_in_a_dynamic_if_are_rejected():
     src = EARLY_RET_IF.replace("add r0, r0, c2\nret", "dsx r1, vPos\nadd r0, r0, c2\nret")
     prog = assemble(ShaderBlock("pixel", None, src, location=Location("t.fx", 1, 1)))

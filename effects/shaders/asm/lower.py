@@ -144,20 +144,23 @@ _READABLE = frozenset({"c", "v", "t", "r", "a", "aL", "p", "b", "vPos", "vFace"}
 _BUILTINS = {"vPos": "vpos", "vFace": "vface"}
 
 
-def _written(instrs: list, body: range, labels: dict[int, int], seen: frozenset = frozenset()
-             ) -> dict[tuple[str, int], Operand]:
+def _written(instrs: list, body: range, labels: dict[int, int], relative_targets: Any,
+             seen: frozenset = frozenset()) -> dict[tuple[str, int], Operand]:
     """The registers the instructions in `body` (and the subroutines they call) write; a
-    subroutine's body ends at its ret (flow.body_end)."""
+    subroutine's body ends at its ret (flow.body_end). `relative_targets(dst)`: the registers
+    an o[aL + n] write may reach."""
     found: dict[tuple[str, int], Operand] = {}
     for k in body:
         instr = instrs[k]
         if instr.dst is not None and not isinstance(instr.info.lowers, NoCode):
-            found.setdefault((instr.dst.kind, instr.dst.index or 0), instr.dst)
+            for dst in (relative_targets(instr.dst) if instr.dst.relative is not None
+                        else (instr.dst,)):
+                found.setdefault((dst.kind, dst.index or 0), dst)
         if instr.opcode in ("call", "callnz") and instr.srcs:
             start = labels.get(instr.srcs[0].index)
             if start is not None and start not in seen:
                 found.update(_written(instrs, range(start + 1, flow.body_end(instrs, start + 1)),
-                                      labels, seen | {start}))
+                                      labels, relative_targets, seen | {start}))
     return found
 
 
@@ -202,15 +205,18 @@ def _operand_problems(program: AsmProgram, instr: Instruction) -> list[AsmError]
     for k, op in enumerate(instr.srcs):
         if k < len(roles) and roles[k] not in "sx":
             continue
-        if op.relative is not None and op.kind != "c":
+        if op.relative is not None and not (op.kind == "c" or (
+                op.kind == "v" and op.relative.kind == "aL")):
             found.append(AsmError(f"relative addressing of {op.kind}# registers "
-                                  f"({op.kind}[{op.relative.kind}]) is not lowered yet",
+                                  f"({op.kind}[{op.relative.kind}]) is not lowered",
                                   op.location))
         elif op.kind not in _READABLE:
             found.append(AsmError(f"reading {op.name} is not lowered yet", op.location))
-    if instr.dst is not None and instr.dst.relative is not None:
-        found.append(AsmError(f"relative addressing of {instr.dst.name} is not lowered yet",
-                              instr.dst.location))
+    dst = instr.dst
+    if dst is not None and dst.relative is not None and not (
+            dst.kind == "o" and dst.relative.kind == "aL"):
+        found.append(AsmError(f"relative addressing of {dst.name} ({dst.kind}[{dst.relative.kind}])"
+                              " is not lowered", dst.location))
     return found
 
 
@@ -270,6 +276,7 @@ class _Lowering:
         self.pred: int | None = None
         self.calls: list[int] = []
         self.returns: list[tuple[int, int]] = []   # bodies with early rets: (flag, loops open)
+        self._reads: dict = {}                     # the register reads of the instruction
         self.labels = {ins.srcs[0].index: k for k, ins in enumerate(program.instructions)
                        if ins.opcode == "label" and ins.srcs}
 
@@ -340,7 +347,7 @@ class _Lowering:
         """Every register the instructions in `body` (and what they call) may write, moved
         into an IR variable."""
         instrs = self.p.instructions
-        for key, dst in _written(instrs, body, self.labels).items():
+        for key, dst in _written(instrs, body, self.labels, self.declared_targets).items():
             if key in self.variables:
                 continue
             self.regs[key] = self.variables[key] = self.b.var(self.initial(key, dst))
@@ -354,6 +361,7 @@ class _Lowering:
             raise AsmError(f"{instr.opcode}: {lowers.reason}", instr.location)
         self.pred = (None if instr.predicate is None
                      else flow.predicate(self, instr.predicate, reads))
+        self._reads = reads
         if isinstance(lowers, Handler):
             lowers.fn(self, instr, reads)
         elif instr.info.matrix_rows:
@@ -378,8 +386,10 @@ class _Lowering:
 
     def register(self, op: Operand, reads: dict) -> int:
         kind, index = op.kind, op.index
+        if op.relative is not None and kind == "v":
+            return self.relative_select(op, reads, self.relative_targets(op), self.varying_input)
         if op.relative is not None and kind != "c":
-            raise AsmError(f"relative addressing of {op.name} is not lowered yet", op.location)
+            raise AsmError(f"relative addressing of {op.name} is not lowered", op.location)
         if kind in _BUILTINS and self.b.stage == "fragment":
             return self.b.builtin(_BUILTINS[kind])
         if kind == "c":
@@ -407,20 +417,46 @@ class _Lowering:
 
     def relative_constant(self, op: Operand, reads: dict) -> int:
         """c[a0.x + n]: a select over every addressable register (no indexed uniforms in the
-        IR); outside the range reads (0, 0, 0, 0)."""
+        IR); outside the range reads (0, 0, 0, 0). c[aL + n] reaches only what the innermost
+        loop's aL runs through."""
+        reach = (range(_relative_range(self.p)) if op.relative.kind == "a"
+                 else flow.aL_candidates(self, op.index, _relative_range(self.p)))
+        return self.relative_select(op, reads, [dataclasses.replace(op, index=k, relative=None)
+                                                for k in reach],
+                                    lambda k: self.constant(k))
+
+    def address(self, op: Operand, reads: dict) -> int:
+        """The register number a relative operand names: a0.c or aL, plus its offset."""
         rel = op.relative
         index_register = reads.get(("a", 0) if rel.kind == "a" else ("aL", 0))
         address = self.e.swizzle(self.e.const(ZERO) if index_register is None
                                  else index_register, COMPONENTS[rel.component] * 4)
-        address = self.b.add(address, self.e.const(float(op.index)))
+        return self.b.add(address, self.e.const(float(op.index)))
+
+    def relative_select(self, op: Operand, reads: dict, targets: list, read: Any) -> int:
+        """The register of `targets` (operands with fixed numbers) the relative operand `op`
+        addresses, by a select on its number: -|address - k| >= 0 only where they are equal.
+        An address outside them reads (0, 0, 0, 0)."""
+        address = self.address(op, reads)
         result = self.e.const(ZERO)
-        # c[aL + n] reaches only what the innermost loop's aL runs through
-        reach = (range(_relative_range(self.p)) if rel.kind == "a"
-                 else flow.aL_candidates(self, op.index, _relative_range(self.p)))
-        for k in reach:
-            off = self.b.neg(self.b.abs(self.b.sub(address, self.e.const(float(k)))))
-            result = self.b.cmp(off, self.constant(k), result)   # -|addr - k| >= 0 iff equal
+        for target in targets:
+            off = self.b.neg(self.b.abs(self.b.sub(address, self.e.const(float(target.index)))))
+            result = self.b.cmp(off, read(target.index), result)
         return result
+
+    def relative_targets(self, op: Operand) -> list[Operand]:
+        """The declared v# / o# registers v[aL + n] / o[aL + n] can reach in the innermost
+        loop (its aL runs start, start + step, ...), as fixed operands."""
+        limit = self.rules.registers.get(op.kind, 12)
+        reach = flow.aL_candidates(self, op.index, limit)
+        return [dataclasses.replace(op, index=k, relative=None) for k in reach
+                if self.p.declaration(op.kind, k) is not None]
+
+    def declared_targets(self, op: Operand) -> list[Operand]:
+        """Every declared register of the kind a relative operand addresses (what a block
+        holding an o[aL + n] write may write, whatever its loop)."""
+        return [dataclasses.replace(op, index=d.register.index, relative=None)
+                for d in self.p.dcls if d.register.kind == op.kind]
 
     def varying_input(self, index: int) -> int:
         if self.b.stage == "fragment":
@@ -487,9 +523,14 @@ class _Lowering:
     def store(self, dst: Operand, value: int, mask: str) -> None:
         """Merge under the write mask (and the predicate of a predicated instruction); a
         register held in a variable is assigned."""
-        if dst.relative is not None:
-            raise AsmError(f"relative addressing of {dst.name} is not lowered yet",
-                           dst.location)
+        if dst.relative is not None:          # o[aL + n]: each register it may reach
+            address = self.address(dst, self._reads)
+            for target in self.relative_targets(dst):
+                old = self.initial((target.kind, target.index), target)
+                off = self.b.neg(self.b.abs(self.b.sub(address,
+                                                       self.e.const(float(target.index)))))
+                self.store(target, self.b.cmp(off, self.b.merge(old, value, mask), old), mask)
+            return
         key = (dst.kind, dst.index if dst.index is not None else 0)
         old = self.initial(key, dst)
         new = self.b.merge(old, value, mask)
