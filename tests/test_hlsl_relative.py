@@ -107,3 +107,39 @@ def test_a_run_time_index_of_a_local_array_is_x3512():
                  "    return a[p.x];\n}\n" + PS, vs="compile vs_2_0 VS()")
     assert err.message.startswith("X3512: array index must be a literal expression on vs_2_0")
     assert (err.line, err.column) == (5, 14)
+
+
+SKIN = """float4x3 Bones[8];
+float4 Sel;
+float4 VS(float4 p : POSITION, float2 uv : TEXCOORD0, out float4 c : COLOR0) : POSITION
+{
+    float3 acc = 0;
+    int4 idx = D3DCOLORtoUBYTE4(Sel);          // the blend indices of a D3DCOLOR stream
+    float w[4] = { 0.5, 0.25, 0.125, 0.125 };
+    for (int k = 0; k < 4; k++)                // unrolled: four a0 loads, three reads each
+        acc += mul(float4(uv, 0, 1), Bones[idx[k]]) * w[k];
+    c = float4(acc, 1);
+    return p;
+}
+float4 PS(float4 c : COLOR0) : COLOR { return c; }
+technique T { pass P { VertexShader = compile %s VS(); PixelShader = compile %s PS(); } }"""
+
+
+@pytest.mark.parametrize("vs, ps, card", [("vs_1_1", "ps_2_0", "radeon9700"),
+                                          ("vs_3_0", "ps_3_0", "geforce6800")])
+def test_a_skinning_palette_indexed_by_d3dcolor_blend_indices(backend, vs, ps, card):
+    import effects
+    fx = effects.load_effect(SKIN % (vs, ps))
+    assert fx_asm(fx, "VS", vs).count("a0.x,") == 4
+    rng = np.random.default_rng(1)
+    bones = rng.uniform(0, 0.25, (8, 4, 3))
+    sel = (3, 6, 1, 5)                                  # D3DCOLOR bytes r, g, b, a
+    idx = (sel[2], sel[1], sel[0], sel[3])              # UBYTE4 order: b, g, r, a
+    params = {"Bones": ",".join(f"{x:.6f}" for x in bones.reshape(-1)),
+              "Sel": ",".join(f"{x / 255:.8f}" for x in sel)}
+    img = effects.render(fx, card, technique="T", backend=backend, scene={"mesh": "quad", "size": [8, 8]},
+                         params=params).astype(np.float64) / 255
+    for x, y in ((3, 5), (6, 1)):
+        u, v = pixel_uv(x, y)
+        want = sum(np.array([u, v, 0, 1]) @ bones[i] * w for i, w in zip(idx, (0.5, .25, .125, .125)))
+        assert np.allclose(img[y, x, :3], want, atol=TOL), (x, y, img[y, x], want)
