@@ -37,7 +37,7 @@ def test_every_third_party_file_is_unmodified_and_in_the_manifest():
     manifest = (DATA / "MANIFEST.md").read_text()
     rows = dict(re.findall(r"^\| `([\w/.]+)` \| [^|]+ \| `[^`]+` \| [^|]+ \| `([0-9a-f]{64})` \|$",
                            manifest, re.M))
-    theirs = [p for p in DATA.glob("*/*") if not p.name.startswith(("wm_", "irr_"))
+    theirs = [p for p in DATA.glob("*/*") if not p.name.startswith(("wm_", "irr_", "al_"))
               and p.name not in ("COPYRIGHT.debian", "GPL-2")]
     assert len(theirs) >= 30
     for path in theirs:
@@ -45,7 +45,7 @@ def test_every_third_party_file_is_unmodified_and_in_the_manifest():
         assert key in rows, key
         assert hashlib.sha256(path.read_bytes()).hexdigest() == rows[key], key
     for ours in DATA.glob("*/*"):
-        if ours.name.startswith(("wm_", "irr_")):
+        if ours.name.startswith(("wm_", "irr_", "al_")):
             assert ours.read_text().startswith("// Ours (the effects project)"), ours.name
     for folder in ("wildmagic", "irrlicht", "microprofile"):
         assert (DATA / folder / "COPYRIGHT.debian").is_file()
@@ -217,3 +217,37 @@ def test_a_direct3d11_shader_without_techniques_gets_a_warning():
     assert not effect.techniques
     assert [str(w).split(" is a ")[0] for w in effect.warnings] == [
         f"{DATA}/microprofile/Tutorial02.fx:10:38: warning: 'SV_POSITION'"]
+
+
+# -- Allegro 5: its ex_shader example's HLSL, in the effect Allegro's D3D path builds -----------
+
+ALLEGRO = DATA / "allegro"
+
+
+@pytest.mark.parametrize("backend", ["numpy", "gl"])
+def test_allegro_ex_shader_tints_the_bitmap(backend):
+    effect = effects.load_effect(ALLEGRO / "al_ex_shader.fx")
+    bitmap = str(ALLEGRO / "mysha.pcx")                   # the example's bitmap, a PCX file
+
+    def draw(tint: str) -> np.ndarray:
+        frame = render_frame(effect, "radeon9700", size=(80, 50), scene={"mesh": "quad"},
+                             backend=backend, params={"al_tex": bitmap, "tint": tint})
+        assert frame.technique.name == "TECH" and not frame.warnings
+        return frame.image[..., :3].astype(int)
+
+    plain, tinted = draw("1, 1, 1"), draw("4, 0, 1")      # the example's first tint
+    assert plain.std() > 30                               # the mouse, not a flat colour
+    # ps_main: pixel.rgb *= tint, saturated to the render target
+    np.testing.assert_allclose(tinted[..., 0], np.minimum(4 * plain[..., 0], 255), atol=3)
+    assert (tinted[..., 1] == 0).all()
+    np.testing.assert_allclose(tinted[..., 2], plain[..., 2], atol=1)
+
+
+def test_allegro_projview_matrix_is_bound_by_its_name(capsys):
+    assert main(["doctor", str(ALLEGRO / "al_ex_shader.fx"), "--profile", "radeon9700"]) in (0, 1)
+    out = capsys.readouterr().out
+    assert "al_projview_matrix <- bound by name (Allegro 5 convention) as WORLDVIEWPROJECTION" in out
+    assert "tint (declared at" in out                     # the example sets it: nothing here does
+    frame = render_frame(effects.load_effect(ALLEGRO / "al_ex_shader.fx"), "radeon9700",
+                         size=SIZE, params={"tint": "0, 4, 1"})
+    assert drawn(frame.image).mean() == pytest.approx(0.573, abs=0.03)    # the camera's sphere

@@ -52,9 +52,10 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
             d.bound.append((p.name, "--set / scene params"))
         elif p.name in scene_bound:
             semantic, how = binding_source(p)
-            convention = {"XNA name": "XNA convention", "DX8 name": "DirectX 8 SDK convention"}
-            d.bound.append((p.name, f"bound by name ({convention[how]}) as {semantic}"
-                            if how in convention else f"semantic {semantic}"))
+            convention = {"XNA name": "XNA", "DX8 name": "DirectX 8 SDK"}.get(how) or \
+                (how[:-len(" name")] if how.endswith(" name") else None)
+            d.bound.append((p.name, f"bound by name ({convention} convention) as {semantic}"
+                            if convention else f"semantic {semantic}"))
         elif p.name in ui:
             d.bound.append((p.name, "the middle of its UIMin..UIMax range"))
         elif p.type.is_numeric and p.value is None and not p.array:

@@ -78,6 +78,9 @@ DX8_NAME_SEMANTICS = {
     "lhtr": "LIGHTDIRECTION", "vlightdir": "LIGHTDIRECTION", "vlgt": "LIGHTDIRECTION",
     "veye": "CAMERAPOSITION",
 }
+# Names engines' shader APIs set, documented by them: Allegro 5's al_set_shader_* host sets
+# `al_projview_matrix` (the transform times the projection, multiplied as mul(pos, M)).
+ENGINE_NAME_SEMANTICS = {"al_projview_matrix": ("WORLDVIEWPROJECTION", "Allegro 5")}
 # XNA-era effects (and engines' HLSL such as Irrlicht's example) declare `float4x4 World, View,
 # Projection;` with no semantics and the game sets them by name every frame. A parameter with
 # no semantic is bound by its name when, case-insensitively and after a conventional prefix
@@ -187,7 +190,7 @@ def name_semantic(name: str) -> str | None:
 
 def binding_source(param: Parameter) -> tuple[str, str]:
     """(semantic the scene binds the parameter by, upper case, or '' for none; how it was
-    found: 'semantic', 'light object', 'DX8 name', 'XNA name')."""
+    found: 'semantic', 'light object', 'DX8 name', 'XNA name', '<engine> name')."""
     semantic = (param.semantic or "").upper()
     if semantic in OBJECT_LIGHT_SEMANTICS and _light_object(param):
         return OBJECT_LIGHT_SEMANTICS[semantic], "light object"
@@ -195,6 +198,9 @@ def binding_source(param: Parameter) -> tuple[str, str]:
         return semantic, "semantic"
     if param.name.lower() in DX8_NAME_SEMANTICS:
         return DX8_NAME_SEMANTICS[param.name.lower()].upper(), "DX8 name"
+    if param.name in ENGINE_NAME_SEMANTICS:
+        semantic, engine = ENGINE_NAME_SEMANTICS[param.name]
+        return semantic, f"{engine} name"
     by_name = name_semantic(param.name)
     return (by_name, "XNA name") if by_name else ("", "")
 
@@ -279,6 +285,9 @@ def binding_table() -> list[tuple[str, str]]:
                  "WorldViewProjection, WVP, WorldInverseTranspose, InvWorld … (any case; "
                  "prefix g_m, g_mat, g_, m_, mat, g, m or x allowed)",
                  "bound by name (XNA convention): the matrix that name stands for"))
+    rows.extend((f"no semantic, named {name}", f"bound by name ({engine} convention): "
+                 f"{VALUE_SEMANTICS.get(semantic) or MATRIX_SEMANTICS[semantic]}")
+                for name, (semantic, engine) in ENGINE_NAME_SEMANTICS.items())
     rows.append(("no semantic, named CameraPosition, EyePosition, LightPosition, LightDirection, "
                  "LightColor (or …Pos, …Dir)", "bound by name (XNA convention): the camera's "
                  "eye, the scene light's position / direction / colour"))

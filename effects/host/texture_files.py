@@ -35,7 +35,8 @@ def register(*extensions: str) -> Callable[[Loader], Loader]:
     return add
 
 
-@register(".png", ".jpg", ".jpeg", ".bmp", ".tga", ".gif", ".tif", ".tiff", ".ppm")
+# .pcx: the PC Paintbrush images DOS-era and Allegro games ship (Pillow reads them)
+@register(".png", ".jpg", ".jpeg", ".bmp", ".tga", ".gif", ".tif", ".tiff", ".ppm", ".pcx")
 def _load_image(path: str, where: Location, kind: str | None) -> Texture:
     rgba = read_image(path, "RGBA", where).astype(np.float32) / 255.0
     return make_texture(rgba, "A8R8G8B8", name=os.path.basename(path))
