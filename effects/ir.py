@@ -644,7 +644,8 @@ _OP_ROWS = [
         "leave the innermost loop where a.x != 0", has_result=False, flow="exit"),
     _op("sample_grad", 3, _sample_grad, _glsl_sample_grad,
         "texel of sampler `sampler` at coord a, its LOD from the explicit screen gradients b "
-        "(d coord / dx) and c (d coord / dy) (D3D texldd)", names_sampler=True,
+        "(d coord / dx) and c (d coord / dy) (D3D texldd; for a cube map, gradients of the "
+        "direction, carried onto the selected face as GL's textureGrad does)", names_sampler=True,
         attrs=(("sampler", REQUIRED), ("kind", "2d")), check=_check_sample_grad),
     _op("kill", 1, _kill, _glsl_kill,
         "discard the fragment where any of `components` is < 0 (texkill: ps.1.x tests xyz, "

@@ -538,6 +538,42 @@ def test_texldd_takes_the_lod_from_its_gradients(backend):
         np.testing.assert_array_equal(backend.end_frame()[0, 0], expected, err_msg=str(g))
 
 
+@pytest.mark.parametrize("direction, gradient, expected", [
+    # +Z face (s = (x / |z| + 1) / 2): a gradient (g, 0, 0) moves s by g / 2, 8 * g / 2 texels
+    ((0, 0, 1), (0.25, 0, 0), 0), ((0, 0, 1), (0.5, 0, 0), 1), ((0, 0, 1), (1, 0, 0), 2),
+    # along the major axis at x = 0.5: ds = -(x / z^2) dz / 2 = -g / 4, 8 * g / 4 texels
+    ((0.5, 0, 1), (0, 0, 0.5), 0), ((0.5, 0, 1), (0, 0, 1), 1), ((0.5, 0, 1), (0, 0, 2), 2),
+    # -X face (s = (-z / |x| + 1) / 2, t = (-y / |x| + 1) / 2): a gradient in y moves t
+    ((-1, 0, 0), (0, 0.5, 0), 1),
+])
+def test_texldd_on_a_cube_map_carries_the_gradients_onto_the_face(backend, direction,
+                                                                  gradient, expected):
+    # An 8x8 cube map whose four mip levels are red, green, blue, white on every face, point
+    # mip filtering: the LOD is log2(8 |(ds, dt)|) with (ds, dt) the face-coordinate change
+    # the direction gradient makes (the OpenGL rule; D3D9 leaves the cube case unspecified)
+    from effects.host.textures import Texture
+    from effects.passprogram import TextureBinding
+    colours = ((1, 0, 0, 1), (0, 1, 0, 1), (0, 0, 1, 1), (1, 1, 1, 1))
+    levels = [np.broadcast_to(np.array(c, np.float32), (6, n, n, 4)).copy()
+              for c, n in zip(colours, (8, 4, 2, 1))]
+    texture = Texture("cube", "A32B32G32R32F", levels)
+    src = """ps_3_0
+    dcl vPos.xy
+    dcl_cube s0
+    texldd r0, c2, s0, c0, c1
+    mov oC0, r0
+    """
+    binding = TextureBinding(0, "t", kind="cube", min_filter="POINT", mag_filter="POINT",
+                             mip_filter="POINT")
+    passp = PassProgram(program(src), render_state=NO_CULL, textures=(binding,),
+                        uniforms=PassProgram.pack_uniforms(
+                            {"c0": list(gradient) + [0], "c1": [0, 0, 0, 0],
+                             "c2": list(direction) + [0]}))
+    backend.begin_frame((2, 2), (0, 0, 0, 0), 1.0, 0, format=FLOAT)
+    backend.draw(passp, *quad(), {"t": texture})
+    np.testing.assert_array_equal(backend.end_frame()[0, 0], colours[expected])
+
+
 def test_an_unclosed_block_is_a_validation_reason_not_a_crash():
     from effects import load_effect, load_profile
     effect = load_effect("technique T { pass P { PixelShader = asm {\nps_3_0\ndcl vPos.xy\n"

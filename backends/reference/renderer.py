@@ -104,7 +104,7 @@ def _make_callback(texture_kind: str, levels: list[np.ndarray], settings: Sample
         # the texture itself decides how it is addressed. Explicit gradients (texldd) give
         # the LOD per row, as the quad differences would.
         if grad is not None:
-            lod = gradient_lod(texture_kind, levels, *grad)
+            lod = gradient_lod(texture_kind, levels, *grad, coord=coord)
         return sample(texture_kind, levels, coord, settings, bias, lod)
     return callback
 

@@ -259,22 +259,54 @@ def quad_lod(coords: Sequence[np.ndarray], sizes: Sequence[int], log2=np.log2) -
         return (0.5 * log2(np.maximum(rho_x, rho_y))).astype(np.float32)
 
 
-def gradient_lod(kind: str, levels: Sequence[np.ndarray], ddx: np.ndarray, ddy: np.ndarray
-                 ) -> np.ndarray:
+def gradient_lod(kind: str, levels: Sequence[np.ndarray], ddx: np.ndarray, ddy: np.ndarray,
+                 coord: np.ndarray | None = None) -> np.ndarray:
     """Per-row LOD from explicit screen gradients of the coordinate (texldd, GLSL
-    textureGrad): log2 of the longer of the d/dx and d/dy texel vectors, as quad_lod. A cube
-    map's gradients are taken on its face size in all three directions (an approximation)."""
+    textureGrad): log2 of the longer of the d/dx and d/dy texel vectors, as quad_lod. For a
+    cube map the gradients are of the direction (`coord`), carried onto the face it selects
+    by the quotient rule (`cube_face_gradients`), as the OpenGL spec's cube-map LOD does."""
     shape = np.shape(levels[0])                      # (... , H, W, 4)
-    count = {"1d": 1, "2d": 2, "3d": 3, "cube": 1}[kind]
-    sizes = tuple(shape[-2 - i] for i in range(count))     # W, H, D
     if kind == "cube":
-        sizes *= 3
-    rho_x = rho_y = 0.0
-    for i, n in enumerate(sizes):
-        rho_x = rho_x + (ddx[:, i] * np.float32(n)) ** 2
-        rho_y = rho_y + (ddy[:, i] * np.float32(n)) ** 2
+        size = np.float32(shape[-2])
+        (dsx, dtx), (dsy, dty) = (cube_face_gradients(np.asarray(coord, np.float32), g)
+                                  for g in (ddx, ddy))
+        rho_x = (dsx * size) ** 2 + (dtx * size) ** 2
+        rho_y = (dsy * size) ** 2 + (dty * size) ** 2
+    else:
+        count = {"1d": 1, "2d": 2, "3d": 3}[kind]
+        sizes = tuple(shape[-2 - i] for i in range(count))     # W, H, D
+        rho_x = rho_y = 0.0
+        for i, n in enumerate(sizes):
+            rho_x = rho_x + (ddx[:, i] * np.float32(n)) ** 2
+            rho_y = rho_y + (ddy[:, i] * np.float32(n)) ** 2
     with np.errstate(divide="ignore", invalid="ignore"):
         return (0.5 * np.log2(np.maximum(rho_x, rho_y))).astype(np.float32)
+
+
+def cube_face_gradients(direction: np.ndarray, grad: np.ndarray
+                        ) -> tuple[np.ndarray, np.ndarray]:
+    """(ds, dt): the change of the face coordinates (s, t) in [0, 1] along a gradient `grad`
+    of the direction, on the face the direction selects. With s = (sc / |ma| + 1) / 2 (sc the
+    face's s axis component times its sign, ma the major axis component):
+    ds = (dsc / |ma| - sc d|ma| / ma^2) / 2, and t likewise (the OpenGL 4.6 spec, 8.14.1
+    "Scale Factor and Level of Detail", derivatives of the cube-map face coordinates)."""
+    d = direction[:, :3]
+    g = np.asarray(grad, np.float32)[:, :3]
+    face = cube_face(d)
+    ds = np.zeros(len(d), np.float32)
+    dt = np.zeros(len(d), np.float32)
+    for f, (major, (sa, ss), (ta, ts)) in enumerate(_FACE_AXES):
+        rows = face == f
+        if not rows.any():
+            continue
+        ma = d[rows, major]
+        abs_ma = np.abs(ma)
+        dma = np.sign(ma) * g[rows, major]               # d|ma|
+        with np.errstate(divide="ignore", invalid="ignore"):
+            for out, axis, sign in ((ds, sa, ss), (dt, ta, ts)):
+                sc, dsc = sign * d[rows, axis], sign * g[rows, axis]
+                out[rows] = np.where(abs_ma > 0, 0.5 * (dsc / abs_ma - sc * dma / (ma * ma)), 0)
+    return ds, dt
 
 
 def _lod(coords: Sequence[np.ndarray], sizes: Sequence[int], count: int, s: SamplerSettings,
