@@ -1,83 +1,210 @@
-"""HLSL compile speed: a 150-line pixel shader function compiled for ps_2_0 (goal <= 20 ms),
-and the two bundled HLSL effects, timed per stage (parse, evaluate + passes, codegen +
-assembly) and in all, median of N runs, printed side by side.
+"""HLSL compile speed (issue 11) and the compile cache (issue 15's `effects matrix` row), side by
+side in one run.
 
-    .venv/bin/python benchmarks/bench_hlsl.py
+    .venv/bin/python benchmarks/bench_hlsl.py [--runs 9] [--before DIR]
+
+Rows:
+- an N-line ps_2_0 function (38 / 75 / 150 / 300 lines) compiled cold, as after an edit of its
+  text: parse, evaluate (inlining, folding, flattening) + code generation, assembly of the
+  generated text, and the whole; the exponent is the least-squares slope of log(time) over
+  log(lines) (bench_scale's fit). Goal: 150 lines <= 20 ms.
+- the bundled HLSL shaders compiled cold, and a `compile` state answered by the cache.
+- every technique of fxfiles/*.fx validated on the 19 cards in one process: how many compiles
+  ran, and the time.
+- `effects --help` and `effects matrix fxfiles/*.fx` as commands (interpreter start included):
+  wall time, and the CPU time of the child (steadier on a loaded machine). `--before DIR` runs
+  the commands in another checkout too (e.g. `git worktree add /tmp/before COMMIT`), side by side.
+In-process figures are CPU time (time.process_time), median of --runs.
 """
 from __future__ import annotations
 
+import argparse
+import contextlib
+import io
+import resource
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "benchmarks"))
 
 import effects  # noqa: E402
-from effects.shaders.hlsl import compile_shader  # noqa: E402
+from bench_scale import exponent  # noqa: E402
+from effects.model import CompileShader, ShaderBlock  # noqa: E402
+from effects.shaders.asm import assemble  # noqa: E402
+from effects.shaders.hlsl import cache, compile_shader, compile_state  # noqa: E402
+from effects.shaders.hlsl import parse as parse_module  # noqa: E402
 from effects.shaders.hlsl.context import load_context  # noqa: E402
 
-RUNS = 15
+GOAL_150_MS = 20.0
+SIZES = (38, 75, 150, 300)
 
 
 def long_function(lines: int = 150) -> str:
     """A ps_2_0 function of `lines` lines: locals, swizzles, intrinsics, a flattened if and an
     unrolled loop, each line a statement (as long HLSL functions are written)."""
-    body = ["float4 Long(float2 uv : TEXCOORD0, float4 col : COLOR0) : COLOR",
+    head = ["float4 Long(float2 uv : TEXCOORD0, float4 col : COLOR0) : COLOR",
             "{", "    float4 acc = col;", "    float3 n = normalize(float3(uv, 1));"]
+    statements: list[str] = []
     k = 0
-    while len(body) < lines - 3:
+    while len(statements) < lines - 6:
         k += 1
-        body.append(f"    float t{k} = dot(n, float3({k % 5} * 0.1, 0.2, 0.3)) * Scale;")
-        body.append(f"    acc.rgb = lerp(acc.rgb, acc.gbr * t{k}, 0.05);")
-        body.append(f"    if (t{k} > 0.5) acc.a = acc.a * 0.99; else acc.a = acc.a + 0.001;")
-        body.append(f"    n = n * 0.999 + float3(0.0001 * {k}, 0, 0);")
-    body += ["    return saturate(acc);", "}"]
-    return "\n".join(body[:lines - 1] + ["}"]) if len(body) > lines else "\n".join(body)
+        statements += [f"    float t{k} = dot(n, float3({k % 5} * 0.1, 0.2, 0.3)) * Scale;",
+                       f"    acc.rgb = lerp(acc.rgb, acc.gbr * t{k}, 0.05);",
+                       f"    if (t{k} > 0.5) acc.a = acc.a * 0.99; else acc.a = acc.a + 0.001;",
+                       f"    n = n * 0.999 + float3(0.0001 * {k}, 0, 0);"]
+    return "\n".join(head + statements[:lines - 6] + ["    return saturate(acc);", "}"])
 
 
-def median_ms(fn, runs: int = RUNS) -> float:
+def long_effect(lines: int) -> effects.Effect:
+    return effects.load_effect("float Scale = 0.5;\n" + long_function(lines) +
+                               "\ntechnique T { pass P { PixelShader = compile ps_2_0 Long(); } }\n")
+
+
+def cpu_ms(fn, runs: int) -> float:
     times = []
     for _ in range(runs):
-        t = time.perf_counter()
+        start = time.process_time()
         fn()
-        times.append((time.perf_counter() - t) * 1000)
+        times.append((time.process_time() - start) * 1000)
     return statistics.median(times)
 
 
-def main() -> None:
-    src = long_function()
-    n_lines = src.count("\n") + 1
-    fx = effects.load_effect("float Scale = 0.5;\n" + src +
-                             "\ntechnique T { pass P { PixelShader = compile ps_2_0 Long(); } }\n")
-    compile_shader(fx, "Long", "ps_2_0")   # warm: the grammar is built once per process
-    rows = [(f"{n_lines}-line function, ps_2_0", fx, "Long", "ps_2_0")]
-    wood = effects.load_effect(str(ROOT / "fxfiles" / "wood.fx"))
-    rows += [("wood.fx Wood, ps_2_0", wood, "Wood", "ps_2_0"),
-             ("wood.fx WoodVS, vs_1_1", wood, "WoodVS", "vs_1_1")]
-    marble = effects.load_effect(str(ROOT / "fxfiles" / "sdk9_style.fx"))
-    rows.append(("sdk9_style.fx MarbleVS(1), vs_1_1", marble, "MarbleVS", "vs_1_1"))
-    from effects.shaders.hlsl import parse as parse_module
-    print(f"{'shader':38} {'parse ms':>9} {'total ms':>9} {'cached tree':>12} {'slots':>6}")
-    for label, effect, entry, target in rows:
-        args = ("1",) if entry == "MarbleVS" else ()
+def cold(fn):
+    """`fn` as the first compile after an edit: no parse tree kept for the text."""
+    def run():
+        parse_module._TREES.clear()
+        fn()
+    return run
 
-        def cold(fn):
-            def run():
-                parse_module._TREES.clear()   # as the first compile after a load
-                fn()
-            return run
-        parse = median_ms(cold(lambda: load_context(effect, target)))
-        total = median_ms(cold(lambda: compile_shader(effect, entry, target, args)))
-        warm = median_ms(lambda: compile_shader(effect, entry, target, args))
-        slots = compile_shader(effect, entry, target, args).program.stats.total_slots
-        print(f"{label:38} {parse:9.1f} {total:9.1f} {warm:12.1f} {slots:6d}")
-    parse_module._TREES.clear()
-    goal = median_ms(cold(lambda: compile_shader(fx, "Long", "ps_2_0")))
-    print(f"goal: {n_lines}-line function for ps_2_0 <= 20 ms: {goal:.1f} ms "
-          f"({'met' if goal <= 20 else 'NOT met'})")
+
+def bench_sizes(runs: int) -> None:
+    print(f"{'N-line ps_2_0 function, cold':34} {'parse':>8} {'eval+gen':>9} {'assemble':>9} "
+          f"{'total':>8} {'slots':>6}")
+    totals = []
+    for lines in SIZES:
+        fx = long_effect(lines)
+        shader = compile_shader(fx, "Long", "ps_2_0")
+        block = ShaderBlock("pixel", "ps_2_0", shader.text)
+        parse = cpu_ms(cold(lambda: load_context(fx, "ps_2_0")), runs)
+        total = cpu_ms(cold(lambda: compile_shader(fx, "Long", "ps_2_0")), runs)
+        asm = cpu_ms(lambda: assemble(block), runs)
+        totals.append(total)
+        print(f"{lines:4d} lines{'':24} {parse:6.1f}ms {total - parse - asm:7.1f}ms {asm:7.1f}ms "
+              f"{total:6.1f}ms {shader.program.stats.total_slots:6d}")
+    goal = totals[SIZES.index(150)]
+    print(f"exponent (total over lines): {exponent(SIZES, totals):.2f}; 150 lines: {goal:.1f} ms, "
+          f"goal <= {GOAL_150_MS:.0f} ms: {'met' if goal <= GOAL_150_MS else 'NOT met'}\n")
+
+
+def bench_bundled(runs: int) -> None:
+    wood = effects.load_effect(str(ROOT / "fxfiles" / "wood.fx"))
+    marble = effects.load_effect(str(ROOT / "fxfiles" / "sdk9_style.fx"))
+    scene = effects.load_effect(str(ROOT / "fxfiles" / "sdk9_hlsl.fx"))
+    rows = [("wood.fx Wood, ps_2_0", wood, "Wood", "ps_2_0", ()),
+            ("wood.fx WoodVS, vs_1_1", wood, "WoodVS", "vs_1_1", ()),
+            ("sdk9_style.fx MarbleVS(1), vs_1_1", marble, "MarbleVS", "vs_1_1", ("1",)),
+            ("sdk9_hlsl.fx ScenePS(true), ps_2_0", scene, "ScenePS", "ps_2_0", ("true",))]
+    print(f"{'bundled shader':38} {'cold':>8} {'cached':>10} {'slots':>6}")
+    for label, fx, entry, target, args in rows:
+        value = CompileShader(target, entry, args, fx.functions[0].location)
+        total = cpu_ms(cold(lambda: compile_shader(fx, entry, target, args, value.location)), runs)
+        compile_state(fx, value)
+        hit = cpu_ms(lambda: compile_state(fx, value), runs * 20)
+        slots = compile_state(fx, value).program.stats.total_slots
+        print(f"{label:38} {total:6.1f}ms {hit * 1000:7.0f} us {slots:6d}")
+    print()
+
+
+def bench_validation(runs: int) -> None:
+    files = sorted((ROOT / "fxfiles").glob("*.fx"))
+    loaded = [effects.load_effect(str(p)) for p in files]
+    cards = [effects.load_profile(name) for name in effects.list_profiles()]
+    compiles = []
+    real = compile_shader.__globals__["compile_shader"]
+
+    def counting(*a, **k):
+        compiles.append(1)
+        return real(*a, **k)
+
+    def validate_all():
+        cache.clear()
+        parse_module._TREES.clear()
+        compiles.clear()
+        for fx in loaded:
+            for card in cards:
+                for technique in fx.techniques:
+                    fx.validate(technique, card)
+    from effects.shaders.hlsl import compiler
+    compiler.compile_shader = counting          # counted: compile_state calls it on a miss
+    try:
+        spent = cpu_ms(validate_all, max(3, runs // 3))
+    finally:
+        compiler.compile_shader = real
+    states = sum(isinstance(s.value, CompileShader) for fx in loaded for t in fx.techniques
+                 for p in t.passes for s in p.states)
+    print(f"validate every technique of {len(files)} fxfiles on {len(cards)} cards: "
+          f"{spent:.0f} ms CPU, {len(compiles)} compiles for {states} compile states "
+          f"x {len(cards)} cards\n")
+
+
+def _command(argv: list[str], cwd: Path, runs: int) -> tuple[float, float]:
+    """(median wall ms, median child CPU ms) of `python -m effects ARGV` run in `cwd`
+    (`FXFILES` in ARGV: that checkout's fxfiles/*.fx)."""
+    if "FXFILES" in argv:
+        k = argv.index("FXFILES")
+        argv = argv[:k] + [str(p.relative_to(cwd)) for p in sorted((cwd / "fxfiles").glob("*.fx"))]
+    walls, cpus = [], []
+    for _ in range(runs):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        start = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "effects", *argv], cwd=cwd,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False)
+        walls.append((time.perf_counter() - start) * 1000)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpus.append((after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime) * 1000)
+    return statistics.median(walls), statistics.median(cpus)
+
+
+def bench_commands(runs: int, before: Path | None) -> None:
+    rows = [("effects --help", ["--help"], 60.0),
+            ("effects matrix fxfiles/*.fx", ["matrix", "FXFILES"], 300.0)]
+    head = f"{'command':30} {'wall':>9} {'CPU':>9}"
+    print(head + (f" {'before wall':>12} {'before CPU':>11} {'CPU ratio':>10}" if before else "")
+          + "  goal")
+    for label, argv, goal in rows:
+        # interleaved, so both checkouts see the same load
+        wall, cpu = _command(argv, ROOT, runs)
+        line = f"{label:30} {wall:7.0f}ms {cpu:7.0f}ms"
+        if before is not None:
+            bwall, bcpu = _command(argv, before, runs)
+            line += f" {bwall:10.0f}ms {bcpu:9.0f}ms {bcpu / cpu:9.2f}x"
+        print(f"{line}  <= {goal:.0f} ms wall")
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=9)
+    ap.add_argument("--before", type=Path, help="another checkout to run the commands in")
+    ap.add_argument("--only", default="sizes,bundled,validation,commands")
+    args = ap.parse_args(argv)
+    compile_shader(long_effect(38), "Long", "ps_2_0")      # the grammar, once per process
+    only = set(args.only.split(","))
+    with contextlib.redirect_stderr(io.StringIO()):
+        if "sizes" in only:
+            bench_sizes(args.runs)
+        if "bundled" in only:
+            bench_bundled(args.runs)
+        if "validation" in only:
+            bench_validation(args.runs)
+    if "commands" in only:
+        bench_commands(args.runs, args.before)
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

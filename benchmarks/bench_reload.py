@@ -12,6 +12,11 @@ of the swap of the first frame drawn with the rebuilt effect is one sample; the 
 waits until the viewer is idle again. Printed: per effect the median and the worst sample
 and the median build time in the worker, then the median over all samples. Goal: 50 ms.
 The watcher's debounce (effects.viewer.reload.DEBOUNCE_S) is part of every sample.
+
+`--hlsl-edit`: a one-line change to HLSL code instead (issue 11's reload goal), for the effects
+whose pixel shader is a `compile` of an HLSL function: each edit rewrites, in place, the first
+assignment line of that function (`x = e;` -> `x = (e) * 1.000N;`, N the edit's number), so the
+function compiles again for its target(s) on every reload while the other shaders are kept.
 """
 from __future__ import annotations
 
@@ -19,6 +24,7 @@ import argparse
 import glob
 import json
 import os
+import re
 import shutil
 import statistics
 import subprocess
@@ -31,12 +37,42 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 GOAL_MS = 50.0
 
 
-def measure_one(path: str, card: str, edits: int) -> dict:
+def hlsl_edit_line(text: str) -> int | None:
+    """The index of the line that `--hlsl-edit` rewrites: the first `x = e;` line of the
+    function the first `PixelShader = compile` names (None: the effect has none)."""
+    m = re.search(r"PixelShader\s*=\s*compile\s+\w+\s+(\w+)\s*\(", text)
+    if m is None:
+        return None
+    lines = text.split("\n")
+    start = next((k for k, line in enumerate(lines)
+                  if re.match(rf"\s*\w+\s+{m.group(1)}\s*\(", line)), None)
+    if start is None:
+        return None
+    for k in range(start + 1, len(lines)):
+        if re.fullmatch(r"\s*[\w.]+(\s+\w+)?\s*=[^=].*;\s*", lines[k]):
+            return k
+    return None
+
+
+def edited(text: str, i: int, hlsl_line: int | None) -> str:
+    """Edit number `i`: a comment at the end, or the HLSL line scaled by 1.000N."""
+    if hlsl_line is None:
+        return text + f"\n// edit {i}\n"
+    lines = text.split("\n")
+    lhs, rhs = lines[hlsl_line].split("=", 1)
+    lines[hlsl_line] = f"{lhs}= ({rhs.strip().rstrip(';')}) * 1.{i + 1:04d};"
+    return "\n".join(lines)
+
+
+def measure_one(path: str, card: str, edits: int, hlsl: bool = False) -> dict:
     """Run a viewer on `path` in this process and time `edits` edits."""
     from effects.viewer.reload import DEBOUNCE_S
     from effects.viewer.app import FrameEvent, Viewer, ViewerOptions
 
     text = open(path, encoding="utf-8").read()
+    hlsl_line = hlsl_edit_line(text) if hlsl else None
+    if hlsl and hlsl_line is None:
+        raise SystemExit(f"{path}: no HLSL pixel shader function to edit")
     frames: list[FrameEvent] = []
     new_frame = threading.Condition()
     samples: list[float] = []
@@ -69,7 +105,7 @@ def measure_one(path: str, card: str, edits: int) -> dict:
             for i in range(edits):
                 time.sleep(0.15)                       # idle: the last frame is long drawn
                 generation = frames[-1].effect_generation
-                body = text + f"\n// edit {i}\n"
+                body = edited(text, i, hlsl_line)
                 start = time.perf_counter()
                 if i % 2:
                     tmp = path + ".tmp"
@@ -114,12 +150,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--edits", type=int, default=15)
     parser.add_argument("--card", default="radeon9700")
     parser.add_argument("--effect", action="append", default=[], help="default: every fxfiles/*.fx")
+    parser.add_argument("--hlsl-edit", action="store_true",
+                        help="edit one line of the HLSL pixel shader function, not a comment")
     parser.add_argument("--one", help=argparse.SUPPRESS)     # child mode: one effect, JSON out
     args = parser.parse_args(argv)
     if args.one:
         if os.path.abspath(args.one).startswith(ROOT + os.sep):
             parser.error("--one edits the file it is given: pass a copy outside the project")
-        print(json.dumps(measure_one(args.one, args.card, args.edits)), flush=True)
+        print(json.dumps(measure_one(args.one, args.card, args.edits, args.hlsl_edit)), flush=True)
         return 0
 
     effects_ = args.effect or sorted(glob.glob(os.path.join(ROOT, "fxfiles", "*.fx")))
@@ -132,13 +170,16 @@ def main(argv: list[str] | None = None) -> int:
             copy = os.path.join(tmp, "fxfiles", os.path.basename(source))
             if not os.path.exists(copy):
                 shutil.copy(source, copy)
+            if args.hlsl_edit and hlsl_edit_line(open(copy, encoding="utf-8").read()) is None:
+                continue                       # no HLSL pixel shader function to edit
             card = drawable_card(copy, args.card)
             if card is None:
                 print(f"{os.path.basename(source):<20} no card can draw it: skipped")
                 continue
             out = subprocess.run([sys.executable, __file__, "--one", copy, "--card", card,
-                                  "--edits", str(args.edits)], capture_output=True, text=True,
-                                 cwd=ROOT)
+                                  "--edits", str(args.edits)]
+                                 + (["--hlsl-edit"] if args.hlsl_edit else []),
+                                 capture_output=True, text=True, cwd=ROOT)
             line = out.stdout.strip().splitlines()[-1] if out.stdout.strip() else ""
             if out.returncode != 0 or not line.startswith("{"):
                 print(f"{os.path.basename(source)}: failed\n{out.stdout}{out.stderr}")

@@ -13,10 +13,12 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from effects.errors import EffectError, Location
-from effects.model import CompileShader, Effect, ShaderBlock
 
 if TYPE_CHECKING:  # pragma: no cover
     from rich.console import Console
+
+    from effects.model import Effect   # the model is imported when the command runs: --help
+                                       # (which adds this command's options) needs none of it
 
 
 def add_compile(sub: Any, load: Any) -> None:
@@ -34,6 +36,7 @@ def add_compile(sub: Any, load: Any) -> None:
 
 
 def run_compile(args: Any, console: "Console", load: Any) -> int:
+    from effects.model import CompileShader, ShaderBlock
     effect = load(args)
     out: list[str] = []
     if args.entry or args.target:
@@ -69,7 +72,8 @@ def run_compile(args: Any, console: "Console", load: Any) -> int:
     return 0
 
 
-def shader_listing(effect: Effect, value: Any) -> list[str]:
+def shader_listing(effect: "Effect", value: Any) -> list[str]:
+    from effects.model import CompileShader, ShaderBlock
     if isinstance(value, CompileShader):
         from effects.shaders.hlsl import compile_state
         return listing(effect, compile_state(effect, value))
@@ -82,7 +86,7 @@ def shader_listing(effect: Effect, value: Any) -> list[str]:
     return [f"//   {type(value).__name__}: no shader"]
 
 
-def listing(effect: Effect, shader: Any) -> list[str]:
+def listing(effect: "Effect", shader: Any) -> list[str]:
     """The fxc-style listing of one compiled shader."""
     lines = [f"// {shader.function} compiled for {shader.target}", "//"]
     if shader.constants or shader.samplers:
@@ -121,7 +125,7 @@ def counts(program: Any) -> list[str]:
 
 
 class _SourceLines:
-    def __init__(self, effect: Effect) -> None:
+    def __init__(self, effect: "Effect") -> None:
         self.files: dict[str, list[str] | None] = {}
         self.effect = effect
 

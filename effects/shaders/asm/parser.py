@@ -112,12 +112,13 @@ class _Parser:
         yield Token("end", "", line, i - line_start + 1)
 
     def peek(self) -> Token:
-        if self.current is None:
-            self.current = next(self.tokens)
-            if self.current.type == "bad":
-                raise self.error(f"unexpected character '{self.current.text}'", self.current)
-            if len(self.current.text) > self.max_word:  # c99999...: Python's int() stops at 4,300 digits
-                raise self.error(limits.message("literal_digits", len(self.current.text), "a word"), self.current)
+        if self.current is not None:     # the common case first: this runs several times a token
+            return self.current
+        self.current = next(self.tokens)
+        if self.current.type == "bad":
+            raise self.error(f"unexpected character '{self.current.text}'", self.current)
+        if len(self.current.text) > self.max_word:  # c99999...: Python's int() stops at 4,300 digits
+            raise self.error(limits.message("literal_digits", len(self.current.text), "a word"), self.current)
         return self.current
 
     def advance(self) -> Token:
@@ -127,8 +128,8 @@ class _Parser:
         return tok
 
     def at(self, text: str) -> bool:
-        tok = self.peek()
-        return tok.type == "punct" and tok.text == text
+        tok = self.current if self.current is not None else self.peek()
+        return tok.text == text and tok.type == "punct"
 
     def expect_punct(self, text: str, what: str) -> Token:
         tok = self.peek()

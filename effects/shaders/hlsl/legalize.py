@@ -10,6 +10,7 @@
 """
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Any
 
 from effects.errors import Location, UNKNOWN_LOCATION
@@ -27,18 +28,29 @@ def _lanes_needed(ins: Instr, src: Src) -> dict[int, int]:
 
 
 def _choose(needed: dict[int, int], rule: str) -> tuple[int, ...] | None:
+    """The source swizzle that puts component `needed[lane]` in each lane the instruction
+    reads (None: ps_2_0 has no such swizzle)."""
     if not needed:
         return IDENTITY
+    return _choose_lanes(tuple(sorted(needed.items())), rule)
+
+
+# ps_2_0's swizzles in the order tried: identity, the replicates, then the rest
+_PS20_ORDER = (IDENTITY, *((k,) * 4 for k in range(4)), *sorted(PS20_SWIZZLES - {IDENTITY}))
+
+
+@lru_cache(maxsize=4096)   # a few hundred distinct lane maps; asked per source per instruction
+def _choose_lanes(items: tuple[tuple[int, int], ...], rule: str) -> tuple[int, ...] | None:
+    needed = dict(items)
     if rule == "any":
-        full = []
+        full: list[int] = []
         for i in range(4):
             full.append(needed.get(i, full[-1] if full else needed[min(needed)]))
         if all(needed.get(i, i) == i for i in range(4)) and all(needed[i] == i for i in needed):
             return IDENTITY
         return tuple(full)
-    candidates = [IDENTITY] + [(k,) * 4 for k in range(4)] + sorted(PS20_SWIZZLES - {IDENTITY})
-    for cand in candidates:
-        if all(cand[i] == v for i, v in needed.items()):
+    for cand in _PS20_ORDER:
+        if all(cand[i] == v for i, v in items):
             return cand
     return None
 
