@@ -69,6 +69,15 @@ def _verdict(ok: bool) -> str:
     return "ok" if ok else "MISSED"
 
 
+def _growth_time(fn, lines: int) -> float:
+    """The best of several runs of `fn` over an effect of `lines` lines, measured alike at
+    every size: the garbage its load left collected first (a full collection owed by the
+    load would otherwise land in one size's run and not another's), and more runs for the
+    small sizes, whose few milliseconds the other work on the machine disturbs most."""
+    gc.collect()
+    return best(fn, 7 if lines <= 1000 else 3 if lines <= 30000 else 2)
+
+
 # -- rows --------------------------------------------------------------------------------------
 
 def bench_validate(quick: bool) -> None:
@@ -81,7 +90,7 @@ def bench_validate(quick: bool) -> None:
             for card in cards:       # each result dropped once made, as a report would print it
                 for t in effect.techniques:
                     effect.validate(t, card)
-        times.append(best(validate_all, 3 if n <= 10000 else 1))
+        times.append(_growth_time(validate_all, n))
     ratio = times[1] / times[0]
     row(f"validate on {len(cards)} cards, {' → '.join(f'{n // 1000}k' for n in sizes)} lines",
         " → ".join(ms(t) for t in times), f"{exponent(sizes, times):.2f}",
@@ -104,7 +113,7 @@ def bench_lower(quick: bool) -> None:
                         lower_pass(effect, t, i, card)
                     except effects.EffectError:
                         pass
-        times.append(best(lower_all, 3 if n <= 10000 else 1))
+        times.append(_growth_time(lower_all, n))
     last = times[-1] / times[0]
     limit = 1.1 * sizes[-1] / sizes[0]
     row(f"lower every pass, {' → '.join(f'{n // 1000}k' for n in sizes)} lines",

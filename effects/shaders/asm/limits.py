@@ -21,6 +21,9 @@ Violation = tuple[Location, str, str, str, str]  # location, subject, requiremen
 SOFTWARE_VS_CONSTANTS = 8192
 
 
+_MEMO = "_assembled"   # the attribute assemble_cached keeps on a ShaderBlock
+
+
 @lru_cache(maxsize=512)
 def _assemble_key(stage: str, version: str | None, source: str, path: str, line: int,
                   column: int) -> AsmProgram | AsmError:
@@ -32,9 +35,20 @@ def _assemble_key(stage: str, version: str | None, source: str, path: str, line:
 
 
 def assemble_cached(block: ShaderBlock) -> AsmProgram:
-    """`assemble`, memoised on the block's text and position (validation runs per card)."""
+    """`assemble`, memoised on the block's text and position (validation runs per card).
+    The result is kept on the block itself (with the key it was made from, checked on a
+    hit): the process-wide LRU behind it is bounded, and an effect with more blocks than it
+    holds would otherwise parse every block again on every validation and lowering (a
+    30k-line effect has ~1,000). The memo goes with the effect."""
     loc = block.location
-    result = _assemble_key(block.stage, block.version, block.source, loc.path, loc.line, loc.column)
+    key = (block.stage, block.version, block.source, loc)
+    memo = block.__dict__.get(_MEMO)
+    if memo is not None and memo[0] == key:
+        result = memo[1]
+    else:
+        result = _assemble_key(block.stage, block.version, block.source, loc.path, loc.line,
+                               loc.column)
+        block.__dict__[_MEMO] = (key, result)
     if isinstance(result, AsmError):
         raise result
     return result
