@@ -2,6 +2,8 @@
 the .obj reader with located errors."""
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from effects.host import meshes as M
 from effects.errors import SceneError
@@ -267,3 +269,121 @@ def test_fast_obj_reader_makes_the_per_line_readers_mesh(tmp_path, monkeypatch, 
 def test_fast_obj_reader_leaves_irregular_files_to_the_per_line_reader(text):
     from effects.host import obj_fast
     assert obj_fast.parse(text.encode()) is None
+
+
+def _fast_and_slow(path, monkeypatch):
+    from effects.host import obj_fast
+    fast = M.load_obj(path)
+    with monkeypatch.context() as patch:
+        patch.setattr(obj_fast, "parse", lambda raw: None)
+        slow = M.load_obj(path)
+    return fast, slow
+
+
+def _assert_same_mesh(fast, slow):
+    for name in ("positions", "normals", "uv", "tangents", "binormals", "indices"):
+        a, b = getattr(fast, name), getattr(slow, name)
+        assert a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes(), name
+
+
+# Spellings float() reads: the plain ones go through the digit arithmetic (up to 15 digits),
+# the rest (exponents, 16+ digits, underscores, inf) through float() one by one.
+_SPELLINGS = ["0.5", "-0.000000", "+1.25", ".5", "-.75", "7.", "00012.5000", "123456789012345",
+              "1234567890123456", "0.30000000000000004", "0.1234567890123456789", "1e-3", "-2.5E+2",
+              "1_0", "9007199254740993", "-1.994342", "3", "0.1", "0.7", "1.15", "2.675"]
+
+
+@pytest.mark.parametrize("spelling", _SPELLINGS)
+def test_fast_obj_reader_reads_each_number_as_float_does(tmp_path, monkeypatch, spelling):
+    from effects.host import obj_fast
+    text = (f"v {spelling} 0 0\nv 1 {spelling} 0\nv 0 1 {spelling}\nvt {spelling} 0.5\n"
+            f"vn 0 0 1\nf 1/1/1 2/1/1 3/1/1\n")
+    assert obj_fast.parse(text.encode()) is not None
+    positions = obj_fast.parse(text.encode())[0]
+    assert positions[0, 0] == float(spelling) and positions[1, 1] == float(spelling)
+    path = tmp_path / "m.obj"
+    path.write_text(text)
+    _assert_same_mesh(*_fast_and_slow(path, monkeypatch))
+
+
+def test_fast_obj_reader_plain_numbers_are_float_exactly():
+    """Many random plain spellings (sign, point, 1-15 digits): every double equals float()'s,
+    bit for bit (the digits and the power of ten are exact; one division rounds)."""
+    from effects.host import obj_fast
+    rng = np.random.default_rng(7)
+    words = []
+    for _ in range(20000):
+        digits = "".join(map(str, rng.integers(0, 10, rng.integers(1, 16))))
+        cut = int(rng.integers(0, len(digits) + 1))
+        words.append(str(rng.choice(["", "-", "+"])) + digits[:cut] + "." + digits[cut:])
+    words = words[:len(words) // 9 * 9]
+    text = "".join(f"v {words[i]} {words[i + 1]} {words[i + 2]}\n" for i in range(0, len(words), 3))
+    faces = "".join(f"f {i + 1} {i + 2} {i + 3}\n" for i in range(0, len(words) // 3, 3))
+    positions = obj_fast.parse((text + faces).encode())[0]   # every vertex, in file order
+    assert positions.tobytes() == np.array([float(w) for w in words]).reshape(-1, 3).tobytes()
+
+
+def test_fast_obj_reader_in_small_batches_and_scattered_lines(tmp_path, monkeypatch):
+    """Batches of a few lines and vertex lines interleaved by kind (gathered, not copied as a
+    span) make the same mesh as the per-line reader."""
+    from effects.host import obj_fast
+    rng = np.random.default_rng(3)
+    n = 150
+    lines = []
+    for i in range(n):   # v, vt, vn interleaved: hundreds of one-line spans
+        lines += [f"v {rng.normal():.6f} {rng.normal():.6f} {rng.normal():.6f}",
+                  f"vt {rng.random():.5f} {rng.random():.5f}", f"vn {rng.normal():.4f} 1 0.5"]
+    for _ in range(300):
+        a, b, c = rng.integers(1, n + 1, 3)
+        lines.append(f"f {a}/{b}/{c} {b}/{c}/{a}  {c}/{a}/{b}")
+    path = tmp_path / "m.obj"
+    path.write_text("\n".join(lines) + "\n")
+    monkeypatch.setattr(obj_fast, "_BATCH", 100)
+    _assert_same_mesh(*_fast_and_slow(path, monkeypatch))
+
+
+def test_fast_obj_reader_wants_one_corner_form_in_every_batch(monkeypatch):
+    from effects.host import obj_fast
+    monkeypatch.setattr(obj_fast, "_BATCH", 16)
+    head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
+    assert obj_fast.parse((head + "f 1/1 2/1 3/1\n" * 4).encode()) is not None
+    assert obj_fast.parse((head + "f 1/1 2/1 3/1\n" * 4 + "f 1//1 2//1 3//1\n").encode()) is None
+
+
+_CORNERS = {"v": "{i}", "v/vt": "{i}/{t}", "v//vn": "{i}//{n}", "v/vt/vn": "{i}/{t}/{n}"}
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(data=st.data())
+def test_fast_obj_reader_matches_the_per_line_reader_on_random_files(tmp_path, monkeypatch, data):
+    """Random regular files (numbers of any spelling float() takes, any corner form, \\r\\n
+    or \\n, spaces or tabs): the fast reader's mesh is the per-line reader's, bit for bit."""
+    from effects.host import obj_fast
+    number = st.one_of(
+        st.floats(-1e6, 1e6, allow_nan=False).map(repr),
+        st.floats(-1e3, 1e3, allow_nan=False).map(lambda x: f"{x:.6f}"),
+        st.floats(-1e3, 1e3, allow_nan=False).map(lambda x: f"{x:e}"),
+        st.integers(-10 ** 17, 10 ** 17).map(str),
+        st.sampled_from(_SPELLINGS))
+    nv, nt, nn = (data.draw(st.integers(3, 12)), data.draw(st.integers(1, 6)),
+                  data.draw(st.integers(1, 6)))
+    space = data.draw(st.sampled_from([" ", "\t", "  "]))
+    lines = [f"v{space}" + space.join(data.draw(st.lists(number, min_size=3, max_size=3)))
+             for _ in range(nv)]
+    lines += [f"vt{space}" + space.join(data.draw(st.lists(number, min_size=2, max_size=2)))
+              for _ in range(nt)]
+    lines += [f"vn{space}" + space.join(data.draw(st.lists(number, min_size=3, max_size=3)))
+              for _ in range(nn)]
+    lines = data.draw(st.permutations(lines))
+    form = _CORNERS[data.draw(st.sampled_from(sorted(_CORNERS)))]
+    for _ in range(data.draw(st.integers(1, 10))):
+        corners = [form.format(i=data.draw(st.integers(1, nv)), t=data.draw(st.integers(1, nt)),
+                               n=data.draw(st.integers(1, nn))) for _ in range(3)]
+        lines.append("f " + space.join(corners))
+    end = data.draw(st.sampled_from(["\n", "\r\n"]))
+    raw = (end.join(lines) + end).encode()
+    monkeypatch.setattr(obj_fast, "_BATCH", data.draw(st.sampled_from([8, 64, 1 << 20])))
+    assert obj_fast.parse(raw) is not None
+    path = tmp_path / "m.obj"
+    path.write_bytes(raw)
+    _assert_same_mesh(*_fast_and_slow(path, monkeypatch))

@@ -80,25 +80,37 @@ def make_mesh(positions, uv, indices, normals=None, *, name: str = "", space: st
 
 
 def _normalize(v: np.ndarray, fallback: np.ndarray | None = None) -> np.ndarray:
-    length = np.linalg.norm(v, axis=-1, keepdims=True)
+    length = _length(v)
     out = v / np.where(length > 1e-12, length, 1.0)
     if fallback is not None:
         out = np.where(length > 1e-12, out, fallback)
     return out
 
 
-def _group_sum(values: np.ndarray, keys: np.ndarray) -> np.ndarray:
-    """Replace each row by the sum over the rows that share its key (keys: (N, K) ints)."""
-    inverse = _row_groups(keys)
+def _length(v: np.ndarray) -> np.ndarray:
+    """np.linalg.norm(v, axis=-1, keepdims=True), computed as it computes it (the same sum of
+    squares in the same order), without its copy of v for the complex conjugate."""
+    return np.sqrt(np.add.reduce(v * v, axis=-1, keepdims=True))
+
+
+def _group_sum(values: np.ndarray, keys: np.ndarray | None = None, *,
+               groups: np.ndarray | None = None) -> np.ndarray:
+    """Replace each row by the sum over the rows that share its key (keys: (N, K) ints), or
+    its group (`groups`, from `_row_groups(keys)`, made once for several sums)."""
+    inverse = _row_groups(keys) if groups is None else groups
     return _scatter_sum(inverse, values, int(inverse.max()) + 1)[inverse]
 
 
-def _scatter_sum(index: np.ndarray, values: np.ndarray, size: int) -> np.ndarray:
+def _scatter_sum(index: np.ndarray, values: np.ndarray, size: int, *, repeat: int = 1
+                 ) -> np.ndarray:
     """out[index[i]] += values[i], in row order (so the same float sums as np.add.at, which is
-    several times slower), for (N, C) float64 values: one bincount per column."""
+    several times slower), for (N, C) float64 values: one bincount per column. `repeat`:
+    the values stand that many times over, one after another (np.tile(values, (repeat, 1))),
+    as index does for a triangle's three corners; made a column at a time, not whole."""
     out = np.empty((size,) + values.shape[1:])
     for c in range(values.shape[1]):
-        out[:, c] = np.bincount(index, weights=values[:, c], minlength=size)
+        column = values[:, c] if repeat == 1 else np.concatenate([values[:, c]] * repeat)
+        out[:, c] = np.bincount(index, weights=column, minlength=size)
     return out
 
 
@@ -152,7 +164,7 @@ def compute_tangent_frames(mesh: Mesh, *, recompute_normals: bool = False) -> Me
     normals = mesh.normals.astype(np.float64)
     if recompute_normals or not np.any(normals):
         corners = tri.T.reshape(-1)           # corner 0 of every triangle, then 1, then 2
-        acc = _scatter_sum(corners, np.tile(face_n, (3, 1)), n_vert)
+        acc = _scatter_sum(corners, face_n, n_vert, repeat=3)
         acc = _group_sum(acc, _position_key(p))
         normals = _normalize(acc, np.array([0.0, 1.0, 0.0]))
     else:
@@ -167,16 +179,17 @@ def compute_tangent_frames(mesh: Mesh, *, recompute_normals: bool = False) -> Me
     safe = np.where(ok, det, 1.0)[:, None]
     dpdu = (e1 * dv2[:, None] - e2 * dv1[:, None]) / safe
     dpdv = (e2 * du1[:, None] - e1 * du2[:, None]) / safe
-    area = 0.5 * np.linalg.norm(face_n, axis=1)[:, None] * ok[:, None]
+    area = 0.5 * _length(face_n) * ok[:, None]
     dpdu, dpdv = _normalize(dpdu) * area, _normalize(dpdv) * area
 
     corners = tri.T.reshape(-1)
-    t_acc = _scatter_sum(corners, np.tile(dpdu, (3, 1)), n_vert)
-    b_acc = _scatter_sum(corners, np.tile(dpdv, (3, 1)), n_vert)
+    t_acc = _scatter_sum(corners, dpdu, n_vert, repeat=3)
+    b_acc = _scatter_sum(corners, dpdv, n_vert, repeat=3)
     # Pool across texture seams: same position, same normal, UVs equal up to whole numbers.
     frac_uv = np.rint(((uv + 0.5) % 1.0 - 0.5) * 1e4).astype(np.int64) % 10000
     keys = np.concatenate([_position_key(p), np.rint(normals * 1e3).astype(np.int64), frac_uv], axis=1)
-    t_acc, b_acc = _group_sum(t_acc, keys), _group_sum(b_acc, keys)
+    groups = _row_groups(keys)
+    t_acc, b_acc = _group_sum(t_acc, groups=groups), _group_sum(b_acc, groups=groups)
 
     t = t_acc - normals * np.sum(t_acc * normals, axis=1, keepdims=True)
     t = _normalize(t, _any_perpendicular(normals))

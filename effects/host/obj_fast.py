@@ -2,10 +2,15 @@
 
 Most .obj files are regular: `v x y z`, `vt u v`, `vn x y z` lines, then triangles `f a b c`
 whose corners all share one form (`v`, `v/vt`, `v//vn` or `v/vt/vn`) with positive indices.
-Such a file is classified line by line with NumPy over its bytes, each kind's tokens are split
-at once, numbers are converted by Python's own float() (as the per-line reader does) and
-indices by NumPy, and corners are numbered by one sort in order of first appearance, as the
-per-line reader numbers them: the mesh is the same, value for value.
+Such a file is classified line by line with NumPy over its bytes, and every token is read by
+Horner's rule over its bytes, one byte position of all the tokens at a time, a batch of lines
+at a time: an index is its digits' value; a number written plainly (sign, up to 15 digits, a
+point) is its digits as an integer divided by a power of ten, both exact in a double, so the
+one rounded division gives the double nearest the text, which is what Python's float() (the
+per-line reader's conversion, correctly rounded) gives. Numbers of any other spelling (an
+exponent, more digits) go through float() one by one.
+Corners are numbered by one sort in order of first appearance, as the per-line reader numbers
+them: the mesh is the same, value for value.
 
 Anything else returns None and the per-line reader, which locates every error, reads the file:
 a byte outside printable ASCII, tab and line ends; a '#' after the start of a line; an
@@ -14,37 +19,48 @@ negative or out-of-range index; a vertex after the first face; a bad number.
 """
 from __future__ import annotations
 
+from typing import Iterator
+
 import numpy as np
 
-_NL, _CR, _SP, _TAB, _HASH = 10, 13, 32, 9, 35
-_ALLOWED = np.zeros(256, bool)
-_ALLOWED[32:127] = True
-_ALLOWED[[_TAB, _NL, _CR]] = True
+_NL, _CR, _SP, _TAB, _HASH, _SLASH = 10, 13, 32, 9, 35, 47
+_ALLOWED_BYTES = bytes([*range(32, 127), _TAB, _NL, _CR])
+_WS = np.zeros(256, bool)
+_WS[[_SP, _TAB, _CR, _NL]] = True
+# Lines are read a batch at a time so that every temporary array stays small (in the cache,
+# and under the size at which the allocator maps fresh pages for each)
+_BATCH = 1 << 20
+_SCAN = 8 << 20
+_PLAIN_DIGITS = 15                      # 10**15 < 2**53: the digits are an exact double
+_POW10 = np.array([float(10 ** k) for k in range(_PLAIN_DIGITS + 1)])   # exact doubles
 
 
 def parse(raw: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None] | None:
     """(positions, uv flipped to D3D, triangles, normals or None) as the per-line reader makes
     them, or None when the file is not of the regular shape (see the module docstring)."""
     body = raw if raw.endswith(b"\n") else raw + b"\n"
-    data = np.frombuffer(body + b"\n\n", np.uint8)   # two more: every line has bytes 0-2
-    size = len(body)
-    if not _ALLOWED[np.bincount(data, minlength=256).nonzero()[0]].all():
+    if body.translate(None, _ALLOWED_BYTES):          # what is left is not allowed
         return None
-    nl = np.flatnonzero(data[:size] == _NL)
+    data = np.frombuffer(body, np.uint8)
+    size = len(body)
+    nl = np.concatenate([np.flatnonzero(data[at:at + _SCAN] == _NL) + at
+                         for at in range(0, size, _SCAN)])
     starts = np.concatenate([[0], nl[:-1] + 1])
     ends = nl                                          # each line's '\n'
-    cr = np.flatnonzero(data == _CR)
-    if len(cr) and not (data[cr + 1] == _NL).all():    # a lone carriage return
-        return None
-    hashes = np.flatnonzero(data[:size] == _HASH)
-    if len(hashes) and not ((hashes == 0) | (data[hashes - 1] == _NL)).all():
-        return None                                    # a comment after a statement
-    b0, b1, b2 = data[starts], data[starts + 1], data[starts + 2]
+    if b"\r" in body:
+        cr = np.flatnonzero(data == _CR)
+        if not (data[cr + 1] == _NL).all():            # a lone carriage return
+            return None
+    if b"#" in body:
+        hashes = np.flatnonzero(data == _HASH)
+        if not ((hashes == 0) | (data[hashes - 1] == _NL)).all():
+            return None                                # a comment after a statement
+    # bytes 1 and 2 of each line (the file's last '\n' past its end, as if it had more)
+    b0, b1, b2 = data[starts], data[np.minimum(starts + 1, size - 1)], data[np.minimum(starts + 2, size - 1)]
     blank = ends == starts
     if ((b0 == _SP) | (b0 == _TAB)).any():
         return None                                    # an indented line
-    ws1 = (b1 == _SP) | (b1 == _TAB) | (b1 == _CR) | (b1 == _NL)
-    ws2 = (b2 == _SP) | (b2 == _TAB) | (b2 == _CR) | (b2 == _NL)
+    ws1, ws2 = _WS[b1], _WS[b2]
     kinds = {"v": (b0 == ord("v")) & ws1 & ~blank,
              "vt": (b0 == ord("v")) & (b1 == ord("t")) & ws2,
              "vn": (b0 == ord("v")) & (b1 == ord("n")) & ws2,
@@ -56,39 +72,25 @@ def parse(raw: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | 
     if vertex_lines[faces_at[0]:].any():               # "defined so far" would matter
         return None
     lengths = ends - starts + 1
-    chunks = {kind: data[:size][np.repeat(lines, lengths)] for kind, lines in kinds.items()}
-    tokens = {}
-    for kind, fields in (("v", 4), ("vt", 3), ("vn", 4)):
-        words = chunks[kind].tobytes().split()
-        count = int(kinds[kind].sum())
-        if len(words) != fields * count or words[0::fields].count(kind.encode()) != count:
-            return None                                # a line with another number of fields
-        tokens[kind] = words
-    try:
-        v = _floats(tokens["v"], 4)
-        vt = _floats(tokens["vt"], 3)
-        vn = _floats(tokens["vn"], 4)
-    except ValueError:
-        return None
-    form = _corner_form(chunks["f"], len(faces_at))
-    if form is None:
-        return None
-    has_t, has_n = form
+    columns = {}
+    for kind, fields in (("v", 3), ("vt", 2), ("vn", 3)):
+        parts = [_floats(*batch, fields) for batch in _batches(data, starts, lengths, kinds[kind], len(kind))]
+        if any(part is None for part in parts):
+            return None
+        columns[kind] = np.concatenate(parts) if parts else np.zeros((0, fields))
+    faces = [_corners(*batch, 3) for batch in _batches(data, starts, lengths, kinds["f"], 1)]
+    if any(part is None for part in faces) or len({form for _, form in faces}) != 1:
+        return None                                    # one form in every face of the file
+    columns["f"] = (np.concatenate([ids for ids, _ in faces]), faces[0][1])
+    v, vt, vn = columns["v"], columns["vt"], columns["vn"]
+    ids, (has_t, has_n) = columns["f"]
     per = 1 + has_t + has_n
-    words = chunks["f"].tobytes().replace(b"/", b" ").split()
-    if len(words) != (1 + 3 * per) * len(faces_at) or \
-            words[0::1 + 3 * per].count(b"f") != len(faces_at):
-        return None
-    del words[0::1 + 3 * per]
-    try:
-        ids = np.array(words).astype(np.int64).reshape(-1, per) - 1
-    except ValueError:
-        return None
+    ids = ids.reshape(-1, per) - 1
     vi = ids[:, 0]
     ti = ids[:, 1] if has_t else np.full(len(vi), -1, np.int64)
     ni = ids[:, per - 1] if has_n else np.full(len(vi), -1, np.int64)
     used = [(vi, len(v))] + ([(ti, len(vt))] if has_t else []) + ([(ni, len(vn))] if has_n else [])
-    if any(index.min() < 0 or index.max() >= size for index, size in used):
+    if any(index.min() < 0 or index.max() >= count for index, count in used):
         return None                                    # out of range: the reader says where
     if len(v) * (len(vt) + 1) * (len(vn) + 1) >= 1 << 62:
         return None
@@ -111,35 +113,152 @@ def parse(raw: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | 
     return positions, uv, tris, normals
 
 
-def _corner_form(f: np.ndarray, faces: int) -> tuple[bool, bool] | None:
-    """(has vt, has vn) when every face line is `f` and three corners of one form, else None.
-    Counts the slashes of each whitespace-separated token (a total per line could hide a
-    corner of four fields next to one of two)."""
-    ws = (f == _SP) | (f == _TAB) | (f == _CR) | (f == _NL)
-    start = ~ws
-    start[1:] &= ws[:-1]
-    starts = np.flatnonzero(start)
-    count = len(starts)
-    if count != 4 * faces:
-        return None
-    slash = f == ord("/")
-    at = np.flatnonzero(slash)
-    # the token of each slash: the last token start at or before it (a search, not a
-    # running sum over every byte)
-    per_token = np.bincount(np.searchsorted(starts, at, "right") - 1,
-                            minlength=count).reshape(faces, 4)
-    double = at[:-1][np.diff(at) == 1]
-    doubled = np.bincount(np.searchsorted(starts, double, "right") - 1,
-                          minlength=count).reshape(faces, 4)
-    first, twice = int(per_token[0, 1]), int(doubled[0, 1])
-    if (per_token[:, 0] != 0).any() or (per_token[:, 1:] != first).any() or \
-            (doubled[:, 1:] != twice).any():
-        return None
-    return {(0, 0): (False, False), (1, 0): (True, False), (2, 0): (True, True),
-            (2, 1): (False, True)}.get((first, twice))
+def _batches(data: np.ndarray, starts: np.ndarray, lengths: np.ndarray, which: np.ndarray,
+             keyword: int) -> Iterator[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """The lines `which` marks, about _BATCH bytes of them at a time: a copy of their bytes
+    with each line's keyword blanked (so every token left is a value), and where each line
+    starts and ends in it. Lines of a kind mostly stand together, in a few spans of the
+    file; lines scattered among others are gathered first."""
+    span_first, span_last = _runs(which)
+    if len(span_first) > 64:
+        mask = np.repeat(which, lengths)
+        taken = lengths[which]
+        groups = [(data[:len(mask)][mask], np.cumsum(taken) - taken, taken)]
+    else:
+        groups = [(data, starts[a:b], lengths[a:b]) for a, b in zip(span_first, span_last)]
+    for base, line_starts, line_lengths in groups:
+        offsets = line_starts - line_starts[0]
+        total = int(offsets[-1] + line_lengths[-1])
+        cuts = np.searchsorted(offsets, np.arange(_BATCH, total, _BATCH))
+        bounds = np.unique(np.concatenate([[0], cuts, [len(line_starts)]]))
+        for i, j in zip(bounds[:-1], bounds[1:]):
+            lo = line_starts[i]
+            chunk = base[lo:line_starts[j - 1] + line_lengths[j - 1]].copy()
+            at = line_starts[i:j] - lo
+            for k in range(keyword):
+                chunk[at + k] = _SP
+            yield chunk, at, at + line_lengths[i:j]
 
 
-def _floats(words: list[bytes], fields: int) -> np.ndarray:
-    """Python's float() of each line's numbers (the per-line reader's own conversion)."""
-    columns = [np.array(list(map(float, words[k::fields])), np.float64) for k in range(1, fields)]
-    return np.stack(columns, axis=1) if columns[0].size else np.zeros((0, fields - 1))
+def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Start and end (exclusive) of each run of True in `mask`."""
+    edge = np.diff(np.concatenate([[False], mask, [False]]).view(np.int8))
+    return np.flatnonzero(edge == 1), np.flatnonzero(edge == -1)
+
+
+def _per_line(first: np.ndarray, last: np.ndarray, line_starts: np.ndarray,
+              line_ends: np.ndarray, per_line: int) -> bool:
+    """Whether each line holds exactly `per_line` of the runs: as many runs as that in all,
+    and each line's share (runs k*n .. k*n+n-1, in order) within the line."""
+    return (len(first) == per_line * len(line_starts)
+            and bool((first[0::per_line] >= line_starts).all())
+            and bool((last[per_line - 1::per_line] <= line_ends).all()))
+
+
+def _floats(chunk: np.ndarray, line_starts: np.ndarray, line_ends: np.ndarray,
+            fields: int) -> np.ndarray | None:
+    """(lines, fields) doubles, each as float() reads its token; None if one is not a number
+    or a line has another number of them. A plain token (sign, point, up to 15 digits) is
+    read by Horner's rule over its bytes, one byte position of every token at a time."""
+    first, last = _runs(~_WS[chunk])
+    if not _per_line(first, last, line_starts, line_ends, fields):
+        return None
+    count = len(first)
+    if not count:
+        return np.zeros((0, fields))
+    lengths = last - first
+    longest = min(int(lengths.max()), _PLAIN_DIGITS + 2)
+    mantissa = np.zeros(count, np.int64)
+    digits = np.zeros(count, np.int8)
+    scale = np.zeros(count, np.int8)             # digits after the point
+    points = np.zeros(count, np.int8)
+    odd = lengths > longest                      # too long to be plain, or a stray byte
+    short = np.minimum(lengths, 127).astype(np.int8)
+    padded = np.concatenate([chunk, np.zeros(longest, np.uint8)])
+    at, byte, scale_by = np.empty_like(first), np.empty(count, np.uint8), np.empty(count, np.uint8)
+    for k in range(longest):                     # byte k of every token (buffers reused)
+        np.add(first, k, out=at)
+        padded.take(at, out=byte)
+        inside = short > k
+        point = (byte == ord(".")) & inside
+        sign = ((byte == ord("-")) | (byte == ord("+"))) & inside
+        byte -= 48                               # a digit's value; other bytes wrap past 9
+        digit = (byte < 10) & inside
+        # mantissa = mantissa * 10 + digit where a digit stands (no masked loops: SIMD)
+        np.multiply(digit, np.uint8(9), out=scale_by)
+        scale_by += 1
+        mantissa *= scale_by
+        byte *= digit
+        mantissa += byte
+        digits += digit
+        scale += digit & (points > 0)
+        points += point
+        odd |= inside & ~(digit | point | sign)
+        if k:
+            odd |= sign                          # a sign only leads
+    odd |= (points > 1) | (digits == 0) | (digits > _PLAIN_DIGITS)
+    # both exact doubles: the one rounded division is the double nearest the text
+    value = mantissa.astype(np.float64) / _POW10[np.minimum(scale, _PLAIN_DIGITS)]
+    value = np.where(chunk[first] == ord("-"), -value, value)
+    for i in np.flatnonzero(odd):                # exponents, long digit strings ...
+        try:
+            value[i] = float(chunk[first[i]:last[i]].tobytes())
+        except ValueError:
+            return None
+    return value.reshape(-1, fields)
+
+
+_FACE_BYTES = b"0123456789/ \t\r\n"
+_FORMS = {(1, 0): (False, False), (2, 1): (True, False), (3, 1): (True, True),
+          (2, 2): (False, True)}   # (indices per corner, slashes between two) -> (vt, vn)
+
+
+def _corners(chunk: np.ndarray, line_starts: np.ndarray, line_ends: np.ndarray,
+             fields: int) -> tuple[np.ndarray, tuple[bool, bool]] | None:
+    """Every face's corner indices in order, and the corners' one form (has vt, has vn); None
+    unless every face has `fields` corners of one form, of digits and slashes.
+
+    The indices are the runs of digits. Each line must hold the same number of them, 3, 6 or
+    9 (1, 2 or 3 a corner); between two of one corner stands exactly '/' (or '//' for
+    v//vn, 2 a corner) and the file has no other slash, so every other gap between runs,
+    having neither digits nor slashes, is whitespace: the corners are separate tokens."""
+    if chunk.tobytes().translate(None, _FACE_BYTES):
+        return None                                # a sign, a letter: the reader says
+    first, last = _runs((chunk >= 48) & (chunk <= 57))
+    lines = len(line_starts)
+    if not lines or len(first) % (fields * lines):
+        return None
+    per = len(first) // (fields * lines)
+    if not _per_line(first, last, line_starts, line_ends, fields * per):
+        return None
+    # the gaps after each run but a corner's last
+    gap_at = last.reshape(-1, per)[:, :-1]
+    gap_len = first.reshape(-1, per)[:, 1:] - gap_at
+    slashes = int(gap_len.flat[0]) if gap_len.size else 0
+    form = _FORMS.get((per, slashes))
+    if form is None or (gap_len != slashes).any() or (chunk[gap_at] != _SLASH).any() \
+            or (slashes == 2 and (chunk[gap_at + 1] != _SLASH).any()) \
+            or int(np.count_nonzero(chunk == _SLASH)) != slashes * gap_at.size:
+        return None
+    lengths = last - first
+    if lengths.max() > _PLAIN_DIGITS:
+        return None                                # out of any range: the reader says
+    longest = int(lengths.max())
+    padded = np.concatenate([chunk, np.zeros(longest, np.uint8)])
+    value = np.zeros(len(first), np.int64)
+    short = lengths.astype(np.int8)
+    count = len(first)
+    at, byte, inside, scale_by = (np.empty_like(first), np.empty(count, np.uint8),
+                                  np.empty(count, np.uint8), np.empty(count, np.uint8))
+    for k in range(longest):                       # digit k of every index (buffers reused)
+        np.add(first, k, out=at)
+        padded.take(at, out=byte)
+        np.greater(short, k, out=inside, casting="unsafe")
+        # value = value * 10 + digit inside the run (no masked loops: SIMD)
+        np.multiply(inside, 9, out=scale_by)
+        scale_by += 1
+        value *= scale_by
+        byte -= 48
+        byte *= inside
+        value += byte
+    return value, form
