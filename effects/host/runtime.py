@@ -185,7 +185,7 @@ class Runtime:
         # What an application sets with SetTransform before Begin, from the scene's camera
         # (EffectEdit and FX Composer do): a fixed-function pass that sets no transforms of
         # its own then draws the mesh where the camera sees it.
-        m = self.scene.matrices(self.size)
+        m = self._matrices = self.scene.matrices(self.size)
         self.host_states = {"WorldTransform": m["world"], "ViewTransform": m["view"],
                             "ProjectionTransform": m["projection"]}
         self.backend = get_backend(backend)
@@ -215,7 +215,8 @@ class Runtime:
     def _bind(self, params: Mapping[str, Any]) -> None:
         for name, value in ui_defaults(self.effect).items():
             self._param(name).value = value
-        for name, value in bind_scene(self.effect, self.scene, self.size).items():
+        for name, value in bind_scene(self.effect, self.scene, self.size,
+                                      matrices=self._matrices).items():
             self._param(name).value = value
         for name, value in self.scene.params.items():
             at = self.scene.location(f"params.{name}")

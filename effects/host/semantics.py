@@ -143,11 +143,13 @@ def _fit(value: Any, param: Parameter) -> np.ndarray:
     return v if n > 1 else v.reshape(())
 
 
-def scene_values(scene: Scene, size: tuple[int, int] | None = None
+def scene_values(scene: Scene, size: tuple[int, int] | None = None, *,
+                 matrices: dict[str, np.ndarray] | None = None
                  ) -> tuple[dict[str, Callable[[Parameter], Any]], dict[str, np.ndarray]]:
     """Semantic (upper case) -> function giving that parameter's value in this scene, and the
-    scene's world/view/projection matrices for a frame of `size`."""
-    m = scene.matrices(size)
+    scene's world/view/projection matrices for a frame of `size` (`matrices`: those already
+    made by `scene.matrices(size)`, which a Runtime has)."""
+    m = scene.matrices(size) if matrices is None else matrices
     eye = np.array([*scene.camera.eye, 1.0])
     light = np.array([*scene.light.position, 1.0])
     direction = np.array([*scene.light_direction(), 0.0])
@@ -237,10 +239,12 @@ def bind_transforms(effect: Effect, m: dict[str, np.ndarray]) -> dict[str, np.nd
     return bound
 
 
-def bind_scene(effect: Effect, scene: Scene, size: tuple[int, int] | None = None) -> dict[str, Any]:
+def bind_scene(effect: Effect, scene: Scene, size: tuple[int, int] | None = None, *,
+               matrices: dict[str, np.ndarray] | None = None) -> dict[str, Any]:
     """Values for every parameter the scene supplies: by semantic, or for DX8 files by the
-    conventional names above. Returns name -> value (matrices as float32 4x4)."""
-    values, m = scene_values(scene, size)
+    conventional names above. Returns name -> value (matrices as float32 4x4). `matrices`:
+    `scene.matrices(size)`, when the caller has made them."""
+    values, m = scene_values(scene, size, matrices=matrices)
     bound: dict[str, Any] = bind_transforms(effect, m)
     for param in effect.parameters:
         semantic = parameter_semantic(param)
