@@ -154,3 +154,11 @@ def test_a_function_that_does_not_parse_fails_every_compile_of_the_effect():
     assert compiled(BASE) is good                  # fixed again: the first compile still holds
     with pytest.raises(EffectError, match="X3000: syntax error"):
         compiled(broken.replace("float Other = 1;", "float Other = 2;"))
+
+
+def test_the_bound_counts_what_an_entry_holds():
+    small = compiled(BASE)
+    big = compiled(BASE.replace("return float4(tint(v.c.rgb), 1)",
+                                "return float4(tint(tint(tint(v.c.rgb) * v.c.a).bgr), 1)"))
+    assert cache.entry_bytes(big) > cache.entry_bytes(small) > 4096
+    assert cache.CACHE.bytes == cache.entry_bytes(small) + cache.entry_bytes(big)

@@ -17,7 +17,8 @@ parse or resolve fails every compile of the effect, reached or not. So the key a
 whether all of them load, and when they do not, holds all of them.
 
 Errors are cached too, keyed with the `compile` state's location besides (an unknown entry
-point or a bad argument is reported there). Bounded: the least recently used entry goes first.
+point or a bad argument is reported there). Bounded by bytes: the least recently used entry
+goes first.
 """
 from __future__ import annotations
 
@@ -31,13 +32,22 @@ from effects.lru import ByteLRU
 from effects.model import CompileShader
 from effects.shaders.hlsl.context import load_context
 
-CACHE_ENTRIES = 512
+CACHE_BYTES = 64 << 20
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
-# key -> CompiledShader | EffectError; each entry counts 1 (a 150-line shader is ~1 MiB)
-CACHE = ByteLRU(CACHE_ENTRIES, size_of=lambda value: 1)
+
+def entry_bytes(value: Any) -> int:
+    """About what a cached compile holds: a CompiledShader keeps ~65 bytes per character of its
+    assembly (tracemalloc: 827 KiB for the 618-slot, 12.6k-character shader of a 150-line
+    function; 88 KiB for wood.fx's ps_2_0 one), an error a few KiB."""
+    return 4096 + 72 * len(getattr(value, "text", ""))
+
+
+# key -> CompiledShader | EffectError, bounded by what they hold (64 MiB: ~700 shaders the size
+# of wood.fx's, ~75 of 150-line functions)
+CACHE = ByteLRU(CACHE_BYTES, size_of=entry_bytes)
 # every struct, typedef and function of an effect -> whether they all parse and resolve
-_LOADS = ByteLRU(CACHE_ENTRIES, size_of=lambda value: 1)
+_LOADS = ByteLRU(1024, size_of=lambda value: 1)
 
 
 @lru_cache(maxsize=4096)
