@@ -251,3 +251,11 @@ def test_allegro_projview_matrix_is_bound_by_its_name(capsys):
     frame = render_frame(effects.load_effect(ALLEGRO / "al_ex_shader.fx"), "radeon9700",
                          size=SIZE, params={"tint": "0, 4, 1"})
     assert drawn(frame.image).mean() == pytest.approx(0.573, abs=0.03)    # the camera's sphere
+
+
+def test_render_of_a_direct3d11_shader_file_says_what_it_is(capsys, tmp_path):
+    path = DATA / "microprofile" / "Tutorial02.fx"
+    assert main(["render", str(path), "--profile", "radeon9700", "-o", str(tmp_path / "o.png")]) == 1
+    err = capsys.readouterr().err
+    assert f"{path}:10:38: warning: 'SV_POSITION' is a Direct3D 10/11 system-value semantic" in err
+    assert "the effect has no techniques, so Radeon 9700 has nothing to render" in err

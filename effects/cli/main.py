@@ -241,6 +241,9 @@ def _cmd_render(args, console: Console) -> int:
                              scene=args.scene, size=size, params=params, policy=args.policy,
                              strict=args.strict)
     except NoValidTechnique as exc:
+        # the load warnings first: they may say why (a Direct3D 10/11 shader file, ...)
+        for warning in effect.warnings:
+            _stderr().print(warning.report(), markup=False, soft_wrap=True, style="yellow")
         _stderr().print(str(exc), markup=False, soft_wrap=True)
         return EXIT_INVALID
     ms = (time.perf_counter() - start) * 1000.0
