@@ -263,3 +263,37 @@ def test_nine_arithmetic_instructions_reject_the_technique_at_the_line():
     assert reason.message == "ps_1_1 allows 8 arithmetic instructions; this is the 9th"
     # the ninth mul, at its HLSL line and operator (the `*` of `c * K0`)
     assert (reason.location.line, reason.location.column) == (PARAMS.count("\n") + 2 + 10, 11)
+
+
+@pytest.mark.parametrize("target", ["ps_1_1", "ps_1_4"])
+def test_pow_of_a_small_whole_exponent_is_multiplications(backend, target):
+    fn = "float4 PS(float2 uv : TEXCOORD0) : COLOR { return pow(saturate(uv.x), 8); }"
+    text = asm(fn, target)
+    assert text.count("mul") == 3, text       # x^2, x^4, x^8
+    img = render(fn, target, backend)
+    # the card's fixed point rounds each square: allow a few steps
+    for y in range(SIZE[1]):
+        for x in range(SIZE[0]):
+            u = uv(x, y)[0]
+            assert np.allclose(img[y, x], u ** 8, atol=4 / 255), (x, y, img[y, x], u ** 8)
+
+
+def test_sdk9_hlsl_dx8_builds_match_the_dx9_one_but_for_the_highlight():
+    """Scene_ps11 on a GeForce3 and Scene_ps14 on a Radeon 8500 draw the ps_2_0 picture of a
+    Radeon 9700 without its specular term (the DX8 builds leave pow out) and with the
+    interpolated, not renormalised, normal: the same within a step or two everywhere else."""
+    from pathlib import Path
+    fx = effects.load_effect(str(Path(__file__).resolve().parent.parent / "fxfiles" / "sdk9_hlsl.fx"))
+    pictures = {card: effects.render(fx, card, backend="numpy", size=(64, 64)).astype(int)
+                for card in ("geforce3", "radeon8500", "radeon9700")}
+    assert {card: fx.find_valid_technique(effects.load_profile(card)).name for card in pictures} == {
+        "geforce3": "Scene_ps11", "radeon8500": "Scene_ps14", "radeon9700": "Scene_ps20"}
+    ps11, ps14, ps20 = (pictures[c][..., :3] for c in ("geforce3", "radeon8500", "radeon9700"))
+    sphere = ps20.sum(-1) > 0
+    assert np.abs(ps11 - ps14).max() <= 3
+    extra = (ps20 - ps11).max(-1)
+    assert extra.min() >= -3                               # specular only adds
+    assert np.median(np.abs(extra[sphere])) <= 2
+    highlight = extra > 24
+    assert 20 < highlight.sum() < 0.2 * sphere.sum()       # a highlight, not everywhere
+    assert extra.max() > 60

@@ -19,73 +19,19 @@ at the HLSL expression; slot counts are left to the assembler's checks like hand
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from effects.errors import EffectWarning, Location, UNKNOWN_LOCATION
 from effects.shaders.hlsl.asmcode import Generated, Output, Reg
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.dag import Node, Operand, reachable
 from effects.shaders.hlsl.parse import HlslError
-from effects.shaders.hlsl.ps1_idioms import power_of_two, source_idiom
+from effects.shaders.hlsl.ps1_analysis import REFUSED, Ps1Analysis, State, combine, readers_of
+from effects.shaders.hlsl.ps1_asm import FULL, Home, Ins, Ps1Emit, RegisterConflict, Src
+from effects.shaders.hlsl.ps1_idioms import power_of_two
 
-RGBA = "rgba"
-FULL = (0, 1, 2, 3)
-_SHIFT_TEXT = {1: "_x2", 2: "_x4", 3: "_x8", -1: "_d2", -2: "_d4", -3: "_d8"}
 _LANEWISE = {"add", "mul", "mad", "lrp", "cmp"}
-# DAG ops ps_1_x has no instruction for: what the message names
-_REFUSED = {
-    "rcp": "per-pixel division or sqrt (rcp)", "rsq": "normalize, length or rsqrt (rsq)",
-    "nrm": "normalize (nrm)", "exp": "exp/exp2 (exp)", "log": "log/log2 (log)",
-    "pow": "pow of a non-constant exponent", "frc": "frac/floor/fmod (frc)",
-    "min": "min (or a clamp/comparison built on it)", "max": "max (or a clamp/comparison built on it)",
-    "abs": "abs", "slt": "comparison instruction (cmp needs ps_1_2)", "sge": "comparison instruction (cmp needs ps_1_2)",
-    "dsx": "ddx", "dsy": "ddy", "crs": "cross (crs)", "sincos": "sin/cos", "dp2add": "dp2add",
-    "texldp": "tex2Dproj", "texldb": "tex2Dbias", "texldl": "tex2Dlod", "texldd": "tex2Dgrad",
-}
 
 
-class RegisterConflict(Exception):
-    """Two values pinned to one register are live at once (retried with r0 written last)."""
-
-
-@dataclass
-class Src:
-    reg: Reg
-    lane: int | None = None        # a replicated lane (.a, .b; .r/.g in ps_1_4); None: as held
-    mod: str = ""                  # bx2 | bias | x2 | invert
-    neg: bool = False
-
-
-@dataclass
-class Ins:
-    opcode: str
-    dst: Reg | None
-    mask: tuple[int, ...]
-    srcs: list[Src]
-    loc: Location = UNKNOWN_LOCATION
-    shift: int = 0
-    sat: bool = False
-    texture: bool = False
-    coissue: bool = False
-
-
-@dataclass
-class Home:
-    reg: Reg
-    scalar: bool = False           # replicated in every lane
-    phase: int = 2
-    lanes: int = 4                 # lanes that hold the value (texcrd: .rgb)
-    mask: tuple[int, ...] | None = None   # the mask it is written with (coalesced outputs)
-
-
-@dataclass
-class _State:
-    alias: dict[int, Operand] = field(default_factory=dict)    # shift/sat absorbed: the producer
-    folded: dict[int, tuple[Operand, str]] = field(default_factory=dict)   # source modifiers
-    shift: dict[int, int] = field(default_factory=dict)
-    sat: set[int] = field(default_factory=set)
-
-
-class Ps1CodeGen:
+class Ps1CodeGen(Ps1Analysis, Ps1Emit):
     def __init__(self, ctx: Context, outputs: list[Output], constant_registers: dict[str, int],
                  register_sizes: dict[str, int], sampler_registers: dict[str, int]) -> None:
         self.ctx = ctx
@@ -115,17 +61,17 @@ class Ps1CodeGen:
         self.used_uniforms: set[str] = set()
         self.extracted: dict[tuple[int, int], Home] = {}
         self.phase = 2
-        self.s = _State()
+        self.s = State()
         self._input_homes: dict[str, Home] = {}
         out = self._the_output()
         if self.ctx.kills:
             self.fail("clip/discard (texkill reads texture coordinates only)", self.ctx.kills[0].node.location)
         comps = list(out.comps) + [out.comps[-1]] * (4 - len(out.comps))
         nodes = reachable([c.node for c in comps])
-        self.readers = _readers(nodes, comps)
-        if _combine(nodes, self.readers):
+        self.readers = readers_of(nodes, comps)
+        if combine(nodes, self.readers):
             nodes = reachable([c.node for c in comps])
-            self.readers = _readers(nodes, comps)
+            self.readers = readers_of(nodes, comps)
         self._analyse(nodes)
         p1 = self._p1 = self._phase_one(nodes)
         self.out_home = Home(Reg("vr", self.temp(out.location, pin=0 if out_direct else None)))
@@ -153,14 +99,6 @@ class Ps1CodeGen:
                                    [Src(self.out_home.reg)], out.location))
         return self._text()
 
-    def fail(self, what: str, loc: Location) -> HlslError:
-        raise HlslError(f"X4532: cannot map expression to pixel shader instruction set: {self.v} "
-                        f"has no {what}", loc)
-
-    def refuse(self, message: str, loc: Location) -> HlslError:
-        raise HlslError(f"X4532: cannot map expression to pixel shader instruction set: "
-                        f"{message}", loc)
-
     def temp(self, loc: Location, pin: int | None = None) -> int:
         self.next_vr += 1
         vr = self.next_vr - 1
@@ -175,180 +113,6 @@ class Ps1CodeGen:
                 what = "a depth output" if o.register == "oDepth" else f"a second colour output ({o.register})"
                 self.fail(f"{what}: ps_1_x writes only r0", o.location)
         return self.outputs[0]
-
-    # -- analysis -------------------------------------------------------------------------------
-    def _analyse(self, nodes: list[Node]) -> None:
-        """Which nodes fold into their readers' source modifiers and which into their
-        producer's shift or _sat (fxc's modifier idioms)."""
-        for n in nodes:
-            if n.op in ("const", "input", "uniform", "tex", "pack"):
-                continue
-            if n.op == "mul" and self._shift_absorbed(n):
-                continue             # a shift of its producer before an x2 source modifier
-            idiom = source_idiom(n, self.v)
-            if idiom is not None and self._can_fold(n, *idiom):
-                self.s.folded[n.id] = idiom
-            elif n.op == "sat" and self._absorbs(n.args[0], n, lambda p: p.id not in self.s.sat):
-                self.s.alias[n.id] = n.args[0]
-                self.s.sat.add(self.resolve(n.args[0])[0].node.id)
-
-    def _shift_absorbed(self, n: Node) -> bool:
-        """y * 2^k as y's own instruction shift (mul_x2, add_d2 ...) where nothing else reads y."""
-        for y, k in ((n.args[0], n.args[1]), (n.args[1], n.args[0])):
-            shift = power_of_two(k.const_values(), self.rules.shifts)
-            if shift is not None and self._absorbs(y, n, lambda p: p.id not in self.s.shift
-                                                   and p.id not in self.s.sat):
-                self.s.alias[n.id] = y
-                self.s.shift[self.resolve(y)[0].node.id] = shift
-                return True
-        return False
-
-    def _live(self, comps: list[Operand]) -> set[int]:
-        """The nodes the result reads once modifiers are folded (an idiom's own mul or add
-        is not computed)."""
-        live: set[int] = set()
-        stack = [self.resolve(c)[0].node for c in comps]
-        while stack:
-            n = stack.pop()
-            if n.id not in live:
-                live.add(n.id)
-                stack.extend(self.resolve(a)[0].node for a in n.args)
-        return live
-
-    def _can_fold(self, n: Node, x: Operand, mod: str) -> bool:
-        base, inner_mod = self.resolve(x)
-        if inner_mod or base.node.op == "const":
-            return False
-        if self.ps14 and base.node.op == "uniform":
-            return False             # ps_1_4 takes no source modifier on a constant
-        for reader, op in self.readers.get(n.id, []):
-            if reader is not None and reader.op in ("tex",) + tuple(_REFUSED):
-                return False
-            if mod == "invert" and op.negate:
-                return False
-        return True
-
-    def _absorbs(self, y: Operand, n: Node, free) -> bool:
-        """Whether `n` (a shift or saturate of y) can be y's own instruction modifier."""
-        base, mod = self.resolve(y)
-        p = base.node
-        if mod or base.negate or p.op in ("const", "input", "uniform", "tex", "pack") \
-                or p.op in _REFUSED or base.swizzle != tuple(range(p.width)) or y.width != p.width:
-            return False
-        users = self._readers_through_aliases(p)
-        return len(users) == 1 and users[0] is n and free(p)
-
-    def _readers_through_aliases(self, node: Node) -> list[Node | None]:
-        out: list[Node | None] = []
-        for reader, _ in self.readers.get(node.id, []):
-            if reader is not None and reader.id in self.s.alias:
-                out.extend(self._readers_through_aliases(reader))
-            else:
-                out.append(reader)
-        return out
-
-    def resolve(self, op: Operand) -> tuple[Operand, str]:
-        """The operand a reader really reads (through absorbed shifts/saturates) and the
-        source modifier it reads it with."""
-        op = self._unalias(op)
-        hit = self.s.folded.get(op.node.id)
-        if hit is None:
-            return op, ""
-        inner, mod = hit
-        picked = inner.pick(op.swizzle)
-        return self._unalias(Operand(picked.node, picked.swizzle, op.negate)), mod
-
-    def _unalias(self, op: Operand) -> Operand:
-        while op.node.id in self.s.alias:
-            target = self.s.alias[op.node.id].pick(op.swizzle)
-            op = Operand(target.node, target.swizzle, op.negate != target.negate)
-        return op
-
-    def _emitted(self, n: Node) -> bool:
-        return n.op not in ("const", "input", "uniform", "tex") and n.id not in self.s.folded \
-            and n.id not in self.s.alias and not (n.op in _REFUSED and n.op.startswith("tex"))
-
-    def _phase_one(self, nodes: list[Node]) -> set[int]:
-        """ps_1_4: the nodes a dependent read's coordinates need (phase 1)."""
-        p1: set[int] = set()
-        for n in nodes:
-            if n.op in _REFUSED and n.op.startswith("tex"):
-                self.fail(_REFUSED[n.op], n.location)
-            if n.op != "tex":
-                continue
-            coord, _ = self.resolve(n.args[0])
-            if coord.node.op == "input":
-                continue
-            if not self.ps14:
-                self.fail("texture read at computed coordinates (a dependent read needs ps_1_4, "
-                          "or the texbem/texm3x* instructions fxc did not generate)", n.location)
-            stack = [coord.node]
-            while stack:
-                m = stack.pop()
-                if m.id in p1:
-                    continue
-                if m.op == "tex" and self.resolve(m.args[0])[0].node.op != "input":
-                    self.refuse(f"{self.v} allows one level of dependent texture read; this read's "
-                                "coordinates come from another dependent read", n.location)
-                if m.op == "input" and m.key[1].startswith("v"):
-                    self.refuse(f"{self.v} reads colour inputs (v#) only in phase 2, after the "
-                                "dependent reads", m.location)
-                p1.add(m.id)
-                if m.op != "tex":
-                    stack.extend(a.node for a in m.args)
-        return p1
-
-    def _inputs_read_as_values(self, arith: list[Node], comps: list[Operand]) -> dict[str, int]:
-        """t# inputs read by arithmetic: register -> first phase that reads them."""
-        found: dict[str, int] = {}
-        p1 = self._p1
-
-        def visit(op: Operand, phase: int) -> None:
-            base, _ = self.resolve(op)
-            if base.node.op == "input" and base.node.key[1].startswith("t"):
-                found[base.node.key[1]] = min(found.get(base.node.key[1], 2), phase)
-        for n in arith:
-            for a in n.args:
-                visit(a, 1 if n.id in p1 else 2)
-        for c in comps:
-            visit(c, 2)
-        return found
-
-    def _coalesce_output(self, comps: list[Operand], loc: Location) -> list[tuple[int, Operand]]:
-        """Compute a value straight into r0 where it fills whole .rgb/.a/.rgba of the result."""
-        by: dict[int, list[int]] = {}
-        for lane, c in enumerate(comps):
-            base, mod = self.resolve(c)
-            if not mod and not base.negate and (base.swizzle[0] == lane or base.node.width == 1):
-                by.setdefault(base.node.id, []).append(lane)
-        done: set[int] = set()
-        for lanes_of in by.values():
-            lanes = tuple(lanes_of)
-            base = self.resolve(comps[lanes[0]])[0].node
-            if not self._emitted(base) or base.op == "pack" or base.id in self.home:
-                continue
-            mask = self._mask_for_lanes(lanes)
-            if mask is None or not self._only_output_reads(base):
-                continue
-            if base.op in ("dp3", "dp4") and mask == (3,) and not self.ps14:
-                continue
-            self.home[base.id] = Home(self.out_home.reg, base.width == 1, mask=mask)
-            done.update(lanes)
-        return [(lane, c) for lane, c in enumerate(comps) if lane not in done]
-
-    def _only_output_reads(self, node: Node) -> bool:
-        return all(r is None for r in self._readers_through_aliases(node))
-
-    def _mask_for_lanes(self, lanes: tuple[int, ...]) -> tuple[int, ...] | None:
-        if self.ps14:
-            return tuple(sorted(lanes))
-        s = set(lanes)
-        return (0, 1, 2) if s == {0, 1, 2} else (3,) if s == {3} else FULL if s == set(FULL) else None
-
-    def mask_for(self, width: int) -> tuple[int, ...]:
-        if width in (1, 4):
-            return FULL
-        return tuple(range(width)) if self.ps14 else (0, 1, 2)
 
     # -- textures -------------------------------------------------------------------------------
     def _textures(self, tex: list[Node], values: dict[str, int]) -> None:
@@ -424,8 +188,8 @@ class Ps1CodeGen:
     # -- arithmetic -----------------------------------------------------------------------------
     def compute(self, n: Node) -> None:
         op = n.op
-        if op in _REFUSED:
-            self.fail(_REFUSED[op], n.location)
+        if op in REFUSED:
+            self.fail(REFUSED[op], n.location)
         home = self.home.get(n.id)
         if home is None:
             home = Home(Reg("vr", self.temp(n.location)), n.width == 1, self.phase)
@@ -642,79 +406,6 @@ class Ps1CodeGen:
             else:
                 self.emit(Ins("mad", dst, (0, 1, 2), [src, select, Src(dst)], loc))
 
-    # -- registers and text ------------------------------------------------------------------------
-    def _allocate(self) -> dict[int, int]:
-        first: dict[int, int] = {}
-        last: dict[int, int] = {}
-        for i, ins in enumerate(self.instrs):
-            for reg in [ins.dst] + [s.reg for s in ins.srcs]:
-                if reg is not None and reg.kind == "vr":
-                    first.setdefault(reg.index, i)  # type: ignore[arg-type]
-                    last[reg.index] = i  # type: ignore[index]
-        count = self.rules.registers["r"]
-        alloc: dict[int, int] = {}
-
-        def clash(vr: int, phys: int) -> bool:
-            return any(p == phys and first[o] < last[vr] and first[vr] < last[o]
-                       for o, p in alloc.items())
-        order = sorted(first, key=lambda v: (v not in self.precolor, first[v], v))
-        for vr in order:
-            if vr in self.precolor:
-                if clash(vr, self.precolor[vr]):
-                    raise RegisterConflict()
-                alloc[vr] = self.precolor[vr]
-                continue
-            phys = next((p for p in range(count) if not clash(vr, p)), None)
-            if phys is None:
-                raise HlslError(f"X4532: cannot map expression to pixel shader instruction set: "
-                                f"{self.v} has {count} temporary registers (r0-r{count - 1}) and "
-                                "this value needs another one", self.vr_loc.get(vr, UNKNOWN_LOCATION))
-            alloc[vr] = phys
-        return alloc
-
-    def _pair(self) -> None:
-        """Co-issue an .a-only instruction with the .rgb-only one before it (one slot for the
-        two, as DX8 shaders did); both read the registers as they were before the pair."""
-        prev = None
-        for ins in self.instrs:
-            masks = {tuple(ins.mask), tuple(prev.mask)} if prev is not None else set()
-            if prev is not None and not ins.texture and not prev.texture and not prev.coissue \
-                    and masks == {(3,), (0, 1, 2)} \
-                    and all(s.reg != prev.dst for s in ins.srcs) \
-                    and all(s.reg != ins.dst for s in prev.srcs):
-                ins.coissue = True
-                prev = None
-                continue
-            prev = ins
-
-    def _text(self) -> Generated:
-        self._pair()
-        alloc = self._allocate()
-        lines = [self.v]
-        locs = [UNKNOWN_LOCATION]
-        for reg in sorted(self.defs):
-            vals = [0.0 if v is None else v for v in self.defs[reg]]
-            lines.append(f"def c{reg}, " + ", ".join(_num(v) for v in vals))
-            locs.append(UNKNOWN_LOCATION)
-        for ins in self.instrs:
-            if _no_op(ins, alloc):
-                continue
-            lines.append(_ins_text(ins, alloc))
-            locs.append(ins.loc)
-        constants = {n: (self.const_regs[n], self.sizes.get(n, 1)) for n in self.const_regs
-                     if n in self.used_uniforms}
-        return Generated(lines, locs, constants, dict(self.samplers),
-                         {r: tuple(0.0 if v is None else v for v in vals) for r, vals in self.defs.items()})
-
-
-def _no_op(ins: Ins, alloc: dict[int, int]) -> bool:
-    """mov r#, r# of the same register, as read: left by r0 being both a sample and the result."""
-    if ins.opcode != "mov" or ins.shift or ins.sat or ins.coissue or len(ins.srcs) != 1:
-        return False
-    s, d = ins.srcs[0], ins.dst
-    return (d is not None and s.reg.kind == d.kind == "vr" and alloc[s.reg.index] == alloc[d.index]  # type: ignore[index]
-            and s.lane is None and not s.mod and not s.neg)
-
 
 def _whole(base: Operand) -> Operand:
     """The node read through an identity swizzle (component maps are given separately)."""
@@ -729,67 +420,6 @@ def _sub_for_negated_constant(op: str, srcs: list[Src]) -> tuple[str, list[Src]]
     if b.reg.kind == "c" and b.neg:
         return "sub", [a, Src(b.reg, b.lane, b.mod, False)]
     return op, srcs
-
-
-def _combine(nodes: list[Node], readers: dict[int, list[tuple[Node | None, Operand]]]) -> bool:
-    """add(mul(a, b), c) -> mad(a, b, c) where the mul has no other reader and no literal out
-    of the constant range (a mul by 2 or 4 is a result shift, kept for _analyse)."""
-    changed = False
-    for n in nodes:
-        if n.op != "add":
-            continue
-        for k in (0, 1):
-            m = n.args[k]
-            users = readers.get(m.node.id, [])
-            if m.node.op != "mul" or len(users) != 1 or m.node.width < m.width or any(
-                    v is not None and any(abs(x) > 1 for x in v)
-                    for v in (a.const_values() for a in m.node.args)):
-                continue
-            a, b = (x.pick(m.swizzle) for x in m.node.args)
-            n.op, n.args = "mad", (a.neg() if m.negate else a, b, n.args[1 - k])
-            changed = True
-            break
-    return changed
-
-
-def _readers(nodes: list[Node], comps: list[Operand]) -> dict[int, list[tuple[Node | None, Operand]]]:
-    out: dict[int, list[tuple[Node | None, Operand]]] = {}
-    for n in nodes:
-        for a in n.args:
-            out.setdefault(a.node.id, []).append((n, a))
-    for c in comps:
-        out.setdefault(c.node.id, []).append((None, c))
-    return out
-
-
-def _src_text(s: Src, alloc: dict[int, int]) -> str:
-    reg = f"r{alloc[s.reg.index]}" if s.reg.kind == "vr" else f"{s.reg.kind}{s.reg.index}"  # type: ignore[index]
-    if s.mod == "invert":
-        text = f"1-{reg}"
-    else:
-        text = reg + (f"_{s.mod}" if s.mod else "")
-    if s.lane is not None:
-        text += "." + RGBA[s.lane]
-    return ("-" if s.neg else "") + text
-
-
-def _ins_text(ins: Ins, alloc: dict[int, int]) -> str:
-    if ins.opcode == "phase":
-        return "phase"
-    dst = ""
-    if ins.dst is not None:
-        dst = f"r{alloc[ins.dst.index]}" if ins.dst.kind == "vr" else f"{ins.dst.kind}{ins.dst.index}"  # type: ignore[index]
-        if tuple(ins.mask) != FULL:
-            dst += "." + "".join(RGBA[i] for i in ins.mask)
-    op = ins.opcode + _SHIFT_TEXT.get(ins.shift, "") + ("_sat" if ins.sat else "")
-    parts = [dst] + [_src_text(s, alloc) for s in ins.srcs]
-    return ("+" if ins.coissue else "") + f"{op} " + ", ".join(parts)
-
-
-def _num(v: float) -> str:
-    if v == int(v):
-        return f"{int(v)}"
-    return f"{v:.9g}"
 
 
 def generate_ps1(ctx: Context, outputs: list[Output], constant_registers: dict[str, int],

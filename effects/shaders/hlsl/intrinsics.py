@@ -70,8 +70,25 @@ def _pow(ev: Any, a: list[Operand], b: list[Operand], loc: Location) -> list[Ope
     if ev.ctx.target.has("pow"):
         return ev.a.scalar_lanes("pow", [a, b], loc)
     if ev.ctx.target.rules.is_ps1:
+        # fxc expanded a small whole exponent into multiplications (x^8 = three muls); ps_1_x
+        # has no exp/log for the rest
+        n = [c.const_values() for c in b]
+        if all(v is not None and v[0] == int(v[0]) and 1 <= v[0] <= 16 for v in n):
+            return [_power(ev, x, int(v[0]), loc) for x, v in zip(a, n)]  # type: ignore[index]
         raise ev.error(f"{ev.ctx.target.name} cannot compute pow of a non-constant exponent", loc)
     return _exp2(ev, ev.a.lanes("mul", [b, _log2(ev, a, loc)], loc), loc)
+
+
+def _power(ev: Any, x: Operand, n: int, loc: Location) -> Operand:
+    """x^n by squaring."""
+    result, square = None, x
+    while n:
+        if n & 1:
+            result = square if result is None else ev.a.op("mul", [result, square], loc)
+        n >>= 1
+        if n:
+            square = ev.a.op("mul", [square, square], loc)
+    return result  # type: ignore[return-value]
 
 
 def _floor(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
