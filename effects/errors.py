@@ -6,16 +6,67 @@ Every problem a user can cause (a bad effect file, a broken profile, an invalid 
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 
 
-@dataclass(frozen=True, order=True)
 class Location:
-    """A position in an original source file: 1-based line and column."""
+    """A position in an original source file: 1-based line and column. Immutable, equal and
+    ordered by (path, line, column), hashable, picklable: what `@dataclass(frozen=True,
+    order=True)` gave, written out because `effects --help` imports this module and importing
+    dataclasses (and inspect with it) was a fifth of that command's start-up."""
 
+    __slots__ = ("path", "line", "column")
+    __match_args__ = ("path", "line", "column")
     path: str
     line: int
     column: int
+
+    def __init__(self, path: str, line: int, column: int) -> None:
+        object.__setattr__(self, "path", path)
+        object.__setattr__(self, "line", line)
+        object.__setattr__(self, "column", column)
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError(f"cannot assign to field '{name}' of a Location")
+
+    def __delattr__(self, name: str) -> None:
+        raise AttributeError(f"cannot delete field '{name}' of a Location")
+
+    def _key(self) -> tuple[str, int, int]:
+        return (self.path, self.line, self.column)
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not Location:
+            return NotImplemented
+        return self._key() == other._key()  # type: ignore[attr-defined]
+
+    def __lt__(self, other: "Location") -> bool:
+        if other.__class__ is not Location:
+            return NotImplemented
+        return self._key() < other._key()
+
+    def __le__(self, other: "Location") -> bool:
+        if other.__class__ is not Location:
+            return NotImplemented
+        return self._key() <= other._key()
+
+    def __gt__(self, other: "Location") -> bool:
+        if other.__class__ is not Location:
+            return NotImplemented
+        return self._key() > other._key()
+
+    def __ge__(self, other: "Location") -> bool:
+        if other.__class__ is not Location:
+            return NotImplemented
+        return self._key() >= other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def __reduce__(self) -> tuple:
+        return (Location, self._key())
+
+    def __repr__(self) -> str:
+        return f"Location(path={self.path!r}, line={self.line!r}, column={self.column!r})"
 
     def __str__(self) -> str:
         return f"{self.path}:{self.line}:{self.column}"
@@ -103,13 +154,44 @@ class NoValidTechnique(EffectError):
         super().__init__(message, location)
 
 
-@dataclass(frozen=True)
 class EffectWarning:
-    """A located warning (an unknown state name, an ignored construct...)."""
+    """A located warning (an unknown state name, an ignored construct...). Immutable, equal
+    and hashable by its three fields (written out for the reason Location is)."""
 
+    __slots__ = ("message", "location", "source_line")
+    __match_args__ = ("message", "location", "source_line")
     message: str
     location: Location
-    source_line: str | None = None
+    source_line: str | None
+
+    def __init__(self, message: str, location: Location, source_line: str | None = None) -> None:
+        object.__setattr__(self, "message", message)
+        object.__setattr__(self, "location", location)
+        object.__setattr__(self, "source_line", source_line)
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError(f"cannot assign to field '{name}' of an EffectWarning")
+
+    def __delattr__(self, name: str) -> None:
+        raise AttributeError(f"cannot delete field '{name}' of an EffectWarning")
+
+    def _key(self) -> tuple:
+        return (self.message, self.location, self.source_line)
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not EffectWarning:
+            return NotImplemented
+        return self._key() == other._key()  # type: ignore[attr-defined]
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def __reduce__(self) -> tuple:
+        return (EffectWarning, self._key())
+
+    def __repr__(self) -> str:
+        return (f"EffectWarning(message={self.message!r}, location={self.location!r}, "
+                f"source_line={self.source_line!r})")
 
     def __str__(self) -> str:
         return f"{self.location}: warning: {self.message}"
