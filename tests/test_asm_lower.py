@@ -708,7 +708,9 @@ def test_validation_rejects_what_does_not_lower():
     # what does not lower (a gradient inside a dynamic if, X4014) makes a shader invalid
     effect = load_effect("technique T { pass P { PixelShader = asm {\n"
                          "ps_3_0\ndcl vPos.xy\ndef c0, 4, 0, 0, 0\nif_lt vPos.x, c0.x\n"
-                         "dsx r0, vPos\nendif\nmov oC0, c0\n}; } }")
+                         "dsx r0, vPos\nendif\nmov oC0, c0\n};\n"
+                         "VertexShader = asm { vs_3_0\ndcl_position v0\ndcl_position o0\n"
+                         "mov o0, v0 }; } }")
     result = effect.validate("T", load_profile("refrast"))
     assert not result.ok
     assert [str(r) for r in result.reasons] == [

@@ -577,7 +577,9 @@ def test_texldd_on_a_cube_map_carries_the_gradients_onto_the_face(backend, direc
 def test_an_unclosed_block_is_a_validation_reason_not_a_crash():
     from effects import load_effect, load_profile
     effect = load_effect("technique T { pass P { PixelShader = asm {\nps_3_0\ndcl vPos.xy\n"
-                         "def c0, 1, 1, 1, 1\nif_lt vPos.x, c0.x\nmov oC0, c0\n}; } }")
+                         "def c0, 1, 1, 1, 1\nif_lt vPos.x, c0.x\nmov oC0, c0\n};\n"
+                         "VertexShader = asm { vs_3_0\ndcl_position v0\ndcl_position o0\n"
+                         "mov o0, v0 }; } }")
     result = effect.validate("T", load_profile("geforce6800"))
     assert [str(r) for r in result.reasons] == ["pass P (line 5): if is never closed by endif"]
 

@@ -195,13 +195,21 @@ def test_alpha_op_is_checked_like_colour_op(name):
 
 # --- shader versions ----------------------------------------------------------------------------
 
+# Shader Model 3 runs only with itself in hardware: the partner a ps_3_0 / vs_3_0 needs
+PS3_PARTNER = ("\nVertexShader = asm\n{\nvs_3_0\n dcl_position v0\n dcl_position o0\n"
+               " dcl_texcoord0 o1\n mov o0, v0\n mov o1, v0\n};")
+VS3_PARTNER = "\nPixelShader = asm\n{\nps_3_0\n def c0, 1, 1, 1, 1\n mov oC0, c0\n};"
+
+
 def ps_body(version) -> str:
-    return "PixelShader = asm\n{\n" + PS_SOURCE[version] + "\n};"
+    return ("PixelShader = asm\n{\n" + PS_SOURCE[version] + "\n};"
+            + (PS3_PARTNER if version == (3, 0) else ""))
 
 
-def vs_body(version, extra: str = "") -> str:
+def vs_body(version, extra: str = "", partner: bool = False) -> str:
     source = VS_SOURCE[version] + extra
-    return "VertexShader = asm\n{\n" + source + "\n};"
+    return ("VertexShader = asm\n{\n" + source + "\n};"
+            + (VS3_PARTNER if partner and version == (3, 0) else ""))
 
 
 @pytest.mark.parametrize("name", cards_where(lambda p: p.pixel_shader_version > (0, 0)))
@@ -231,7 +239,7 @@ def test_the_next_pixel_shader_version_is_rejected(name):
 @pytest.mark.parametrize("name", cards_where(lambda p: p.vertex_shader_version > (0, 0)))
 def test_a_vertex_shader_of_the_cards_version_runs_in_hardware(name):
     p = card(name)
-    v, _ = validate(vs_body(p.vertex_shader_version), p)
+    v, _ = validate(vs_body(p.vertex_shader_version, partner=True), p)
     assert v.ok, v.reasons
     assert v.pass_reports[0].software_vertex_processing is False
 
@@ -265,15 +273,15 @@ def test_vertex_shader_constants_up_to_the_cards_count(name, tmp_path):
     hw = hardware_only_profile(tmp_path, name)
     limit = hw.get("MaxVertexShaderConst")
     version = hw.vertex_shader_version
-    ok, _ = validate(vs_body(version, f"\n mov r0, c{limit - 1}"), hw)
+    ok, _ = validate(vs_body(version, f"\n mov r0, c{limit - 1}", partner=True), hw)
     assert ok.ok, ok.reasons
-    over, source = validate(vs_body(version, f"\n mov r0, c{limit}"), hw)
+    over, source = validate(vs_body(version, f"\n mov r0, c{limit}", partner=True), hw)
     assert [(r.requirement, r.card_value) for r in over.reasons] == [
         (f"MaxVertexShaderConst >= {limit + 1}", f"MaxVertexShaderConst {limit}")]
     assert over.reasons[0].message == (f"the vertex shader reads constants up to c{limit}; "
                                        f"the {display(hw)} has MaxVertexShaderConst {limit}")
     # the real card (with software processing) runs the same shader on the CPU instead
-    real = validate(vs_body(version, f"\n mov r0, c{limit}"), card(name))[0]
+    real = validate(vs_body(version, f"\n mov r0, c{limit}", partner=True), card(name))[0]
     assert real.ok and real.pass_reports[0].software_vertex_processing
 
 
@@ -780,3 +788,23 @@ def test_texm3x3_lookups_and_dcl_cube_imply_a_cube_map(tmp_path):
     assert validate(ps20, card("radeon9700"), "texture E;")[0].ok
     v, _ = validate(ps20, no_cube_profile(tmp_path, "radeon9700"), "texture E;")
     assert [r.subject for r in v.reasons] == ["Texture[1] = <E> (a cube map, declared by dcl_cube s1)"]
+
+
+@pytest.mark.parametrize("card_name, body, reason", [
+    ("geforce6800", ps_body((3, 0)).replace(PS3_PARTNER, ""),
+     "PixelShader (ps_3_0) runs with the fixed-function vertex pipeline"),
+    ("geforce6800", ps_body((3, 0)).replace(PS3_PARTNER, "") + vs_body((2, 0)),
+     "PixelShader (ps_3_0) runs with a vs_2_0 vertex shader"),
+    ("geforce6800", vs_body((3, 0)) + ps_body((2, 0)),
+     "VertexShader (vs_3_0) runs with a ps_2_0 pixel shader"),
+    ("geforce6800", vs_body((3, 0)),
+     "VertexShader (vs_3_0) runs with the fixed-function pixel pipeline"),
+    ("radeon9700", vs_body((3, 0)) + ps_body((2, 0)), None),    # vs_3_0 in software: any ps
+    ("geforce6800", vs_body((3, 0), partner=True), None),
+])
+def test_shader_model_3_runs_only_with_itself_in_hardware(card_name, body, reason):
+    v, _ = validate(body, card(card_name))
+    want = [] if reason is None else [
+        f"{reason}; Shader Model 3 shaders run only with each other in hardware (a vs_3_0 in "
+        "software vertex processing excepted)"]
+    assert [r.message for r in v.reasons] == want

@@ -102,6 +102,33 @@ class ShaderChecks:
         self.report.software_vertex_processing = in_software
         self.check_assembly(value, "VertexShader", software=in_software)
 
+    def check_shader_model_3_pairing(self, ps: tuple[Any, Location] | None,
+                                     vs: tuple[Any, Location] | None) -> None:
+        """Shader Model 3 runs only with itself: a ps_3_0 needs a vs_3_0 (not an older vertex
+        shader, nor the fixed-function pipeline), and a vs_3_0 in hardware a ps_3_0; a vs_3_0
+        in software vertex processing goes with any pixel shader (DirectX 9 "Shader Model 3":
+        "you may not use vs_3_0 or ps_3_0 with any other shader versions, and you may not use
+        either shader type with the fixed function pipeline ... software-only vs_3_0 shaders
+        may be used with any pixel shader version")."""
+        report = self.report
+        ps3, vs3 = report.pixel_shader == "ps_3_0", report.vertex_shader == "vs_3_0"
+        if ps3 == vs3 or (vs3 and report.software_vertex_processing):
+            return
+        if ps3:
+            shader, other = ps, (f"a {report.vertex_shader} vertex shader"
+                                 if report.vertex_shader else "the fixed-function vertex pipeline")
+            subject = "PixelShader (ps_3_0)"
+        else:
+            shader, other = vs, (f"a {report.pixel_shader} pixel shader"
+                                 if report.pixel_shader else "the fixed-function pixel pipeline")
+            subject = "VertexShader (vs_3_0)"
+        if shader is None:
+            return
+        self.fail(_block_location(shader[0], shader[1]), subject,
+                  "vs_3_0 with ps_3_0", other,
+                  f"{subject} runs with {other}; Shader Model 3 shaders run only with each "
+                  "other in hardware (a vs_3_0 in software vertex processing excepted)")
+
     def assembly_problems(self, value: Any, software: bool) -> bool:
         """Whether a shader breaks its version's rules or the card's limits."""
         from effects.shaders.asm import card_limit_violations, check_cached

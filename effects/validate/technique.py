@@ -227,6 +227,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
         if vs is not None:
             self.check_vertex_shader(vs)
             self.check_vertex_textures(vs)
+        self.check_shader_model_3_pairing(ps, vs)
         self.check_textures(ps is not None)
         self.check_framebuffer()
         self.check_quirks()
