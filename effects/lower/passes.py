@@ -44,6 +44,7 @@ from effects import states as state_table
 from effects.device import DeviceState, host_states, pass_states
 from effects.errors import EffectError, Location
 from effects.shaders.asm import assemble_cached
+from effects.lower.preshaders import evaluate_expressions, evaluate_into
 from effects.shaders.asm import lower as asm_lower
 from effects.ir import Builder
 from effects.lower.stages import (FogSetup, FragmentInputs, StageSetup, active_stages, apply_fog,
@@ -96,6 +97,7 @@ def lower_pass(effect: Effect, technique: Technique, pass_index: int,
     reads = RecordedReads(effect)
     state = _pass_state(reads, technique, pass_index, validation,  # type: ignore[arg-type]
                         host_states(host) if host else None)
+    state = evaluate_expressions(reads, state)  # type: ignore[arg-type]
     program = _lower(reads, state, profile, vertex_colors)  # type: ignore[arg-type]
     with _CACHE_LOCK:  # the viewer lowers on a worker thread and on the render thread
         _CACHE.pop(key, None)
@@ -260,6 +262,7 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any,
         for name, register in compiled.samplers.items():
             state.apply(StateAssignment("Sampler", ParamRef(name), index=base + register,
                                         location=location))
+        evaluate_into(effect, state)   # expressions in those samplers' sampler_state blocks
         return compiled.program, compiled
     if not isinstance(shader, ShaderBlock):
         raise EffectError(f"cannot lower a {stage} shader given as {type(shader).__name__}",

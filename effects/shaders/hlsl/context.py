@@ -57,6 +57,9 @@ class Context:
     struct_origins: dict[str, Origin] = field(default_factory=dict)
     typedefs: dict[str, HType] = field(default_factory=dict)
     type_names: frozenset[str] = frozenset()     # what the HLSL lexer reads as TYPENAME
+    # A preshader (an effect-level expression run on the host): uniform globals read as
+    # constants, their current values, instead of constant registers
+    host_values: bool = False
 
 
 def type_names(effect: Effect) -> frozenset[str]:
@@ -186,8 +189,11 @@ def parameter_type(ctx: Context, p: Parameter) -> HType:
 
 def static_value(p: Parameter) -> np.ndarray | None:
     """A static/const global's initialiser as numbers (None when it has none)."""
-    if isinstance(p.value, np.ndarray):
-        return np.asarray(p.value, dtype=np.float64).reshape(-1)
+    if isinstance(p.value, (np.ndarray, np.generic, int, float, list, tuple)):
+        try:   # an array as loaded; a number or a list as an application set it
+            return np.asarray(p.value, dtype=np.float64).reshape(-1)
+        except (TypeError, ValueError):
+            return None
     return None
 
 

@@ -66,14 +66,11 @@ def global_value(ev: Any, name: str, where: Any) -> Value:
         ctx.samplers_used.setdefault(name, t.base)
     elif t.kind in ("texture", "string"):
         raise ev.error(f"X3004: '{name}' is a {t.kind}; shaders read textures through samplers", where)
-    elif "static" in param.storage:
+    elif "static" in param.storage or ctx.host_values:
+        # A static's initialiser; in a preshader (host_values) any global's current value
         numbers = static_value(param)
         if numbers is None and param.value is not None and hasattr(param.value, "text"):
-            origin = Origin(param.value.location, param.value.text)
-            sub = ev.spawn(origin)
-            comps = sub.flatten_list(parse(param.value.text, "initializer", origin,
-                                                  ctx.type_names))
-            numbers = np.array([c.const_values()[0] if c.const_values() else 0.0 for c in comps])
+            numbers = _initializer(ev, name, param.value, where)
         n = count_components(t)
         flat = list(numbers) if numbers is not None else [0.0] * n
         flat = (flat + [0.0] * n)[:n]
@@ -83,6 +80,26 @@ def global_value(ev: Any, name: str, where: Any) -> Value:
         ctx.uniforms_used.setdefault(name, t)
     cache[name] = value
     return value
+
+
+def _initializer(ev: Any, name: str, init: Any, where: Any) -> np.ndarray:
+    """A global's initialiser kept as text, evaluated. In a preshader every component must
+    fold (X3013); a compile keeps the old reading of a non-constant component as 0."""
+    ctx = ev.ctx
+    busy = ctx.__dict__.setdefault("initializing", set())
+    if name in busy:
+        raise ev.error(f"X3013: the initializer of '{name}' refers to '{name}' itself", where)
+    busy.add(name)
+    try:
+        origin = Origin(init.location, init.text)
+        tree = parse(init.text, "initializer", origin, ctx.type_names)
+        comps = ev.spawn(origin).flatten_list(tree)
+    finally:
+        busy.discard(name)
+    values = [c.const_values() for c in comps]
+    if ctx.host_values and any(v is None for v in values):
+        raise origin.error(f"X3013: the initializer of '{name}' is not a constant", tree)
+    return np.array([v[0] if v else 0.0 for v in values])
 
 
 def uniform_value(ev: Any, name: str, t: HType, offset: int, address: Operand | None = None) -> Value:

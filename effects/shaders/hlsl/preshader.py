@@ -1,20 +1,40 @@
-"""Effect-level HLSL values read on the host: a parameter initialiser kept as text (a struct's
-`{ {..}, {..}, 32.0 }`) as the flat list of its numbers."""
+"""Effect-level HLSL values computed on the host (what D3DX compiled to a "preshader" and ran
+on the CPU): a parameter initialiser kept as text (a struct's `{ {..}, {..}, 32.0 }`) as the
+flat list of its numbers, and a state's expression (`FogDensity = 1.0 / Distance`,
+`TextureTransform[0] = mul(A, B)`, `VertexShaderConstant[4] = <Light> * 0.5`) with the
+parameters' current values.
+
+Both go through the one HLSL evaluator: in a preshader context (`Context.host_values`) a
+uniform global reads as a constant, its current value, so the whole expression folds to
+numbers; what cannot fold (a sampler, a texture read) is fxc's X3013, located."""
 from __future__ import annotations
+
+import re
+
+import numpy as np
 
 from effects.errors import Location
 from effects.model import Effect
 from effects.shaders.hlsl.parse import Origin, parse
 
+# `<Light>` / `<Lights[2]>`: the effect syntax for a parameter reference inside an expression.
+# The brackets are blanked to spaces, so every column of the text stays where it was.
+_REFERENCE = re.compile(r"<(\s*[A-Za-z_]\w*\s*(?:\[\s*\d+\s*\]\s*)?)>")
 
-def initializer_numbers(text: str, location: Location, effect: Effect | None = None) -> list[float]:
-    """The numbers of a constant initialiser, in order (X3013 if it is not constant)."""
+
+def initializer_numbers(text: str, location: Location, effect: Effect | None = None,
+                        host_values: bool = False) -> list[float]:
+    """The numbers of a constant initialiser, in order (X3013 if it is not constant).
+    `host_values`: uniform globals read as their current values (a preshader), not as
+    registers unknown until the shader runs."""
     from effects.shaders.hlsl.context import Context, Target, type_names
     from effects.shaders.asm.versions import VERSIONS
     from effects.shaders.hlsl.evaluate import Evaluator
+    text = _REFERENCE.sub(lambda m: " " + m.group(1) + " ", text)
     origin = Origin(location, text)
     tree = parse(text, "initializer", origin, type_names(effect) if effect else frozenset())
-    ctx = Context(effect or Effect(location.path), Target("vs_3_0", VERSIONS["vs_3_0"]))
+    ctx = Context(effect or Effect(location.path), Target("vs_3_0", VERSIONS["vs_3_0"]),
+                  host_values=host_values)
     ev = Evaluator(ctx, origin)
     comps = ev.flatten_list(tree)
     out = []
@@ -24,3 +44,13 @@ def initializer_numbers(text: str, location: Location, effect: Effect | None = N
             raise origin.error("X3013: the initializer is not a compile-time constant", tree)
         out.append(float(v[0]))
     return out
+
+
+def state_numbers(text: str, location: Location, effect: Effect) -> np.ndarray:
+    """A state assignment's expression evaluated with the parameters' current values: its
+    components, flat (a matrix row by row, as the effect writes one)."""
+    numbers = initializer_numbers(text, location, effect, host_values=True)
+    if not all(np.isfinite(numbers)):
+        raise Origin(location, text).error(
+            f"X3013: '{text.strip()}' does not evaluate to finite numbers ({numbers})", location)
+    return np.asarray(numbers, dtype=np.float64)

@@ -54,7 +54,7 @@ def parameter_numbers(effect: Effect, name: str) -> list[float] | None:
     v = p.value
     if isinstance(v, Expression):
         from effects.shaders.hlsl.preshader import initializer_numbers
-        return initializer_numbers(v.text, v.location, effect)
+        return initializer_numbers(v.text, v.location, effect, host_values=True)
     if isinstance(v, (list, tuple)):
         return [float(x) for x in np.asarray(v, dtype=np.float64).reshape(-1)]
     try:
