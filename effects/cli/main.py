@@ -288,6 +288,8 @@ def _add_view(sub) -> None:
     p.add_argument("--tour", action="store_true",
                    help="draw every card once, starting at --profile, then exit")
     p.add_argument("--size", default=None, metavar="WxH", help="window size (default: 1040x600)")
+    p.add_argument("--listing", action="store_true",
+                   help="start with the shader listing shown (as `effects compile`; key C toggles it)")
     p.add_argument("--poll", action="store_true",
                    help="watch files by polling (for file systems without change events)")
     _add_preprocessor_options(p)
@@ -309,7 +311,7 @@ def _cmd_view(args, console: Console) -> int:
     return run_viewer(ViewerOptions(
         args.file, profile=args.profile, technique=args.technique, mesh=args.mesh,
         view=args.view, exit_after=args.exit_after, screenshot=args.screenshot, size=size,
-        tour=args.tour, polling=args.poll, defines=_defines(args.defines),
+        tour=args.tour, listing=args.listing, polling=args.poll, defines=_defines(args.defines),
         include_dirs=args.include_dirs, include_root=_include_root(args), strict=args.strict))
 
 

@@ -48,6 +48,7 @@ class ViewerOptions:
     screenshot: str | None = None
     size: tuple[int, int] = WINDOW_SIZE
     tour: bool = False
+    listing: bool = False            # start with the listing window shown (key C toggles it)
     polling: bool = False            # watch by polling only (file systems without inotify)
     defines: dict[str, str] = field(default_factory=dict)
     include_dirs: Sequence[str] = ()
@@ -86,7 +87,7 @@ class Viewer:
             load_profile(card)                       # a YAML path: fails located if bad
             cards.append(card)
         self.state = ViewerState(cards, cards.index(card), options.technique, options.view,
-                                 options.mesh)
+                                 options.mesh, show_listing=options.listing)
         self.status = Status(options.path)
         self.loaded: LoadedEffect | None = None
         self.effect_generation = 0
@@ -293,6 +294,17 @@ class Viewer:
                      f"{reasons[0] if reasons else 'not valid'}")
         return text
 
+    def listing_text(self) -> str:
+        """What the listing window shows: `effects compile --technique T` for the technique
+        drawn (every pass), from the last good build -- a failed reload keeps it, with the
+        error above it in the window."""
+        loaded = self.loaded
+        if loaded is None:
+            return "// no effect loaded"
+        if loaded.technique is None or loaded.listing is None:
+            return f"// {self.state.card}: no valid technique, nothing to list"
+        return "\n".join(line for lines in loaded.listing for line in lines)
+
     # -- drawing ----------------------------------------------------------------------------
     def _render_effect(self) -> None:
         """Draw the effect into the image shown, if anything it depends on changed."""
@@ -366,7 +378,7 @@ class Viewer:
     def _draw_frame(self) -> None:
         import moderngl
         from imgui_bundle import imgui
-        from effects.viewer.panel import Actions, draw_panel
+        from effects.viewer.panel import Actions, draw_listing, draw_panel
         self._render_effect()
         if self.state.view != "gl":
             self._update_reference()
@@ -387,6 +399,8 @@ class Viewer:
         panel_x = side[0] * scale
         draw_panel(self.state, self.status, Actions(self.request_reload, self.request_screenshot),
                    (panel_x, 0, ww - panel_x, wh))
+        if self.state.show_listing:
+            draw_listing(self.status, self.listing_text(), (0, 0, panel_x, wh))
         imgui.render()
         self.imgui.render(imgui.get_draw_data())
         self.ctx.enable_only(moderngl.NOTHING)
@@ -435,6 +449,7 @@ class Viewer:
             keys.NUMBER_1: lambda: self.state.set_view(VIEWS[0]),
             keys.NUMBER_2: lambda: self.state.set_view(VIEWS[1]),
             keys.NUMBER_3: lambda: self.state.set_view(VIEWS[2]),
+            keys.C: self.state.toggle_listing,
             keys.L: self._toggle_light, keys.R: self.request_reload, keys.S: self.request_screenshot,
         }
         action_fn = actions.get(key)

@@ -24,6 +24,7 @@ KEYS = (
     ("T / shift+T", "force the next / previous technique (first: the card's choice)"),
     ("V or 1 2 3", "view: GL, NumPy reference, difference"),
     ("M", "next mesh"),
+    ("C", "show / hide the shader listing of the technique drawn (as `effects compile`)"),
     ("L", "animate the light; right-drag moves it"),
     ("left-drag, wheel", "orbit, zoom"),
     ("R", "reload now"),
@@ -73,6 +74,9 @@ def draw_panel(state: ViewerState, status: Status, actions: Actions,
     _techniques(state, status)
     imgui.separator()
     _view(state, status)
+    changed, shown = imgui.checkbox("listing (C)", state.show_listing)
+    if changed and shown != state.show_listing:
+        state.toggle_listing()
     imgui.separator()
     _reload(status, actions)
     if imgui.collapsing_header("Keys"):
@@ -209,3 +213,23 @@ def _reload(status: Status, actions: Actions) -> None:
             imgui.text(line)
     for message in status.messages[-3:]:
         imgui.text_colored(GREY, message)
+
+
+def draw_listing(status: Status, text: str, rect: tuple[float, float, float, float]) -> None:
+    """The listing window over the picture, in rect = (x, y, w, h): the text the viewer holds
+    for the technique drawn (`Viewer.listing_text`), scrollable; after a failed reload the
+    error first, since the listing is the last good effect's."""
+    x, y, w, h = rect
+    imgui.set_next_window_pos(imgui.ImVec2(x, y), imgui.Cond_.always)
+    imgui.set_next_window_size(imgui.ImVec2(w, h), imgui.Cond_.always)
+    imgui.set_next_window_bg_alpha(0.92)
+    flags = (imgui.WindowFlags_.no_move | imgui.WindowFlags_.no_resize
+             | imgui.WindowFlags_.no_collapse | imgui.WindowFlags_.no_saved_settings
+             | imgui.WindowFlags_.horizontal_scrollbar)
+    imgui.begin("listing (C hides)", None, flags)
+    if status.error:
+        imgui.text_colored(RED, "Last reload failed; the listing of the last good effect:")
+        imgui.text_wrapped(status.error.splitlines()[0])
+        imgui.separator()
+    imgui.text_unformatted(text)
+    imgui.end()

@@ -103,6 +103,7 @@ class LoadedEffect:
     prepare_error: Exception | None = None   # the chosen technique cannot be drawn (kept, not raised)
     runtime: Any = None        # the effects.host.runtime.Runtime that prepared it (no back end yet)
     scene_key: Any = None      # BuildSettings.scene_key of the scene it was prepared for
+    listing: list[list[str]] | None = None   # per pass of `technique`: `effects compile`'s lines
 
     @property
     def selected(self) -> "Validation | None":
@@ -197,8 +198,24 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
             if not keep_prepare_error:
                 raise
             prepare_error = exc
+    listing = technique_listing(effect, chosen) if chosen is not None else None
     return LoadedEffect(path, effect, profile, validations, chosen, programs, technique,
-                        forced_rejected, watched_files(effect), prepare_error, runtime, scene_key)
+                        forced_rejected, watched_files(effect), prepare_error, runtime, scene_key,
+                        listing)
+
+
+def technique_listing(effect: "Effect", technique: "Technique") -> list[list[str]]:
+    """Each pass's listing, made here in the build (off the render thread, and while the source
+    lines it quotes are those the shaders were compiled from) by the function `effects compile`
+    prints with. A pass that cannot be listed says why in its place."""
+    from effects.shaders.listing import pass_listing
+    out = []
+    for i in range(len(technique.passes)):
+        try:
+            out.append(pass_listing(effect, technique, i))
+        except Exception as exc:  # noqa: BLE001 - the listing is a view: it must not fail a build
+            out.append([f"// pass {i}: no listing: {error_text(exc)}", ""])
+    return out
 
 
 def loaded_warnings(loaded: LoadedEffect) -> list:

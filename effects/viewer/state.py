@@ -78,6 +78,7 @@ class ViewerState:
     mesh: str = "sphere"
     orbit: Orbit = field(default_factory=Orbit)
     light: LightPath = field(default_factory=LightPath)
+    show_listing: bool = False            # the listing window over the picture (key C)
     generation: int = 0
     selection_generation: int = 0
     _profiles: dict[str, "CapsProfile"] = field(default_factory=dict)
@@ -134,6 +135,10 @@ class ViewerState:
     def cycle_mesh(self) -> None:
         i = MESHES.index(self.mesh) if self.mesh in MESHES else -1
         self.set_mesh(MESHES[(i + 1) % len(MESHES)])
+
+    def toggle_listing(self) -> None:
+        # the listing covers the picture; nothing is drawn again (the panel is drawn each frame)
+        self.show_listing = not self.show_listing
 
     def changed(self) -> None:
         self.generation += 1

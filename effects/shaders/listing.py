@@ -1,0 +1,123 @@
+"""The fxc /Fc-style listing of a pass's shaders: one formatter for `effects compile` and the
+viewer's listing window, so what the viewer shows for the pass it draws is what the command prints.
+
+For each HLSL `compile` shader: the register table (parameter -> register, size), the assembly
+with the HLSL source line above the instructions it produced, and the slots, temporaries and
+constants used against the target's limits. An `asm` block is listed as written, with the same
+counts.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from effects.errors import EffectError, Location
+
+if TYPE_CHECKING:  # pragma: no cover
+    from effects.model import Effect, Technique
+
+
+def pass_listing(effect: "Effect", technique: "Technique", index: int) -> list[str]:
+    """The listing of pass `index` of `technique`: for its vertex then its pixel shader, a
+    heading line and the shader's listing, then a blank line (passes listed one after another
+    read apart)."""
+    from effects.model import CompileShader, ShaderBlock
+    if not 0 <= index < len(technique.passes):
+        raise EffectError(f"technique '{technique.name}' has no pass {index} (it has "
+                          f"{len(technique.passes)})", technique.location)
+    p = technique.passes[index]
+    out: list[str] = []
+    for state in ("VertexShader", "PixelShader"):
+        a = p.state(state)
+        if a is None:
+            continue
+        value = a.value
+        if hasattr(value, "name") and not isinstance(value, (CompileShader, ShaderBlock)):
+            param = effect.parameter(value.name)   # `VertexShader = <vs>`: the parameter's shader
+            value = param.value if param is not None else value
+        out.append(f"// technique {technique.name or '<anonymous>'}, pass "
+                   f"{p.name or index}: {state}")
+        out += shader_listing(effect, value)
+        out.append("")
+    if not out:   # said, so an empty listing is not mistaken for one that failed
+        out = [f"// technique {technique.name or '<anonymous>'}, pass {p.name or index}: "
+               "fixed function (no shaders)", ""]
+    return out
+
+
+def shader_listing(effect: "Effect", value: Any) -> list[str]:
+    from effects.model import CompileShader, ShaderBlock
+    if isinstance(value, CompileShader):
+        from effects.shaders.hlsl import compile_state
+        return listing(effect, compile_state(effect, value))
+    if isinstance(value, ShaderBlock):
+        from effects.shaders.asm import assemble_cached
+        program = assemble_cached(value)
+        lines = ["//   (assembly written in the effect)"]
+        lines += ["    " + line.strip() for line in value.source.strip().splitlines() if line.strip()]
+        return lines + counts(program)
+    return [f"//   {type(value).__name__}: no shader"]
+
+
+def listing(effect: "Effect", shader: Any) -> list[str]:
+    """The fxc-style listing of one compiled shader."""
+    lines = [f"// {shader.function} compiled for {shader.target}", "//"]
+    if shader.constants or shader.samplers:
+        lines += ["// Registers:", "//", f"//   {'Name':<24} {'Reg':<5} Size",
+                  f"//   {'-' * 24} {'-' * 5} ----"]
+        rows = sorted(((f"c{c}", name, n) for name, (c, n) in shader.constants.items()),
+                      key=lambda r: int(r[0][1:]))
+        rows += sorted(((f"s{s}", name, 1) for name, s in shader.samplers.items()),
+                       key=lambda r: int(r[0][1:]))
+        lines += [f"//   {name:<24} {reg:<5} {n:>4}" for reg, name, n in rows]
+        lines.append("//")
+    for w in shader.warnings:
+        lines.append(f"// {w}")
+    source = _SourceLines(effect)
+    last: tuple[str, int] | None = None
+    for text, loc in zip(shader.text.rstrip("\n").split("\n"), shader.lines):
+        if loc.line and (loc.path, loc.line) != last:
+            last = (loc.path, loc.line)
+            src = source.line(loc)
+            lines.append(f"    // {loc.path}:{loc.line}: {src.strip() if src else ''}")
+        lines.append(f"    {text}")
+    return lines + counts(shader.program)
+
+
+def counts(program: Any) -> list[str]:
+    s, r = program.stats, program.rules
+    parts = [f"{s.total_slots} instruction slots (the version holds {r.total_slots}, every card "
+             f"{r.total_slots_min})"]
+    if r.tex_slots is not None:
+        parts.append(f"{s.texture_slots} texture (of {r.tex_slots})")
+    if r.arith_slots is not None:
+        parts.append(f"{s.arithmetic_slots} arithmetic (of {r.arith_slots})")
+    parts.append(f"{s.temps_used} temporaries (of {r.registers.get('r', 0)})")
+    parts.append(f"{s.constants_used} constants")
+    return [f"// approximately {', '.join(parts)}"]
+
+
+class _SourceLines:
+    def __init__(self, effect: "Effect") -> None:
+        self.files: dict[str, list[str] | None] = {}
+        self.effect = effect
+
+    def line(self, loc: Location) -> str | None:
+        if loc.path not in self.files:
+            try:
+                with open(loc.path, encoding="utf-8", errors="replace") as f:
+                    self.files[loc.path] = f.read().split("\n")
+            except OSError:
+                self.files[loc.path] = self._from_functions(loc.path)
+        text = self.files[loc.path]
+        return text[loc.line - 1] if text and 0 < loc.line <= len(text) else None
+
+    def _from_functions(self, path: str) -> list[str] | None:
+        # an effect given as text: rebuild its lines from the captured functions
+        lines: dict[int, str] = {}
+        for f in self.effect.functions:
+            if f.location.path == path:
+                for k, text in enumerate(f.source.split("\n")):
+                    lines[f.location.line + k] = text
+        if not lines:
+            return None
+        return [lines.get(i, "") for i in range(1, max(lines) + 1)]
