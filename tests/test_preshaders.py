@@ -196,3 +196,16 @@ technique T { pass P { PixelShader = compile ps_2_0 PS(); } }""")
     fx.parameter("Bias").value = np.array(0.25)
     binding, = lower_pass(fx, fx.techniques[0], 0, profile).textures   # the cache sees the set
     assert (binding.mip_lod_bias, binding.max_anisotropy) == (0.5, 2)
+
+
+def test_set_value_on_one_runtime_changes_the_next_frame(backend):
+    """ID3DXEffect::SetValue between frames of the same Runtime (the viewer's path): the pass
+    lowered for the first frame is not reused once a parameter its expressions read moved."""
+    from effects.host.runtime import Runtime
+    runtime = Runtime(effects.load_effect(CONSTANT), "radeon9700", scene=QUAD, backend=backend)
+    first = runtime.render("T").image.astype(int)
+    np.testing.assert_array_equal(first[4, 4], [128, 64, 32, 128])
+    runtime.set_value("Light", [1.0, 1.0, 1.0, 1.0])     # c4 = (0.5, 0.5, 0.5, 0.5)
+    np.testing.assert_array_equal(runtime.render("T").image[4, 4], [128] * 4)
+    runtime.set_value("Light", [1.0, 0.5, 0.25, 1.0])    # back: the first frame again
+    np.testing.assert_array_equal(runtime.render("T").image, first)
