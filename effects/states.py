@@ -783,6 +783,36 @@ def _param_ref(name: str | None, parameters: Container[str], location: Location)
     return None
 
 
+def _flags_expression(info: StateInfo, raw: list, parameters: Container[str],
+                      location: Location) -> Expression | None:
+    """`ColorWriteEnable = Mask | BLUE`: flags OR-ed with a parameter are an effect-level
+    expression (evaluated on the host when the pass is lowered, see effects/lower/preshaders),
+    the flag names written as their numbers. None when no parameter is named."""
+    table = info.enum
+    assert table is not None
+    if not any(isinstance(item, str) and table.lookup(item) is None and item in parameters
+               for item in raw):
+        return None
+    terms = []
+    for item in raw:
+        if isinstance(item, str):
+            found = table.lookup(item)
+            if found is not None:
+                terms.append(str(found[1]))
+            elif item in parameters:
+                terms.append(item)
+            else:
+                hint = table.suggest(item)
+                raise _fail(info, f"'{item}' is not one" + (f" (did you mean {hint}?)" if hint
+                                                            else ""), location)
+        else:
+            number = _integral(item)
+            if number is None or not 0 <= number <= DWORD_MASK:
+                raise _fail(info, f"{_shown(item)} is not one", location)
+            terms.append(str(number))
+    return Expression(" | ".join(terms), location)
+
+
 def _coerce_enum(info: StateInfo, raw: Any, location: Location, parameters: Container[str]) -> Any:
     table = info.enum
     assert table is not None
@@ -798,6 +828,10 @@ def _coerce_enum(info: StateInfo, raw: Any, location: Location, parameters: Cont
         ref = _param_ref(name, parameters, location)
         if ref is not None:
             return ref
+    if table.flags and len(raw) > 1:
+        expression = _flags_expression(info, raw, parameters, location)
+        if expression is not None:
+            return expression
     if len(raw) > 1 and not table.flags:
         raise StateError(f"{info.name} takes a single {table.name} value; "
                          f"'{_shown(raw)}' combines {len(raw)}", location)

@@ -209,3 +209,23 @@ def test_set_value_on_one_runtime_changes_the_next_frame(backend):
     np.testing.assert_array_equal(runtime.render("T").image[4, 4], [128] * 4)
     runtime.set_value("Light", [1.0, 0.5, 0.25, 1.0])    # back: the first frame again
     np.testing.assert_array_equal(runtime.render("T").image, first)
+
+
+COLOR_WRITE = """
+int Mask = 3;
+float4 PS() : COLOR { return float4(0.5, 0.5, 0.5, 0.5); }
+technique T { pass P { ColorWriteEnable = Mask | Blue; PixelShader = compile ps_2_0 PS(); } }"""
+
+
+def test_flags_ored_with_a_parameter_are_an_expression(backend):
+    """ColorWriteEnable = Mask | Blue: RED 1, GREEN 2, BLUE 4, ALPHA 8 (D3DCOLORWRITEENABLE);
+    Mask 3 writes red, green and blue (alpha keeps the clear's 0), Mask 8 blue and alpha."""
+    fx = effects.load_effect(COLOR_WRITE)
+    assert fx.techniques[0].passes[0].states[0].value.text == "Mask | 4"
+    np.testing.assert_array_equal(render(fx, backend)[4, 4], [128, 128, 128, 0])
+    np.testing.assert_array_equal(render(fx, backend, {"Mask": 8})[4, 4], [0, 0, 128, 128])
+
+
+def test_a_flag_name_that_is_neither_flag_nor_parameter_is_still_refused():
+    with pytest.raises(EffectError, match="'Bleu' is not one"):
+        effects.load_effect("int Mask = 3;\ntechnique T { pass P { ColorWriteEnable = Mask | Bleu; } }")
