@@ -62,7 +62,7 @@ def test_a_fixed_function_pass_says_so(capsys, tinted_effect):
     viewer = viewer_for(tinted_effect, "tnt2")
     assert viewer.listing_text() + "\n" == out
     out = compile_output(capsys, str(SDK9), "--technique", "Scene_ff")   # VertexShader = NULL
-    assert "pass P0: VertexShader\n//   NullValue: no shader\n" in out
+    assert "pass P0: VertexShader\n//   NULL: the fixed-function pipeline\n" in out
     assert viewer_for(SDK9, "tnt2").listing_text() + "\n" == out
 
 
@@ -111,6 +111,33 @@ def test_the_listing_follows_a_reload_a_broken_reload_and_a_card_switch(tmp_path
         card_listing = viewer.listing_text()
         assert "ScenePS compiled for ps_1_4" in card_listing and card_listing != after
         assert card_listing + "\n" == compile_output(capsys, str(path), "--technique", "Scene_ps14")
+    finally:
+        reloader.stop()
+
+
+def test_a_card_switch_after_a_broken_edit_lists_the_last_good_source(tmp_path, capsys):
+    """The switch re-selects in the last good effect while the broken file is on disk: the
+    listing quotes the source that was compiled, not the lines now at those numbers."""
+    folder = tmp_path / "fx"
+    shutil.copytree(ROOT / "fxfiles", folder)
+    path = folder / "sdk9_hlsl.fx"
+    source = path.read_text()
+    good_ps14 = compile_output(capsys, str(path), "--technique", "Scene_ps14")
+    viewer = viewer_for(path, "radeon9700")
+    builder = effect_builder(str(path), lambda: viewer.state.build_settings(viewer.effect_size()))
+    reloader = Reloader(str(path), builder, use_watchdog=False, poll_interval=0.05)
+    reloader.start(viewer.loaded)
+    try:
+        path.write_text("// three lines\n// pushed in\n// above\n" + source + "\n}")   # broken
+        result = reloader.wait(10)
+        assert result is not None and not result.ok
+        viewer._take(result)
+        viewer.state.set_card(viewer.state.cards.index("radeon8500"))
+        reloader.reselect()
+        result = reloader.wait(10)
+        assert result is not None and result.ok and result.kind == "select"
+        viewer._take(result)
+        assert viewer.listing_text() + "\n" == good_ps14
     finally:
         reloader.stop()
 

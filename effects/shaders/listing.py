@@ -45,7 +45,9 @@ def pass_listing(effect: "Effect", technique: "Technique", index: int) -> list[s
 
 
 def shader_listing(effect: "Effect", value: Any) -> list[str]:
-    from effects.model import CompileShader, ShaderBlock
+    from effects.model import CompileShader, NullValue, ShaderBlock
+    if isinstance(value, NullValue):
+        return ["//   NULL: the fixed-function pipeline"]
     if isinstance(value, CompileShader):
         from effects.shaders.hlsl import compile_state
         return listing(effect, compile_state(effect, value))
@@ -97,27 +99,27 @@ def counts(program: Any) -> list[str]:
 
 
 class _SourceLines:
+    """The source line an instruction came from: from the effect's captured functions first
+    (the text that was compiled, even when the file on disk has changed since -- the viewer
+    lists its last good effect while a broken edit is on disk), else from the file."""
+
     def __init__(self, effect: "Effect") -> None:
         self.files: dict[str, list[str] | None] = {}
-        self.effect = effect
+        self.captured: dict[str, dict[int, str]] = {}
+        for f in effect.functions:
+            lines = self.captured.setdefault(f.location.path, {})
+            for k, text in enumerate(f.source.split("\n")):
+                lines[f.location.line + k] = text
 
     def line(self, loc: Location) -> str | None:
+        captured = self.captured.get(loc.path, {}).get(loc.line)
+        if captured is not None:
+            return captured
         if loc.path not in self.files:
             try:
                 with open(loc.path, encoding="utf-8", errors="replace") as f:
                     self.files[loc.path] = f.read().split("\n")
             except OSError:
-                self.files[loc.path] = self._from_functions(loc.path)
+                self.files[loc.path] = None     # an effect given as text: only its functions
         text = self.files[loc.path]
         return text[loc.line - 1] if text and 0 < loc.line <= len(text) else None
-
-    def _from_functions(self, path: str) -> list[str] | None:
-        # an effect given as text: rebuild its lines from the captured functions
-        lines: dict[int, str] = {}
-        for f in self.effect.functions:
-            if f.location.path == path:
-                for k, text in enumerate(f.source.split("\n")):
-                    lines[f.location.line + k] = text
-        if not lines:
-            return None
-        return [lines.get(i, "") for i in range(1, max(lines) + 1)]
