@@ -262,6 +262,12 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any,
         for name, register in compiled.samplers.items():
             state.apply(StateAssignment("Sampler", ParamRef(name), index=base + register,
                                         location=location))
+        # an int parameter counting a rep sits in the i# the compiler gave it (D3DX sets it
+        # with the shader, as VertexShaderConstantI / PixelShaderConstantI would)
+        family = "PixelShaderConstantI" if stage == "pixel" else "VertexShaderConstantI"
+        for name, register in getattr(compiled, "int_registers", {}).items():
+            state.apply(StateAssignment(family, ParamRef(name), index=register,
+                                        location=location))
         evaluate_into(effect, state)   # expressions in those samplers' sampler_state blocks
         return compiled.program, compiled
     if not isinstance(shader, ShaderBlock):

@@ -58,5 +58,6 @@ class Generated:
     constants: dict[str, tuple[int, int]] = field(default_factory=dict)   # param -> (c#, count)
     samplers: dict[str, int] = field(default_factory=dict)                # param -> s#
     defs: dict[int, tuple[float, ...]] = field(default_factory=dict)
+    int_registers: dict[str, int] = field(default_factory=dict)          # int param -> i#
 
 

@@ -5,6 +5,7 @@
     shader.program     # that text assembled (effects.shaders.asm), located in the HLSL
     shader.constants   # parameter -> (first c#, count): what the pass must load
     shader.samplers    # sampler parameter -> s#
+    shader.int_registers   # int parameter -> i# (a `rep` count the pass sets)
 
 The assembly then goes through the assembler's own checks and the card's limits like any
 hand-written shader; each instruction of `program` is located at the HLSL line it comes from.
@@ -45,6 +46,7 @@ class CompiledShader:
     lines: list[Location]                       # per line of `text`
     warnings: list[EffectWarning] = field(default_factory=list)
     types: dict[str, HType] = field(default_factory=dict)
+    int_registers: dict[str, int] = field(default_factory=dict)
 
     @property
     def stage(self) -> str:
@@ -140,7 +142,8 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
     program = _assemble(text, ctx, generated.lines, generated.locations, fdef, where)
     return CompiledShader(entry, ctx.target.name, text, program, generated.constants,
                           generated.samplers, generated.locations, list(ctx.warnings),
-                          dict(ctx.uniforms_used))
+                          dict(ctx.uniforms_used),
+                          generated.int_registers if not ctx.target.rules.is_ps1 else {})
 
 
 def _explicit(ctx: Context, name: str, kind: str) -> str | None:

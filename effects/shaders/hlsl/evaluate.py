@@ -5,8 +5,9 @@ Evaluating, rather than translating, gives fxc's passes for free: every call is 
 its condition is a compile-time false (X3511 after 1024 iterations), and an `if` on a value
 not known at compile time runs both branches under a predicate so that every assignment
 becomes a select (flattening: `cmp`/`lrp`). `return`, `break`, `continue` and `discard` under
-such a predicate set their own predicates. Real flow control for targets that have it is
-not generated: every target gets the flattened form.
+such a predicate set their own predicates. One form of real flow control is generated where
+the target has it: a `for` loop counted by an int uniform becomes `rep i#` (loops.py); every
+`if` is flattened.
 """
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ from effects.shaders.hlsl.calls import inline_call
 from effects.shaders.hlsl.expressions import evaluate_expr
 from effects.shaders.hlsl.context import Context, FunctionDef, array_of, resolve_type
 from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.loops import NotReal, bound_of, has_attribute, real_loop
 from effects.shaders.hlsl.parse import Origin
 from effects.shaders.hlsl.types import HType, scalar
 from effects.shaders.hlsl.values import (Frame, Loop, Value, Var, build_value, count_components,
@@ -248,7 +250,7 @@ class Evaluator:
                                     scalar(v.type.base), v.comps[:1]), self.at(tree)).comps[0]
 
     def s_for_stmt(self, tree: lark.Tree) -> None:
-        _attrs, _tok, init, cond, step, body = tree.children
+        attrs, _tok, init, cond, step, body = tree.children
         self.scopes.append({})
         try:
             if init is not None:
@@ -260,7 +262,22 @@ class Evaluator:
                     else:
                         for e in child.children:
                             self.expr(e)
-            self._loop(tree, cond, body, step, test_first=True)
+            match = None if has_attribute(attrs, "unroll") else bound_of(self, tree, cond, step)
+            why = None
+            if match is not None:
+                target = self.ctx.target
+                if not target.has("rep"):
+                    why = (f"its count is the uniform '{match[1]}', known only when the shader "
+                           f"runs, and {target.name} has no loops (rep needs vs_2_0, ps_2_x or "
+                           "ps_3_0)")
+                else:
+                    try:
+                        real_loop(self, tree, body, step, *match)
+                        return
+                    except NotReal as err:
+                        why = (f"its count is the uniform '{match[1]}', known only when the "
+                               f"shader runs, and it cannot be a rep: {err}")
+            self._loop(tree, cond, body, step, test_first=True, why=why)
         finally:
             self.scopes.pop()
 
@@ -270,16 +287,19 @@ class Evaluator:
     def s_do_stmt(self, tree: lark.Tree) -> None:
         self._loop(tree, tree.children[4], tree.children[2], None, test_first=False)
 
-    def _loop(self, tree: Any, cond: Any, body: Any, step: Any, test_first: bool) -> None:
+    def _loop(self, tree: Any, cond: Any, body: Any, step: Any, test_first: bool,
+              why: str | None = None) -> None:
         loop = Loop()
         saved = self.mask
         self.loops.append(loop)
         try:
             for i in range(MAX_ITERATIONS + 1):
+                if i == MAX_ITERATIONS and why is not None:
+                    raise self.error(f"X3511: unable to unroll loop: {why}", tree)
                 if i == MAX_ITERATIONS:
                     raise self.error(f"X3511: unable to unroll loop, loop does not appear to "
                                      f"terminate in a timely manner ({MAX_ITERATIONS} "
-                                     "iterations); real loops are not generated yet", tree)
+                                     "iterations)", tree)
                 if cond is not None and (test_first or i > 0):
                     c = self.condition(cond)
                     v = c.const_values()

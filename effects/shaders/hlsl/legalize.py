@@ -123,6 +123,12 @@ def _allocate(instrs: list[Instr]) -> dict[int, int]:
             if reg is not None and reg.kind == "vr":
                 first.setdefault(reg.index, i)  # type: ignore[arg-type]
                 last[reg.index] = i  # type: ignore[index]
+    # a register set before a rep and read inside is read again by the next iteration: it
+    # lives to the endrep (innermost loops first, so an outer one extends it further)
+    for start, end in sorted(_loops(instrs), key=lambda r: r[1] - r[0]):
+        for vr in first:
+            if first[vr] < start and start <= last[vr] <= end:
+                last[vr] = end
     alloc: dict[int, int] = {}
     active: list[tuple[int, int]] = []     # (end, physical)
     free: list[int] = []
@@ -141,6 +147,17 @@ def _allocate(instrs: list[Instr]) -> dict[int, int]:
         alloc[vr] = phys
         active.append((last[vr], phys))
     return alloc
+
+
+def _loops(instrs: list[Instr]) -> list[tuple[int, int]]:
+    """(rep index, its endrep index) of every loop in the code."""
+    out, stack = [], []
+    for i, ins in enumerate(instrs):
+        if ins.opcode in ("rep", "loop"):
+            stack.append(i)
+        elif ins.opcode in ("endrep", "endloop"):
+            out.append((stack.pop(), i))
+    return out
 
 
 def _dies_before_write(ins: Instr, vr: int) -> bool:
@@ -196,6 +213,10 @@ def _text(cg: Any) -> Generated:
             locs.append(UNKNOWN_LOCATION)
     for ins in cg.instrs:
         op = ins.opcode + ("_sat" if ins.saturate else "")
+        if ins.dst is None:                     # rep i#, endrep
+            lines.append(" ".join([ins.opcode] + [_src_text(s, alloc, rule, ins) for s in ins.srcs]))
+            locs.append(ins.location)
+            continue
         if ins.opcode == "texkill":
             lines.append(f"texkill {ins.dst.text(alloc)}")  # type: ignore[union-attr]
             locs.append(ins.location)
@@ -210,9 +231,12 @@ def _text(cg: Any) -> Generated:
         lines.append(f"{op} {dst}{mask}, " + ", ".join(srcs))
         locs.append(ins.location)
     used_c = {name: (start, cg.register_sizes.get(name, 1)) for name, start in cg.const_regs.items()}
+    used_i = {s.reg.index for ins in cg.instrs if ins.opcode == "rep" for s in ins.srcs}
+    ints = {name: k for name, k in getattr(cg.ctx, "int_registers", {}).items() if k in used_i}
     return Generated(lines, locs, used_c, {n: k for n, k in samplers.items()
                                            if any(i.sampler == n for i in cg.instrs)},
-                     {r: tuple(0.0 if v is None else v for v in vals) for r, vals in cg.defs.items()})
+                     {r: tuple(0.0 if v is None else v for v in vals) for r, vals in cg.defs.items()},
+                     ints)
 
 
 def _num(v: float) -> str:
