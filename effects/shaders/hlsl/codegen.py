@@ -377,27 +377,25 @@ class CodeGen:
     def _lanewise(self, a: Operand, lanes_out: list[tuple[int, int]]) -> Src:
         node = a.node
         if node.op == "const":
-            vals = {lane: node.value[a.swizzle[min(c, a.width - 1)]] * (-1 if a.negate else 1)  # type: ignore[index]
-                    for c, lane in lanes_out}
-            if len(set(vals.values())) == 1:
-                return self.const_src([next(iter(vals.values()))])
-            full = [vals.get(l, next(iter(vals.values()))) for l in range(4)]
-            src = self.const_src([float(x) for x in full])
-            src.lanes, src.fixed = {l: l for l in vals}, None
-            return src
+            return self._const_lanes({lane: node.value[a.swizzle[min(c, a.width - 1)]]  # type: ignore[index]
+                                      * (-1 if a.negate else 1) for c, lane in lanes_out})
         reg, where = self.home[node.id]
         return Src(reg, {lane: where[a.swizzle[min(c, a.width - 1)]] for c, lane in lanes_out}, a.negate)
+
+    def _const_lanes(self, vals: dict[int, float]) -> Src:
+        """A constant source giving each destination lane its value: one replicated register
+        when they agree, else a register holding them lane by lane (the rest repeat one)."""
+        if len(set(vals.values())) == 1:
+            return self.const_src([next(iter(vals.values()))])
+        full = [vals.get(l, next(iter(vals.values()))) for l in range(4)]
+        src = self.const_src([float(x) for x in full])
+        src.lanes, src.fixed = {l: l for l in vals}, None
+        return src
 
     def _gather(self, items: list[tuple[int, Operand]]) -> Src:
         first = items[0][1]
         if first.node.op == "const":
-            vals = {lane: c.const_values()[0] for lane, c in items}  # type: ignore[index]
-            if len(set(vals.values())) == 1:
-                return self.const_src([next(iter(vals.values()))])
-            full = [vals.get(l, next(iter(vals.values()))) for l in range(4)]
-            src = self.const_src([float(x) for x in full])
-            src.lanes, src.fixed = {l: l for l in vals}, None
-            return src
+            return self._const_lanes({lane: c.const_values()[0] for lane, c in items})  # type: ignore[index]
         reg, where = self.home[first.node.id]
         return Src(reg, {lane: where[c.swizzle[0]] for lane, c in items}, first.negate)
 
