@@ -93,6 +93,7 @@ _NAME_PREFIXES = ("g_mat", "g_m", "g_", "m_", "mat", "g", "m", "x")
 _NAME_MATRIX_FORMS = {"invtrans": "INVERSETRANSPOSE", "inversetranspose": "INVERSETRANSPOSE",
                       "inverse": "INVERSE", "inv": "INVERSE", "transpose": "TRANSPOSE",
                       "trans": "TRANSPOSE"}
+_NAME_MATRIX_FORMS_LONGEST_FIRST = sorted(_NAME_MATRIX_FORMS, key=len, reverse=True)
 NAME_VALUES = {
     "cameraposition": "CAMERAPOSITION", "camerapos": "CAMERAPOSITION",
     "eyeposition": "CAMERAPOSITION", "eyepos": "CAMERAPOSITION",
@@ -183,7 +184,7 @@ def name_semantic(name: str) -> str | None:
         found = matrix_semantic(rest)
         if found is not None:
             return found[0] + found[1]
-        for form in sorted(_NAME_MATRIX_FORMS, key=len, reverse=True):
+        for form in _NAME_MATRIX_FORMS_LONGEST_FIRST:
             found = matrix_semantic(rest[len(form):]) if rest.startswith(form) else None
             if found is not None and found[1] == "":
                 return found[0] + _NAME_MATRIX_FORMS[form]
