@@ -9,12 +9,19 @@ D3DX9 effect, the first of these is a syntax error that names a brace, which say
 useful. `d3d10_error` turns such a failure into an error at the Direct3D 10/11 construct that
 caused it; `d3d10_shader_warning` flags a file with no techniques whose shaders use Direct3D 10
 system-value semantics (a D3D11 shader source compiled on its own, not an effect).
+
+Some files carry both: a `technique10` for the Direct3D 10 renderer next to the `technique` a
+Direct3D 9 renderer loads (foo_wave_seekbar's Direct3D 9 front end hands such a file to
+`D3DXCreateEffect` as it is). D3DX9 loads the `technique` blocks and passes over the others, so
+`skip_d3d10_techniques` blanks each `technique10`/`technique11` block of a file that also has a
+Direct3D 9 technique, with a located warning per block; a file with none keeps the error.
 Keyword lists from the Direct3D 10/11 effect-format documentation (Effect Format, "Effect
 Technique Syntax (Direct3D 11)", "Sampler Type", "Shader Semantics").
 """
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 
 from effects.errors import EffectError, EffectWarning, ParseError
 from effects.frontend.source import Preprocessed
@@ -31,6 +38,58 @@ _WORD = re.compile(r"\b(" + "|".join(D3D10_WORDS) + r")\b")
 _SV_SEMANTIC = re.compile(r":\s*(SV_[A-Za-z]+\d*)\b")
 # Strings hold no syntax; blank them (keeping offsets) before looking.
 _STRING = re.compile(r'"(?:[^"\\\n]|\\.)*"')
+
+
+_TECHNIQUE10 = re.compile(r"\b(technique1[01])\b")
+# The Direct3D 9 keyword (case-insensitive, as this framework's effect lexer reads keywords).
+_TECHNIQUE9 = re.compile(r"\btechnique\b", re.IGNORECASE)
+_NAME = re.compile(r"\s*([A-Za-z_]\w*)?")
+
+
+def skip_d3d10_techniques(pre: Preprocessed) -> tuple[Preprocessed, list[EffectWarning]]:
+    """`pre` with its Direct3D 10/11 technique blocks blanked (lines kept, so every location
+    still maps), and a warning at each, when the file also has a Direct3D 9 technique; `pre`
+    unchanged otherwise."""
+    blanked = _STRING.sub(lambda m: " " * len(m.group(0)), pre.text)
+    spans = [span for m in _TECHNIQUE10.finditer(blanked)
+             if (span := _block_span(blanked, m.start(1))) is not None]
+    if not spans:
+        return pre, []
+    rest = "".join(blanked[a:b] for a, b in zip([0] + [e for _, e, _ in spans],
+                                                  [s for s, _, _ in spans] + [len(blanked)]))
+    if _TECHNIQUE9.search(rest) is None:
+        return pre, []
+    text, warnings, end = [], [], 0
+    for start, stop, name in spans:
+        text += [pre.text[end:start], re.sub(r"[^\n]", " ", pre.text[start:stop])]
+        end = stop
+        line = pre.text.count("\n", 0, start) + 1
+        column = start - (pre.text.rfind("\n", 0, start) + 1) + 1
+        word = pre.text[start:start + 11]
+        label = f" '{name}'" if name else ""
+        warnings.append(pre.source_map.warning_at(
+            f"{word}{label} skipped: a Direct3D 10/11 technique, which D3DX9 passes over; "
+            f"the file's Direct3D 9 techniques are loaded", pre.source_map.locate(line, column)))
+    text.append(pre.text[end:])
+    return replace(pre, text="".join(text)), warnings
+
+
+def _block_span(text: str, start: int) -> tuple[int, int, str] | None:
+    """(start, end, name) of the `technique10 Name <annotations> { ... }` block at `start`:
+    the braces matched, or None when the block does not close."""
+    m = _NAME.match(text, start + len("technique10"))
+    name = m.group(1) or ""
+    i = m.end()
+    depth = 0
+    for j in range(text.index("{", i) if "{" in text[i:] else len(text), len(text)):
+        c = text[j]
+        if c == "{":
+            depth += 1
+        elif c == "}":
+            depth -= 1
+            if depth == 0:
+                return start, j + 1, name
+    return None
 
 
 def _find(pattern: re.Pattern[str], text: str) -> tuple[str, int, int] | None:
@@ -57,7 +116,7 @@ def d3d10_error(pre: Preprocessed, error: EffectError) -> EffectError:
     return pre.source_map.error(
         ParseError, f"'{word}' is Direct3D 10/11 effect syntax: this is a Direct3D 10/11 "
         f"effect (fx_4_0/fx_5_0), not a Direct3D 9 (D3DX9, fx_2_0) one, which is what this "
-        f"framework loads (D3DX9's effect compiler rejects it too); a D3D9 effect writes "
+        f"framework loads; a D3D9 effect writes "
         f"technique, sampler_state and compile vs_/ps_ targets", line, column)
 
 

@@ -22,7 +22,7 @@ from lark.exceptions import LarkError, UnexpectedInput, UnexpectedToken, VisitEr
 from effects.errors import EffectError, ParseError
 from effects.model import Effect
 from effects.frontend.builder import Builder
-from effects.frontend.d3d10 import d3d10_error, d3d10_shader_warning
+from effects.frontend.d3d10 import d3d10_error, d3d10_shader_warning, skip_d3d10_techniques
 from effects.frontend.lexer import MAX_NESTING, PUNCT, EffectLexer, Located
 from effects.frontend.shapes import lark_parser
 from effects.frontend.source import Preprocessed
@@ -54,11 +54,13 @@ def parse_effect(pre: Preprocessed, *, strict: bool = False) -> Effect:
 
 
 def _parse(pre: Preprocessed, strict: bool) -> Effect:
+    pre, skipped = skip_d3d10_techniques(pre)
     try:
         effect = _parse_d3d9(pre, strict)
     except ParseError as exc:
         # a Direct3D 10/11 effect fails at its first fx_4_0 construct: say that, there
         raise d3d10_error(pre, exc) from None
+    effect.warnings[:0] = skipped
     if not effect.techniques:
         warning = d3d10_shader_warning(pre)
         if warning is not None:

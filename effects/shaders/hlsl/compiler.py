@@ -60,6 +60,15 @@ def split_semantic(text: str) -> tuple[str, int]:
     return m.group(1).upper(), int(m.group(2) or 0)
 
 
+# The Direct3D 10 system-value semantics fxc accepts for Direct3D 9 targets, by what they mean
+# there: a vertex output SV_Position is POSITION, a pixel output SV_Target[n] COLOR[n] and
+# SV_Depth DEPTH; a ps_3_0 input SV_Position is VPOS (fxc declares both as vPos: dxbc-spirv
+# pull request 71). Files written for both APIs use them (foo_wave_seekbar's Direct3D 9 effect).
+_SV_AS_D3D9 = {"SV_POSITION": "POSITION", "SV_TARGET": "COLOR", "SV_DEPTH": "DEPTH"}
+# ps_3_0's two misc inputs: (register, its declaration)
+_PS3_MISC = {"VPOS": ("vPos", "dcl vPos.xy"), "VFACE": ("vFace", "dcl vFace")}
+
+
 def compile_state(effect: Effect, value: CompileShader) -> CompiledShader:
     """The shader of a `compile` state, compiled once per distinct input (cache.py)."""
     return cached_compile(effect, value, lambda: compile_shader(
@@ -253,7 +262,12 @@ class _Binder:
             raise HlslError(f"X4502: input '{name}' of the entry point has no semantic", loc)
         usage, index = split_semantic(semantic)
         target = self.ctx.target
-        if target.kind == "ps" and target.rules.major < 3:
+        if target.kind == "ps" and usage == "SV_POSITION":
+            usage = "VPOS"
+        if target.kind == "ps" and target.rules.major >= 3 and usage in _PS3_MISC:
+            reg, dcl = _PS3_MISC[usage]
+            self.dcls[reg] = dcl
+        elif target.kind == "ps" and target.rules.major < 3:
             if usage == "COLOR":
                 reg = f"v{index}"
             elif usage == "TEXCOORD":
@@ -292,6 +306,7 @@ class _Binder:
         if semantic is None:
             raise HlslError("X4503: output of the entry point has no semantic", loc)
         usage, index = split_semantic(semantic)
+        usage = _SV_AS_D3D9.get(usage, usage)
         target = self.ctx.target
         if target.kind == "ps":
             if usage == "COLOR":

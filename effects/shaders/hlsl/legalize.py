@@ -194,13 +194,15 @@ def _text(cg: Any) -> Generated:
         for s in ins.srcs:
             if s.reg.kind in ("v", "t"):
                 used_inputs.setdefault(f"{s.reg.kind}{s.reg.index}")
+            elif s.reg.kind in ("vPos", "vFace"):    # ps_3_0's misc inputs, unindexed
+                used_inputs.setdefault(s.reg.kind)
         if ins.sampler is not None and ins.sampler not in samplers:
             taken = set(samplers.values())
             k = 0
             while k in taken:
                 k += 1
             samplers[ins.sampler] = k
-    for name in sorted(used_inputs, key=lambda n: (n[0], int(n[1:]))):
+    for name in sorted(used_inputs, key=lambda n: (n[0], int(n[1:]) if n[1:].isdigit() else -1)):
         lines.append(cg.inputs.get(name, f"dcl {name}"))
         locs.append(UNKNOWN_LOCATION)
     for dcl in getattr(cg, "output_dcls", []):
