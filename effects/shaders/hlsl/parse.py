@@ -48,6 +48,100 @@ class _TypeNames:
             yield tok
 
 
+# C's binary precedence, loosest first: the grammar reads `a op b op c ...` as one flat chain
+# and `_Build.binchain` nests it into the `binary` trees a rule per level would have built.
+_PRECEDENCE = {name: k for k, name in enumerate(
+    ("OROR", "ANDAND", "BAR", "CARET", "AMP", "EQOP", "RELOP", "SHIFTOP", "ADDOP", "MULOP"))}
+# The punctuation tokens the grammar keeps only to place the rule they open (see `_lead`).
+_LEADS = frozenset(("STRUCT", "LPAR", "LBRACE", "LSQB", "COLON", "SEMICOLON"))
+
+
+def _place(tree: lark.Tree, tok: lark.Token) -> lark.Tree:
+    meta = tree.meta
+    meta.line, meta.column, meta.empty = tok.line, tok.column, False
+    return tree
+
+
+def _lead(data: str):
+    """The callback of a rule that opens with punctuation (`{ ... }`, `[n]`, `: SEM`, `(T)x`,
+    `;`, `struct`): the tree without those tokens, placed at the first one."""
+    def build(children: list[Any]) -> lark.Tree:
+        first = children[0] if children else None
+        kept = [c for c in children if not (isinstance(c, lark.Token) and c.type in _LEADS)]
+        tree = lark.Tree(data, kept)
+        if isinstance(first, lark.Token) and first.type in _LEADS:
+            _place(tree, first)
+        return tree
+    return build
+
+
+class _Build:
+    """Callbacks lark runs as it reduces (LALR's embedded transformer). Positions: lark's
+    propagate_positions set a Meta on every node at every reduction, most of the parse's time;
+    here a node is placed when asked (`start_of`), from its first token, as lark placed it."""
+
+    struct_def = staticmethod(_lead("struct_def"))
+    semantic = staticmethod(_lead("semantic"))
+    register = staticmethod(_lead("register"))
+    dims = staticmethod(_lead("dims"))
+    block = staticmethod(_lead("block"))
+    empty = staticmethod(_lead("empty"))
+    attr = staticmethod(_lead("attr"))
+    cast = staticmethod(_lead("cast"))
+
+    @staticmethod
+    def init_list(children: list[Any]) -> lark.Tree:
+        # one name for `{ a, b }` (opens with its brace) and the list inside it
+        return _lead("init_list")(children)
+
+    @staticmethod
+    def paren(children: list[Any]) -> lark.Tree:
+        """`(e)` is e's tree, which starts at its parenthesis for the node that holds it."""
+        tok, tree = children
+        meta = tree.meta
+        meta.container_line, meta.container_column = tok.line, tok.column
+        return tree
+
+    @staticmethod
+    def binchain(items: list[Any]) -> lark.Tree:
+        operands, ops = [items[0]], []
+        for k in range(1, len(items), 2):
+            op = items[k]
+            level = _PRECEDENCE[op.type]
+            while ops and _PRECEDENCE[ops[-1].type] >= level:     # left-associative
+                b = operands.pop()
+                operands.append(lark.Tree("binary", [operands.pop(), ops.pop(), b]))
+            ops.append(op)
+            operands.append(items[k + 1])
+        while ops:
+            b = operands.pop()
+            operands.append(lark.Tree("binary", [operands.pop(), ops.pop(), b]))
+        return operands[0]
+
+
+def start_of(tree: lark.Tree) -> tuple[int, int] | None:
+    """(line, column) where `tree` starts, None for one without tokens (an empty `dims`): its
+    first child's start, a parenthesised child at its parenthesis (lark's rule for
+    propagate_positions, which this replaces). Kept on the node once found."""
+    meta = tree.meta
+    if not meta.empty:
+        return meta.line, meta.column
+    for child in tree.children:
+        if child is None:
+            continue
+        if isinstance(child, lark.Token):
+            pos = child.line, child.column
+        else:
+            cm = child.meta
+            pos = (cm.container_line, cm.container_column) if hasattr(cm, "container_line") \
+                else start_of(child)
+        if pos is not None:
+            meta.line, meta.column = pos
+            meta.empty = False
+            return pos
+    return None
+
+
 def parser() -> lark.Lark:
     global _PARSER
     with _LOCK:
@@ -56,8 +150,8 @@ def parser() -> lark.Lark:
             _PARSER = lark.Lark(text, parser="lalr", lexer="contextual",
                                 start=["function_def", "struct_def", "typedef_decl",
                                        "initializer"], postlex=_TypeNames(),
-                                propagate_positions=True, maybe_placeholders=True,
-                                cache=True)
+                                maybe_placeholders=True,
+                                transformer=_Build(), cache=True)
         return _PARSER
 
 
@@ -84,10 +178,8 @@ class Origin:
         """The file location of a lark Token or Tree."""
         if isinstance(item, lark.Token):
             return self.loc(item.line or 1, item.column or 1)
-        meta = getattr(item, "meta", None)
-        if meta is not None and not meta.empty:
-            return self.loc(meta.line, meta.column)
-        return self.loc(1, 1)
+        pos = start_of(item) if isinstance(item, lark.Tree) else None
+        return self.loc(*pos) if pos is not None else self.loc(1, 1)
 
     def error(self, message: str, item: Any) -> HlslError:
         loc = item if isinstance(item, Location) else self.at(item)
