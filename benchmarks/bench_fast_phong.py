@@ -23,13 +23,13 @@ ratios 1, 1.89, 2.09, 9.6.
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
 
 from backends.reference.fast_phong import (SPREADS, Light, pixel_values, prepare,
                                            series_error, spread_normals)
 from effects.host.meshes import sphere
+from bench_scale import best as best_of  # one timing helper for the benchmarks
 
 PAPER = {"gouraud": 406.0, "taylor, infinite eye": 767.0, "taylor, finite eye": 850.0,
          "phong (normalised normal), infinite eye": 3900.0}
@@ -46,15 +46,6 @@ def front_sphere(size: int, rings: int = 64, segments: int = 128):
     xy = np.stack([(p[..., 0] + 1.2) / 2.4 * size, (1.2 - p[..., 1]) / 2.4 * size], axis=-1)
     v = np.array([0.0, 0.0, 4.0]) - p
     return xy, n, v / np.linalg.norm(v, axis=-1, keepdims=True)
-
-
-def best_of(fn, repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def error_curves(spans=(10, 20, 25, 30, 40, 50, 60, 75, 90), count: int = 150) -> None:

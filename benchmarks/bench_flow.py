@@ -11,23 +11,18 @@ select over the registers the loop's aL can reach. GL runs real for loops.
 from __future__ import annotations
 
 import argparse
-import time
 from pathlib import Path
 
 import effects
 from effects.caps import load_profile
+from bench_scale import best  # one timing helper for the benchmarks
 
 FX = Path(__file__).resolve().parent.parent / "fxfiles" / "multilight.fx"
 
 
 def best_of(fn, repeat: int) -> float:
     fn()                                   # warm: programs, caches, GL context
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return min(times)
+    return best(fn, repeat)
 
 
 def main() -> None:
