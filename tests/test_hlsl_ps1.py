@@ -137,14 +137,75 @@ def test_shifts_invert_and_scalar_uniform(backend):
     each_pixel(img, lambda u, v: [u * 0.5, min(u * v * 4, 1), (u + v) / 2, 1 - v], "ps_1_4", text)
 
 
-@pytest.mark.parametrize("target", ["ps_1_3", "ps_1_4"])
-def test_select_is_cmp(backend, target):
-    fn = "float4 PS(float2 uv : TEXCOORD0) : COLOR { return uv.x > 0.5 ? K0 : K1; }"
+@pytest.mark.parametrize("target, fn", [
+    ("ps_1_4", "float4 PS(float2 uv : TEXCOORD0) : COLOR { return uv.x > 0.5 ? K0 : K1; }"),
+    # a per-component comparison is cmp on ps_1_3 (cnd there compares r0.a for all lanes)
+    ("ps_1_3", "float4 PS(float2 uv : TEXCOORD0) : COLOR { return uv.xxxx > 0.5 ? K0 : K1; }")])
+def test_select_is_cmp(backend, target, fn):
     text = asm(fn, target)
-    assert "cmp" in text, text
+    assert "cmp" in text and "cnd" not in text, text
     img = render(fn, target, backend)
     img[:, 4] = [0.5, 0.25, 0, 1]     # u = 0.5 exactly: d = 0 is a tie the interpolation decides
     each_pixel(img, lambda u, v: [0.5, 0.25, 0, 1] if u >= 0.5 else [0, 1, 0.5, 0.5], target, text)
+
+
+def texel(x: int, y: int) -> np.ndarray:
+    """The texel an odd pixel reads (at its centre, no tie): r = column/3, g = 1 - row/3."""
+    return TEXELS[y // 2, x // 2]
+
+
+def odd_pixels(img: np.ndarray, want, target: str, text: str) -> None:
+    for y in range(1, SIZE[1], 2):
+        for x in range(1, SIZE[0], 2):
+            expected = np.clip(np.asarray(want(texel(x, y)), np.float64), 0, 1)
+            assert np.allclose(img[y, x], expected, atol=TOL), (target, x, y, img[y, x], expected, text)
+
+
+K0_, K1_ = np.array([0.5, 0.25, 0.0, 1.0]), np.array([0.0, 1.0, 0.5, 0.5])
+
+# ps_1_1-1_3 order a one-channel comparison by cnd, whose condition is r0.a: a > b is
+# cnd on a - (b - 0.5), b - 0.5 the _bias modifier; against 0.5 itself the channel is moved
+# (or extracted by dp3) into r0.a
+CND_CASES = [
+    ("float4 c = tex2D(Checker, uv); return c.r > 0.5 ? K0 : c;",
+     lambda t: K0_ if t[0] > 0.5 else t),
+    ("float4 c = tex2D(Checker, uv); return c.g <= Scale ? c : K1;",      # Scale = 0.5
+     lambda t: t if t[1] <= 0.5 else K1_),
+    ("float4 c = tex2D(Checker, uv); return c.r >= col.r ? col : K1;",    # col.r = 0.5
+     lambda t: np.array(DIFFUSE) if t[0] >= 0.5 else K1_),
+    ("float4 c = tex2D(Checker, uv); return c.g < 0.25 ? K0 : K1;",
+     lambda t: K0_ if t[1] < 0.25 else K1_),
+    ("float4 c = tex2D(Checker, uv); return (c.r > c.b) * K0;",           # c.b = 0.5
+     lambda t: K0_ * (t[0] > t[2])),
+]
+
+
+@pytest.mark.parametrize("target", ["ps_1_1", "ps_1_3"])
+@pytest.mark.parametrize("case", range(len(CND_CASES)))
+def test_select_on_one_channel_is_cnd(backend, target, case):
+    body, want = CND_CASES[case]
+    fn = f"float4 PS(float2 uv : TEXCOORD0, float4 col : COLOR0) : COLOR {{ {body} }}"
+    text = asm(fn, target)
+    assert "cnd r0, r0.a," in text and "cmp" not in text, text
+    odd_pixels(render(fn, target, backend), want, target, text)
+
+
+def test_two_cnds_one_into_alpha_one_into_colour(backend):
+    # each condition goes through r0.a in turn; the .rgb cnd is not co-issued (a co-issued
+    # colour cnd returns its first choice on ps_1_1-1_3)
+    fn = """float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 c = tex2D(Checker, uv);
+    float4 o;
+    o.a = c.r > 0.5 ? 1 : 0;
+    o.rgb = c.g > 0.25 ? K0.rgb : K1.rgb;
+    return o;
+}"""
+    text = asm(fn, "ps_1_3")
+    assert text.count("cnd") == 2 and "+cnd" not in text, text
+    odd_pixels(render(fn, "ps_1_3", backend),
+               lambda t: list((K0_ if t[1] > 0.25 else K1_)[:3]) + [1.0 if t[0] > 0.5 else 0.0],
+               "ps_1_3", text)
 
 
 def test_ps14_dependent_read_in_phase_two(backend):
@@ -183,6 +244,24 @@ mul r0.rgb, r0, r1
 texld r0, t0
 mul_x2 r0, r0, v0
 """,
+    # a > b as cnd on a - b_bias (the DX9 docs' own ps_1_1 cnd example)
+    ("ps_1_1", """float4 PS(float4 a : COLOR0, float4 b : COLOR1) : COLOR
+{
+    return a.a > b.a ? K0 : K1;
+}"""): """ps_1_1
+add r0.a, v0, -v1_bias
+cnd r0, r0.a, c0, c1
+""",
+    # .b alone is read only into an .a write, as the condition is
+    ("ps_1_1", """float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    return tex2D(Checker, uv).b < 0.25 ? K0 : K1;
+}"""): """ps_1_1
+def c2, 0, 0, 0, 0.25
+tex t0
+add r0.a, c2, -t0_bias.b
+cnd r0, r0.a, c0, c1
+""",
     ("ps_1_1", """float4 PS(float2 uv : TEXCOORD0) : COLOR { return float4(uv, 0, 1); }"""): """ps_1_1
 def c0, 1, 1, 0, 1
 def c1, 0, 0, 0, 0
@@ -214,7 +293,10 @@ REFUSED = [
     ("ps_1_4", "return uv.x / uv.y;", 8, "ps_1_4 has no per-pixel division or sqrt (rcp)"),
     ("ps_1_1", "return pow(uv.x, uv.y);", 8, "ps_1_1 cannot compute pow of a non-constant exponent"),
     ("ps_1_1", "return uv.x + 2;", 8, "the literal 2 is outside [-1, 1], the range of ps_1_1 constants"),
-    ("ps_1_1", "return uv.x > 0.5 ? K0 : K1;", 8, "ps_1_1 has no comparison instruction (cmp needs ps_1_2)"),
+    ("ps_1_1", "return uv.x == 0.5 ? K0 : K1;", 8,
+     "ps_1_1 has no equality test (cnd orders values only; == and != need cmp, ps_1_2)"),
+    ("ps_1_1", "return uv.xyxy > 0.5 ? K0 : K1;", 8,
+     "ps_1_1's cnd compares r0.a, one value for every component; this comparison is per component"),
     ("ps_1_1", "return tex2D(Checker, uv * 0.5);", 8,
      "ps_1_1 has no texture read at computed coordinates (a dependent read needs ps_1_4"),
     ("ps_1_4", "return tex2D(Checker, tex2D(Checker, uv * 0.5).xy);", 8,

@@ -1,7 +1,8 @@
 """Value-level arithmetic for the target: conversions, operators, comparisons and selects.
 
 Each helper builds the DAG nodes the target has instructions for: a comparison is `cmp` on a
-difference in pixel shaders and `slt`/`sge` in vertex shaders; a select (the flattened `if`,
+difference in pixel shaders and `slt`/`sge` in vertex shaders, an ordering of one channel on
+ps_1_1-1_3 (every ordering on ps_1_1) is `cnd` (a > b: a - (b - 0.5) > 0.5); a select (the flattened `if`,
 `?:`) is `cmp` where the target has it, `lrp` where it has that, else `mad`; saturate is a
 `_sat` move, or min/max where the version has no `_sat` (vs_1_1, vs_2_0).
 """
@@ -190,6 +191,8 @@ class Arith:
     # -- comparisons and selects ------------------------------------------------------------
     def compare(self, opname: str, ca: list[Operand], cb: list[Operand], loc: Location) -> list[Operand]:
         """0/1 per component."""
+        if self._by_cnd(opname, ca):
+            return self.cnd_compare(opname, ca, cb, loc)
         if self.ctx.target.has("cmp"):
             # cmp d, a, b = d >= 0 ? a : b
             one, zero = [self.const(1.0)] * len(ca), [self.const(0.0)] * len(ca)
@@ -218,6 +221,25 @@ class Arith:
             return eq
         return self.lanes("add", [[self.const(1.0)] * len(eq), [c.neg() for c in eq]], loc)
 
+    def _by_cnd(self, opname: str, ca: list[Operand]) -> bool:
+        """ps_1_1-1_3 order a comparison by cnd (r0.a > 0.5): ps_1_1 has nothing else, and on
+        ps_1_2/1_3 a one-channel comparison is cheaper so than by cmp (two slots there)."""
+        rules = self.ctx.target.rules
+        return rules.is_ps11_13 and opname in ("<", ">", "<=", ">=") and (
+            not self.ctx.target.has("cmp") or len(ca) == 1)
+
+    def cnd_compare(self, opname: str, ca: list[Operand], cb: list[Operand], loc: Location) -> list[Operand]:
+        """a > b is (a - (b - 0.5)) > 0.5, cnd's own test (the DX9 docs' `sub r0, v0, v1_bias`
+        example); b - 0.5 folds to b_bias, and a comparison with 0.5 itself to cnd on a.
+        a <= b is the same cnd with 0 and 1 swapped; < and >= swap the operands."""
+        if opname in ("<", ">="):
+            ca, cb = cb, ca
+        half = [self.const(-0.5)] * len(cb)
+        d = self.lanes("add", [ca, [c.neg() for c in self.lanes("add", [cb, half], loc)]], loc)
+        one, zero = [self.const(1.0)] * len(ca), [self.const(0.0)] * len(ca)
+        t, f = (one, zero) if opname in (">", "<") else (zero, one)
+        return self.lanes("cnd", [d, t, f], loc)
+
     def select(self, cond: list[Operand], a: list[Operand], b: list[Operand], loc: Location) -> list[Operand]:
         """cond ? a : b per component, for 0/1 conditions."""
         out_a, out_b = list(a), list(b)
@@ -228,6 +250,16 @@ class Arith:
             return [x if v[0] else y for v, x, y in zip(consts, out_a, out_b)]  # type: ignore[index]
         if all(x.sig() == y.sig() for x, y in zip(out_a, out_b)):
             return out_a
+        node = cond[0].node
+        if node.op == "cnd" and all(c.node is node and not c.negate for c in cond):
+            # a condition made by cnd_compare is cnd(d, 1, 0) or cnd(d, 0, 1): select on d
+            t, f = node.args[1].const_values(), node.args[2].const_values()
+            lanes = [c.swizzle[0] for c in cond]
+            d = node.args[0].pick(tuple(lanes))
+            if t is not None and f is not None and all(t[i] == 1 and f[i] == 0 for i in lanes):
+                return split(self.op("cnd", [d, operand(self.g, out_a), operand(self.g, out_b)], loc))
+            if t is not None and f is not None and all(t[i] == 0 and f[i] == 1 for i in lanes):
+                return split(self.op("cnd", [d, operand(self.g, out_b), operand(self.g, out_a)], loc))
         if self.ctx.target.has("cmp"):
             # a condition made by compare() is cmp(d, 1, 0) or cmp(d, 0, 1): select on d
             node = cond[0].node

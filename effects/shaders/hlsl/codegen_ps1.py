@@ -7,7 +7,8 @@ The DAG (dag.py) is mapped onto the DX8 pixel pipeline (semantics.md §2):
 - a TEXCOORD read as a value is `texcoord t#` (clamped to [0, 1]: a located warning) or
   `texcrd r#.rgb, t#`; COLOR inputs are v0/v1; uniforms are c0–c7 and literals `def`
   constants, which must lie in [-1, 1] (the ps_1_x constant range);
-- add, mul, mad, lrp, dp3, dp4 (1_2+), cmp (1_2+) and mov, with the idioms of ps1_idioms.py
+- add, mul, mad, lrp, dp3, dp4 (1_2+), cmp (1_2+), cnd and mov (cnd's condition is r0.a
+  on ps_1_1-1_3: the condition is computed into r0.a, or moved there), with the idioms of ps1_idioms.py
   as source modifiers, result shifts and `_sat`; a scalar is held replicated in every lane (dp3
   writes it so), since ps_1_1–1_3 read no component but .a and .b alone (dp3 with a unit vector
   extracts one);
@@ -48,7 +49,14 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
         try:
             return self._generate(out_direct=True)
         except RegisterConflict:
+            pass
+        try:
             return self._generate(out_direct=False)
+        except RegisterConflict as clash:
+            # only cnd conditions are pinned then: two of them live at once
+            self.refuse(f"{self.v}'s cnd reads its condition from r0.a only, and two conditions "
+                        "are needed there at once", clash.location)
+            raise AssertionError from clash  # pragma: no cover
 
     def _generate(self, out_direct: bool) -> Generated:
         self.instrs: list[Ins] = []
@@ -73,6 +81,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
             nodes = reachable([c.node for c in comps])
             self.readers = readers_of(nodes, comps)
         self._analyse(nodes)
+        self.cnd_pins = self._conditions_into_r0(nodes)
         p1 = self._p1 = self._phase_one(nodes)
         self.out_home = Home(Reg("vr", self.temp(out.location, pin=0 if out_direct else None)))
         pending = self._coalesce_output(comps, out.location)
@@ -192,7 +201,10 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
             self.fail(REFUSED[op], n.location)
         home = self.home.get(n.id)
         if home is None:
-            home = Home(Reg("vr", self.temp(n.location)), n.width == 1, self.phase)
+            if n.id in self.cnd_pins:     # a cnd condition: r0.a only (so .b may be read)
+                home = Home(Reg("vr", self.temp(n.location, pin=0)), n.width == 1, self.phase, mask=(3,))
+            else:
+                home = Home(Reg("vr", self.temp(n.location)), n.width == 1, self.phase)
             self.home[n.id] = home
         if op == "pack":
             self.assemble_lanes(home, list(enumerate(n.args)), n.location)
@@ -209,6 +221,9 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
             op = "mov" if k is None else "mul"
         else:
             args = list(n.args)
+        if op == "cnd":
+            self._cnd(n, home, mask, shift, sat)
+            return
         if op in ("dp3", "dp4"):
             if op == "dp4" and not self.ctx.target.has("dp4"):
                 self.fail("dp4 (a 4-component dot product needs ps_1_2)", n.location)
@@ -224,6 +239,26 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
         if op == "add" and self.ps14:
             op, srcs = _sub_for_negated_constant(op, srcs)
         self.emit(Ins(op, home.reg, mask, srcs, n.location, shift, sat))
+
+    def _cnd(self, n: Node, home: Home, mask: tuple[int, ...], shift: int, sat: bool) -> None:
+        """ps_1_1-1_3: cnd d, r0.a, a, b -- the condition is r0.a, one value for all lanes
+        (semantics.md 2.4; the DX9 docs' cnd page); it is computed there or moved there."""
+        cond, mod = self.resolve(n.args[0])
+        if len(set(cond.swizzle)) != 1:
+            self.refuse(f"{self.v}'s cnd compares r0.a, one value for every component; this "
+                        "comparison is per component (compare one channel, or target ps_1_4)",
+                        n.location)
+        held = self.home.get(cond.node.id)
+        if held is not None and held.reg.kind == "vr" and self.precolor.get(held.reg.index) == 0 \
+                and cond.node.id in self.cnd_pins and not mod and not cond.negate:
+            test = Src(held.reg, 3)
+        else:
+            r0 = Reg("vr", self.temp(n.location, pin=0))
+            self.emit(Ins("mov", r0, (3,), [self.read(n.args[0], {3: 0}, n.location)], n.location))
+            test = Src(r0, 3)
+        need = {lane: (0 if n.width == 1 else lane) for lane in mask if n.width == 1 or lane < n.width}
+        srcs = [test] + [self.read(a, need, n.location) for a in n.args[1:]]
+        self.emit(Ins("cnd", home.reg, mask, srcs, n.location, shift, sat))
 
     def _scaled(self, n: Node) -> tuple[Operand, Operand | None, int] | None:
         """mul by a literal outside [-1, 1]: (y, the literal scaled into range or None, shift)."""
@@ -291,7 +326,8 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
         picked = set(comps.values())
         if len(picked) == 1:
             k = picked.pop()
-            if k in (2, 3) or self.ps14:
+            # ps_1_1-1_3 read .b alone only into an .a-only write
+            if k == 3 or (k == 2 and set(comps) == {3}) or self.ps14:
                 if across and k == 3:
                     self.refuse(f"{self.v} keeps only .rgb of a register across phase", loc)
                 return Src(home.reg, k, mod, neg)

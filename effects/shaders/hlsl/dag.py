@@ -97,7 +97,7 @@ LANE_KERNELS: dict[str, Callable[..., float]] = {
     "rsq": _safe(lambda a: math.inf if a == 0 else 1.0 / math.sqrt(abs(a))),
     "exp": _safe(lambda a: 2.0 ** a), "log": _safe(_log2),
     "pow": _safe(lambda a, b: abs(a) ** b),
-    "cmp": lambda a, b, c: b if a >= 0 else c, "lrp": lambda a, b, c: a * b + (1 - a) * c,
+    "cmp": lambda a, b, c: b if a >= 0 else c, "cnd": lambda a, b, c: b if a > 0.5 else c, "lrp": lambda a, b, c: a * b + (1 - a) * c,
     "sat": lambda a: min(max(a, 0.0), 1.0),
     "slt": lambda a, b: 1.0 if a < b else 0.0, "sge": lambda a, b: 1.0 if a >= b else 0.0,
 }
@@ -204,6 +204,6 @@ def _simplify(g: Graph, op: str, args: list[Operand], consts: list[Any]) -> Oper
             return args[1]
         if _all(consts[0], 0.0):
             return args[2]
-    if op == "cmp" and args[1].sig() == args[2].sig():
+    if op in ("cmp", "cnd") and args[1].sig() == args[2].sig():
         return args[1]
     return None

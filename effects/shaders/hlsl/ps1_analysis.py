@@ -21,7 +21,8 @@ REFUSED = {
     "nrm": "normalize (nrm)", "exp": "exp/exp2 (exp)", "log": "log/log2 (log)",
     "pow": "pow of a non-constant exponent", "frc": "frac/floor/fmod (frc)",
     "min": "min (or a clamp/comparison built on it)", "max": "max (or a clamp/comparison built on it)",
-    "abs": "abs", "slt": "comparison instruction (cmp needs ps_1_2)", "sge": "comparison instruction (cmp needs ps_1_2)",
+    "abs": "abs", "slt": "equality test (cnd orders values only; == and != need cmp, ps_1_2)",
+    "sge": "equality test (cnd orders values only; == and != need cmp, ps_1_2)",
     "dsx": "ddx", "dsy": "ddy", "crs": "cross (crs)", "sincos": "sin/cos", "dp2add": "dp2add",
     "texldp": "tex2Dproj", "texldb": "tex2Dbias", "texldl": "tex2Dlod", "texldd": "tex2Dgrad",
 }
@@ -79,6 +80,27 @@ class Ps1Analysis:
                 self.s.shift[self.resolve(y)[0].node.id] = shift
                 return True
         return False
+
+    def _conditions_into_r0(self, nodes: list[Node]) -> set[int]:
+        """ps_1_1-1_3: the cnd conditions computed straight into r0 (read there as r0.a): an
+        arithmetic value only that cnd reads, whose alpha lane holds it (a scalar, replicated,
+        or the .a of a 4-vector)."""
+        pins: set[int] = set()
+        if not self.rules.is_ps11_13:
+            return pins
+        for n in nodes:
+            if n.op != "cnd":
+                continue
+            cond, mod = self.resolve(n.args[0])
+            c = cond.node
+            if mod or cond.negate or not self._emitted(c) or c.op == "pack" or c.id in pins:
+                continue
+            if not (c.width == 1 or (c.width == 4 and set(cond.swizzle) == {3})):
+                continue
+            if c.op in ("dp3", "dp4") or self._readers_through_aliases(c) != [n]:
+                continue
+            pins.add(c.id)
+        return pins
 
     def _live(self, comps: list[Operand]) -> set[int]:
         """The nodes the result reads once modifiers are folded (an idiom's own mul or add

@@ -21,6 +21,10 @@ _SHIFT_TEXT = {1: "_x2", 2: "_x4", 3: "_x8", -1: "_d2", -2: "_d4", -3: "_d8"}
 class RegisterConflict(Exception):
     """Two values pinned to one register are live at once (retried with r0 written last)."""
 
+    def __init__(self, location: Location = UNKNOWN_LOCATION) -> None:
+        super().__init__()
+        self.location = location
+
 
 @dataclass
 class Src:
@@ -84,7 +88,7 @@ class Ps1Emit:
         for vr in order:
             if vr in self.precolor:
                 if clash(vr, self.precolor[vr]):
-                    raise RegisterConflict()
+                    raise RegisterConflict(self.vr_loc.get(vr, UNKNOWN_LOCATION))
                 alloc[vr] = self.precolor[vr]
                 continue
             phys = next((p for p in range(count) if not clash(vr, p)), None)
@@ -102,7 +106,7 @@ class Ps1Emit:
         for ins in self.instrs:
             masks = {tuple(ins.mask), tuple(prev.mask)} if prev is not None else set()
             if prev is not None and not ins.texture and not prev.texture and not prev.coissue \
-                    and masks == {(3,), (0, 1, 2)} \
+                    and masks == {(3,), (0, 1, 2)} and not _cnd_coissued_on_colour(ins, self.rules) \
                     and all(s.reg != prev.dst for s in ins.srcs) \
                     and all(s.reg != ins.dst for s in prev.srcs):
                 ins.coissue = True
@@ -128,6 +132,11 @@ class Ps1Emit:
                      if n in self.used_uniforms}
         return Generated(lines, locs, constants, dict(self.samplers),
                          {r: tuple(0.0 if v is None else v for v in vals) for r, vals in self.defs.items()})
+
+
+def _cnd_coissued_on_colour(ins: Ins, rules: Any) -> bool:
+    # a co-issued cnd writing .rgb in ps_1_1-1_3 always returns its first choice (semantics.md 2.4)
+    return rules.is_ps11_13 and ins.opcode == "cnd" and tuple(ins.mask) != (3,)
 
 
 def _no_op(ins: Ins, alloc: dict[int, int]) -> bool:
