@@ -6,7 +6,9 @@ initialiser is one, is evaluated when the pass is lowered, from the parameters' 
 by the HLSL evaluator (`effects.shaders.hlsl.preshader`). Lowering reads the parameters through
 its `RecordedReads` view, so the lowering cache holds the program only while the parameters the
 expression read keep their values: a `set` of one lowers (and so evaluates) again on the next
-frame. Validation leaves these states unknown, as it does an unset parameter.
+frame. Validation leaves these states unknown, as it does an unset parameter, except a shader
+picked from an array of shaders (`PixelShader = (PSArray[ShaderIndex])`): lowering draws, and
+validation judges, the element the current values pick (`shader_element`).
 """
 from __future__ import annotations
 
@@ -18,7 +20,7 @@ import numpy as np
 from effects.device import DeviceState
 from effects.errors import EffectError
 from effects.model import Effect, Expression, ParamRef, StateAssignment
-from effects.shaders.hlsl.preshader import state_numbers
+from effects.shaders.hlsl.preshader import shader_element, state_numbers
 from effects.states import lookup_state
 
 
@@ -61,6 +63,10 @@ def _expression_of(effect: Effect, value: Any) -> Expression | None:
 
 def _evaluated(effect: Effect, assignment: StateAssignment, expression: Expression
                ) -> StateAssignment:
+    if assignment.name in ("VertexShader", "PixelShader"):
+        element = shader_element(effect, expression.text, expression.location)
+        if element is not None:            # `(PSArray[ShaderIndex])`: the element it picks
+            return replace(assignment, value=element)
     numbers = state_numbers(expression.text, expression.location, effect)
     need = _SIZES.get(getattr(lookup_state(assignment.name), "type", ""))
     if need is not None and numbers.size not in need:

@@ -51,7 +51,7 @@ from typing import Any, Callable, Iterable
 
 from effects.caps import FIELDS, CapsProfile, Quirk, bit_prefix
 from effects.device import DeviceState, pass_states
-from effects.errors import Location
+from effects.errors import EffectError, Location
 from effects.frontend.references import pass_reference_problems
 from effects.model import Effect, EnumValue, Expression, NullValue, ParamRef, Pass, Technique
 from effects.validate.framebuffer import FrameBufferChecks
@@ -246,6 +246,20 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
         if a is None:
             return None
         value = self.state.resolve(a.value)
+        if isinstance(value, Expression):
+            # `(PSArray[ShaderIndex])`: judged as the shader the parameters pick now, as
+            # D3DX's ValidateTechnique runs the preshader with the current values
+            from effects.shaders.hlsl.preshader import shader_element   # lark: when needed
+            try:
+                element = shader_element(self.effect, value.text, value.location)
+            except EffectError as err:
+                self.fail(err.location, name, "a shader the parameters pick", "no shader",
+                          err.message)
+                return None
+            if element is not None:
+                self.note(f"{name} = {value.text.strip()}: {element.name}[{element.index}] at "
+                          f"the parameters' current values is checked")
+                value = self.state.resolve(element)
         if isinstance(value, (NullValue, type(None))):
             return None
         if isinstance(value, (ParamRef, Expression)):

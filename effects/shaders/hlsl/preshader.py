@@ -13,8 +13,8 @@ import re
 
 import numpy as np
 
-from effects.errors import Location
-from effects.model import Effect
+from effects.errors import EffectError, Location
+from effects.model import Effect, ParamRef
 from effects.shaders.hlsl.parse import Origin, parse
 
 # `<Light>` / `<Lights[2]>`: the effect syntax for a parameter reference inside an expression.
@@ -54,3 +54,32 @@ def state_numbers(text: str, location: Location, effect: Effect) -> np.ndarray:
         raise Origin(location, text).error(
             f"X3013: '{text.strip()}' does not evaluate to finite numbers ({numbers})", location)
     return np.asarray(numbers, dtype=np.float64)
+
+
+# `PixelShader = (PSArray[ShaderIndex]);`: one element of an array of shaders, picked by an
+# expression of the parameters (D3DX's preshader selects the shader when the pass begins).
+_SHADER_ELEMENT = re.compile(r"^\s*\(?\s*([A-Za-z_]\w*)\s*\[(.+)\]\s*\)?\s*$", re.DOTALL)
+_SHADER_TYPES = ("vertexshader", "pixelshader")
+
+
+def shader_element(effect: Effect, text: str, location: Location) -> ParamRef | None:
+    """The element of a shader-array parameter that `text` (`(PSArray[ShaderIndex])`) picks at
+    the parameters' current values, as a reference to it; None when `text` is not an index
+    into an array of shaders. The index truncates to an int, as HLSL converts; one past the
+    array is a located error naming the value."""
+    m = _SHADER_ELEMENT.match(text)
+    if m is None:
+        return None
+    param = effect.parameter(m.group(1))
+    if param is None or not param.array or param.type.base not in _SHADER_TYPES:
+        return None
+    numbers = state_numbers(m.group(2), location, effect)
+    count = len(param.value) if isinstance(param.value, (list, tuple)) else 0
+    if numbers.size != 1:
+        raise EffectError(f"X3017: the index of {param.name} in '{text.strip()}' has "
+                          f"{numbers.size} components, it takes one", location)
+    index = int(numbers[0])
+    if not 0 <= index < count:
+        raise EffectError(f"'{text.strip()}' picks {param.name}[{index}] at the parameters' "
+                          f"current values; {param.name} holds {count} shaders", location)
+    return ParamRef(param.name, index=index, location=location)
