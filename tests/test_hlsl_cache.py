@@ -162,3 +162,27 @@ def test_the_bound_counts_what_an_entry_holds():
                                 "return float4(tint(tint(tint(v.c.rgb) * v.c.a).bgr), 1)"))
     assert cache.entry_bytes(big) > cache.entry_bytes(small) > 4096
     assert cache.CACHE.bytes == cache.entry_bytes(small) + cache.entry_bytes(big)
+
+
+def test_the_key_is_kept_per_effect_and_follows_parameter_changes():
+    """compile_key is kept per effect and compile state (validation asks once per card); a
+    kept key is what a fresh walk gives, even after a parameter it reached changed in place
+    (a runtime sets values and texture types), and a recording view sees the same reads."""
+    import numpy as np
+    from effects.model import RecordedReads
+    fx = effects.load_effect(BASE)
+    value = pixel_shader(fx)
+    first = cache.compile_key(fx, value)
+    assert cache.compile_key(fx, value) is first                 # kept
+    assert cache._compile_key(fx, value, []) == first             # what a fresh walk gives
+    fx.parameter("Gain").value = np.array(3.0, dtype=np.float32)  # a static global: in the key
+    changed = cache.compile_key(fx, value)
+    assert changed != first and changed == cache._compile_key(fx, value, [])
+    fx.parameter("Scale").value = np.array(9.0, dtype=np.float32)  # a uniform: not in the key
+    assert cache.compile_key(fx, value) is changed
+    fresh_reads, kept_reads = RecordedReads(fx), RecordedReads(fx)
+    cache._compile_key(fresh_reads, value, [])
+    assert cache.compile_key(kept_reads, value) == changed
+    assert kept_reads.snapshot() == fresh_reads.snapshot()
+    other = effects.load_effect(BASE.replace("* Gain", "* Gain * 2"))   # another effect
+    assert cache.compile_key(other, pixel_shader(other)) != changed

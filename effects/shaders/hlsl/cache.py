@@ -29,7 +29,7 @@ from typing import Any, Callable
 
 from effects.errors import EffectError
 from effects.lru import ByteLRU
-from effects.model import CompileShader
+from effects.model import CompileShader, RecordedReads
 from effects.shaders.hlsl.context import load_context
 
 CACHE_BYTES = 64 << 20
@@ -56,15 +56,20 @@ def _names(text: str) -> frozenset[str]:
     return frozenset(_IDENTIFIER.findall(text))
 
 
+@lru_cache(maxsize=None)
+def _field_names(cls: type) -> tuple[str, ...]:
+    return tuple(f.name for f in dataclasses.fields(cls))
+
+
 def _declaration(obj: Any, value: bool) -> tuple:
     """A model object (Function, Struct, Parameter) as the compiler reads it: every field,
     so a field added to the model later is in the key too; a parameter's annotations never
     matter and its value only when `value` (a static global's initialiser)."""
     out: list[Any] = [type(obj).__name__]
-    for f in dataclasses.fields(obj):
-        v = getattr(obj, f.name)
-        if f.name == "annotations" or (f.name == "value" and not value):
+    for name in _field_names(type(obj)):
+        if name == "annotations" or (name == "value" and not value):
             continue
+        v = getattr(obj, name)
         if hasattr(v, "tobytes") and hasattr(v, "dtype"):
             v = ("array", v.dtype.str, v.shape, v.tobytes())
         else:
@@ -79,7 +84,62 @@ def _declaration(obj: Any, value: bool) -> tuple:
 def compile_key(effect: Any, value: CompileShader) -> tuple:
     """What the compile of `value` in `effect` depends on (see the module docstring).
     Parameters are looked up through `effect.parameter`, so a recording view (lowering's)
-    learns which globals the shader depends on."""
+    learns which globals the shader depends on.
+
+    Kept per effect and compile state (validation asks once per card, the same question): a
+    kept key is used again while the effect's path, function and struct lists are the ones it
+    was made from and every name its walk looked up finds the same parameter with the same
+    declaration; the lookups are made again, so a recording view records the same reads."""
+    base = effect.effect if isinstance(effect, RecordedReads) else effect
+    memo = base.__dict__.setdefault(_MEMO, {})
+    held = memo.get(value)
+    if held is not None and held.holds(effect):
+        return held.key
+    seen: list[tuple[str, Any, tuple | None]] = []
+    key = _compile_key(effect, value, seen)
+    if len(memo) >= _MEMO_SIZE:     # a viewer editing: keep a few
+        memo.clear()
+    memo[value] = _KeptKey(effect, seen, key)
+    return key
+
+
+_MEMO = "_compile_keys"   # the attribute compile_key keeps on an effect: {CompileShader: _KeptKey}
+_MEMO_SIZE = 1024
+
+
+class _KeptKey:
+    """A compile key with what it was made from: the effect's path, function and struct lists,
+    and every parameter lookup of the walk (name, what it found, its part of the key)."""
+
+    __slots__ = ("path", "functions", "structs", "counts", "seen", "key")
+
+    def __init__(self, effect: Any, seen: list, key: tuple) -> None:
+        self.path, self.functions, self.structs = effect.path, effect.functions, effect.structs
+        self.counts = (len(effect.functions), len(effect.structs))
+        self.seen, self.key = seen, key
+
+    def holds(self, effect: Any) -> bool:
+        # Functions and structs are made by the loader and not edited in place (an edit is a
+        # reload, a new effect): the same lists of the same length hold the same declarations.
+        # Parameters are (a runtime sets values and texture types): each is checked again.
+        if effect.path != self.path or effect.functions is not self.functions \
+                or effect.structs is not self.structs \
+                or (len(self.functions), len(self.structs)) != self.counts:
+            return False
+        for name, param, part in self.seen:
+            now = effect.parameter(name)
+            if now is not param or (now is not None and _parameter_part(now) != part):
+                return False
+        return True
+
+
+def _parameter_part(param: Any) -> tuple:
+    """A parameter as the key holds it (a static global with its value)."""
+    return _declaration(param, value="static" in param.storage)
+
+
+def _compile_key(effect: Any, value: CompileShader, seen: list) -> tuple:
+    """The key, walking from the entry; every parameter lookup is appended to `seen`."""
     functions: dict[str, list[Any]] = {}
     for f in effect.functions:
         functions.setdefault(f.name, []).append(f)
@@ -87,22 +147,24 @@ def compile_key(effect: Any, value: CompileShader) -> tuple:
     for s in effect.structs:
         structs.setdefault(s.name, []).append(s)
     parts: list[tuple] = []
-    seen: set[str] = set()
+    done: set[str] = set()
     todo = [value.function]
     for arg in value.args:
         todo.extend(_names(arg))
     while todo:
         name = todo.pop()
-        if name in seen:
+        if name in done:
             continue
-        seen.add(name)
+        done.add(name)
         for obj in functions.get(name, []) + structs.get(name, []):
             parts.append(_declaration(obj, value=False))
             todo.extend(_names(obj.source))
         param = effect.parameter(name)
+        part = None if param is None else _parameter_part(param)
+        seen.append((name, param, part))
         if param is not None:
             static = "static" in param.storage
-            parts.append(_declaration(param, value=static))
+            parts.append(part)
             if param.type.struct:
                 todo.append(param.type.base)
             text = getattr(param.value, "text", None)
