@@ -379,3 +379,86 @@ def test_sdk9_hlsl_dx8_builds_match_the_dx9_one_but_for_the_highlight():
     highlight = extra > 24
     assert 20 < highlight.sum() < 0.2 * sphere.sum()       # a highlight, not everywhere
     assert extra.max() > 60
+
+
+# -- one sampler read at two texture coordinates -------------------------------------------------
+
+# TEXCOORD0 = uv of the quad, TEXCOORD1 = uv mirrored left to right (u' = 1 - u): inline
+# clip-space vertices, top-left first, as the quad's
+MIRRORED = {"size": list(SIZE), "mesh": {"primitive": "strip", "vertices": [
+    {"position": [x, y, 0.5], "diffuse": list(DIFFUSE), "tex0": [u, v], "tex1": [1 - u, v]}
+    for (x, y), (u, v) in (((-1, 1), (0, 0)), ((1, 1), (1, 0)), ((-1, -1), (0, 1)), ((1, -1), (1, 1)))]}}
+# the texture of TEXELS with an alpha that grows by column: (column + 1) / 4
+ALPHA_TEXELS = TEXELS.copy()
+ALPHA_TEXELS[..., 3] = (np.arange(4)[None, :] + 1) / 4
+TWO_READS = "float4 PS(float2 uv : TEXCOORD0, float2 uv2 : TEXCOORD1) : COLOR\n{{\n{}\n}}"
+
+
+def two_reads(body: str) -> str:
+    return TWO_READS.format("    float4 a = tex2D(Checker, uv);\n    float4 b = tex2D(Checker, uv2);\n"
+                            f"    {body}")
+
+
+@pytest.mark.parametrize("body, want", [
+    ("return (a + b) * 0.5;", lambda a, b: (a + b) / 2),
+    ("return a.a * b;", lambda a, b: a[3] * b),
+    ("return float4(b.rgb, a.a);", lambda a, b: np.append(b[:3], a[3])),
+])
+def test_ps14_reads_one_sampler_at_two_coordinates_one_per_phase(backend, body, want):
+    # texld r# samples stage # at any coordinates: the first read in phase 1, carried out of
+    # r0 (.rgb, and .a replicated in another register's .rgb), the second in phase 2
+    fn = two_reads(body)
+    text = asm(fn, "ps_1_4")
+    assert text.count("texld r0, t") == 2 and "phase" in text, text
+    fx = effect_for(fn, "ps_1_4")
+    img = effects.render(fx, CARD["ps_1_4"], technique="T", backend=backend, scene=MIRRORED,
+                         params={"T": make_texture(ALPHA_TEXELS, mips=False)}).astype(np.float64) / 255
+    for y in range(1, SIZE[1], 2):
+        for x in range(1, SIZE[0], 2):
+            a, b = ALPHA_TEXELS[y // 2, x // 2], ALPHA_TEXELS[y // 2, 3 - x // 2]
+            assert np.allclose(img[y, x], want(a, b), atol=TOL), (x, y, img[y, x], want(a, b), text)
+
+
+def test_ps14_two_reads_golden():
+    assert asm(two_reads("return a + b;"), "ps_1_4") == """ps_1_4
+texld r0, t0
+mov r1.rgb, r0
+mov r2.rgb, r0.a
+phase
+texld r0, t1
+mov r1.a, r2.b
+add r0, r1, r0
+"""
+
+
+FIRST_READ_LINE = PARAMS.count("\n") + 4    # `float4 a = tex2D(Checker, uv);` in the effect
+
+
+@pytest.mark.parametrize("target", ["ps_1_1", "ps_1_3"])
+def test_one_sampler_at_two_coordinates_is_refused_naming_both_reads(target):
+    with pytest.raises(EffectError) as info:
+        compile_shader(effect_for(two_reads("return a + b;"), target), "PS", target)
+    err = info.value
+    assert err.message == (
+        "X4532: cannot map expression to pixel shader instruction set: sampler 'Checker' is read "
+        f"at TEXCOORD0 (line {FIRST_READ_LINE}) and at TEXCOORD1 (line {FIRST_READ_LINE + 1}); "
+        f"{target} samples stage # at TEXCOORD# (tex t#), and a sampler is one stage")
+    assert (err.location.line, err.location.column) == (FIRST_READ_LINE + 1, 16)   # the second tex2D
+
+
+def test_two_samplers_at_one_texcoord_are_refused_on_ps11():
+    fn = TWO_READS.format("    return tex2D(Checker, uv) + tex2D(Other, uv);")
+    fx = effects.load_effect(f"{PARAMS}\nsampler2D Other = sampler_state {{ Texture = <T>; }};\n{fn}\n"
+                             "technique T { pass P { PixelShader = compile ps_1_1 PS(); } }\n")
+    with pytest.raises(EffectError, match="samplers 'Checker' and 'Other' are both read at TEXCOORD0; "
+                       "ps_1_1 samples stage 0, one sampler, at TEXCOORD0") as info:
+        compile_shader(fx, "PS", "ps_1_1")
+    assert info.value.location.line == PARAMS.count("\n") + 5
+
+
+def test_ps14_a_third_read_of_one_sampler_is_refused_at_it():
+    fn = two_reads("return a + b + tex2D(Checker, uv * 0.5);")
+    with pytest.raises(EffectError, match="sampler 'Checker' is read at 3 coordinates; ps_1_4 samples "
+                       "a stage once in each of its two phases") as info:
+        compile_shader(effect_for(fn, "ps_1_4"), "PS", "ps_1_4")
+    assert info.value.location.line == FIRST_READ_LINE + 2

@@ -3,7 +3,9 @@
 The DAG (dag.py) is mapped onto the DX8 pixel pipeline (semantics.md §2):
 - texture reads come first: `tex t#` samples stage # at TEXCOORD# (ps_1_1–1_3); `texld r#, t#`
   samples stage # into r# (ps_1_4), and a read at computed coordinates is a phase-2
-  `texld r#, r#` after `phase` (one level of dependent read, the only one ps_1_4 has);
+  `texld r#, r#` after `phase` (one level of dependent read, the only one ps_1_4 has); one
+  sampler read at two coordinates is refused on ps_1_1-1_3 (a sampler is one stage, and stage #
+  reads TEXCOORD#) and on ps_1_4 is one read per phase (the first carried across `phase`);
 - a TEXCOORD read as a value is `texcoord t#` (clamped to [0, 1]: a located warning) or
   `texcrd r#.rgb, t#`; COLOR inputs are v0/v1; uniforms are c0–c7 and literals `def`
   constants, which must lie in [-1, 1] (the ps_1_x constant range);
@@ -66,6 +68,8 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
         self.vr_loc: dict[int, Location] = {}
         self.next_vr = 0
         self.samplers: dict[str, int] = {}
+        self.sampled: set[tuple[str, int]] = set()     # (sampler, phase) read
+        self.carried_alpha: dict[int, Reg] = {}         # phase-1 read -> its .a across phase
         self.used_uniforms: set[str] = set()
         self.extracted: dict[tuple[int, int], Home] = {}
         self.phase = 2
@@ -83,6 +87,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
         self._analyse(nodes)
         self.cnd_pins = self._conditions_into_r0(nodes)
         p1 = self._p1 = self._phase_one(nodes)
+        carried = self._reads_of_one_sampler(nodes, p1)
         self.out_home = Home(Reg("vr", self.temp(out.location, pin=0 if out_direct else None)))
         pending = self._coalesce_output(comps, out.location)
         live = self._live(comps)
@@ -92,6 +97,9 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
         if p1:
             self.phase = 1
             self._textures([n for n in tex if n.id in p1], {k: w for k, w in values.items() if w == 1})
+            for n in tex:
+                if n.id in carried:
+                    self._carry_out_of_stage(n)
             for n in arith:
                 if n.id in p1:
                     self.compute(n)
@@ -168,8 +176,8 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
             ins = Ins("tex", dst, FULL, [], n.location, texture=True)
         else:
             taken = set(self.samplers.values()) | {s for s in self.explicit_samplers.values()}
-            stage = explicit if explicit is not None else next(
-                (k for k in range(6) if k not in taken), 6)
+            stage = self.samplers.get(name, explicit if explicit is not None else next(
+                (k for k in range(6) if k not in taken), 6))
             if stage > 5:
                 self.refuse(f"{self.v} has 6 texture stages; this is the 7th texture read", n.location)
             dst = Reg("vr", self.temp(n.location, pin=stage))
@@ -186,13 +194,37 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
         if explicit is not None and explicit != stage:
             self.refuse(f"sampler '{name}' is bound to s{explicit}, but {self.v} samples it at "
                         f"stage {stage}", n.location)
-        if self.samplers.get(name, stage) != stage or any(
-                s == stage and k != name for k, s in self.samplers.items()):
-            self.refuse(f"sampler '{name}' is read at two texture stages; each {self.v} stage has "
-                        "one sampler (use one coordinate per sampler)", n.location)
+        other = next((k for k, s in self.samplers.items() if s == stage and k != name), None)
+        if other is not None:
+            self.refuse(f"samplers '{other}' and '{name}' are both read at TEXCOORD{stage}; "
+                        f"{self.v} samples stage {stage}, one sampler, at TEXCOORD{stage}",
+                        n.location)
+        if (name, self.phase) in self.sampled:     # planned out by _reads_of_one_sampler
+            raise HlslError(f"internal: '{name}' sampled twice in phase {self.phase}", n.location)
+        self.sampled.add((name, self.phase))
         self.samplers[name] = stage
         self.instrs.append(ins)
         self.home[n.id] = Home(dst, phase=self.phase)
+
+    def _carry_out_of_stage(self, n: Node) -> None:
+        """ps_1_4: a phase-1 read of a sampler read again in phase 2 leaves r<stage> (which the
+        second texld writes) for other registers: its .rgb in one, its .a replicated in the .rgb
+        of another (only .rgb crosses the phase, semantics.md 2.6); each move is left out if
+        phase 2 does not read it."""
+        stage = self.home[n.id].reg
+        rgb, alpha = self.temp(n.location), self.temp(n.location)
+        self.emit(Ins("mov", Reg("vr", rgb), (0, 1, 2), [Src(stage)], n.location, optional=True))
+        self.emit(Ins("mov", Reg("vr", alpha), (0, 1, 2), [Src(stage, 3)], n.location, optional=True))
+        self.home[n.id] = Home(Reg("vr", rgb), phase=1)
+        self.carried_alpha[n.id] = Reg("vr", alpha)
+
+    def _rejoin(self, node: Node, loc: Location) -> Home:
+        """Phase 2: a carried read whole again (.rgb and its .a from where they crossed)."""
+        whole = Reg("vr", self.temp(loc))
+        self.emit(Ins("mov", whole, (0, 1, 2), [Src(self.home[node.id].reg)], loc))
+        self.emit(Ins("mov", whole, (3,), [Src(self.carried_alpha.pop(node.id), 2)], loc))
+        self.home[node.id] = Home(whole, phase=2)
+        return self.home[node.id]
 
     # -- arithmetic -----------------------------------------------------------------------------
     def compute(self, n: Node) -> None:
@@ -316,6 +348,10 @@ class Ps1CodeGen(Ps1Analysis, Ps1Emit):
         if any(c >= home.lanes for c in comps.values()) and not home.scalar:
             self.refuse(f"{self.v}'s texcrd gives a texture coordinate's .xyz only; .w is not read", loc)
         across = self.ps14 and home.phase == 1 and self.phase == 2
+        if across and node.id in self.carried_alpha and 3 in comps.values():
+            if set(comps.values()) == {3}:
+                return Src(self.carried_alpha[node.id], 2, mod, neg)
+            home, across = self._rejoin(node, loc), False
         if home.scalar:
             return Src(home.reg, 2 if across and 3 in comps else None, mod, neg)
         if all(lane == c for lane, c in comps.items()):

@@ -197,6 +197,46 @@ class Ps1Analysis:
                     stack.extend(a.node for a in m.args)
         return p1
 
+    def _reads_of_one_sampler(self, nodes: list[Node], p1: set[int]) -> set[int]:
+        """A sampler read at two coordinates. ps_1_1-1_3 cannot: `tex t#` samples stage # at
+        TEXCOORD#, and a sampler is one stage. ps_1_4 can, once per phase: `texld r#` samples
+        stage # whatever its coordinates, so one read (at a TEXCOORD) goes to phase 1 -- added
+        to p1 -- and the other to phase 2. Returns the phase-1 reads to carry out of r<stage>."""
+        by: dict[str, list[Node]] = {}
+        for n in nodes:
+            if n.op == "tex":
+                by.setdefault(n.key[0], []).append(n)
+        carried: set[int] = set()
+        for name, reads in by.items():
+            if len(reads) < 2:
+                continue
+            first, second = reads[0], reads[1]
+            where = (f"sampler '{name}' is read at {self._coord_text(first)} (line "
+                     f"{first.location.line}) and at {self._coord_text(second)} (line "
+                     f"{second.location.line})")
+            if not self.ps14:
+                self.refuse(f"{where}; {self.v} samples stage # at TEXCOORD# (tex t#), and a "
+                            "sampler is one stage", second.location)
+            if len(reads) > 2:
+                self.refuse(f"sampler '{name}' is read at {len(reads)} coordinates; {self.v} "
+                            "samples a stage once in each of its two phases", reads[2].location)
+            plain = [r for r in reads if self.resolve(r.args[0])[0].node.op == "input"]
+            early = [r for r in reads if r.id in p1]
+            if len(early) == 2 or not plain:
+                self.refuse(f"{where}; {self.v} samples a stage once per phase, and "
+                            + ("both reads are needed before the dependent read" if early else
+                               "both are dependent reads (phase 2)"), second.location)
+            one = early[0] if early else plain[0]
+            p1.add(one.id)
+            carried.add(one.id)
+        return carried
+
+    def _coord_text(self, n: Node) -> str:
+        coord = self.resolve(n.args[0])[0].node
+        if coord.op == "input" and coord.key[1].startswith("t"):
+            return f"TEXCOORD{coord.key[1][1:]}"
+        return "computed coordinates"
+
     def _inputs_read_as_values(self, arith: list[Node], comps: list[Operand]) -> dict[str, int]:
         """t# inputs read by arithmetic: register -> first phase that reads them."""
         found: dict[str, int] = {}

@@ -45,6 +45,7 @@ class Ins:
     sat: bool = False
     texture: bool = False
     coissue: bool = False
+    optional: bool = False         # left out when nothing reads its result
 
 
 @dataclass
@@ -115,6 +116,9 @@ class Ps1Emit:
             prev = ins
 
     def _text(self) -> Generated:
+        read = {s.reg.index for ins in self.instrs for s in ins.srcs if s.reg.kind == "vr"}
+        self.instrs = [ins for ins in self.instrs if not ins.optional or
+                       (ins.dst is not None and ins.dst.index in read)]
         self._pair()
         alloc = self._allocate()
         lines = [self.v]
@@ -123,9 +127,14 @@ class Ps1Emit:
             vals = [0.0 if v is None else v for v in self.defs[reg]]
             lines.append(f"def c{reg}, " + ", ".join(_num(v) for v in vals))
             locs.append(UNKNOWN_LOCATION)
+        dropped = False
         for ins in self.instrs:
             if _no_op(ins, alloc):
+                dropped = True
                 continue
+            if dropped and ins.coissue:
+                ins.coissue = False         # its pair was the no-op left out: alone now
+            dropped = False
             lines.append(_ins_text(ins, alloc))
             locs.append(ins.loc)
         constants = {n: (self.const_regs[n], self.sizes.get(n, 1)) for n in self.const_regs
