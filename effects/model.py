@@ -218,12 +218,28 @@ class Parameter:
     # those for arrays of objects, or None when uninitialised
     value: Any = None
     location: Location = _loc()
+    # `: register(c4)` / `: register(ps, c1)` bindings as (profile, register), lower-case:
+    # profile '' for every shader, else 'vs' / 'ps' or a target such as 'ps_2_0'
+    registers: tuple[tuple[str, str], ...] = ()
+
+    def register_for(self, target: str, kind: str) -> str | None:
+        """The register of kind `kind` ('c', 's', 'i', 'b') this parameter is bound to in a
+        shader compiled for `target` ('ps_2_0'): a binding naming that target wins over one
+        naming its stage ('ps'), which wins over an unqualified one; None when unbound."""
+        rank = {target.lower(): 0, target[:2].lower(): 1, "": 2}
+        best = None
+        for profile, register in self.registers:
+            if profile in rank and register[:1] == kind and register[1:].isdigit() and \
+                    (best is None or rank[profile] < best[0]):
+                best = (rank[profile], register)
+        return None if best is None else best[1]
 
     def __eq__(self, other: object) -> bool:
         return (isinstance(other, Parameter) and self.name == other.name
                 and self.type == other.type and self.storage == other.storage
                 and self.array == other.array and self.semantic == other.semantic
                 and self.annotations == other.annotations
+                and self.registers == other.registers
                 and values_equal(self.value, other.value))
 
     def annotation(self, name: str) -> Annotation | None:

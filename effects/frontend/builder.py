@@ -154,7 +154,7 @@ class Builder:
             storage += ("row_major",)     # the pragma's default, made explicit
         return Parameter(name, spec, storage, dims,
                          _semantic(raw.semantic), self.annotations(raw.annotations), value,
-                         self.loc(raw.name))
+                         self.loc(raw.name), _registers(raw.semantic))
 
     def dims(self, raws: list, spec: TypeSpec, value: V | None, name: str) -> tuple[int, ...]:
         """Array sizes: `[4]`; `[N]` with N a constant parameter declared before (a macro is
@@ -579,6 +579,18 @@ class Builder:
             return EnumValue(tuple(str(x).upper() for x in raw), None, self.loc(v))
         return raw
 
+
+
+def _registers(semantics: list[str]) -> tuple[tuple[str, str], ...]:
+    """Every `register(...)` binding, as (profile, register): `register(c4)` is ('', 'c4'),
+    `register(ps, c1)` ('ps', 'c1'); lower-case, in the order written (HLSL allows several:
+    `: register(vs, c0) : register(ps, c1)`)."""
+    found = []
+    for s in semantics or ():
+        if s.lower().startswith("register("):
+            parts = [p.strip().lower() for p in s[len("register("):-1].split(",")]
+            found.append(("", parts[0]) if len(parts) == 1 else (parts[0], parts[1]))
+    return tuple(found)
 
 
 def _semantic(semantics: list[str]) -> str | None:

@@ -167,6 +167,8 @@ class Shapes(Transformer):
     def initializer(self, c): return c[1]
     def semantic(self, c): return c[1].value
     def register_semantic(self, c): return f"{c[1].value}({c[3].value})"
+    # `: register(vs, c0)`: a binding for one profile (a target such as ps_2_0, or vs / ps)
+    def register_profile_semantic(self, c): return f"{c[1].value}({c[3].value}, {c[5].value})"
     def semantics(self, c): return c
     def storage(self, c): return c
     def dims(self, c): return c

@@ -157,12 +157,7 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
 
 def _explicit(ctx: Context, name: str, kind: str) -> str | None:
     p = ctx.effect.parameter(name)
-    if p is None or not p.semantic:
-        return None
-    m = re.match(r"(?i)^register\(\s*([a-z]+)(\d+)\s*\)$", p.semantic.strip())
-    if m and m.group(1).lower() == kind:
-        return f"{kind}{m.group(2)}"
-    return None
+    return None if p is None else p.register_for(ctx.target.name, kind)
 
 
 def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int], dict[str, int]]:
