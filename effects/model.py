@@ -206,6 +206,12 @@ class SamplerState:
 # Declarations
 
 
+def register_binding(text: str) -> tuple[str, str]:
+    """`register(c4)` as ('', 'c4'), `register(ps, c1)` as ('ps', 'c1'): lower-case."""
+    parts = [p.strip().lower() for p in text.strip()[len("register("):-1].split(",")]
+    return ("", parts[0]) if len(parts) == 1 else (parts[0], parts[1])
+
+
 @dataclass
 class Parameter:
     name: str
@@ -221,6 +227,11 @@ class Parameter:
     # `: register(c4)` / `: register(ps, c1)` bindings as (profile, register), lower-case:
     # profile '' for every shader, else 'vs' / 'ps' or a target such as 'ps_2_0'
     registers: tuple[tuple[str, str], ...] = ()
+
+    def __post_init__(self) -> None:
+        # `Parameter(semantic="register(c4)")`, as code builds one: the binding it names
+        if not self.registers and self.semantic and self.semantic.lower().startswith("register("):
+            self.registers = (register_binding(self.semantic),)
 
     def register_for(self, target: str, kind: str) -> str | None:
         """The register of kind `kind` ('c', 's', 'i', 'b') this parameter is bound to in a

@@ -66,3 +66,11 @@ def test_registers_are_part_of_the_compile_cache_key():
     moved = effects.load_effect(BOUND.replace("register(ps, c1)", "register(ps, c5)"))
     assert _compiled(first, "T")[1].constants["DiffuseColor"][0] == 1
     assert _compiled(moved, "T")[1].constants["DiffuseColor"][0] == 5
+
+
+def test_bindings_survive_printing_and_loading_again():
+    effect = effects.load_effect(BOUND)
+    again = effects.load_effect(effect.to_source())
+    for name in ("DiffuseColor", "Tint", "World"):
+        assert again.parameter(name).registers == effect.parameter(name).registers
+        assert again.parameter(name).semantic == effect.parameter(name).semantic

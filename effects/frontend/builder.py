@@ -19,7 +19,7 @@ import numpy as np
 from lark import Token
 
 from effects.errors import Location, ParseError, StateError
-from effects.model import (Annotation, CompileShader, Effect, Expression, Function, NullValue,
+from effects.model import (Annotation, CompileShader, register_binding, Effect, Expression, Function, NullValue,
                            Parameter, ParamRef, Pass, SamplerState, ShaderBlock, StateAssignment,
                            Struct, Technique, TypeSpec, VertexDeclElement)
 from effects.frontend.lexer import EffectLexer
@@ -585,12 +585,7 @@ def _registers(semantics: list[str]) -> tuple[tuple[str, str], ...]:
     """Every `register(...)` binding, as (profile, register): `register(c4)` is ('', 'c4'),
     `register(ps, c1)` ('ps', 'c1'); lower-case, in the order written (HLSL allows several:
     `: register(vs, c0) : register(ps, c1)`)."""
-    found = []
-    for s in semantics or ():
-        if s.lower().startswith("register("):
-            parts = [p.strip().lower() for p in s[len("register("):-1].split(",")]
-            found.append(("", parts[0]) if len(parts) == 1 else (parts[0], parts[1]))
-    return tuple(found)
+    return tuple(register_binding(s) for s in semantics or () if s.lower().startswith("register("))
 
 
 def _semantic(semantics: list[str]) -> str | None:

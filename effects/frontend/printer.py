@@ -77,6 +77,11 @@ def _parameter(p: Parameter) -> str:
     text = " ".join(parts) + "".join(f"[{d}]" for d in p.array)
     if p.semantic:
         text += f" : {p.semantic}"
+    # the register bindings the semantic does not already spell (`: WORLD : register(c4)`)
+    shown = p.registers[1:] if p.semantic and p.semantic.lower().startswith("register(") \
+        else p.registers
+    for profile, register in shown:
+        text += f" : register({profile}, {register})" if profile else f" : register({register})"
     if p.annotations:
         text += " " + _annotations(p.annotations, 0)
     if isinstance(p.value, SamplerState) and p.type.base == "stateblock":
