@@ -474,7 +474,8 @@ def _same_fingerprint(a: tuple, b: tuple) -> bool:
 
 
 def _find_annotation(annotations: list[Annotation], name: str) -> Annotation | None:
+    key = name.lower()
     for a in annotations:
-        if a.name.lower() == name.lower():
+        if a.name.lower() == key:
             return a
     return None

@@ -129,7 +129,6 @@ def _add_batch(p) -> None:
 
 
 def _cmd_matrix(args, console: Console) -> int:
-    import json
     from effects.frontend.loader import load_effect
     from effects.cli.report import matrix, print_matrix
     root = _include_root(args)
@@ -137,6 +136,7 @@ def _cmd_matrix(args, console: Console) -> int:
     profiles = _profiles(args.profile)
     result = matrix(effects, profiles, args.policy)
     if args.json:
+        import json
         print(json.dumps(result, indent=2))
     else:
         print_matrix(result, console)

@@ -50,12 +50,23 @@ def _problem(effect: Effect, a: StateAssignment) -> str | None:
 
 def pass_reference_problems(effect: Effect, p: Pass) -> list[tuple[Location, str]]:
     """(location, message) for every bad parameter reference in one pass's states."""
-    out = []
-    for a in _assignments(p.states):
-        message = _problem(effect, a)
-        if message is not None:
-            out.append((a.value.location if a.value.location.line else a.location, message))
+    out: list[tuple[Location, str]] = []
+    _pass_problems(effect, p.states, out)
     return out
+
+
+def _pass_problems(effect: Effect, states: list[StateAssignment],
+                   out: list[tuple[Location, str]]) -> None:
+    # `_assignments` and `_problem` spelled out for the states that are neither references nor
+    # sampler_state blocks (most of them): validation asks this per pass on every card
+    for a in states:
+        value = a.value
+        if isinstance(value, ParamRef):
+            message = _problem(effect, a)
+            if message is not None:
+                out.append((value.location if value.location.line else a.location, message))
+        elif isinstance(value, SamplerState):
+            _pass_problems(effect, value.states, out)
 
 
 def reference_problems(effect: Effect) -> list[tuple[Location, str]]:

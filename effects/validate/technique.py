@@ -138,6 +138,20 @@ class Validation:
         return [f"pass {p.name}: {n}" for p in self.pass_reports for n in p.notes]
 
 
+def _unreliable(profile: CapsProfile) -> tuple[dict, dict]:
+    """The quirks that disown a caps bit, by (field, bit), and a format, by (format, usage):
+    made once per profile (validation asks per pass of every technique) and kept on it with
+    the quirk tuple they were made from. Read only."""
+    held = profile.__dict__.get("_unreliable")
+    if held is None or held[0] is not profile.quirk_list:
+        quirks = profile.quirk_list
+        held = (quirks,
+                {(q.get("field"), q.get("bit")): q for q in quirks if q.rule == "cap_unreliable"},
+                {(q.get("format"), q.get("usage")): q for q in quirks if q.rule == "format_unreliable"})
+        profile.__dict__["_unreliable"] = held
+    return held[1], held[2]
+
+
 class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
                    VertexTextureChecks):
     """Runs every check for one pass and collects its reasons."""
@@ -147,10 +161,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
         self.effect, self.technique, self.pass_, self.state, self.profile = effect, technique, p, state, profile
         self.report = PassReport(p.name or str(index), index, p.location, state=state)
         # quirks that make a reported caps bit or format unusable: (field, bit) / (format, usage)
-        self.unreliable_bits = {(q.get("field"), q.get("bit")): q for q in profile.quirks
-                                if q.rule == "cap_unreliable"}
-        self.unreliable_formats = {(q.get("format"), q.get("usage")): q for q in profile.quirks
-                                   if q.rule == "format_unreliable"}
+        self.unreliable_bits, self.unreliable_formats = _unreliable(profile)
 
     # -- reason helpers ---------------------------------------------------------------------
     def fail(self, location: Location, subject: str, requirement: str, card_value: str,

@@ -29,7 +29,7 @@ from typing import Any, Callable
 
 from effects.errors import EffectError
 from effects.lru import ByteLRU
-from effects.model import CompileShader, RecordedReads
+from effects.model import CompileShader, Effect, RecordedReads
 from effects.shaders.hlsl.context import load_context
 
 CACHE_BYTES = 64 << 20
@@ -126,10 +126,25 @@ class _KeptKey:
                 or effect.structs is not self.structs \
                 or (len(self.functions), len(self.structs)) != self.counts:
             return False
+        if not isinstance(effect, Effect):   # a recording view: every lookup made again
+            for name, param, part in self.seen:
+                now = effect.parameter(name)
+                if now is not param or (now is not None and _parameter_part(now) != part):
+                    return False
+            return True
+        # A plain effect: a name its index does not hold is what `parameter` answers None for
+        # (most of the names are a function's locals and intrinsics), so only the found ones
+        # are asked; the index is read again after each, as `parameter` may rebuild it.
+        by_name = effect._index().by_name
         for name, param, part in self.seen:
+            if param is None:
+                if by_name.get(name) is not None:
+                    return False
+                continue
             now = effect.parameter(name)
-            if now is not param or (now is not None and _parameter_part(now) != part):
+            if now is not param or _parameter_part(now) != part:
                 return False
+            by_name = effect._index().by_name
         return True
 
 
