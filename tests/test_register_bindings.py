@@ -74,3 +74,13 @@ def test_bindings_survive_printing_and_loading_again():
     for name in ("DiffuseColor", "Tint", "World"):
         assert again.parameter(name).registers == effect.parameter(name).registers
         assert again.parameter(name).semantic == effect.parameter(name).semantic
+
+
+def test_a_register_binding_is_no_semantic_for_the_host():
+    # XNA's stock effects bind every constant to a register and no semantic: the host sets
+    # World / WorldViewProj / EyePosition by name, as XNA's BasicEffect class did
+    from effects.host.semantics import binding_source
+    effect = effects.load_effect(BOUND.replace("float4x4 World : WORLD : register(c4);",
+                                               "float4x4 World : register(vs, c4);"))
+    assert binding_source(effect.parameter("World")) == ("WORLD", "XNA name")
+    assert binding_source(effect.parameter("DiffuseColor")) == ("", "")

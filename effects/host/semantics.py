@@ -195,6 +195,8 @@ def binding_source(param: Parameter) -> tuple[str, str]:
     """(semantic the scene binds the parameter by, upper case, or '' for none; how it was
     found: 'semantic', 'light object', 'DX8 name', 'XNA name', '<engine> name')."""
     semantic = (param.semantic or "").upper()
+    if semantic.startswith("REGISTER("):   # `: register(vs, c0)` binds a register, not a value
+        semantic = ""
     if semantic in OBJECT_LIGHT_SEMANTICS and _light_object(param):
         return OBJECT_LIGHT_SEMANTICS[semantic], "light object"
     if semantic:
