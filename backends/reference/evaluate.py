@@ -343,6 +343,98 @@ def _row_count(program: Program, inputs: Mapping[str, np.ndarray], count: int | 
     return counts.pop()
 
 
+# ------------------------------------------------------------------------------------------------
+# A straight-line program's steps, worked out once per program (and set of given values): what
+# `_run` decides per instruction on every call (the op row, its attributes as a dict, the
+# components wanted in order) is looked up once, so a call's Python work per instruction is
+# gathering the arguments and calling the kernel. Keyed by the program object (checked on a
+# hit, like `_demand`), so a new or changed program gets its own steps.
+
+_SKIP, _GIVEN, _COLUMNS, _PER_COMPONENT, _ROWS = range(5)
+
+
+@dataclass
+class _Steps:
+    steps: list            # (mode, dest, args, fn, attrs, wanted, order) per instruction
+    discards: bool         # some instruction may discard (a kill mask is always returned)
+
+
+_STEPS_CACHE: dict[tuple, tuple[Program, _Steps]] = {}
+
+
+def _steps(program: Program, given: frozenset) -> _Steps:
+    key = (id(program), given)
+    found = _STEPS_CACHE.get(key)
+    if found is not None and found[0] is program:
+        return found[1]
+    steps = []
+    for instr, wanted in zip(program.instrs, _demand(program, None, given)):
+        info = OPS[instr.op]
+        if not wanted:
+            mode, fn = _SKIP, None
+        elif instr.dest in given:
+            mode, fn = _GIVEN, None
+        elif info.columns is not None:
+            mode, fn = _COLUMNS, info.columns
+        elif info.per_component:
+            mode, fn = _PER_COMPONENT, info.kernel
+        else:
+            mode, fn = _ROWS, info.kernel
+        steps.append((mode, instr.dest, instr.args, fn, instr.attr_map, wanted,
+                      tuple(sorted(wanted))))
+    result = _Steps(steps, any(OPS[i.op].discards for i in program.instrs))
+    if len(_STEPS_CACHE) > 1024:
+        _STEPS_CACHE.clear()
+    _STEPS_CACHE[key] = (program, result)
+    return result
+
+
+_FLOW_CACHE: dict[int, tuple[Program, bool]] = {}
+
+
+def _has_flow(program: Program) -> bool:
+    """`has_flow`, kept per program object (it scans every instruction)."""
+    found = _FLOW_CACHE.get(id(program))
+    if found is not None and found[0] is program:
+        return found[1]
+    if len(_FLOW_CACHE) > 1024:
+        _FLOW_CACHE.clear()
+    flow = has_flow(program)
+    _FLOW_CACHE[id(program)] = (program, flow)
+    return flow
+
+
+def _run_steps(ctx: _Context, steps: _Steps, values: dict[int, Columns],
+               given: Mapping[int, np.ndarray]) -> None:
+    """Run a straight-line program's steps; the values are those `_run` gives."""
+    for mode, dest, args, fn, attrs, wanted, order in steps.steps:
+        if mode == _SKIP:                 # nothing reads it
+            values[dest] = [None] * 4
+            continue
+        if mode == _GIVEN:
+            values[dest] = _from_rows(given[dest])
+            continue
+        argv = [values[a] for a in args]
+        if mode == _COLUMNS:
+            result = fn(ctx, argv, attrs, wanted)
+        elif mode == _PER_COMPONENT:
+            # the kernel once per distinct set of argument columns (as `_per_component`)
+            result = [None] * 4
+            done: dict[tuple, np.ndarray] = {}
+            for i in order:
+                column_args = [a[i] for a in argv]
+                key = tuple(map(id, column_args))
+                column = done.get(key)
+                if column is None:
+                    column = done[key] = np.asarray(fn(None, column_args, attrs), np.float32)
+                result[i] = column
+        else:
+            rows = fn(ctx, [ctx.as_rows(a) for a in argv], attrs)
+            result = None if rows is None else _from_rows(rows)
+        if dest is not None:
+            values[dest] = result
+
+
 def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
              samplers: Mapping[int, SamplerFn] | None = None, *,
              count: int | None = None, quads: bool = False,
@@ -354,7 +446,8 @@ def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
     computing them (what only they read is not run): how the reference shades a Phong pass's
     lighting its own way (`PassProgram.lighting`); not with control flow."""
     given = given or {}
-    if given and has_flow(program):
+    flow = _has_flow(program)
+    if given and flow:
         raise IRError("given values need a program without control flow")
     missing = [i.name for i in program.inputs if i.name not in inputs]
     if missing:
@@ -362,22 +455,17 @@ def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
     ctx = _Context(program, inputs, samplers or {}, _row_count(program, inputs, count))
     ctx.quads = quads
     values: dict[int, Columns] = {}
+    steps = None
     with np.errstate(all="ignore"):  # inf and NaN are legitimate D3D results (rcp 0, log 0)
-        if has_flow(program):
+        if flow:
             _run_structured(ctx, program, values)
         else:
-            for instr, wanted in zip(program.instrs, _demand(program, None, frozenset(given))):
-                if not wanted:           # nothing reads it
-                    values[instr.dest] = [None] * 4
-                    continue
-                if instr.dest in given:
-                    values[instr.dest] = _from_rows(given[instr.dest])
-                    continue
-                result = _run(ctx, instr, [values[a] for a in instr.args], wanted)
-                if instr.dest is not None:
-                    values[instr.dest] = result
+            steps = _steps(program, frozenset(given))
+            _run_steps(ctx, steps, values, given)
     outputs = {name: _as_rows(values[value], ctx.count) for name, value in program.outputs}
     killed = ctx.killed
-    if killed is None and any(OPS[i.op].discards for i in program.instrs):
+    discards = (steps.discards if steps is not None
+                else any(OPS[i.op].discards for i in program.instrs))
+    if killed is None and discards:
         killed = np.zeros(ctx.count, dtype=bool)
     return EvalResult(outputs, killed)

@@ -16,6 +16,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -27,6 +28,7 @@ QUAD_DY = np.array([0, 0, 1, 1], dtype=np.int32)
 # Screen coordinates stay within +-2^16 pixels (so edge products stay below 2^50).
 _GUARD_PIXELS = float(1 << 16)
 CULL_MODES = ("NONE", "CW", "CCW")
+_CLIPPING_PLANES = 7        # near, far, four guard-band sides, w > 0
 
 
 @dataclass
@@ -66,7 +68,15 @@ class QuadFragments:
 # ------------------------------------------------------------------------------------------------
 # Clipping: dot(plane[:4], position) + plane[4] >= 0 is inside
 
+@lru_cache(maxsize=64)
 def _clip_planes(size: tuple[int, int]) -> np.ndarray:
+    """The clip planes for a target size (kept per size: read-only, made once)."""
+    planes = _make_clip_planes(size)
+    planes.setflags(write=False)
+    return planes
+
+
+def _make_clip_planes(size: tuple[int, int]) -> np.ndarray:
     gx = _GUARD_PIXELS / (0.5 * size[0])   # NDC extent of the guard band
     gy = _GUARD_PIXELS / (0.5 * size[1])
     return np.array([
@@ -75,6 +85,7 @@ def _clip_planes(size: tuple[int, int]) -> np.ndarray:
         [-1, 0, 0, gx, 0], [1, 0, 0, gx, 0],
         [0, -1, 0, gy, 0], [0, 1, 0, gy, 0],
         [0, 0, 0, 1, -1e-30],       # w > 0 (a vertex at w = 0 has no screen position)
+        [0, 0, 0, 0, 1],            # never crossed: pads the outside flags to 8 bytes a vertex
     ], dtype=np.float64)
 
 
@@ -101,23 +112,35 @@ def clip_triangles(pos: np.ndarray, attrs: np.ndarray, tris: np.ndarray, size: t
     """Clip triangles to the view volume (near, far, guard band). Returns (pos, attrs, tris,
     source triangle index), triangles still in draw order; a clipped triangle becomes a fan that
     keeps its winding."""
-    planes = _clip_planes(size)
-    dist = pos @ planes[:, :4].T + planes[:, 4]          # (V, P)
-    outside = dist < 0
-    tri_out = outside[tris]                               # (T, 3, P)
-    rejected = tri_out.all(axis=1).any(axis=1)           # all three beyond one plane
-    rejected |= ~np.isfinite(pos).all(axis=1)[tris].any(axis=1)   # NaN/inf: nowhere to draw
-    partial = tri_out.any(axis=(1, 2)) & ~rejected
-    keep = ~tri_out.any(axis=(1, 2)) & ~rejected
-    source = np.nonzero(keep)[0]
+    planes = _clip_planes(tuple(int(v) for v in size))
+    # One 8-byte word per vertex, byte p true when it lies outside plane p (the eighth plane
+    # is never crossed): a triangle's AND of its vertices' words is non-zero when all three
+    # lie beyond one plane, its OR when some vertex lies beyond some plane -- the per-plane
+    # tests of (T, 3, P) booleans in a few passes over (T,) words.
+    outside = (pos @ planes[:, :4].T + planes[:, 4]) < 0        # (V, 8)
+    code = outside.view(np.uint64)[:, 0]
+    corners = code[tris]                                        # (T, 3)
+    c0, c1, c2 = corners[:, 0], corners[:, 1], corners[:, 2]
+    rejected = (c0 & c1 & c2) != 0
+    any_out = (c0 | c1 | c2) != 0
+    finite = np.isfinite(pos)
+    if not finite.all():        # NaN/inf: nowhere to draw
+        bad = (~finite.all(axis=1))[tris].any(axis=1)
+        rejected |= bad
+        any_out |= bad
+    partial = any_out & ~rejected
+    keep = ~any_out
     if not partial.any():
-        return pos, attrs, tris[keep], source
+        if keep.all():
+            return pos, attrs, tris, np.arange(len(tris))
+        return pos, attrs, tris[keep], np.nonzero(keep)[0]
+    source = np.nonzero(keep)[0]
     new_pos, new_tris, new_src = [], [], []
     base = len(pos)
     flat = np.concatenate([pos, attrs.astype(np.float64)], axis=1)
     for t in np.nonzero(partial)[0]:
         poly = [flat[i] for i in tris[t]]
-        for plane in planes:
+        for plane in planes[:_CLIPPING_PLANES]:
             poly = _clip_polygon(poly, plane)
         if len(poly) < 3:
             continue
@@ -217,8 +240,8 @@ def setup_triangles(clip_pos: np.ndarray, varyings: dict[str, np.ndarray], trian
         X, Y = fx[tris], fy[tris]
         area = np.abs(area)
 
-    y_lo = np.maximum(-((-Y.min(axis=1)) // _ONE), 0)          # first pixel row, ceil
-    y_hi = np.minimum(Y.max(axis=1) // _ONE, height - 1)        # last pixel row
+    y_lo = np.maximum(-((-_min3(Y)) // _ONE), 0)                # first pixel row, ceil
+    y_hi = np.minimum(_max3(Y) // _ONE, height - 1)              # last pixel row
     return TriangleSetup(size, tris, X, Y, area, sz, inv_w, attrs, source, front, names, dims,
                          flat_cols, provoking, depth_bias, slope_scale_depth_bias, quads,
                          y_lo, y_hi, tuple(vertex_only))
@@ -266,26 +289,48 @@ class TriangleSetup:
             return a if part is None else a[part]
 
         tris, X, Y = pick(self.tris), pick(self.X), pick(self.Y)
-        quad_tri, qx, qy, covered = _cover(X, Y, self.size[0], y1, y0)
+        quad_tri, qx, qy, covered = _cover(X, Y, self.size[0], y1, y0,
+                                           rows=(pick(self.y_lo), pick(self.y_hi)))
         if len(quad_tri) == 0:
             return QuadFragments.empty(self.dims, self.quads)
-        names, attrs, flat_cols, provoking = self.names, self.attrs, self.flat_cols, self.provoking
+        names, attrs_t, flat_cols, provoking = (self.names, self._attrs_t(), self.flat_cols,
+                                                self.provoking)
         if self.vertex_only:
             names = [n for n in self.names if n not in self.vertex_only]
             cols = np.concatenate([np.full(self.dims[n], n not in self.vertex_only)
                                    for n in self.names]).astype(bool)
-            attrs, flat_cols = attrs[:, cols], flat_cols[cols]
+            attrs_t, flat_cols = attrs_t[cols], flat_cols[cols]
             provoking = None if provoking is None else provoking[:, cols]
         frags = _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, pick(self.area), self.sz,
-                             self.inv_w, attrs, pick(self.source), pick(self.front),
+                             self.inv_w, attrs_t, pick(self.source), pick(self.front),
                              names, self.dims, flat_cols, provoking,
                              self.depth_bias, self.slope_bias, self.quads)
         if part is not None and frags.tri is not None:
             frags.tri = part[frags.tri]
         return frags
 
+    def _attrs_t(self) -> np.ndarray:
+        """The attributes component-major, (K, V): made once per draw, read by every band
+        (two bands' threads may both make it; either copy is the same)."""
+        found = self.__dict__.get("_attrs_t_cache")
+        if found is None:
+            found = self.__dict__["_attrs_t_cache"] = np.ascontiguousarray(self.attrs.T)
+        return found
 
-def _cover(X: np.ndarray, Y: np.ndarray, width: int, height: int, y0: int = 0):
+
+def _min3(a: np.ndarray) -> np.ndarray:
+    """The smallest of each row of a (T, 3) array: `a.min(axis=1)`, as two elementwise
+    passes (NumPy reduces a 3-wide axis about ten times slower)."""
+    return np.minimum(np.minimum(a[:, 0], a[:, 1]), a[:, 2])
+
+
+def _max3(a: np.ndarray) -> np.ndarray:
+    """The largest of each row of a (T, 3) array (see `_min3`)."""
+    return np.maximum(np.maximum(a[:, 0], a[:, 1]), a[:, 2])
+
+
+def _cover(X: np.ndarray, Y: np.ndarray, width: int, height: int, y0: int = 0,
+           rows: tuple[np.ndarray, np.ndarray] | None = None):
     """Exact coverage of clockwise triangles (T, 3) fixed-point vertices, by quad rows, in the
     pixel rows [y0, height) (y0 even).
 
@@ -293,40 +338,53 @@ def _cover(X: np.ndarray, Y: np.ndarray, width: int, height: int, y0: int = 0):
     solved for the range of integer x where E >= bias (bias 0 on top and left edges, 1 on the
     others: the top-left rule), giving the covered span of each row. Returns the quads (triangle
     index, quad origin x, y, (Q, 4) coverage) in triangle order, then y, then x.
+    `rows`: each triangle's first and last pixel row in the frame (`TriangleSetup.y_lo`,
+    `y_hi`), when known; clamped here to the band.
     """
-    y_lo = np.maximum(-((-Y.min(axis=1)) // _ONE), y0)         # ceil, clamped to the band
-    y_hi = np.minimum(Y.max(axis=1) // _ONE, height - 1)
+    if rows is None:
+        y_lo = np.maximum(-((-_min3(Y)) // _ONE), y0)           # ceil, clamped to the band
+        y_hi = np.minimum(_max3(Y) // _ONE, height - 1)
+    else:
+        y_lo = np.maximum(rows[0], y0)
+        y_hi = np.minimum(rows[1], height - 1)
     qy0 = y_lo & ~1
     nrows = np.where(y_hi >= y_lo, (y_hi - qy0) // 2 + 1, 0)
     total_rows = int(nrows.sum())
     if total_rows == 0:
         return np.zeros(0, np.int64), None, None, None
-    row_tri = np.repeat(np.arange(len(X)), nrows)
-    starts = np.cumsum(nrows) - nrows
-    row_qy = qy0[row_tri] + 2 * (np.arange(total_rows) - starts[row_tri])
 
-    # Per edge i (vertex i -> i+1), per triangle: the terms of c(y) = dx*(y*256 - ay) + dy*ax.
+    # Rows come grouped by triangle in triangle order, and quads by row: a triangle's (a
+    # row's) value reaches its rows (quads) by a repeat, the values of a gather, faster.
+    def per_row(values: np.ndarray) -> np.ndarray:
+        return np.repeat(values, nrows)
+
+    starts = np.cumsum(nrows) - nrows
+    row_qy = per_row(qy0 - 2 * starts) + 2 * np.arange(total_rows)
+
+    # Per edge i (vertex i -> i+1), per triangle: the terms of c(y) = dx*(y*256 - ay) + dy*ax,
+    # the divisor (1 for a horizontal edge) and the slope's sign, then per row.
     edges = []
     for i in range(3):
         ax, ay, bx, by = X[:, i], Y[:, i], X[:, (i + 1) % 3], Y[:, (i + 1) % 3]
         dx, dy = bx - ax, by - ay
         bias = np.where((dy < 0) | ((dy == 0) & (dx > 0)), 0, 1)  # top-left edges own the edge
-        edges.append((dx[row_tri], (dy * ax - dx * ay - bias)[row_tri], (dy * _ONE)[row_tri]))
+        slope = dy * _ONE
+        edges.append((per_row(dx), per_row(dy * ax - dx * ay - bias),
+                      per_row(np.where(slope == 0, 1, slope)), per_row(slope < 0),
+                      per_row(slope > 0)))
     big = np.int64(1) << 40
     span_lo, span_hi = [], []
     for r in (0, 1):
         py = (row_qy + r) * _ONE
         x_lo = np.zeros(total_rows, np.int64)
         x_hi = np.full(total_rows, width - 1, np.int64)
-        for dx, c0, slope in edges:
+        for dx, c0, safe, falling, rising in edges:
             c = dx * py + c0                          # E(x) - bias = c - slope * x >= 0
-            safe = np.where(slope == 0, 1, slope)
-            q = c // safe
             # slope * x <= c: slope < 0 bounds x below by ceil(c / slope), slope > 0 above by
             # floor(c / slope); a horizontal edge keeps or drops the whole row.
-            np.maximum(x_lo, np.where(slope < 0, -((-c) // safe), np.where(c < 0, big, -big)),
+            np.maximum(x_lo, np.where(falling, -((-c) // safe), np.where(c < 0, big, -big)),
                        out=x_lo)
-            np.minimum(x_hi, np.where(slope > 0, q, big), out=x_hi)
+            np.minimum(x_hi, np.where(rising, c // safe, big), out=x_hi)
         empty = (x_hi < x_lo) | (row_qy + r >= height)
         span_lo.append(np.where(empty, big, x_lo))
         span_hi.append(np.where(empty, -big, x_hi))
@@ -336,29 +394,33 @@ def _cover(X: np.ndarray, Y: np.ndarray, width: int, height: int, y0: int = 0):
     total = int(nquads.sum())
     if total == 0:
         return np.zeros(0, np.int64), None, None, None
-    quad_row = np.repeat(np.arange(total_rows), nquads)
+
+    def per_quad(values: np.ndarray) -> np.ndarray:
+        return np.repeat(values, nquads)
+
     qstart = np.cumsum(nquads) - nquads
-    qx = (qx_lo[quad_row] + 2 * (np.arange(total) - qstart[quad_row])).astype(np.int32)
+    qx = (per_quad(qx_lo - 2 * qstart) + 2 * np.arange(total)).astype(np.int32)
+    qx1 = qx + 1
     covered = np.empty((total, 4), bool)
     for r in (0, 1):
-        lo = np.clip(span_lo[r], -1, width + 1).astype(np.int32)[quad_row]
-        hi = np.clip(span_hi[r], -2, width).astype(np.int32)[quad_row]
-        covered[:, 2 * r] = (qx >= lo) & (qx <= hi)
-        qx1 = qx + 1
-        covered[:, 2 * r + 1] = (qx1 >= lo) & (qx1 <= hi)
-    qy = row_qy.astype(np.int32)[quad_row]
-    tri = row_tri[quad_row]
-    touched = covered.any(axis=1)
+        lo = per_quad(np.clip(span_lo[r], -1, width + 1).astype(np.int32))
+        hi = per_quad(np.clip(span_hi[r], -2, width).astype(np.int32))
+        np.logical_and(qx >= lo, qx <= hi, out=covered[:, 2 * r])
+        np.logical_and(qx1 >= lo, qx1 <= hi, out=covered[:, 2 * r + 1])
+    qy = per_quad(row_qy.astype(np.int32))
+    tri = per_quad(per_row(np.arange(len(X))))
+    touched = covered.view(np.uint32)[:, 0] != 0     # any of the quad's four pixels
     if not touched.all():  # quads between the spans of a thin sliver's two rows
         tri, qx, qy, covered = tri[touched], qx[touched], qy[touched], covered[touched]
     return tri, qx, qy, covered
 
 
-def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs, source, front,
+def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs_t, source, front,
                  names, dims, flat_cols, provoking, depth_bias, slope_bias,
                  quads) -> QuadFragments:
     """Depth and perspective-correct varyings at every row (pixel), from per-triangle plane
     equations (float64) of the screen-space barycentrics weighted by 1/w, and of z/w.
+    `attrs_t` is the vertex attributes component-major, (K, V).
     Work is laid out as long 1-D runs (NumPy is slow on tiny trailing axes)."""
     fxs, fys = X / _ONE, Y / _ONE                                   # snapped, in pixels
     a2 = area.astype(np.float64) / (_ONE * _ONE)
@@ -366,8 +428,11 @@ def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs, 
     for j, k in ((1, 2), (2, 0), (0, 1)):
         ex, ey = fxs[:, k] - fxs[:, j], fys[:, k] - fys[:, j]
         lam.append((-ey / a2, ex / a2, (ey * fxs[:, j] - ex * fys[:, j]) / a2))
-    planes = [tuple(c * inv_w[tris[:, i]] for c in lam[i]) for i in range(3)]
-    z_plane = [sum(lam[i][c] * sz[tris[:, i]] for i in range(3)) for c in range(3)]
+    corners = [np.ascontiguousarray(tris[:, i]) for i in range(3)]   # vertex i of each
+    inv_w_at = [inv_w[v] for v in corners]
+    sz_at = [sz[v] for v in corners]
+    planes = [tuple(c * inv_w_at[i] for c in lam[i]) for i in range(3)]
+    z_plane = [sum(lam[i][c] * sz_at[i] for i in range(3)) for c in range(3)]
     if depth_bias or slope_bias:
         slope = np.maximum(np.abs(z_plane[0]), np.abs(z_plane[1]))
         z_plane[2] = z_plane[2] + depth_bias + slope_bias * slope
@@ -404,7 +469,7 @@ def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs, 
     depth = np.clip(values[3], 0.0, 1.0).astype(np.float32)
 
     rows: dict[str, np.ndarray] = {}
-    if attrs.shape[1]:
+    if attrs_t.shape[0]:
         inv_sum = values[0] + values[1]
         inv_sum += values[2]
         np.divide(1.0, inv_sum, out=inv_sum)
@@ -413,16 +478,19 @@ def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs, 
         # changes sign. Helper pixels keep their extrapolated weights (derivatives need them).
         floor = np.where(covered, 0.0, -np.inf) if quads else 0.0
         everything = None
+        # Component-major (K, N): the weight scales whole rows (NumPy is slow on (N, K)
+        # arrays scaled row by row), and each varying component is a contiguous column;
+        # the corners are gathered from the transposed attributes, already (K, T).
+        if provoking is not None:   # flat: every corner holds the provoking value
+            flat_t = np.ascontiguousarray(provoking[source][:, flat_cols].T)
         for i in range(3):
             wi = values[i]
             wi *= inv_sum
             np.maximum(wi, floor, out=wi)
-            corner = attrs[tris[:, i]]                              # (T, K) at vertex i
-            if provoking is not None:   # flat: every corner holds the provoking value
-                corner[:, flat_cols] = provoking[source][:, flat_cols]
-            # Component-major (K, N): the weight scales whole rows (NumPy is slow on (N, K)
-            # arrays scaled row by row), and each varying component is a contiguous column.
-            term = per_row(np.ascontiguousarray(corner.T))
+            corner = np.take(attrs_t, corners[i], axis=1)            # (K, T) at vertex i
+            if provoking is not None:
+                corner[flat_cols] = flat_t
+            term = per_row(corner)
             term *= wi.astype(np.float32)
             if everything is None:
                 everything = term
