@@ -248,7 +248,7 @@ def test_fast_obj_reader_makes_the_per_line_readers_mesh(tmp_path, monkeypatch, 
     path.write_text(header + _faces(form))
     assert obj_fast.parse(path.read_bytes()) is not None
     fast = M.load_obj(path)
-    monkeypatch.setattr(obj_fast, "parse", lambda raw: None)
+    monkeypatch.setattr(obj_fast, "parse", lambda raw, check_counts=None: None)
     slow = M.load_obj(path)
     for name in ("positions", "normals", "uv", "tangents", "binormals", "indices"):
         np.testing.assert_array_equal(getattr(fast, name), getattr(slow, name))
@@ -275,7 +275,7 @@ def _fast_and_slow(path, monkeypatch):
     from effects.host import obj_fast
     fast = M.load_obj(path)
     with monkeypatch.context() as patch:
-        patch.setattr(obj_fast, "parse", lambda raw: None)
+        patch.setattr(obj_fast, "parse", lambda raw, check_counts=None: None)
         slow = M.load_obj(path)
     return fast, slow
 
@@ -387,3 +387,44 @@ def test_fast_obj_reader_matches_the_per_line_reader_on_random_files(tmp_path, m
     path = tmp_path / "m.obj"
     path.write_bytes(raw)
     _assert_same_mesh(*_fast_and_slow(path, monkeypatch))
+
+
+def test_fast_obj_reader_numbers_corners_by_vertex_or_by_triple(tmp_path, monkeypatch):
+    """Corners are numbered in order of first appearance of their (v, vt, vn) triple. Where
+    every vertex comes with one vt and one vn (as exporters write) the fast reader numbers
+    them by vertex through a table; where a vertex comes with two (a UV seam, a crease) by
+    a sort of the triples. Both make the per-line reader's mesh."""
+    from effects.host import obj_fast
+    taken = []
+    for name in ("_number_by_vertex", "_number_by_key"):
+        real = getattr(obj_fast, name)
+        monkeypatch.setattr(obj_fast, name,
+                            lambda *a, _real=real, _name=name: taken.append(_name) or _real(*a))
+    # vertex 2 with vt 1 and vt 3, vertex 3 with vn 1 and vn 2: a seam and a crease; the
+    # faces list the vertices out of order, so first appearance is not vertex order
+    seam = ("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nvn 0 1 1\n"
+            "f 3/3/1 1/1/1 2/1/1\nf 2/3/1 4/2/2 3/3/2\n")
+    cases = {"seam": seam, "by vertex": _OBJ_GRID + _OBJ_UV + _OBJ_N + _faces("{i}/{t}/{n}")}
+    for label, text in cases.items():
+        taken.clear()
+        path = tmp_path / "m.obj"
+        path.write_text(text)
+        fast, slow = _fast_and_slow(path, monkeypatch)
+        _assert_same_mesh(fast, slow)
+        assert taken[-1] == ("_number_by_key" if label == "seam" else "_number_by_vertex")
+    assert fast.vertex_count == 16 and M.load_obj(tmp_path / "m.obj").triangle_count == 18
+
+
+@pytest.mark.parametrize("text", [
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv\t1 1 0\nf 1 2 3\nf 2 4 3\n",       # read by the fast reader
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv\t1 1 0\nf 1 2 4 3\n",               # a quad: the per-line one
+])
+def test_obj_vertex_limit_is_checked_before_either_reader_reads(tmp_path, text):
+    from effects import limits
+    path = tmp_path / "m.obj"
+    path.write_text(text)
+    with limits.raised(mesh_vertices=4):
+        assert M.load_obj(path).vertex_count == 4
+    with limits.raised(mesh_vertices=3), pytest.raises(SceneError,
+                                                       match="has 4 vertices; the limit is 3"):
+        M.load_obj(path)

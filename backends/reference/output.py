@@ -57,15 +57,22 @@ class Framebuffer:
         width, height = size
         if width <= 0 or height <= 0:
             raise DrawError(f"render-target size must be positive, got {size}")
-        clear = encode(np.asarray(clear_color, np.float32).reshape(1, 4), format)[0]
-        color = np.empty((height, width, 4), clear.dtype)
+        dtype = np.float32 if TARGET_FORMATS[format][0] else np.uint8
+        fb = Framebuffer(format, np.empty((height, width, 4), dtype),
+                         np.empty((height, width), np.float32), np.empty((height, width), np.uint8))
+        fb.clear(clear_color, clear_depth, clear_stencil)
+        return fb
+
+    def clear(self, clear_color=(0, 0, 0, 0), clear_depth: float = 1.0,
+              clear_stencil: int = 0) -> None:
+        """Fill colour, depth and stencil with the clear values (as `create` makes them)."""
+        clear = encode(np.asarray(clear_color, np.float32).reshape(1, 4), self.format)[0]
         if clear.dtype == np.uint8:   # one 32-bit word per pixel: a faster fill
-            color.view(np.uint32)[...] = np.ascontiguousarray(clear).view(np.uint32)
+            self.color.view(np.uint32)[...] = np.ascontiguousarray(clear).view(np.uint32)
         else:
-            color[...] = clear
-        return Framebuffer(format, color,
-                           np.full((height, width), np.float32(clear_depth), np.float32),
-                           np.full((height, width), int(clear_stencil) & 0xFF, np.uint8))
+            self.color[...] = clear
+        self.depth.fill(np.float32(clear_depth))
+        self.stencil.fill(int(clear_stencil) & 0xFF)
 
     @property
     def size(self) -> tuple[int, int]:

@@ -151,13 +151,22 @@ class ReferenceBackend:
             keep_heap_memory()
         self._pool: ThreadPoolExecutor | None = None
         self.framebuffer: output.Framebuffer | None = None
+        # The last frame's buffers, cleared and drawn into again by a frame of the same size
+        # and format (end_frame hands out a copy, so nothing else holds them).
+        self._spare: output.Framebuffer | None = None
 
     # -- frame
     def begin_frame(self, size: tuple[int, int], clear_color=(0.0, 0.0, 0.0, 0.0),
                     clear_depth: float = 1.0, clear_stencil: int = 0, *,
                     format: str = "A8R8G8B8") -> None:
-        self.framebuffer = output.Framebuffer.create(tuple(int(v) for v in size), format,
-                                                     clear_color, clear_depth, clear_stencil)
+        size = tuple(int(v) for v in size)
+        spare, self._spare = self._spare, None
+        if spare is not None and spare.size == size and spare.format == format:
+            spare.clear(clear_color, clear_depth, clear_stencil)
+            self.framebuffer = spare
+        else:
+            self.framebuffer = output.Framebuffer.create(size, format, clear_color,
+                                                         clear_depth, clear_stencil)
 
     def reset_shared_state(self) -> None:
         """Nothing to undo: the reference back end shares no device context."""
@@ -165,7 +174,9 @@ class ReferenceBackend:
     def end_frame(self) -> np.ndarray:
         fb = self._target()
         self.framebuffer = None
-        return fb.image()
+        image = fb.image()
+        self._spare = fb
+        return image
 
     def _target(self) -> output.Framebuffer:
         if self.framebuffer is None:

@@ -28,6 +28,7 @@ import numpy as np
 from effects import limits, untrusted
 from effects.errors import Location, SceneError
 from effects.host import obj_fast
+from effects.host.tangents import tangent_frames
 
 
 @dataclass
@@ -79,124 +80,16 @@ def make_mesh(positions, uv, indices, normals=None, *, name: str = "", space: st
 # Tangent frames
 
 
-def _normalize(v: np.ndarray, fallback: np.ndarray | None = None) -> np.ndarray:
-    length = _length(v)
-    out = v / np.where(length > 1e-12, length, 1.0)
-    if fallback is not None:
-        out = np.where(length > 1e-12, out, fallback)
-    return out
-
-
-def _length(v: np.ndarray) -> np.ndarray:
-    """np.linalg.norm(v, axis=-1, keepdims=True), computed as it computes it (the same sum of
-    squares in the same order), without its copy of v for the complex conjugate."""
-    return np.sqrt(np.add.reduce(v * v, axis=-1, keepdims=True))
-
-
-def _group_sum(values: np.ndarray, keys: np.ndarray | None = None, *,
-               groups: np.ndarray | None = None) -> np.ndarray:
-    """Replace each row by the sum over the rows that share its key (keys: (N, K) ints), or
-    its group (`groups`, from `_row_groups(keys)`, made once for several sums)."""
-    inverse = _row_groups(keys) if groups is None else groups
-    return _scatter_sum(inverse, values, int(inverse.max()) + 1)[inverse]
-
-
-def _scatter_sum(index: np.ndarray, values: np.ndarray, size: int, *, repeat: int = 1
-                 ) -> np.ndarray:
-    """out[index[i]] += values[i], in row order (so the same float sums as np.add.at, which is
-    several times slower), for (N, C) float64 values: one bincount per column. `repeat`:
-    the values stand that many times over, one after another (np.tile(values, (repeat, 1))),
-    as index does for a triangle's three corners; made a column at a time, not whole."""
-    out = np.empty((size,) + values.shape[1:])
-    for c in range(values.shape[1]):
-        column = values[:, c] if repeat == 1 else np.concatenate([values[:, c]] * repeat)
-        out[:, c] = np.bincount(index, weights=column, minlength=size)
-    return out
-
-
-def _row_groups(keys: np.ndarray) -> np.ndarray:
-    """A group number per row of (N, K) ints, equal exactly where the rows are equal. Columns
-    are folded into one int64 code by their value ranges (re-numbered densely before the code
-    could overflow), so one 1-D sort replaces sorting K-wide rows."""
-    code = np.zeros(len(keys), np.int64)
-    span = 1
-    for col in keys.T:
-        lo = int(col.min()) if len(col) else 0
-        width = (int(col.max()) - lo + 1) if len(col) else 1
-        if span * width >= 1 << 62:
-            code = np.unique(code, return_inverse=True)[1].ravel().astype(np.int64)
-            span = int(code.max()) + 1 if len(code) else 1
-        if width >= 1 << 62:
-            values = np.unique(col, return_inverse=True)[1].ravel().astype(np.int64)
-            width = int(values.max()) + 1
-        else:
-            values = col.astype(np.int64) - lo
-        code = code * width + values
-        span *= width
-    return np.unique(code, return_inverse=True)[1].ravel()
-
-
-def _position_key(positions: np.ndarray) -> np.ndarray:
-    scale = 1e4 / max(1e-6, float(np.abs(positions).max()))
-    return np.rint(positions.astype(np.float64) * scale).astype(np.int64)
-
-
-def _any_perpendicular(n: np.ndarray) -> np.ndarray:
-    axis = np.where(np.abs(n[:, :1]) < 0.9, np.array([[1.0, 0, 0]]), np.array([[0, 1.0, 0]]))
-    return _normalize(np.cross(n, axis))
-
-
 def compute_tangent_frames(mesh: Mesh, *, recompute_normals: bool = False) -> Mesh:
     """A copy of `mesh` with tangents and binormals computed (and normals, if asked or absent).
 
     Normals, when computed, are area-weighted face normals summed over every vertex at the same
     position (smooth shading; a model wanting creases supplies its own normals). Tangent frames
-    are computed as the module docstring says.
+    are computed as the module docstring says (`effects.host.tangents`).
     """
-    p = mesh.positions.astype(np.float64)
-    uv = mesh.uv.astype(np.float64)
-    tri = mesh.indices.astype(np.int64)
-    n_vert = len(p)
-    p0, p1, p2 = p[tri[:, 0]], p[tri[:, 1]], p[tri[:, 2]]
-    e1, e2 = p1 - p0, p2 - p0
-    face_n = np.cross(e1, e2)   # length = 2 * area
-
-    normals = mesh.normals.astype(np.float64)
-    if recompute_normals or not np.any(normals):
-        corners = tri.T.reshape(-1)           # corner 0 of every triangle, then 1, then 2
-        acc = _scatter_sum(corners, face_n, n_vert, repeat=3)
-        acc = _group_sum(acc, _position_key(p))
-        normals = _normalize(acc, np.array([0.0, 1.0, 0.0]))
-    else:
-        normals = _normalize(normals, np.array([0.0, 1.0, 0.0]))
-
-    # dP/du and dP/dv per triangle: solve [e1 e2] = [dP/du dP/dv] [[du1 du2], [dv1 dv2]].
-    t0, t1, t2 = uv[tri[:, 0]], uv[tri[:, 1]], uv[tri[:, 2]]
-    du1, dv1 = (t1 - t0).T
-    du2, dv2 = (t2 - t0).T
-    det = du1 * dv2 - du2 * dv1
-    ok = np.abs(det) > 1e-12
-    safe = np.where(ok, det, 1.0)[:, None]
-    dpdu = (e1 * dv2[:, None] - e2 * dv1[:, None]) / safe
-    dpdv = (e2 * du1[:, None] - e1 * du2[:, None]) / safe
-    area = 0.5 * _length(face_n) * ok[:, None]
-    dpdu, dpdv = _normalize(dpdu) * area, _normalize(dpdv) * area
-
-    corners = tri.T.reshape(-1)
-    t_acc = _scatter_sum(corners, dpdu, n_vert, repeat=3)
-    b_acc = _scatter_sum(corners, dpdv, n_vert, repeat=3)
-    # Pool across texture seams: same position, same normal, UVs equal up to whole numbers.
-    frac_uv = np.rint(((uv + 0.5) % 1.0 - 0.5) * 1e4).astype(np.int64) % 10000
-    keys = np.concatenate([_position_key(p), np.rint(normals * 1e3).astype(np.int64), frac_uv], axis=1)
-    groups = _row_groups(keys)
-    t_acc, b_acc = _group_sum(t_acc, groups=groups), _group_sum(b_acc, groups=groups)
-
-    t = t_acc - normals * np.sum(t_acc * normals, axis=1, keepdims=True)
-    t = _normalize(t, _any_perpendicular(normals))
-    b = np.cross(normals, t)
-    sign = np.where(np.sum(b * b_acc, axis=1, keepdims=True) < 0, -1.0, 1.0)
-    return dataclasses.replace(mesh, normals=normals.astype(np.float32), tangents=t.astype(np.float32),
-                               binormals=(b * sign).astype(np.float32))
+    given = None if recompute_normals or not np.any(mesh.normals) else mesh.normals
+    normals, tangents, binormals = tangent_frames(mesh.positions, mesh.uv, mesh.indices, given)
+    return dataclasses.replace(mesh, normals=normals, tangents=tangents, binormals=binormals)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -481,11 +374,21 @@ def load_obj(path: str | os.PathLike[str]) -> Mesh:
     """
     path = os.fspath(path)
     raw = untrusted.read_file(path, ".obj file", SceneError, "mesh_file_bytes")
-    check_obj_counts(raw, Location(path, 1, 1))
-    fast = obj_fast.parse(raw)
-    if fast is not None:   # the common, regular shape, read whole with numpy
+    where = Location(path, 1, 1)
+    checked = []
+
+    def check(vertices: int, faces: int) -> None:
+        _check_counts(vertices, faces, where)
+        checked.append(True)
+
+    # the common, regular shape, read whole with numpy; it checks the counts as soon as it
+    # has told the lines apart (from the same line starts as check_obj_counts)
+    fast = obj_fast.parse(raw, check)
+    if fast is not None:
         positions, uv, tris, normals = fast
         return make_mesh(positions, uv, tris, normals, name=os.path.basename(path))
+    if not checked:
+        check_obj_counts(raw, where)
     lines = raw.decode("utf-8", errors="replace").splitlines()
     v, vt, vn = [], [], []
     corners: dict[tuple[int, int, int], int] = {}
@@ -568,6 +471,10 @@ def check_obj_counts(raw: bytes, where: Location) -> None:
     raw = b"\n" + raw
     vertices = raw.count(b"\nv ") + raw.count(b"\nv\t")
     faces = raw.count(b"\nf ") + raw.count(b"\nf\t")
+    _check_counts(vertices, faces, where)
+
+
+def _check_counts(vertices: int, faces: int, where: Location) -> None:
     limits.check("mesh_vertices", vertices, where, "the .obj file's vertex list", SceneError)
     limits.check("mesh_indices", 3 * faces, where, "the .obj file's faces (3 per triangle at least)",
                  SceneError)

@@ -19,7 +19,7 @@ negative or out-of-range index; a vertex after the first face; a bad number.
 """
 from __future__ import annotations
 
-from typing import Iterator
+from typing import Callable, Iterator
 
 import numpy as np
 
@@ -32,12 +32,17 @@ _WS[[_SP, _TAB, _CR, _NL]] = True
 _BATCH = 1 << 20
 _SCAN = 8 << 20
 _PLAIN_DIGITS = 15                      # 10**15 < 2**53: the digits are an exact double
+_INDEX_DIGITS = 9                       # an index of up to 9 digits fits an int32
 _POW10 = np.array([float(10 ** k) for k in range(_PLAIN_DIGITS + 1)])   # exact doubles
 
 
-def parse(raw: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None] | None:
+def parse(raw: bytes, check_counts: Callable[[int, int], None] | None = None
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None] | None:
     """(positions, uv flipped to D3D, triangles, normals or None) as the per-line reader makes
-    them, or None when the file is not of the regular shape (see the module docstring)."""
+    them, or None when the file is not of the regular shape (see the module docstring).
+    `check_counts(vertices, faces)` is called, when the lines have been told apart and before
+    any is read, with the number of lines starting `v ` / `v<tab>` and `f ` / `f<tab>` (it
+    raises to refuse the file); it is not called when None is returned before that."""
     body = raw if raw.endswith(b"\n") else raw + b"\n"
     if body.translate(None, _ALLOWED_BYTES):          # what is left is not allowed
         return None
@@ -57,6 +62,10 @@ def parse(raw: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | 
             return None                                # a comment after a statement
     # bytes 1 and 2 of each line (the file's last '\n' past its end, as if it had more)
     b0, b1, b2 = data[starts], data[np.minimum(starts + 1, size - 1)], data[np.minimum(starts + 2, size - 1)]
+    if check_counts is not None:
+        spaced = (b1 == _SP) | (b1 == _TAB)
+        check_counts(int(np.count_nonzero((b0 == ord("v")) & spaced)),
+                     int(np.count_nonzero((b0 == ord("f")) & spaced)))
     blank = ends == starts
     if ((b0 == _SP) | (b0 == _TAB)).any():
         return None                                    # an indented line
@@ -78,39 +87,113 @@ def parse(raw: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | 
         if any(part is None for part in parts):
             return None
         columns[kind] = np.concatenate(parts) if parts else np.zeros((0, fields))
-    faces = [_corners(*batch, 3) for batch in _batches(data, starts, lengths, kinds["f"], 1)]
-    if any(part is None for part in faces) or len({form for _, form in faces}) != 1:
-        return None                                    # one form in every face of the file
-    columns["f"] = (np.concatenate([ids for ids, _ in faces]), faces[0][1])
+    face_columns = _face_columns(data, starts, lengths, kinds["f"], len(faces_at))
+    if face_columns is None:
+        return None
+    (has_t, has_n), (vi, ti, ni) = face_columns
     v, vt, vn = columns["v"], columns["vt"], columns["vn"]
-    ids, (has_t, has_n) = columns["f"]
-    per = 1 + has_t + has_n
-    ids = ids.reshape(-1, per) - 1
-    vi = ids[:, 0]
-    ti = ids[:, 1] if has_t else np.full(len(vi), -1, np.int64)
-    ni = ids[:, per - 1] if has_n else np.full(len(vi), -1, np.int64)
     used = [(vi, len(v))] + ([(ti, len(vt))] if has_t else []) + ([(ni, len(vn))] if has_n else [])
     if any(index.min() < 0 or index.max() >= count for index, count in used):
         return None                                    # out of range: the reader says where
-    if len(v) * (len(vt) + 1) * (len(vn) + 1) >= 1 << 62:
-        return None
     # Corners numbered in order of first appearance, as the per-line reader's dict does.
-    key = (vi * (len(vt) + 1) + (ti + 1)) * (len(vn) + 1) + (ni + 1)
+    numbered = _number_by_vertex(vi, ti, ni, len(v))
+    if numbered is None:
+        numbered = _number_by_key(vi, ti, ni, len(v), len(vt), len(vn))
+        if numbered is None:
+            return None
+    tris, corner_v, corner_t, corner_n = numbered
+    positions = v[corner_v]
+    uv = vt[corner_t] if has_t else np.zeros((len(corner_v), 2))
+    uv[:, 1] = 1.0 - uv[:, 1]
+    normals = None
+    if has_n:
+        normals = vn[corner_n]
+        if not ((normals[:, 0] != 0) | (normals[:, 1] != 0) | (normals[:, 2] != 0)).all():
+            normals = None                             # a zero normal: computed instead
+    return positions, uv, tris, normals
+
+
+def _face_columns(data: np.ndarray, starts: np.ndarray, lengths: np.ndarray, which: np.ndarray,
+                  faces: int):
+    """The faces' corners as zero-based index columns (v, vt or None, vn or None), int32,
+    each filled batch by batch (no whole-file temporaries), and the one form (has vt, has
+    vn) of every corner; None unless every face is a triangle of that form."""
+    form, out, at = None, None, 0
+    for batch in _batches(data, starts, lengths, which, 1):
+        found = _corners(*batch, 3)
+        if found is None or (form is not None and found[1] != form):
+            return None                                # one form in every face of the file
+        ids, form = found
+        per = 1 + form[0] + form[1]
+        if out is None:
+            out = [np.empty(3 * faces, np.int32) for _ in range(per)]
+        rows = ids.reshape(-1, per)
+        for column, values in zip(out, rows.T):
+            np.subtract(values, 1, out=column[at:at + len(rows)])
+        at += len(rows)
+    if out is None or at != 3 * faces:
+        return None
+    vi = out[0]
+    ti = out[1] if form[0] else None
+    ni = out[-1] if form[1] else None
+    return form, (vi, ti, ni)
+
+
+def _number_by_vertex(vi: np.ndarray, ti: np.ndarray | None, ni: np.ndarray | None,
+                      vertices: int):
+    """The corners numbered in order of first appearance when every vertex index comes with
+    one texture-coordinate and one normal index throughout the file (as exporters write
+    them): a corner is then its vertex, numbered through a table, with no sort. Returns
+    (triangles, and per corner its v, vt and vn index), or None where a vertex comes with
+    two different vt or vn."""
+    partners = []
+    for other in (ti, ni):
+        if other is None:
+            partners.append(None)
+            continue
+        table = np.zeros(vertices, other.dtype)
+        table[vi] = other                              # some occurrence's partner ...
+        if not (table[vi] == other).all():             # ... is every occurrence's
+            return None
+        partners.append(table)
+    count = len(vi)
+    first = np.full(vertices, count, np.int64)
+    np.minimum.at(first, vi, np.arange(count))         # where each vertex first appears
+    seen = np.flatnonzero(first < count)
+    slot = np.zeros(count, bool)
+    slot[first[seen]] = True
+    owner = np.empty(count, np.int64)
+    owner[first[seen]] = seen
+    corner_v = owner[slot]                             # vertices in order of first appearance
+    rank = np.empty(vertices, np.int64)
+    rank[corner_v] = np.arange(len(corner_v))
+    tris = rank[vi].reshape(-1, 3)
+    return (tris, corner_v, None if partners[0] is None else partners[0][corner_v],
+            None if partners[1] is None else partners[1][corner_v])
+
+
+def _number_by_key(vi: np.ndarray, ti: np.ndarray | None, ni: np.ndarray | None,
+                   vertices: int, coords: int, normals: int):
+    """The corners numbered in order of first appearance of their (v, vt, vn) triple, by
+    one sort of the triples' codes; None where the code could overflow."""
+    if vertices * (coords + 1) * (normals + 1) >= 1 << 62:
+        return None
+    key = vi.astype(np.int64) * (coords + 1)
+    if ti is not None:
+        key += ti
+        key += 1
+    key *= normals + 1
+    if ni is not None:
+        key += ni
+        key += 1
     _, first_at, inverse = np.unique(key, return_index=True, return_inverse=True)
     order = np.argsort(first_at, kind="stable")
     rank = np.empty(len(order), np.int64)
     rank[order] = np.arange(len(order))
     tris = rank[inverse.ravel()].reshape(-1, 3)
     first = first_at[order]
-    positions = v[vi[first]]
-    uv = vt[ti[first]] if has_t else np.zeros((len(first), 2))
-    uv[:, 1] = 1.0 - uv[:, 1]
-    normals = None
-    if has_n:
-        normals = vn[ni[first]]
-        if not np.any(normals != 0, axis=1).all():
-            normals = None
-    return positions, uv, tris, normals
+    return (tris, vi[first], None if ti is None else ti[first],
+            None if ni is None else ni[first])
 
 
 def _batches(data: np.ndarray, starts: np.ndarray, lengths: np.ndarray, which: np.ndarray,
@@ -175,10 +258,9 @@ def _floats(chunk: np.ndarray, line_starts: np.ndarray, line_ends: np.ndarray,
     odd = lengths > longest                      # too long to be plain, or a stray byte
     short = np.minimum(lengths, 127).astype(np.int8)
     padded = np.concatenate([chunk, np.zeros(longest, np.uint8)])
-    at, byte, scale_by = np.empty_like(first), np.empty(count, np.uint8), np.empty(count, np.uint8)
+    byte, scale_by = np.empty(count, np.uint8), np.empty(count, np.uint8)
     for k in range(longest):                     # byte k of every token (buffers reused)
-        np.add(first, k, out=at)
-        padded.take(at, out=byte)
+        padded[k:].take(first, out=byte)         # the byte k after each token's start
         inside = short > k
         point = (byte == ord(".")) & inside
         sign = ((byte == ord("-")) | (byte == ord("+"))) & inside
@@ -241,18 +323,17 @@ def _corners(chunk: np.ndarray, line_starts: np.ndarray, line_ends: np.ndarray,
             or int(np.count_nonzero(chunk == _SLASH)) != slashes * gap_at.size:
         return None
     lengths = last - first
-    if lengths.max() > _PLAIN_DIGITS:
+    if lengths.max() > _INDEX_DIGITS:
         return None                                # out of any range: the reader says
     longest = int(lengths.max())
     padded = np.concatenate([chunk, np.zeros(longest, np.uint8)])
-    value = np.zeros(len(first), np.int64)
+    value = np.zeros(len(first), np.int32)
     short = lengths.astype(np.int8)
     count = len(first)
-    at, byte, inside, scale_by = (np.empty_like(first), np.empty(count, np.uint8),
-                                  np.empty(count, np.uint8), np.empty(count, np.uint8))
+    byte, inside, scale_by = (np.empty(count, np.uint8), np.empty(count, np.uint8),
+                              np.empty(count, np.uint8))
     for k in range(longest):                       # digit k of every index (buffers reused)
-        np.add(first, k, out=at)
-        padded.take(at, out=byte)
+        padded[k:].take(first, out=byte)           # the byte k after each run's start
         np.greater(short, k, out=inside, casting="unsafe")
         # value = value * 10 + digit inside the run (no masked loops: SIMD)
         np.multiply(inside, 9, out=scale_by)
