@@ -6,22 +6,18 @@ initialiser is one, is evaluated when the pass is lowered, from the parameters' 
 by the HLSL evaluator (`effects.shaders.hlsl.preshader`). Lowering reads the parameters through
 its `RecordedReads` view, so the lowering cache holds the program only while the parameters the
 expression read keep their values: a `set` of one lowers (and so evaluates) again on the next
-frame. Validation leaves these states unknown, as it does an unset parameter, except a shader
-picked from an array of shaders (`PixelShader = (PSArray[ShaderIndex])`): lowering draws, and
-validation judges, the element the current values pick (`shader_element`).
+frame. Validation judges the value the same evaluation gives at the parameters' current values
+(`effects.validate.expressions`), and a shader picked from an array of shaders (`PixelShader =
+(PSArray[ShaderIndex])`) as the element the current values pick (`shader_element`).
 """
 from __future__ import annotations
 
 from dataclasses import replace
 from typing import Any
 
-import numpy as np
-
 from effects.device import DeviceState
-from effects.errors import EffectError
 from effects.model import Effect, Expression, ParamRef, StateAssignment
-from effects.shaders.hlsl.preshader import shader_element, state_numbers
-from effects.states import lookup_state
+from effects.shaders.hlsl.preshader import shader_element, state_value
 
 
 def evaluate_expressions(effect: Effect, state: DeviceState) -> DeviceState:
@@ -67,24 +63,5 @@ def _evaluated(effect: Effect, assignment: StateAssignment, expression: Expressi
         element = shader_element(effect, expression.text, expression.location)
         if element is not None:            # `(PSArray[ShaderIndex])`: the element it picks
             return replace(assignment, value=element)
-    numbers = state_numbers(expression.text, expression.location, effect)
-    need = _SIZES.get(getattr(lookup_state(assignment.name), "type", ""))
-    if need is not None and numbers.size not in need:
-        shown = assignment.name if assignment.index is None else \
-            f"{assignment.name}[{assignment.index}]"
-        wanted = " or ".join(str(n) for n in sorted(need))
-        raise EffectError(f"X3017: {shown} takes {wanted} value(s); '{expression.text.strip()}' "
-                          f"has {numbers.size}", expression.location)
-    # One component reads as a plain number (every typed reader takes one); more as an array
-    # (a vector, a matrix row by row, constant registers four floats each).
-    value: Any = float(numbers[0]) if numbers.size == 1 else numbers
-    return replace(assignment, value=value)
-
-
-# How many components an expression may have, by the states table's type of the state (a
-# colour is three or four floats, or one packed DWORD); a type not here takes any number
-# (shader constants: four floats a register).
-_SIZES: dict[str, set[int]] = {
-    "bool": {1}, "int": {1}, "dword": {1}, "float": {1}, "enum": {1},
-    "color": {1, 3, 4}, "float3": {1, 3}, "float4": {1, 4}, "matrix": {16},
-}
+    return replace(assignment, value=state_value(assignment.name, assignment.index,
+                                                 expression.text, expression.location, effect))

@@ -32,8 +32,11 @@ What is checked, and what is not:
   shader fails to create.
 - Card quirks (caps.py's vocabulary): severity `error` rejects, `warning` is reported in
   `Validation.warnings` and rejects nothing.
-A state whose value is a parameter without a value (or a preshader expression) cannot be
-checked before the application sets it: it is skipped with a note, never a crash.
+A state whose value is a parameter without a value cannot be checked before the application
+sets it: it is skipped with a note, never a crash. A preshader expression is judged at the
+parameters' current values (`expressions`), and left with a note where it reads a parameter
+without a value. Point sizes are judged against MaxPointSize where the profile gives it
+(`points`).
 
 The checks live in one module per job, each a mixin of the pass checker here: `stages`
 (fixed-function stages), `textures` (textures, samplers, formats), `framebuffer` (one loop
@@ -54,7 +57,9 @@ from effects.device import DeviceState, pass_states
 from effects.errors import EffectError, Location
 from effects.frontend.references import pass_reference_problems
 from effects.model import Effect, EnumValue, Expression, NullValue, ParamRef, Pass, Technique
+from effects.validate.expressions import ExpressionValues
 from effects.validate.framebuffer import FrameBufferChecks
+from effects.validate.points import PointChecks
 from effects.validate.shaders import ShaderChecks, software_vs_version
 from effects.validate.stages import StageChecks
 from effects.validate.textures import TextureChecks, texture_kind
@@ -153,13 +158,17 @@ def _unreliable(profile: CapsProfile) -> tuple[dict, dict]:
 
 
 class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
-                   VertexTextureChecks):
+                   VertexTextureChecks, PointChecks):
     """Runs every check for one pass and collects its reasons."""
 
     def __init__(self, effect: Effect, technique: Technique, p: Pass, index: int,
                  state: DeviceState, profile: CapsProfile) -> None:
-        self.effect, self.technique, self.pass_, self.state, self.profile = effect, technique, p, state, profile
+        self.effect, self.technique, self.pass_, self.profile = effect, technique, p, profile
         self.report = PassReport(p.name or str(index), index, p.location, state=state)
+        # the checks read expression-valued states as their values now (the report keeps the
+        # state as written: lowering evaluates again when it draws)
+        self.expressions = ExpressionValues(effect, state)
+        self.state = self.expressions.state
         # quirks that make a reported caps bit or format unusable: (field, bit) / (format, usage)
         self.unreliable_bits, self.unreliable_formats = _unreliable(profile)
 
@@ -172,6 +181,14 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
     def warn(self, location: Location, subject: str, quirk: Quirk) -> None:
         reason = Reason(self.technique.name, self.report.name, location, subject,
                         f"driver rule {quirk.id}", quirk.text, f"{subject}: {quirk.text} ({self.card()})")
+        if reason not in self.report.warnings:
+            self.report.warnings.append(reason)
+
+    def caution(self, location: Location, subject: str, requirement: str, card_value: str,
+                message: str) -> None:
+        """A warning that is no driver quirk: what the card does differently, rejecting nothing."""
+        reason = Reason(self.technique.name, self.report.name, location, subject, requirement,
+                        card_value, message)
         if reason not in self.report.warnings:
             self.report.warnings.append(reason)
 
@@ -224,11 +241,19 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
         shown = f"{name}[{index}]" if index is not None and _is_indexed(name) else name
         what = (f"parameter {value.name}, which has no value" if isinstance(value, ParamRef)
                 else f"the expression '{value.text}'")
-        self.note(f"{shown} is set from {what}: not checked until the application sets it")
+        a = self.state.assignment(name, index)
+        pending = self.expressions.pending.get(a.location) if a is not None else None
+        if pending is None:
+            self.note(f"{shown} is set from {what}: not checked until the application sets it")
+        elif pending:
+            self.note(pending)
         return True
 
     # -- the checks -------------------------------------------------------------------------
     def run(self) -> PassReport:
+        for shown, err in self.expressions.errors:
+            self.fail(err.location, shown, "a value its expression evaluates to", "no value",
+                      err.message)
         ps = self.shader("PixelShader")
         vs = self.shader("VertexShader")
         if ps is None:
@@ -242,7 +267,10 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
         self.check_textures(ps is not None)
         self.check_framebuffer()
         self.check_quirks()
+        self.check_points()
         self.check_references()
+        self.report.reasons = self.expressions.annotate(self.report.reasons)
+        self.report.warnings = self.expressions.annotate(self.report.warnings)
         return self.report
 
     def check_references(self) -> None:

@@ -10,12 +10,14 @@ numbers; what cannot fold (a sampler, a texture read) is fxc's X3013, located.""
 from __future__ import annotations
 
 import re
+from typing import Any
 
 import numpy as np
 
 from effects.errors import EffectError, Location
 from effects.model import Effect, ParamRef
 from effects.shaders.hlsl.parse import Origin, parse
+from effects.states import lookup_state
 
 # `<Light>` / `<Lights[2]>`: the effect syntax for a parameter reference inside an expression.
 # The brackets are blanked to spaces, so every column of the text stays where it was.
@@ -54,6 +56,30 @@ def state_numbers(text: str, location: Location, effect: Effect) -> np.ndarray:
         raise Origin(location, text).error(
             f"X3013: '{text.strip()}' does not evaluate to finite numbers ({numbers})", location)
     return np.asarray(numbers, dtype=np.float64)
+
+
+def state_value(name: str, index: int | None, text: str, location: Location, effect: Effect) -> Any:
+    """A state's expression as the value its typed readers take (lowering draws it, validation
+    judges it): one component a plain number (every typed reader takes one), more an array (a
+    vector, a matrix row by row, constant registers four floats each); X3017 when the state's
+    type takes another count."""
+    numbers = state_numbers(text, location, effect)
+    need = _SIZES.get(getattr(lookup_state(name), "type", ""))
+    if need is not None and numbers.size not in need:
+        shown = name if index is None else f"{name}[{index}]"
+        wanted = " or ".join(str(n) for n in sorted(need))
+        raise EffectError(f"X3017: {shown} takes {wanted} value(s); '{text.strip()}' "
+                          f"has {numbers.size}", location)
+    return float(numbers[0]) if numbers.size == 1 else numbers
+
+
+# How many components an expression may have, by the states table's type of the state (a
+# colour is three or four floats, or one packed DWORD); a type not here takes any number
+# (shader constants: four floats a register).
+_SIZES: dict[str, set[int]] = {
+    "bool": {1}, "int": {1}, "dword": {1}, "float": {1}, "enum": {1},
+    "color": {1, 3, 4}, "float3": {1, 3}, "float4": {1, 4}, "matrix": {16},
+}
 
 
 # `PixelShader = (PSArray[ShaderIndex]);`: one element of an array of shaders, picked by an
