@@ -200,6 +200,8 @@ class Viewer:
                 if frame == 1 and self.loaded is not None:
                     self.say(f"view: {self.options.path} on {self._selection_text()}")
                 fresh, self._fresh_result = self._fresh_result, None
+                if fresh is not None:
+                    self.reloader.drawn()     # now the build's pending validations may run
                 if self.on_frame is not None:
                     self.on_frame(FrameEvent(frame, time.perf_counter(), self.effect_generation, fresh,
                                              self._rendered_ms))

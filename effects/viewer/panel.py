@@ -138,6 +138,7 @@ def _techniques(state: ViewerState, status: Status) -> None:
             imgui.bullet()
             imgui.text_wrapped(str(reason))
     imgui.text("Other techniques:")
+    pending = loaded.pending        # read first: the worker fills validations, then empties it
     for v in loaded.validations:
         if selected is not None and v.technique is selected.technique:
             continue
@@ -161,6 +162,10 @@ def _techniques(state: ViewerState, status: Status) -> None:
         imgui.unindent()
         if opened:
             imgui.tree_pop()
+    if pending:
+        imgui.bullet()
+        imgui.text_wrapped(f"{', '.join(t.name or '<anonymous>' for t in pending)}: being "
+                           "validated (after the first frame of this reload)")
 
 
 def _view(state: ViewerState, status: Status) -> None:

@@ -10,7 +10,10 @@ the rest:
   load, validate, select, lower; see `build_effect`) and puts a `ReloadResult` -- the new
   effect and its selection, or the located error -- on a queue. The render thread calls
   `poll()` each frame, swaps in a good result, keeps drawing the last good effect after a
-  failed one, and prints `result.log_line()`:
+  failed one, and prints `result.log_line()`. A build may leave the techniques after the
+  drawn one to validate (`LoadedEffect.pending`): the worker does that once the render thread
+  says it drew the new effect (`drawn()`), so a reload's first frame waits only for what it
+  draws. It prints:
       reload: PATH ok in 12.3 ms (technique NAME)
       reload: PATH failed: ERROR
 Nothing here opens a window, so all of it is tested without a display.
@@ -88,8 +91,11 @@ class LoadedEffect:
 
     `technique` is what is drawn: the forced one when it is valid on the card, else the one
     the card selects (None when no technique is valid). `validations` holds every technique's
-    answer in file order. `programs` are the lowered passes of `technique` (None when there is
-    nothing to draw); `forced_rejected` is set when a forced technique is not valid here."""
+    answer in file order -- but for `pending`: a build that defers (the viewer's reloads)
+    validates in file order only until the drawn technique is known, and the techniques after
+    it wait in `pending` until `complete_validations()` (the reload worker's, after the first
+    frame). `programs` are the lowered passes of `technique` (None when there is nothing to
+    draw); `forced_rejected` is set when a forced technique is not valid here."""
 
     path: str
     effect: "Effect"
@@ -104,6 +110,20 @@ class LoadedEffect:
     runtime: Any = None        # the effects.host.runtime.Runtime that prepared it (no back end yet)
     scene_key: Any = None      # BuildSettings.scene_key of the scene it was prepared for
     listing: list[list[str]] | None = None   # per pass of `technique`: `effects compile`'s lines
+    pending: list["Technique"] = field(default_factory=list)   # not validated yet (see above)
+
+    def complete_validations(self) -> None:
+        """Validate the techniques still pending and list every answer in file order. Run off
+        the render thread; the panel reads `validations` each frame, so the full list replaces
+        it in one assignment (before `pending` is emptied)."""
+        if not self.pending:
+            return
+        from effects.validate.technique import validate_technique
+        done = {id(v.technique): v for v in self.validations}
+        for t in self.pending:
+            done[id(t)] = validate_technique(self.effect, t, self.profile)
+        self.validations = [done[id(t)] for t in self.effect.techniques]
+        self.pending = []
 
     @property
     def selected(self) -> "Validation | None":
@@ -151,7 +171,7 @@ def error_text(error: BaseException | None) -> str:
 def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = None,
                  policy: Any = "first", scene: Any = None, lower: bool = True,
                  previous: "Effect | None" = None, keep_prepare_error: bool = False,
-                 scene_key: Any = None, **load_options: Any) -> LoadedEffect:
+                 scene_key: Any = None, defer: bool = False, **load_options: Any) -> LoadedEffect:
     """Load (unless `previous` is given), validate every technique, select, and prepare the
     chosen one for drawing in `scene` (a Scene, mapping, YAML path or None for the defaults):
     lower its passes with the scene's parameter values, load the textures they sample (into
@@ -161,14 +181,21 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     drawn and `forced_rejected` carries the forced one's reasons. Raises EffectError (located)
     for a broken file, a missing texture, or a pass that cannot be lowered -- the last two are
     kept in `prepare_error` instead with `keep_prepare_error` (a card change: the file is fine,
-    the panel shows why this card cannot draw it)."""
+    the panel shows why this card cannot draw it). `defer`: under the default policy, stop
+    validating once the technique to draw is known (the first valid one in file order, or a
+    valid forced one) and leave the rest `pending` (see LoadedEffect): a reload draws sooner
+    when the fallbacks compile the edited function again for their own targets."""
     from effects.frontend.loader import load_effect
-    from effects.validate.select import choose
+    from effects.validate.select import Policy, as_policy, choose
     from effects.validate.technique import validate_technique
     effect = previous if previous is not None else load_effect(path, **load_options)
     # Every technique is validated once: the panel lists them all, and selection chooses
     # among these same answers (the first valid one in file order, for the default policy).
-    validations = [validate_technique(effect, t, profile) for t in effect.techniques]
+    validations = []
+    pending = list(effect.techniques)
+    stop = defer and as_policy(policy) == Policy()
+    while pending and not (stop and _decided(validations, technique)):
+        validations.append(validate_technique(effect, pending.pop(0), profile))
     chosen = None
     chosen_validation = None
     forced_rejected = None
@@ -201,7 +228,18 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     listing = technique_listing(effect, chosen) if chosen is not None else None
     return LoadedEffect(path, effect, profile, validations, chosen, programs, technique,
                         forced_rejected, watched_files(effect), prepare_error, runtime, scene_key,
-                        listing)
+                        listing, pending)
+
+
+def _decided(validations: list["Validation"], forced: str | None) -> bool:
+    """Under the default policy, whether these answers (the first techniques in file order)
+    already decide what is drawn: the forced technique when it is valid, else the first valid
+    one, which nothing later can precede."""
+    first_valid = any(v.ok for v in validations)
+    if not forced:
+        return first_valid
+    answer = next((v for v in validations if v.technique.name == forced), None)
+    return answer is not None and (answer.ok or first_valid)
 
 
 def technique_listing(effect: "Effect", technique: "Technique") -> list[list[str]]:
@@ -251,6 +289,9 @@ def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
 
 
 Build = Callable[["Effect | None"], LoadedEffect]
+# How long techniques a build left pending wait for the render thread's first frame before
+# the worker validates them anyway (a Reloader with no viewer drawing)
+COMPLETE_AFTER_S = 0.25
 
 
 class Reloader:
@@ -330,11 +371,40 @@ class Reloader:
     def _files_changed(self, paths: list[str]) -> None:
         self._jobs.put(("reload", tuple(paths), time.perf_counter()))
 
+    def drawn(self) -> None:
+        """The render thread drew its first frame with the last result: the worker may now
+        validate the techniques that build left pending (the panel lists them)."""
+        self._jobs.put(("drawn", (), time.perf_counter()))
+
+    def _complete(self) -> None:
+        """Validate what the last good build left pending. A failure is reported as a failed
+        reload would be (the drawn effect stays)."""
+        good = self._good
+        if good is None or not getattr(good, "pending", None):
+            return
+        start = time.perf_counter()
+        try:
+            good.complete_validations()
+        except BaseException as exc:  # noqa: BLE001 - reported; what is drawn stays
+            good.pending = []
+            self.results.put(ReloadResult(self.path, "reload", None, exc,
+                                          (time.perf_counter() - start) * 1000.0, (), start))
+
     def _work(self) -> None:
         while True:
-            job = self._jobs.get()
+            waiting = self._good is not None and bool(getattr(self._good, "pending", None))
+            try:
+                # validations left pending wait for the first frame (or, with no render
+                # thread to say so, a short while), but never hold up a new build
+                job = self._jobs.get(timeout=COMPLETE_AFTER_S if waiting else None)
+            except queue.Empty:
+                self._complete()
+                continue
             if job is None:
                 return
+            if job[0] == "drawn":
+                self._complete()
+                continue
             kind, changed, requested = job
             # Coalesce: if more reload jobs queued up meanwhile, one build reads the newest files.
             while True:
@@ -344,6 +414,8 @@ class Reloader:
                     break
                 if nxt is None:
                     return
+                if nxt[0] == "drawn":       # drawn: an older build; this one replaces it
+                    continue
                 if nxt[0] == "reload" or kind == "reload":
                     kind = "reload"
                 changed = tuple(sorted(set(changed) | set(nxt[1])))
@@ -381,5 +453,5 @@ def effect_builder(path: str, settings: Callable[[], BuildSettings], **load_opti
         s = settings()
         return build_effect(path, s.profile, technique=s.technique, policy=s.policy,
                             scene=s.scene, previous=previous, scene_key=s.scene_key,
-                            keep_prepare_error=previous is not None, **load_options)
+                            keep_prepare_error=previous is not None, defer=True, **load_options)
     return build
