@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from typing import Iterator
 
 from effects import limits
 from effects.errors import AsmError, Location
@@ -51,7 +50,7 @@ _ROLE_NAMES = {"d": "dst", "s": "src", "x": "src", "S": "sampler", "f": "value",
                "B": "value", "l": "label", "b": "condition", "I": "i#", "L": "aL", "p": "p0"}
 
 
-@dataclass
+@dataclass(slots=True)      # one per token of every shader: slots make them cheaper to build
 class Token:
     type: str      # 'version' 'number' 'word' 'punct' 'end'
     text: str
@@ -96,25 +95,34 @@ class _Parser:
         return AsmError(message, self.loc(tok), source_line=self.line_of(tok))
 
     # -- lexing --------------------------------------------------------------------------------
-    def _lex(self, text: str) -> Iterator[Token]:
-        line, line_start, i = 0, 0, 0
-        while i < len(text):
-            m = _TOKEN.match(text, i)
-            if m is None:
-                yield Token("bad", text[i], line, i - line_start + 1)
-                return
+    def _lex(self, text: str) -> list[Token]:
+        """Every token up to the end (or up to a character no token starts with, as a 'bad'
+        token, which is an error only when the parser reaches it). One pass of finditer: a
+        gap between two matches is such a character."""
+        out: list[Token] = []
+        line, line_start, end = 0, 0, 0
+        for m in _TOKEN.finditer(text):
+            i = m.start()
+            if i != end:
+                out.append(Token("bad", text[end], line, end - line_start + 1))
+                return out
             kind = m.lastgroup
+            end = m.end()
             if kind == "nl":
-                line, line_start = line + 1, m.end()
+                line, line_start = line + 1, end
             elif kind != "ws":
-                yield Token(kind, m.group(), line, i - line_start + 1)
-            i = m.end()
-        yield Token("end", "", line, i - line_start + 1)
+                out.append(Token(kind, m.group(), line, i - line_start + 1))  # type: ignore[arg-type]
+        if end != len(text):
+            out.append(Token("bad", text[end], line, end - line_start + 1))
+            return out
+        out.append(Token("end", "", line, end - line_start + 1))
+        return out
 
     def peek(self) -> Token:
         if self.current is not None:     # the common case first: this runs several times a token
             return self.current
-        self.current = next(self.tokens)
+        self.current = self.tokens[self.pos]
+        self.pos += 1
         if self.current.type == "bad":
             raise self.error(f"unexpected character '{self.current.text}'", self.current)
         if len(self.current.text) > self.max_word:  # c99999...: Python's int() stops at 4,300 digits
@@ -139,7 +147,8 @@ class _Parser:
 
     # -- program -------------------------------------------------------------------------------
     def parse(self) -> AsmProgram:
-        first = self.current = next(self.tokens)
+        first = self.current = self.tokens[0]
+        self.pos = 1
         if first.type != "version":
             raise AsmError(NOT_ASSEMBLY, self.loc(first), source_line=self.line_of(first))
         self.advance()
