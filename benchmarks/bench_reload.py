@@ -17,6 +17,14 @@ The watcher's debounce (effects.viewer.reload.DEBOUNCE_S) is part of every sampl
 whose pixel shader is a `compile` of an HLSL function: each edit rewrites, in place, the first
 assignment line of that function (`x = e;` -> `x = (e) * 1.000N;`, N the edit's number), so the
 function compiles again for its target(s) on every reload while the other shaders are kept.
+
+`--breakdown`: also where each sample's time went (medians over the edits, ms): the watcher's
+event (debounce included), the build and inside it load / validate (HLSL compiles included) /
+HLSL compiles / prepare (lowering, textures, streams) / listing, then the first draw of the new
+effect (the GL program build inside it) and the buffer swaps until the frame is shown. The
+parts are timed by wrapping those functions in the child; they overlap (validate holds the
+compiles) and the render thread's frames of the old effect drawn while the build runs are in
+"draw" and "swap" too.
 """
 from __future__ import annotations
 
@@ -64,10 +72,52 @@ def edited(text: str, i: int, hlsl_line: int | None) -> str:
     return "\n".join(lines)
 
 
-def measure_one(path: str, card: str, edits: int, hlsl: bool = False) -> dict:
+_PARTS: list[tuple[str, float, float]] = []      # (part, start, ms) while --breakdown times
+
+
+def _timed(owner, attr: str, part: str) -> None:
+    real = getattr(owner, attr)
+
+    def wrapper(*args, **kwargs):
+        start = time.perf_counter()
+        try:
+            return real(*args, **kwargs)
+        finally:
+            _PARTS.append((part, start, (time.perf_counter() - start) * 1000.0))
+    setattr(owner, attr, wrapper)
+
+
+def _instrument() -> None:
+    import moderngl
+
+    import effects.frontend.loader as loader
+    import effects.shaders.hlsl.compiler as compiler
+    import effects.validate.technique as technique
+    import effects.viewer.app as app
+    import effects.viewer.reload as reload
+    _timed(loader, "load_effect", "load")
+    _timed(technique, "validate_technique", "validate")
+    _timed(compiler, "compile_shader", "HLSL compile")
+    _timed(reload, "prepare", "prepare")
+    _timed(reload, "technique_listing", "listing")
+    _timed(app.Viewer, "_render_effect", "draw (effect)")
+    _timed(moderngl.Context, "program", "GL program build")
+    opened = app.Viewer._open_window
+
+    def open_window(self):
+        opened(self)
+        _timed(self.window, "swap_buffers", "swap")
+    app.Viewer._open_window = open_window
+
+
+def measure_one(path: str, card: str, edits: int, hlsl: bool = False,
+                breakdown: bool = False) -> dict:
     """Run a viewer on `path` in this process and time `edits` edits."""
     from effects.viewer.reload import DEBOUNCE_S
     from effects.viewer.app import FrameEvent, Viewer, ViewerOptions
+    if breakdown:
+        _instrument()
+    parts: list[dict[str, float]] = []
 
     text = open(path, encoding="utf-8").read()
     hlsl_line = hlsl_edit_line(text) if hlsl else None
@@ -106,6 +156,7 @@ def measure_one(path: str, card: str, edits: int, hlsl: bool = False) -> dict:
                 time.sleep(0.15)                       # idle: the last frame is long drawn
                 generation = frames[-1].effect_generation
                 body = edited(text, i, hlsl_line)
+                _PARTS.clear()
                 start = time.perf_counter()
                 if i % 2:
                     tmp = path + ".tmp"
@@ -120,6 +171,12 @@ def measure_one(path: str, card: str, edits: int, hlsl: bool = False) -> dict:
                 if frame.result is not None:
                     builds.append(frame.result.build_ms)
                     after_debounce.append((frame.time - frame.result.requested_at) * 1000.0)
+                    row = {"event": (frame.result.requested_at - start) * 1000.0,
+                           "build": frame.result.build_ms}
+                    for part, at, ms in list(_PARTS):
+                        if start <= at <= frame.time:
+                            row[part] = row.get(part, 0.0) + ms
+                    parts.append(row)
         finally:
             done.set()
 
@@ -129,7 +186,7 @@ def measure_one(path: str, card: str, edits: int, hlsl: bool = False) -> dict:
     viewer.run()
     return {"effect": os.path.basename(path), "card": card, "samples_ms": samples,
             "build_ms": builds, "after_debounce_ms": after_debounce,
-            "debounce_ms": DEBOUNCE_S * 1000.0}
+            "debounce_ms": DEBOUNCE_S * 1000.0, "parts": parts}
 
 
 def drawable_card(path: str, preferred: str) -> str | None:
@@ -152,12 +209,15 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--effect", action="append", default=[], help="default: every fxfiles/*.fx")
     parser.add_argument("--hlsl-edit", action="store_true",
                         help="edit one line of the HLSL pixel shader function, not a comment")
+    parser.add_argument("--breakdown", action="store_true",
+                        help="also print where each sample's time went (see above)")
     parser.add_argument("--one", help=argparse.SUPPRESS)     # child mode: one effect, JSON out
     args = parser.parse_args(argv)
     if args.one:
         if os.path.abspath(args.one).startswith(ROOT + os.sep):
             parser.error("--one edits the file it is given: pass a copy outside the project")
-        print(json.dumps(measure_one(args.one, args.card, args.edits, args.hlsl_edit)), flush=True)
+        print(json.dumps(measure_one(args.one, args.card, args.edits, args.hlsl_edit,
+                                     args.breakdown)), flush=True)
         return 0
 
     effects_ = args.effect or sorted(glob.glob(os.path.join(ROOT, "fxfiles", "*.fx")))
@@ -178,7 +238,8 @@ def main(argv: list[str] | None = None) -> int:
                 continue
             out = subprocess.run([sys.executable, __file__, "--one", copy, "--card", card,
                                   "--edits", str(args.edits)]
-                                 + (["--hlsl-edit"] if args.hlsl_edit else []),
+                                 + (["--hlsl-edit"] if args.hlsl_edit else [])
+                                 + (["--breakdown"] if args.breakdown else []),
                                  capture_output=True, text=True, cwd=ROOT)
             line = out.stdout.strip().splitlines()[-1] if out.stdout.strip() else ""
             if out.returncode != 0 or not line.startswith("{"):
@@ -194,6 +255,11 @@ def main(argv: list[str] | None = None) -> int:
             rest = statistics.median(result["after_debounce_ms"])
             print(f"{result['effect']:<20} {card:<14} {statistics.median(samples):7.1f}ms "
                   f"{max(samples):7.1f}ms {build:7.1f}ms {rest:14.1f}ms")
+            if args.breakdown and result["parts"]:
+                names = list(dict.fromkeys(k for row in result["parts"] for k in row))
+                print("    " + ", ".join(
+                    f"{k} {statistics.median(row.get(k, 0.0) for row in result['parts']):.1f}"
+                    for k in names))
     median = statistics.median(all_samples)
     print(f"median write -> first frame with the edit: {median:.1f} ms over {len(all_samples)} "
           f"edits (goal {GOAL_MS:.0f} ms; debounce {result['debounce_ms']:.0f} ms included)")
