@@ -22,6 +22,16 @@ from effects.cli.main import main
 from effects.viewer.app import Viewer, ViewerOptions
 from effects.viewer.reload import Reloader, build_effect, effect_builder
 
+
+def save(path: Path, text: str) -> None:
+    """Write an edit atomically, as test_reload's save() does: a plain write truncates first,
+    and on a loaded machine the polling watcher can read the empty file in between (an empty
+    effect loads "ok" with no technique, and the result a test expects is the one after)."""
+    tmp = f"{path}.part"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
 ROOT = Path(__file__).resolve().parent.parent
 SDK9 = ROOT / "fxfiles" / "sdk9_hlsl.fx"
 
@@ -81,7 +91,7 @@ def test_the_listing_follows_a_reload_a_broken_reload_and_a_card_switch(tmp_path
         # 1. an edit of the pixel function: its new instruction is in the listing
         edited = source.replace("return o;", "o.Position.x = frac(o.Position.x);\n    return o;", 1)
         assert edited != source
-        path.write_text(edited)
+        save(path, edited)
         result = reloader.wait(10)
         assert result is not None and result.ok, result and result.error
         viewer._take(result)
@@ -90,7 +100,7 @@ def test_the_listing_follows_a_reload_a_broken_reload_and_a_card_switch(tmp_path
         assert after + "\n" == compile_output(capsys, str(path), "--technique", "Scene_ps20")
 
         # 2. a broken edit: the last good listing stays, and the error is what the window shows
-        path.write_text(edited.replace("technique Scene_ps20", "technique Scene_ps20 oops"))
+        save(path, edited.replace("technique Scene_ps20", "technique Scene_ps20 oops"))
         result = reloader.wait(10)
         assert result is not None and not result.ok
         viewer._take(result)
@@ -98,7 +108,7 @@ def test_the_listing_follows_a_reload_a_broken_reload_and_a_card_switch(tmp_path
         assert viewer.status.error is not None and "error" in viewer.status.error
 
         # 3. fixed again, then another card: the technique it selects is listed
-        path.write_text(edited)
+        save(path, edited)
         result = reloader.wait(10)
         assert result is not None and result.ok
         viewer._take(result)
@@ -128,7 +138,7 @@ def test_a_card_switch_after_a_broken_edit_lists_the_last_good_source(tmp_path, 
     reloader = Reloader(str(path), builder, use_watchdog=False, poll_interval=0.05)
     reloader.start(viewer.loaded)
     try:
-        path.write_text("// three lines\n// pushed in\n// above\n" + source + "\n}")   # broken
+        save(path, "// three lines\n// pushed in\n// above\n" + source + "\n}")   # broken
         result = reloader.wait(10)
         assert result is not None and not result.ok
         viewer._take(result)
