@@ -395,7 +395,7 @@ class Reloader:
             waiting = self._good is not None and bool(getattr(self._good, "pending", None))
             try:
                 # validations left pending wait for the first frame (or, with no render
-                # thread to say so, a short while), but never hold up a new build
+                # thread to say so, a short while); a build queued before then goes first
                 job = self._jobs.get(timeout=COMPLETE_AFTER_S if waiting else None)
             except queue.Empty:
                 self._complete()
