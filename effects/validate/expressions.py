@@ -75,7 +75,7 @@ class ExpressionValues:
         from effects.shaders.hlsl.preshader import state_value   # lark: when needed
         info = lookup_state(name)
         shown = name if index is None or info is None or info.index == "none" else f"{name}[{index}]"
-        text = expression.text.strip()
+        text = _flag_names(name, info, expression.text.strip())
         view = RecordedReads(effect)
         try:
             number = state_value(name, index, expression.text, expression.location, view)
@@ -142,6 +142,17 @@ def _typed(name: str, info: Any, number: Any) -> Any:
         return EnumValue(tuple(reversed(names)), n) if names and not rest else number
     found = next((k for k, v in table.values.items() if v == n), None)
     return EnumValue((found,), n) if found is not None else number
+
+
+def _flag_names(name: str, info: Any, text: str) -> str:
+    """`Mask | 4` as the effect wrote it, `Mask | Blue`: the loader keeps flags OR-ed with a
+    parameter as an expression with the flag names as their numbers (states._flags_expression)."""
+    table = info.enum if info is not None and info.type == "enum" else None
+    if table is None or not table.flags or " | " not in text:
+        return text
+    by_number = {v: k for k, v in reversed(list(table.values.items()))}
+    return " | ".join(spelled(name, by_number[int(t)]) if t.isdigit() and int(t) in by_number
+                      else t for t in text.split(" | "))
 
 
 def _value_text(name: str, value: Any) -> str:
