@@ -159,7 +159,9 @@ def test_unroll_asks_for_unrolling():
         compile_shader(fx, "VS", "vs_2_0")
 
 
-def test_a_break_in_the_body_is_not_a_rep_yet_and_says_so():
+def test_a_break_in_the_body_needs_break_comp_and_vs_2_0_says_so():
+    # vs_2_0 has static flow control only (no break_comp): the break is refused at the loop;
+    # tests/test_hlsl_flow.py renders the same loop as a rep with break_ne on vs_2_a
     fx = effect_for("""
 float4 VS(float4 p : POSITION, out float4 c : COLOR0) : POSITION
 {
@@ -172,5 +174,6 @@ float4 VS(float4 p : POSITION, out float4 c : COLOR0) : POSITION
     return p;
 }
 """ + PS, vs="compile vs_2_0 VS()", params="int NumLights = 1;")
-    with pytest.raises(EffectError, match="cannot be a rep: break and continue"):
+    with pytest.raises(EffectError, match="cannot be a rep: break in the body needs break_comp, "
+                                          "which vs_2_0 does not have"):
         compile_shader(fx, "VS", "vs_2_0")

@@ -268,6 +268,11 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any,
         for name, register in getattr(compiled, "int_registers", {}).items():
             state.apply(StateAssignment(family, ParamRef(name), index=register,
                                         location=location))
+        # a bool parameter an `if b#` tests sits in its b# (VertexShaderConstantB / Pixel...)
+        family = "PixelShaderConstantB" if stage == "pixel" else "VertexShaderConstantB"
+        for name, register in getattr(compiled, "bool_registers", {}).items():
+            state.apply(StateAssignment(family, ParamRef(name), index=register,
+                                        location=location))
         evaluate_into(effect, state)   # expressions in those samplers' sampler_state blocks
         return compiled.program, compiled
     if not isinstance(shader, ShaderBlock):

@@ -64,12 +64,14 @@ def listing(effect: "Effect", shader: Any) -> list[str]:
     """The fxc-style listing of one compiled shader."""
     lines = [f"// {shader.function} compiled for {shader.target}", "//"]
     ints = getattr(shader, "int_registers", {})
-    if shader.constants or shader.samplers or ints:
+    bools = getattr(shader, "bool_registers", {})
+    if shader.constants or shader.samplers or ints or bools:
         lines += ["// Registers:", "//", f"//   {'Name':<24} {'Reg':<5} Size",
                   f"//   {'-' * 24} {'-' * 5} ----"]
         rows = sorted(((f"c{c}", name, n) for name, (c, n) in shader.constants.items()),
                       key=lambda r: int(r[0][1:]))
         rows += sorted(((f"i{k}", name, 1) for name, k in ints.items()), key=lambda r: int(r[0][1:]))
+        rows += sorted(((f"b{k}", name, 1) for name, k in bools.items()), key=lambda r: int(r[0][1:]))
         rows += sorted(((f"s{s}", name, 1) for name, s in shader.samplers.items()),
                        key=lambda r: int(r[0][1:]))
         lines += [f"//   {name:<24} {reg:<5} {n:>4}" for reg, name, n in rows]

@@ -59,5 +59,6 @@ class Generated:
     samplers: dict[str, int] = field(default_factory=dict)                # param -> s#
     defs: dict[int, tuple[float, ...]] = field(default_factory=dict)
     int_registers: dict[str, int] = field(default_factory=dict)          # int param -> i#
+    bool_registers: dict[str, int] = field(default_factory=dict)         # bool param -> b#
 
 

@@ -10,10 +10,10 @@
    swizzles, read ports (one constant in vs_1_1, one t#/v# in ps_2_0), texld coordinates
    in a register without swizzle, oC# written by mov;
 4. temporaries are allocated by linear scan over the emitted code;
-5. a `loop` node (loops.py) is emitted as `rep i#`: the carried values' registers take their
-   initial values, the loop's region (the nodes depending on its phis) is emitted once
-   inside, the results are moved back into the carried registers, `endrep`; a register read
-   inside a loop lives to its end (legalize.py).
+5. flow control (flowcode.py): each node is placed in the main program, a loop body or a
+   side of an if; a `loop` node (loops.py) is emitted as `rep i#` ... `endrep`, an `if` node
+   (branches.py) as `if b#` / `if_comp` ... `else` ... `endif`; a register read inside a
+   loop lives to its end (legalize.py).
 Each instruction keeps the HLSL location of the node it comes from.
 """
 from __future__ import annotations
@@ -24,6 +24,7 @@ from effects.shaders.asm.versions import IDENTITY
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg, Src
 from effects.shaders.hlsl.dag import SHAPED, Node, Operand, reachable
+from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_loop, place
 from effects.shaders.hlsl.legalize import finish
 
 COMPONENTS = "xyzw"
@@ -51,6 +52,9 @@ class CodeGen:
         self.register_sizes = register_sizes
         self.sampler_regs = dict(sampler_registers)
         self.defs: dict[int, list[float | None]] = {}
+        self.loop_regs: dict[int, list[Reg]] = {}       # loop id -> carried registers
+        self.if_regs: dict[int, list[Reg]] = {}         # if id -> result registers
+        self.a0: tuple | None = None                    # the address a0.x holds
 
     # -- registers --------------------------------------------------------------------------
     def temp(self) -> Reg:
@@ -163,10 +167,8 @@ class CodeGen:
         nodes = self.reachable()
         self.count_uses(nodes)
         self.coalesce(nodes)
-        skip = self.regions(nodes)
-        for n in nodes:
-            if n.id not in skip:
-                self.node(n)
+        self.blocks = place(self, nodes)
+        emit_block(self, None)
         for k in self.ctx.kills:
             src_op = k.node.args[0]
             reg = self.temp()
@@ -178,63 +180,6 @@ class CodeGen:
         for o in self.outputs:
             self.output(o)
         return finish(self)
-
-    def regions(self, nodes: list[Node]) -> set[int]:
-        """Each loop's phis (by loop id) and region (the nodes reached that depend on its
-        phis, in creation order, which is topological); the ids the main emission skips."""
-        self.loop_phis: dict[int, dict[int, Node]] = {}
-        self.loop_region: dict[int, list[Node]] = {}
-        inside: dict[int, int] = {}            # node id -> loop id
-        for n in nodes:
-            if n.op == "phi":
-                self.loop_phis.setdefault(n.key[0], {})[n.key[1]] = n
-                inside[n.id] = n.key[0]
-                continue
-            owners = {inside[a.node.id] for a in n.args if a.node.id in inside}
-            if n.op == "loop":
-                owners.discard(n.key[0])
-            if owners:
-                (loop_id,) = owners             # nested real loops are refused (loops.py)
-                inside[n.id] = loop_id
-                self.loop_region.setdefault(loop_id, []).append(n)
-        return set(inside)
-
-    def loop(self, n: Node) -> None:
-        loop_id, register, count = n.key
-        phis = self.loop_phis.get(loop_id, {})
-        inits, results = n.args[:count], n.args[count:]
-        carried: list[Reg] = []
-        for k in range(count):
-            reg = self.temp()
-            carried.append(reg)
-            if k in phis:
-                self.home[phis[k].id] = (reg, {c: c for c in range(phis[k].width)})
-            self._move(reg, inits[k], n.location)
-        self.loop_regs = getattr(self, "loop_regs", {})
-        self.loop_regs[loop_id] = carried
-        self.a0 = None                          # the body may load a0 itself
-        self.emit("rep", None, (), [Src(Reg("i", register), {}, fixed=IDENTITY)], n.location)
-        for r in self.loop_region.get(loop_id, []):
-            self.node(r)
-        # a result read from a carried register is staged first, so that moving the results
-        # back (a swap, say) never reads a register already overwritten
-        staged: list[Operand | Reg] = []
-        for res in results:
-            home = self.home.get(res.node.id)
-            if res.node.op != "const" and home is not None and any(home[0] is c for c in carried):
-                tmp = self.temp()
-                self._move(tmp, res, n.location)
-                staged.append(tmp)
-            else:
-                staged.append(res)
-        for reg, res, phi_width in zip(carried, staged, [r.width for r in results]):
-            if isinstance(res, Reg):
-                self.emit("mov", reg, tuple(range(phi_width)),
-                          [Src(res, {c: c for c in range(phi_width)})], n.location)
-            else:
-                self._move(reg, res, n.location)
-        self.a0 = None
-        self.emit("endrep", None, (), [], n.location)
 
     def _move(self, reg: Reg, value: Operand, loc: Location) -> None:
         lanes = [(c, c) for c in range(value.width)]
@@ -291,11 +236,14 @@ class CodeGen:
         if op == "kill" or op == "phi":
             return
         if op == "loop":
-            self.loop(n)
+            emit_loop(self, n)
             return
-        if op == "loop_out":
-            loop_id, k = n.key
-            reg = self.loop_regs[loop_id][k]
+        if op == "if":
+            emit_if(self, n)
+            return
+        if op in ("loop_out", "if_out"):
+            block_id, k = n.key
+            reg = (self.loop_regs if op == "loop_out" else self.if_regs)[block_id][k]
             self.home[n.id] = (reg, {c: c for c in range(n.width)})
             return
         if op == "pack":

@@ -6,6 +6,7 @@
     shader.constants   # parameter -> (first c#, count): what the pass must load
     shader.samplers    # sampler parameter -> s#
     shader.int_registers   # int parameter -> i# (a `rep` count the pass sets)
+    shader.bool_registers  # bool parameter -> b# (an `if b#` the pass sets)
 
 The assembly then goes through the assembler's own checks and the card's limits like any
 hand-written shader; each instruction of `program` is located at the HLSL line it comes from.
@@ -24,7 +25,7 @@ from effects.shaders.hlsl.calls import parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.codegen import CodeGen
 from effects.shaders.hlsl.codegen_ps1 import generate_ps1
-from effects.shaders.hlsl.context import Context, load_context
+from effects.shaders.hlsl.context import Context, explicit_register as _explicit, load_context
 from effects.shaders.hlsl.dag import Node, Operand, reachable
 from effects.shaders.hlsl.evaluate import Evaluator, Frame
 from effects.shaders.hlsl.parse import HlslError, Origin, parse
@@ -47,6 +48,7 @@ class CompiledShader:
     warnings: list[EffectWarning] = field(default_factory=list)
     types: dict[str, HType] = field(default_factory=dict)
     int_registers: dict[str, int] = field(default_factory=dict)
+    bool_registers: dict[str, int] = field(default_factory=dict)
 
     @property
     def stage(self) -> str:
@@ -152,12 +154,8 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
     return CompiledShader(entry, ctx.target.name, text, program, generated.constants,
                           generated.samplers, generated.locations, list(ctx.warnings),
                           dict(ctx.uniforms_used),
-                          generated.int_registers if not ctx.target.rules.is_ps1 else {})
-
-
-def _explicit(ctx: Context, name: str, kind: str) -> str | None:
-    p = ctx.effect.parameter(name)
-    return None if p is None else p.register_for(ctx.target.name, kind)
+                          generated.int_registers if not ctx.target.rules.is_ps1 else {},
+                          generated.bool_registers if not ctx.target.rules.is_ps1 else {})
 
 
 def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int], dict[str, int]]:

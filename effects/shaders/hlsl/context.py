@@ -199,3 +199,9 @@ def static_value(p: Parameter) -> np.ndarray | None:
 
 def uniform_count(ctx: Context, t: HType) -> int:
     return register_count(t)
+
+
+def explicit_register(ctx: Context, name: str, kind: str) -> str | None:
+    """A parameter's `: register(c4)` binding of that kind for the target ('c4'), else None."""
+    p = ctx.effect.parameter(name)
+    return None if p is None else p.register_for(ctx.target.name, kind)

@@ -5,9 +5,10 @@ Evaluating, rather than translating, gives fxc's passes for free: every call is 
 its condition is a compile-time false (X3511 after 1024 iterations), and an `if` on a value
 not known at compile time runs both branches under a predicate so that every assignment
 becomes a select (flattening: `cmp`/`lrp`). `return`, `break`, `continue` and `discard` under
-such a predicate set their own predicates. One form of real flow control is generated where
-the target has it: a `for` loop counted by an int uniform becomes `rep i#` (loops.py); every
-`if` is flattened.
+such a predicate set their own predicates. Real flow control is generated where the target
+has it: a `for` loop counted by an int uniform becomes `rep i#` (loops.py, with break_comp
+for a break), an `if` on a uniform bool `if b#` and a `[branch] if` `if_comp` (branches.py);
+every other `if` on a run-time value is flattened.
 """
 from __future__ import annotations
 
@@ -21,13 +22,17 @@ from effects.shaders.hlsl.calls import inline_call
 from effects.shaders.hlsl.expressions import evaluate_expr
 from effects.shaders.hlsl.context import Context, FunctionDef, array_of, resolve_type
 from effects.shaders.hlsl.dag import Operand
-from effects.shaders.hlsl.loops import NotReal, bound_of, has_attribute, real_loop
+from effects.shaders.hlsl.branches import bool_register, bool_uniform, comparison, real_if
+from effects.shaders.hlsl.flowrules import DYNAMIC_TARGETS, NotReal, TargetFlow
+from effects.shaders.hlsl.loops import bound_of, has_attribute, real_loop
 from effects.shaders.hlsl.parse import Origin
 from effects.shaders.hlsl.types import HType, scalar
 from effects.shaders.hlsl.values import (Frame, Loop, Value, Var, build_value, count_components,
                                           operand)
 
 MAX_ITERATIONS = 1024
+_COMPARE_NOW = {"lt": lambda a, b: a < b, "le": lambda a, b: a <= b, "gt": lambda a, b: a > b,
+                "ge": lambda a, b: a >= b, "eq": lambda a, b: a == b, "ne": lambda a, b: a != b}
 _SWIZZLE = {c: i for i, c in enumerate("xyzw")} | {c: i for i, c in enumerate("rgba")}
 
 
@@ -212,12 +217,47 @@ class Evaluator:
         self.ctx.typedefs[str(name)] = t
 
     def s_if_stmt(self, tree: lark.Tree) -> None:
-        self._if(tree.children[2], tree.children[3], None)
+        self._if(tree, tree.children[2], tree.children[3], None)
 
     def s_if_else(self, tree: lark.Tree) -> None:
-        self._if(tree.children[2], tree.children[3], tree.children[5])
+        self._if(tree, tree.children[2], tree.children[3], tree.children[5])
 
-    def _if(self, cond_tree: Any, then: Any, other: Any) -> None:
+    def _if(self, tree: Any, cond_tree: Any, then: Any, other: Any) -> None:
+        attrs = tree.children[0]
+        flow = TargetFlow.of(self.ctx.target)
+        branch = has_attribute(attrs, "branch")
+        if not has_attribute(attrs, "flatten"):
+            # a bool uniform: a static branch where the target has them (branches.py)
+            b = bool_uniform(self, cond_tree)
+            if b is not None and flow.static:
+                name, negated = b
+                sides = (other, then) if negated else (then, other)
+                try:
+                    real_if(self, tree, ("bool", [bool_register(self, name)]), *sides, "static")
+                    return
+                except NotReal as err:
+                    if branch:
+                        raise self.error(f"cannot [branch] on '{name}' here: {err}",
+                                         tree) from None
+            elif branch:
+                if not flow.dynamic:
+                    raise self.error(f"[branch] needs dynamic flow control (if_comp), "
+                                     f"which {self.ctx.target.name} does not have ("
+                                     f"{DYNAMIC_TARGETS} do); use [flatten] or no attribute",
+                                     tree)
+                test, args = comparison(self, cond_tree)
+                known = [a.const_values() for a in args]
+                if all(k is not None for k in known):
+                    taken = _COMPARE_NOW[test](known[0][0], known[1][0])   # type: ignore[index]
+                    branch_tree = then if taken else other
+                    if branch_tree is not None:
+                        self.scoped(branch_tree)
+                    return
+                try:
+                    real_if(self, tree, (test, args), then, other, "dynamic")
+                    return
+                except NotReal as err:
+                    raise self.error(f"cannot [branch] here: {err}", tree) from None
         cond = self.condition(cond_tree)
         value = cond.const_values()
         if value is not None:
@@ -266,7 +306,7 @@ class Evaluator:
             why = None
             if match is not None:
                 target = self.ctx.target
-                if not target.has("rep"):
+                if not TargetFlow.of(target).static:
                     why = (f"its count is the uniform '{match[1]}', known only when the shader "
                            f"runs, and {target.name} has no loops (rep needs vs_2_0, ps_2_x or "
                            "ps_3_0)")

@@ -215,8 +215,9 @@ def _text(cg: Any) -> Generated:
             locs.append(UNKNOWN_LOCATION)
     for ins in cg.instrs:
         op = ins.opcode + ("_sat" if ins.saturate else "")
-        if ins.dst is None:                     # rep i#, endrep
-            lines.append(" ".join([ins.opcode] + [_src_text(s, alloc, rule, ins) for s in ins.srcs]))
+        if ins.dst is None:                     # rep i#, if_lt a, b, endrep ...
+            srcs = [_src_text(s, alloc, rule, ins) for s in ins.srcs]
+            lines.append(ins.opcode + (" " + ", ".join(srcs) if srcs else ""))
             locs.append(ins.location)
             continue
         if ins.opcode == "texkill":
@@ -233,12 +234,16 @@ def _text(cg: Any) -> Generated:
         lines.append(f"{op} {dst}{mask}, " + ", ".join(srcs))
         locs.append(ins.location)
     used_c = {name: (start, cg.register_sizes.get(name, 1)) for name, start in cg.const_regs.items()}
-    used_i = {s.reg.index for ins in cg.instrs if ins.opcode == "rep" for s in ins.srcs}
+    used_i = {s.reg.index for ins in cg.instrs if ins.opcode in ("rep", "loop") for s in ins.srcs
+              if s.reg.kind == "i"}
     ints = {name: k for name, k in getattr(cg.ctx, "int_registers", {}).items() if k in used_i}
+    used_b = {s.reg.index for ins in cg.instrs if ins.opcode == "if" for s in ins.srcs
+              if s.reg.kind == "b"}
+    bools = {name: k for name, k in getattr(cg.ctx, "bool_registers", {}).items() if k in used_b}
     return Generated(lines, locs, used_c, {n: k for n, k in samplers.items()
                                            if any(i.sampler == n for i in cg.instrs)},
                      {r: tuple(0.0 if v is None else v for v in vals) for r, vals in cg.defs.items()},
-                     ints)
+                     ints, bools)
 
 
 def _num(v: float) -> str:

@@ -15,10 +15,14 @@ shader runs). In a target with static flow control (vs_2_0 and up, ps_2_x, ps_3_
 - the counter is one of the changed variables (a float register counting 0, 1, 2 ...), so
   the body may read it (a vertex shader indexes a uniform array through a0 by it).
 
+`continue` and `break` in the body run what follows them under their predicates (selects); a
+break leaves the rep with `break_ne` at the end of the iteration where the target has dynamic
+flow control (see _run_body). Loops nest (a uniform loop inside another is a region inside
+the outer one's), up to the 4 levels of rep / loop nesting of 2_x / 3_0 code (flowrules.py).
 What the region cannot hold yet is refused with its reason, and the loop is then unrolled as
-before (which succeeds when a `break` on a constant ends it): break / continue / return /
-discard in the body, a nested loop bounded by a uniform, and arrays or structs the body
-changes. `[unroll]` always unrolls.
+before (which succeeds when a `break` on a constant ends it): return / discard in the body,
+a break where the target has no break_comp, arrays or structs the body changes, nesting past
+the limit. `[unroll]` always unrolls.
 """
 from __future__ import annotations
 
@@ -28,14 +32,13 @@ from typing import Any
 import lark
 
 from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.flowrules import DYNAMIC_TARGETS, NotReal, TargetFlow, enter, leave
 from effects.shaders.hlsl.types import HType
 from effects.shaders.hlsl.values import Loop, Value, Var, build_value, operand
 
 _ids = itertools.count()
 
 
-class NotReal(Exception):
-    """The loop matches the pattern but its body cannot be a region yet (the reason)."""
 
 
 def bound_of(ev: Any, tree: lark.Tree, cond: Any, step: Any) -> tuple[str, str] | None:
@@ -79,7 +82,7 @@ def _increments(e: Any, name: str) -> bool:
     return False
 
 
-def _numeric_vars(ev: Any) -> list[Var]:
+def numeric_vars(ev: Any) -> list[Var]:
     """The variables in scope, innermost name first (shadowed ones stay as they are)."""
     seen: dict[str, Var] = {}
     for scope in reversed(ev.scopes):
@@ -101,26 +104,39 @@ def _phis(ev: Any, loop_id: int, var: Var, start: int) -> tuple[Value, list[Oper
     return build_value(var.type, comps), groups
 
 
-def _flat(v: Value) -> list[tuple]:
+def flat(v: Value) -> list[tuple]:
     if v.type.numeric:
         return [c.sig() for c in v.comps]
     out: list[tuple] = []
     for f in v.fields.values():
-        out.extend(_flat(f))
+        out.extend(flat(f))
     for e in v.elements:
-        out.extend(_flat(e))
+        out.extend(flat(e))
     return out
 
 
 def real_loop(ev: Any, tree: Any, body: Any, step: Any, counter: str, bound: str) -> None:
     """Evaluate the loop as a `rep` region (raises NotReal with the reason it cannot)."""
     ctx = ev.ctx
-    if getattr(ctx, "in_real_loop", False):
-        raise NotReal("a loop bounded by a uniform inside another one is not generated yet")
-    variables = _numeric_vars(ev)
+    # the count's i#, given before the body (so an outer loop's count comes first); given
+    # back when the loop cannot be a rep
+    ints = ctx.__dict__.setdefault("int_registers", {})
+    fresh = bound not in ints
+    register = ints.setdefault(bound, len(ints))
+    try:
+        _real_loop(ev, tree, body, step, register)
+    except NotReal:
+        if fresh:
+            del ints[bound]
+        raise
+
+
+def _real_loop(ev: Any, tree: Any, body: Any, step: Any, register: int) -> None:
+    ctx = ev.ctx
+    variables = numeric_vars(ev)
     initial = {id(v): v.value for v in variables}
     others = [v for v in variables if not v.type.numeric]
-    before = {id(v): _flat(v.value) for v in others}
+    before = {id(v): flat(v.value) for v in others}
     # pass 1: every numeric variable over phis, to see which the body changes
     trial = next(_ids)
     changed: list[Var] = []
@@ -132,11 +148,11 @@ def real_loop(ev: Any, tree: Any, body: Any, step: Any, counter: str, bound: str
             k += len(groups)
             v.value = phi_values[id(v)]
     try:
-        _run_body(ev, tree, body, step)
+        _run_body(ev, tree, body, step)     # raises NotReal (nothing to restore but values)
         for v in variables:
-            if v.type.numeric and _flat(v.value) != _flat(phi_values[id(v)]):
+            if v.type.numeric and flat(v.value) != flat(phi_values[id(v)]):
                 changed.append(v)
-            elif not v.type.numeric and _flat(v.value) != before[id(v)]:
+            elif not v.type.numeric and flat(v.value) != before[id(v)]:
                 raise NotReal("the body changes an array or a struct (not carried yet)")
     finally:
         for v in variables:
@@ -153,20 +169,20 @@ def real_loop(ev: Any, tree: Any, body: Any, step: Any, counter: str, bound: str
         carried.append((v, groups))
         v.value = value
     try:
-        _run_body(ev, tree, body, step)
+        broken = _run_body(ev, tree, body, step)
         moved = {id(v) for v in changed}
         for v in variables:
-            if id(v) not in moved and _flat(v.value) != _flat(initial[id(v)]):
+            if id(v) not in moved and flat(v.value) != flat(initial[id(v)]):
                 raise NotReal("the variables the body changes are not the same on a second look")
         results = [g for v, _ in carried for g in _groups(ev, v.value, -(-v.type.size // 4))]
     except BaseException:
         for v in variables:
             v.value = initial[id(v)]
         raise
-    register = ctx.__dict__.setdefault("int_registers", {}).setdefault(
-        bound, len(ctx.__dict__["int_registers"]))
-    loop = ev.g.leaf("loop", (loop_id, register, len(phis)), 1, ev.at(tree),
-                     tuple(inits + results))
+    # a break: the iteration's results are moved back, then `break_ne broken, 0` leaves
+    extra = (broken,) if broken is not None else ()
+    loop = ev.g.leaf("loop", (loop_id, register, len(phis), bool(extra)), 1, ev.at(tree),
+                     tuple(inits + results) + extra)
     k = 0
     for v, groups in carried:
         comps: list[Operand] = []
@@ -181,27 +197,39 @@ def _groups(ev: Any, value: Value, count: int) -> list[Operand]:
     return [operand(ev.g, value.comps[k * 4:k * 4 + 4]) for k in range(count)]
 
 
-def _run_body(ev: Any, tree: Any, body: Any, step: Any) -> None:
-    """The body and the step once, with nothing the region cannot hold."""
+def _run_body(ev: Any, tree: Any, body: Any, step: Any) -> Operand | None:
+    """The body and the step once, with nothing the region cannot hold; the predicate 'the
+    body broke out' (None: it never does).
+
+    continue: the rest of the body runs under its predicate (selects), the step does not.
+    break: the rest of the body and the step run under its predicate, so the results are the
+    values the loop had when it broke; the loop leaves at the end of the iteration, after the
+    results are moved back, by `break_ne` (dynamic flow control: vs_2_a, vs_3_0, ps_3_0). Return and discard inside stay refused."""
     ctx = ev.ctx
     kills = len(ctx.kills)
     frame = ev.frames[-1] if ev.frames else None
     returned = frame.returned if frame is not None else None
     loop = Loop()
+    enter(ev, "loop")
     ev.loops.append(loop)
-    ctx.in_real_loop = True
     try:
         ev.scoped(body)
-        if loop.broken is not None or loop.continued is not None:
-            raise NotReal("break and continue in the body are not generated in a rep yet")
         if len(ctx.kills) != kills:
             raise NotReal("discard or clip in the body is not generated in a rep yet")
         if frame is not None and frame.returned is not returned:
             raise NotReal("return in the body is not generated in a rep yet")
+        loop.continued = None
+        broken = loop.broken
+        if broken is not None and not TargetFlow.of(ctx.target).dynamic:
+            raise NotReal(f"break in the body needs break_comp, which {ctx.target.name} does not "
+                          f"have ({DYNAMIC_TARGETS} do)")
         for e in step.children:
             ev.expr(e)
+        if broken is not None and broken.const_values() is not None:
+            raise NotReal("the body always breaks")
+        return broken
     finally:
-        ctx.in_real_loop = False
+        leave(ev, "loop")
         ev.loops.pop()
         del ctx.kills[kills:]
         if frame is not None:

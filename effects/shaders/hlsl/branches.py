@@ -1,0 +1,166 @@
+"""Real `if`s: `if b#` on a bool uniform, `if_comp` for `[branch]`, where the target has them.
+
+Which `if` stays a branch (fxc's choices, as far as its documentation and listings show):
+
+- `if (B)` / `if (!B)` with `B` a (non-static) `uniform bool` global: a *static* branch, `if b#`,
+  on every target with static flow control (vs_2_0 and up, ps_2_x, ps_3_0: flowrules.py); the
+  parameter gets a b# in the register table (CompiledShader.bool_registers) and lowering sets
+  it as VertexShaderConstantB / PixelShaderConstantB. Elsewhere (vs_1_1, ps_2_0/2_a/2_b) the
+  bool is a float constant and the `if` is flattened, as fxc does.
+- `[branch] if (a < b)` (any comparison, or any condition, compared with 0): a *dynamic*
+  branch, `if_lt a, b` / `if_ne c, 0`, where the target has dynamic flow control (vs_2_a,
+  vs_3_0, ps_2_x, ps_3_0; `TargetFlow.dynamic`); on any other target it is a located
+  error at the `if`.
+- `[flatten]`, and an `if` on a run-time value without an attribute, are flattened into
+  selects. fxc flattens small `if`s by itself and branches large ones in SM3; flattening is
+  always correct and never needs a cap, so without `[branch]` we always flatten.
+
+Evaluation: each side runs once with no predicate; the variables a side changes (numeric ones;
+an array or struct changed makes it NotReal) become results: the `if` node holds the condition
+operands, the then-results and the else-results (the value before the `if` where a side
+leaves a variable alone), and each changed variable reads `if_out` nodes after it. codegen
+(flowcode.py) places the nodes used only by one side inside it. A side that returns, breaks,
+continues or discards is NotReal (a bool `if` is then flattened; `[branch]` says why).
+"""
+from __future__ import annotations
+
+import itertools
+from typing import Any
+
+import lark
+
+from effects.shaders.hlsl.context import explicit_register
+from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.flowrules import MAX_DEPTH, NotReal, TargetFlow, enter, leave
+from effects.shaders.hlsl.loops import flat, numeric_vars
+from effects.shaders.hlsl.values import Value, Var, build_value, operand
+
+_ids = itertools.count()
+_COMPARE = {"<": "lt", "<=": "le", ">": "gt", ">=": "ge", "==": "eq", "!=": "ne"}
+def bool_uniform(ev: Any, cond: Any) -> tuple[str, bool] | None:
+    """(parameter, negated) when the condition is `B` or `!B` with B a uniform bool global."""
+    negated = False
+    if isinstance(cond, lark.Tree) and cond.data == "prefix" and str(cond.children[0]) == "!":
+        cond, negated = cond.children[1], True
+    if not (isinstance(cond, lark.Tree) and cond.data == "var"):
+        return None
+    name = str(cond.children[0])
+    if ev.lookup(name) is not None:
+        return None
+    p = ev.ctx.effect.parameter(name)
+    if p is None or p.type.base != "bool" or p.type.rows != 1 or p.type.cols != 1 or p.array \
+            or "static" in p.storage or "const" in p.storage:
+        return None
+    return name, negated
+
+
+def comparison(ev: Any, cond: Any) -> tuple[str, list[Operand]]:
+    """('lt', [a, b]) for a scalar comparison; else ('ne', [condition, 0])."""
+    if isinstance(cond, lark.Tree) and cond.data == "binary" and str(cond.children[1]) in _COMPARE:
+        left, op, right = cond.children
+        a, b = ev.expr(left), ev.expr(right)
+        if a.type.numeric and b.type.numeric and a.type.size == 1 and b.type.size == 1:
+            return _COMPARE[str(op)], [a.comps[0], b.comps[0]]
+        c = ev.a.compare(str(op), *_same_width(a.comps, b.comps), ev.at(cond))
+        return "ne", [c[0], ev.g.const((0.0,))]
+    return "ne", [ev.condition(cond), ev.g.const((0.0,))]
+
+
+def _same_width(a: list[Operand], b: list[Operand]) -> tuple[list[Operand], list[Operand]]:
+    n = min(len(a), len(b)) if len(a) > 1 and len(b) > 1 else max(len(a), len(b))
+    return (a * n)[:n] if len(a) == 1 else a[:n], (b * n)[:n] if len(b) == 1 else b[:n]
+
+
+def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -> None:
+    """Evaluate an `if` as a real branch. `cond`: ('bool', register) or (comparison,
+    [a, b]); raises NotReal with the reason it cannot be one."""
+    variables = numeric_vars(ev)
+    initial = {id(v): v.value for v in variables}
+    others = [v for v in variables if not v.type.numeric]
+    before = {id(v): flat(v.value) for v in others}
+    sides: list[dict[int, Value]] = []
+    enter(ev, kind)
+    try:
+        for branch in (then, other):
+            if branch is not None:
+                _run_side(ev, branch)
+            sides.append({id(v): v.value for v in variables})
+            for v in others:
+                if flat(v.value) != before[id(v)]:
+                    raise NotReal("a side changes an array or a struct (not carried yet)")
+            for v in variables:
+                v.value = initial[id(v)]
+    except BaseException:
+        for v in variables:
+            v.value = initial[id(v)]
+        raise
+    finally:
+        leave(ev, kind)
+    changed = [v for v in variables if v.type.numeric and any(
+        flat(side[id(v)]) != flat(initial[id(v)]) for side in sides)]
+    if_id = next(_ids)
+    results: list[list[Operand]] = [[], []]
+    widths: list[int] = []
+    for v in changed:
+        for k in range(0, v.type.size, 4):
+            widths.append(min(4, v.type.size - k))
+            for s, side in enumerate(sides):
+                results[s].append(operand(ev.g, side[id(v)].comps[k:k + 4]))
+    test, args = cond
+    # key: (id, 'bool' or the comparison, condition operands, result groups, b#)
+    breg = args[0] if test == "bool" else None
+    conds: tuple[Operand, ...] = () if test == "bool" else tuple(args)
+    node = ev.g.leaf("if", (if_id, test, len(conds), len(widths), breg), 1, ev.at(tree),
+                     conds + tuple(results[0]) + tuple(results[1]))
+    k = 0
+    for v in changed:
+        comps: list[Operand] = []
+        for _ in range(0, v.type.size, 4):
+            out = ev.g.leaf("if_out", (if_id, k), widths[k], ev.at(tree), (node,))
+            comps.extend(Operand(out.node, (i,)) for i in range(widths[k]))
+            k += 1
+        v.value = build_value(v.type, comps)
+
+
+def _run_side(ev: Any, branch: Any) -> None:
+    """One side, with nothing a real branch cannot hold."""
+    ctx = ev.ctx
+    kills = len(ctx.kills)
+    frame = ev.frames[-1] if ev.frames else None
+    returned = frame.returned if frame is not None else None
+    loop = ev.loops[-1] if ev.loops else None
+    jumps = (loop.broken, loop.continued) if loop is not None else None
+    try:
+        ev.scoped(branch)
+        if len(ctx.kills) != kills:
+            raise NotReal("discard or clip inside it is not generated in a branch yet")
+        if frame is not None and frame.returned is not returned:
+            raise NotReal("return inside it is not generated in a branch yet")
+        if loop is not None and (loop.broken, loop.continued) != jumps:
+            raise NotReal("break or continue inside it is not generated in a branch yet")
+    finally:
+        del ctx.kills[kills:]
+        if frame is not None:
+            frame.returned = returned
+        if loop is not None and jumps is not None:
+            loop.broken, loop.continued = jumps
+
+
+def bool_register(ev: Any, name: str) -> int:
+    """The b# of a bool parameter: its register(b#) binding, else the next free one."""
+    regs = ev.ctx.__dict__.setdefault("bool_registers", {})
+    if name not in regs:
+        bound = explicit_register(ev.ctx, name, "b")
+        if bound is not None:
+            regs[name] = int(bound[1:])
+        else:
+            taken = set(regs.values())
+            k = 0
+            while k in taken:
+                k += 1
+            regs[name] = k
+    return regs[name]
+
+
+__all__ = ["TargetFlow", "bool_uniform", "comparison", "real_if", "bool_register", "enter",
+           "leave", "MAX_DEPTH", "Var"]

@@ -1,0 +1,186 @@
+"""Flow control in the generated code: where each node goes, and rep / if blocks emitted.
+
+The DAG has `loop` nodes (loops.py: phis, initial values, results, a break predicate) and
+`if` nodes (branches.py: condition operands, then-results, else-results). Each reached node
+is placed in a *block*: the main program (None), a loop body ('loop', id), or a side of an
+if ('then', id) / ('else', id); a block's parent is the block its loop / if node sits in.
+
+Placement, from the last node to the first (a node's users come after it):
+- a node goes to the innermost block holding all its uses: a use by an if's then-result
+  counts as inside 'then' (so what only one side needs is computed only there, the point of
+  a branch), a loop's result or break predicate as inside its body;
+- then it is lifted out of every loop whose phis it does not depend on (loop-invariant code
+  is computed once, before the loop; it stays inside the innermost loop it depends on), and in pixel shaders a gradient operation (texld,
+  texldb, texldp, dsx, dsy) is lifted out of dynamic branches (gradients are undefined where
+  neighbouring pixels diverge, X4014), its coordinates with it.
+A block's nodes are emitted in creation order, which is topological; a nested block is
+emitted where its loop / if node is.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from effects.shaders.asm.versions import IDENTITY
+from effects.shaders.hlsl.asmcode import Reg, Src
+from effects.shaders.hlsl.dag import Node, Operand
+
+Label = tuple | None
+_GRADIENT = {"tex", "texldp", "texldb", "dsx", "dsy"}
+
+
+def _slot_label(c: Node, k: int, labels: dict[int, Label]) -> Label:
+    if c.op == "loop":
+        return labels[c.id] if k < c.key[2] else ("loop", c.key[0])
+    if c.op == "if":
+        ncond, groups = c.key[2], c.key[3]
+        if k < ncond:
+            return labels[c.id]
+        return ("then", c.key[0]) if k < ncond + groups else ("else", c.key[0])
+    return labels[c.id]
+
+
+def place(cg: Any, nodes: list[Node]) -> dict[Label, list[Node]]:
+    """Each node's block (see the module note); the blocks' nodes in creation order."""
+    deps: dict[int, frozenset] = {}
+    for n in nodes:
+        if n.op == "phi":
+            deps[n.id] = frozenset({n.key[0]})
+            continue
+        d = frozenset().union(*(deps.get(a.node.id, frozenset()) for a in n.args))
+        deps[n.id] = d - {n.key[0]} if n.op == "loop" else d
+    users: dict[int, list[tuple[Node, int]]] = {}
+    for n in nodes:
+        for k, a in enumerate(n.args):
+            users.setdefault(a.node.id, []).append((n, k))
+    roots = {c.node.id for o in cg.outputs for c in o.comps} | {k.node.id for k in cg.ctx.kills}
+    parent: dict[Label, Label] = {}
+    dynamic: set[Label] = set()
+    labels: dict[int, Label] = {}
+
+    def chain(label: Label) -> list[Label]:
+        out = [label]
+        while label is not None:
+            label = parent[label]
+            out.append(label)
+        return out
+
+    lift_gradients = cg.target.kind == "ps"
+    for n in reversed(nodes):
+        uses = [None] if n.id in roots or n.op == "kill" else []
+        uses += [_slot_label(c, k, labels) for c, k in users.get(n.id, [])]
+        if n.op == "phi":
+            label: Label = ("loop", n.key[0])
+        else:
+            common = chain(uses[0]) if uses else [None]
+            for u in uses[1:]:
+                seen = set(chain(u))
+                common = [x for x in common if x in seen]
+            label = common[0]
+            # from the outermost block in, past the innermost loop it depends on (it stays
+            # inside that one): out of the first loop it does not depend on
+            outer_first = list(reversed(chain(label)[:-1]))
+            start = max((i + 1 for i, x in enumerate(outer_first)
+                         if x[0] == "loop" and x[1] in deps[n.id]), default=0)
+            for x in outer_first[start:]:
+                if x[0] == "loop" or lift_gradients and n.op in _GRADIENT and x in dynamic:
+                    label = parent[x]
+                    break
+        labels[n.id] = label
+        if n.op == "loop":
+            parent[("loop", n.key[0])] = label
+        elif n.op == "if":
+            parent[("then", n.key[0])] = parent[("else", n.key[0])] = label
+            if n.key[1] != "bool":
+                dynamic.update({("then", n.key[0]), ("else", n.key[0])})
+    blocks: dict[Label, list[Node]] = {}
+    cg.loop_phis = {}
+    for n in nodes:
+        blocks.setdefault(labels[n.id], []).append(n)
+        if n.op == "phi":
+            cg.loop_phis.setdefault(n.key[0], {})[n.key[1]] = n
+    return blocks
+
+
+def emit_block(cg: Any, label: Label) -> None:
+    for n in cg.blocks.get(label, []):
+        cg.node(n)
+
+
+def _scalar(cg: Any, op: Operand) -> Src:
+    src = cg.place(op, [0])
+    if src.fixed is None:
+        src.fixed = (src.lanes[0],) * 4
+    return src
+
+
+def emit_loop(cg: Any, n: Node) -> None:
+    """`rep i#`: the carried registers take the initial values, the body, the results moved
+    back (staged when read from a carried register, so a swap holds), a break, `endrep`."""
+    loop_id, register, count, has_break = n.key
+    phis = cg.loop_phis.get(loop_id, {})
+    inits, results = n.args[:count], n.args[count:2 * count]
+    carried: list[Reg] = []
+    for k in range(count):
+        reg = cg.temp()
+        carried.append(reg)
+        if k in phis:
+            cg.home[phis[k].id] = (reg, {c: c for c in range(phis[k].width)})
+        cg._move(reg, inits[k], n.location)
+    cg.loop_regs[loop_id] = carried
+    cg.a0 = None                          # the body may load a0 itself
+    cg.emit("rep", None, (), [Src(Reg("i", register), {}, fixed=IDENTITY)], n.location)
+    emit_block(cg, ("loop", loop_id))
+    staged: list[Operand | Reg] = []
+    for res in results:
+        home = cg.home.get(res.node.id)
+        if res.node.op != "const" and home is not None and any(home[0] is c for c in carried):
+            tmp = cg.temp()
+            cg._move(tmp, res, n.location)
+            staged.append(tmp)
+        else:
+            staged.append(res)
+    for reg, res, width in zip(carried, staged, [r.width for r in results]):
+        if isinstance(res, Reg):
+            cg.emit("mov", reg, tuple(range(width)), [Src(res, {c: c for c in range(width)})],
+                    n.location)
+        else:
+            cg._move(reg, res, n.location)
+    if has_break:
+        cg.emit("break_ne", None, (), [_scalar(cg, n.args[2 * count]),
+                                       cg.const_src([0.0])], n.location)
+    cg.a0 = None
+    cg.emit("endrep", None, (), [], n.location)
+
+
+def emit_if(cg: Any, n: Node) -> None:
+    """`if b#` or `if_<cmp> a, b`; each side's nodes, its results moved into the registers
+    the `if_out` nodes read; `else` only where the else side computes something (otherwise
+    its results, computed before, are moved in before the `if`)."""
+    if_id, test, ncond, groups, breg = n.key
+    conds = n.args[:ncond]
+    then_res, else_res = n.args[ncond:ncond + groups], n.args[ncond + groups:]
+    regs = [cg.temp() for _ in range(groups)]
+    cg.if_regs[if_id] = regs
+    before = not cg.blocks.get(("else", if_id))
+    if before:
+        for reg, res in zip(regs, else_res):
+            cg._move(reg, res, n.location)
+    if test == "bool":
+        cg.emit("if", None, (), [Src(Reg("b", breg), {}, fixed=IDENTITY)], n.location)
+    else:
+        cg.emit(f"if_{test}", None, (), [_scalar(cg, c) for c in conds], n.location)
+    cg.a0 = None
+    emit_block(cg, ("then", if_id))
+    for reg, res in zip(regs, then_res):
+        cg._move(reg, res, n.location)
+    if not before:
+        cg.emit("else", None, (), [], n.location)
+        cg.a0 = None
+        emit_block(cg, ("else", if_id))
+        for reg, res in zip(regs, else_res):
+            cg._move(reg, res, n.location)
+    cg.emit("endif", None, (), [], n.location)
+    cg.a0 = None
+
+
+__all__ = ["place", "emit_block", "emit_loop", "emit_if"]
