@@ -427,12 +427,22 @@ def _needed_varyings(fragment: Program, varyings: dict[str, np.ndarray],
     """The varyings to interpolate: those the fragment program reads (apart from what only
     the `given` values read), cut after the last component it reads (the rest would read as
     defaults, never used)."""
-    reads = input_components(fragment, _sampler_reads, given)
-    unread = -1 if given else 0          # with given values, a varying only they read is not
-    needed = {i.name: max(reads.get(i.name, ()), default=unread) + 1
-              for i in fragment.inputs if i.kind == "varying"}
-    needed = {n: k for n, k in needed.items() if k > 0}
-    return {n: varyings[n][:, :needed[n]] for n in sorted(needed) if n in varyings}
+    found = _NEEDED.get((id(fragment), given))
+    if found is None or found[0] is not fragment:
+        reads = input_components(fragment, _sampler_reads, given)
+        unread = -1 if given else 0      # with given values, a varying only they read is not
+        needed = {i.name: max(reads.get(i.name, ()), default=unread) + 1
+                  for i in fragment.inputs if i.kind == "varying"}
+        found = (fragment, sorted((n, k) for n, k in needed.items() if k > 0))
+        if len(_NEEDED) > 1024:
+            _NEEDED.clear()
+        _NEEDED[(id(fragment), given)] = found
+    return {n: varyings[n][:, :k] for n, k in found[1] if n in varyings}
+
+
+# (id(fragment program), given) -> (the program, [(varying, components read)]): what a
+# program reads depends on the program alone, so it is worked out once per program object
+_NEEDED: dict[tuple, tuple[Program, list]] = {}
 
 
 def _fragment_inputs(fragment: Program, frags: QuadFragments, start: int, stop: int,

@@ -478,8 +478,23 @@ def _by_filter(level: _Level, coords: list[np.ndarray], minify: np.ndarray, min_
     return out
 
 
+_LEVELS: dict[tuple, tuple[list, list[_Level]]] = {}
+
+
 def _levels(levels: Sequence[np.ndarray]) -> list[_Level]:
-    return [lvl if isinstance(lvl, _Level) else _Level(lvl) for lvl in levels]
+    """The levels flattened for lookups, kept while the level arrays are the same objects (a
+    texture's levels are, frame after frame), as `_pyramid` keeps its pyramid."""
+    if all(isinstance(lvl, _Level) for lvl in levels):
+        return list(levels)
+    key = tuple(id(lvl) for lvl in levels)
+    found = _LEVELS.get(key)
+    if found is not None and all(a is b for a, b in zip(found[0], levels)):
+        return found[1]
+    if len(_LEVELS) >= 64:
+        _LEVELS.clear()
+    made = [lvl if isinstance(lvl, _Level) else _Level(lvl) for lvl in levels]
+    _LEVELS[key] = (list(levels), made)
+    return made
 
 
 # ------------------------------------------------------------------------------------------------
