@@ -147,3 +147,20 @@ def test_ps3_vface_tells_the_faces_apart(backend):
     image = effects.render(effects.load_effect(FACE), "radeonx1800", scene=QUAD, size=(8, 8),
                            backend=backend).astype(int)
     np.testing.assert_allclose(image[4, 4], [0, 255, 0, 255], atol=1)
+
+
+def test_many_direct3d10_blocks_load_in_bounded_time():
+    # hostile input: thousands of blocks, each warned once, in one scan of the text
+    import time
+    text = DUAL + "technique10 X { pass { } }\n" * 5000
+    start = time.perf_counter()
+    effect = effects.load_effect(text)
+    assert time.perf_counter() - start < 5.0
+    assert [t.name for t in effect.techniques] == ["Render9"]
+    skipped = [w for w in effect.warnings if "skipped" in w.message]
+    assert len(skipped) == 5001 and skipped[-1].location.line == DUAL.count("\n") + 5000
+
+
+def test_an_unclosed_direct3d10_block_is_the_parsers_error():
+    with pytest.raises(ParseError):
+        effects.load_effect(DUAL + "technique10 Open { pass {\n")

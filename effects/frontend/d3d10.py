@@ -44,6 +44,7 @@ _TECHNIQUE10 = re.compile(r"\b(technique1[01])\b")
 # The Direct3D 9 keyword (case-insensitive, as this framework's effect lexer reads keywords).
 _TECHNIQUE9 = re.compile(r"\btechnique\b", re.IGNORECASE)
 _NAME = re.compile(r"\s*([A-Za-z_]\w*)?")
+_BRACE = re.compile(r"[{}]")
 
 
 def skip_d3d10_techniques(pre: Preprocessed) -> tuple[Preprocessed, list[EffectWarning]]:
@@ -51,25 +52,32 @@ def skip_d3d10_techniques(pre: Preprocessed) -> tuple[Preprocessed, list[EffectW
     still maps), and a warning at each, when the file also has a Direct3D 9 technique; `pre`
     unchanged otherwise."""
     blanked = _STRING.sub(lambda m: " " * len(m.group(0)), pre.text)
-    spans = [span for m in _TECHNIQUE10.finditer(blanked)
-             if (span := _block_span(blanked, m.start(1))) is not None]
+    spans: list[tuple[int, int, str]] = []
+    for m in _TECHNIQUE10.finditer(blanked):
+        if spans and m.start(1) < spans[-1][1]:
+            continue                       # inside the block before (one scan of the text)
+        span = _block_span(blanked, m.start(1))
+        if span is None:                   # unbalanced: the parser says where
+            return pre, []
+        spans.append(span)
     if not spans:
         return pre, []
     rest = "".join(blanked[a:b] for a, b in zip([0] + [e for _, e, _ in spans],
                                                   [s for s, _, _ in spans] + [len(blanked)]))
     if _TECHNIQUE9.search(rest) is None:
         return pre, []
-    text, warnings, end = [], [], 0
+    text, warnings, end, line = [], [], 0, 1
     for start, stop, name in spans:
         text += [pre.text[end:start], re.sub(r"[^\n]", " ", pre.text[start:stop])]
+        line += pre.text.count("\n", end, start)      # counted on from the block before
         end = stop
-        line = pre.text.count("\n", 0, start) + 1
         column = start - (pre.text.rfind("\n", 0, start) + 1) + 1
         word = pre.text[start:start + 11]
         label = f" '{name}'" if name else ""
         warnings.append(pre.source_map.warning_at(
             f"{word}{label} skipped: a Direct3D 10/11 technique, which D3DX9 passes over; "
             f"the file's Direct3D 9 techniques are loaded", pre.source_map.locate(line, column)))
+        line += pre.text.count("\n", start, stop)
     text.append(pre.text[end:])
     return replace(pre, text="".join(text)), warnings
 
@@ -79,16 +87,16 @@ def _block_span(text: str, start: int) -> tuple[int, int, str] | None:
     the braces matched, or None when the block does not close."""
     m = _NAME.match(text, start + len("technique10"))
     name = m.group(1) or ""
-    i = m.end()
     depth = 0
-    for j in range(text.index("{", i) if "{" in text[i:] else len(text), len(text)):
-        c = text[j]
-        if c == "{":
+    for brace in _BRACE.finditer(text, m.end()):
+        if brace.group() == "{":
             depth += 1
-        elif c == "}":
-            depth -= 1
-            if depth == 0:
-                return start, j + 1, name
+            continue
+        if depth == 0:                     # a '}' before the block opens
+            return None
+        depth -= 1
+        if depth == 0:
+            return start, brace.end(), name
     return None
 
 
