@@ -31,7 +31,7 @@ import lark
 
 from effects.shaders.hlsl.context import explicit_register
 from effects.shaders.hlsl.dag import Operand
-from effects.shaders.hlsl.flowrules import MAX_DEPTH, NotReal, TargetFlow, enter, leave
+from effects.shaders.hlsl.flowrules import MAX_DEPTH, Escapes, NotReal, TargetFlow, enter, leave
 from effects.shaders.hlsl.loops import flat, numeric_vars
 from effects.shaders.hlsl.values import Value, Var, build_value, operand
 
@@ -124,24 +124,16 @@ def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -
 
 def _run_side(ev: Any, branch: Any) -> None:
     """One side, with nothing a real branch cannot hold."""
-    ctx = ev.ctx
-    kills = len(ctx.kills)
-    frame = ev.frames[-1] if ev.frames else None
-    returned = frame.returned if frame is not None else None
+    escapes = Escapes.note(ev)
     loop = ev.loops[-1] if ev.loops else None
     jumps = (loop.broken, loop.continued) if loop is not None else None
     try:
         ev.scoped(branch)
-        if len(ctx.kills) != kills:
-            raise NotReal("discard or clip inside it is not generated in a branch yet")
-        if frame is not None and frame.returned is not returned:
-            raise NotReal("return inside it is not generated in a branch yet")
+        escapes.refuse(ev, "inside it", "branch")
         if loop is not None and (loop.broken, loop.continued) != jumps:
             raise NotReal("break or continue inside it is not generated in a branch yet")
     finally:
-        del ctx.kills[kills:]
-        if frame is not None:
-            frame.returned = returned
+        escapes.undo(ev)
         if loop is not None and jumps is not None:
             loop.broken, loop.continued = jumps
 

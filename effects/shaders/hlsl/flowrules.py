@@ -52,4 +52,31 @@ def leave(ev: Any, kind: str) -> None:
     ev.ctx.__dict__["flow_depth"][kind] -= 1
 
 
-__all__ = ["DYNAMIC_TARGETS", "NotReal", "MAX_DEPTH", "TargetFlow", "enter", "leave"]
+@dataclass
+class Escapes:
+    """What a real branch side or rep body cannot hold yet, noted before it runs: how many
+    discards were made and the enclosing function's return state. `refuse` names what the
+    body added; `undo` puts both back (the caller then flattens or unrolls instead)."""
+
+    kills: int
+    frame: Any
+    returned: Any
+
+    @classmethod
+    def note(cls, ev: Any) -> "Escapes":
+        frame = ev.frames[-1] if ev.frames else None
+        return cls(len(ev.ctx.kills), frame, frame.returned if frame is not None else None)
+
+    def refuse(self, ev: Any, where: str, place: str) -> None:
+        if len(ev.ctx.kills) != self.kills:
+            raise NotReal(f"discard or clip {where} is not generated in a {place} yet")
+        if self.frame is not None and self.frame.returned is not self.returned:
+            raise NotReal(f"return {where} is not generated in a {place} yet")
+
+    def undo(self, ev: Any) -> None:
+        del ev.ctx.kills[self.kills:]
+        if self.frame is not None:
+            self.frame.returned = self.returned
+
+
+__all__ = ["DYNAMIC_TARGETS", "Escapes", "NotReal", "MAX_DEPTH", "TargetFlow", "enter", "leave"]

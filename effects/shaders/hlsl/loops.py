@@ -32,7 +32,7 @@ from typing import Any
 import lark
 
 from effects.shaders.hlsl.dag import Operand
-from effects.shaders.hlsl.flowrules import DYNAMIC_TARGETS, NotReal, TargetFlow, enter, leave
+from effects.shaders.hlsl.flowrules import DYNAMIC_TARGETS, Escapes, NotReal, TargetFlow, enter, leave
 from effects.shaders.hlsl.types import HType
 from effects.shaders.hlsl.values import Loop, Value, Var, build_value, operand
 
@@ -206,18 +206,13 @@ def _run_body(ev: Any, tree: Any, body: Any, step: Any) -> Operand | None:
     values the loop had when it broke; the loop leaves at the end of the iteration, after the
     results are moved back, by `break_ne` (dynamic flow control: vs_2_a, vs_3_0, ps_3_0). Return and discard inside stay refused."""
     ctx = ev.ctx
-    kills = len(ctx.kills)
-    frame = ev.frames[-1] if ev.frames else None
-    returned = frame.returned if frame is not None else None
+    escapes = Escapes.note(ev)
     loop = Loop()
     enter(ev, "loop")
     ev.loops.append(loop)
     try:
         ev.scoped(body)
-        if len(ctx.kills) != kills:
-            raise NotReal("discard or clip in the body is not generated in a rep yet")
-        if frame is not None and frame.returned is not returned:
-            raise NotReal("return in the body is not generated in a rep yet")
+        escapes.refuse(ev, "in the body", "rep")
         loop.continued = None
         broken = loop.broken
         if broken is not None and not TargetFlow.of(ctx.target).dynamic:
@@ -231,9 +226,7 @@ def _run_body(ev: Any, tree: Any, body: Any, step: Any) -> Operand | None:
     finally:
         leave(ev, "loop")
         ev.loops.pop()
-        del ctx.kills[kills:]
-        if frame is not None:
-            frame.returned = returned
+        escapes.undo(ev)
 
 
 def has_attribute(attrs: Any, name: str) -> bool:
