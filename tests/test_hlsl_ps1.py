@@ -120,9 +120,8 @@ def test_parts_of_a_vector_through_masks(backend, target):
     each_pixel(img, lambda u, v: [u, v, 0, 1], target, text)
 
 
-def test_shifts_invert_and_scalar_uniform(backend):
-    # uv.x*Scale (a scalar uniform), *4 with saturate (mul_x4_sat), *0.5 (_d2), 1-x (invert)
-    fn = """float4 PS(float2 uv : TEXCOORD0) : COLOR
+# four channels, four modifiers: fits ps_1_4's temporaries, not ps_1_1's two
+FOUR_CHANNELS = """float4 PS(float2 uv : TEXCOORD0) : COLOR
 {
     float4 o;
     o.r = uv.x * Scale;
@@ -131,6 +130,11 @@ def test_shifts_invert_and_scalar_uniform(backend):
     o.a = 1 - uv.y;
     return o;
 }"""
+
+
+def test_shifts_invert_and_scalar_uniform(backend):
+    # uv.x*Scale (a scalar uniform), *4 with saturate (mul_x4_sat), *0.5 (_d2), 1-x (invert)
+    fn = FOUR_CHANNELS
     text = asm(fn, "ps_1_4")
     assert "mul_x4_sat" in text and "add_d2" in text and "1-r" in text, text
     img = render(fn, "ps_1_4", backend)
@@ -321,15 +325,7 @@ def test_refused_with_the_hlsl_location(target, body, column, message):
 
 
 def test_temporaries_beyond_r1_are_refused_at_the_value():
-    fn = """float4 PS(float2 uv : TEXCOORD0) : COLOR
-{
-    float4 o;
-    o.r = uv.x * Scale;
-    o.g = saturate(uv.x * uv.y * 4);
-    o.b = (uv.x + uv.y) * 0.5;
-    o.a = 1 - uv.y;
-    return o;
-}"""
+    fn = FOUR_CHANNELS
     with pytest.raises(EffectError, match=r"ps_1_1 has 2 temporary registers \(r0-r1\)") as info:
         compile_shader(effect_for(fn, "ps_1_1"), "PS", "ps_1_1")
     assert info.value.location.line > PARAMS.count("\n") + 3
