@@ -153,9 +153,9 @@ def test_many_direct3d10_blocks_load_in_bounded_time():
     # hostile input: thousands of blocks, each warned once, in one scan of the text
     import time
     text = DUAL + "technique10 X { pass { } }\n" * 5000
-    start = time.perf_counter()
+    start = time.process_time()
     effect = effects.load_effect(text)
-    assert time.perf_counter() - start < 5.0
+    assert time.process_time() - start < 5.0
     assert [t.name for t in effect.techniques] == ["Render9"]
     skipped = [w for w in effect.warnings if "skipped" in w.message]
     assert len(skipped) == 5001 and skipped[-1].location.line == DUAL.count("\n") + 5000

@@ -156,9 +156,9 @@ def test_variadic_macro():
 
 def test_endless_and_exploding_macros_are_located_errors():
     chain = "".join(f"#define A{i} A{i + 1} A{i + 1}\n" for i in range(40)) + "x = A0;"
-    start = time.perf_counter()
+    start = time.process_time()
     message = error(chain)
-    assert time.perf_counter() - start < 5.0   # the untrusted-input bound (issue 14)
+    assert time.process_time() - start < 5.0   # the untrusted-input bound (issue 14)
     assert message.startswith("<string>:41:5: error: expansion of macro ")
     assert message.endswith("is too large (more than 300000 tokens)")
 
@@ -437,12 +437,13 @@ def test_include_of_empty_file_keeps_a_line(tmp_path):
 # ------------------------------------------------------------------------------ robustness, speed
 
 def _result_or_error(text: str, **kwargs) -> float:
-    start = time.perf_counter()
+    # CPU time of this process: the bound is on the work done, not on how busy the machine is
+    start = time.process_time()
     try:
         preprocess(text, **kwargs)
     except PreprocessError as exc:
         assert exc.line >= 1 and exc.column >= 1
-    return time.perf_counter() - start
+    return time.process_time() - start
 
 
 def _junk() -> str:
