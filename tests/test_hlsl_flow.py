@@ -336,3 +336,180 @@ def test_four_nested_loops_compile_and_a_fifth_is_a_located_error(backend):
                                       "deep, and vs_2_0 allows 4"), err.value.message
     loc = err.value.location
     assert (loc.line, loc.column) == located(text, "for (int i4")
+
+
+# -- loop aL: a counter that indexes constants ------------------------------------------------
+
+LIGHTS = """int NumLights = 2;
+struct Light { float4 Color; };
+Light Lights[4] = {0.125,0,0,0, 0,0.25,0,0, 0,0,0.5,0, 0.25,0.25,0.25,0};
+float4 VS(float4 p : POSITION, out float4 c : COLOR0) : POSITION
+{
+    c = float4(0, 0, 0, 1);
+    for (int i = 0; i < NumLights; i++)
+        c.rgb += Lights[i].Color.rgb;
+    return p;
+}
+"""
+COLORS = [(0.125, 0, 0), (0, 0.25, 0), (0, 0, 0.5), (0.25, 0.25, 0.25)]
+
+
+def lights_by_hand(n: int, scale: float = 1.0) -> tuple[float, ...]:
+    """The first n colours summed (times `scale`), alpha 1. aL must run 0, 1, ... n - 1: an
+    i# of (n, 0, 0, 0) (step 0) would add the first colour n times instead."""
+    return tuple(scale * sum(c[k] for c in COLORS[:n]) for k in range(3)) + (1.0,)
+
+
+GOLDEN_LIGHTS_VS20 = """vs_2_0
+def c4, 0, 0, 0, 1
+dcl_position v0
+mov r0, c4
+loop aL, i0
+add r1.xyz, r0, c0[aL]
+mov r1.w, r0
+mov r0, r1
+endloop
+mov oPos, v0
+mov oD0, r0
+"""
+
+
+def test_a_counter_indexing_a_uniform_array_is_loop_al_as_fxc_compiles_it():
+    # the counter is not carried as a float (nothing reads it as a number); the effect sets
+    # i0 from NumLights, the shader defines no defi
+    fx = load(LIGHTS + PASS_PS, "compile vs_2_0 VS()")
+    shader = compile_shader(fx, "VS", "vs_2_0")
+    assert shader.text == GOLDEN_LIGHTS_VS20, shader.text
+    assert shader.int_registers == {"NumLights": 0}
+    assert shader.constants == {"Lights": (0, 4)}
+
+
+def test_the_pass_sets_the_int_register_as_d3dx_does():
+    # D3DX's constant table writes an int into an int4 register as (value, 0, 1, 0): the
+    # loop's count, first aL and aL step
+    from effects.device import pass_states
+    from effects.lower.passes import _int_constants
+    fx = load(LIGHTS + PASS_PS, "compile vs_2_0 VS()")
+    fx.parameter("NumLights").value = 3
+    shader = compile_shader(fx, "VS", "vs_2_0")
+    state = next(iter(pass_states(fx, fx.techniques[0])))
+    assert _int_constants(state, "Vertex", shader)[0] == (3, 0, 1, 0)
+
+
+@pytest.mark.parametrize("target, card", [("vs_2_0", "radeon9700"), ("vs_2_a", "geforcefx5900"),
+                                          ("vs_3_0", "geforce6800")])
+@pytest.mark.parametrize("count", [0, 1, 2, 4])
+def test_loop_al_renders_the_first_n_elements(backend, target, card, count):
+    ps = "compile ps_3_0 PS3()" if target == "vs_3_0" else "compile ps_2_0 PS()"
+    fx = load(LIGHTS + PASS_PS + PASS_PS3, f"compile {target} VS()", ps)
+    text = compile_shader(fx, "VS", target).text
+    assert text.index("loop aL, i0") < text.index("c0[aL]") < text.index("endloop"), text
+    img = draw(fx, card, backend, {"NumLights": count})
+    assert np.allclose(img[4, 4], lights_by_hand(count), atol=TOL), (img[4, 4], count)
+
+
+LIGHTS_PS = """int NumLights = 2;
+struct Light { float4 Color; };
+Light Lights[4] = {0.125,0,0,0, 0,0.25,0,0, 0,0,0.5,0, 0.25,0.25,0.25,0};
+float4 VS(float4 p : POSITION, float2 uv : TEXCOORD0, out float2 t : TEXCOORD0) : POSITION
+{ t = uv; return p; }
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 c = float4(0, 0, 0, 1);
+    for (int i = 0; i < NumLights; i++)
+        c.rgb += Lights[i].Color.rgb * uv.x;
+    return c;
+}
+"""
+
+
+@pytest.mark.parametrize("count", [0, 1, 3])
+def test_ps_3_0_indexes_constants_by_al_in_a_loop(backend, count):
+    # the relative-addressing page: c# is indexed by aL in ps_3_0 (no a0 there)
+    fx = load(LIGHTS_PS, "compile vs_3_0 VS()", "compile ps_3_0 PS()")
+    text = compile_shader(fx, "PS", "ps_3_0").text
+    assert "loop aL, i0" in text and "mad r1.xyz, c0[aL], v0.x, r0" in text, text
+    img = draw(fx, "geforce6800", backend, {"NumLights": count})
+    for x, y in ((2, 1), (4, 4), (7, 6)):
+        want = lights_by_hand(count, x / 8)
+        assert np.allclose(img[y, x], want, atol=TOL), (x, img[y, x], want)
+
+
+def test_ps_3_0_cannot_index_an_element_of_two_registers_in_a_uniform_loop():
+    # aL steps by 1 in a loop the effect counts, and ps_3_0 has no a0: X3512 at the index
+    text = LIGHTS_PS.replace("struct Light { float4 Color; };",
+                             "struct Light { float4 Color; float4 Spare; };")
+    text = text.replace("Light Lights[4] = {0.125,0,0,0, 0,0.25,0,0, 0,0,0.5,0, 0.25,0.25,0.25,0};",
+                        "Light Lights[4];")
+    fx = load(text, "compile vs_3_0 VS()", "compile ps_3_0 PS()")
+    with pytest.raises(EffectError) as err:
+        compile_shader(fx, "PS", "ps_3_0")
+    assert err.value.message == (
+        "X3512: array index must be a literal expression on ps_3_0 (ps_3_0 indexes constants "
+        "only by the counter of the innermost loop (aL), an element of one register when the "
+        "count is a uniform)")
+    loc = err.value.location
+    assert (loc.line, loc.column) == located(text, "i].Color")
+
+
+PAIRS_LOOP = """struct Pair { float4 a; float4 b; };
+Pair Pairs[3] = {0.125,0,0,0, 0,0,0.0625,0, 0,0.25,0,0, 0,0,0.125,0, 0.25,0.25,0,0, 0,0,0.25,0};
+float4 VS(float4 p : POSITION, out float4 c : COLOR0) : POSITION
+{
+    float4 acc = float4(0, 0, 0, 0.25);
+    [loop] for (int i = 1; i < 3; i++) {
+        acc.rgb += Pairs[i].a.rgb * 2 + Pairs[i].b.rgb;
+        acc.a += 0.125 * i;
+    }
+    c = acc;
+    return p;
+}
+"""
+
+
+def test_a_loop_over_literal_bounds_defines_its_count_start_and_step():
+    # [loop] keeps a real loop: i runs 1, 2, so aL = 2i runs 2, 4 (a Pair takes two
+    # registers): defi (count 2, first aL 2, step 2, 0); the counter is carried too, as the
+    # body reads it as a number
+    fx = load(PAIRS_LOOP + PASS_PS, "compile vs_2_0 VS()")
+    shader = compile_shader(fx, "VS", "vs_2_0")
+    text = shader.text
+    assert "defi i0, 2, 2, 2, 0" in text.split("\n"), text
+    assert text.index("loop aL, i0") < text.index("c0[aL]") < text.index("endloop"), text
+    assert "c1[aL]" in text and shader.int_registers == {}, text
+
+
+def test_the_literal_loop_renders(backend):
+    # i = 1: a = (0, 0.25, 0), b = (0, 0, 0.125); i = 2: a = (0.25, 0.25, 0), b = (0, 0, 0.25);
+    # rgb = 2 (a1 + a2) + b1 + b2 = (0.5, 1, 0.375); alpha 1/4 + 1/8 (1 + 2) = 5/8
+    fx = load(PAIRS_LOOP + PASS_PS, "compile vs_2_0 VS()")
+    img = draw(fx, "radeon9700", backend)
+    assert np.allclose(img[4, 4], (0.5, 1.0, 0.375, 0.625), atol=TOL), img[4, 4]
+
+
+def test_loop_on_a_target_without_loops_is_unrolled_with_a_warning(backend):
+    fx = load(PAIRS_LOOP + PASS_PS, "compile vs_1_1 VS()", "compile ps_1_1 PS()")
+    shader = compile_shader(fx, "VS", "vs_1_1")
+    assert "loop" not in shader.text and "rep" not in shader.text, shader.text
+    [warning] = [w for w in shader.warnings if "[loop]" in w.message]
+    assert warning.message == ("[loop] not kept: it is marked [loop], and vs_1_1 has no loops "
+                               "(rep needs vs_2_0, ps_2_x or ps_3_0); the loop is unrolled")
+    assert (warning.location.line, warning.location.column) == located(PAIRS_LOOP, "[loop]")
+    img = draw(fx, "geforce3", backend)
+    assert np.allclose(img[4, 4], (0.5, 1.0, 0.375, 0.625), atol=TOL), img[4, 4]
+
+
+def test_a_body_that_changes_the_counter_is_not_a_loop_and_says_so():
+    # a rep / loop runs the count the effect set, whatever the body does to i
+    text = LIGHTS.replace("        c.rgb += Lights[i].Color.rgb;\n",
+                          "    {\n        c.rgb += Lights[i].Color.rgb;\n"
+                          "        if (c.r > 0.1) i++;\n    }\n")
+    fx = load(text + PASS_PS, "compile vs_2_0 VS()")
+    with pytest.raises(EffectError) as err:
+        compile_shader(fx, "VS", "vs_2_0")
+    assert err.value.message == (
+        "X3511: unable to unroll loop: its count is the uniform 'NumLights', known only when "
+        "the shader runs, and it cannot be a rep: the body changes the counter 'i' (the loop "
+        "runs the count it was given, and aL steps by itself)")
+    loc = err.value.location
+    assert (loc.line, loc.column) == located(text, "for (int i")

@@ -78,7 +78,8 @@ PALETTE = ("int NumLights = 2;\nfloat4 Palette[4] = {0.125,0,0,0, 0,0.25,0,0, 0,
 @pytest.mark.parametrize("count, want", [(0, (0, 0, 0, 0)), (2, (0.125, 0.25, 0, 0)),
                                          (4, (0.375, 0.5, 0.75, 0))])
 def test_a_uniform_array_indexed_by_the_counter(backend, count, want):
-    # element i through a0 (mova inside the rep): the sum of the first `count` elements
+    # element i as c0[aL] inside `loop aL, i0` (as fxc compiles it: the effect sets i0 to
+    # (N, 0, 1, 0), so aL runs 0 .. N - 1): the sum of the first `count` elements
     fx = effect_for("""
 float4 VS(float4 p : POSITION, out float4 c : COLOR0) : POSITION
 {
@@ -89,6 +90,34 @@ float4 VS(float4 p : POSITION, out float4 c : COLOR0) : POSITION
     return p;
 }
 """ + PS, vs="compile vs_2_0 VS()", params=PALETTE)
+    text = fx_asm(fx, "VS", "vs_2_0")
+    assert text.index("loop aL, i0") < text.index("c0[aL]") < text.index("endloop"), text
+    assert "mova" not in text and "rep" not in text, text
+    img = render(fx, backend, params={"NumLights": count})
+    assert np.allclose(img[4, 4], want, atol=TOL), (img[4, 4], want)
+
+
+PAIRS = ("int NumLights = 2;\nstruct Pair { float4 a; float4 b; };\n"
+         "Pair Pairs[3] = {0.125,0,0,0, 0,0,0.0625,0, 0,0.25,0,0, 0,0,0.125,0, "
+         "0.25,0.25,0,0, 0,0,0.25,0};")
+
+
+@pytest.mark.parametrize("count, want", [(0, (0, 0, 0, 0)), (1, (0.125, 0, 0.0625, 0)),
+                                         (3, (0.375, 0.5, 0.4375, 0))])
+def test_an_element_of_two_registers_goes_through_a0_in_a_rep(backend, count, want):
+    # aL steps by the i#'s z, which D3DX sets to 1 for an int parameter: an element of two
+    # registers (a struct of two float4) is read through a0 = 2i instead (mova in the rep);
+    # want: the sum of a + b over the first `count` pairs
+    fx = effect_for("""
+float4 VS(float4 p : POSITION, out float4 c : COLOR0) : POSITION
+{
+    float4 acc = 0;
+    for (int i = 0; i < NumLights; i++)
+        acc += Pairs[i].a + Pairs[i].b;
+    c = acc;
+    return p;
+}
+""" + PS, vs="compile vs_2_0 VS()", params=PAIRS)
     text = fx_asm(fx, "VS", "vs_2_0")
     assert text.index("rep i0") < text.index("mova a0.x") < text.index("endrep"), text
     img = render(fx, backend, params={"NumLights": count})

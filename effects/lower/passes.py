@@ -192,7 +192,8 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
                                     if (k := _texture_kind(effect, state, s))},
             projected={s: bool(state.get_int("TextureTransformFlags", s) & TTFF_PROJECTED)
                        for s in range(MAX_STAGES)},
-            constant_prefix=PIXEL_CONSTANT_PREFIX, int_constants=state.int_constants("Pixel"),
+            constant_prefix=PIXEL_CONSTANT_PREFIX,
+            int_constants=_int_constants(state, "Pixel", compiled),
             bool_constants=state.bool_constants("Pixel"))
         fragment = asm_lower.lower_pixel_shader(program, ctx)
         uniforms.update(_shader_constants(state, "PixelShaderConstant",
@@ -217,7 +218,7 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
         program, compiled = _assemble(effect, state, vertex_shader, "vertex")
         ctx = asm_lower.ShaderContext(options, decl=getattr(vertex_shader, "decl", None),
                                       constant_prefix=VERTEX_CONSTANT_PREFIX,
-                                      int_constants=state.int_constants("Vertex"),
+                                      int_constants=_int_constants(state, "Vertex", compiled),
                                       bool_constants=state.bool_constants("Vertex"))
         vertex = asm_lower.lower_vertex_shader(program, ctx)
         uniforms.update(_shader_constants(state, "VertexShaderConstant",
@@ -279,6 +280,19 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any,
         raise EffectError(f"cannot lower a {stage} shader given as {type(shader).__name__}",
                           location)
     return assemble_cached(shader), None
+
+
+def _int_constants(state: DeviceState, shader: str, compiled: Any
+                   ) -> dict[int, tuple[int, int, int, int]]:
+    """The i# the pass sets; an int parameter a compiled shader's loop counts (its
+    int_registers) as D3DX's constant table sets an int4 register from an int: the value,
+    then 0, 1, 0 in the components it does not give (Wine's d3dx9 constant table, `set`:
+    INT vec[4] = {0, 0, 1, 0}). So `loop aL, i#` runs aL = 0, 1, ... N - 1 (count, start,
+    step, unused); `rep i#` reads only the count."""
+    found = state.int_constants(shader)
+    for register in getattr(compiled, "int_registers", {}).values():
+        found[register] = (found.get(register, (0, 0, 0, 0))[0], 0, 1, 0)
+    return found
 
 
 def _compiled_constants(effect: Effect, compiled: Any, prefix: str) -> dict[str, tuple[float, ...]]:

@@ -13,7 +13,7 @@ _SAMPLER_DCL = {"2d": "2d", "1d": "2d", "3d": "volume", "cube": "cube"}
 @dataclass
 class Reg:
     """A register: kind 'r' (virtual until allocated), 'c', 'v', 't', 's', 'o...', 'a' (a0),
-    'c_rel' (c[a0.x + index])."""
+    'c_rel' (c[a0.x + index]), 'c_al' (c[aL + index])."""
     kind: str
     index: int | None
 
@@ -22,6 +22,8 @@ class Reg:
             return f"r{alloc[self.index]}"  # type: ignore[index]
         if self.kind == "c_rel":
             return f"c[a0.x + {self.index}]" if self.index else "c[a0.x]"
+        if self.kind == "c_al":
+            return f"c{self.index}[aL]"
         return f"{self.kind}{'' if self.index is None else self.index}"
 
 

@@ -23,8 +23,8 @@ from effects.errors import Location
 from effects.shaders.asm.versions import IDENTITY
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg, Src
-from effects.shaders.hlsl.dag import SHAPED, Node, Operand, reachable
-from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_loop, place
+from effects.shaders.hlsl.dag import SHAPED, Node, Operand
+from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_loop, needed, place
 from effects.shaders.hlsl.legalize import finish
 
 COMPONENTS = "xyzw"
@@ -107,8 +107,8 @@ class CodeGen:
 
     # -- analysis ---------------------------------------------------------------------------
     def reachable(self) -> list[Node]:
-        return reachable([c.node for o in self.outputs for c in o.comps]
-                         + [k.node for k in self.ctx.kills])
+        return needed([c.node for o in self.outputs for c in o.comps]
+                      + [k.node for k in self.ctx.kills])
 
     def count_uses(self, nodes: list[Node]) -> None:
         for n in nodes:
@@ -232,6 +232,10 @@ class CodeGen:
             return
         if op == "uniform_rel":
             self.relative_read(n)
+            return
+        if op == "uniform_al":               # c[aL + n], read where it is used (flowcode.py)
+            base = self.uniform_reg(*n.key).index
+            self.home[n.id] = (Reg("c_al", base), {c: c for c in range(4)})
             return
         if op == "kill" or op == "phi":
             return

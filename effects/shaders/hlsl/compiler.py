@@ -26,7 +26,8 @@ from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.codegen import CodeGen
 from effects.shaders.hlsl.codegen_ps1 import generate_ps1
 from effects.shaders.hlsl.context import Context, explicit_register as _explicit, load_context
-from effects.shaders.hlsl.dag import Node, Operand, reachable
+from effects.shaders.hlsl.dag import Node, Operand
+from effects.shaders.hlsl.flowcode import needed
 from effects.shaders.hlsl.evaluate import Evaluator, Frame
 from effects.shaders.hlsl.parse import HlslError, Origin, parse
 from effects.shaders.hlsl.types import HType, register_count
@@ -134,7 +135,7 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
     if ctx.target.kind == "vs" and not any(o.register in ("oPos", "o0") and o.register == "oPos"
                                            or o.register.startswith("o") for o in outputs):
         raise fdef.origin.error(f"X4502: '{entry}': a vertex shader must write POSITION", fdef.tree)
-    nodes = reachable([c.node for o in outputs for c in o.comps] + [k.node for k in ctx.kills])
+    nodes = needed([c.node for o in outputs for c in o.comps] + [k.node for k in ctx.kills])
     for n in nodes:
         if n.op == "input" and n.key[0] == "unmapped":
             raise HlslError(f"X4502: invalid {ctx.target.name} input semantic '{n.key[1]}'",
@@ -163,7 +164,7 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
     what the outputs reach, in creation order)."""
     order: list[str] = []
     for n in nodes:
-        if n.op in ("uniform", "uniform_rel") and n.key[0] not in order:
+        if n.op in ("uniform", "uniform_rel", "uniform_al") and n.key[0] not in order:
             order.append(n.key[0])
     sizes = {name: register_count(ctx.uniforms_used.get(name) or HType("scalar")) for name in order}
     regs: dict[str, int] = {}

@@ -112,7 +112,7 @@ SHAPED: dict[str, tuple[tuple[int, ...], int, Callable[..., list[float]]]] = {
     "sincos": ((1,), 2, lambda a: [math.cos(a[0]), math.sin(a[0])]),
 }
 # Leaves and side effects that never fold.
-OPAQUE = {"input", "uniform", "uniform_rel", "tex", "texldp", "texldb", "texldl", "texldd", "dsx", "dsy",
+OPAQUE = {"input", "uniform", "uniform_rel", "uniform_al", "tex", "texldp", "texldb", "texldl", "texldd", "dsx", "dsy",
           "kill", "pack"}
 
 

@@ -302,21 +302,24 @@ class Evaluator:
                     else:
                         for e in child.children:
                             self.expr(e)
-            match = None if has_attribute(attrs, "unroll") else bound_of(self, tree, cond, step)
+            match = None if has_attribute(attrs, "unroll") else \
+                bound_of(self, tree, cond, step, attrs)
             why = None
             if match is not None:
                 target = self.ctx.target
                 if not TargetFlow.of(target).static:
-                    why = (f"its count is the uniform '{match[1]}', known only when the shader "
-                           f"runs, and {target.name} has no loops (rep needs vs_2_0, ps_2_x or "
-                           "ps_3_0)")
+                    why = (f"{match.why()}, and {target.name} has no loops (rep needs vs_2_0, "
+                           "ps_2_x or ps_3_0)")
                 else:
                     try:
-                        real_loop(self, tree, body, step, *match)
+                        real_loop(self, tree, body, step, match)
                         return
                     except NotReal as err:
-                        why = (f"its count is the uniform '{match[1]}', known only when the "
-                               f"shader runs, and it cannot be a rep: {err}")
+                        why = f"{match.why()}, and it cannot be a rep: {err}"
+                if match.param is None:
+                    # literal bounds unroll (fxc's default for them); [loop] is only a request
+                    self.warn(f"[loop] not kept: {why}; the loop is unrolled", self.at(tree))
+                    why = None
             self._loop(tree, cond, body, step, test_first=True, why=why)
         finally:
             self.scopes.pop()

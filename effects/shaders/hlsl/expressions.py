@@ -14,6 +14,7 @@ from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.types import BOOL, INT, HType, builtin, scalar, shape_of, vector
 from effects.shaders.hlsl.calls import resolve_overload
 from effects.shaders.hlsl.intrinsics import INTRINSICS, call_intrinsic
+from effects.shaders.hlsl.loops import al_element
 from effects.shaders.hlsl.lvalues import const_index, store, swizzle_lanes
 from effects.shaders.hlsl.values import Value, build_value, count_components
 
@@ -102,13 +103,17 @@ def _initializer(ev: Any, name: str, init: Any, where: Any) -> np.ndarray:
     return np.array([v[0] if v else 0.0 for v in values])
 
 
-def uniform_value(ev: Any, name: str, t: HType, offset: int, address: Operand | None = None) -> Value:
+def uniform_value(ev: Any, name: str, t: HType, offset: int, address: Operand | None = None,
+                  al: Operand | None = None) -> Value:
     """A uniform's value over its constant registers (offsets relative to its first); with
     `address`, read relatively: register offset + k is c[a0.x + first + offset + k] with
-    a0.x = address (an array element chosen at run time, vertex shaders only)."""
+    a0.x = address (an array element chosen at run time, vertex shaders only); with `al` (a
+    real loop's counter phi, loops.al_element), c[aL + first + offset + k]."""
     from effects.shaders.hlsl.types import register_count
     g = ev.g
-    if address is None:
+    if al is not None:
+        reg = lambda k: g.leaf("uniform_al", (name, offset + k), 4, args=(al,))
+    elif address is None:
         reg = lambda k: g.leaf("uniform", (name, offset + k), 4)
     else:
         reg = lambda k: g.leaf("uniform_rel", (name, offset + k), 4, args=(address,))
@@ -125,13 +130,13 @@ def uniform_value(ev: Any, name: str, t: HType, offset: int, address: Operand | 
         return Value(t, comps)
     if t.kind == "array":
         size = register_count(t.element)  # type: ignore[arg-type]
-        return Value(t, elements=[uniform_value(ev, name, t.element, offset + k * size, address)  # type: ignore[arg-type]
+        return Value(t, elements=[uniform_value(ev, name, t.element, offset + k * size, address, al)  # type: ignore[arg-type]
                                   for k in range(t.length)])
     if t.kind == "struct":
         out = Value(t)
         k = offset
         for fname, ft, _ in t.fields:
-            out.fields[fname] = uniform_value(ev, name, ft, k, address)
+            out.fields[fname] = uniform_value(ev, name, ft, k, address, al)
             k += register_count(ft)
         return out
     return Value(t)
@@ -225,9 +230,22 @@ def _relative_element(ev: Any, base_tree: Any, t: HType, index: Value, where: An
     target = ev.ctx.target
     name = str(base_tree.children[0]) if isinstance(base_tree, lark.Tree) and base_tree.data == "var" else None
     param = ev.ctx.effect.parameter(name) if name is not None and ev.lookup(name) is None else None
-    if target.kind != "vs" or param is None or "static" in param.storage:
-        where_text = ("pixel shaders have no relative addressing" if target.kind == "ps" else
-                      "only uniform (global, non-static) arrays are indexed through a0")
+    uniform = param is not None and "static" not in param.storage
+    if uniform and index.type.numeric:
+        # the innermost real loop's counter: c[aL + n] (loops.al_element), vs_2_0+ and ps_3_0
+        i = ev.a.convert_base(index.comps[:1], index.type.base, "int", ev.at(where))[0]
+        value = al_element(ev, name, t, i)  # type: ignore[arg-type]
+        if value is not None:
+            if index.type.size > 1:
+                ev.warn("X3206: implicit truncation of vector type", ev.at(where))
+            global_value(ev, name, base_tree)            # registers the array as used
+            return value
+    if target.kind != "vs" or not uniform:
+        where_text = ("pixel shaders have no relative addressing" if target.name != "ps_3_0"
+                      else "ps_3_0 indexes constants only by the counter of the innermost "
+                      "loop (aL), an element of one register when the count is a uniform")
+        if target.kind == "vs":
+            where_text = "only uniform (global, non-static) arrays are indexed through a0"
         raise ev.error(f"X3512: array index must be a literal expression on {target.name} "
                        f"({where_text})", where)
     if not index.type.numeric:

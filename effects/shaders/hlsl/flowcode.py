@@ -1,6 +1,7 @@
 """Flow control in the generated code: where each node goes, and rep / if blocks emitted.
 
-The DAG has `loop` nodes (loops.py: phis, initial values, results, a break predicate) and
+The DAG has `loop` nodes (loops.py: phis, initial values, results, a break predicate; c[aL + n]
+reads, `uniform_al`, hang off the counter's phi, so they stay inside) and
 `if` nodes (branches.py: condition operands, then-results, else-results). Each reached node
 is placed in a *block*: the main program (None), a loop body ('loop', id), or a side of an
 if ('then', id) / ('else', id); a block's parent is the block its loop / if node sits in.
@@ -22,10 +23,67 @@ from typing import Any
 
 from effects.shaders.asm.versions import IDENTITY
 from effects.shaders.hlsl.asmcode import Reg, Src
-from effects.shaders.hlsl.dag import Node, Operand
+from effects.shaders.hlsl.dag import Node, Operand, reachable
 
 Label = tuple | None
 _GRADIENT = {"tex", "texldp", "texldb", "dsx", "dsy"}
+
+
+def needed(roots: list[Node]) -> list[Node]:
+    """dag.reachable, less the dead carried groups of loops where there are loops."""
+    nodes = reachable(roots)
+    return live_nodes(roots) if any(n.op == "loop" for n in nodes) else nodes
+
+
+def live_nodes(roots: list[Node]) -> list[Node]:
+    """What the roots need, in creation order, without a loop's dead carried groups: a group
+    (phi, initial value, result, loop_out) is kept only where something kept reads its
+    loop_out or its phi, a c[aL + n] read (`uniform_al`, whose phi argument only ties it to
+    the loop) aside. So a counter that only indexes through aL is not carried; its phi stays
+    as the read's anchor. Loops' `live` attribute: the kept group numbers."""
+    seen: dict[int, Node] = {}
+    groups: dict[int, set[int]] = {}          # loop id -> live groups
+    loops: dict[int, Node] = {}               # loop id -> its (live) loop node
+    anchors: list[Node] = []
+    stack = list(roots)
+
+    def group(loop_id: int, k: int) -> None:
+        live = groups.setdefault(loop_id, set())
+        if k not in live:
+            live.add(k)
+            if loop_id in loops:
+                _push_group(loops[loop_id], k)
+
+    def _push_group(loop: Node, k: int) -> None:
+        count = loop.key[2]
+        stack.extend((loop.args[k].node, loop.args[count + k].node))
+
+    while stack:
+        n = stack.pop()
+        if n.id in seen:
+            continue
+        seen[n.id] = n
+        op = n.op
+        if op == "loop":
+            loops[n.key[0]] = n
+            count = n.key[2]
+            stack.extend(a.node for a in n.args[2 * count:])          # the break predicate
+            for k in groups.get(n.key[0], ()):
+                _push_group(n, k)
+        elif op == "phi":
+            group(*n.key)
+        elif op == "loop_out":
+            stack.append(n.args[0].node)
+            group(*n.key)
+        elif op == "uniform_al":
+            anchors.extend(a.node for a in n.args)
+        else:
+            stack.extend(a.node for a in n.args)
+    for n in anchors:
+        seen.setdefault(n.id, n)
+    for loop_id, n in loops.items():
+        n.__dict__["live"] = frozenset(groups.get(loop_id, ()))
+    return sorted(seen.values(), key=lambda n: n.id)
 
 
 def _slot_label(c: Node, k: int, labels: dict[int, Label]) -> Label:
@@ -114,24 +172,36 @@ def _scalar(cg: Any, op: Operand) -> Src:
 
 
 def emit_loop(cg: Any, n: Node) -> None:
-    """`rep i#`: the carried registers take the initial values, the body, the results moved
-    back (staged when read from a carried register, so a swap holds), a break, `endrep`."""
-    loop_id, register, count, has_break = n.key
+    """`rep i#` (`loop aL, i#` where the body reads c[aL + n]): the carried registers take
+    the initial values, the body, the results moved back (staged when read from a carried
+    register, so a swap holds), a break, `endrep` / `endloop`."""
+    loop_id, register, count, has_break, uses_al = n.key
     phis = cg.loop_phis.get(loop_id, {})
     inits, results = n.args[:count], n.args[count:2 * count]
+    live = n.__dict__.get("live", range(count))        # live_nodes: the groups kept
     carried: list[Reg] = []
     for k in range(count):
         reg = cg.temp()
         carried.append(reg)
+        if k not in live:
+            continue
         if k in phis:
             cg.home[phis[k].id] = (reg, {c: c for c in range(phis[k].width)})
         cg._move(reg, inits[k], n.location)
     cg.loop_regs[loop_id] = carried
     cg.a0 = None                          # the body may load a0 itself
-    cg.emit("rep", None, (), [Src(Reg("i", register), {}, fixed=IDENTITY)], n.location)
+    count_src = Src(Reg("i", register), {}, fixed=IDENTITY)
+    if uses_al:
+        cg.emit("loop", None, (), [Src(Reg("aL", None), {}, fixed=IDENTITY), count_src],
+                n.location)
+    else:
+        cg.emit("rep", None, (), [count_src], n.location)
     emit_block(cg, ("loop", loop_id))
-    staged: list[Operand | Reg] = []
-    for res in results:
+    staged: list[Operand | Reg | None] = []
+    for k, res in enumerate(results):
+        if k not in live:
+            staged.append(None)
+            continue
         home = cg.home.get(res.node.id)
         if res.node.op != "const" and home is not None and any(home[0] is c for c in carried):
             tmp = cg.temp()
@@ -140,6 +210,8 @@ def emit_loop(cg: Any, n: Node) -> None:
         else:
             staged.append(res)
     for reg, res, width in zip(carried, staged, [r.width for r in results]):
+        if res is None:
+            continue
         if isinstance(res, Reg):
             cg.emit("mov", reg, tuple(range(width)), [Src(res, {c: c for c in range(width)})],
                     n.location)
@@ -149,7 +221,7 @@ def emit_loop(cg: Any, n: Node) -> None:
         cg.emit("break_ne", None, (), [_scalar(cg, n.args[2 * count]),
                                        cg.const_src([0.0])], n.location)
     cg.a0 = None
-    cg.emit("endrep", None, (), [], n.location)
+    cg.emit("endloop" if uses_al else "endrep", None, (), [], n.location)
 
 
 def emit_if(cg: Any, n: Node) -> None:
@@ -183,4 +255,4 @@ def emit_if(cg: Any, n: Node) -> None:
     cg.a0 = None
 
 
-__all__ = ["place", "emit_block", "emit_loop", "emit_if"]
+__all__ = ["needed", "live_nodes", "place", "emit_block", "emit_loop", "emit_if"]

@@ -188,6 +188,12 @@ def _text(cg: Any) -> Generated:
         vals = [0.0 if v is None else v for v in cg.defs[reg]]
         lines.append(f"def c{reg}, " + ", ".join(_num(v) for v in vals))
         locs.append(UNKNOWN_LOCATION)
+    used_i = {s.reg.index for ins in cg.instrs if ins.opcode in ("rep", "loop") for s in ins.srcs
+              if s.reg.kind == "i"}
+    int_defs = getattr(cg.ctx, "int_defs", {})      # a [loop] over literal bounds (loops.py)
+    for reg in sorted(k for k in int_defs if k in used_i):
+        lines.append(f"defi i{reg}, " + ", ".join(str(int(v)) for v in int_defs[reg]))
+        locs.append(UNKNOWN_LOCATION)
     used_inputs: dict[str, None] = {}
     samplers: dict[str, int] = dict(cg.sampler_regs)
     for ins in cg.instrs:
@@ -234,8 +240,6 @@ def _text(cg: Any) -> Generated:
         lines.append(f"{op} {dst}{mask}, " + ", ".join(srcs))
         locs.append(ins.location)
     used_c = {name: (start, cg.register_sizes.get(name, 1)) for name, start in cg.const_regs.items()}
-    used_i = {s.reg.index for ins in cg.instrs if ins.opcode in ("rep", "loop") for s in ins.srcs
-              if s.reg.kind == "i"}
     ints = {name: k for name, k in getattr(cg.ctx, "int_registers", {}).items() if k in used_i}
     used_b = {s.reg.index for ins in cg.instrs if ins.opcode == "if" for s in ins.srcs
               if s.reg.kind == "b"}

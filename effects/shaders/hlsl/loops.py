@@ -1,4 +1,5 @@
-"""Real loops: `for (int i = 0; i < Count; i++)` with `int Count;` a uniform, as `rep i#`.
+"""Real loops: `for (int i = 0; i < Count; i++)` with `int Count;` a uniform, as `rep i#` or
+`loop aL, i#`.
 
 A loop whose bound is an int parameter cannot be unrolled (its count is known only when the
 shader runs). In a target with static flow control (vs_2_0 and up, ps_2_x, ps_3_0) fxc emits
@@ -13,7 +14,17 @@ shader runs). In a target with static flow control (vs_2_0 and up, ps_2_x, ps_3_
   starts from); after the loop each changed variable reads `loop_out` nodes, which share the
   phi's register;
 - the counter is one of the changed variables (a float register counting 0, 1, 2 ...), so
-  the body may read it (a vertex shader indexes a uniform array through a0 by it).
+  the body may read it (a vertex shader indexes a uniform array through a0 by it);
+- where the target has `loop` (vs_2_0 and up, ps_3_0) and the body indexes a uniform array
+  by the counter (plus a literal), the read is c[aL + n] and the loop is `loop aL, i#`, as
+  fxc compiles `for (int i = 0; i < NumLights; i++) c += Lights[i].Color`: aL runs
+  0, 1, ... (the effect sets the parameter's i# to (N, 0, 1, 0), as D3DX's constant table
+  does: lower/passes._int_constants), so the element must take one register; a vertex
+  shader reads a larger one through a0 in a `rep`. The float counter is then carried only
+  where the body reads it as a number (flowcode.live_nodes).
+- `[loop] for (int i = A; i < B; i++)` over compile-time integers is a real loop too, its
+  count in a `defi` (B - A, first aL, aL step = the element's registers, 0): `rep` or
+  `loop aL`. Where it cannot be one it is unrolled, with a warning that says why.
 
 `continue` and `break` in the body run what follows them under their predicates (selects); a
 break leaves the rep with `break_ne` at the end of the iteration where the target has dynamic
@@ -27,6 +38,7 @@ the limit. `[unroll]` always unrolls.
 from __future__ import annotations
 
 import itertools
+from dataclasses import dataclass
 from typing import Any
 
 import lark
@@ -41,27 +53,57 @@ _ids = itertools.count()
 
 
 
-def bound_of(ev: Any, tree: lark.Tree, cond: Any, step: Any) -> tuple[str, str] | None:
-    """(counter name, int parameter name) when the loop is `for (int i = 0; i < P; i++)`
-    (or `++i`, `i += 1`) with P a uniform int scalar parameter; otherwise None."""
+@dataclass(frozen=True)
+class Bound:
+    """A loop that can run as real flow control: `for (int i = start; i < P; i++)` with P a
+    uniform int scalar parameter (`param`; start 0), or `[loop] for (int i = A; i < B; i++)`
+    with A, B compile-time integers (`param` None, `count` = B - A iterations)."""
+    counter: str
+    param: str | None
+    start: int = 0
+    count: int | None = None
+
+    def why(self) -> str:
+        """What makes the loop one that cannot be unrolled (the head of an X3511 reason)."""
+        if self.param is not None:
+            return f"its count is the uniform '{self.param}', known only when the shader runs"
+        return "it is marked [loop]"
+
+
+def bound_of(ev: Any, tree: lark.Tree, cond: Any, step: Any, attrs: Any = None) -> Bound | None:
+    """The loop's Bound when it is `for (int i = 0; i < P; i++)` (or `++i`, `i += 1`) with P a
+    uniform int scalar parameter, or a `[loop]` for over compile-time integer bounds (count
+    0..255, start 0..255: what an integer constant holds); otherwise None."""
     if cond is None or step is None or not isinstance(cond, lark.Tree) or cond.data != "binary":
         return None
     left, op, right = cond.children
-    if str(op) != "<" or not _is_var(left) or not _is_var(right):
+    if str(op) != "<" or not _is_var(left):
         return None
-    counter, bound = str(left.children[0]), str(right.children[0])
+    counter = str(left.children[0])
     var = ev.lookup(counter)
     if var is None or var.type.kind != "scalar" or var.type.base not in ("int", "uint"):
         return None
-    if var.value.const_values() != (0.0,) or ev.lookup(bound) is not None:
-        return None
-    param = ev.ctx.effect.parameter(bound)
-    if param is None or "static" in param.storage or param.type.base not in ("int", "uint", "dword") \
-            or param.type.rows != 1 or param.type.cols != 1 or param.array:
-        return None
     if len(step.children) != 1 or not _increments(step.children[0], counter):
         return None
-    return counter, bound
+    first = var.value.const_values()
+    if first is None:
+        return None
+    if _is_var(right) and ev.lookup(str(right.children[0])) is None:
+        bound = str(right.children[0])
+        param = ev.ctx.effect.parameter(bound)
+        if param is not None and "static" not in param.storage and \
+                param.type.base in ("int", "uint", "dword") and param.type.rows == 1 and \
+                param.type.cols == 1 and not param.array:
+            return Bound(counter, bound) if first == (0.0,) else None
+    if not has_attribute(attrs, "loop"):
+        return None
+    last = ev.expr(right).const_values()
+    if last is None or len(last) != 1 or last[0] != int(last[0]) or first[0] != int(first[0]):
+        return None
+    start, count = int(first[0]), int(last[0]) - int(first[0])
+    if not (0 <= start <= 255 and 0 <= count <= 255):
+        return None
+    return Bound(counter, None, start, count)
 
 
 def _is_var(t: Any) -> bool:
@@ -115,23 +157,93 @@ def flat(v: Value) -> list[tuple]:
     return out
 
 
-def real_loop(ev: Any, tree: Any, body: Any, step: Any, counter: str, bound: str) -> None:
-    """Evaluate the loop as a `rep` region (raises NotReal with the reason it cannot)."""
+@dataclass
+class AL:
+    """The loop counter register of a real loop whose counter indexes uniform arrays: such a
+    read is c[aL + n] (a `uniform_al` node), and the loop is `loop aL, i#` instead of
+    `rep i#`. aL runs stride * i: from stride * start by stride (an integer constant holds
+    (count, first aL, aL step, 0)). A loop counted by an int uniform has stride 1: D3DX sets
+    an int parameter's i# to (N, 0, 1, 0) (the constant table's int4 registers: the value,
+    then 0, 1, 0 in the components it does not give), so aL runs 0, 1, ... N - 1."""
+    counter: Operand            # the counter's phi in this evaluation of the body
+    start: int
+    fixed_step: bool            # counted by an int uniform: aL steps by 1
+    stride: int | None = None   # registers an element takes (the aL step), from the first use
+    used: bool = False
+
+
+def al_element(ev: Any, name: str, t: HType, index: Operand) -> Value | None:
+    """`Array[i + k]` (k >= 0 a literal, i the innermost real loop's counter) of the uniform
+    array `name` (type `t`) as c[aL + n] reads, where the target has `loop` (vs_2_0 and up,
+    ps_3_0: the DirectX 9 relative-addressing page: aL indexes c# there) and the element
+    size fits the loop (one register for a loop counted by a uniform). None otherwise."""
+    from effects.shaders.hlsl.expressions import uniform_value
+    from effects.shaders.hlsl.types import register_count
+    loop = ev.loops[-1] if ev.loops else None
+    al = loop.al if loop is not None else None
+    if al is None:
+        return None
+    k = _counter_offset(al.counter, index)
+    if k is None:
+        return None
+    stride = register_count(t.element)  # type: ignore[arg-type]
+    if al.stride is None:
+        if (al.fixed_step and stride != 1) or stride > 127 or stride * al.start > 255:
+            return None
+        al.stride = stride
+    elif al.stride != stride:
+        return None
+    al.used = True
+    return uniform_value(ev, name, t.element, k * stride, al=al.counter)  # type: ignore[arg-type]
+
+
+def _counter_offset(counter: Operand, index: Operand) -> int | None:
+    """k when `index` is the counter plus a literal k >= 0."""
+    if index.sig() == counter.sig():
+        return 0
+    n = index.node
+    if n.op != "add" or index.negate or index.swizzle != (0,) or n.width != 1:
+        return None
+    for a, b in ((n.args[0], n.args[1]), (n.args[1], n.args[0])):
+        k = b.const_values()
+        if a.sig() == counter.sig() and k is not None and k[0] == int(k[0]) and k[0] >= 0:
+            return int(k[0])
+    return None
+
+
+def _free_int(ctx: Any) -> int:
+    taken = set(ctx.__dict__.get("int_registers", {}).values()) | set(
+        ctx.__dict__.get("int_defs", {}))
+    k = 0
+    while k in taken:
+        k += 1
+    return k
+
+
+def real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
+    """Evaluate the loop as a `rep` / `loop` region (raises NotReal with the reason it
+    cannot)."""
     ctx = ev.ctx
-    # the count's i#, given before the body (so an outer loop's count comes first); given
-    # back when the loop cannot be a rep
+    # a uniform count's i#, given before the body (so an outer loop's count comes first); a
+    # literal count's `defi` register once the body says rep or loop; given back when the
+    # loop cannot be real
     ints = ctx.__dict__.setdefault("int_registers", {})
-    fresh = bound not in ints
-    register = ints.setdefault(bound, len(ints))
+    defs = ctx.__dict__.setdefault("int_defs", {})
+    had = set(defs)
+    fresh = bound.param is not None and bound.param not in ints
+    if fresh:
+        ints[bound.param] = _free_int(ctx)
     try:
-        _real_loop(ev, tree, body, step, register)
+        _real_loop(ev, tree, body, step, bound)
     except NotReal:
         if fresh:
-            del ints[bound]
+            del ints[bound.param]
+        for k in set(defs) - had:
+            del defs[k]
         raise
 
 
-def _real_loop(ev: Any, tree: Any, body: Any, step: Any, register: int) -> None:
+def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
     ctx = ev.ctx
     variables = numeric_vars(ev)
     initial = {id(v): v.value for v in variables}
@@ -148,7 +260,7 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, register: int) -> None:
             k += len(groups)
             v.value = phi_values[id(v)]
     try:
-        _run_body(ev, tree, body, step)     # raises NotReal (nothing to restore but values)
+        _run_body(ev, tree, body, step, bound)   # raises NotReal (nothing to restore but values)
         for v in variables:
             if v.type.numeric and flat(v.value) != flat(phi_values[id(v)]):
                 changed.append(v)
@@ -169,7 +281,7 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, register: int) -> None:
         carried.append((v, groups))
         v.value = value
     try:
-        broken = _run_body(ev, tree, body, step)
+        broken, al = _run_body(ev, tree, body, step, bound)
         moved = {id(v) for v in changed}
         for v in variables:
             if id(v) not in moved and flat(v.value) != flat(initial[id(v)]):
@@ -179,10 +291,18 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, register: int) -> None:
         for v in variables:
             v.value = initial[id(v)]
         raise
+    uses_al = al is not None and al.used
+    if bound.param is not None:
+        register = ctx.int_registers[bound.param]
+    else:
+        register = _free_int(ctx)
+        s = al.stride if uses_al else 0
+        ctx.int_defs[register] = (bound.count, s * bound.start, s, 0) if uses_al else \
+            (bound.count, 0, 0, 0)
     # a break: the iteration's results are moved back, then `break_ne broken, 0` leaves
     extra = (broken,) if broken is not None else ()
-    loop = ev.g.leaf("loop", (loop_id, register, len(phis), bool(extra)), 1, ev.at(tree),
-                     tuple(inits + results) + extra)
+    loop = ev.g.leaf("loop", (loop_id, register, len(phis), bool(extra), uses_al), 1,
+                     ev.at(tree), tuple(inits + results) + extra)
     k = 0
     for v, groups in carried:
         comps: list[Operand] = []
@@ -197,17 +317,24 @@ def _groups(ev: Any, value: Value, count: int) -> list[Operand]:
     return [operand(ev.g, value.comps[k * 4:k * 4 + 4]) for k in range(count)]
 
 
-def _run_body(ev: Any, tree: Any, body: Any, step: Any) -> Operand | None:
+def _run_body(ev: Any, tree: Any, body: Any, step: Any, bound: Bound
+              ) -> tuple[Operand | None, AL | None]:
     """The body and the step once, with nothing the region cannot hold; the predicate 'the
-    body broke out' (None: it never does).
+    body broke out' (None: it never does) and the loop's AL (None: the target has no aL).
 
     continue: the rest of the body runs under its predicate (selects), the step does not.
     break: the rest of the body and the step run under its predicate, so the results are the
     values the loop had when it broke; the loop leaves at the end of the iteration, after the
-    results are moved back, by `break_ne` (dynamic flow control: vs_2_a, vs_3_0, ps_3_0). Return and discard inside stay refused."""
+    results are moved back, by `break_ne` (dynamic flow control: vs_2_a, vs_3_0, ps_3_0).
+    Return and discard inside stay refused. The body must not change the counter (a rep /
+    loop runs its count whatever the counter holds; aL steps by itself)."""
     ctx = ev.ctx
     escapes = Escapes.note(ev)
     loop = Loop()
+    counter = ev.lookup(bound.counter)
+    first = flat(counter.value) if counter is not None else None
+    if ctx.target.has("loop") and counter is not None and counter.type.size == 1:
+        loop.al = AL(counter.value.comps[0], bound.start, bound.param is not None)
     enter(ev, "loop")
     ev.loops.append(loop)
     try:
@@ -218,11 +345,15 @@ def _run_body(ev: Any, tree: Any, body: Any, step: Any) -> Operand | None:
         if broken is not None and not TargetFlow.of(ctx.target).dynamic:
             raise NotReal(f"break in the body needs break_comp, which {ctx.target.name} does not "
                           f"have ({DYNAMIC_TARGETS} do)")
+        al = loop.al
+        if counter is not None and flat(counter.value) != first:
+            raise NotReal(f"the body changes the counter '{bound.counter}' (the loop runs the "
+                          "count it was given, and aL steps by itself)")
         for e in step.children:
             ev.expr(e)
         if broken is not None and broken.const_values() is not None:
             raise NotReal("the body always breaks")
-        return broken
+        return broken, al
     finally:
         leave(ev, "loop")
         ev.loops.pop()
@@ -233,4 +364,4 @@ def has_attribute(attrs: Any, name: str) -> bool:
     return attrs is not None and any(str(a.children[0]).lower() == name for a in attrs.children)
 
 
-__all__ = ["NotReal", "bound_of", "real_loop", "has_attribute", "HType"]
+__all__ = ["AL", "Bound", "NotReal", "al_element", "bound_of", "real_loop", "has_attribute", "HType"]

@@ -6,6 +6,7 @@ value is the list of DAG operands its components hold right now; assigning repla
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 from effects.shaders.hlsl.dag import Graph, Operand
 from effects.shaders.hlsl.types import HType, scalar, vector
@@ -104,6 +105,7 @@ class Frame:
 class Loop:
     broken: Operand | None = None
     continued: Operand | None = None
+    al: Any = None          # a real loop whose counter may index constants by aL (loops.AL)
 
 
 @dataclass
