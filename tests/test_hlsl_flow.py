@@ -388,12 +388,14 @@ def test_the_pass_sets_the_int_register_as_d3dx_does():
     # D3DX's constant table writes an int into an int4 register as (value, 0, 1, 0): the
     # loop's count, first aL and aL step
     from effects.device import pass_states
-    from effects.lower.passes import _int_constants
+    from effects.lower.passes import _assemble, _int_constants, _shader
     fx = load(LIGHTS + PASS_PS, "compile vs_2_0 VS()")
     fx.parameter("NumLights").value = 3
-    shader = compile_shader(fx, "VS", "vs_2_0")
-    state = next(iter(pass_states(fx, fx.techniques[0])))
-    assert _int_constants(state, "Vertex", shader)[0] == (3, 0, 1, 0)
+    [(_, state)] = pass_states(fx, fx.techniques[0].passes)
+    _, compiled = _assemble(fx, state, _shader(state, "VertexShader"), "vertex")
+    assert compiled.int_registers == {"NumLights": 0}
+    assert state.int_constants("Vertex")[0] == (3, 0, 0, 0)        # the state as assigned
+    assert _int_constants(state, "Vertex", compiled)[0] == (3, 0, 1, 0)
 
 
 @pytest.mark.parametrize("target, card", [("vs_2_0", "radeon9700"), ("vs_2_a", "geforcefx5900"),
