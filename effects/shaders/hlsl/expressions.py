@@ -234,12 +234,12 @@ def _relative_element(ev: Any, base_tree: Any, t: HType, index: Value, where: An
     if uniform and index.type.numeric:
         # the innermost real loop's counter: c[aL + n] (loops.al_element), vs_2_0+ and ps_3_0
         i = ev.a.convert_base(index.comps[:1], index.type.base, "int", ev.at(where))[0]
-        value = al_element(ev, name, t, i)  # type: ignore[arg-type]
-        if value is not None:
+        al = al_element(ev, t, i)
+        if al is not None:
             if index.type.size > 1:
                 ev.warn("X3206: implicit truncation of vector type", ev.at(where))
             global_value(ev, name, base_tree)            # registers the array as used
-            return value
+            return uniform_value(ev, name, t.element, al[0], al=al[1])  # type: ignore[arg-type]
     if target.kind != "vs" or not uniform:
         where_text = ("pixel shaders have no relative addressing" if target.name != "ps_3_0"
                       else "ps_3_0 indexes constants only by the counter of the innermost "

@@ -172,12 +172,12 @@ class AL:
     used: bool = False
 
 
-def al_element(ev: Any, name: str, t: HType, index: Operand) -> Value | None:
-    """`Array[i + k]` (k >= 0 a literal, i the innermost real loop's counter) of the uniform
-    array `name` (type `t`) as c[aL + n] reads, where the target has `loop` (vs_2_0 and up,
+def al_element(ev: Any, t: HType, index: Operand) -> tuple[int, Operand] | None:
+    """For `Array[i + k]` (k >= 0 a literal, i the innermost real loop's counter) of a uniform
+    array of type `t`: (the element's register offset from aL, the counter's phi), to read
+    it as c[aL + n] (expressions.uniform_value), where the target has `loop` (vs_2_0 and up,
     ps_3_0: the DirectX 9 relative-addressing page: aL indexes c# there) and the element
     size fits the loop (one register for a loop counted by a uniform). None otherwise."""
-    from effects.shaders.hlsl.expressions import uniform_value
     from effects.shaders.hlsl.types import register_count
     loop = ev.loops[-1] if ev.loops else None
     al = loop.al if loop is not None else None
@@ -194,7 +194,7 @@ def al_element(ev: Any, name: str, t: HType, index: Operand) -> Value | None:
     elif al.stride != stride:
         return None
     al.used = True
-    return uniform_value(ev, name, t.element, k * stride, al=al.counter)  # type: ignore[arg-type]
+    return k * stride, al.counter
 
 
 def _counter_offset(counter: Operand, index: Operand) -> int | None:
