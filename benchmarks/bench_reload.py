@@ -11,7 +11,9 @@ validate, select, lower, textures, draw). The time from just before the write to
 of the swap of the first frame drawn with the rebuilt effect is one sample; the next edit
 waits until the viewer is idle again. Printed: per effect the median and the worst sample
 and the median build time in the worker, then the median over all samples. Goal: 50 ms.
-The watcher's debounce (effects.viewer.reload.DEBOUNCE_S) is part of every sample.
+The watcher's wait is part of every sample: both kinds of edit end a save (the in-place write
+closes the file, the atomic save renames onto it), so it is the settle time
+(effects.viewer.watch.SETTLE_S), not the debounce (DEBOUNCE_S) a write still open would wait.
 
 `--hlsl-edit`: a one-line change to HLSL code instead (issue 11's reload goal), for the effects
 whose pixel shader is a `compile` of an HLSL function: each edit rewrites, in place, the first
@@ -19,7 +21,7 @@ assignment line of that function (`x = e;` -> `x = (e) * 1.000N;`, N the edit's 
 function compiles again for its target(s) on every reload while the other shaders are kept.
 
 `--breakdown`: also where each sample's time went (medians over the edits, ms): the watcher's
-event (debounce included), the build and inside it load / validate (HLSL compiles included) /
+event (the watcher's wait included), the build and inside it load / validate (HLSL compiles included) /
 HLSL compiles / prepare (lowering, textures, streams) / listing, then the first draw of the new
 effect (the GL program build inside it) and the buffer swaps until the frame is shown. The
 parts are timed by wrapping those functions in the child; they overlap (validate holds the
@@ -113,7 +115,7 @@ def _instrument() -> None:
 def measure_one(path: str, card: str, edits: int, hlsl: bool = False,
                 breakdown: bool = False) -> dict:
     """Run a viewer on `path` in this process and time `edits` edits."""
-    from effects.viewer.reload import DEBOUNCE_S
+    from effects.viewer.watch import SETTLE_S
     from effects.viewer.app import FrameEvent, Viewer, ViewerOptions
     if breakdown:
         _instrument()
@@ -127,7 +129,7 @@ def measure_one(path: str, card: str, edits: int, hlsl: bool = False,
     new_frame = threading.Condition()
     samples: list[float] = []
     builds: list[float] = []
-    after_debounce: list[float] = []
+    after_event: list[float] = []
     done = threading.Event()
 
     def on_frame(event: FrameEvent) -> None:
@@ -170,7 +172,7 @@ def measure_one(path: str, card: str, edits: int, hlsl: bool = False,
                 samples.append((frame.time - start) * 1000.0)
                 if frame.result is not None:
                     builds.append(frame.result.build_ms)
-                    after_debounce.append((frame.time - frame.result.requested_at) * 1000.0)
+                    after_event.append((frame.time - frame.result.requested_at) * 1000.0)
                     row = {"event": (frame.result.requested_at - start) * 1000.0,
                            "build": frame.result.build_ms}
                     for part, at, ms in list(_PARTS):
@@ -185,8 +187,8 @@ def measure_one(path: str, card: str, edits: int, hlsl: bool = False,
     threading.Thread(target=editor, daemon=True).start()
     viewer.run()
     return {"effect": os.path.basename(path), "card": card, "samples_ms": samples,
-            "build_ms": builds, "after_debounce_ms": after_debounce,
-            "debounce_ms": DEBOUNCE_S * 1000.0, "parts": parts}
+            "build_ms": builds, "after_event_ms": after_event,
+            "settle_ms": SETTLE_S * 1000.0, "parts": parts}
 
 
 def drawable_card(path: str, preferred: str) -> str | None:
@@ -225,7 +227,7 @@ def main(argv: list[str] | None = None) -> int:
     with tempfile.TemporaryDirectory() as tmp:
         shutil.copytree(os.path.join(ROOT, "fxfiles"), os.path.join(tmp, "fxfiles"))
         print(f"{'effect':<20} {'card':<14} {'median':>9} {'worst':>9} {'build':>9} "
-              f"{'debounce->frame':>16}")
+              f"{'event->frame':>16}")
         for source in effects_:
             copy = os.path.join(tmp, "fxfiles", os.path.basename(source))
             if not os.path.exists(copy):
@@ -252,7 +254,7 @@ def main(argv: list[str] | None = None) -> int:
                 return 1
             all_samples += samples
             build = statistics.median(result["build_ms"])
-            rest = statistics.median(result["after_debounce_ms"])
+            rest = statistics.median(result["after_event_ms"])
             print(f"{result['effect']:<20} {card:<14} {statistics.median(samples):7.1f}ms "
                   f"{max(samples):7.1f}ms {build:7.1f}ms {rest:14.1f}ms")
             if args.breakdown and result["parts"]:
@@ -262,7 +264,8 @@ def main(argv: list[str] | None = None) -> int:
                     for k in names))
     median = statistics.median(all_samples)
     print(f"median write -> first frame with the edit: {median:.1f} ms over {len(all_samples)} "
-          f"edits (goal {GOAL_MS:.0f} ms; debounce {result['debounce_ms']:.0f} ms included)")
+          f"edits (goal {GOAL_MS:.0f} ms; the watcher's {result['settle_ms']:.0f} ms settle "
+          "after each completed save included)")
     return 0
 
 

@@ -161,8 +161,10 @@ def test_rename_into_place_counts_as_a_save(folder, use_watchdog):
 def test_a_burst_of_writes_is_one_reload_of_the_last_content(folder):
     # A 0.3 s debounce (and a 2 s cap) so that a loaded machine's late sleeps cannot split the
     # burst: at 50 ms a 5 ms sleep stretched past it about one run in eight while the rest of
-    # the suite ran beside it. What is tested is the coalescing, not the default's latency.
-    reloader, _ = start_reloader(folder, debounce=0.3, max_delay=2.0)
+    # the suite ran beside it. What is tested is the coalescing, not the default's latency:
+    # each write_text closes the file, a completed save that the default reports after
+    # SETTLE_S, so the settle time is as long as the debounce here.
+    reloader, _ = start_reloader(folder, debounce=0.3, settle=0.3, max_delay=2.0)
     try:
         for i in range(8):   # an autosaving editor: a write every 5 ms
             (folder / "tint.fxh").write_text(tint(f"0xff0000{0x10 * (i + 1):02x}"))
@@ -278,6 +280,79 @@ def test_watcher_reports_only_files_whose_hash_changed(tmp_path):
         assert got.wait(TIMEOUT)
         time.sleep(QUIET)
         assert seen == [[str(a)]]
+    finally:
+        watcher.stop()
+
+
+def _reports(path, **options):
+    """A watchdog Watcher on `path` and the monotonic times of its reports."""
+    times: list[float] = []
+    got = threading.Event()
+
+    def on_change(paths):
+        times.append(time.monotonic())
+        got.set()
+    watcher = Watcher([str(path)], on_change, **options).start()
+    assert watcher.mode == "watchdog"
+    time.sleep(0.05)
+    return watcher, times, got
+
+
+@pytest.mark.parametrize("how", ["in place", "renamed onto it"])
+def test_a_completed_save_is_reported_without_waiting_for_the_debounce(tmp_path, how):
+    # The writer closed the file (inotify's IN_CLOSE_WRITE) or renamed its temporary file onto
+    # it: the save is complete, so the watcher waits only the settle time, not the debounce
+    # (2 s here, so a late report cannot pass for an early one).
+    path = tmp_path / "a.fx"
+    path.write_text("a")
+    watcher, times, got = _reports(path, debounce=2.0, max_delay=4.0)
+    try:
+        start = time.monotonic()
+        if how == "in place":
+            path.write_text("b")
+        else:
+            (tmp_path / "a.fx.tmp").write_text("b")
+            os.replace(tmp_path / "a.fx.tmp", path)
+        assert got.wait(TIMEOUT)
+        assert times[0] - start < 1.0
+    finally:
+        watcher.stop()
+
+
+def test_a_write_still_open_waits_for_the_debounce_then_its_close_ends_it(tmp_path):
+    path = tmp_path / "a.fx"
+    path.write_text("a")
+    watcher, times, got = _reports(path, debounce=1.5, max_delay=4.0)
+    try:
+        with open(path, "w") as f:         # a writer still writing: modified, not closed
+            f.write("half")
+            f.flush()
+            assert not got.wait(0.5)       # well inside the 1.5 s debounce: not reported
+            f.write(" and the rest")
+            closing = time.monotonic()
+        assert got.wait(TIMEOUT)           # the close: reported after the settle time
+        assert times[0] - closing < 1.0
+    finally:
+        watcher.stop()
+
+
+def test_reading_a_watched_file_is_not_an_event(tmp_path, monkeypatch):
+    # The watcher's own hashing (and the reload's reading) opens the file: were an open or a
+    # read-only close an event, each hash would start the next debounce, for ever.
+    import effects.viewer.watch as watch
+    hashes = []
+    real = watch.content_hash
+    monkeypatch.setattr(watch, "content_hash", lambda p: hashes.append(p) or real(p))
+    path = tmp_path / "a.fx"
+    path.write_text("a")
+    watcher, times, got = _reports(path)
+    try:
+        path.write_text("b")
+        assert got.wait(TIMEOUT)
+        for _ in range(5):
+            path.read_text()
+        time.sleep(QUIET)
+        assert len(times) == 1 and len(hashes) <= 2, (times, hashes)
     finally:
         watcher.stop()
 

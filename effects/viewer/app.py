@@ -35,6 +35,9 @@ DEFAULT_CARD = "radeon9700"
 WINDOW_SIZE = (1040, 600)
 PANEL_WIDTH = 440
 IDLE_WAIT_S = 0.03           # an idle frame waits this long for a reload (returns at once on one)
+# ... and this long while a reload is building: redrawing the unchanged picture meanwhile would
+# take the CPU (llvmpipe's threads, the GIL) from the build it waits for
+BUILD_WAIT_S = 0.25
 
 
 @dataclass
@@ -180,7 +183,7 @@ class Viewer:
                 if self.options.exit_after is not None and now - start >= self.options.exit_after:
                     break
                 idle = self._idle()
-                result = self.reloader.wait(IDLE_WAIT_S) if idle else self.reloader.poll()
+                result = self._wait_for_reload() if idle else self.reloader.poll()
                 while result is not None:
                     self._take(result)
                     result = self.reloader.poll()
@@ -232,6 +235,16 @@ class Viewer:
                 or self.status.render_error is not None:
             return 1
         return 0
+
+    def _wait_for_reload(self) -> ReloadResult | None:
+        """An idle frame's wait: IDLE_WAIT_S, or up to BUILD_WAIT_S while a reload builds (one
+        may start during the wait: then it goes on waiting)."""
+        waited = 0.0
+        while True:
+            result = self.reloader.wait(IDLE_WAIT_S)
+            waited += IDLE_WAIT_S
+            if result is not None or not self.reloader.building or waited >= BUILD_WAIT_S:
+                return result
 
     def _idle(self) -> bool:
         return (not self.state.light.animate and self._image is not None

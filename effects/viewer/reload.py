@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any, Callable
 from effects.errors import EffectError, Location
 # Re-exported: the viewer, tests and benchmarks import the watcher's names from here.
 from effects.viewer.watch import (DEBOUNCE_S, MAX_DELAY_S, POLL_ONLY_S, POLL_SAFETY_S,  # noqa: F401
-                    Watcher, content_hash)
+                    SETTLE_S, Watcher, content_hash)
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.caps import CapsProfile
@@ -305,7 +305,7 @@ class Reloader:
 
     def __init__(self, path: str, build: Build, *, use_watchdog: bool = True,
                  debounce: float = DEBOUNCE_S, max_delay: float = MAX_DELAY_S,
-                 poll_interval: float | None = None) -> None:
+                 settle: float = SETTLE_S, poll_interval: float | None = None) -> None:
         self.path = path
         self._build = build
         self.results: "queue.Queue[ReloadResult]" = queue.Queue()
@@ -313,8 +313,9 @@ class Reloader:
         self._good: LoadedEffect | None = None
         self._pending_since: float | None = None
         self._pending_lock = threading.Lock()
+        self._builds_queued = 0        # reload/select jobs not answered yet (under _pending_lock)
         self.watcher = Watcher([os.path.abspath(path)], self._files_changed, debounce=debounce,
-                               max_delay=max_delay, use_watchdog=use_watchdog,
+                               max_delay=max_delay, settle=settle, use_watchdog=use_watchdog,
                                poll_interval=poll_interval)
         self._worker = threading.Thread(target=self._work, name="effects-reload", daemon=True)
         self._started = False
@@ -322,6 +323,16 @@ class Reloader:
     @property
     def last_good(self) -> LoadedEffect | None:
         return self._good
+
+    @property
+    def building(self) -> bool:
+        """A reload or re-selection is queued or running: its result is on its way."""
+        return self._builds_queued > 0
+
+    def _queue_build(self, kind: str, changed: tuple[str, ...]) -> None:
+        with self._pending_lock:
+            self._builds_queued += 1
+        self._jobs.put((kind, changed, time.perf_counter()))
 
     def start(self, initial: LoadedEffect | None = None, *, build_now: bool = True) -> "Reloader":
         """Start watching. `initial`: the build the caller already made (its files are watched);
@@ -345,12 +356,12 @@ class Reloader:
 
     def request(self) -> None:
         """Reload now (the viewer's reload key), whether or not the files changed."""
-        self._jobs.put(("reload", (), time.perf_counter()))
+        self._queue_build("reload", ())
 
     def reselect(self) -> None:
         """Select and lower again for the current settings without reading the files (the
         viewer changed card or forced technique)."""
-        self._jobs.put(("select", (), time.perf_counter()))
+        self._queue_build("select", ())
 
     def poll(self) -> ReloadResult | None:
         """The next finished build, or None. For the render thread; never blocks."""
@@ -369,7 +380,7 @@ class Reloader:
     # -- threads
 
     def _files_changed(self, paths: list[str]) -> None:
-        self._jobs.put(("reload", tuple(paths), time.perf_counter()))
+        self._queue_build("reload", tuple(paths))
 
     def drawn(self) -> None:
         """The render thread drew its first frame with the last result: the worker may now
@@ -406,6 +417,7 @@ class Reloader:
                 self._complete()
                 continue
             kind, changed, requested = job
+            answered = 1
             # Coalesce: if more reload jobs queued up meanwhile, one build reads the newest files.
             while True:
                 try:
@@ -416,6 +428,7 @@ class Reloader:
                     return
                 if nxt[0] == "drawn":       # drawn: an older build; this one replaces it
                     continue
+                answered += 1
                 if nxt[0] == "reload" or kind == "reload":
                     kind = "reload"
                 changed = tuple(sorted(set(changed) | set(nxt[1])))
@@ -431,6 +444,8 @@ class Reloader:
                 self._good = loaded
                 self.watcher.set_paths([os.path.abspath(self.path), *getattr(loaded, 'files', ())])
             self.results.put(ReloadResult(self.path, kind, loaded, error, elapsed, changed, requested))
+            with self._pending_lock:
+                self._builds_queued -= answered
 
 
 @dataclass

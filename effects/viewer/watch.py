@@ -5,8 +5,9 @@ deleted events, so an editor's atomic save -- write `x.tmp`, rename it onto `x` 
 arrives as `created x.tmp` ... `moved x.tmp -> x`, never as `modified x`), plus a polling
 thread as the fallback (the only mechanism when watchdog cannot start, a slow safety net
 otherwise). Events are debounced: the change is reported once the files have been quiet for
-`debounce` seconds, or at the latest `max_delay` after the first event, so autosave cannot
-starve it. A change is reported only for files whose content hash (`content_hash`) differs
+`debounce` seconds (`settle` seconds when the last event ends a save: the writer closed the
+file, or renamed its temporary file onto it), or at the latest `max_delay` after the first
+event, so autosave cannot starve it. A change is reported only for files whose content hash (`content_hash`) differs
 from the last one seen, so a save without edits, a `touch`, or a burst that ends where it
 began does nothing. `effects.viewer.reload` builds hot reload on top of this (STYLE.md 11).
 """
@@ -23,6 +24,10 @@ from typing import Any, Callable, Iterable
 # the edit-to-picture latency low; a writer slower than that shows as a failed reload followed
 # by a good one (the last good effect stays on screen meanwhile).
 DEBOUNCE_S = 0.010
+# ... unless the last event says a save is complete -- the writer closed the file it wrote
+# (inotify's IN_CLOSE_WRITE) or renamed its temporary file onto it: then only this long, for
+# the events that follow a save at once (a second file of a save-all, an editor's chmod)
+SETTLE_S = 0.002
 MAX_DELAY_S = 0.25        # ... but never wait longer than this after the first event
 POLL_ONLY_S = 0.1         # polling interval when watchdog is not available
 POLL_SAFETY_S = 1.0       # polling interval as a safety net beside watchdog
@@ -47,9 +52,11 @@ class Watcher:
 
     def __init__(self, paths: Iterable[str], on_change: Callable[[list[str]], None], *,
                  debounce: float = DEBOUNCE_S, max_delay: float = MAX_DELAY_S,
-                 use_watchdog: bool = True, poll_interval: float | None = None) -> None:
+                 settle: float = SETTLE_S, use_watchdog: bool = True,
+                 poll_interval: float | None = None) -> None:
         self._on_change = on_change
         self.debounce = debounce
+        self.settle = min(settle, debounce)
         self.max_delay = max(max_delay, debounce)
         self._use_watchdog = use_watchdog
         self._poll_interval = poll_interval
@@ -59,7 +66,9 @@ class Watcher:
         self._stats: dict[str, tuple | None] = {}
         self._first_event: float | None = None   # monotonic time of the first pending event
         self._last_event = 0.0
+        self._saved = False                      # the last event ended a save
         self._stopping = False
+        self._stop_polling = threading.Event()
         self._observer = None
         self._watched_dirs: dict[str, Any] = {}
         self._threads: list[threading.Thread] = []
@@ -102,6 +111,7 @@ class Watcher:
         with self._lock:
             self._stopping = True
             self._lock.notify_all()
+        self._stop_polling.set()
         if self._observer is not None:
             try:
                 self._observer.stop()
@@ -111,8 +121,9 @@ class Watcher:
         for t in self._threads:
             t.join(timeout=2)
 
-    def touched(self, path: str) -> None:
-        """Something happened to `path` (an event or a poll saw it): (re)start the debounce."""
+    def touched(self, path: str, saved: bool = False) -> None:
+        """Something happened to `path` (an event or a poll saw it): (re)start the debounce.
+        `saved`: the event ends a save (closed after writing, or renamed onto `path`)."""
         path = os.path.abspath(path)
         with self._lock:
             if path not in self._paths:
@@ -121,6 +132,7 @@ class Watcher:
             if self._first_event is None:
                 self._first_event = now
             self._last_event = now
+            self._saved = saved
             self._lock.notify_all()
 
     # -- watchdog
@@ -139,17 +151,24 @@ class Watcher:
     def _schedule_dirs(self) -> None:
         if self._observer is None:
             return
-        from watchdog.events import FileSystemEventHandler
+        from watchdog.events import (FileClosedEvent, FileCreatedEvent, FileDeletedEvent,
+                                     FileModifiedEvent, FileMovedEvent, FileSystemEventHandler)
 
         watcher = self
+        # Only what changes content: an open or a read-only close (this watcher's own hashing,
+        # the reload reading the effect) would restart the debounce, whose hashing reads the
+        # file again -- a re-hash every `debounce` seconds for as long as the watcher runs.
+        changes = [FileCreatedEvent, FileModifiedEvent, FileMovedEvent, FileDeletedEvent,
+                   FileClosedEvent]
 
         class _Handler(FileSystemEventHandler):
             def on_any_event(self, event) -> None:  # created, modified, moved, deleted, closed
                 if event.is_directory:
                     return
-                for p in (event.src_path, getattr(event, "dest_path", "")):
-                    if p:
-                        watcher.touched(os.fsdecode(p))
+                dest = getattr(event, "dest_path", "")
+                watcher.touched(os.fsdecode(event.src_path), event.event_type == "closed")
+                if dest:                              # renamed onto a watched file: saved
+                    watcher.touched(os.fsdecode(dest), True)
 
         with self._lock:
             dirs = {os.path.dirname(p) for p in self._paths}
@@ -157,7 +176,8 @@ class Watcher:
             if not os.path.isdir(d):
                 continue   # the polling thread still sees the file appear
             try:
-                self._watched_dirs[d] = self._observer.schedule(_Handler(), d, recursive=False)
+                self._watched_dirs[d] = self._observer.schedule(_Handler(), d, recursive=False,
+                                                                event_filter=changes)
             except Exception:  # noqa: BLE001 - e.g. out of inotify watches: polling covers it
                 pass
         for d in set(self._watched_dirs) - dirs:
@@ -172,12 +192,11 @@ class Watcher:
         """Stat every watched file; a changed (mtime, size, inode) counts as an event. Also
         catches a folder that did not exist when watching started."""
         while True:
+            # its own event, not the lock's condition: every `touched` notifies that one, and a
+            # poll woken by watchdog's event would report the same change again, as not saved
+            if self._stop_polling.wait(interval):
+                return
             with self._lock:
-                if self._stopping:
-                    return
-                self._lock.wait(interval)
-                if self._stopping:
-                    return
                 paths = list(self._paths)
             for p in paths:
                 st = _stat(p)
@@ -200,7 +219,8 @@ class Watcher:
                 if self._stopping:
                     return
                 now = time.monotonic()
-                due = min(self._last_event + self.debounce, self._first_event + self.max_delay)
+                quiet = self.settle if self._saved else self.debounce
+                due = min(self._last_event + quiet, self._first_event + self.max_delay)
                 if now < due:
                     self._lock.wait(due - now)
                     continue
