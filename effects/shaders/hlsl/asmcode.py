@@ -1,4 +1,7 @@
-"""The code generator's instruction records, shared by codegen.py and legalize.py."""
+"""The code generators' instruction records: codegen.py and legalize.py (vs_1_1-ps_3_0), and
+the ps_1_x generator (codegen_ps1.py, ps1_asm.py, ps1_textures.py), whose sources are
+ps1_asm.Src (one replicated lane and a source modifier) and whose instructions use the ps_1_x
+fields at the end of `Instr`."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -40,10 +43,15 @@ class Instr:
     opcode: str
     dst: Reg | None
     mask: tuple[int, ...]
-    srcs: list[Src]
+    srcs: list[Any]                # Src; ps1_asm.Src in ps_1_x code
     location: Location = UNKNOWN_LOCATION
     saturate: bool = False
     sampler: str | None = None
+    # ps_1_x only
+    shift: int = 0                 # result shift: _x2 _x4 _x8 (1..3), _d2 _d4 _d8 (-1..-3)
+    texture: bool = False          # a texture-address instruction (tex, texld, texcrd, phase)
+    coissue: bool = False          # paired with the instruction before (`+`)
+    optional: bool = False         # left out when nothing reads its result
 
 
 @dataclass

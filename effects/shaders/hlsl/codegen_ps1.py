@@ -23,12 +23,12 @@ at the HLSL expression; slot counts are left to the assembler's checks like hand
 from __future__ import annotations
 
 from effects.errors import Location
-from effects.shaders.hlsl.asmcode import Generated, Output, Reg
+from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.dag import Node, Operand, reachable
 from effects.shaders.hlsl.parse import HlslError
 from effects.shaders.hlsl.ps1_analysis import REFUSED, Ps1Analysis, State, combine, readers_of
-from effects.shaders.hlsl.ps1_asm import FULL, Home, Ins, Ps1Emit, RegisterConflict, Src
+from effects.shaders.hlsl.ps1_asm import FULL, Home, Ps1Emit, RegisterConflict, Src
 from effects.shaders.hlsl.ps1_idioms import power_of_two
 from effects.shaders.hlsl.ps1_textures import Ps1Textures
 
@@ -62,7 +62,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             raise AssertionError from clash  # pragma: no cover
 
     def _generate(self, out_direct: bool) -> Generated:
-        self.instrs: list[Ins] = []
+        self.instrs: list[Instr] = []
         self.home: dict[int, Home] = {}
         self.defs: dict[int, list[float | None]] = {}
         self.precolor: dict[int, int] = {}
@@ -104,7 +104,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             for n in arith:
                 if n.id in p1:
                     self.compute(n)
-            self.instrs.append(Ins("phase", None, (), [], texture=True))
+            self.instrs.append(Instr("phase", None, (), [], texture=True))
             self.phase = 2
         self._textures([n for n in tex if n.id not in p1],
                        {k: w for k, w in values.items() if k not in self._input_homes})
@@ -113,7 +113,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
                 self.compute(n)
         self.assemble_lanes(self.out_home, pending, out.location)
         if not out_direct:
-            self.instrs.append(Ins("mov", Reg("vr", self.temp(out.location, pin=0)), FULL,
+            self.instrs.append(Instr("mov", Reg("vr", self.temp(out.location, pin=0)), FULL,
                                    [Src(self.out_home.reg)], out.location))
         return self._text()
 
@@ -176,7 +176,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             self.fail(op, n.location)
         if op == "add" and self.ps14:
             op, srcs = _sub_for_negated_constant(op, srcs)
-        self.emit(Ins(op, home.reg, mask, srcs, n.location, shift, sat))
+        self.emit(Instr(op, home.reg, mask, srcs, n.location, saturate=sat, shift=shift))
 
     def _cnd(self, n: Node, home: Home, mask: tuple[int, ...], shift: int, sat: bool) -> None:
         """ps_1_1-1_3: cnd d, r0.a, a, b -- the condition is r0.a, one value for all lanes
@@ -192,11 +192,11 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             test = Src(held.reg, 3)
         else:
             r0 = Reg("vr", self.temp(n.location, pin=0))
-            self.emit(Ins("mov", r0, (3,), [self.read(n.args[0], {3: 0}, n.location)], n.location))
+            self.emit(Instr("mov", r0, (3,), [self.read(n.args[0], {3: 0}, n.location)], n.location))
             test = Src(r0, 3)
         need = {lane: (0 if n.width == 1 else lane) for lane in mask if n.width == 1 or lane < n.width}
         srcs = [test] + [self.read(a, need, n.location) for a in n.args[1:]]
-        self.emit(Ins("cnd", home.reg, mask, srcs, n.location, shift, sat))
+        self.emit(Instr("cnd", home.reg, mask, srcs, n.location, saturate=sat, shift=shift))
 
     def _scaled(self, n: Node) -> tuple[Operand, Operand | None, int] | None:
         """mul by a literal outside [-1, 1]: (y, the literal scaled into range or None, shift)."""
@@ -216,7 +216,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
                     return y, g.const(tuple(v / 2 ** s for v in vals)), s
         return None
 
-    def emit(self, ins: Ins) -> None:
+    def emit(self, ins: Instr) -> None:
         """Append, reading extra constants/inputs through a mov when an instruction reads more
         distinct registers of a kind than the version's read ports allow."""
         for kind in ("c", "v", "t"):
@@ -226,8 +226,8 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
                 if s.reg.kind != kind or s.reg.index in seen:
                     continue
                 if limit is not None and len(seen) >= limit:
-                    vr = self.temp(ins.loc)
-                    self.instrs.append(Ins("mov", Reg("vr", vr), FULL, [Src(s.reg)], ins.loc))
+                    vr = self.temp(ins.location)
+                    self.instrs.append(Instr("mov", Reg("vr", vr), FULL, [Src(s.reg)], ins.location))
                     for other in ins.srcs:
                         if other.reg == s.reg:
                             other.reg = Reg("vr", vr)
@@ -284,7 +284,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         if key not in self.extracted:
             vr = self.temp(loc)
             unit = self.def_reg({i: 1.0 if i == k else 0.0 for i in range(3)}, loc)
-            self.emit(Ins("dp3", Reg("vr", vr), FULL, [Src(home.reg), Src(unit)], loc))
+            self.emit(Instr("dp3", Reg("vr", vr), FULL, [Src(home.reg), Src(unit)], loc))
             self.extracted[key] = Home(Reg("vr", vr), True, self.phase)
         return self.extracted[key]
 
@@ -345,31 +345,31 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         if self.ps14:
             for key, comps in groups.items():
                 base, mod = bases[key]
-                self.emit(Ins("mov", dst, tuple(sorted(comps)), [self.read_resolved(
+                self.emit(Instr("mov", dst, tuple(sorted(comps)), [self.read_resolved(
                     _whole(base), mod, comps, loc)], loc))
             if consts:
-                self.emit(Ins("mov", dst, tuple(sorted(consts)), [Src(self.def_reg(consts, loc))], loc))
+                self.emit(Instr("mov", dst, tuple(sorted(consts)), [Src(self.def_reg(consts, loc))], loc))
             return
         if len(groups) == 1 and not consts and set(next(iter(groups.values()))) == set(FULL):
             key, comps = next(iter(groups.items()))
             base, mod = bases[key]
-            self.emit(Ins("mov", dst, FULL, [self.read_resolved(_whole(base), mod, comps, loc)], loc))
+            self.emit(Instr("mov", dst, FULL, [self.read_resolved(_whole(base), mod, comps, loc)], loc))
             return
         alpha = [(k, c) for k, c in groups.items() if 3 in c]
         if 3 in consts:
-            self.emit(Ins("mov", dst, (3,), [Src(self.def_reg({3: consts.pop(3)}, loc))], loc))
+            self.emit(Instr("mov", dst, (3,), [Src(self.def_reg({3: consts.pop(3)}, loc))], loc))
         for key, comps in alpha:
             base, mod = bases[key]
-            self.emit(Ins("mov", dst, (3,), [self.read_resolved(_whole(base), mod, {3: comps.pop(3)}, loc)], loc))
+            self.emit(Instr("mov", dst, (3,), [self.read_resolved(_whole(base), mod, {3: comps.pop(3)}, loc)], loc))
         rgb = [(k, c) for k, c in groups.items() if c]
         if not rgb:
             if consts:
-                self.emit(Ins("mov", dst, (0, 1, 2), [Src(self.def_reg(consts, loc))], loc))
+                self.emit(Instr("mov", dst, (0, 1, 2), [Src(self.def_reg(consts, loc))], loc))
             return
         if len(rgb) == 1 and not consts:
             key, comps = rgb[0]
             base, mod = bases[key]
-            self.emit(Ins("mov", dst, (0, 1, 2), [self.read_resolved(_whole(base), mod, comps, loc)], loc))
+            self.emit(Instr("mov", dst, (0, 1, 2), [self.read_resolved(_whole(base), mod, comps, loc)], loc))
             return
         for i, (key, comps) in enumerate(rgb):
             base, mod = bases[key]
@@ -378,11 +378,11 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             if i == 0:
                 if consts:
                     fill = Src(self.def_reg({lane: consts.get(lane, 0.0) for lane in range(3)}, loc))
-                    self.emit(Ins("mad", dst, (0, 1, 2), [src, select, fill], loc))
+                    self.emit(Instr("mad", dst, (0, 1, 2), [src, select, fill], loc))
                 else:
-                    self.emit(Ins("mul", dst, (0, 1, 2), [src, select], loc))
+                    self.emit(Instr("mul", dst, (0, 1, 2), [src, select], loc))
             else:
-                self.emit(Ins("mad", dst, (0, 1, 2), [src, select, Src(dst)], loc))
+                self.emit(Instr("mad", dst, (0, 1, 2), [src, select, Src(dst)], loc))
 
 
 def _whole(base: Operand) -> Operand:

@@ -1,6 +1,6 @@
 """ps_1_x code records, register allocation, co-issue pairing and the assembly text.
 
-codegen_ps1 emits `Ins` on virtual registers (kind 'vr'); this mixin gives them r0-r1 (r0-r5 in
+codegen_ps1 emits `Instr` records (asmcode's, with ps_1_x sources) on virtual registers (kind 'vr'); this mixin gives them r0-r1 (r0-r5 in
 ps_1_4) by live range, with the result pinned to r0 and, in ps_1_4, each texld destination
 pinned to its stage, then prints the text the assembler reads.
 """
@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from effects.errors import Location, UNKNOWN_LOCATION
-from effects.shaders.hlsl.asmcode import Generated, Reg
+from effects.shaders.hlsl.asmcode import Generated, Instr, Reg
 from effects.shaders.hlsl.parse import HlslError
 
 RGBA = "rgba"
@@ -35,20 +35,6 @@ class Src:
 
 
 @dataclass
-class Ins:
-    opcode: str
-    dst: Reg | None
-    mask: tuple[int, ...]
-    srcs: list[Src]
-    loc: Location = UNKNOWN_LOCATION
-    shift: int = 0
-    sat: bool = False
-    texture: bool = False
-    coissue: bool = False
-    optional: bool = False         # left out when nothing reads its result
-
-
-@dataclass
 class Home:
     reg: Reg
     scalar: bool = False           # replicated in every lane
@@ -60,7 +46,7 @@ class Home:
 class Ps1Emit:
     """Mixin of Ps1CodeGen, which holds these."""
 
-    instrs: list[Ins]
+    instrs: list[Instr]
     precolor: dict[int, int]
     vr_loc: dict[int, Location]
     defs: dict[int, list[float | None]]
@@ -136,21 +122,21 @@ class Ps1Emit:
                 ins.coissue = False         # its pair was the no-op left out: alone now
             dropped = False
             lines.append(_ins_text(ins, alloc))
-            locs.append(ins.loc)
+            locs.append(ins.location)
         constants = {n: (self.const_regs[n], self.sizes.get(n, 1)) for n in self.const_regs
                      if n in self.used_uniforms}
         return Generated(lines, locs, constants, dict(self.samplers),
                          {r: tuple(0.0 if v is None else v for v in vals) for r, vals in self.defs.items()})
 
 
-def _cnd_coissued_on_colour(ins: Ins, rules: Any) -> bool:
+def _cnd_coissued_on_colour(ins: Instr, rules: Any) -> bool:
     # a co-issued cnd writing .rgb in ps_1_1-1_3 always returns its first choice (semantics.md 2.4)
     return rules.is_ps11_13 and ins.opcode == "cnd" and tuple(ins.mask) != (3,)
 
 
-def _no_op(ins: Ins, alloc: dict[int, int]) -> bool:
+def _no_op(ins: Instr, alloc: dict[int, int]) -> bool:
     """mov r#, r# of the same register, as read: left by r0 being both a sample and the result."""
-    if ins.opcode != "mov" or ins.shift or ins.sat or ins.coissue or len(ins.srcs) != 1:
+    if ins.opcode != "mov" or ins.shift or ins.saturate or ins.coissue or len(ins.srcs) != 1:
         return False
     s, d = ins.srcs[0], ins.dst
     return (d is not None and s.reg.kind == d.kind == "vr" and alloc[s.reg.index] == alloc[d.index]  # type: ignore[index]
@@ -168,7 +154,7 @@ def _src_text(s: Src, alloc: dict[int, int]) -> str:
     return ("-" if s.neg else "") + text
 
 
-def _ins_text(ins: Ins, alloc: dict[int, int]) -> str:
+def _ins_text(ins: Instr, alloc: dict[int, int]) -> str:
     if ins.opcode == "phase":
         return "phase"
     dst = ""
@@ -176,7 +162,7 @@ def _ins_text(ins: Ins, alloc: dict[int, int]) -> str:
         dst = f"r{alloc[ins.dst.index]}" if ins.dst.kind == "vr" else f"{ins.dst.kind}{ins.dst.index}"  # type: ignore[index]
         if tuple(ins.mask) != FULL:
             dst += "." + "".join(RGBA[i] for i in ins.mask)
-    op = ins.opcode + _SHIFT_TEXT.get(ins.shift, "") + ("_sat" if ins.sat else "")
+    op = ins.opcode + _SHIFT_TEXT.get(ins.shift, "") + ("_sat" if ins.saturate else "")
     parts = [dst] + [_src_text(s, alloc) for s in ins.srcs]
     return ("+" if ins.coissue else "") + f"{op} " + ", ".join(parts)
 

@@ -10,10 +10,10 @@ from __future__ import annotations
 from typing import Any
 
 from effects.errors import EffectWarning, Location, UNKNOWN_LOCATION
-from effects.shaders.hlsl.asmcode import Reg
+from effects.shaders.hlsl.asmcode import Instr, Reg
 from effects.shaders.hlsl.dag import Node
 from effects.shaders.hlsl.parse import HlslError
-from effects.shaders.hlsl.ps1_asm import FULL, Home, Ins, Src
+from effects.shaders.hlsl.ps1_asm import FULL, Home, Src
 
 
 class Ps1Textures:
@@ -24,7 +24,7 @@ class Ps1Textures:
     ps14: bool
     phase: int
     home: dict[int, Home]
-    instrs: list[Ins]
+    instrs: list[Instr]
     samplers: dict[str, int]
     sampled: set[tuple[str, int]]
     explicit_samplers: dict[str, int]
@@ -39,14 +39,14 @@ class Ps1Textures:
             m = int(reg[1:])
             if self.ps14:
                 vr = self.temp(UNKNOWN_LOCATION)
-                self.instrs.append(Ins("texcrd", Reg("vr", vr), (0, 1, 2), [Src(Reg("t", m))], texture=True))
+                self.instrs.append(Instr("texcrd", Reg("vr", vr), (0, 1, 2), [Src(Reg("t", m))], texture=True))
                 self._input_homes[reg] = Home(Reg("vr", vr), phase=self.phase, lanes=3)
                 continue
             if any(self.home.get(t.id) and self.home[t.id].reg.kind == "t" and self.home[t.id].reg.index == m
                    for t in tex):
                 self.refuse(f"TEXCOORD{m} is both sampled and read as a value; {self.v} loads each "
                             f"t register once (tex or texcoord)", self._input_loc(reg, reader=True))
-            self.instrs.append(Ins("texcoord", Reg("t", m), FULL, [], texture=True))
+            self.instrs.append(Instr("texcoord", Reg("t", m), FULL, [], texture=True))
             self._input_homes[reg] = Home(Reg("t", m))
             # a located warning: the value read is clamped, unlike in HLSL
             warning = EffectWarning(f"{self.v} reads TEXCOORD{m} as a value through texcoord, which "
@@ -73,7 +73,7 @@ class Ps1Textures:
                 self.fail("texture read at this coordinate: ps_1_1-1_3 sample stage # at TEXCOORD# "
                           "as interpolated (no swizzle, modifier or colour input)", n.location)
             stage, dst = m, Reg("t", m)
-            ins = Ins("tex", dst, FULL, [], n.location, texture=True)
+            ins = Instr("tex", dst, FULL, [], n.location, texture=True)
         else:
             taken = set(self.samplers.values()) | {s for s in self.explicit_samplers.values()}
             stage = self.samplers.get(name, explicit if explicit is not None else next(
@@ -90,7 +90,7 @@ class Ps1Textures:
                 if home is None or mod or coord.negate or coord.swizzle != tuple(range(coord.width)):
                     self.fail("dependent read at coordinates with a swizzle or modifier", n.location)
                 src = Src(home.reg)
-            ins = Ins("texld", dst, FULL, [src], n.location, texture=True)
+            ins = Instr("texld", dst, FULL, [src], n.location, texture=True)
         if explicit is not None and explicit != stage:
             self.refuse(f"sampler '{name}' is bound to s{explicit}, but {self.v} samples it at "
                         f"stage {stage}", n.location)
@@ -113,15 +113,15 @@ class Ps1Textures:
         phase 2 does not read it."""
         stage = self.home[n.id].reg
         rgb, alpha = self.temp(n.location), self.temp(n.location)
-        self.emit(Ins("mov", Reg("vr", rgb), (0, 1, 2), [Src(stage)], n.location, optional=True))
-        self.emit(Ins("mov", Reg("vr", alpha), (0, 1, 2), [Src(stage, 3)], n.location, optional=True))
+        self.emit(Instr("mov", Reg("vr", rgb), (0, 1, 2), [Src(stage)], n.location, optional=True))
+        self.emit(Instr("mov", Reg("vr", alpha), (0, 1, 2), [Src(stage, 3)], n.location, optional=True))
         self.home[n.id] = Home(Reg("vr", rgb), phase=1)
         self.carried_alpha[n.id] = Reg("vr", alpha)
 
     def _rejoin(self, node: Node, loc: Location) -> Home:
         """Phase 2: a carried read whole again (.rgb and its .a from where they crossed)."""
         whole = Reg("vr", self.temp(loc))
-        self.emit(Ins("mov", whole, (0, 1, 2), [Src(self.home[node.id].reg)], loc))
-        self.emit(Ins("mov", whole, (3,), [Src(self.carried_alpha.pop(node.id), 2)], loc))
+        self.emit(Instr("mov", whole, (0, 1, 2), [Src(self.home[node.id].reg)], loc))
+        self.emit(Instr("mov", whole, (3,), [Src(self.carried_alpha.pop(node.id), 2)], loc))
         self.home[node.id] = Home(whole, phase=2)
         return self.home[node.id]
