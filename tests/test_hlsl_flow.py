@@ -515,3 +515,249 @@ def test_a_body_that_changes_the_counter_is_not_a_loop_and_says_so():
         "runs the count it was given, and aL steps by itself)")
     loc = err.value.location
     assert (loc.line, loc.column) == located(text, "for (int i")
+
+
+# -- discard, clip and return inside real branches and loops ---------------------------------
+
+ESCAPES = """int N = 3;
+float Threshold = 0.55;
+bool Cut = true;
+float4 VS(float4 p : POSITION, float2 uv : TEXCOORD0, out float2 t : TEXCOORD0) : POSITION
+{ t = uv; return p; }
+float4 PSK(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 c = float4(uv.x, 0.5, 0, 1);
+    [branch] if (uv.x < Threshold) { c.b = 1; discard; }
+    return c;
+}
+float4 PSR(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 c = float4(uv.x, 0.5, 0, 1);
+    [branch] if (uv.x < Threshold) return float4(0, 0, 1, 1);
+    c.g = 0.25;
+    return c;
+}
+float4 PSB(float2 uv : TEXCOORD0) : COLOR
+{
+    if (Cut) { clip(uv.x - Threshold); return float4(1, 1, 0, 1); }
+    return float4(uv.x, 0.5, 0, 1);
+}
+float4 PSL(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 c = float4(0, 0, 0, 1);
+    for (int i = 0; i < N; i++) {
+        c.r += 0.25;
+        if (c.r > uv.x) return float4(c.r, 1, 0, 1);
+        clip(uv.y - 0.25 * i);
+    }
+    return c;
+}
+"""
+BACKGROUND = (0.0, 0.0, 0.0, 0.0)        # what a discarded pixel leaves (the cleared target)
+ODD = [(x, y) for x in (1, 3, 5, 7) for y in (1, 3, 5, 7)]   # u, v = 1/8, 3/8 ...: no ties
+
+
+def escapes(entry: str) -> effects.Effect:
+    return load(ESCAPES, "compile vs_3_0 VS()", f"compile ps_3_0 {entry}()")
+
+
+def test_discard_in_a_dynamic_branch_is_texkill_inside_it(backend):
+    fx = escapes("PSK")
+    text = compile_shader(fx, "PSK", "ps_3_0").text
+    assert text.index("if_lt") < text.index("texkill") < text.index("else"), text
+    img = draw(fx, "geforce6800", backend)
+    for x, y in ODD:
+        u = x / 8
+        want = BACKGROUND if u < 0.55 else (u, 0.5, 0, 1)
+        assert np.allclose(img[y, x], want, atol=TOL), (x, y, img[y, x], want)
+
+
+def test_return_in_a_dynamic_branch_is_a_returned_predicate(backend):
+    # the side sets 'returned' and the value; what follows the if runs under 'not returned'
+    fx = escapes("PSR")
+    text = compile_shader(fx, "PSR", "ps_3_0").text
+    assert "if_lt v0.x, c0.x" in text and "endif" in text, text
+    img = draw(fx, "geforce6800", backend)
+    for x, y in ODD:
+        u = x / 8
+        want = (0, 0, 1, 1) if u < 0.55 else (u, 0.25, 0, 1)
+        assert np.allclose(img[y, x], want, atol=TOL), (x, y, img[y, x], want)
+
+
+@pytest.mark.parametrize("cut", [True, False])
+def test_clip_and_return_in_a_static_branch(backend, cut):
+    fx = escapes("PSB")
+    text = compile_shader(fx, "PSB", "ps_3_0").text
+    assert text.index("if b0") < text.index("texkill") < text.index("endif"), text
+    img = draw(fx, "geforce6800", backend, {"Cut": cut})
+    for x, y in ODD:
+        u = x / 8
+        want = (u, 0.5, 0, 1) if not cut else BACKGROUND if u < 0.55 else (1, 1, 0, 1)
+        assert np.allclose(img[y, x], want, atol=TOL), (x, y, img[y, x], want)
+
+
+def loop_escapes_by_hand(u: float, v: float, n: int) -> tuple[float, ...]:
+    """PSL: red steps by 1/4; the iteration where it passes u returns (red, 1, 0, 1); until
+    then each iteration clips where v < i / 4 (the pixel is discarded, whatever follows)."""
+    red, killed = 0.0, False
+    for i in range(n):
+        red += 0.25
+        if red > u:
+            return BACKGROUND if killed else (red, 1.0, 0.0, 1.0)
+        killed = killed or v - 0.25 * i < 0
+    return BACKGROUND if killed else (red, 0.0, 0.0, 1.0)
+
+
+def test_loop_escape_hand_values():
+    assert loop_escapes_by_hand(0.875, 0.125, 3) == BACKGROUND           # clipped at i = 1
+    assert loop_escapes_by_hand(0.375, 0.125, 3) == (0.5, 1.0, 0.0, 1.0)
+    assert loop_escapes_by_hand(0.875, 0.625, 3) == (0.75, 0.0, 0.0, 1.0)
+
+
+@pytest.mark.parametrize("count", [0, 1, 3])
+def test_return_and_clip_in_a_rep_body(backend, count):
+    # ps_3_0 has break_comp: the rep also leaves once it returned (break_ne on 'returned')
+    fx = escapes("PSL")
+    text = compile_shader(fx, "PSL", "ps_3_0").text
+    assert text.index("rep i0") < text.index("texkill") < text.index("break_ne") \
+        < text.index("endrep"), text
+    img = draw(fx, "geforce6800", backend, {"N": count})
+    for x, y in ODD:
+        want = loop_escapes_by_hand(x / 8, y / 8, count)
+        assert np.allclose(img[y, x], want, atol=TOL), (x, y, count, img[y, x], want)
+
+
+VS_RETURN = """int N = 4;
+float Limit = 0.6;
+float4 VS(float4 p : POSITION, out float4 c : COLOR0) : POSITION
+{
+    c = float4(0, 0, 0, 1);
+    for (int i = 0; i < N; i++) {
+        c.r += 0.25;
+        if (c.r > Limit) return p;
+    }
+    c.g = 1;
+    return p;
+}
+"""
+
+
+def vs_return_by_hand(n: int, limit: float) -> tuple[float, ...]:
+    red = 0.0
+    for _ in range(n):
+        red += 0.25
+        if red > limit:
+            return (red, 0.0, 0.0, 1.0)
+    return (red, 1.0, 0.0, 1.0)
+
+
+@pytest.mark.parametrize("target, card", [("vs_2_0", "radeon9700"), ("vs_2_a", "geforcefx5900")])
+@pytest.mark.parametrize("count, limit", [(0, 0.6), (2, 0.6), (4, 0.6), (4, 0.9)])
+def test_return_in_a_vertex_rep(backend, target, card, count, limit):
+    # vs_2_0 has no break_comp: the iterations after the return run under 'not returned';
+    # vs_2_a leaves the rep with break_ne
+    fx = load(VS_RETURN + PASS_PS, f"compile {target} VS()")
+    text = compile_shader(fx, "VS", target).text
+    assert "rep i0" in text and ("break_ne" in text) == (target == "vs_2_a"), text
+    img = draw(fx, card, backend, {"N": count, "Limit": limit})
+    want = vs_return_by_hand(count, limit)
+    assert np.allclose(img[4, 4], want, atol=TOL), (img[4, 4], want)
+
+
+STRUCT_RETURN = """float Threshold = 0.5;
+int N = 2;
+struct PS_OUT { float4 color : COLOR0; };
+float4 VS(float4 p : POSITION, float2 uv : TEXCOORD0, out float2 t : TEXCOORD0) : POSITION
+{ t = uv; return p; }
+PS_OUT PS(float2 uv : TEXCOORD0)
+{
+    PS_OUT o;
+    o.color = float4(uv.x, 0, 0, 1);
+    [branch] if (uv.x < Threshold) return o;
+    o.color.g = 1;
+    return o;
+}
+PS_OUT PSL(float2 uv : TEXCOORD0)
+{
+    PS_OUT o;
+    o.color = float4(0, 0, 0, 1);
+    float red = 0;
+    for (int i = 0; i < N; i++) {
+        red += 0.25;
+        if (red > uv.x) return o;
+    }
+    o.color.r = red;
+    return o;
+}
+"""
+
+
+def test_a_struct_returned_in_a_dynamic_branch_is_a_located_refusal():
+    fx = load(STRUCT_RETURN, "compile vs_3_0 VS()", "compile ps_3_0 PS()")
+    with pytest.raises(EffectError) as err:
+        compile_shader(fx, "PS", "ps_3_0")
+    assert err.value.message == ("cannot [branch] here: return of a struct inside it is not "
+                                 "generated in a branch yet")
+    loc = err.value.location
+    assert (loc.line, loc.column) == located(STRUCT_RETURN, "[branch]")
+
+
+def test_a_struct_returned_in_a_rep_body_is_x3511_with_the_reason():
+    fx = load(STRUCT_RETURN, "compile vs_3_0 VS()", "compile ps_3_0 PSL()")
+    with pytest.raises(EffectError) as err:
+        compile_shader(fx, "PSL", "ps_3_0")
+    assert err.value.message == (
+        "X3511: unable to unroll loop: its count is the uniform 'N', known only when the "
+        "shader runs, and it cannot be a rep: return of a struct in the body is not generated "
+        "in a rep yet")
+    loc = err.value.location
+    assert (loc.line, loc.column) == located(STRUCT_RETURN, "for (int i")
+
+
+# -- gradients and dynamic flow control ------------------------------------------------------
+
+GRADIENTS = """int N = 3;
+float Threshold = 0.5;
+float4 VS(float4 p : POSITION, float2 uv : TEXCOORD0, out float2 t : TEXCOORD0) : POSITION
+{ t = uv; return p; }
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 c = float4(0.25, 0.25, 0.25, 1);
+    [branch] if (uv.x < Threshold) { c.r = ddx(uv.x * 2) * 2; c.g = ddy(uv.y) * 4; }
+    return c;
+}
+float4 PSL(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 c = float4(0, 0, 0, 1);
+    for (int i = 0; i < N; i++) {
+        c.r += 0.25;
+        if (c.r > uv.x) break;
+        c.g += ddx(uv.x * c.r);
+    }
+    return c;
+}
+"""
+
+
+@pytest.mark.parametrize("threshold", [0.55, 0.3])
+def test_gradients_in_a_dynamic_branch_are_computed_before_it(backend, threshold):
+    # as fxc does: a gradient is undefined where neighbouring pixels take different sides,
+    # so dsx / dsy (and texld) move before the if_comp, their operands with them.
+    # ddx(2u) * 2 = 2 / 8 * 2 = 1/2 and ddy(v) * 4 = 1/2 on the 8 x 8 quad
+    fx = load(GRADIENTS, "compile vs_3_0 VS()", "compile ps_3_0 PS()")
+    text = compile_shader(fx, "PS", "ps_3_0").text
+    assert text.index("dsx") < text.index("if_lt") and text.index("dsy") < text.index("if_lt"), text
+    img = draw(fx, "geforce6800", backend, {"Threshold": threshold})
+    for x, y in ODD:
+        want = (0.5, 0.5, 0.25, 1) if x / 8 < threshold else (0.25, 0.25, 0.25, 1)
+        assert np.allclose(img[y, x], want, atol=TOL), (x, y, img[y, x], want)
+
+
+def test_a_gradient_that_needs_a_loop_with_a_break_is_x4014_at_it():
+    fx = load(GRADIENTS, "compile vs_3_0 VS()", "compile ps_3_0 PSL()")
+    with pytest.raises(EffectError) as err:
+        compile_shader(fx, "PSL", "ps_3_0")
+    assert err.value.message.startswith("X4014: cannot have gradient operations inside loops "
+                                        "with divergent flow control"), err.value.message
+    loc = err.value.location
+    assert (loc.line, loc.column) == located(GRADIENTS, "ddx(uv.x * c.r)")

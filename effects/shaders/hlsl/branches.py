@@ -31,7 +31,8 @@ import lark
 
 from effects.shaders.hlsl.context import explicit_register
 from effects.shaders.hlsl.dag import Operand
-from effects.shaders.hlsl.flowrules import MAX_DEPTH, Escapes, NotReal, TargetFlow, enter, leave
+from effects.shaders.hlsl.flowrules import (MAX_DEPTH, Effects, NotReal, TargetFlow, enter,
+                                            flow_vars, leave, refusal)
 from effects.shaders.hlsl.loops import flat, numeric_vars
 from effects.shaders.hlsl.values import Value, Var, build_value, operand
 
@@ -74,20 +75,25 @@ def _same_width(a: list[Operand], b: list[Operand]) -> tuple[list[Operand], list
 def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -> None:
     """Evaluate an `if` as a real branch. `cond`: ('bool', register) or (comparison,
     [a, b]); raises NotReal with the reason it cannot be one."""
-    variables = numeric_vars(ev)
+    variables = numeric_vars(ev) + flow_vars(ev)
     initial = {id(v): v.value for v in variables}
     others = [v for v in variables if not v.type.numeric]
     before = {id(v): flat(v.value) for v in others}
     sides: list[dict[int, Value]] = []
+    kills: list[list[Operand]] = []
     enter(ev, kind)
     try:
         for branch in (then, other):
-            if branch is not None:
-                _run_side(ev, branch)
+            made = Effects.note(ev)
+            try:
+                if branch is not None:
+                    ev.scoped(branch)
+            finally:
+                kills.append(made.take(ev))
             sides.append({id(v): v.value for v in variables})
             for v in others:
                 if flat(v.value) != before[id(v)]:
-                    raise NotReal("a side changes an array or a struct (not carried yet)")
+                    raise NotReal(refusal(v, "inside it", "branch"))
             for v in variables:
                 v.value = initial[id(v)]
     except BaseException:
@@ -107,11 +113,17 @@ def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -
             for s, side in enumerate(sides):
                 results[s].append(operand(ev.g, side[id(v)].comps[k:k + 4]))
     test, args = cond
-    # key: (id, 'bool' or the comparison, condition operands, result groups, b#)
+    # key: (id, 'bool' or the comparison, condition operands, result groups, b#, discards
+    # of the then side); args: the condition, the then- and else-results, the then- and
+    # else-discards (flowcode.py places each where its side is)
     breg = args[0] if test == "bool" else None
     conds: tuple[Operand, ...] = () if test == "bool" else tuple(args)
-    node = ev.g.leaf("if", (if_id, test, len(conds), len(widths), breg), 1, ev.at(tree),
-                     conds + tuple(results[0]) + tuple(results[1]))
+    node = ev.g.leaf("if", (if_id, test, len(conds), len(widths), breg, len(kills[0])), 1,
+                     ev.at(tree), conds + tuple(results[0]) + tuple(results[1])
+                     + tuple(kills[0]) + tuple(kills[1]))
+    if kills[0] or kills[1]:
+        ev.ctx.kills.append(node)             # it discards: reached whatever reads it
+        node.node.__dict__["effect"] = True
     k = 0
     for v in changed:
         comps: list[Operand] = []
@@ -120,22 +132,6 @@ def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -
             comps.extend(Operand(out.node, (i,)) for i in range(widths[k]))
             k += 1
         v.value = build_value(v.type, comps)
-
-
-def _run_side(ev: Any, branch: Any) -> None:
-    """One side, with nothing a real branch cannot hold."""
-    escapes = Escapes.note(ev)
-    loop = ev.loops[-1] if ev.loops else None
-    jumps = (loop.broken, loop.continued) if loop is not None else None
-    try:
-        ev.scoped(branch)
-        escapes.refuse(ev, "inside it", "branch")
-        if loop is not None and (loop.broken, loop.continued) != jumps:
-            raise NotReal("break or continue inside it is not generated in a branch yet")
-    finally:
-        escapes.undo(ev)
-        if loop is not None and jumps is not None:
-            loop.broken, loop.continued = jumps
 
 
 def bool_register(ev: Any, name: str) -> int:

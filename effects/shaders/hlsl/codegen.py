@@ -24,7 +24,7 @@ from effects.shaders.asm.versions import IDENTITY
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg, Src
 from effects.shaders.hlsl.dag import SHAPED, Node, Operand
-from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_loop, needed, place
+from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_kill, emit_loop, needed, place
 from effects.shaders.hlsl.legalize import finish
 
 COMPONENTS = "xyzw"
@@ -169,14 +169,9 @@ class CodeGen:
         self.coalesce(nodes)
         self.blocks = place(self, nodes)
         emit_block(self, None)
-        for k in self.ctx.kills:
-            src_op = k.node.args[0]
-            reg = self.temp()
-            width = src_op.width
-            src = self.place(src_op, [min(i, width - 1) for i in range(4)])
-            src.lanes = {i: src.lanes.get(min(i, width - 1), 0) for i in range(4)} if src.fixed is None else src.lanes
-            self.emit("mov", reg, (0, 1, 2, 3), [src], k.node.location)
-            self.emit("texkill", reg, (0, 1, 2, 3), [], k.node.location)
+        for k in self.ctx.kills:       # the program's own discards, at its end (a branch's
+            if k.node.op == "kill":    # or loop's are emitted in it: flowcode.py)
+                emit_kill(self, k.node)
         for o in self.outputs:
             self.output(o)
         return finish(self)
@@ -236,6 +231,9 @@ class CodeGen:
         if op == "uniform_al":               # c[aL + n], read where it is used (flowcode.py)
             base = self.uniform_reg(*n.key).index
             self.home[n.id] = (Reg("c_al", base), {c: c for c in range(4)})
+            return
+        if op == "kill" and n.__dict__.get("block") is not None:
+            emit_kill(self, n)         # inside a branch side or a loop body
             return
         if op == "kill" or op == "phi":
             return

@@ -24,6 +24,7 @@ from typing import Any
 from effects.shaders.asm.versions import IDENTITY
 from effects.shaders.hlsl.asmcode import Reg, Src
 from effects.shaders.hlsl.dag import Node, Operand, reachable
+from effects.shaders.hlsl.parse import HlslError
 
 Label = tuple | None
 _GRADIENT = {"tex", "texldp", "texldb", "dsx", "dsy"}
@@ -90,10 +91,12 @@ def _slot_label(c: Node, k: int, labels: dict[int, Label]) -> Label:
     if c.op == "loop":
         return labels[c.id] if k < c.key[2] else ("loop", c.key[0])
     if c.op == "if":
-        ncond, groups = c.key[2], c.key[3]
+        ncond, groups, then_kills = c.key[2], c.key[3], c.key[5]
         if k < ncond:
             return labels[c.id]
-        return ("then", c.key[0]) if k < ncond + groups else ("else", c.key[0])
+        k -= ncond
+        then = k < groups or 2 * groups <= k < 2 * groups + then_kills
+        return ("then", c.key[0]) if then else ("else", c.key[0])
     return labels[c.id]
 
 
@@ -124,7 +127,7 @@ def place(cg: Any, nodes: list[Node]) -> dict[Label, list[Node]]:
 
     lift_gradients = cg.target.kind == "ps"
     for n in reversed(nodes):
-        uses = [None] if n.id in roots or n.op == "kill" else []
+        uses = [None] if n.id in roots else []
         uses += [_slot_label(c, k, labels) for c, k in users.get(n.id, [])]
         if n.op == "phi":
             label: Label = ("loop", n.key[0])
@@ -139,13 +142,24 @@ def place(cg: Any, nodes: list[Node]) -> dict[Label, list[Node]]:
             outer_first = list(reversed(chain(label)[:-1]))
             start = max((i + 1 for i, x in enumerate(outer_first)
                          if x[0] == "loop" and x[1] in deps[n.id]), default=0)
+            # a discard (or a block holding one) stays where it is: a loop may run 0 times
+            effect = n.op == "kill" or n.__dict__.get("effect", False)
             for x in outer_first[start:]:
-                if x[0] == "loop" or lift_gradients and n.op in _GRADIENT and x in dynamic:
+                if x[0] == "loop" and not effect or \
+                        lift_gradients and n.op in _GRADIENT and x in dynamic:
                     label = parent[x]
                     break
         labels[n.id] = label
+        n.__dict__["block"] = label
+        if lift_gradients and n.op in _GRADIENT and any(x in dynamic for x in chain(label)[:-1]):
+            # it reads the loop's values, so it cannot leave the loop, whose pixels diverge
+            raise HlslError("X4014: cannot have gradient operations inside loops with "
+                            "divergent flow control (a break the pixels take apart; compute "
+                            "it before the loop, or use tex2Dlod / tex2Dgrad)", n.location)
         if n.op == "loop":
             parent[("loop", n.key[0])] = label
+            if n.key[3]:
+                dynamic.add(("loop", n.key[0]))
         elif n.op == "if":
             parent[("then", n.key[0])] = parent[("else", n.key[0])] = label
             if n.key[1] != "bool":
@@ -157,6 +171,18 @@ def place(cg: Any, nodes: list[Node]) -> dict[Label, list[Node]]:
         if n.op == "phi":
             cg.loop_phis.setdefault(n.key[0], {})[n.key[1]] = n
     return blocks
+
+
+def emit_kill(cg: Any, n: Node) -> None:
+    """texkill of a discard's operand (its four lanes, the last repeated)."""
+    src_op = n.args[0]
+    reg = cg.temp()
+    width = src_op.width
+    src = cg.place(src_op, [min(i, width - 1) for i in range(4)])
+    if src.fixed is None:
+        src.lanes = {i: src.lanes.get(min(i, width - 1), 0) for i in range(4)}
+    cg.emit("mov", reg, (0, 1, 2, 3), [src], n.location)
+    cg.emit("texkill", reg, (0, 1, 2, 3), [], n.location)
 
 
 def emit_block(cg: Any, label: Label) -> None:
@@ -228,9 +254,9 @@ def emit_if(cg: Any, n: Node) -> None:
     """`if b#` or `if_<cmp> a, b`; each side's nodes, its results moved into the registers
     the `if_out` nodes read; `else` only where the else side computes something (otherwise
     its results, computed before, are moved in before the `if`)."""
-    if_id, test, ncond, groups, breg = n.key
+    if_id, test, ncond, groups, breg, _ = n.key
     conds = n.args[:ncond]
-    then_res, else_res = n.args[ncond:ncond + groups], n.args[ncond + groups:]
+    then_res, else_res = n.args[ncond:ncond + groups], n.args[ncond + groups:ncond + 2 * groups]
     regs = [cg.temp() for _ in range(groups)]
     cg.if_regs[if_id] = regs
     before = not cg.blocks.get(("else", if_id))
@@ -255,4 +281,4 @@ def emit_if(cg: Any, n: Node) -> None:
     cg.a0 = None
 
 
-__all__ = ["needed", "live_nodes", "place", "emit_block", "emit_loop", "emit_if"]
+__all__ = ["needed", "live_nodes", "place", "emit_block", "emit_kill", "emit_loop", "emit_if"]

@@ -5,6 +5,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from effects.shaders.hlsl.types import FLOAT
+from effects.shaders.hlsl.values import Value
+
 # Nesting limits of the flow-control instructions in 2_x / 3_0 code (the DirectX 9 "Flow
 # Control Limitations" pages): static if b# 24, dynamic if_comp / break_comp 24, rep / loop 4.
 MAX_DEPTH = {"static": 24, "dynamic": 24, "loop": 4}
@@ -52,31 +55,92 @@ def leave(ev: Any, kind: str) -> None:
     ev.ctx.__dict__["flow_depth"][kind] -= 1
 
 
-@dataclass
-class Escapes:
-    """What a real branch side or rep body cannot hold yet, noted before it runs: how many
-    discards were made and the enclosing function's return state. `refuse` names what the
-    body added; `undo` puts both back (the caller then flattens or unrolls instead)."""
+class Flag:
+    """A predicate the evaluator keeps beside the variables (a frame's `returned`, a loop's
+    `broken` / `continued`) seen as a float variable of 0 / 1, so that a real if or loop
+    carries it as it carries a variable: a `return` in a branch side is the side's result
+    'returned = 1', and what follows the if runs under 'not returned' (an early return by
+    predicate). None (never set) reads as 0 and 0 is written back as None."""
 
-    kills: int
-    frame: Any
-    returned: Any
+    const = False
+
+    def __init__(self, ev: Any, owner: Any, attr: str) -> None:
+        self.owner, self.attr, self.g = owner, attr, ev.g
+        self.type = FLOAT
+
+    @property
+    def value(self) -> Value:
+        op = getattr(self.owner, self.attr)
+        return Value(FLOAT, [op if op is not None else self.g.const((0.0,))])
+
+    @value.setter
+    def value(self, v: Value) -> None:
+        op = v.comps[0]
+        setattr(self.owner, self.attr, None if op.const_values() == (0.0,) else op)
+
+
+class RetVal:
+    """A frame's return value seen as a variable (before any return: a zero value of the
+    return type, written back as None). A struct return type is not carried (`refusal`)."""
+
+    const = False
+
+    def __init__(self, ev: Any, frame: Any) -> None:
+        self.frame = frame
+        self.type = frame.return_type
+        self._unset = ev.zero(frame.return_type)
+        self.refusal = "return of a struct {where} is not generated in a {place} yet"
+
+    @property
+    def value(self) -> Value:
+        return self.frame.retval if self.frame.retval is not None else self._unset
+
+    @value.setter
+    def value(self, v: Value) -> None:
+        self.frame.retval = None if v is self._unset else v
+
+
+def flow_vars(ev: Any) -> list[Any]:
+    """The predicates and return value a real if / loop carries besides the variables: the
+    innermost frame's return value and 'returned', the innermost loop's 'broken' and
+    'continued' (the loop a real loop's own body makes is not there yet)."""
+    out: list[Any] = []
+    if ev.frames:
+        frame = ev.frames[-1]
+        out.append(Flag(ev, frame, "returned"))
+        if frame.return_type.kind != "void":
+            out.append(RetVal(ev, frame))
+    if ev.loops:
+        out += [Flag(ev, ev.loops[-1], "broken"), Flag(ev, ev.loops[-1], "continued")]
+    return out
+
+
+def refusal(v: Any, where: str, place: str) -> str:
+    """Why a changed array / struct variable (or struct return value) cannot be carried."""
+    text = getattr(v, "refusal", None)
+    if text is not None:
+        return text.format(where=where, place=place)
+    return f"{'a side' if place == 'branch' else 'the body'} changes an array or a struct " \
+        "(not carried yet)"
+
+
+@dataclass
+class Effects:
+    """The discards (and the real ifs / loops holding some) a branch side or a loop body
+    makes: taken off the program's list (ctx.kills) when it ends, to be held by the if / loop
+    node, so the texkill runs inside the block (codegen places it there); the node then goes
+    on the list in their place."""
+
+    start: int
 
     @classmethod
-    def note(cls, ev: Any) -> "Escapes":
-        frame = ev.frames[-1] if ev.frames else None
-        return cls(len(ev.ctx.kills), frame, frame.returned if frame is not None else None)
+    def note(cls, ev: Any) -> "Effects":
+        return cls(len(ev.ctx.kills))
 
-    def refuse(self, ev: Any, where: str, place: str) -> None:
-        if len(ev.ctx.kills) != self.kills:
-            raise NotReal(f"discard or clip {where} is not generated in a {place} yet")
-        if self.frame is not None and self.frame.returned is not self.returned:
-            raise NotReal(f"return {where} is not generated in a {place} yet")
-
-    def undo(self, ev: Any) -> None:
-        del ev.ctx.kills[self.kills:]
-        if self.frame is not None:
-            self.frame.returned = self.returned
+    def take(self, ev: Any) -> list[Any]:
+        made = ev.ctx.kills[self.start:]
+        del ev.ctx.kills[self.start:]
+        return made
 
 
-__all__ = ["DYNAMIC_TARGETS", "Escapes", "NotReal", "MAX_DEPTH", "TargetFlow", "enter", "leave"]
+__all__ = ["DYNAMIC_TARGETS", "Effects", "Flag", "RetVal", "flow_vars", "refusal", "NotReal", "MAX_DEPTH", "TargetFlow", "enter", "leave"]

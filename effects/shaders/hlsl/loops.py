@@ -44,7 +44,8 @@ from typing import Any
 import lark
 
 from effects.shaders.hlsl.dag import Operand
-from effects.shaders.hlsl.flowrules import DYNAMIC_TARGETS, Escapes, NotReal, TargetFlow, enter, leave
+from effects.shaders.hlsl.flowrules import (DYNAMIC_TARGETS, Effects, NotReal, TargetFlow, enter,
+                                            flow_vars, leave, refusal)
 from effects.shaders.hlsl.types import HType
 from effects.shaders.hlsl.values import Loop, Value, Var, build_value, operand
 
@@ -245,7 +246,7 @@ def real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
 
 def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
     ctx = ev.ctx
-    variables = numeric_vars(ev)
+    variables = numeric_vars(ev) + flow_vars(ev)
     initial = {id(v): v.value for v in variables}
     others = [v for v in variables if not v.type.numeric]
     before = {id(v): flat(v.value) for v in others}
@@ -265,7 +266,7 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
             if v.type.numeric and flat(v.value) != flat(phi_values[id(v)]):
                 changed.append(v)
             elif not v.type.numeric and flat(v.value) != before[id(v)]:
-                raise NotReal("the body changes an array or a struct (not carried yet)")
+                raise NotReal(refusal(v, "in the body", "rep"))
     finally:
         for v in variables:
             v.value = initial[id(v)]
@@ -281,7 +282,7 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
         carried.append((v, groups))
         v.value = value
     try:
-        broken, al = _run_body(ev, tree, body, step, bound)
+        broken, al, kills = _run_body(ev, tree, body, step, bound)
         moved = {id(v) for v in changed}
         for v in variables:
             if id(v) not in moved and flat(v.value) != flat(initial[id(v)]):
@@ -299,10 +300,14 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
         s = al.stride if uses_al else 0
         ctx.int_defs[register] = (bound.count, s * bound.start, s, 0) if uses_al else \
             (bound.count, 0, 0, 0)
-    # a break: the iteration's results are moved back, then `break_ne broken, 0` leaves
+    # a break: the iteration's results are moved back, then `break_ne broken, 0` leaves;
+    # the body's discards after (flowcode.py emits them in the body)
     extra = (broken,) if broken is not None else ()
     loop = ev.g.leaf("loop", (loop_id, register, len(phis), bool(extra), uses_al), 1,
-                     ev.at(tree), tuple(inits + results) + extra)
+                     ev.at(tree), tuple(inits + results) + extra + tuple(kills))
+    if kills:
+        ctx.kills.append(loop)                # it discards: reached whatever reads it
+        loop.node.__dict__["effect"] = True
     k = 0
     for v, groups in carried:
         comps: list[Operand] = []
@@ -318,18 +323,24 @@ def _groups(ev: Any, value: Value, count: int) -> list[Operand]:
 
 
 def _run_body(ev: Any, tree: Any, body: Any, step: Any, bound: Bound
-              ) -> tuple[Operand | None, AL | None]:
+              ) -> tuple[Operand | None, AL | None, list[Operand]]:
     """The body and the step once, with nothing the region cannot hold; the predicate 'the
-    body broke out' (None: it never does) and the loop's AL (None: the target has no aL).
+    loop leaves after this iteration' (None: it never does), the loop's AL (None: the target
+    has no aL) and the discards the body made (held by the loop node).
 
     continue: the rest of the body runs under its predicate (selects), the step does not.
     break: the rest of the body and the step run under its predicate, so the results are the
     values the loop had when it broke; the loop leaves at the end of the iteration, after the
     results are moved back, by `break_ne` (dynamic flow control: vs_2_a, vs_3_0, ps_3_0).
-    Return and discard inside stay refused. The body must not change the counter (a rep /
-    loop runs its count whatever the counter holds; aL steps by itself)."""
+    return: the frame's 'returned' and return value are carried like variables (real_loop's
+    flow_vars), the rest of the body and later iterations run under 'not returned', and where
+    the target has break_comp the loop also leaves once it returned. discard: a texkill in
+    the body. The body must not change the counter (a rep / loop runs its count whatever the
+    counter holds; aL steps by itself)."""
     ctx = ev.ctx
-    escapes = Escapes.note(ev)
+    made = Effects.note(ev)
+    frame = ev.frames[-1] if ev.frames else None
+    returned = frame.returned if frame is not None else None
     loop = Loop()
     counter = ev.lookup(bound.counter)
     first = flat(counter.value) if counter is not None else None
@@ -339,7 +350,6 @@ def _run_body(ev: Any, tree: Any, body: Any, step: Any, bound: Bound
     ev.loops.append(loop)
     try:
         ev.scoped(body)
-        escapes.refuse(ev, "in the body", "rep")
         loop.continued = None
         broken = loop.broken
         if broken is not None and not TargetFlow.of(ctx.target).dynamic:
@@ -351,13 +361,17 @@ def _run_body(ev: Any, tree: Any, body: Any, step: Any, bound: Bound
                           "count it was given, and aL steps by itself)")
         for e in step.children:
             ev.expr(e)
+        if frame is not None and frame.returned is not returned and \
+                TargetFlow.of(ctx.target).dynamic:
+            broken = ev._or(broken, frame.returned)      # leave once it returned
         if broken is not None and broken.const_values() is not None:
-            raise NotReal("the body always breaks")
-        return broken, al
+            raise NotReal("the body always breaks" if loop.broken is not None else
+                          "the body always returns")
+        return broken, al, made.take(ev)
     finally:
         leave(ev, "loop")
         ev.loops.pop()
-        escapes.undo(ev)
+        made.take(ev)             # a body that cannot be real: its discards are dropped
 
 
 def has_attribute(attrs: Any, name: str) -> bool:
