@@ -19,8 +19,12 @@ Evaluation: each side runs once with no predicate; the variables a side changes 
 an array or struct changed makes it NotReal) become results: the `if` node holds the condition
 operands, the then-results and the else-results (the value before the `if` where a side
 leaves a variable alone), and each changed variable reads `if_out` nodes after it. codegen
-(flowcode.py) places the nodes used only by one side inside it. A side that returns, breaks,
-continues or discards is NotReal (a bool `if` is then flattened; `[branch]` says why).
+(flowcode.py) places the nodes used only by one side inside it. A side may return, break,
+continue and discard: the frame's 'returned' and return value and the loop's 'broken' /
+'continued' are carried like variables (flowrules.flow_vars: what follows the if runs under
+'not returned' -- an early return by predicate), and a side's discards are held by the `if`
+node, so the texkill runs inside the side. A side that changes an array or a struct, or
+returns a struct, is NotReal (a bool `if` is then flattened; `[branch]` says why).
 """
 from __future__ import annotations
 

@@ -13,7 +13,10 @@ Placement, from the last node to the first (a node's users come after it):
 - then it is lifted out of every loop whose phis it does not depend on (loop-invariant code
   is computed once, before the loop; it stays inside the innermost loop it depends on), and in pixel shaders a gradient operation (texld,
   texldb, texldp, dsx, dsy) is lifted out of dynamic branches (gradients are undefined where
-  neighbouring pixels diverge, X4014), its coordinates with it.
+  neighbouring pixels diverge), its coordinates with it; one that depends on a loop with a
+  break (which pixels leave apart) cannot leave it: X4014 at it. A discard (`kill`, held by
+  the if / loop whose side or body made it) and an if / loop holding one are never lifted:
+  a loop may run no iteration.
 A block's nodes are emitted in creation order, which is topological; a nested block is
 emitted where its loop / if node is.
 """
