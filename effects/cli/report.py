@@ -31,8 +31,15 @@ def technique_name(tech: Technique | None) -> str:
 
 def validate_all(effect: Effect, profile: CapsProfile) -> list[Validation]:
     """Every technique of `effect` validated on `profile`, in file order."""
-    from effects.validate.technique import validate_technique
-    return [validate_technique(effect, t, profile) for t in effect.techniques]
+    return validate_cards(effect, (profile,))[0]
+
+
+def validate_cards(effect: Effect, profiles: Sequence[CapsProfile]) -> list[list[Validation]]:
+    """`validate_all` on each of `profiles`, in order; what the checks read of a pass that no
+    card changes is made once for all the cards (`validate_on_cards`)."""
+    from effects.validate.technique import validate_on_cards
+    per_technique = [validate_on_cards(effect, t, profiles) for t in effect.techniques]
+    return [[results[k] for results in per_technique] for k in range(len(profiles))]
 
 
 def _passes(n: int) -> str:
@@ -50,7 +57,7 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
         return False
     from effects.validate.select import as_policy, choose
     pol = as_policy(policy)
-    results = {p.name: validate_all(effect, p) for p in profiles}
+    results = dict(zip((p.name for p in profiles), validate_cards(effect, profiles)))
     table = Table(title=effect.path, show_lines=True, header_style="bold")
     table.add_column("technique", overflow="fold")
     for p in profiles:
@@ -102,8 +109,7 @@ def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
     out: dict = {}
     for path, effect in effects.items():
         per_card: dict = {}
-        for profile in profiles:
-            results = validate_all(effect, profile)
+        for profile, results in zip(profiles, validate_cards(effect, profiles)):
             chosen = choose(results, pol)
             rejected: dict[str, list[str]] = {}
             for v in results:

@@ -129,11 +129,26 @@ class ShaderChecks:
                   f"{subject} runs with {other}; Shader Model 3 shaders run only with each "
                   "other in hardware (a vs_3_0 in software vertex processing excepted)")
 
+    def program(self, value: Any) -> Any:
+        """`shader_program(effect, value)`, asked once per shader for all the cards one call
+        validates on (the pass analysis keeps it); an error is raised again."""
+        memo = self.analysis.programs
+        held = memo.get(id(value))
+        if held is None or held[0] is not value:
+            try:
+                result = shader_program(self.effect, value)
+            except EffectError as err:
+                result = err
+            held = memo[id(value)] = (value, result)
+        if isinstance(held[1], EffectError):
+            raise held[1]
+        return held[1]
+
     def assembly_problems(self, value: Any, software: bool) -> bool:
         """Whether a shader breaks its version's rules or the card's limits."""
         from effects.shaders.asm import card_limit_violations, check_cached
         try:
-            program = shader_program(self.effect, value)
+            program = self.program(value)
         except EffectError:
             return True
         if program is None:
@@ -144,7 +159,7 @@ class ShaderChecks:
     def check_assembly(self, value: Any, state_name: str, software: bool = False) -> None:
         from effects.shaders.asm import card_limit_violations, check_cached
         try:
-            program = shader_program(self.effect, value)
+            program = self.program(value)
         except EffectError as err:
             what = "HLSL that compiles" if isinstance(value, CompileShader) else "valid shader assembly"
             self.fail(err.location, state_name, what, "compile error" if isinstance(value, CompileShader)

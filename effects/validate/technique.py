@@ -50,10 +50,10 @@ helpers and run order, and the card quirk rules.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterable
+from typing import Any, Callable, Iterable, Sequence
 
 from effects.caps import FIELDS, CapsProfile, Quirk, bit_prefix
-from effects.device import DeviceState, pass_states
+from effects.device import _RAISE as _NO_DEFAULT, DeviceState, pass_states
 from effects.errors import EffectError, Location
 from effects.frontend.references import pass_reference_problems
 from effects.model import Effect, EnumValue, Expression, NullValue, ParamRef, Pass, Technique
@@ -68,7 +68,7 @@ from effects.stage_ops import TA_TEXTURE
 from effects.validate.values import _is_indexed, spelled
 
 __all__ = ["PassReport", "Reason", "Validation", "software_vs_version", "spelled", "texture_kind",
-           "validate_technique"]
+           "validate_on_cards", "validate_technique"]
 
 
 @dataclass(frozen=True)
@@ -157,18 +157,89 @@ def _unreliable(profile: CapsProfile) -> tuple[dict, dict]:
     return held[1], held[2]
 
 
+class _Reads(DeviceState):
+    """A pass's device state as the checks read it, each answer kept: every card's checker
+    asks the same questions of the same state (nothing here depends on the card), so on the
+    cards after the first they are dictionary lookups. Read only: it shares the state's
+    values (no check writes to the state it judges); a reader that raises is asked again."""
+
+    def __init__(self, state: DeviceState) -> None:
+        super().__init__(state.effect, state.values, state.host)
+        self._got: dict = {}
+        self._enums: dict = {}
+        self._ints: dict = {}
+
+    def copy(self) -> DeviceState:
+        return DeviceState(self.effect, dict(self.values), self.host)
+
+    def get(self, name: str, index: int | None = None) -> Any:
+        key = (name, index)
+        try:
+            return self._got[key]
+        except KeyError:
+            value = self._got[key] = DeviceState.get(self, name, index)
+            return value
+
+    def get_enum(self, name: str, index: int | None = None, default: Any = _NO_DEFAULT) -> Any:
+        key = (name, index, default)
+        try:
+            return self._enums[key]
+        except KeyError:
+            value = (DeviceState.get_enum(self, name, index) if default is _NO_DEFAULT
+                     else DeviceState.get_enum(self, name, index, default))
+            self._enums[key] = value
+            return value
+
+    def get_int(self, name: str, index: int | None = None, default: Any = _NO_DEFAULT) -> Any:
+        key = (name, index, default)
+        try:
+            return self._ints[key]
+        except KeyError:
+            value = (DeviceState.get_int(self, name, index) if default is _NO_DEFAULT
+                     else DeviceState.get_int(self, name, index, default))
+            self._ints[key] = value
+            return value
+
+
+class _PassAnalysis:
+    """What the checks of one pass read that no card changes, made once for every card the
+    pass is validated on in one call (`validate_on_cards`): the device state the pass draws
+    with, its expression-valued states evaluated at the parameters' current values, the
+    state as the checks read it (`_Reads`) and the pass's bad parameter references. Made
+    afresh for each call: between calls a host may set other parameter values."""
+
+    __slots__ = ("state", "expressions", "reads", "programs", "_references")
+
+    def __init__(self, effect: Effect, state: DeviceState, programs: dict) -> None:
+        self.state = state
+        # the checks read expression-valued states as their values now (the report keeps the
+        # state as written: lowering evaluates again when it draws)
+        self.expressions = ExpressionValues(effect, state)
+        self.reads = _Reads(self.expressions.state)
+        # shader value id -> (value, its program or EffectError), for every pass of the call
+        self.programs = programs
+        self._references: list[tuple[Location, str]] | None = None
+
+    def references(self, effect: Effect, p: Pass) -> list[tuple[Location, str]]:
+        if self._references is None:
+            self._references = pass_reference_problems(effect, p)
+        return self._references
+
+
 class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
                    VertexTextureChecks, PointChecks):
     """Runs every check for one pass and collects its reasons."""
 
     def __init__(self, effect: Effect, technique: Technique, p: Pass, index: int,
-                 state: DeviceState, profile: CapsProfile) -> None:
+                 analysis: _PassAnalysis, profile: CapsProfile) -> None:
         self.effect, self.technique, self.pass_, self.profile = effect, technique, p, profile
-        self.report = PassReport(p.name or str(index), index, p.location, state=state)
-        # the checks read expression-valued states as their values now (the report keeps the
-        # state as written: lowering evaluates again when it draws)
-        self.expressions = ExpressionValues(effect, state)
-        self.state = self.expressions.state
+        self.analysis = analysis
+        # each report holds its own copy of the pass's state, as when every card played the
+        # passes through itself
+        self.report = PassReport(p.name or str(index), index, p.location,
+                                 state=analysis.state.copy())
+        self.expressions = analysis.expressions
+        self.state = analysis.reads
         # quirks that make a reported caps bit or format unusable: (field, bit) / (format, usage)
         self.unreliable_bits, self.unreliable_formats = _unreliable(profile)
 
@@ -275,7 +346,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
 
     def check_references(self) -> None:
         """`Texture[0] = <Nope>`, `<Tint>` a float4: no card runs a pass naming what is not there."""
-        for location, message in pass_reference_problems(self.effect, self.pass_):
+        for location, message in self.analysis.references(self.effect, self.pass_):
             self.fail(location, message.split(" = ", 1)[0], "a declared parameter of the state's type",
                       "not in the effect", message)
 
@@ -381,6 +452,17 @@ _QUIRK_CHECKS: dict[str, Callable[[_PassChecker, Quirk], Iterable[tuple[Location
 
 def validate_technique(effect: Effect, technique: Technique, profile: CapsProfile) -> Validation:
     """Validate every pass of `technique` on `profile`, collecting all reasons."""
-    reports = [_PassChecker(effect, technique, p, i, state, profile).run()
-               for i, (p, state) in enumerate(pass_states(effect, technique.passes))]
-    return Validation(technique, profile, reports)
+    return validate_on_cards(effect, technique, (profile,))[0]
+
+
+def validate_on_cards(effect: Effect, technique: Technique,
+                      profiles: Sequence[CapsProfile]) -> list[Validation]:
+    """`validate_technique` on each of `profiles`, in order: the same answers, with what the
+    checks read of each pass that no card changes (`_PassAnalysis`) made once for all of them."""
+    programs: dict = {}
+    analyses = [(p, _PassAnalysis(effect, state, programs))
+                for p, state in pass_states(effect, technique.passes)]
+    return [Validation(technique, profile,
+                       [_PassChecker(effect, technique, p, i, analysis, profile).run()
+                        for i, (p, analysis) in enumerate(analyses)])
+            for profile in profiles]

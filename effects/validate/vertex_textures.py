@@ -28,7 +28,6 @@ from typing import Any
 
 from effects.errors import EffectError, Location
 from effects.states import VERTEX_TEXTURE_SAMPLER0
-from effects.validate.shaders import shader_program
 from effects.validate.textures import _annotation_str, texture_kind
 
 _TEXTURE_READS = frozenset({"texldl"})
@@ -39,7 +38,7 @@ class VertexTextureChecks:
 
     def check_vertex_textures(self, shader: tuple[Any, Location]) -> None:
         try:
-            program = shader_program(self.effect, shader[0])
+            program = self.program(shader[0])
         except EffectError:
             return                                   # the shader checks report it
         if program is None or program.kind != "vs":
