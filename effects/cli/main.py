@@ -8,7 +8,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING, Any, Sequence
 
 from effects.errors import EffectError
 
@@ -354,6 +354,24 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class _LazyConsole:
+    """The console the commands print through: rich's `Console(highlight=False)`, made (and
+    rich imported) on first use. `plain_ok` tells a printer that this is the command line's
+    own console on sys.stdout, so where rich would print plain text it may write the same text
+    itself (`report.print_matrix`: `effects matrix` into a pipe or file needs no rich)."""
+
+    plain_ok = True
+
+    def __init__(self) -> None:
+        self._console: Any = None
+
+    def __getattr__(self, name: str) -> Any:
+        if self._console is None:
+            from rich.console import Console
+            self._console = Console(highlight=False)
+        return getattr(self._console, name)
+
+
 def _stderr() -> "Console":
     from rich.console import Console
     return Console(stderr=True, highlight=False)
@@ -362,8 +380,7 @@ def _stderr() -> "Console":
 def main(argv: Sequence[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
-        from rich.console import Console
-        code = args.run(args, Console(highlight=False))
+        code = args.run(args, _LazyConsole())
         sys.stdout.flush()   # a closed pipe is found here, inside the handlers below
         return code
     except UsageError as exc:

@@ -9,14 +9,12 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Mapping, Sequence
 
-from rich import box
-from rich.console import Console
-from rich.table import Table
-from rich.text import Text
-
 from effects.caps import GENERATIONS, CapsProfile
 
 if TYPE_CHECKING:  # pragma: no cover
+    # rich loads when a table is drawn through it: `effects matrix` into a pipe or file
+    # prints its table without it (plaintable)
+    from rich.console import Console
     # Validation (and numpy with it) loads when a table needs it: `effects profiles` does not.
     from effects.model import Effect, Technique
     from effects.validate.select import PolicyLike
@@ -51,6 +49,8 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
     """Print techniques × cards (✓ with the pass count, ✗ with the first reason) and the
     technique each card selects; with `why`, then every reason, warning and note. Returns
     whether every named card can run some technique."""
+    from rich.table import Table
+    from rich.text import Text
     if not effect.techniques:
         console.print(Text(f"{effect.path}: the effect has no techniques, so no card can render it"),
                       soft_wrap=True)
@@ -84,6 +84,7 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
 def _print_details(effect: Effect, profiles: Sequence[CapsProfile],
                    results: Mapping[str, list[Validation]], console: Console) -> None:
     """Every reason, warning and note, one line each, grouped by card and technique."""
+    from rich.text import Text
     for profile in profiles:
         console.print(Text(f"{profile.name} ({profile.display_name or profile.name}, {profile.generation})",
                            style="bold"))
@@ -126,20 +127,41 @@ def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
     return out
 
 
-def print_matrix(result: dict, console: Console) -> None:
-    """Cards down, effects across: the chosen technique and its pass count."""
+def _matrix_cells(result: dict) -> tuple[list[str], list[list[str]]]:
+    """The matrix table's header and rows as text: cards down, effects across."""
     profiles = list(next(iter(result.values())).keys()) if result else []
-    table = Table(header_style="bold", show_lines=False)
-    table.add_column("card", overflow="fold")
-    for path in result:
-        table.add_column(_short(path), overflow="fold")
+    header = ["card", *(_short(path) for path in result)]
+    rows = []
     for name in profiles:
         row = [name]
         for path in result:
             cell = result[path][name]
-            row.append(Text(f"{cell['technique']} ({cell['passes']})") if cell["technique"]
-                       else Text("none", style="red"))
-        table.add_row(*row)
+            row.append(f"{cell['technique']} ({cell['passes']})" if cell["technique"] else "none")
+        rows.append(row)
+    return header, rows
+
+
+def print_matrix(result: dict, console: Console) -> None:
+    """Cards down, effects across: the chosen technique and its pass count. Printed without
+    rich where the text is what rich would print (the command line's console, output not a
+    terminal: `plaintable`), else through rich."""
+    header, rows = _matrix_cells(result)
+    if getattr(console, "plain_ok", False):
+        import sys
+        from effects.cli import plaintable
+        width = plaintable.plain_width()
+        text = plaintable.render(header, rows, width) if width is not None else None
+        if text is not None:
+            sys.stdout.write(text)
+            return
+    from rich.table import Table
+    from rich.text import Text
+    table = Table(header_style="bold", show_lines=False)
+    for title in header:
+        table.add_column(title, overflow="fold")
+    for row in rows:
+        table.add_row(row[0], *[Text(c) if c != "none" else Text("none", style="red")
+                                for c in row[1:]])
     console.print(table)
 
 
@@ -180,6 +202,9 @@ def print_profiles(profiles: Sequence[CapsProfile], console: Console) -> None:
     `size` the largest texture side, `ps` and `vs` shader versions. `vs` is the
     hardware vertex shader version, or `sw` when vertex shaders run only in software (where
     software or mixed vertex processing is offered, it runs up to vs_3_0 on every card)."""
+    from rich import box
+    from rich.table import Table
+    from rich.text import Text
     ordered = sorted(profiles, key=lambda p: (GENERATIONS.index(p.generation), p.name))
     rows = [profile_row(p) for p in ordered]
     table = Table(header_style="bold", box=box.SIMPLE_HEAD, pad_edge=False)
