@@ -2,9 +2,16 @@
 tinted effect that the reload and viewer tests edit on disk."""
 from __future__ import annotations
 
+import os
+import tempfile
 from pathlib import Path
 
 import pytest
+
+# The command line keeps compiled shaders on disk (effects/shaders/hlsl/store.py): the tests'
+# commands, in process and as child processes, keep theirs in a folder of this run, not in the
+# user's ~/.cache.
+os.environ["EFFECTS_CACHE_DIR"] = tempfile.mkdtemp(prefix="effects-test-shaders-")
 from PIL import Image
 
 from effects.backend import create_backend

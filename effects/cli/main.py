@@ -380,7 +380,13 @@ def _stderr() -> "Console":
 def main(argv: Sequence[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
-        code = args.run(args, _LazyConsole())
+        # compiled shaders are kept on disk between commands (effects/shaders/hlsl/store.py)
+        from effects.shaders.hlsl import store
+        store.enable()
+        try:
+            code = args.run(args, _LazyConsole())
+        finally:
+            store.disable()
         sys.stdout.flush()   # a closed pipe is found here, inside the handlers below
         return code
     except UsageError as exc:

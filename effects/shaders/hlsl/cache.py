@@ -30,7 +30,6 @@ from typing import Any, Callable
 from effects.errors import EffectError
 from effects.lru import ByteLRU
 from effects.model import CompileShader, Effect, RecordedReads
-from effects.shaders.hlsl.context import load_context
 
 CACHE_BYTES = 64 << 20
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
@@ -155,6 +154,11 @@ def _parameter_part(param: Any) -> tuple:
 
 def _compile_key(effect: Any, value: CompileShader, seen: list) -> tuple:
     """The key, walking from the entry; every parameter lookup is appended to `seen`."""
+    return key_parts(effect, value, seen) + (_all_load(effect),)
+
+
+def key_parts(effect: Any, value: CompileShader, seen: list) -> tuple:
+    """The key without its last part (whether every declaration loads, which parses them)."""
     functions: dict[str, list[Any]] = {}
     for f in effect.functions:
         functions.setdefault(f.name, []).append(f)
@@ -186,16 +190,21 @@ def _compile_key(effect: Any, value: CompileShader, seen: list) -> tuple:
             if static and isinstance(text, str):     # an initialiser kept as an expression
                 todo.extend(_names(text))
     where = value.location if value.args else None   # arguments are located at the state
-    return (effect.path, value.profile.lower(), value.function, value.args, where, tuple(parts),
-            _all_load(effect))
+    return (effect.path, value.profile.lower(), value.function, value.args, where, tuple(parts))
+
+
+def declarations(effect: Any) -> tuple:
+    """Every struct, typedef and function of `effect` as the key holds them."""
+    return tuple(_declaration(obj, value=False) for obj in [*effect.structs, *effect.functions])
 
 
 def _all_load(effect: Any) -> tuple:
     """() when every struct, typedef and function of `effect` parses and resolves (a load of
     the declarations, kept by their texts); else all of them, since the error comes from one."""
-    every = tuple(_declaration(obj, value=False) for obj in [*effect.structs, *effect.functions])
+    every = declarations(effect)
     ok = _LOADS.get(every)
     if ok is None:
+        from effects.shaders.hlsl.context import load_context   # the HLSL front end: here only
         try:
             load_context(effect, "ps_2_0")
             ok = True
@@ -208,7 +217,22 @@ def _all_load(effect: Any) -> tuple:
 def cached_compile(effect: Any, value: CompileShader, compile: Callable[[], Any],
                    error_type: type[Exception]) -> Any:
     """`compile()`'s shader for `value`, from the cache when the key was compiled before;
-    a cached error is raised again."""
+    a cached error is raised again. Where the on-disk store is enabled (store.py: the command
+    line), a shader stored by an earlier process for the same inputs is used first, found by
+    a key that needs no parse of the effect's declarations."""
+    from effects.shaders.hlsl import store
+    stored = store.key(key_parts(effect, value, []), declarations(effect), value.location) \
+        if store.enabled() else None
+    if stored is not None:
+        hit = _STORED.get(stored)
+        if hit is None:
+            hit = store.load(stored)
+            if hit is not None:
+                _STORED.put(stored, hit)
+        if hit is not None:
+            if isinstance(hit, error_type):
+                raise hit
+            return hit
     key = compile_key(effect, value)
     hit = CACHE.get(key)
     if hit is None:
@@ -220,12 +244,31 @@ def cached_compile(effect: Any, value: CompileShader, compile: Callable[[], Any]
         except error_type as err:
             hit = err
             CACHE.put(key + (value.location,), err)
+    if stored is not None:
+        _STORED.put(stored, hit)
+        store.save(stored, hit)
     if isinstance(hit, error_type):
         raise hit
     return hit
+
+
+# on-disk store key -> what it names, for the length of the process (a stored shader is read
+# once, not once per card)
+_STORED = ByteLRU(CACHE_BYTES, size_of=entry_bytes)
+
+
+def compile_state(effect: Effect, value: CompileShader) -> Any:
+    """The shader (a shader.CompiledShader) of a `compile` state, compiled once per distinct
+    input."""
+    def compile() -> Any:
+        from effects.shaders.hlsl import compiler
+        return compiler.compile_shader(effect, value.function, value.profile, value.args,
+                                       value.location)
+    return cached_compile(effect, value, compile, EffectError)
 
 
 def clear() -> None:
     """Forget every compile (tests; a host that wants the memory back)."""
     CACHE.clear()
     _LOADS.clear()
+    _STORED.clear()

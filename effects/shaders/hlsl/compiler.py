@@ -1,6 +1,6 @@
 """compile_shader: an effect's HLSL function compiled for a target, as fxc did.
 
-    shader = compile_shader(effect, "Wood", "ps_2_0")          # or compile_state(effect, cs)
+    shader = compile_shader(effect, "Wood", "ps_2_0")          # or cache.compile_state(effect, cs)
     shader.text        # the assembly (vs_1_1 ... ps_3_0)
     shader.program     # that text assembled (effects.shaders.asm), located in the HLSL
     shader.constants   # parameter -> (first c#, count): what the pass must load
@@ -14,13 +14,14 @@ hand-written shader; each instruction of `program` is located at the HLSL line i
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
 from typing import Any
 
-from effects.errors import AsmError, EffectError, EffectWarning, Location
-from effects.model import CompileShader, Effect, ShaderBlock
-from effects.shaders.asm import AsmProgram, assemble
-from effects.shaders.hlsl.cache import cached_compile
+from effects.errors import Location
+from effects.model import Effect
+from effects.shaders.asm import AsmProgram
+# CompiledShader lives in shader.py and compile_state in cache.py: a cached shader needs no
+# compiler (CompiledShader is importable from here as before)
+from effects.shaders.hlsl.shader import CompiledShader, assemble_generated
 from effects.shaders.hlsl.calls import parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.codegen import CodeGen
@@ -37,25 +38,6 @@ _SEMANTIC = re.compile(r"^([A-Za-z_]+?)(\d*)$")
 _VS_OUT = {"POSITION": "oPos", "COLOR": "oD", "TEXCOORD": "oT", "FOG": "oFog", "PSIZE": "oPts"}
 
 
-@dataclass
-class CompiledShader:
-    function: str
-    target: str
-    text: str
-    program: AsmProgram
-    constants: dict[str, tuple[int, int]]
-    samplers: dict[str, int]
-    lines: list[Location]                       # per line of `text`
-    warnings: list[EffectWarning] = field(default_factory=list)
-    types: dict[str, HType] = field(default_factory=dict)
-    int_registers: dict[str, int] = field(default_factory=dict)
-    bool_registers: dict[str, int] = field(default_factory=dict)
-
-    @property
-    def stage(self) -> str:
-        return "vertex" if self.target.startswith("vs") else "pixel"
-
-
 def split_semantic(text: str) -> tuple[str, int]:
     m = _SEMANTIC.match(text.strip())
     if not m:
@@ -70,12 +52,6 @@ def split_semantic(text: str) -> tuple[str, int]:
 _SV_AS_D3D9 = {"SV_POSITION": "POSITION", "SV_TARGET": "COLOR", "SV_DEPTH": "DEPTH"}
 # ps_3_0's two misc inputs: (register, its declaration)
 _PS3_MISC = {"VPOS": ("vPos", "dcl vPos.xy"), "VFACE": ("vFace", "dcl vFace")}
-
-
-def compile_state(effect: Effect, value: CompileShader) -> CompiledShader:
-    """The shader of a `compile` state, compiled once per distinct input (cache.py)."""
-    return cached_compile(effect, value, lambda: compile_shader(
-        effect, value.function, value.profile, value.args, value.location), EffectError)
 
 
 def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...] = (),
@@ -198,35 +174,8 @@ def _compile_argument(ctx: Context, ev: Evaluator, text: str, t: HType, where: L
 
 def _assemble(text: str, ctx: Context, lines: list[str], locations: list[Location],
               fdef: Any, where: Location) -> AsmProgram:
-    block = ShaderBlock("vertex" if ctx.target.kind == "vs" else "pixel", ctx.target.name, text,
-                        location=Location(f"<{fdef.name}:{ctx.target.name}>", 1, 1))
-    try:
-        program = assemble(block)
-    except AsmError as err:   # a code generator bug: say where it came from
-        k = err.location.line - 1
-        loc = locations[k] if 0 <= k < len(locations) and locations[k].line else fdef.origin.at(fdef.tree)
-        raise HlslError(f"internal: the generated {ctx.target.name} code does not assemble: "
-                        f"{err.message} ({lines[k] if 0 <= k < len(lines) else ''})", loc) from None
-    entry_loc = fdef.origin.at(fdef.tree)
-
-    def relocate(loc: Location) -> Location:
-        k = loc.line - 1
-        found = locations[k] if 0 <= k < len(locations) else None
-        return found if found is not None and found.line else entry_loc
-    for ins in program.instructions:
-        ins.location = relocate(ins.location)
-        for op in ins.operands:
-            op.location = ins.location
-    for d in program.dcls:
-        d.location = entry_loc
-        d.register.location = entry_loc
-    for cd in program.def_statements:
-        cd.location = entry_loc
-        cd.register.location = entry_loc
-    program.location = entry_loc
-    program.origin = Location(entry_loc.path, 0, 1)
-    program.source_lines = ()
-    return program
+    return assemble_generated(text, ctx.target.name, fdef.name, lines, locations,
+                              fdef.origin.at(fdef.tree))
 
 
 class _Binder:
