@@ -50,7 +50,9 @@ def parse(raw: bytes, check_counts: Callable[[int, int], None] | None = None
     size = len(body)
     nl = np.concatenate([np.flatnonzero(data[at:at + _SCAN] == _NL) + at
                          for at in range(0, size, _SCAN)])
-    starts = np.concatenate([[0], nl[:-1] + 1])
+    starts = np.empty_like(nl)
+    starts[:1] = 0
+    np.add(nl[:-1], 1, out=starts[1:])
     ends = nl                                          # each line's '\n'
     if b"\r" in body:
         cr = np.flatnonzero(data == _CR)
@@ -61,7 +63,9 @@ def parse(raw: bytes, check_counts: Callable[[int, int], None] | None = None
         if not ((hashes == 0) | (data[hashes - 1] == _NL)).all():
             return None                                # a comment after a statement
     # bytes 1 and 2 of each line (the file's last '\n' past its end, as if it had more)
-    b0, b1, b2 = data[starts], data[np.minimum(starts + 1, size - 1)], data[np.minimum(starts + 2, size - 1)]
+    # (data[k:] at a line start, clipped to its last byte: data[min(start + k, size - 1)])
+    b0, b1, b2 = (data[k:].take(starts, mode="clip") if size > k
+                  else data[np.minimum(starts + k, size - 1)] for k in range(3))
     if check_counts is not None:
         spaced = (b1 == _SP) | (b1 == _TAB)
         check_counts(int(np.count_nonzero((b0 == ord("v")) & spaced)),
@@ -80,7 +84,8 @@ def parse(raw: bytes, check_counts: Callable[[int, int], None] | None = None
     vertex_lines = kinds["v"] | kinds["vt"] | kinds["vn"]
     if vertex_lines[faces_at[0]:].any():               # "defined so far" would matter
         return None
-    lengths = ends - starts + 1
+    lengths = np.subtract(ends, starts)
+    lengths += 1
     columns = {}
     for kind, fields in (("v", 3), ("vt", 2), ("vn", 3)):
         parts = [_floats(*batch, fields) for batch in _batches(data, starts, lengths, kinds[kind], len(kind))]
@@ -225,8 +230,10 @@ def _batches(data: np.ndarray, starts: np.ndarray, lengths: np.ndarray, which: n
 
 def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Start and end (exclusive) of each run of True in `mask`."""
-    edge = np.diff(np.concatenate([[False], mask, [False]]).view(np.int8))
-    return np.flatnonzero(edge == 1), np.flatnonzero(edge == -1)
+    padded = np.zeros(len(mask) + 2, bool)
+    padded[1:-1] = mask
+    edges = np.flatnonzero(np.not_equal(padded[1:], padded[:-1]))   # starts and ends alternate
+    return edges[0::2].copy(), edges[1::2].copy()
 
 
 def _per_line(first: np.ndarray, last: np.ndarray, line_starts: np.ndarray,
@@ -243,7 +250,7 @@ def _floats(chunk: np.ndarray, line_starts: np.ndarray, line_ends: np.ndarray,
     """(lines, fields) doubles, each as float() reads its token; None if one is not a number
     or a line has another number of them. A plain token (sign, point, up to 15 digits) is
     read by Horner's rule over its bytes, one byte position of every token at a time."""
-    first, last = _runs(~_WS[chunk])
+    first, last = _runs(chunk > _SP)   # not whitespace: every other allowed byte is above ' '
     if not _per_line(first, last, line_starts, line_ends, fields):
         return None
     count = len(first)
@@ -306,7 +313,7 @@ def _corners(chunk: np.ndarray, line_starts: np.ndarray, line_ends: np.ndarray,
     having neither digits nor slashes, is whitespace: the corners are separate tokens."""
     if chunk.tobytes().translate(None, _FACE_BYTES):
         return None                                # a sign, a letter: the reader says
-    first, last = _runs((chunk >= 48) & (chunk <= 57))
+    first, last = _runs(np.subtract(chunk, 48, dtype=np.uint8) < 10)   # '0'..'9' (others wrap)
     lines = len(line_starts)
     if not lines or len(first) % (fields * lines):
         return None
