@@ -29,6 +29,7 @@ QUAD_DY = np.array([0, 0, 1, 1], dtype=np.int32)
 _GUARD_PIXELS = float(1 << 16)
 CULL_MODES = ("NONE", "CW", "CCW")
 _CLIPPING_PLANES = 7        # near, far, four guard-band sides, w > 0
+_NEXT = [1, 2, 0]           # edge i runs from vertex i to vertex _NEXT[i]
 
 
 @dataclass
@@ -361,33 +362,59 @@ def _cover(X: np.ndarray, Y: np.ndarray, width: int, height: int, y0: int = 0,
     starts = np.cumsum(nrows) - nrows
     row_qy = per_row(qy0 - 2 * starts) + 2 * np.arange(total_rows)
 
-    # Per edge i (vertex i -> i+1), per triangle: the terms of c(y) = dx*(y*256 - ay) + dy*ax,
-    # the divisor (1 for a horizontal edge) and the slope's sign, then per row.
-    edges = []
-    for i in range(3):
-        ax, ay, bx, by = X[:, i], Y[:, i], X[:, (i + 1) % 3], Y[:, (i + 1) % 3]
-        dx, dy = bx - ax, by - ay
-        bias = np.where((dy < 0) | ((dy == 0) & (dx > 0)), 0, 1)  # top-left edges own the edge
-        slope = dy * _ONE
-        edges.append((per_row(dx), per_row(dy * ax - dx * ay - bias),
-                      per_row(np.where(slope == 0, 1, slope)), per_row(slope < 0),
-                      per_row(slope > 0)))
-    big = np.int64(1) << 40
+    # Edge i runs from vertex i to i+1; its edge function on pixel row y, less the top-left
+    # bias, is c(y) - slope * x with c(y) = dx*(y*256 - ay) + dy*ax - bias, slope = dy*256,
+    # and pixel x is inside it where slope * x <= c(y). A clockwise triangle has one or two
+    # edges of slope < 0 (each bounds x below, by ceil(c / slope)), one or two of slope > 0
+    # (each bounds it above, by floor(c / slope)), and at most one of slope 0 (which keeps
+    # or drops the whole row). Four edge slots, two of each bound (a lone edge of its kind
+    # in both), make the bounds two maxima and two minima with no selection per row; every
+    # value is an exact integer, so the spans are those of testing each edge on its own.
+    count = len(X)
+    ax, ay = np.ascontiguousarray(X.T), np.ascontiguousarray(Y.T)    # (3, T): edge i's start
+    dx, dy = ax[_NEXT] - ax, ay[_NEXT] - ay
+    # top-left edges own the pixels on them (bias 0), the others not (bias 1)
+    c0 = dy * ax
+    c0 -= dx * ay
+    c0 -= ~((dy < 0) | ((dy == 0) & (dx > 0)))
+    slope = dy * _ONE
+    fall, rise = slope < 0, slope > 0
+    # ceil(c / s) = floor((c + s + 1) / s) for s < 0: one floor division serves both bounds
+    c0 += (slope + 1) * fall
+    # each triangle's first and last edge of each kind, as indices into the (3, T) arrays
+    f0, f1, f2 = fall
+    r0, r1, r2 = rise
+    slots = np.empty((4, count), np.int64)
+    slots[0] = np.where(f0, 0, np.where(f1, 1, 2))
+    slots[1] = np.where(f2, 2, np.where(f1, 1, 0))
+    slots[2] = np.where(r0, 0, np.where(r1, 1, 2))
+    slots[3] = np.where(r2, 2, np.where(r1, 1, 0))
+    slots *= count
+    slots += np.arange(count)
+    picked = np.empty((3, 4, count), np.int64)
+    for out, values in zip(picked, (dx, c0, slope)):
+        values.reshape(-1).take(slots, out=out)
+    e_dx, e_c0, e_slope = np.repeat(picked, nrows, axis=2)          # (4, rows) each
+    flat = slope == 0
+    has_flat = bool(flat.any())
+    if has_flat:   # the horizontal edge's c(y) (0 where a triangle has none: keeps every row)
+        h_dx = per_row((dx * flat).sum(axis=0))
+        h_c0 = per_row((c0 * flat).sum(axis=0))
     span_lo, span_hi = [], []
     for r in (0, 1):
         py = (row_qy + r) * _ONE
-        x_lo = np.zeros(total_rows, np.int64)
-        x_hi = np.full(total_rows, width - 1, np.int64)
-        for dx, c0, safe, falling, rising in edges:
-            c = dx * py + c0                          # E(x) - bias = c - slope * x >= 0
-            # slope * x <= c: slope < 0 bounds x below by ceil(c / slope), slope > 0 above by
-            # floor(c / slope); a horizontal edge keeps or drops the whole row.
-            np.maximum(x_lo, np.where(falling, -((-c) // safe), np.where(c < 0, big, -big)),
-                       out=x_lo)
-            np.minimum(x_hi, np.where(rising, c // safe, big), out=x_hi)
+        q = e_dx * py
+        q += e_c0
+        q //= e_slope                       # rows 0, 1: lower bounds; rows 2, 3: upper
+        x_lo = np.maximum(np.maximum(q[0], q[1]), 0)
+        x_hi = np.minimum(np.minimum(q[2], q[3]), width - 1)
         empty = (x_hi < x_lo) | (row_qy + r >= height)
-        span_lo.append(np.where(empty, big, x_lo))
-        span_hi.append(np.where(empty, -big, x_hi))
+        if has_flat:
+            empty |= h_dx * py + h_c0 < 0
+        # an empty row as the span (width + 1, -2): past both ends, so it never joins a
+        # quad's span, as a clipped one never reaches past them
+        span_lo.append(np.where(empty, width + 1, x_lo).astype(np.int32))
+        span_hi.append(np.where(empty, -2, x_hi).astype(np.int32))
     qx_lo = np.minimum(span_lo[0], span_lo[1]) & ~1
     qx_hi = np.maximum(span_hi[0], span_hi[1])
     nquads = np.where(qx_hi >= qx_lo, (qx_hi - qx_lo) // 2 + 1, 0)
@@ -403,8 +430,7 @@ def _cover(X: np.ndarray, Y: np.ndarray, width: int, height: int, y0: int = 0,
     qx1 = qx + 1
     covered = np.empty((total, 4), bool)
     for r in (0, 1):
-        lo = per_quad(np.clip(span_lo[r], -1, width + 1).astype(np.int32))
-        hi = per_quad(np.clip(span_hi[r], -2, width).astype(np.int32))
+        lo, hi = per_quad(span_lo[r]), per_quad(span_hi[r])
         np.logical_and(qx >= lo, qx <= hi, out=covered[:, 2 * r])
         np.logical_and(qx1 >= lo, qx1 <= hi, out=covered[:, 2 * r + 1])
     qy = per_quad(row_qy.astype(np.int32))
