@@ -30,6 +30,7 @@ _GUARD_PIXELS = float(1 << 16)
 CULL_MODES = ("NONE", "CW", "CCW")
 _CLIPPING_PLANES = 7        # near, far, four guard-band sides, w > 0
 _NEXT = [1, 2, 0]           # edge i runs from vertex i to vertex _NEXT[i]
+_LAM_J, _LAM_K = [1, 2, 0], [2, 0, 1]    # corner i's barycentric from the edge j -> k
 
 
 @dataclass
@@ -447,27 +448,38 @@ def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs_t
     """Depth and perspective-correct varyings at every row (pixel), from per-triangle plane
     equations (float64) of the screen-space barycentrics weighted by 1/w, and of z/w.
     `attrs_t` is the vertex attributes component-major, (K, V).
-    Work is laid out as long 1-D runs (NumPy is slow on tiny trailing axes)."""
-    fxs, fys = X / _ONE, Y / _ONE                                   # snapped, in pixels
+    Work is laid out as long runs over stacked arrays: the three corners (and the depth
+    plane) side by side, a row's per-triangle values gathered in one take (NumPy is slow on
+    tiny trailing axes and pays per call)."""
+    count_t = len(tris)
+    fxs, fys = X.T / _ONE, Y.T / _ONE                               # (3, T), in pixels
     a2 = area.astype(np.float64) / (_ONE * _ONE)
-    lam = []
-    for j, k in ((1, 2), (2, 0), (0, 1)):
-        ex, ey = fxs[:, k] - fxs[:, j], fys[:, k] - fys[:, j]
-        lam.append((-ey / a2, ex / a2, (ey * fxs[:, j] - ex * fys[:, j]) / a2))
-    corners = [np.ascontiguousarray(tris[:, i]) for i in range(3)]   # vertex i of each
-    inv_w_at = [inv_w[v] for v in corners]
-    sz_at = [sz[v] for v in corners]
-    planes = [tuple(c * inv_w_at[i] for c in lam[i]) for i in range(3)]
-    z_plane = [sum(lam[i][c] * sz_at[i] for i in range(3)) for c in range(3)]
+    # the barycentric plane of corner i from the edge opposite it, j -> k
+    ex, ey = fxs[_LAM_K] - fxs[_LAM_J], fys[_LAM_K] - fys[_LAM_J]
+    lam = np.empty((3, 3, count_t))                                 # (coefficient, corner, T)
+    np.divide(-ey, a2, out=lam[0])
+    np.divide(ex, a2, out=lam[1])
+    np.divide(ey * fxs[_LAM_J] - ex * fys[_LAM_J], a2, out=lam[2])
+    corners = np.ascontiguousarray(tris.T)                          # (3, T): vertex i of each
+    # planes: corners 0, 1, 2 (lam / w), then z/w: (plane, coefficient, T)
+    planes = np.empty((4, 3, count_t))
+    np.multiply(lam, inv_w[corners], out=planes[:3].transpose(1, 0, 2))
+    z_terms = lam * sz[corners]                                     # (coefficient, corner, T)
+    z_plane = planes[3]
+    np.add(0, z_terms[:, 0], out=z_plane)                           # as sum() adds, from 0
+    z_plane += z_terms[:, 1]
+    z_plane += z_terms[:, 2]
     if depth_bias or slope_bias:
         slope = np.maximum(np.abs(z_plane[0]), np.abs(z_plane[1]))
         z_plane[2] = z_plane[2] + depth_bias + slope_bias * slope
-    planes.append(tuple(z_plane))
 
     if quads:
         count = len(quad_tri) * 4
-        x = (qx[:, None] + QUAD_DX).reshape(-1)
-        y = (qy[:, None] + QUAD_DY).reshape(-1)
+        x = np.repeat(qx, 4)
+        x[1::2] += 1                                                # QUAD_DX: 0 1 0 1
+        y = np.repeat(qy, 4)
+        y[2::4] += 1                                                # QUAD_DY: 0 0 1 1
+        y[3::4] += 1
         row_tri = np.repeat(quad_tri, 4)
         covered = covered.reshape(-1)
     else:
@@ -477,20 +489,18 @@ def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs_t
         y = qy[q] + QUAD_DY[pixel]
         row_tri = quad_tri[q]
         covered = np.ones(count, bool)
+
     # Rows come grouped by triangle in triangle order (see `_cover`), so a per-triangle value
     # reaches its rows by a repeat: the same values as a gather by `row_tri`, faster.
-    counts = np.bincount(row_tri, minlength=len(tris))
-
-    def per_row(values: np.ndarray) -> np.ndarray:
-        return np.repeat(values, counts, axis=-1)
-
+    counts = (np.bincount(quad_tri, minlength=count_t) * 4 if quads
+              else np.bincount(row_tri, minlength=count_t))
     xf, yf = x.astype(np.float64), y.astype(np.float64)
-    values = []
-    for a, b, c in planes:
-        v = per_row(a) * xf
-        v += per_row(b) * yf
-        v += per_row(c)
-        values.append(v)
+    at_row = np.repeat(planes, counts, axis=2)                      # (plane, coefficient, N)
+    values = at_row[:, 0]
+    values *= xf
+    at_row[:, 1] *= yf
+    values += at_row[:, 1]
+    values += at_row[:, 2]                                          # (plane, N)
     # D3D clamps depth to the viewport's [MinZ, MaxZ] = [0, 1] (bias and helpers can leave it)
     depth = np.clip(values[3], 0.0, 1.0).astype(np.float32)
 
@@ -499,34 +509,27 @@ def _shade_setup(quad_tri, qx, qy, covered, tris, X, Y, area, sz, inv_w, attrs_t
         inv_sum = values[0] + values[1]
         inv_sum += values[2]
         np.divide(1.0, inv_sum, out=inv_sum)
+        weights = values[:3]
+        weights *= inv_sum
         # Covered pixels lie inside the triangle, so their weights are >= 0 up to rounding:
         # clamp the noise so a value equal at two vertices is exact along their edge and never
         # changes sign. Helper pixels keep their extrapolated weights (derivatives need them).
         floor = np.where(covered, 0.0, -np.inf) if quads else 0.0
-        everything = None
-        # Component-major (K, N): the weight scales whole rows (NumPy is slow on (N, K)
-        # arrays scaled row by row), and each varying component is a contiguous column;
-        # the corners are gathered from the transposed attributes, already (K, T).
+        np.maximum(weights, floor, out=weights)
+        # Component-major (K, corner, N): each corner's attributes gathered at the rows'
+        # vertices, scaled by the corner's weight, the three summed in corner order.
+        at_corners = attrs_t.take(corners.reshape(-1), axis=1).reshape(-1, 3, count_t)
         if provoking is not None:   # flat: every corner holds the provoking value
-            flat_t = np.ascontiguousarray(provoking[source][:, flat_cols].T)
-        for i in range(3):
-            wi = values[i]
-            wi *= inv_sum
-            np.maximum(wi, floor, out=wi)
-            corner = np.take(attrs_t, corners[i], axis=1)            # (K, T) at vertex i
-            if provoking is not None:
-                corner[flat_cols] = flat_t
-            term = per_row(corner)
-            term *= wi.astype(np.float32)
-            if everything is None:
-                everything = term
-            else:
-                everything += term
+            at_corners[flat_cols] = provoking[source][:, flat_cols].T[:, None, :]
+        terms = np.repeat(at_corners, counts, axis=2)                 # (K, corner, N)
+        terms *= weights.astype(np.float32)
+        everything = terms[:, 0] + terms[:, 1]
+        everything += terms[:, 2]
         col = 0
         for n in names:
             rows[n] = everything[col:col + dims[n]].T                 # (N, k) views
             col += dims[n]
     else:
         rows = {n: np.zeros((count, 0), np.float32) for n in names}
-    return QuadFragments(x, y, covered, depth, per_row(source), per_row(front), rows, quads,
-                         row_tri)
+    return QuadFragments(x, y, covered, depth, np.repeat(source, counts),
+                         np.repeat(front, counts), rows, quads, row_tri)
