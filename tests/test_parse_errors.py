@@ -41,8 +41,10 @@ CASES = [
     ("compile without an argument list",
      "technique T { pass P {\n  PixelShader = compile ps_2_0 PS;\n} }",
      ParseError, "2:34", "expected '(', found ';'"),
-    ("function prototype", "float4 PS(float2 uv);",
-     ParseError, "1:21", "expected a function body, found ';'"),
+    # `float4 PS(float2 uv);` is a prototype, valid HLSL (tests/test_kodu_constructs.py)
+    ("function with neither body nor ';'", "float4 PS(float2 uv)\nfloat x;",
+     ParseError, "2:1", "expected a function body or ';' (a prototype) after the parameter "
+                        "list of 'PS', found 'float'"),
     # -- unexpected end of file -----------------------------------------------------------------
     ("eof in technique",
      "technique T\n{\n    pass P\n    {\n        ZEnable = TRUE;\n    }\n",

@@ -36,6 +36,9 @@ _VERSION_RE = re.compile(r"(vs|ps)[._]([0-9])[._]([0-9a-z]+)\b", re.I)
 _DECL_TYPES = {"float": 1, "d3dcolor": 4, "ubyte": 4, "short": 2}
 
 
+_SIZE_OPERATORS = frozenset("+-*/%")
+
+
 class _NotConstant(Exception):
     """A value is an expression, not a constant the parser can evaluate."""
 
@@ -163,8 +166,12 @@ class Builder:
         for d in raws:
             if isinstance(d, Token):
                 dims.append(self.small_int(d, "array size"))
-            elif d[0] == "named":
-                dims.append(self.named_size(d[1]))
+            elif d[0] == "expr":
+                size = self.constant_int(d[1])
+                if not 0 <= size <= 65535:
+                    raise self.error(ParseError, f"array size {size} is too large"
+                                     if size > 0 else f"array size {size} is negative", d[1])
+                dims.append(size)
             else:
                 dims.append(self.unsized(spec, value, name, d[1]))
         if any(n == 0 for n in dims):
@@ -172,17 +179,46 @@ class Builder:
             raise self.error(ParseError, "array size must be at least 1", first)
         return tuple(dims)
 
-    def named_size(self, tok: Token) -> int:
-        param = self.built.get(tok.value)
-        value = None if param is None else param.value
-        if not isinstance(value, np.ndarray) or value.size != 1 or value.dtype.kind not in "iuf" \
-                or float(value.reshape(-1)[0]) != int(value.reshape(-1)[0]):
-            raise self.error(ParseError, f"array size '{tok.value}' is not a constant integer "
-                             "declared before (a static const int or a macro)", tok)
-        size = int(value.reshape(-1)[0])
-        if not 0 <= size <= 65535:
-            raise self.error(ParseError, f"array size {size} is too large", tok)
-        return size
+    def constant_int(self, v: V) -> int:
+        """An array size's constant integer expression: literals, constants declared before,
+        parentheses and + - * / % (C precedence, integer division toward zero, as fxc)."""
+        if v.kind == "int":
+            return v.data
+        if v.kind == "float" and float(v.data).is_integer():
+            return int(v.data)
+        if v.kind == "paren" and len(v.data) == 1:
+            return self.constant_int(v.data[0])
+        if v.kind == "name":
+            param = self.built.get(v.data)
+            value = None if param is None else param.value
+            if not isinstance(value, np.ndarray) or value.size != 1 \
+                    or value.dtype.kind not in "iuf" \
+                    or float(value.reshape(-1)[0]) != int(value.reshape(-1)[0]):
+                raise self.error(ParseError, f"array size '{v.data}' is not a constant integer "
+                                 "declared before (a static const int or a macro)", v)
+            return int(value.reshape(-1)[0])
+        if v.kind == "expr" and v.data is not None \
+                and all(op in _SIZE_OPERATORS for op in v.data[1]):
+            operands, ops = v.data
+            values = [self.constant_int(x) for x in operands]
+            # one pass for * / %, then + and - left to right
+            terms, signs = [values[0]], []
+            for op, value in zip(ops, values[1:]):
+                if op in "+-":
+                    terms.append(value)
+                    signs.append(op)
+                    continue
+                if op != "*" and value == 0:
+                    raise self.error(ParseError, "array size divides by zero", v)
+                a = terms[-1]
+                terms[-1] = a * value if op == "*" else \
+                    int(a / value) if op == "/" else a - value * int(a / value)
+            total = terms[0]
+            for op, value in zip(signs, terms[1:]):
+                total = total + value if op == "+" else total - value
+            return total
+        raise self.error(ParseError, f"array size '{self.text_of(v)[:40]}' is not a constant "
+                         "integer expression", v)
 
     def unsized(self, spec: TypeSpec, value: V | None, name: str, tok: Token) -> int:
         if value is None or value.kind != "list":

@@ -181,6 +181,10 @@ def syntax_message(exc: UnexpectedToken, lexer: EffectLexer) -> tuple[str, int, 
     keep = {inner.closer} if inner is not None else set()
     expected -= closers - keep
 
+    if {"FUNC_BODY", "SEMI"} <= expected:   # `float4 PS(...)` then neither `{` nor `;`
+        name = f" of '{lexer.decl_name}'" if lexer.decl_name else ""
+        return (f"expected a function body or ';' (a prototype) after the parameter list"
+                f"{name}, found {found}"), line, col
     # An array size may follow any declared name (`float a[4]`, `[N]`, `[]`): true, but not
     # what a user who forgot the '=' or the ';' needs to hear.
     if "SEMI" in expected and not expected & {"NAME", "PASS", "TECHNIQUE", "$END"}:

@@ -146,7 +146,8 @@ class Shapes(Transformer):
         operands = c[::2]
         if all(op.type == "BAR" for op in c[1::2]):
             return _span_v("bar", operands, c[0], c[-1])
-        return _span_v("expr", None, c[0], c[-1])
+        # the operands and operators in order, for what must be constant (an array size)
+        return _span_v("expr", (operands, [op.value for op in c[1::2]]), c[0], c[-1])
 
     def asm(self, c): return _tok_v("asm", (c[0], None), c[0])
     def decl_asm(self, c): return _span_v("asm", (c[1], c[0]), c[0], c[1])
@@ -172,7 +173,7 @@ class Shapes(Transformer):
     def semantics(self, c): return c
     def storage(self, c): return c
     def dims(self, c): return c
-    def named_dim(self, c): return ("named", c[1])
+    def expr_dim(self, c): return ("expr", c[1])
     def unsized_dim(self, c): return ("unsized", c[0])
 
     def declarator(self, c): return c
@@ -185,6 +186,7 @@ class Shapes(Transformer):
     def typedef(self, c): return ("typedef", c)
 
     def func_def(self, c): return ("function", c)
+    def func_decl(self, c): return c[-1]   # the ';': `items` keeps nothing for it
     def struct_def(self, c): return ("struct", c)
 
 

@@ -90,6 +90,9 @@ ENGINE_NAME_SEMANTICS = {"al_projview_matrix": ("WORLDVIEWPROJECTION", "Allegro 
 # WorldIT ...), one with its inverse/transpose in front (InvWorld, TransWorld, as Irrlicht
 # names them), or one of the vector names below.
 _NAME_PREFIXES = ("g_mat", "g_m", "g_", "m_", "mat", "g", "m", "x")
+# ... or a transform name with `Matrix` (or `Mtx`) after it: Kodu Game Lab's WorldMatrix and
+# WorldViewProjMatrix, `worldMatrix` of many XNA samples
+_NAME_MATRIX_SUFFIXES = ("matrix", "mtx")
 _NAME_MATRIX_FORMS = {"invtrans": "INVERSETRANSPOSE", "inversetranspose": "INVERSETRANSPOSE",
                       "inverse": "INVERSE", "inv": "INVERSE", "transpose": "TRANSPOSE",
                       "trans": "TRANSPOSE"}
@@ -100,6 +103,12 @@ NAME_VALUES = {
     "lightposition": "LIGHTPOSITION", "lightpos": "LIGHTPOSITION",
     "lightdirection": "LIGHTDIRECTION", "lightdir": "LIGHTDIRECTION",
     "lightcolor": "LIGHTCOLOR", "lightcolour": "LIGHTCOLOR",
+    # `Location` for position (Kodu Game Lab's EyeLocation), light 0 as the scene's light
+    # (its LightDirection0, LightColor0)
+    "eyelocation": "CAMERAPOSITION", "cameralocation": "CAMERAPOSITION",
+    "lightlocation": "LIGHTPOSITION", "lightposition0": "LIGHT0POSITION",
+    "lightpos0": "LIGHT0POSITION", "lightdirection0": "LIGHT0DIRECTION",
+    "lightdir0": "LIGHT0DIRECTION", "lightcolor0": "LIGHT0COLOR", "lightcolour0": "LIGHT0COLOR",
 }
 _LIGHT_SEMANTICS = {"LIGHTPOSITION", "LIGHT0POSITION", "LIGHTDIRECTION", "LIGHT0DIRECTION",
                     "LIGHTCOLOR", "LIGHTDIFFUSE", "LIGHT0COLOR"}
@@ -181,6 +190,10 @@ def name_semantic(name: str) -> str | None:
     for rest in [key, *(key[len(p):] for p in _NAME_PREFIXES if key.startswith(p) and len(key) > len(p))]:
         if rest in NAME_VALUES:
             return NAME_VALUES[rest]
+        for suffix in _NAME_MATRIX_SUFFIXES:   # `WorldViewProjMatrix`: the matrix names only
+            if rest.endswith(suffix) and len(rest) > len(suffix):
+                rest = rest[:-len(suffix)]
+                break
         found = matrix_semantic(rest)
         if found is not None:
             return found[0] + found[1]

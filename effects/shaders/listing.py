@@ -20,7 +20,7 @@ def pass_listing(effect: "Effect", technique: "Technique", index: int) -> list[s
     """The listing of pass `index` of `technique`: for its vertex then its pixel shader, a
     heading line and the shader's listing, then a blank line (passes listed one after another
     read apart)."""
-    from effects.model import CompileShader, ShaderBlock
+    from effects.model import CompileShader, Expression, ParamRef, ShaderBlock
     if not 0 <= index < len(technique.passes):
         raise EffectError(f"technique '{technique.name}' has no pass {index} (it has "
                           f"{len(technique.passes)})", technique.location)
@@ -30,12 +30,28 @@ def pass_listing(effect: "Effect", technique: "Technique", index: int) -> list[s
         a = p.state(state)
         if a is None:
             continue
-        value = a.value
+        value, picked = a.value, None
+        if isinstance(value, Expression):
+            # `VertexShader = (VSArray[VSIndex])`: the element the parameters pick now, as
+            # validation judges it (a wrong index is the same located error)
+            from effects.shaders.hlsl.preshader import shader_element
+            element = shader_element(effect, value.text, value.location)
+            if element is not None:
+                picked = (f"// {state} = {value.text.strip()}: {element.name}[{element.index}] "
+                          "at the parameters' current values")
+                value = element
         if hasattr(value, "name") and not isinstance(value, (CompileShader, ShaderBlock)):
             param = effect.parameter(value.name)   # `VertexShader = <vs>`: the parameter's shader
-            value = param.value if param is not None else value
+            if param is not None:
+                value = param.value
+                index_of = getattr(a.value if picked is None else element, "index", None)
+                if isinstance(index_of, int) and isinstance(value, (list, tuple)) \
+                        and 0 <= index_of < len(value):
+                    value = value[index_of]   # `VertexShader = <VSArray[1]>`: that element
         out.append(f"// technique {technique.name or '<anonymous>'}, pass "
                    f"{p.name or index}: {state}")
+        if picked is not None:
+            out.append(picked)
         out += shader_listing(effect, value)
         out.append("")
     if not out:   # said, so an empty listing is not mistaken for one that failed

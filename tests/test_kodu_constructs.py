@@ -1,0 +1,162 @@
+"""Constructs found opening Kodu Game Lab's XNA effects (Microsoft, MIT licence): each one
+reproduced by a small effect of our own. An array sized by a parenthesised macro
+(`#define NUM_LUZ (10)`, `float4 LightPosition[NUM_LUZ]`), a function prototype before the
+function it declares, a pass that picks its shaders from arrays by an int parameter
+(`VertexShader = (ColorVS_FA[VSIndex])`) as `effects compile` lists it, and the game's
+`WorldViewProjMatrix` / `EyeLocation` / `LightDirection0` names bound as XNA games set them."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import effects
+from effects.errors import ParseError
+from effects.host.semantics import name_semantic
+from effects.shaders.listing import pass_listing
+
+# -- array sizes that are constant expressions ------------------------------------------------
+
+SIZES = """#define N (2)
+static const int K = 2;
+float4 Lights[N * K - 1] = {{0.25, 0, 0, 0}, {0, 0.5, 0, 0}, {0, 0, 0.75, 0}};
+float Weights[(N + 1) * 2 % 4];
+float Ten[(10)];
+float Seven[7 / 2 * 2 + 1];
+"""
+
+
+def test_array_sizes_are_constant_integer_expressions():
+    effect = effects.load_effect(SIZES)
+    sizes = {p.name: p.array for p in effect.parameters}
+    # N * K - 1 = 3; (2 + 1) * 2 % 4 = 2; (10); 7 / 2 is 3 in integer division, * 2 + 1 = 7
+    assert sizes == {"K": (), "Lights": (3,), "Weights": (2,), "Ten": (10,), "Seven": (7,)}
+
+
+@pytest.mark.parametrize("source, where, message", [
+    ("float a[(2 - 3)];", "1:9", "array size -1 is negative"),
+    ("float a[4 / (1 - 1)];", "1:9", "array size divides by zero"),
+    ("float a[(70000)];", "1:9", "array size 70000 is too large"),
+    ("float a[max(1, 2)];", "1:9", "array size 'max(1, 2)' is not a constant integer expression"),
+    ("float a[2 | 1];", "1:9", "array size '2 | 1' is not a constant integer expression"),
+    ("float a[(M)];", "1:10", "array size 'M' is not a constant integer declared before"),
+    ("float a[(2 - 2)];", "1:9", "array size must be at least 1"),
+])
+def test_a_size_that_is_not_a_constant_is_a_located_error(source, where, message):
+    with pytest.raises(ParseError) as err:
+        effects.load_effect(source)
+    assert str(err.value).startswith(f"<string>:{where}: error: {message}")
+
+
+# -- a function prototype ---------------------------------------------------------------------
+
+PROTOTYPE = SIZES + """float4 Sum(int n);
+float4 PS() : COLOR
+{
+    float4 local[N];
+    local[0] = Lights[0];
+    local[1] = Lights[2];
+    return Sum(0) + local[0] + local[1];
+}
+float4 Sum(int n) { return Lights[1] + n; }
+technique T { pass P { PixelShader = compile ps_2_0 PS(); } }
+"""
+
+
+@pytest.mark.parametrize("backend", ["numpy", "gl"])
+def test_a_prototype_lets_a_function_call_one_defined_below(backend):
+    effect = effects.load_effect(PROTOTYPE)
+    assert [f.name for f in effect.functions] == ["PS", "Sum"]   # the prototype adds nothing
+    image = effects.render(effect, "radeon9700", scene={"mesh": "quad"}, size=(4, 4),
+                           backend=backend)
+    # Lights[1] + Lights[0] + Lights[2] = (0.25, 0.5, 0.75, 0)
+    np.testing.assert_allclose(image[2, 2], (64, 128, 191, 0), atol=1)
+
+
+def test_a_prototype_keeps_its_semantic_and_a_missing_semicolon_is_located():
+    effects.load_effect("float4 PS(float2 t : TEXCOORD0) : COLOR0;")
+    with pytest.raises(ParseError) as err:
+        effects.load_effect("float4 PS(float2 t : TEXCOORD0) : COLOR0\nfloat x;")
+    assert str(err.value).startswith("<string>:2:1: error: expected a function body or ';' "
+                                     "(a prototype) after the parameter list of 'PS', found "
+                                     "'float'")
+
+
+# -- shaders picked from arrays, as `effects compile` lists them -------------------------------
+
+ARRAYS = """int VSIndex = 1;
+int PSIndex;
+float4 VS0(float4 p : POSITION) : POSITION { return p; }
+float4 VS1(float4 p : POSITION) : POSITION { return p * 0.5; }
+float4 PSA() : COLOR { return float4(1, 0, 0, 1); }
+float4 PSB() : COLOR { return float4(0, 1, 0, 1); }
+VertexShader VSArray[] = { compile vs_2_0 VS0(), compile vs_2_0 VS1(), };
+PixelShader PSArray[] = { compile ps_2_0 PSA(), compile ps_2_0 PSB(), };
+technique Picked { pass P0 { VertexShader = (VSArray[VSIndex]); PixelShader = (PSArray[PSIndex + 1]); } }
+technique Literal { pass P0 { VertexShader = (VSArray[0]); PixelShader = <PSArray[1]>; } }
+"""
+
+
+def test_the_listing_of_a_shader_picked_by_an_expression_is_that_element():
+    effect = effects.load_effect(ARRAYS)
+    text = "\n".join(pass_listing(effect, effect.technique("Picked"), 0))
+    assert "// VertexShader = (VSArray[VSIndex]): VSArray[1] at the parameters' current values\n" \
+           "// VS1 compiled for vs_2_0" in text
+    assert "// PixelShader = (PSArray[PSIndex + 1]): PSArray[1] at the parameters' current " \
+           "values\n// PSB compiled for ps_2_0" in text
+    assert "no shader" not in text
+    literal = "\n".join(pass_listing(effect, effect.technique("Literal"), 0))
+    assert "// VS0 compiled for vs_2_0" in literal and "// PSB compiled for ps_2_0" in literal
+
+
+def test_an_index_past_the_array_in_the_listing_is_the_located_error():
+    effect = effects.load_effect(ARRAYS.replace("int VSIndex = 1;", "int VSIndex = 2;"))
+    with pytest.raises(effects.EffectError) as err:
+        pass_listing(effect, effect.technique("Picked"), 0)
+    assert str(err.value).startswith("<string>:9:45: error: '(VSArray[VSIndex])' picks "
+                                     "VSArray[2] at the parameters' current values; VSArray "
+                                     "holds 2 shaders")
+
+
+def test_effects_compile_lists_the_picked_shaders(tmp_path, capsys):
+    from effects.cli.main import main
+    path = tmp_path / "arrays.fx"
+    path.write_text(ARRAYS)
+    assert main(["compile", str(path), "--technique", "Picked"]) == 0
+    out = capsys.readouterr().out
+    assert "// VS1 compiled for vs_2_0" in out and "// PSB compiled for ps_2_0" in out
+    assert "    def c0, 0.5, 0, 0, 0\n    dcl_position v0\n" in out
+    assert "    mul oPos, v0, c0.x\n" in out     # VS1's p * 0.5, not VS0's mov
+
+
+# -- the game's names ------------------------------------------------------------------------
+
+@pytest.mark.parametrize("name, semantic", [
+    ("WorldViewProjMatrix", "WORLDVIEWPROJECTION"), ("WorldMatrix", "WORLD"),
+    ("viewMatrix", "VIEW"), ("ProjectionMatrix", "PROJECTION"), ("InvWorldMatrix", "WORLDINVERSE"),
+    ("g_WorldMtx", "WORLD"), ("EyeLocation", "CAMERAPOSITION"),
+    ("LightDirection0", "LIGHT0DIRECTION"), ("LightColor0", "LIGHT0COLOR"),
+    ("LightPosition0", "LIGHT0POSITION"),
+    ("Matrix", None), ("LightPositionMatrix", None), ("ColorMatrix", None), ("LightColor1", None)])
+def test_matrix_and_light_zero_names(name, semantic):
+    assert name_semantic(name) == semantic
+
+
+KODU_NAMES = """float4x4 WorldViewProjMatrix;
+float4 EyeLocation;
+float4 VS(float4 p : POSITION, out float4 eye : TEXCOORD0) : POSITION
+{
+    eye = EyeLocation;
+    return mul(p, WorldViewProjMatrix);
+}
+float4 PS(float4 eye : TEXCOORD0) : COLOR { return float4(0, 0, eye.z / 4, 1); }
+technique T { pass P { VertexShader = compile vs_2_0 VS(); PixelShader = compile ps_2_0 PS(); } }
+"""
+
+
+def test_the_game_names_draw_the_sphere_where_the_camera_sees_it():
+    effect = effects.load_effect(KODU_NAMES)
+    image = effects.render(effect, "radeon9700", size=(32, 32))
+    # the unit sphere from the default camera at (0, 0, 3): covered in the middle, clear at the
+    # corner; the blue is the eye's z, 3 / 4
+    assert tuple(image[16, 16]) == (0, 0, 191, 255)
+    assert tuple(image[0, 0]) == (0, 0, 0, 0)   # the clear colour, 0x00000000
