@@ -65,6 +65,12 @@ class TypeSpec:
         return self.base in ("string", "texture", "sampler", "vertexshader", "pixelshader")
 
     @property
+    def takes_image(self) -> bool:
+        """A host can bind a picture to it: a texture, or a sampler (the texture on the stage
+        its shader samples, where its sampler_state names none: the host's SetTexture)."""
+        return self.base in ("texture", "sampler")
+
+    @property
     def components(self) -> int:
         return self.rows * self.cols
 

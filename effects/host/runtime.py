@@ -38,7 +38,7 @@ from effects.host.assets import (DEFAULT_TEXTURE_CACHE, Geometry, MissingTexture
                                  resolve_texture, stand_in_texture)
 from effects import limits
 from effects.errors import EffectError, EffectWarning, Location, NoValidTechnique, SceneError
-from effects.model import Effect, Parameter, Technique
+from effects.model import Effect, ParamRef, Parameter, SamplerState, Technique
 from effects.host.scene import MAX_SIZE, Scene, load_scene
 from effects.host.semantics import bind_scene, coerce_value, lookup_parameter, ui_defaults
 from effects.host.scripts import (cube_size, is_cube_target, is_render_target, target_format,
@@ -235,7 +235,14 @@ class Runtime:
     def _set(self, param: Parameter, value: Any, at: Location, base_dir: str,
              source: str = "") -> None:
         coerced = coerce_value(param, value, at, source)
-        if param.type.base == "texture":
+        if param.type.base == "sampler":
+            named = param.value.get("Texture") if isinstance(param.value, SamplerState) else None
+            if named is not None:
+                texture = named.value.name if isinstance(named.value, ParamRef) else "its own"
+                raise SceneError(f"{source} {param.name}: this sampler samples the texture its "
+                                 f"sampler_state names ({texture}): set that one instead",
+                                 named.location)
+        if param.type.takes_image:
             self._given[param.name] = TextureSource(coerced, base_dir, at,
                                                     confined=source == "scene params")
             self._textures.pop(param.name, None)
@@ -255,7 +262,7 @@ class Runtime:
         """The texture bound to texture parameter `name` (loaded on first use), or None."""
         if name not in self._textures:
             param = self._param(name)
-            if param is None or param.type.base != "texture":
+            if param is None or not param.type.takes_image:
                 self._textures[name] = None
             else:
                 self._textures[name] = self._resolve(param)
@@ -303,8 +310,9 @@ class Runtime:
                   sampled_as: str | None = None) -> Texture:
         kind = declared_kind(param) or sampled_as or "2d"
         texture = stand_in_texture(kind)
-        message = (f"texture parameter {param.name}: {why}; drawn with a stand-in "
-                   f"({texture.name}, {kind})")
+        what = f"texture parameter {param.name}" if param.type.base == "texture" else \
+            f"sampler {param.name} (no texture in its sampler_state: the host sets one on its stage)"
+        message = f"{what}: {why}; drawn with a stand-in ({texture.name}, {kind})"
         if self.strict:
             raise SceneError(message, at)
         warning = EffectWarning(message, at)

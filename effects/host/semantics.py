@@ -374,11 +374,11 @@ def coerce_value(param: Parameter, value: Any, at: Location | None = None, sourc
     def fail(why: str) -> SceneError:
         return SceneError(f"{prefix}{describe(param, at)}: {why}", at)
 
-    if base == "texture":
+    if param.type.takes_image:
         from effects.host.textures import Texture
         if isinstance(value, Texture) or (isinstance(value, str) and value.strip()):
             return value.strip() if isinstance(value, str) else value
-        raise fail(f"a texture parameter takes an image path, not {value!r}")
+        raise fail(f"a {base} parameter takes an image path, not {value!r}")
     if base == "string":
         if isinstance(value, str):
             return value

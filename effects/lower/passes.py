@@ -263,6 +263,11 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any,
         for name, register in compiled.samplers.items():
             state.apply(StateAssignment("Sampler", ParamRef(name), index=base + register,
                                         location=location))
+            if state.assignment("Texture", base + register) is None:
+                # its sampler_state names no texture: the host sets one on the stage
+                # (SetTexture), named after the sampler (`--set S=image`; else a stand-in)
+                state.apply(StateAssignment("Texture", ParamRef(name), index=base + register,
+                                            location=location))
         # an int parameter counting a rep sits in the i# the compiler gave it (D3DX sets it
         # with the shader, as VertexShaderConstantI / PixelShaderConstantI would)
         family = "PixelShaderConstantI" if stage == "pixel" else "VertexShaderConstantI"
