@@ -209,7 +209,7 @@ def test_look_at_and_perspective_follow_d3dx():
 
 VALUES = """
 float F = 1; float3 V3; float4 C; float4x4 M; int I; DWORD D; bool B; half H;
-float2 A[2]; string S = "x"; texture T; sampler Smp;
+float2 A[2]; string S = "x"; texture T; sampler Smp; pixelshader Psh;
 technique T0 { pass P { } }
 """
 
@@ -250,7 +250,8 @@ def test_set_value_types_follow_the_parameter():
     ("F", "nan", "not a finite number"),
     ("S", 3, "takes text"),
     ("T", 3, "takes an image path"),
-    ("Smp", "x", "cannot be set"),
+    ("Smp", 3, "takes an image path"),        # the host sets a texture on its stage
+    ("Psh", "x", "cannot be set"),
 ])
 def test_values_that_do_not_fit_name_the_parameter_and_its_declaration(name, value, words):
     effect = load_effect(VALUES)
