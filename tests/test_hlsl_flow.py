@@ -186,7 +186,8 @@ def test_branch_on_a_target_without_dynamic_flow_control_is_a_located_error(targ
         compile_shader(fx, "PS", target)
     assert err.value.message == (f"[branch] needs dynamic flow control (if_comp), which {target} "
                                  "does not have (vs_2_a, vs_3_0 and ps_3_0 do); use [flatten] "
-                                 "or no attribute")
+                                 "or no attribute (no X code: fxc's wording for this was not "
+                                 "found)")
     loc = err.value.location
     assert (loc.line, loc.column) == located(BRANCH, "[branch]")
 

@@ -243,7 +243,8 @@ class Evaluator:
                 if not flow.dynamic:
                     raise self.error(f"[branch] needs dynamic flow control (if_comp), "
                                      f"which {self.ctx.target.name} does not have ("
-                                     f"{DYNAMIC_TARGETS} do); use [flatten] or no attribute",
+                                     f"{DYNAMIC_TARGETS} do); use [flatten] or no attribute "
+                                     "(no X code: fxc's wording for this was not found)",
                                      tree)
                 test, args = comparison(self, cond_tree)
                 known = [a.const_values() for a in args]
