@@ -68,6 +68,12 @@ INVALID = [
      ["11:9: ps_1_1 has no sampler registers (s0)"]),
     ("r2 in ps11", lines("ps.1.1", "tex t0", "mov r2, t0", "mov r0, t0"),
      ["12:5: r2 is out of range: ps_1_1 has 2 temporary registers (r0–r1)"]),
+    # each register past the range once, at its first use (not once per instruction)
+    ("r12 and r13 in vs20, each used twice", lines("vs_2_0", "dcl_position v0", "mov r12, v0",
+                                                   "add r12, r12, v0", "mov r13, r12",
+                                                   "mov oPos, r13"),
+     ["12:5: r12 is out of range: vs_2_0 has 12 temporary registers (r0–r11)",
+      "14:5: r13 is out of range: vs_2_0 has 12 temporary registers (r0–r11)"]),
     ("c8 in ps11", lines("ps.1.1", "mov r0, c8"),
      ["11:9: c8 is out of range: ps_1_1 has 8 constant registers (c0–c7)"]),
     ("v16 in vs11", lines("vs.1.1", "mov oPos, v16"),

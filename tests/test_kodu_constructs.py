@@ -160,3 +160,43 @@ def test_the_game_names_draw_the_sphere_where_the_camera_sees_it():
     # corner; the blue is the eye's z, 3 / 4
     assert tuple(image[16, 16]) == (0, 0, 191, 255)
     assert tuple(image[0, 0]) == (0, 0, 0, 0)   # the clear colour, 0x00000000
+
+
+# -- an #include under another letter case ---------------------------------------------------
+
+def test_an_include_in_another_letter_case_opens_with_a_located_warning(tmp_path):
+    (tmp_path / "Shaders").mkdir()
+    (tmp_path / "Shaders" / "skin.fx").write_text("float4 Tint = {0.25, 0.5, 0.75, 1};\n")
+    main = tmp_path / "main.fx"
+    main.write_text('// Kodu: #include "Skin.fx" of skin.fx, fxc on Windows\n'
+                    '#include "shaders/Skin.fx"\n'
+                    "float4 PS() : COLOR { return Tint; }\n"
+                    "technique T { pass P { PixelShader = compile ps_2_0 PS(); } }\n")
+    effect = effects.load_effect(str(main))
+    assert effect.parameter("Tint").value.tolist() == [0.25, 0.5, 0.75, 1]
+    warnings = [str(w).splitlines()[0] for w in effect.warnings]
+    shown = "Shaders/skin.fx".replace("/", __import__("os").sep)
+    assert warnings == [f"{main}:2:10: warning: #include \"shaders/Skin.fx\" opens '{shown}': "
+                        "the names differ in letter case (Windows file names do not)"]
+    image = effects.render(effect, "radeon9700", scene={"mesh": "quad"}, size=(4, 4))
+    np.testing.assert_allclose(image[2, 2], (64, 128, 191, 255), atol=1)
+
+
+def test_an_include_matching_two_names_in_other_cases_is_not_guessed(tmp_path):
+    (tmp_path / "skin.fx").write_text("float a;\n")
+    (tmp_path / "SKIN.fx").write_text("float b;\n")
+    main = tmp_path / "main.fx"
+    main.write_text('#include "Skin.fx"\n')
+    with pytest.raises(effects.EffectError) as err:
+        effects.load_effect(str(main))
+    assert str(err.value).startswith(f"{main}:1:10: error: cannot open include file 'Skin.fx'")
+
+
+def test_an_include_in_another_case_stays_inside_the_include_root(tmp_path):
+    (tmp_path / "Outside.fx").write_text("float a;\n")
+    (tmp_path / "root").mkdir()
+    main = tmp_path / "root" / "main.fx"
+    main.write_text('#include "../outside.fx"\n')
+    with pytest.raises(effects.EffectError) as err:
+        effects.load_effect(str(main), include_root=str(tmp_path / "root"))
+    assert "escapes the include root" in str(err.value)

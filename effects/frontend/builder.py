@@ -50,7 +50,7 @@ class Builder:
         self.lexer = lexer
         self.map_lines = self.smap.lines
         self.nlines = len(self.map_lines)
-        self.warnings: list = []
+        self.warnings: list = list(pre.warnings)
         self.param_names: set[str] = set()
         self.typedefs: dict[str, TypeSpec] = {}
         self.built: dict[str, Parameter] = {}   # parameters so far, for `[N]` and `= m[3][2]`

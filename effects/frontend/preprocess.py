@@ -88,6 +88,29 @@ def _is_pseudo_path(path: str) -> bool:
     return path.startswith("<") and path.endswith(">")
 
 
+def _other_case(folder: str, local: str) -> str | None:
+    """`folder/local` found component by component ignoring letter case, as Windows opens
+    it; None when a component has no match or more than one (skin.fx and SKIN.fx)."""
+    path = folder or "."
+    for part in [p for p in local.replace("\\", "/").split("/") if p not in ("", ".")]:
+        if part == "..":
+            path = os.path.join(path, part)
+            continue
+        exact = os.path.join(path, part)
+        if os.path.exists(exact):
+            path = exact
+            continue
+        try:
+            names = os.listdir(path)
+        except OSError:
+            return None
+        found = [n for n in names if n.lower() == part.lower()]
+        if len(found) != 1:
+            return None
+        path = os.path.join(path, found[0])
+    return os.path.normpath(path) if path != (folder or ".") else None
+
+
 class _Preprocessor:
     def __init__(self, include_dirs: Sequence[str], include_handler, include_root: str | None) -> None:
         self.include_dirs = [os.fspath(d) for d in include_dirs]
@@ -103,6 +126,7 @@ class _Preprocessor:
         self.include_count = 0
         self.included_bytes = 0
         self.pack_matrix: list[tuple[int, bool]] = []
+        self.warnings: list[tuple[str, Location]] = []
 
     def error(self, message: str, location: Location) -> PreprocessError:
         return self.smap.error_at(PreprocessError, message, location)
@@ -376,6 +400,16 @@ class _Preprocessor:
             folders = [*self.include_dirs, here] if angled else [here, *self.include_dirs]
         for folder in folders:
             candidate = os.path.normpath(os.path.join(folder, local))
+            if not os.path.exists(candidate):
+                # fxc ran on Windows, where `#include "Skin.fx"` opens skin.fx: the same file
+                # under another letter case, when exactly one name in the folder matches
+                other = _other_case(folder, local)
+                if other is not None:
+                    shown = os.path.relpath(other, folder) if folder else other
+                    self.warnings.append((f"#include \"{name}\" opens '{shown}': the names "
+                                          "differ in letter case (Windows file names do not)",
+                                          location))
+                    candidate = other
             if os.path.isfile(candidate):
                 return self._inside_root(candidate, name, location)
             if os.path.exists(candidate) and not os.path.isdir(candidate):   # a FIFO, a device: say so
@@ -428,4 +462,5 @@ def preprocess(text: str, path: str = "<string>", *, defines: Mapping[str, str] 
     finally:
         if collecting:
             gc.enable()
-    return Preprocessed("\n".join(pre.out), pre.smap, tuple(pre.files), tuple(pre.pack_matrix))
+    return Preprocessed("\n".join(pre.out), pre.smap, tuple(pre.files), tuple(pre.pack_matrix),
+                        tuple(pre.smap.warning_at(m, at) for m, at in pre.warnings))

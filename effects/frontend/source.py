@@ -65,3 +65,5 @@ class Preprocessed:
     files: tuple[str, ...] = ()
     # `#pragma pack_matrix`: (line of `text` it stands on, True for row_major), in order
     pack_matrix: tuple[tuple[int, bool], ...] = ()
+    # located warnings of the preprocessor (an include found under another letter case)
+    warnings: tuple[EffectWarning, ...] = ()

@@ -38,6 +38,7 @@ class _Checker(PS1Rules):
         self.rules = program.rules
         self.v = program.name
         self.errors: list[AsmError] = []
+        self.out_of_range: set[str] = set()   # registers already reported: once each
         self.written: set[tuple[str, int | None]] = set()
         self.written_phase: dict[tuple[str, int | None], int] = {}
 
@@ -248,10 +249,14 @@ class _Checker(PS1Rules):
                 self.err(f"{self.v} indexes constants only with a0.x", op.location)
                 return False
         if op.index is not None and op.index >= count:
-            name = KIND_NAMES.get(op.kind, op.kind)
-            plural = "register" if count == 1 else "registers"
-            self.err(f"{op.name} is out of range: {self.v} has {count} {name} {plural} "
-                     f"({_register_range(op.kind, count)})", op.location)
+            # at its first use only: a shader compiled to r12..r14 used them in dozens of
+            # instructions, each said the same sentence
+            if op.name not in self.out_of_range:
+                self.out_of_range.add(op.name)
+                name = KIND_NAMES.get(op.kind, op.kind)
+                plural = "register" if count == 1 else "registers"
+                self.err(f"{op.name} is out of range: {self.v} has {count} {name} {plural} "
+                         f"({_register_range(op.kind, count)})", op.location)
             return False
         return True
 
