@@ -200,3 +200,44 @@ def test_an_include_in_another_case_stays_inside_the_include_root(tmp_path):
     with pytest.raises(effects.EffectError) as err:
         effects.load_effect(str(main), include_root=str(tmp_path / "root"))
     assert "escapes the include root" in str(err.value)
+
+
+# -- effects doctor: what the technique reads ---------------------------------------------------
+
+DOCTOR = """float Weights[4];
+float2 PixelSize;
+float4 UIColour;             // a game's other parameters, read by other techniques
+int PSIndex;
+texture Source;
+sampler S = sampler_state { Texture = <Source>; };
+float4 Blur(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 c = 0;
+    for (int i = 0; i < 4; i++)
+        c += Weights[i] * tex2D(S, uv + float2(i, 0) * PixelSize);
+    return c;
+}
+float4 Flat() : COLOR { return UIColour; }
+PixelShader PS[] = { compile ps_2_0 Blur(), compile ps_2_0 Flat() };
+technique Filter { pass P { PixelShader = (PS[PSIndex]); } }
+"""
+
+
+def test_doctor_lists_what_the_technique_reads_arrays_included(tmp_path, capsys):
+    from effects.cli.main import main
+    path = tmp_path / "doctor.fx"
+    path.write_text(DOCTOR)
+    assert main(["doctor", str(path), "-p", "radeon9700"]) == 0
+    out = capsys.readouterr().out
+    # PSIndex (read by the pass's index) picks Blur: Weights and PixelSize read 0; UIColour
+    # is read only by Flat, which PSIndex = 0 does not pick
+    assert ("  set by nothing (they read 0):\n"
+            f"    Weights (declared at {path}:1:7)\n"
+            f"    PixelSize (declared at {path}:2:8)\n"
+            f"    PSIndex (declared at {path}:4:5)\n"
+            "  set by nothing, but Filter does not read them: UIColour\n") in out
+    assert main(["doctor", str(path), "-p", "radeon9700", "--set", "PSIndex=1"]) == 0
+    out = capsys.readouterr().out
+    assert ("  set by nothing (they read 0):\n"
+            f"    UIColour (declared at {path}:3:8)\n"
+            "  set by nothing, but Filter does not read them: Weights, PixelSize\n") in out

@@ -158,7 +158,8 @@ def test_doctor_says_bound_by_name(capsys, tmp_path):
     assert "World <- bound by name (XNA convention) as WORLD" in out
     assert "Projection <- bound by name (XNA convention) as PROJECTION" in out
     assert "Other <- semantic VIEW" in out
-    assert "Given (declared at" in out                              # set by nothing: reads 0
+    # set by nothing, and no shader of T reads it (VS reads World, View, Projection)
+    assert "  set by nothing, but T does not read them: Given\n" in out
 
 
 # -- Direct3D 10/11 effects -------------------------------------------------------------------

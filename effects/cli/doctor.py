@@ -8,11 +8,65 @@ script commands are not run, so a user knows why a picture looks as it does.
 """
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from effects.errors import EffectError, NoValidTechnique
 from effects.model import Effect, Technique
+
+
+_NAME = re.compile(r"[A-Za-z_]\w*")
+
+
+def parameters_read(effect: Effect, technique: Technique) -> set[str]:
+    """The parameters the technique's passes read: the uniforms of each compiled shader (its
+    register table, int and bool registers), a shader picked from an array by an expression
+    (the element the values pick, and what the index reads), and the parameters its states
+    name (`<Light>`, `VertexShaderConstant[4] = Bias * 2`), sampler states included."""
+    from effects.model import CompileShader, Expression, ParamRef, SamplerState
+    names = {p.name for p in effect.parameters}
+    read: set[str] = set()
+
+    def value(v: Any) -> None:
+        if isinstance(v, CompileShader):
+            from effects.shaders.hlsl import compile_state
+            try:
+                shader = compile_state(effect, v)
+            except EffectError:
+                return                       # validation says why; nothing is read
+            read.update(n for n in (*shader.constants, *shader.int_registers,
+                                    *shader.bool_registers) if not n.startswith("$"))
+            for arg in v.args:
+                read.update(n for n in _NAME.findall(arg) if n in names)
+        elif isinstance(v, ParamRef):
+            read.add(v.name)
+            param = effect.parameter(v.name)
+            inner = None if param is None else param.value
+            if isinstance(inner, (list, tuple)) and v.index is not None \
+                    and 0 <= v.index < len(inner):
+                value(inner[v.index])
+            elif not isinstance(inner, (list, tuple, np.ndarray)) and inner is not None:
+                value(inner)                 # `VertexShader = <vs>`, `Sampler = <S>`
+        elif isinstance(v, Expression):
+            read.update(n for n in _NAME.findall(v.text) if n in names)
+            from effects.shaders.hlsl.preshader import shader_element
+            try:
+                element = shader_element(effect, v.text, v.location)
+            except EffectError:
+                element = None
+            if element is not None:
+                value(element)
+        elif isinstance(v, SamplerState):
+            for a in v.states:
+                value(a.value)
+
+    for p in technique.passes:
+        for a in p.states:
+            value(a.value)
+    return read
 
 
 @dataclass
@@ -21,6 +75,7 @@ class Diagnosis:
     why_no_technique: str | None = None
     bound: list[tuple[str, str]] = field(default_factory=list)      # (parameter, by what)
     unbound: list[tuple[str, str]] = field(default_factory=list)    # (parameter, where)
+    unread: list[str] = field(default_factory=list)    # set by nothing, and not read either
     textures: list[tuple[str, str]] = field(default_factory=list)   # (parameter, source)
     stand_ins: list[str] = field(default_factory=list)              # warnings
     unsupported: list[str] = field(default_factory=list)            # script commands
@@ -47,6 +102,8 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
     scene_bound = bind_scene(effect, runtime.scene, runtime.size)
     ui = ui_defaults(effect)
     given = set(params or {}) | set(runtime.scene.params)
+    # with the values given (--set PSIndex=1 picks another shader of an array)
+    read = parameters_read(runtime.effect, chosen) if chosen is not None else set()
     for p in effect.parameters:
         if p.name in given:
             d.bound.append((p.name, "--set / scene params"))
@@ -58,8 +115,11 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
                             if convention else f"semantic {semantic}"))
         elif p.name in ui:
             d.bound.append((p.name, "the middle of its UIMin..UIMax range"))
-        elif p.type.is_numeric and p.value is None and not p.array:
-            d.unbound.append((p.name, str(p.location)))
+        elif p.type.is_numeric and p.value is None:
+            if p.name in read:       # arrays too: Weights[4] that nothing sets reads 0
+                d.unbound.append((p.name, str(p.location)))
+            else:
+                d.unread.append(p.name)
     if chosen is None:
         return d
     for index in range(len(chosen.passes)):
@@ -108,6 +168,8 @@ def print_diagnosis(d: Diagnosis, path: str, card: str, out) -> None:
     line("  set by nothing (they read 0):" if d.unbound else "  set by nothing: none")
     for param, where in d.unbound:
         line(f"    {param} (declared at {where})")
+    if d.unread:
+        line(f"  set by nothing, but {name} does not read them: {', '.join(d.unread)}")
     if d.textures:
         line("  textures the passes sample:")
         for param, source in d.textures:
