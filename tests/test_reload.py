@@ -261,6 +261,34 @@ def test_an_unexpected_exception_in_a_build_is_reported_and_the_worker_survives(
         reloader.stop()
 
 
+def test_building_says_a_result_is_on_its_way_until_it_is_queued(tmp_path):
+    # The viewer's idle frames wait for a build instead of redrawing while it runs
+    # (app.BUILD_WAIT_S): `building` must hold from the request until the result is queued,
+    # and count coalesced requests as answered by the one build.
+    path = tmp_path / "a.fx"
+    path.write_text("x")
+    release = threading.Event()
+
+    def build(previous):
+        release.wait(TIMEOUT)
+        return "built"
+
+    reloader = Reloader(str(path), build).start(build_now=False)
+    try:
+        assert not reloader.building
+        reloader.request()
+        reloader.request()                 # queued behind the first: coalesced or next
+        assert reloader.building
+        release.set()
+        assert expect_result(reloader).loaded == "built"
+        deadline = time.monotonic() + TIMEOUT
+        while reloader.building and time.monotonic() < deadline:
+            reloader.wait(0.01)            # a second build, if the two were not coalesced
+        assert not reloader.building
+    finally:
+        reloader.stop()
+
+
 def test_watcher_reports_only_files_whose_hash_changed(tmp_path):
     a, b = tmp_path / "a.txt", tmp_path / "b.txt"
     a.write_text("a")
