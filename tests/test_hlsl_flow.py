@@ -762,3 +762,42 @@ def test_a_gradient_that_needs_a_loop_with_a_break_is_x4014_at_it():
                                         "with divergent flow control"), err.value.message
     loc = err.value.location
     assert (loc.line, loc.column) == located(GRADIENTS, "ddx(uv.x * c.r)")
+
+
+UNROLLED_INSIDE = LIGHTS_PS.replace(
+    "        c.rgb += Lights[i].Color.rgb * uv.x;\n",
+    "        for (int k = 0; k < 2; k++)\n            c.rgb += Lights[i].Color.rgb * uv.x * 0.5;\n")
+
+
+@pytest.mark.parametrize("count", [0, 2, 3])
+def test_al_indexes_from_a_loop_unrolled_inside_the_real_one(backend, count):
+    # the inner loop unrolls (twice half the colour), making no block: aL is still i
+    fx = load(UNROLLED_INSIDE, "compile vs_3_0 VS()", "compile ps_3_0 PS()")
+    text = compile_shader(fx, "PS", "ps_3_0").text
+    assert text.count("loop aL, i0") == 1 and "c0[aL]" in text, text
+    img = draw(fx, "geforce6800", backend, {"NumLights": count})
+    for x, y in ((3, 2), (6, 5)):
+        want = lights_by_hand(count, x / 8)
+        assert np.allclose(img[y, x], want, atol=TOL), (x, img[y, x], want)
+
+
+# -- unrolled loops under a run-time predicate -------------------------------------------------
+
+@pytest.mark.parametrize("body, by_hand", [
+    # a literal loop inside a flattened if: twice 1/4 where u > 1/2
+    ("if (uv.x > 0.5) { for (int k = 0; k < 2; k++) c.r += 0.25; }",
+     lambda u: 0.5 if u > 0.5 else 0.0),
+    # a run-time break: the pixels right of the middle leave at once, the others add 4 x 1/4
+    ("for (int k = 0; k < 4; k++) { if (uv.x > 0.5) break; c.r += 0.25; }",
+     lambda u: 0.0 if u > 0.5 else 1.0),
+])
+def test_an_unrolled_loop_under_a_run_time_predicate_still_ends(backend, body, by_hand):
+    # its counter (declared by the for) steps whatever the predicate, so `k < n` stays a
+    # compile-time value and the loop unrolls n times (it was X3511 'does not terminate')
+    from tests.test_hlsl_render import effect_for, render
+    fx = effect_for("float4 PS(float2 uv : TEXCOORD0) : COLOR\n{\n    float4 c = 0;\n    "
+                    + body + "\n    return c;\n}\n")
+    img = render(fx, backend)
+    for x in (1, 3, 5, 7):
+        want = (by_hand(x / 8), 0, 0, 0)
+        assert np.allclose(img[2, x], want, atol=TOL), (x, img[2, x], want)

@@ -47,6 +47,9 @@ class Evaluator:
         self.loops: list[Loop] = []
         self.mask: Operand | None = None       # path predicate (None: always)
         self.depth = 0
+        # the for-init variables of an unrolled loop while its step runs (lvalues.store):
+        # stepped whatever the predicate, so the count stays a constant
+        self.stepping: frozenset[int] = frozenset()
 
     def spawn(self, origin: Origin) -> "Evaluator":
         """An evaluator for another text (a called function, a compile argument)."""
@@ -321,7 +324,8 @@ class Evaluator:
                     # literal bounds unroll (fxc's default for them); [loop] is only a request
                     self.warn(f"[loop] not kept: {why}; the loop is unrolled", self.at(tree))
                     why = None
-            self._loop(tree, cond, body, step, test_first=True, why=why)
+            self._loop(tree, cond, body, step, test_first=True, why=why,
+                       own=frozenset(id(v) for v in self.scopes[-1].values()))
         finally:
             self.scopes.pop()
 
@@ -332,7 +336,12 @@ class Evaluator:
         self._loop(tree, tree.children[4], tree.children[2], None, test_first=False)
 
     def _loop(self, tree: Any, cond: Any, body: Any, step: Any, test_first: bool,
-              why: str | None = None) -> None:
+              why: str | None = None, own: frozenset[int] = frozenset()) -> None:
+        """Unroll: run the body until the condition is a compile-time false. The variables
+        the for's init declares (`own`) live only in the loop, so its step sets them
+        whatever the predicate (a pixel that broke, returned or is masked off reads them
+        only under that predicate): a counter stays a constant under a run-time break, an
+        enclosing flattened if or a real loop's body, and the loop ends."""
         loop = Loop()
         saved = self.mask
         self.loops.append(loop)
@@ -360,8 +369,12 @@ class Evaluator:
                 if self.dead():
                     break
                 if step is not None:
-                    for e in step.children:
-                        self.expr(e)
+                    outer, self.stepping = self.stepping, own
+                    try:
+                        for e in step.children:
+                            self.expr(e)
+                    finally:
+                        self.stepping = outer
         finally:
             self.loops.pop()
             self.mask = saved

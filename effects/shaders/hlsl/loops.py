@@ -174,14 +174,16 @@ class AL:
 
 
 def al_element(ev: Any, t: HType, index: Operand) -> tuple[int, Operand] | None:
-    """For `Array[i + k]` (k >= 0 a literal, i the innermost real loop's counter) of a uniform
+    """For `Array[i + k]` (k >= 0 a literal, i the innermost real loop's counter, read in its
+    body or in a loop unrolled there) of a uniform
     array of type `t`: (the element's register offset from aL, the counter's phi), to read
     it as c[aL + n] (expressions.uniform_value), where the target has `loop` (vs_2_0 and up,
     ps_3_0: the DirectX 9 relative-addressing page: aL indexes c# there) and the element
     size fits the loop (one register for a loop counted by a uniform). None otherwise."""
     from effects.shaders.hlsl.types import register_count
-    loop = ev.loops[-1] if ev.loops else None
-    al = loop.al if loop is not None else None
+    # the innermost real loop (an unrolled one inside it makes no block, so aL is still its
+    # counter); a real loop inside it has its own AL, whose counter is not this index
+    al = next((loop.al for loop in reversed(ev.loops) if loop.al is not None), None)
     if al is None:
         return None
     k = _counter_offset(al.counter, index)

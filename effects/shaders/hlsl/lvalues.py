@@ -27,7 +27,8 @@ def store(ev: Any, target: Any, value: Value) -> None:
             raise ev.error(f"X3004: undeclared identifier '{name}'", target)
         if var.const:
             raise ev.error(f"X3025: l-value specifies const object '{name}'", target)
-        var.value = ev.merge(var.value, value, ev.active(), ev.at(target))
+        p = None if id(var) in ev.stepping else ev.active()     # an unrolled loop's counter
+        var.value = ev.merge(var.value, value, p, ev.at(target))
         return
     if kind == "member":
         base_tree, name = target.children
