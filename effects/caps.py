@@ -47,7 +47,6 @@ from __future__ import annotations
 
 import difflib
 from dataclasses import dataclass, field
-from functools import lru_cache
 from pathlib import Path
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
@@ -433,7 +432,7 @@ def load_profile(name_or_path: str | Path) -> CapsProfile:
 
 def clear_cache() -> None:
     """Forget loaded profiles (after editing a profile file)."""
-    _load_resolved.cache_clear()
+    _LOADED.clear()
 
 
 def _resolve(name_or_path: str | Path, relative_to: Path | None = None,
@@ -461,9 +460,15 @@ def _resolve(name_or_path: str | Path, relative_to: Path | None = None,
                    f"known profiles: {', '.join(known)}", where)
 
 
-@lru_cache(maxsize=None)
+# resolved path -> its profile: every profile loaded in this process, parents included
+_LOADED: dict[str, CapsProfile] = {}
+
+
 def _load_resolved(path: str) -> CapsProfile:
-    return _build(Path(path), ())
+    held = _LOADED.get(path)
+    if held is None:
+        held = _LOADED[path] = _build(Path(path), ())
+    return held
 
 
 def _build(path: Path, chain: tuple[str, ...]) -> CapsProfile:
@@ -478,8 +483,15 @@ def _build(path: Path, chain: tuple[str, ...]) -> CapsProfile:
                            f"{' -> ' if chain else ''}{path.stem} -> {inherit}", where)
         if len(chain) + 2 > limits.get("inherit_depth"):
             raise _located(limits.message("inherit_depth", len(chain) + 2, "the inherit chain"), where)
-        # Parents are built afresh along the chain (not from the cache) so a cycle is seen.
-        parent = _build(parent_path, chain + (str(path),))
+        # A parent not loaded yet is built along the chain (so a cycle is seen) and kept: it is
+        # the profile a load of its own file gives (the chain only finds cycles). One loaded
+        # before was built from its own file, its own chain checked then.
+        # (A kept parent deeper than the chain allows is built along it again, so the depth
+        # error is the one a fresh build reports, where it reports it.)
+        parent = _LOADED.get(str(parent_path))
+        if parent is None or len(chain) + 2 + len(parent.inherits) > limits.get("inherit_depth"):
+            parent = _build(parent_path, chain + (str(path),))
+            _LOADED[str(parent_path)] = parent
     caps, where_defined, quirks = _merge(parent, raw, key_locations, path)
     missing = [name for name in REQUIRED if name not in caps]
     if missing:
@@ -560,6 +572,8 @@ class _Reader:
     def scalar(self, node: yaml.Node) -> Any:
         if not isinstance(node, yaml.ScalarNode):
             return node  # the caller reports the wrong type
+        if node.tag == "tag:yaml.org,2002:str":
+            return node.value   # what the constructor makes of it (most scalars: names, bits)
         try:
             return self.constructor.construct_object(node)
         except yaml.YAMLError as exc:   # a tag that cannot build its value (`!!int abc`)

@@ -297,6 +297,26 @@ def test_inherit_cycle_is_located_in_the_file_that_closes_it(tmp_path):
     assert "inherit cycle: a -> b -> a.yaml" in err.message
 
 
+def test_parents_are_loaded_once_and_the_inherit_depth_still_holds(tmp_path):
+    """A parent is built once (kept for the next profile that inherits it), and a kept parent
+    does not hide a chain deeper than `inherit_depth`: the error is the one a fresh load
+    reports, at the same place."""
+    from effects import caps, limits
+    write(tmp_path, "p0", MINIMAL)
+    for k in range(1, 5):
+        write(tmp_path, f"p{k}", f"inherit: p{k - 1}.yaml\n" + MINIMAL)
+    caps.clear_cache()
+    with limits.raised(inherit_depth=4):
+        fresh = error_of(tmp_path / "p4.yaml")
+        caps.clear_cache()
+        middle = load_profile(str(tmp_path / "p3.yaml"))       # a chain of 4: allowed
+        assert load_profile(str(tmp_path / "p2.yaml")) is caps._LOADED[str((tmp_path / "p2.yaml").resolve())]
+        kept = error_of(tmp_path / "p4.yaml")                  # 5 with p3 kept: refused
+    assert middle.inherits == ("p2", "p1", "p0")
+    assert (kept.message, kept.location) == (fresh.message, fresh.location)
+    caps.clear_cache()
+
+
 def test_missing_required_field_is_reported_at_the_top_of_the_file(tmp_path):
     path = write(tmp_path, "bad", MINIMAL.replace("VertexProcessing: [software]\n", ""))
     err = error_of(path)
