@@ -88,3 +88,4 @@ def test_the_command_prints_what_rich_prints():
         assert plain.returncode == via_rich.returncode == 0
         assert plain.stdout == via_rich.stdout
         assert "┏" in plain.stdout and "phong" in plain.stdout
+

@@ -1,0 +1,31 @@
+"""What the command line does before its work: validation-only commands load NumPy's BLAS
+with one thread."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def test_validation_commands_load_blas_with_one_thread():
+    """matrix (without --render), validate and profiles start NumPy's OpenBLAS with one thread
+    (its thread pool is a fifth of the command's time); render, matrix --render and a thread
+    count the user set are left alone."""
+    code = ("import os, sys\n"
+            "from effects.cli import main as m\n"
+            "m._one_blas_thread(m.build_parser().parse_args(sys.argv[1:]))\n"
+            "print(os.environ.get('OPENBLAS_NUM_THREADS'), 'numpy' in sys.modules)")
+    def run(*args, **env):
+        base = {k: v for k, v in os.environ.items() if k not in m_vars}
+        return subprocess.run([sys.executable, "-c", code, *args], cwd=ROOT, env={**base, **env},
+                              capture_output=True, text=True, check=True).stdout.split()
+    m_vars = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS")
+    assert run("matrix", "fxfiles/phong.fx") == ["1", "False"]
+    assert run("validate", "fxfiles/phong.fx") == ["1", "False"]
+    assert run("profiles") == ["1", "False"]
+    assert run("matrix", "fxfiles/phong.fx", "--render", "x.png") == ["None", "False"]
+    assert run("render", "fxfiles/phong.fx", "-p", "geforce3", "-o", "x.png") == ["None", "False"]
+    assert run("matrix", "fxfiles/phong.fx", OMP_NUM_THREADS="2") == ["None", "False"]
+    assert run("matrix", "fxfiles/phong.fx", OPENBLAS_NUM_THREADS="2") == ["2", "False"]
