@@ -213,6 +213,11 @@ class OpInfo:
     flow: str | None = None        # 'open' | 'middle' | 'close' | 'exit' (structured flow)
     loop: bool = False             # the block it opens or closes is a loop
     needs_quads: bool = False      # reads neighbouring fragments: run over whole 2x2 quads
+    # The column form of several of these instructions sharing their first argument whose
+    # second arguments are each one row (uniforms): batch(a, [b, ...]) -> [result, ...], one
+    # call over the stacked rows, each result as `columns` gives it, value for value; None
+    # where some b is not one row after all (the evaluator then runs each on its own).
+    batch: Callable[[Columns, Sequence[Columns]], list] | None = None
 
     def arg_demand(self, wanted: frozenset, attrs: Mapping[str, Any]) -> tuple[frozenset, ...]:
         """The components of each argument this op reads to produce `wanted` of its result."""
@@ -510,6 +515,23 @@ def _columns_dot(four: bool) -> ColumnKernel:
     return run
 
 
+def _batch_dot(four: bool):
+    """Dot products of one vector with several one-row vectors (a matrix of uniforms, as
+    m4x4 / m3x3 lower): each product and sum of `_columns_dot`, in its order, over a
+    (G, N) array at once, so G dots cost one dot's calls."""
+    size = 4 if four else 3
+
+    def run(a: Columns, bs: Sequence[Columns]) -> list | None:
+        if any(c is None or c.shape != (1,) for b in bs for c in b[:size]):
+            return None                          # not all one row: each on its own
+        rows = np.concatenate([c for b in bs for c in b[:size]]).reshape(len(bs), size)
+        dot = a[0] * rows[:, 0:1] + a[1] * rows[:, 1:2] + a[2] * rows[:, 2:3]
+        if four:
+            dot = dot + a[3] * rows[:, 3:4]
+        return [[row] * 4 for row in dot]      # each row one column shared by the four
+    return run
+
+
 def _columns_nrm(ctx: Any, args: Sequence[Columns], attrs: Mapping[str, Any],
                  wanted: frozenset) -> Columns:
     x = args[0]
@@ -545,9 +567,10 @@ _OP_ROWS = [
     _pc("neg", 1, _elementwise(lambda a: -a), "(-{0})", "-a (the source negate modifier)"),
     _op("dp3", 2, _elementwise(lambda a, b: _replicate(_dot3(a, b))),
         "vec4(dot({0}.xyz, {1}.xyz))", "a.xyz . b.xyz, replicated to all four", demand=_demand_xyz,
-        columns=_columns_dot(False)),
+        columns=_columns_dot(False), batch=_batch_dot(False)),
     _op("dp4", 2, _elementwise(lambda a, b: _replicate(_dot3(a, b) + a[:, 3] * b[:, 3])),
-        "vec4(dot({0}, {1}))", "a . b, replicated to all four", columns=_columns_dot(True)),
+        "vec4(dot({0}, {1}))", "a . b, replicated to all four", columns=_columns_dot(True),
+        batch=_batch_dot(True)),
     _pc("min", 2, _elementwise(np.minimum), "min({0}, {1})", "per-component minimum"),
     _pc("max", 2, _elementwise(np.maximum), "max({0}, {1})", "per-component maximum"),
     _pc("rcp", 1, _elementwise(_rcp),

@@ -267,3 +267,42 @@ def test_evaluation_stays_float32_and_vectorised_over_many_rows():
     out = evaluate(b.build(), {"a": rows}).outputs["color0"]
     assert out.dtype == np.float32 and out.shape == (10000, 4)
     close(out, rows * rows + np.float32(0.5))
+
+
+def _matrix_rows_program():
+    """m4x4 / m3x3 as lowered: dp4 / dp3 of one vector with uniform rows, merged."""
+    b = Builder("vertex")
+    p = b.varying("position")
+    rows = [b.uniform(f"c{i}") for i in range(4)]
+    d4 = [b.dp4(p, r) for r in rows]
+    out = d4[0]
+    for i, mask in ((1, "y"), (2, "z"), (3, "w")):
+        out = b.merge(out, d4[i], mask)
+    b.output("position", out)
+    d3 = [b.dp3(p, r) for r in rows[:3]]
+    t = b.merge(d3[0], d3[1], "y")
+    b.output("texcoord0", b.merge(t, d3[2], "z"))
+    return b.build()
+
+
+def test_dot_rows_of_uniforms_are_one_batch_and_equal_each_dot_on_its_own():
+    """dp3/dp4 of one vector with several uniforms run as one batch (effects.ir OpInfo.batch):
+    bit for bit the per-instruction dots (x*a + y*b) + z*c (+ w*d) in float32, and the same
+    when a 'uniform' comes per row (the batch declines and each dot runs alone)."""
+    from backends.reference.evaluate import _BATCH, _steps
+    program = _matrix_rows_program()
+    assert [len(s[1]) for s in _steps(program, frozenset()).steps if s[0] == _BATCH] == [4, 3]
+    rng = np.random.default_rng(5)
+    pos = rng.normal(size=(37, 4)).astype(np.float32)
+    mat = rng.normal(size=(4, 4)).astype(np.float32)
+    f = np.float32
+    want4 = ((pos[:, :1] * mat[:, 0] + pos[:, 1:2] * mat[:, 1]) + pos[:, 2:3] * mat[:, 2]) \
+        + pos[:, 3:4] * mat[:, 3]
+    want3 = (pos[:, :1] * mat[:3, 0] + pos[:, 1:2] * mat[:3, 1]) + pos[:, 2:3] * mat[:3, 2]
+    assert want4.dtype == f
+    uniform = {f"c{i}": mat[i] for i in range(4)}
+    per_row = {f"c{i}": np.repeat(mat[i][None], len(pos), axis=0) for i in range(4)}
+    for given in (uniform, per_row):
+        out = evaluate(program, {"position": pos, **given}).outputs
+        assert out["position"].tobytes() == want4.tobytes()
+        assert out["texcoord0"][:, :3].tobytes() == np.ascontiguousarray(want3).tobytes()

@@ -30,6 +30,7 @@ Columns = list  # four entries: (N,) or (1,) float32 arrays, None where nothing 
 _MISSING_DEFAULT = np.array([0, 0, 0, 1], dtype=np.float32)
 _UNBOUND_TEXEL = np.array([0, 0, 0, 1], dtype=np.float32)
 _ALL = frozenset(range(4))
+_MISSING_COLUMNS = [_MISSING_DEFAULT[i:i + 1] for i in range(4)]
 
 
 @dataclass
@@ -123,8 +124,8 @@ def _input_columns(name: str, value: np.ndarray, count: int) -> Columns:
     """An input's four columns: contiguous (N,) per-row columns, (1,) where one row serves
     all (uniforms), missing components (0, 0, 0, 1)."""
     array = _checked_input(name, value, count)
-    columns = [np.ascontiguousarray(array[:, i]) for i in range(array.shape[1])]
-    columns += [_MISSING_DEFAULT[i:i + 1] for i in range(array.shape[1], 4)]
+    columns = list(np.ascontiguousarray(array.T))      # one copy: the k contiguous columns
+    columns += _MISSING_COLUMNS[array.shape[1]:]
     return columns
 
 
@@ -350,7 +351,7 @@ def _row_count(program: Program, inputs: Mapping[str, np.ndarray], count: int | 
 # gathering the arguments and calling the kernel. Keyed by the program object (checked on a
 # hit, like `_demand`), so a new or changed program gets its own steps.
 
-_SKIP, _GIVEN, _COLUMNS, _PER_COMPONENT, _ROWS = range(5)
+_SKIP, _GIVEN, _COLUMNS, _PER_COMPONENT, _ROWS, _BATCH = range(6)
 
 
 @dataclass
@@ -382,11 +383,50 @@ def _steps(program: Program, given: frozenset) -> _Steps:
             mode, fn = _ROWS, info.kernel
         steps.append((mode, instr.dest, instr.args, fn, instr.attr_map, wanted,
                       tuple(sorted(wanted))))
-    result = _Steps(steps, any(OPS[i.op].discards for i in program.instrs))
+    result = _Steps(_batched(program, steps), any(OPS[i.op].discards for i in program.instrs))
     if len(_STEPS_CACHE) > 1024:
         _STEPS_CACHE.clear()
     _STEPS_CACHE[key] = (program, result)
     return result
+
+
+def _batched(program: Program, steps: list) -> list:
+    """The steps with instructions of one op that has a `batch` form, sharing their first
+    argument and each taking a uniform as the second (m4x4, m3x3 rows), run as one step at
+    the first of them. Argument-less pure steps (inputs, constants) go first, so every such
+    uniform is there by then; nothing else moves, and each value is the one its own step
+    would make."""
+    uniforms = {i.name for i in program.inputs if i.kind == "uniform"}
+    one_row = {instr.dest for instr in program.instrs
+               if OPS[instr.op].names_input and instr.attr("name") in uniforms}
+    groups: dict[tuple, list[int]] = {}
+    for k, (instr, step) in enumerate(zip(program.instrs, steps)):
+        if (step[0] == _COLUMNS and OPS[instr.op].batch is not None and len(instr.args) == 2
+                and instr.args[1] in one_row):
+            groups.setdefault((instr.op, instr.args[0]), []).append(k)
+    groups = {key: members for key, members in groups.items() if len(members) > 1}
+    if not groups:
+        return steps
+    first = {members[0]: members for members in groups.values()}
+    later = {k for members in groups.values() for k in members[1:]}
+
+    def free(instr) -> bool:
+        info = OPS[instr.op]
+        return (info.arity == 0 and info.pure and info.flow is None and not info.discards
+                and instr.dest is not None)
+
+    out = [step for instr, step in zip(program.instrs, steps) if free(instr)]
+    for k, (instr, step) in enumerate(zip(program.instrs, steps)):
+        if free(instr) or k in later:
+            continue
+        if k in first:
+            members = first[k]
+            out.append((_BATCH, tuple(steps[m][1] for m in members),
+                        (instr.args[0], *(program.instrs[m].args[1] for m in members)),
+                        OPS[instr.op].batch, tuple(steps[m] for m in members), None, None))
+            continue
+        out.append(step)
+    return out
 
 
 _FLOW_CACHE: dict[int, tuple[Program, bool]] = {}
@@ -428,6 +468,14 @@ def _run_steps(ctx: _Context, steps: _Steps, values: dict[int, Columns],
                 if column is None:
                     column = done[key] = np.asarray(fn(None, column_args, attrs), np.float32)
                 result[i] = column
+        elif mode == _BATCH:              # dest: the members' results, attrs: their steps
+            results = fn(argv[0], argv[1:])
+            if results is None:
+                results = [member[3](ctx, [argv[0], b], member[4], member[5])
+                           for member, b in zip(attrs, argv[1:])]
+            for member_dest, member_result in zip(dest, results):
+                values[member_dest] = member_result
+            continue
         else:
             rows = fn(ctx, [ctx.as_rows(a) for a in argv], attrs)
             result = None if rows is None else _from_rows(rows)
