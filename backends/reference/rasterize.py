@@ -229,8 +229,10 @@ def setup_triangles(clip_pos: np.ndarray, varyings: dict[str, np.ndarray], trian
         visible &= front
     elif cull == "CW":
         visible &= ~front
-    if not visible.all():
-        tris, source, area, front, X, Y = (a[visible] for a in (tris, source, area, front, X, Y))
+    if not visible.all():   # one index for the six arrays (a boolean mask is scanned each time)
+        kept = np.flatnonzero(visible)
+        tris, source, area, front, X, Y = (a.take(kept, axis=0)
+                                           for a in (tris, source, area, front, X, Y))
     if len(tris) == 0:
         return QuadFragments.empty(dims, quads)
     # Orient every triangle clockwise so one inside test serves both windings (vertex 0 stays
