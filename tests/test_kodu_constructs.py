@@ -241,3 +241,23 @@ def test_doctor_lists_what_the_technique_reads_arrays_included(tmp_path, capsys)
     assert ("  set by nothing (they read 0):\n"
             f"    UIColour (declared at {path}:3:8)\n"
             "  set by nothing, but Filter does not read them: Weights, PixelSize\n") in out
+
+
+# -- a vs_2_0 on a DX8 card: valid in software vertex processing, and said ----------------------
+
+VS20 = """float4 VS(float4 p : POSITION) : POSITION { return p; }
+technique VertexOnly { pass P { VertexShader = compile vs_2_0 VS(); } }
+"""
+
+
+@pytest.mark.parametrize("card, why", [
+    ("geforce3", "above the GeForce3's vs_1_1"),
+    ("gma900", "and the Intel GMA 900 has no vertex shader hardware")])
+def test_a_vertex_shader_above_the_hardware_notes_software_processing(card, why):
+    v = effects.load_effect(VS20).validate("VertexOnly", effects.load_profile(card))
+    assert v.ok and v.pass_reports[0].software_vertex_processing
+    assert v.notes == [f"pass P: VertexShader is vs_2_0, {why}: it runs in software vertex "
+                       "processing (a device created with D3DCREATE_SOFTWARE_VERTEXPROCESSING or "
+                       "D3DCREATE_MIXED_VERTEXPROCESSING)"]
+    # on the Radeon 9700 it runs in hardware: no note
+    assert effects.load_effect(VS20).validate("VertexOnly", effects.load_profile("radeon9700")).notes == []

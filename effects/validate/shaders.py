@@ -93,6 +93,14 @@ class ShaderChecks:
                       f"VertexShader is {label}; the {self.card()} {limit} and {offer}")
             return
         in_software = version > hardware
+        if in_software:
+            # valid, but not on the card's vertex hardware: said, so a ✓ on a DX8 card for a
+            # vs_2_0 (every Kodu technique on the GeForce3 but for its ps_2_0) is not a surprise
+            above = (f"above the {self.card()}'s {_version_label('vs', hardware)}"
+                     if hardware > (0, 0) else f"and the {self.card()} has no vertex shader hardware")
+            self.note(f"VertexShader is {label}, {above}: it runs in software vertex processing "
+                      "(a device created with D3DCREATE_SOFTWARE_VERTEXPROCESSING or "
+                      "D3DCREATE_MIXED_VERTEXPROCESSING)")
         if not in_software and software >= version and self.assembly_problems(value, software=False):
             # over the hardware's limits (constants, temporaries): software processing runs it
             if not self.assembly_problems(value, software=True):
