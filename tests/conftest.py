@@ -2,7 +2,9 @@
 tinted effect that the reload and viewer tests edit on disk."""
 from __future__ import annotations
 
+import atexit
 import os
+import shutil
 import tempfile
 from pathlib import Path
 
@@ -12,6 +14,7 @@ import pytest
 # commands, in process and as child processes, keep theirs in a folder of this run, not in the
 # user's ~/.cache.
 os.environ["EFFECTS_CACHE_DIR"] = tempfile.mkdtemp(prefix="effects-test-shaders-")
+atexit.register(shutil.rmtree, os.environ["EFFECTS_CACHE_DIR"], ignore_errors=True)
 from PIL import Image
 
 from effects.backend import create_backend
