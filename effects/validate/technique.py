@@ -181,23 +181,20 @@ class _Reads(DeviceState):
             return value
 
     def get_enum(self, name: str, index: int | None = None, default: Any = _NO_DEFAULT) -> Any:
-        key = (name, index, default)
-        try:
-            return self._enums[key]
-        except KeyError:
-            value = (DeviceState.get_enum(self, name, index) if default is _NO_DEFAULT
-                     else DeviceState.get_enum(self, name, index, default))
-            self._enums[key] = value
-            return value
+        return self._kept(self._enums, DeviceState.get_enum, name, index, default)
 
     def get_int(self, name: str, index: int | None = None, default: Any = _NO_DEFAULT) -> Any:
+        return self._kept(self._ints, DeviceState.get_int, name, index, default)
+
+    def _kept(self, answers: dict, read: Any, name: str, index: int | None, default: Any) -> Any:
+        """`read`'s answer for (name, index, default), asked once (no default: the reader's)."""
         key = (name, index, default)
         try:
-            return self._ints[key]
+            return answers[key]
         except KeyError:
-            value = (DeviceState.get_int(self, name, index) if default is _NO_DEFAULT
-                     else DeviceState.get_int(self, name, index, default))
-            self._ints[key] = value
+            value = read(self, name, index) if default is _NO_DEFAULT \
+                else read(self, name, index, default)
+            answers[key] = value
             return value
 
 
