@@ -371,11 +371,8 @@ def _one_blas_thread(args) -> None:
 
 class _LazyConsole:
     """The console the commands print through: rich's `Console(highlight=False)`, made (and
-    rich imported) on first use. `plain_ok` tells a printer that this is the command line's
-    own console on sys.stdout, so where rich would print plain text it may write the same text
-    itself (`report.print_matrix`: `effects matrix` into a pipe or file needs no rich)."""
-
-    plain_ok = True
+    rich imported) on first use, so a command that prints nothing through it does not pay
+    for rich."""
 
     def __init__(self) -> None:
         self._console: Any = None

@@ -12,8 +12,7 @@ from typing import TYPE_CHECKING, Mapping, Sequence
 from effects.caps import GENERATIONS, CapsProfile
 
 if TYPE_CHECKING:  # pragma: no cover
-    # rich loads when a table is drawn through it: `effects matrix` into a pipe or file
-    # prints its table without it (plaintable)
+    # rich loads when a table is drawn (the command line's console is made on first use)
     from rich.console import Console
     # Validation (and numpy with it) loads when a table needs it: `effects profiles` does not.
     from effects.model import Effect, Technique
@@ -142,18 +141,8 @@ def _matrix_cells(result: dict) -> tuple[list[str], list[list[str]]]:
 
 
 def print_matrix(result: dict, console: Console) -> None:
-    """Cards down, effects across: the chosen technique and its pass count. Printed without
-    rich where the text is what rich would print (the command line's console, output not a
-    terminal: `plaintable`), else through rich."""
+    """Cards down, effects across: the chosen technique and its pass count."""
     header, rows = _matrix_cells(result)
-    if getattr(console, "plain_ok", False):
-        import sys
-        from effects.cli import plaintable
-        width = plaintable.plain_width()
-        text = plaintable.render(header, rows, width) if width is not None else None
-        if text is not None:
-            sys.stdout.write(text)
-            return
     from rich.table import Table
     from rich.text import Text
     table = Table(header_style="bold", show_lines=False)

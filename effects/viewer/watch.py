@@ -7,8 +7,8 @@ thread as the fallback (the only mechanism when watchdog cannot start, a slow sa
 otherwise). Events are debounced: the change is reported once the files have been quiet for
 `debounce` seconds (`settle` seconds when the last event ends a save: the writer closed the
 file, or renamed its temporary file onto it), or at the latest `max_delay` after the first
-event, so autosave cannot starve it. A change is reported only for files whose content hash (`content_hash`) differs
-from the last one seen, so a save without edits, a `touch`, or a burst that ends where it
+event, so autosave cannot starve it. A change is reported only for files whose content hash
+(`content_hash`) differs from the last one seen, so a save without edits, a `touch`, or a burst that ends where it
 began does nothing. `effects.viewer.reload` builds hot reload on top of this (STYLE.md 11).
 """
 from __future__ import annotations
