@@ -3,17 +3,19 @@
     python benchmarks/bench_matrix.py [--runs 7] [--json] [--profile]
 
 The numbers (in process, the on-disk shader store is off: every compile is made):
-- in-process, first run: the command as `effects.cli.main.main` runs it in a fresh interpreter that
-  has imported the package (loads every bundled profile, parses the effects, validates every
-  effect on every card, prints the table);
+- in-process, first run: the command with `--jobs 1` as `effects.cli.main.main` runs it in a
+  fresh interpreter that has imported the package (loads every bundled profile, parses the
+  effects, validates every effect on every card, prints the table);
 - in-process, median of --runs: the same after the first, with the profile cache cleared before
   each run so every run reads the YAML files again (the parser tables and imports stay warm);
-- subprocess, median of --runs: `python -m effects matrix fxfiles/*.fx`, what a user waits for,
+- subprocess, median of --runs: `python -m effects matrix fxfiles/*.fx`, what a user waits for
+  (the effect files validated on worker processes, one a core: `--jobs` left at its default),
   interpreter start and imports included, its output a pipe (as a script or `| less` reads
   it): three ways, as the command line keeps compiled shaders on disk between runs
   (effects/shaders/hlsl/store.py): cold (an empty store folder for every run: it compiles
   and writes), warm (the store filled by a run before), and with the store off
-  (EFFECTS_SHADER_CACHE=off: compiles, writes nothing).
+  (EFFECTS_SHADER_CACHE=off: compiles, writes nothing); and warm with `--jobs 1` (every file
+  validated in the command's own process, one after another).
 Wall clock, with each run's CPU time (user + system of the child) beside it.
 """
 from __future__ import annotations
@@ -85,20 +87,21 @@ def main(argv: list[str] | None = None) -> int:
     from effects import caps
 
     os.environ["EFFECTS_SHADER_CACHE"] = "off"      # in process: the compiles are made
-    first = _in_process(command)
+    first = _in_process(command + ["--jobs", "1"])
     warm = []
     for _ in range(args.runs):
         caps.clear_cache()
-        warm.append(_in_process(command))
+        warm.append(_in_process(command + ["--jobs", "1"]))
     del os.environ["EFFECTS_SHADER_CACHE"]
     with tempfile.TemporaryDirectory(prefix="bench-matrix-") as tmp:
-        cold, stored, off = [], [], []
+        cold, stored, off, serial = [], [], [], []
         filled = dict(os.environ, EFFECTS_CACHE_DIR=os.path.join(tmp, "warm"))
         _subprocess(command, filled)                           # fill the warm store
         for k in range(args.runs):                              # interleaved: the same load for all
             cold.append(_subprocess(command, dict(os.environ, EFFECTS_CACHE_DIR=os.path.join(tmp, f"cold{k}"))))
             stored.append(_subprocess(command, filled))
             off.append(_subprocess(command, dict(os.environ, EFFECTS_SHADER_CACHE="off")))
+            serial.append(_subprocess(command + ["--jobs", "1"], filled))
 
     n_cards = len(caps.list_profiles())
     print(f"effects {' '.join(command[:1])} {len(command) - 1 - args.json} files × {n_cards} cards")
@@ -109,6 +112,7 @@ def main(argv: list[str] | None = None) -> int:
     print(_line("subprocess, cold store:", cold))
     print(_line("subprocess, warm store:", stored))
     print(_line("subprocess, store off:", off))
+    print(_line("warm store, --jobs 1:", serial))
     if hasattr(os, "getloadavg"):
         print(f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())} "
               f"({os.cpu_count()} cores)")

@@ -92,3 +92,63 @@ def test_matrix_render_writes_the_sheet(tmp_path, capsys):
     assert image.shape == (14 + 2 * (20 + 14), 120 + 2 * 24, 3)
     assert main(["matrix", PHONG, "--render", str(out), "--jobs", "0"]) == 2
     assert main(["matrix", PHONG, "--render", str(out), "--size", "0x9"]) == 2
+
+
+def test_meanwhile_runs_once_after_the_jobs_are_handed_out():
+    for jobs in (1, 2):
+        calls = []
+        done = []
+        out = run_jobs(_square, range(5), jobs=jobs, meanwhile=lambda: calls.append(len(done)),
+                       progress=lambda d, t: done.append(d))
+        assert out == [x * x for x in range(5)]
+        assert calls == [0], (jobs, calls)     # once, before any result was taken
+
+
+FXFILES = sorted(os.path.join(ROOT, "fxfiles", f) for f in os.listdir(os.path.join(ROOT, "fxfiles"))
+                 if f.endswith(".fx"))
+
+
+def test_matrix_jobs_on_a_pool_are_the_serial_matrix():
+    from effects.caps import list_profiles, load_profile
+    from effects.cli.report import MatrixJob, matrix, matrix_job
+    serial = matrix({f: effects.load_effect(f) for f in FXFILES},
+                    [load_profile(p) for p in list_profiles()])
+    pooled = run_jobs(matrix_job, [MatrixJob(f, ()) for f in FXFILES], jobs=2)
+    assert dict(zip(FXFILES, pooled)) == serial
+    # each file's rows name a technique or none on every card, with every rejection's reasons
+    assert sum(cell["technique"] is not None for rows in pooled for cell in rows.values()) > 100
+
+
+def _broken(tmp_path, name: str, line: int) -> str:
+    path = tmp_path / name
+    path.write_text("float4 Tint = {1, 1, 1, 1};\n" * (line - 1) + "technique T { pass P { ColorOp[0] = ; } }\n")
+    return str(path)
+
+
+@pytest.mark.parametrize("threads", [False, True])
+def test_matrix_command_reports_the_first_bad_file_in_order(tmp_path, capsys, monkeypatch, threads):
+    """Workers or not (a process with other threads running validates in place), the error is
+    the one the serial command reports: the first failing file in the order given."""
+    import threading
+    import effects.host.batch as batch
+    used = []
+    real = batch.run_jobs
+    monkeypatch.setattr(batch, "run_jobs", lambda *a, **k: used.append(k["jobs"]) or real(*a, **k))
+    if not threads:
+        monkeypatch.setattr(threading, "active_count", lambda: 1)
+    stop = threading.Event()
+    other = threading.Thread(target=stop.wait)
+    other.start()
+    try:
+        bad = [_broken(tmp_path, "b1.fx", 3), _broken(tmp_path, "b2.fx", 1)]
+        assert main(["matrix", PHONG, *bad, "--jobs", "2"]) == 2
+        err = capsys.readouterr().err
+        assert f"{bad[0]}:3:" in err.replace("\n", "") and "b2.fx" not in err
+        assert main(["matrix", PHONG, WOOD, "--jobs", "2", "--json"]) == 0
+        pooled = capsys.readouterr().out
+    finally:
+        stop.set()
+        other.join()
+    assert used == ([] if threads else [2, 2])
+    assert main(["matrix", PHONG, WOOD, "--jobs", "1", "--json"]) == 0
+    assert capsys.readouterr().out == pooled

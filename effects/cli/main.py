@@ -123,18 +123,17 @@ def _add_matrix(sub) -> None:
 
 def _add_batch(p) -> None:
     p.add_argument("--jobs", "-j", type=int, default=None, metavar="N",
-                   help="worker processes for the renders (default: every core)")
+                   help="worker processes, one effect or cell a job (default: every core)")
     p.add_argument("--scheduler", metavar="tcp://HOST:PORT",
-                   help="run the renders on this Dask distributed scheduler (pip install 'effects[dask]')")
+                   help="run the jobs on this Dask distributed scheduler (pip install 'effects[dask]')")
 
 
 def _cmd_matrix(args, console: Console) -> int:
-    from effects.frontend.loader import load_effect
-    from effects.cli.report import matrix, print_matrix
+    from effects.cli.report import print_matrix
+    if args.jobs is not None and args.jobs < 1:
+        raise UsageError("effects matrix: error: --jobs must be at least 1")
     root = _include_root(args)
-    effects = {path: load_effect(path, include_root=root, strict=args.strict) for path in args.files}
-    profiles = _profiles(args.profile)
-    result = matrix(effects, profiles, args.policy)
+    result, profiles = _matrix(args, root, console)
     if args.json:
         import json
         print(json.dumps(result, indent=2))
@@ -142,8 +141,6 @@ def _cmd_matrix(args, console: Console) -> int:
         print_matrix(result, console)
     if args.render:
         from effects.cli.sheet import render_sheet
-        if args.jobs is not None and args.jobs < 1:
-            raise UsageError("effects matrix: error: --jobs must be at least 1")
         size = _parse_size(args.size, "matrix")
         if min(size) < 1 or max(size) > 1024:
             raise UsageError(f"effects matrix: error: --size {args.size!r}: cells are 1 to 1024 pixels a side")
@@ -155,6 +152,46 @@ def _cmd_matrix(args, console: Console) -> int:
             console.print(f"contact sheet: {len(args.files)} effects x {len(profiles)} cards "
                           f"-> {args.render}", markup=False, highlight=False, soft_wrap=True)
     return EXIT_OK
+
+
+def _matrix(args, root: str | None, console: Console) -> tuple[dict, list]:
+    """The matrix of `args.files` on the cards, and the cards. The effect files are
+    independent jobs (`effects.host.batch.run_jobs`: --jobs workers, every core by default,
+    or --scheduler), each loaded and validated by a worker; the cards and the policy are read
+    here first, before the workers fork, and the table's console is made while they run.
+    Errors are the serial command's: the first effect file that fails to load, in the order
+    given, then a bad card or policy. One file, or a process with other threads running (a
+    fork copies locks they may hold: a host calling `main`), validates here."""
+    import threading
+    from effects.cli.report import MatrixJob, matrix, matrix_job
+    from effects.validate.select import as_policy
+    try:
+        profiles = _profiles(args.profile)
+        as_policy(args.policy)
+    except EffectError:
+        profiles = None
+    alone = threading.active_count() == 1
+    if profiles is None or (args.scheduler is None and (len(args.files) < 2 or not alone)):
+        from effects.frontend.loader import load_effect
+        effects = {path: load_effect(path, include_root=root, strict=args.strict)
+                   for path in args.files}
+        profiles = _profiles(args.profile)   # the error above, in its turn
+        return matrix(effects, profiles, args.policy), profiles
+    from effects.host.batch import run_jobs
+    jobs = [MatrixJob(path, tuple(args.profile), args.policy, root, args.strict)
+            for path in args.files]
+    rows = run_jobs(matrix_job, jobs, jobs=args.jobs, scheduler=args.scheduler,
+                    meanwhile=None if args.json else lambda: _ready_for_table(console))
+    for row in rows:
+        if isinstance(row, EffectError):
+            raise row
+    return dict(zip(args.files, rows)), profiles
+
+
+def _ready_for_table(console: Any) -> None:
+    """Make the console and import rich's table, as printing one will."""
+    import rich.table  # noqa: F401
+    getattr(console, "ready", lambda: None)()
 
 
 def _add_profiles(sub) -> None:
@@ -378,10 +415,14 @@ class _LazyConsole:
         self._console: Any = None
 
     def __getattr__(self, name: str) -> Any:
+        return getattr(self.ready(), name)
+
+    def ready(self) -> "Console":
+        """The console, made now if it was not."""
         if self._console is None:
             from rich.console import Console
             self._console = Console(highlight=False)
-        return getattr(self._console, name)
+        return self._console
 
 
 def _stderr() -> "Console":

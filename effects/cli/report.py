@@ -7,9 +7,11 @@ technique the policy refused (max-passes, max-cost), with the policy's reason.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Mapping, Sequence
 
 from effects.caps import GENERATIONS, CapsProfile
+from effects.errors import EffectError
 
 if TYPE_CHECKING:  # pragma: no cover
     # rich loads when a table is drawn (the command line's console is made on first use)
@@ -124,6 +126,34 @@ def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
             }
         out[path] = per_card
     return out
+
+
+@dataclass(frozen=True)
+class MatrixJob:
+    """One effect file's rows of `effects matrix`, as a worker process makes them: the cards by
+    name (a forked worker finds them loaded; another loads them), the policy as written."""
+
+    path: str
+    profiles: tuple[str, ...]
+    policy: str = "first"
+    include_root: str | None = None
+    strict: bool = False
+
+
+def matrix_job(job: MatrixJob) -> dict | EffectError:
+    """`matrix()`'s entry for one effect file, or the error its load raised (returned, not
+    raised: the command reports the first failing file in the order given)."""
+    from effects.caps import list_profiles, load_profile
+    from effects.frontend.loader import load_effect
+    try:
+        effect = load_effect(job.path, include_root=job.include_root, strict=job.strict)
+        profiles = [load_profile(n) for n in (job.profiles or list_profiles())]
+        return matrix({job.path: effect}, profiles, job.policy)[job.path]
+    except EffectError as err:
+        # it travels pickled, and where tblib's pickling is installed (Dask's is) a traceback
+        # and chained errors travel too, holding the parser's unpicklable frames: none needed
+        err.__traceback__ = err.__cause__ = err.__context__ = None
+        return err
 
 
 def _matrix_cells(result: dict) -> tuple[list[str], list[list[str]]]:

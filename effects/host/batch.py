@@ -8,7 +8,9 @@
   (NumPy work holds the GIL between kernels, so processes, not threads, scale it);
 - `scheduler="tcp://HOST:PORT"` (or a `distributed.Client`): on an existing Dask distributed
   cluster (the optional extra `effects[dask]`); the jobs and results travel pickled.
-`progress(done, total)` is called as jobs finish, in whatever order they finish.
+`progress(done, total)` is called as jobs finish, in whatever order they finish;
+`meanwhile()` once every job is handed out, before the first result is waited for (the
+command line imports and sets up what it prints with while the workers run).
 
 `render_cell` is one cell of the contact sheet: the picture a card draws for an effect (the
 technique it selects), or why it draws none. A worker loads each effect and card once.
@@ -37,17 +39,20 @@ def default_jobs() -> int:
 
 def run_jobs(fn: Callable[[J], R], items: Iterable[J], *, jobs: int | None = None,
              scheduler: Any = None,
-             progress: Callable[[int, int], None] | None = None) -> list[R]:
+             progress: Callable[[int, int], None] | None = None,
+             meanwhile: Callable[[], None] | None = None) -> list[R]:
     """`[fn(item) for item in items]`, run as the module docstring says."""
     todo = list(items)
     report = progress or (lambda done, total: None)
+    handed_out = meanwhile or (lambda: None)
     if scheduler is not None:
-        return _on_dask(fn, todo, scheduler, report)
+        return _on_dask(fn, todo, scheduler, report, handed_out)
     workers = default_jobs() if jobs is None else int(jobs)
     if workers < 1:
         raise ValueError(f"jobs must be at least 1, not {jobs}")
     workers = min(workers, max(1, len(todo)))
     if workers == 1:
+        handed_out()
         results = []
         for n, item in enumerate(todo, 1):
             results.append(fn(item))
@@ -55,7 +60,10 @@ def run_jobs(fn: Callable[[J], R], items: Iterable[J], *, jobs: int | None = Non
         return results
     out: list[Any] = [None] * len(todo)
     with ProcessPoolExecutor(max_workers=workers) as pool:
+        # (with the fork start method every worker is forked at the first submit, before the
+        # pool's own thread starts: `handed_out` runs after the last fork)
         futures = {pool.submit(fn, item): i for i, item in enumerate(todo)}
+        handed_out()
         for n, future in enumerate(as_completed(futures), 1):
             out[futures[future]] = future.result()
             report(n, len(todo))
@@ -63,7 +71,7 @@ def run_jobs(fn: Callable[[J], R], items: Iterable[J], *, jobs: int | None = Non
 
 
 def _on_dask(fn: Callable[[J], R], todo: Sequence[J], scheduler: Any,
-             report: Callable[[int, int], None]) -> list[R]:
+             report: Callable[[int, int], None], handed_out: Callable[[], None]) -> list[R]:
     try:
         from distributed import Client, as_completed as dask_completed
     except ImportError:
@@ -77,6 +85,7 @@ def _on_dask(fn: Callable[[J], R], todo: Sequence[J], scheduler: Any,
                           Location("<scheduler>", 1, 1)) from None
     try:
         futures = client.map(fn, list(todo), pure=False)
+        handed_out()
         index = {f.key: i for i, f in enumerate(futures)}
         out: list[Any] = [None] * len(todo)
         for n, future in enumerate(dask_completed(futures), 1):
