@@ -7,10 +7,10 @@
 `INSTRUCTIONS` is the per-instruction table (instructions.py) and `VERSIONS` the per-version
 limits (versions.py); the lowering reads `Instruction.info` to know what each one computes.
 """
-from effects.shaders.asm.check import check
+from effects.shaders.asm.check import check, check_cached
 from effects.shaders.asm.instructions import TABLE as INSTRUCTIONS
 from effects.shaders.asm.instructions import InstrInfo, lookup
-from effects.shaders.asm.limits import assemble_cached, card_limit_violations, check_cached
+from effects.shaders.asm.limits import assemble_cached, card_limit_violations
 from effects.shaders.asm.parser import NOT_ASSEMBLY, assemble
 from effects.shaders.asm.program import AsmProgram, ConstantDef, Declaration, Instruction, Operand, RelativeAddress
 from effects.shaders.asm.stats import AsmStats

@@ -19,6 +19,9 @@ _MODIFIER_SYNTAX = {"bias": "_bias", "bx2": "_bx2", "x2": "_x2", "invert": "1-",
                     "dw": "_dw", "abs": "_abs"}
 _SHIFT_SYNTAX = {1: "_x2", 2: "_x4", 3: "_x8", -1: "_d2", -2: "_d4", -3: "_d8"}
 _OUTPUT_ONLY = {"o", "oPos", "oD", "oT", "oFog", "oPts", "oC", "oDepth"}
+# What a source of each non-vector role may name (the vector roles s and x read the version's
+# readable kinds, or the row's narrower list).
+_ROLE_KINDS = {"S": ("s",), "l": ("l",), "b": ("b", "p"), "I": ("i",), "L": ("aL",), "p": ("p",)}
 
 
 def _ordinal(n: int) -> str:
@@ -191,7 +194,7 @@ class _Checker(PS1Rules):
         ok = True
         info = ins.info
         if ins.dst is not None:
-            allowed = info.dst_kinds or tuple(self.rules.writable)
+            allowed = info.dst_kinds or self.rules.writable
             if ins.dst.kind not in allowed:
                 self.err(self._kind_message(ins, ins.dst, allowed, write=True),
                          ins.dst.location)
@@ -202,10 +205,9 @@ class _Checker(PS1Rules):
             else "ss"
         for i, (src, role) in enumerate(zip(ins.srcs, roles)):
             if role in "sx":
-                allowed = info.src_kind(i) or tuple(self.rules.readable)
+                allowed = info.src_kind(i) or self.rules.readable
             else:
-                allowed = {"S": ("s",), "l": ("l",), "b": ("b", "p"), "I": ("i",),
-                           "L": ("aL",), "p": ("p",)}.get(role, ())
+                allowed = _ROLE_KINDS.get(role, ())
             if src.kind == "imm":
                 self.err(f"{ins.opcode} needs a register here, not the number {src.text}",
                          src.location)
@@ -614,3 +616,12 @@ def check(program: AsmProgram) -> list[AsmError]:
     """Every rule of the program's version that it breaks, each located at the instruction or
     operand concerned, in source order. An empty list means the program is valid."""
     return _Checker(program).run()
+
+
+def check_cached(program: AsmProgram) -> list[AsmError]:
+    """`check`, once per assembled program object (kept on the program, so it goes with it):
+    validation asks per card, and the lowering check asks again. Read the list; don't change it."""
+    hit = program.__dict__.get("_check_errors")
+    if hit is None:
+        hit = program.__dict__["_check_errors"] = check(program)
+    return hit

@@ -20,7 +20,7 @@ the instruction pages (texld ps_1_4 / ps_2_0, texbem, texm3x2pad ...), and
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import partial
+from functools import cached_property, partial
 from typing import Any, Callable
 
 from effects.shaders.asm import flow as fl
@@ -93,11 +93,12 @@ class InstrInfo:
     ends_body: bool = False        # ret, label: the main program or a subroutine ends here
     gradient: bool = False         # takes screen-space gradients (dsx, dsy, texld's LOD)
 
-    @property
+    # read for every operand the assembler and the checker see: worked out once per row
+    @cached_property
     def has_dst(self) -> bool:
         return self.operands.startswith("d")
 
-    @property
+    @cached_property
     def source_roles(self) -> str:
         return self.operands[1:] if self.has_dst else self.operands
 
@@ -370,6 +371,12 @@ COMPARING = {"if": "ss", "break": "ss", "setp": None}
 _BY_NAME: dict[str, list[InstrInfo]] = {}
 for _info in TABLE:
     _BY_NAME.setdefault(_info.name, []).append(_info)
+# (opcode, version) -> the row `lookup` answers: the first row of that name the version has
+# (the assembler asks once per instruction; scanning the rows' version sets cost a tenth of it)
+_BY_VERSION: dict[tuple[str, str], InstrInfo] = {}
+for _info in TABLE:
+    for _version in _info.versions.names:
+        _BY_VERSION.setdefault((_info.name, _version), _info)
 
 
 def rows_named(name: str) -> list[InstrInfo]:
@@ -379,10 +386,7 @@ def rows_named(name: str) -> list[InstrInfo]:
 
 def lookup(name: str, version: str) -> InstrInfo | None:
     """The row for `name` in `version`, or None when the version lacks the instruction."""
-    for info in _BY_NAME.get(name, ()):
-        if version in info.versions:
-            return info
-    return None
+    return _BY_VERSION.get((name, version))
 
 
 def is_known(name: str) -> bool:

@@ -11,7 +11,6 @@ from typing import Any, Iterator, Mapping
 from effects.errors import AsmError, Location
 from effects.model import ShaderBlock
 from effects.shaders.asm import flow
-from effects.shaders.asm.check import check
 from effects.shaders.asm.parser import assemble
 from effects.shaders.asm.program import AsmProgram
 
@@ -52,18 +51,6 @@ def assemble_cached(block: ShaderBlock) -> AsmProgram:
     if isinstance(result, AsmError):
         raise result
     return result
-
-
-_checked: dict[int, tuple[AsmProgram, list[AsmError]]] = {}
-
-
-def check_cached(program: AsmProgram) -> list[AsmError]:
-    """`check`, memoised per assembled program object."""
-    hit = _checked.get(id(program))
-    if hit is None or hit[0] is not program:
-        hit = (program, check(program))
-        _checked[id(program)] = hit
-    return hit[1]
 
 
 def lowering_cached(program: AsmProgram, int_constants: Mapping[int, Any] | None = None

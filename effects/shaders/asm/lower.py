@@ -173,10 +173,10 @@ def lowering_problems(program: AsmProgram,
     checker rejects (an unclosed block ...) gets the checker's reason instead.
     `int_constants`: the i# the pass sets (ShaderContext.int_constants), whose loop counts
     count against the iteration limit."""
-    from effects.shaders.asm.check import check
-    errors = check(program)
+    from effects.shaders.asm.check import check_cached
+    errors = check_cached(program)
     if errors:
-        return errors
+        return list(errors)
     problems = (flow.iteration_problems(program, int_constants or {})
                 + flow.call_problems(program.instructions))
     dynamic = flow.dynamic_blocks(program.instructions)

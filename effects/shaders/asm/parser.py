@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from functools import lru_cache
 
 from effects import limits
 from effects.errors import AsmError, Location
@@ -38,6 +39,16 @@ _REGISTER = re.compile(
     r"(?P<index>\d+)?(?P<mods>(?:_[a-z0-9]+)*)$")
 _KIND_CASE = {"opos": "oPos", "ofog": "oFog", "opts": "oPts", "odepth": "oDepth", "od": "oD",
               "ot": "oT", "oc": "oC", "vpos": "vPos", "vface": "vFace", "al": "aL"}
+
+
+@lru_cache(maxsize=1024)    # a shader names a few registers many times
+def _register(word: str) -> tuple[str, int | None, str] | None:
+    """'r0_bx2' -> ('r', 0, '_bx2'); 'opos' -> ('oPos', None, ''); None if not a register."""
+    m = _REGISTER.match(word)
+    if m is None:
+        return None
+    kind, index, mods = m.groups()
+    return _KIND_CASE.get(kind, kind), None if index is None else int(index), mods
 _UNINDEXED = {"oPos", "oFog", "oPts", "oDepth", "vPos", "vFace", "aL"}
 _SRC_MODIFIERS = {"bias": "bias", "bx2": "bx2", "x2": "x2", "dz": "dz", "db": "dz",
                   "dw": "dw", "da": "dw", "abs": "abs"}
@@ -320,17 +331,17 @@ class _Parser:
         word = tok.text.lower()
         if word in ("true", "false"):
             return Operand("imm", None, self.loc(tok), text=tok.text, value=word == "true")
-        m = _REGISTER.match(word)
-        if m is None:
+        register = _register(word)
+        if register is None:
             raise self.error(f"'{tok.text}' is not a register", tok)
-        kind = _KIND_CASE.get(m.group("kind"), m.group("kind"))
-        index = int(m.group("index")) if m.group("index") is not None else None
+        kind, index, mods = register
         if kind in _UNINDEXED:
             if index is not None:
                 raise self.error(f"'{tok.text}' is not a register ({kind} takes no number)", tok)
         op = Operand(kind, index, self.loc(start), text=tok.text, negate=negate,
                      modifier="invert" if invert else None)
-        self._source_modifiers(op, m.group("mods"), tok)
+        if mods:
+            self._source_modifiers(op, mods, tok)
         if self.at("["):
             self._relative(op)
         if op.index is None and op.relative is None and kind not in _UNINDEXED:
@@ -343,12 +354,12 @@ class _Parser:
                                  f"{_describe(sw)}", sw)
             self.advance()
             letters, _, mods = sw.text.lower().partition("_")
-            if not letters or len(letters) > 4 or any(c not in _SWIZZLE_LETTERS for c in letters):
+            swizzle = _swizzle(letters)
+            if swizzle is None:
                 raise self.error(f"'.{sw.text}' is not a swizzle or write mask (use up to four "
                                  "of x, y, z, w or r, g, b, a)", dot)
             op.swizzle_text = letters
-            comps = [_SWIZZLE_LETTERS[c] for c in letters]
-            op.swizzle = tuple(comps + [comps[-1]] * (4 - len(comps)))  # type: ignore[assignment]
+            op.swizzle = swizzle
             if mods:
                 self._source_modifiers(op, "_" + mods, sw)
         return op
@@ -466,6 +477,16 @@ class _Parser:
             prog.int_defs[reg.index] = tuple(values)  # type: ignore[assignment]
         elif values:
             prog.bool_defs[reg.index] = bool(values[0])
+
+
+@lru_cache(maxsize=1024)
+def _swizzle(letters: str) -> tuple[int, int, int, int] | None:
+    """'xy' -> (0, 1, 1, 1): the components read, the last one repeated; None if the letters
+    are no swizzle (none, more than four, or one that is not x, y, z, w, r, g, b, a)."""
+    if not letters or len(letters) > 4 or any(c not in _SWIZZLE_LETTERS for c in letters):
+        return None
+    comps = [_SWIZZLE_LETTERS[c] for c in letters]
+    return tuple(comps + [comps[-1]] * (4 - len(comps)))  # type: ignore[return-value]
 
 
 def _describe(tok: Token) -> str:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from functools import cached_property
 
 # Register kinds as the parser names them, with the words used in messages.
 KIND_NAMES = {
@@ -64,15 +65,16 @@ class VersionRules:
     constants_min: int = 0         # guaranteed c# count (vs: MaxVertexShaderConst floor)
     notes: str = ""
 
-    @property
+    # asked for every instruction the checker sees: worked out once per version
+    @cached_property
     def is_ps1(self) -> bool:
         return self.kind == "ps" and self.major == 1
 
-    @property
+    @cached_property
     def is_ps11_13(self) -> bool:
         return self.kind == "ps" and self.major == 1 and self.minor < 4
 
-    @property
+    @cached_property
     def is_ps14(self) -> bool:
         return self.kind == "ps" and self.major == 1 and self.minor == 4
 
