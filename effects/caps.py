@@ -472,11 +472,11 @@ def _load_resolved(path: str) -> CapsProfile:
 
 
 def _build(path: Path, chain: tuple[str, ...]) -> CapsProfile:
-    raw, locations, key_locations = _read(path)
+    raw, inherit_location, key_locations = _read(path)
     parent: CapsProfile | None = None
     inherit = raw.get("inherit")
     if inherit is not None:
-        where = locations["inherit"]
+        where = inherit_location
         parent_path = _resolve(inherit, path.parent, where)
         if str(parent_path) in chain + (str(path),):
             raise _located(f"inherit cycle: {' -> '.join(Path(p).stem for p in chain)}"
@@ -553,6 +553,9 @@ def _check_consistency(caps: dict, where: dict) -> None:
 # ---------------------------------------------------------------------------------------------
 # Reading one file: YAML nodes -> checked Python values, with every key's location.
 
+_STR_TAG = "tag:yaml.org,2002:str"
+
+
 class _Reader:
     """Converts a composed YAML document into checked values, raising located errors."""
 
@@ -572,7 +575,7 @@ class _Reader:
     def scalar(self, node: yaml.Node) -> Any:
         if not isinstance(node, yaml.ScalarNode):
             return node  # the caller reports the wrong type
-        if node.tag == "tag:yaml.org,2002:str":
+        if node.tag == _STR_TAG:
             return node.value   # what the constructor makes of it (most scalars: names, bits)
         try:
             return self.constructor.construct_object(node)
@@ -672,7 +675,9 @@ class _Reader:
         prefix = _PREFIXES[id(spec.table)]
         bits = set()
         for item in self.items(node, name):
-            bit = self.scalar(item)
+            # most items of most profiles: a plain name (what `scalar` returns for it, unasked)
+            bit = item.value if isinstance(item, yaml.ScalarNode) and item.tag == _STR_TAG \
+                else self.scalar(item)
             if not isinstance(bit, str):
                 raise self.error(f"{name} entries must be {prefix}* names without the prefix, "
                                  f"not {_describe(bit)}", item)
@@ -780,8 +785,8 @@ class _Reader:
                              f"{_did_you_mean(values['bit'], list(spec.table))}", keys["bit"][1])
 
 
-def _read(path: Path) -> tuple[dict, dict[str, Location], dict[str, Location]]:
-    """Parse and check one profile file: (values, value locations, key locations)."""
+def _read(path: Path) -> tuple[dict, Location | None, dict[str, Location]]:
+    """Parse and check one profile file: (values, where the `inherit` value is, key locations)."""
     text = untrusted.read_text(path, "profile", ProfileError, "yaml_bytes")
     reader = _Reader(path, text)
     # libyaml's parser where PyYAML has it (yaml_input): the pure-Python one is most of the
@@ -791,7 +796,7 @@ def _read(path: Path) -> tuple[dict, dict[str, Location], dict[str, Location]]:
     if root is None:
         raise ProfileError("empty profile", Location(str(path), 1, 1))
     values: dict[str, Any] = {}
-    value_locations: dict[str, Location] = {}
+    inherit_location: Location | None = None
     key_locations: dict[str, Location] = {}
     spelled: dict[str, str] = {}
     for key, key_node, value_node in reader.pairs(root, "a profile"):
@@ -805,9 +810,10 @@ def _read(path: Path) -> tuple[dict, dict[str, Location], dict[str, Location]]:
                                key_node)
         spelled[canonical] = key
         values[canonical] = reader.value(spec, value_node, key)
-        value_locations[canonical] = reader.loc(value_node)
         key_locations[canonical] = reader.loc(key_node)
-    return values, value_locations, key_locations
+        if canonical == "inherit":
+            inherit_location = reader.loc(value_node)
+    return values, inherit_location, key_locations
 
 
 def _located(message: str, where: Location) -> ProfileError:

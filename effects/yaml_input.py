@@ -45,9 +45,13 @@ class Constructor(yaml.constructor.SafeConstructor):
                 None, None, f"cannot read {brief(value)} as {node.tag.rsplit(':', 1)[-1]}: "
                 f"{brief(str(exc))}", node.start_mark) from None
 
+    def __init__(self) -> None:
+        super().__init__()
+        self.literal_digits = limits.get("literal_digits")  # read once: a profile has ~20 ints
+
     def construct_yaml_int(self, node: yaml.ScalarNode) -> int:
         value = str(node.value)
-        if len(value) > limits.get("literal_digits"):
+        if len(value) > self.literal_digits:
             raise yaml.constructor.ConstructorError(
                 None, None, limits.message("literal_digits", len(value), "an integer"), node.start_mark)
         return super().construct_yaml_int(node)
@@ -105,9 +109,12 @@ def check_tree(root: yaml.Node | None, path: str, error: type[EffectError]) -> N
         return
     depth_limit = limits.get("yaml_depth")
     seen: set[int] = set()
-    stack: list[tuple[yaml.Node, int]] = [(root, 1)]
+    # depth-first, last child first; a node and its depth on two stacks (no pair per node)
+    stack: list[yaml.Node] = [root]
+    depths: list[int] = [1]
     while stack:
-        node, depth = stack.pop()
+        node = stack.pop()
+        depth = depths.pop()
         if id(node) in seen:
             raise error("YAML aliases (*name) are not accepted here: write the value out",
                         _where(path, node.start_mark))
@@ -116,9 +123,12 @@ def check_tree(root: yaml.Node | None, path: str, error: type[EffectError]) -> N
             continue
         if depth > depth_limit:
             raise error(limits.message("yaml_depth", depth, "the YAML nesting"), _where(path, node.start_mark))
-        children = node.value if isinstance(node, yaml.SequenceNode) else \
-            [child for pair in node.value for child in pair]
-        stack.extend((child, depth + 1) for child in children)
+        if isinstance(node, yaml.SequenceNode):
+            stack.extend(node.value)
+        else:
+            for pair in node.value:
+                stack.extend(pair)
+        depths.extend([depth + 1] * (len(stack) - len(depths)))
 
 
 def compose(text: str, path: str, error: type[EffectError], what: str = "YAML syntax error",
