@@ -47,6 +47,7 @@ from __future__ import annotations
 
 import difflib
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
@@ -340,15 +341,8 @@ class CapsProfile:
 
     def has(self, name: str, bit: str) -> bool:
         """Whether cap-bit field `name` has `bit` (with or without its header prefix)."""
-        spec = FIELDS.get(ALIASES.get(name, name))
-        table = spec.table if spec is not None else None
-        if table is None:
-            raise ValueError(f"{name} is not a cap-bit field")
-        prefix = _PREFIXES[id(table)]
-        short = bit[len(prefix):] if bit.startswith(prefix) else bit
-        if short not in table:
-            raise ValueError(f"{bit} is not a {prefix}* bit")
-        return short in self.caps.get(ALIASES.get(name, name), frozenset())
+        field_name, short = _cap_bit(name, bit)
+        return short in self.caps.get(field_name, frozenset())
 
     def generation_index(self) -> int:
         return GENERATIONS.index(self.generation)
@@ -401,6 +395,21 @@ class CapsProfile:
 
     def __str__(self) -> str:
         return f"{self.title} ({self.generation})"
+
+
+@lru_cache(maxsize=1024)   # validation asks a few hundred (field, bit) pairs thousands of times
+def _cap_bit(name: str, bit: str) -> tuple[str, str]:
+    """(the field's canonical name, the bit without its prefix); ValueError for a field that
+    has no bits or a bit it does not have."""
+    spec = FIELDS.get(ALIASES.get(name, name))
+    table = spec.table if spec is not None else None
+    if table is None:
+        raise ValueError(f"{name} is not a cap-bit field")
+    prefix = _PREFIXES[id(table)]
+    short = bit[len(prefix):] if bit.startswith(prefix) else bit
+    if short not in table:
+        raise ValueError(f"{bit} is not a {prefix}* bit")
+    return ALIASES.get(name, name), short
 
 
 def _version_tuple(text: str) -> tuple[int, int]:

@@ -144,7 +144,7 @@ def _flow_depths(program: AsmProgram, profile, first: Location, software: bool
         return
     field = "PS20Caps" if program.kind == "ps" else "VS20Caps"
     caps = profile.get(field) or {}
-    static, dynamic = flow.nesting(program.instructions)
+    static, dynamic = _nesting(program)
     what = "pixel" if program.kind == "ps" else "vertex"
     for name, used in (("StaticFlowControlDepth", static), ("DynamicFlowControlDepth", dynamic)):
         limit = caps.get(name)
@@ -152,6 +152,14 @@ def _flow_depths(program: AsmProgram, profile, first: Location, software: bool
             kind = "static" if name.startswith("Static") else "dynamic"
             yield (first, program.name, f"{field}.{name} >= {used}", f"{name} {limit}",
                    f"the {what} shader nests {kind} flow control {used} deep")
+
+
+def _nesting(program: AsmProgram) -> tuple[int, int]:
+    """`flow.nesting` of the program's instructions, once per program (asked per card)."""
+    hit = program.__dict__.get("_nesting")
+    if hit is None:
+        hit = program.__dict__["_nesting"] = flow.nesting(program.instructions)
+    return hit
 
 
 def _slot_limit(program: AsmProgram, profile, field: str, what: str,

@@ -69,6 +69,10 @@ class Token:
     col: int       # 1-based column in that line
 
 
+_PHASE_WORD = re.compile(r"(?i)(?<![A-Za-z0-9_])phase(?![A-Za-z0-9_])")
+_DIGITS = re.compile(r"\d+")
+_USAGE = re.compile(r"([a-z]+?)(\d*)")    # dcl_texcoord1: usage and index
+
 # `;` and `//` to the end of the line, `/* */` (or to the end of an unclosed one); the first
 # opener from the left wins, as when scanning character by character
 _COMMENT = re.compile(r";[^\n]*|//[^\n]*|/\*(?:.*?\*/|.*)", re.S)
@@ -89,7 +93,8 @@ class _Parser:
         raw_lines = block.source.split("\n")
         pad = " " * max(0, self.origin.column - 1)
         self.file_lines = tuple([pad + raw_lines[0]] + raw_lines[1:]) if raw_lines else ()
-        self.tokens = self._lex(_strip_comments(block.source))
+        self.text = _strip_comments(block.source)
+        self.tokens = self._lex(self.text)
         self.max_word = limits.get("literal_digits")   # read once: a lookup per token cost 30%
         self.pos = 0
         self.current: Token | None = None
@@ -189,8 +194,7 @@ class _Parser:
         return prog
 
     def _has_phase_marker(self) -> bool:
-        return re.search(r"(?i)(?<![A-Za-z0-9_])phase(?![A-Za-z0-9_])",
-                         _strip_comments(self.block.source)) is not None
+        return _PHASE_WORD.search(self.text) is not None
 
     def _statement(self, prog: AsmProgram, phase: int | None) -> None:
         coissue = self.at("+")
@@ -383,7 +387,7 @@ class _Parser:
         rel = None
         while True:
             tok = self.advance()
-            if tok.type == "number" and re.fullmatch(r"\d+", tok.text):
+            if tok.type == "number" and _DIGITS.fullmatch(tok.text):
                 offset += int(tok.text)
             elif tok.type == "word" and tok.text.lower() in ("a0", "al"):
                 kind = "aL" if tok.text.lower() == "al" else "a"
@@ -440,7 +444,7 @@ class _Parser:
             elif i == 0 and s in _SAMPLER_TYPES:
                 sampler_type = s
             elif i == 0:
-                m = re.fullmatch(r"([a-z]+?)(\d*)", s)
+                m = _USAGE.fullmatch(s)
                 if m is None or m.group(1) not in _USAGES:
                     raise self.error(f"unknown declaration '{tok.text}'", tok)
                 usage = m.group(1)
