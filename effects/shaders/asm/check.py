@@ -415,14 +415,12 @@ class _Checker(PS1Rules):
             self.err(f"{d.name} can be written only by mov", ins.location)
 
     def _read_ports(self, ins: Instruction) -> None:
-        seen: dict[str, list[Operand]] = {}
+        seen: dict[str, dict[str, Operand]] = {}   # kind -> register name -> its first operand
         for src in ins.srcs:
-            if src.kind not in self.rules.read_ports:
-                continue
-            names = seen.setdefault(src.kind, [])
-            if all(o.name != src.name for o in names):
-                names.append(src)
-        for kind, ops in seen.items():
+            if src.kind in self.rules.read_ports:
+                seen.setdefault(src.kind, {}).setdefault(src.name, src)
+        for kind, named in seen.items():
+            ops = list(named.values())
             limit = self.rules.read_ports[kind]
             if kind == "c" and ins.opcode == "sincos" and not self.rules.is_ps1:
                 # sincos's two D3DSINCOSCONST operands do not count against the constant

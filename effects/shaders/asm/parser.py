@@ -311,10 +311,7 @@ class _Parser:
     def _operand(self, role: str) -> Operand:
         start = self.peek()
         negate = invert = False
-        if self.at("-"):
-            self.advance()
-            negate = True
-        elif self.at("!"):
+        if start.type == "punct" and start.text in ("-", "!"):
             self.advance()
             negate = True
         elif start.type == "number" and start.text == "1" and role not in "fnB":
@@ -342,8 +339,11 @@ class _Parser:
         if kind in _UNINDEXED:
             if index is not None:
                 raise self.error(f"'{tok.text}' is not a register ({kind} takes no number)", tok)
-        op = Operand(kind, index, self.loc(start), text=tok.text, negate=negate,
-                     modifier="invert" if invert else None)
+        op = Operand(kind, index, self.loc(start), tok.text)   # positional: a third the cost
+        if negate:
+            op.negate = True
+        if invert:
+            op.modifier = "invert"
         if mods:
             self._source_modifiers(op, mods, tok)
         if self.at("["):

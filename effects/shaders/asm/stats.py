@@ -65,7 +65,15 @@ def instruction_slots(program: "AsmProgram", ins: "Instruction") -> tuple[int, i
 
 
 def texture_read_levels(program: "AsmProgram") -> dict[int, int]:
-    """Level of every texture read, by instruction position (1 = not dependent)."""
+    """Level of every texture read, by instruction position (1 = not dependent). Worked out
+    once per program (the checker and the stats both ask) and kept on it: read, don't change."""
+    held = program.__dict__.get("_read_levels")
+    if held is None:
+        held = program.__dict__["_read_levels"] = _read_levels(program)
+    return held
+
+
+def _read_levels(program: "AsmProgram") -> dict[int, int]:
     depends: dict[tuple[str, int | None], int] = {}   # register → highest level it derives from
     levels: dict[int, int] = {}
     ps1 = program.rules.is_ps1
@@ -132,12 +140,13 @@ def compute_stats(program: "AsmProgram") -> AsmStats:
             ps[1] += a
         for op in ins.operands:
             note(op.kind, op.index)
+            if op.kind == "p":
+                predication = True
         rows = ins.info.matrix_rows
         if rows and len(ins.srcs) > 1 and ins.srcs[1].index is not None:
             for k in range(1, rows):
                 note(ins.srcs[1].kind, ins.srcs[1].index + k)
-        if ins.predicate is not None or ins.opcode == "setp" or any(
-                op.kind == "p" for op in ins.operands):
+        if ins.predicate is not None or ins.opcode == "setp":
             predication = True
         if ins.opcode in ("dsx", "dsy", "texldd"):
             gradients = True
