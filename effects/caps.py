@@ -46,6 +46,8 @@ Errors in a profile are `ProfileError`s located at the offending key or value.
 from __future__ import annotations
 
 import difflib
+import os
+import stat
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
@@ -442,31 +444,55 @@ def load_profile(name_or_path: str | Path) -> CapsProfile:
 def clear_cache() -> None:
     """Forget loaded profiles (after editing a profile file)."""
     _LOADED.clear()
+    _resolved_folder.cache_clear()
 
 
 def _resolve(name_or_path: str | Path, relative_to: Path | None = None,
              where: Location | None = None) -> Path:
     text = str(name_or_path)
-    where = where or Location(yaml_input.brief(text)[1:-1] or "<profile>", 1, 1)
+
+    def here() -> Location:   # where an error about `text` is reported
+        return where or Location(yaml_input.brief(text)[1:-1] or "<profile>", 1, 1)
+
     if not text.strip():
         raise ProfileError("the profile name is empty; name a card (`effects profiles` lists "
-                           "them) or a .yaml file", where)
+                           "them) or a .yaml file", here())
     looks_like_path = text.endswith((".yaml", ".yml")) or "/" in text or "\\" in text
     if looks_like_path:
         path = Path(text)
         if not path.is_absolute() and relative_to is not None:
             path = relative_to / path
-        if path.is_file():
-            return path.resolve()
+        found = _resolved_file(path)
+        if found is not None:
+            return found
         if path.exists():   # a directory, a FIFO, a device: say which
-            untrusted.check_regular(str(path), "profile", ProfileError, where)
-        raise _located(f"no profile file '{text}'", where)
-    candidate = PROFILE_DIR / f"{text}.yaml"
-    if candidate.is_file():
-        return candidate.resolve()
+            untrusted.check_regular(str(path), "profile", ProfileError, here())
+        raise _located(f"no profile file '{text}'", here())
+    found = _resolved_file(PROFILE_DIR / f"{text}.yaml")
+    if found is not None:
+        return found
     known = sorted(p.stem for p in PROFILE_DIR.glob("*.yaml"))
     raise _located(f"unknown profile '{text}'{_did_you_mean(text, known)}; "
-                   f"known profiles: {', '.join(known)}", where)
+                   f"known profiles: {', '.join(known)}", here())
+
+
+def _resolved_file(path: Path) -> Path | None:
+    """What `path.resolve() if path.is_file() else None` answers. A regular file that is no
+    symlink, named by an absolute path, resolves to its folder's resolution plus its name, and
+    that is kept per folder (clear_cache forgets it): resolve() walks every component (~30 us),
+    and `effects matrix` names each card again for every effect file."""
+    try:
+        mode: int | None = os.lstat(path).st_mode if path.is_absolute() else None
+    except (OSError, ValueError):
+        mode = None    # is_file() below says what this means
+    if mode is not None and stat.S_ISREG(mode):
+        return _resolved_folder(path.parent) / path.name
+    return path.resolve() if path.is_file() else None
+
+
+@lru_cache(maxsize=16)
+def _resolved_folder(folder: Path) -> Path:
+    return folder.resolve()
 
 
 # resolved path -> its profile: every profile loaded in this process, parents included
