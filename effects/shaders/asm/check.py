@@ -44,6 +44,12 @@ class _Checker(PS1Rules):
         self.out_of_range: set[str] = set()   # registers already reported: once each
         self.written: set[tuple[str, int | None]] = set()
         self.written_phase: dict[tuple[str, int | None], int] = {}
+        # asked for every source: the declared registers (AsmProgram.declaration's answer, the
+        # first declaration of each), and whether this vertex shader declares its inputs
+        self.declared: set[tuple[str, int | None]] = {(d.register.kind, d.register.index)
+                                                      for d in program.dcls}
+        self.vs_declares_inputs = program.kind == "vs" and (
+            program.has_decl_block or any(not d.from_decl for d in program.dcls))
 
     def err(self, message: str, location: Location) -> None:
         self.errors.append(AsmError(message, location,
@@ -470,16 +476,15 @@ class _Checker(PS1Rules):
                 self.err(f"{s.name} is read before it is written", s.location)
         if self.p.kind == "ps" and self.rules.major >= 2:
             for s in ins.srcs:
-                if s.kind in ("t", "v", "s") and self.p.declaration(s.kind, s.index) is None \
+                if s.kind in ("t", "v", "s") and (s.kind, s.index) not in self.declared \
                         and s.name not in reported:
                     reported.add(s.name)
                     how = (f"dcl_2d {s.name}, dcl_cube {s.name} or dcl_volume {s.name}"
                            if s.kind == "s" else f"dcl {s.name}")
                     self.err(f"{s.name} is used but not declared (add {how})", s.location)
-        if self.p.kind == "vs" and (self.p.has_decl_block or any(
-                not d.from_decl for d in self.p.dcls)):
+        if self.vs_declares_inputs:
             for s in ins.srcs:
-                if s.kind == "v" and self.p.declaration("v", s.index) is None \
+                if s.kind == "v" and ("v", s.index) not in self.declared \
                         and s.name not in reported:
                     reported.add(s.name)
                     self.err(f"{s.name} is read but not declared (by a dcl_usage or the "
