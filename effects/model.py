@@ -79,7 +79,7 @@ class TypeSpec:
 # Values
 
 
-@dataclass
+@dataclass(slots=True)
 class Annotation:
     type: TypeSpec
     name: str
@@ -91,7 +91,7 @@ class Annotation:
                 and self.name == other.name and values_equal(self.value, other.value))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class ParamRef:
     """A reference to a parameter as a state value: `<name>` (DX8, `angle=True`), `(name)` or
     `name`; `index` for an array element such as `(vsArray[2])`."""
@@ -102,7 +102,7 @@ class ParamRef:
     location: Location = _loc()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class EnumValue:
     """An enum state value, possibly `|`-combined. `names` are canonical (no D3DTOP_ prefix,
     upper case) in source order; `value` is the combined integer from the states table (None
@@ -113,7 +113,7 @@ class EnumValue:
     location: Location = _loc()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class NullValue:
     location: Location = _loc()
 
@@ -161,7 +161,7 @@ class CompileShader:
     location: Location = _loc()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class Expression:
     """A state value we keep as text: a preshader expression such as `Bias * 2`."""
 
@@ -173,7 +173,7 @@ StateValue = Union["np.ndarray", str, bool, EnumValue, ParamRef, NullValue, Shad
                    CompileShader, Expression, "SamplerState"]
 
 
-@dataclass
+@dataclass(slots=True)
 class StateAssignment:
     """`Name = value;` or `Name[index] = value;`. `name` is the states table's canonical
     spelling when the state is known (`known=True`), otherwise the text as written."""

@@ -25,6 +25,7 @@ Sources (facts only, restated here):
 from __future__ import annotations
 
 import difflib
+import sys
 from dataclasses import dataclass, field
 from collections.abc import Callable, Container, Iterable, Mapping
 from types import MappingProxyType
@@ -77,7 +78,9 @@ class EnumTable:
         for candidate in candidates:
             canonical = self.aliases.get(candidate, candidate)
             if canonical in self.values:
-                return canonical, self.values[canonical]
+                # the one shared string (the table's key is an interned literal), not a copy
+                # per state value that names it: effects keep thousands of these
+                return sys.intern(canonical), self.values[canonical]
         return None
 
     def spelling(self, canonical: str) -> str:
