@@ -63,12 +63,13 @@ Constructor.add_constructor("tag:yaml.org,2002:int", Constructor.construct_yaml_
 class Resolver(yaml.resolver.Resolver):
     """YAML 1.1's resolver, its answer for a plain scalar kept: libyaml's composer asks for
     every scalar, and the 20 bundled profiles repeat the same few hundred names and numbers
-    (5,426 asks, 700 texts). The implicit resolvers are the class's, set at import."""
+    (5,426 asks, 700 texts). The implicit resolvers are the class's, set at import. Only
+    short texts are kept, at most 4,096: the memo pins no large value of an untrusted file."""
 
     _resolved: dict[tuple[type, str, tuple[bool, bool]], str] = {}
 
     def resolve(self, kind: type, value: Any, implicit: Any) -> str:
-        if kind is not yaml.ScalarNode or self.yaml_path_resolvers:
+        if kind is not yaml.ScalarNode or self.yaml_path_resolvers or len(value) > 64:
             return super().resolve(kind, value, implicit)
         key = (type(self), value, implicit)
         tag = self._resolved.get(key)

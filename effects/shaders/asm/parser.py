@@ -39,16 +39,6 @@ _REGISTER = re.compile(
     r"(?P<index>\d+)?(?P<mods>(?:_[a-z0-9]+)*)$")
 _KIND_CASE = {"opos": "oPos", "ofog": "oFog", "opts": "oPts", "odepth": "oDepth", "od": "oD",
               "ot": "oT", "oc": "oC", "vpos": "vPos", "vface": "vFace", "al": "aL"}
-
-
-@lru_cache(maxsize=1024)    # a shader names a few registers many times
-def _register(word: str) -> tuple[str, int | None, str] | None:
-    """'r0_bx2' -> ('r', 0, '_bx2'); 'opos' -> ('oPos', None, ''); None if not a register."""
-    m = _REGISTER.match(word)
-    if m is None:
-        return None
-    kind, index, mods = m.groups()
-    return _KIND_CASE.get(kind, kind), None if index is None else int(index), mods
 _UNINDEXED = {"oPos", "oFog", "oPts", "oDepth", "vPos", "vFace", "aL"}
 _SRC_MODIFIERS = {"bias": "bias", "bx2": "bx2", "x2": "x2", "dz": "dz", "db": "dz",
                   "dw": "dw", "da": "dw", "abs": "abs"}
@@ -481,6 +471,16 @@ class _Parser:
             prog.int_defs[reg.index] = tuple(values)  # type: ignore[assignment]
         elif values:
             prog.bool_defs[reg.index] = bool(values[0])
+
+
+@lru_cache(maxsize=1024)    # a shader names a few registers many times
+def _register(word: str) -> tuple[str, int | None, str] | None:
+    """'r0_bx2' -> ('r', 0, '_bx2'); 'opos' -> ('oPos', None, ''); None if not a register."""
+    m = _REGISTER.match(word)
+    if m is None:
+        return None
+    kind, index, mods = m.groups()
+    return _KIND_CASE.get(kind, kind), None if index is None else int(index), mods
 
 
 @lru_cache(maxsize=1024)
