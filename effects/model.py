@@ -40,7 +40,7 @@ def values_equal(a: Any, b: Any) -> bool:
 # Types
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class TypeSpec:
     """A parameter type. `base` is canonical lower case: bool, int, half, float, dword, string,
     texture, sampler, vertexshader, pixelshader, or a struct name (then `struct=True`).
@@ -118,7 +118,7 @@ class NullValue:
     location: Location = _loc()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class VertexDeclElement:
     """One line of a DX8 `decl {}` block: `float v0[3];` → ('float', 0, 3) of `stream`."""
 
@@ -151,7 +151,7 @@ class ShaderBlock:
     __hash__ = None  # type: ignore[assignment]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class CompileShader:
     """`compile vs_1_1 func(args)`: an HLSL function compiled for a profile (args as source text)."""
 
@@ -190,7 +190,7 @@ class StateAssignment:
                 and values_equal(self.value, other.value))
 
 
-@dataclass
+@dataclass(slots=True)
 class SamplerState:
     """`sampler_state { ... }` (also `stateblock_state`)."""
 
@@ -218,7 +218,7 @@ def register_binding(text: str) -> tuple[str, str]:
     return ("", parts[0]) if len(parts) == 1 else (parts[0], parts[1])
 
 
-@dataclass
+@dataclass(slots=True)
 class Parameter:
     name: str
     type: TypeSpec
@@ -278,7 +278,7 @@ class Parameter:
 TEXTURE_KINDS = {"2D": "2d", "1D": "1d", "CUBE": "cube", "3D": "3d", "VOLUME": "3d"}
 
 
-@dataclass
+@dataclass(slots=True)
 class Struct:
     """A user type for HLSL: a `struct` or a global `typedef` (its name and exact text)."""
 
@@ -288,7 +288,7 @@ class Struct:
     row_major: bool = False  # declared under `#pragma pack_matrix(row_major)`
 
 
-@dataclass
+@dataclass(slots=True)
 class Function:
     """An HLSL function captured with its exact source text (compiled by a later stage)."""
 
@@ -299,7 +299,7 @@ class Function:
     row_major: bool = False  # declared under `#pragma pack_matrix(row_major)`
 
 
-@dataclass
+@dataclass(slots=True)
 class Pass:
     name: str | None
     states: list[StateAssignment] = field(default_factory=list)
@@ -315,7 +315,7 @@ class Pass:
         return None
 
 
-@dataclass
+@dataclass(slots=True)
 class Technique:
     name: str | None
     passes: list[Pass] = field(default_factory=list)
