@@ -43,6 +43,22 @@ class FrameBufferChecks:
 
     def check_framebuffer(self) -> None:
         stencil = self.check_stencil_buffer()
+        for row, value, bit in self.card_free(("limited", stencil),
+                                              lambda: self._limited_needs(stencil)):
+            limit = row.limit
+            if self.has_reliable_bit(limit.field, bit):
+                continue   # the common case: nothing to say, no message built
+            shown = spelled(row.name, value) if isinstance(value, str) else _shown_scalar(value)
+            what = limit.describe(value)
+            subject = f"{row.name} = {shown}" + (f" ({what})" if what else "")
+            self.need_bit(limit.field, bit, subject, self.where(row.name))
+        self.check_blend_targets()
+        self.check_write_masks()
+
+    def _limited_needs(self, stencil: bool) -> list[tuple[state_table.StateInfo, Any, str]]:
+        """(row, value, bit) of each limited state the pass needs a caps bit for, in table
+        order; the stencil states only where the card has a stencil buffer."""
+        needs = []
         gates: dict[str, bool] = {}
 
         def gated(names: tuple[str, ...]) -> bool:
@@ -69,14 +85,9 @@ class FrameBufferChecks:
                 if not limit.gate or default_bit is None or not gated(limit.gate):
                     continue
                 value, bit = default, default_bit
-            if bit is None or self.has_reliable_bit(limit.field, bit):
-                continue   # the common case: nothing to say, no message built
-            shown = spelled(row.name, value) if isinstance(value, str) else _shown_scalar(value)
-            what = limit.describe(value)
-            subject = f"{row.name} = {shown}" + (f" ({what})" if what else "")
-            self.need_bit(limit.field, bit, subject, self.where(row.name))
-        self.check_blend_targets()
-        self.check_write_masks()
+            if bit is not None:
+                needs.append((row, value, bit))
+        return needs
 
     def _limited_value(self, row: state_table.StateInfo) -> Any:
         if row.type == "enum":

@@ -6,6 +6,8 @@ A mixin of `validate._PassChecker`: it uses the checker's state, profile, report
 and reason helpers (fail, need_bit, where, unknown ...)."""
 from __future__ import annotations
 
+from typing import Any
+
 from effects.stage_ops import (MAX_STAGES, STAGE_OPS, TA_ALPHAREPLICATE, TA_COMPLEMENT, TA_CONSTANT,
                                TA_CURRENT, TA_SELECTMASK, TA_TEMP, StageOp)
 
@@ -49,12 +51,21 @@ class StageChecks:
                       f"MaxTextureBlendStages >= {len(stages)}", f"MaxTextureBlendStages {limit}",
                       f"ColorOp[{top}] enables texture stage {top}, so {len(stages)} stages are "
                       f"needed; the {self.card()} has {limit}")
-        for stage in stages:
-            self.check_stage(stage)
+        for field, bit, subject, location in self.card_free(
+                ("stages", tuple(stages)), lambda: self._stage_needs(stages)):
+            self.need_bit(field, bit, subject, location)
         if stages:
             self.check_result_args(stages)
 
-    def check_stage(self, stage: int) -> None:
+    def _stage_needs(self, stages: list[int]) -> list[tuple[str, str, str, Any]]:
+        """(caps field, bit, subject, location) each active stage's ops and arguments need,
+        in stage order: what `check_texture_stages` asks of each card."""
+        needs: list[tuple[str, str, str, Any]] = []
+        for stage in stages:
+            self.stage_needs(stage, needs)
+        return needs
+
+    def stage_needs(self, stage: int, needs: list[tuple[str, str, str, Any]]) -> None:
         for op_state, arg_prefix in (("ColorOp", "ColorArg"), ("AlphaOp", "AlphaArg")):
             if self.unknown(op_state, stage):
                 continue
@@ -63,21 +74,21 @@ class StageChecks:
                 continue
             shown = self._shown(op_state, stage)
             row = _stage_op(op)
-            self.need_bit("TextureOpCaps", row.cap if row is not None else op,
-                          f"{op_state}[{stage}] = {shown}", self.where(op_state, stage))
+            needs.append(("TextureOpCaps", row.cap if row is not None else op,
+                          f"{op_state}[{stage}] = {shown}", self.where(op_state, stage)))
             for n in _args_read(op):
-                self.check_arg(f"{arg_prefix}{n}", stage)
+                self.arg_needs(f"{arg_prefix}{n}", stage, needs)
 
-    def check_arg(self, state_name: str, stage: int) -> None:
+    def arg_needs(self, state_name: str, stage: int, needs: list[tuple[str, str, str, Any]]) -> None:
         if self.unknown(state_name, stage):
             return
         select = self.arg_select(state_name, stage)
         if select == TA_TEMP:
-            self.need_bit("PrimitiveMiscCaps", "TSSARGTEMP", f"{state_name}[{stage}] = Temp",
-                          self.where(state_name, stage))
+            needs.append(("PrimitiveMiscCaps", "TSSARGTEMP", f"{state_name}[{stage}] = Temp",
+                          self.where(state_name, stage)))
         elif select == TA_CONSTANT:
-            self.need_bit("PrimitiveMiscCaps", "PERSTAGECONSTANT", f"{state_name}[{stage}] = Constant",
-                          self.where(state_name, stage))
+            needs.append(("PrimitiveMiscCaps", "PERSTAGECONSTANT", f"{state_name}[{stage}] = Constant",
+                          self.where(state_name, stage)))
 
     def check_result_args(self, stages: list[int]) -> None:
         """ResultArg is Current (default) or Temp, never modified, and the last stage writes

@@ -205,9 +205,9 @@ class _PassAnalysis:
     state as the checks read it (`_Reads`) and the pass's bad parameter references. Made
     afresh for each call: between calls a host may set other parameter values."""
 
-    __slots__ = ("state", "expressions", "reads", "programs", "_references")
+    __slots__ = ("state", "expressions", "reads", "programs", "kept", "_references")
 
-    def __init__(self, effect: Effect, state: DeviceState, programs: dict) -> None:
+    def __init__(self, effect: Effect, state: DeviceState, programs: dict, cards: int) -> None:
         self.state = state
         # the checks read expression-valued states as their values now (the report keeps the
         # state as written: lowering evaluates again when it draws)
@@ -215,6 +215,8 @@ class _PassAnalysis:
         self.reads = _Reads(self.expressions.state)
         # shader value id -> (value, its program or EffectError), for every pass of the call
         self.programs = programs
+        # the card-free part of a check, by key (`_PassChecker.card_free`); None for one card
+        self.kept: dict[Any, tuple[Any, list[str]]] | None = {} if cards > 1 else None
         self._references: list[tuple[Location, str]] | None = None
 
     def references(self, effect: Effect, p: Pass) -> list[tuple[Location, str]]:
@@ -263,6 +265,25 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
     def note(self, text: str) -> None:
         if text not in self.report.notes:
             self.report.notes.append(text)
+
+    def card_free(self, key: Any, make: Callable[[], Any]) -> Any:
+        """`make()`: the part of a check that reads nothing of the card (what to ask of it),
+        made once per pass for all the cards one call validates on (the pass analysis keeps
+        it under `key`). The notes it makes are kept with it and told on every card, at the
+        same point and in the same order, as if it ran again."""
+        if self.analysis.kept is None:
+            return make()
+        kept = self.analysis.kept.get(key)
+        if kept is None:
+            notes, self.report.notes = self.report.notes, []
+            try:
+                made = make()
+            finally:
+                told, self.report.notes = self.report.notes, notes
+            kept = self.analysis.kept[key] = (made, told)
+        for text in kept[1]:
+            self.note(text)
+        return kept[0]
 
     def where(self, name: str, index: int | None = None) -> Location:
         return self.state.where(name, index, self.pass_.location)
@@ -457,7 +478,7 @@ def validate_on_cards(effect: Effect, technique: Technique,
     """`validate_technique` on each of `profiles`, in order: the same answers, with what the
     checks read of each pass that no card changes (`_PassAnalysis`) made once for all of them."""
     programs: dict = {}
-    analyses = [(p, _PassAnalysis(effect, state, programs))
+    analyses = [(p, _PassAnalysis(effect, state, programs, len(profiles)))
                 for p, state in pass_states(effect, technique.passes)]
     return [Validation(technique, profile,
                        [_PassChecker(effect, technique, p, i, analysis, profile).run()

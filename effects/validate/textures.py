@@ -25,6 +25,8 @@ from effects.validate.values import spelled
 _LIMITS = {name: state_table.lookup_state(name).limit
            for name in ("MinFilter", "MagFilter", "MipFilter", "AddressU", "AddressV", "AddressW")}
 _FILTER_FIELD = {"CUBE": "CubeTextureFilterCaps", "3D": "VolumeTextureFilterCaps"}
+# What a sampler state asks of a card besides a fixed field's bit (`_sampler_needs`).
+_FILTER, _NO_FILTER, _ANISOTROPY, _ADDRESS = (object() for _ in range(4))
 # ps_1_1-1_3 instructions that look up a cube map (the ps_1_x instruction pages).
 _CUBE_LOOKUPS_PS1 = frozenset({"texm3x3tex", "texm3x3spec", "texm3x3vspec"})
 
@@ -220,6 +222,34 @@ class TextureChecks:
         filter_field = filter_field or _FILTER_FIELD.get(kind or "", "TextureFilterCaps")
         if self.profile.get(filter_field) is None:
             filter_field = "TextureFilterCaps"
+        address_field = "VolumeTextureAddressCaps" if kind == "3D" and self.profile.get(
+            "VolumeTextureAddressCaps") is not None else "TextureAddressCaps"
+        for what, name, bit, subject, location in self.card_free(
+                ("samplers", unit, kind), lambda: self._sampler_needs(unit, kind)):
+            if what is _FILTER:
+                self.need_bit(filter_field, bit, subject, location)
+            elif what is _NO_FILTER:
+                self.fail(location, subject, f"a {name} the card filters with",
+                          f"not in {filter_field}",
+                          f"{subject} is not a {name[:3].lower()}ification filter a Direct3D 9 "
+                          f"card reports; the {self.card()} does not have it")
+            elif what is _ADDRESS:
+                self.need_bit(address_field, bit, subject, location)
+            elif what is _ANISOTROPY:
+                wanted = bit
+                have = int(self.profile.get("MaxAnisotropy", 1) or 1)
+                if wanted > have:
+                    self.fail(location, subject, f"MaxAnisotropy >= {wanted}", f"MaxAnisotropy {have}",
+                              f"{subject}; the {self.card()} filters with at most {have}")
+            else:   # a bit of a field that does not depend on the texture's kind
+                self.need_bit(what, bit, subject, location)
+
+    def _sampler_needs(self, unit: int, kind: str | None) -> list[tuple[Any, str, Any, str, Any]]:
+        """What `check_sampler_states` asks of each card, in its order: (what, state name, bit
+        or value, subject, location); `what` is a caps field or _FILTER (the kind's filter
+        field), _NO_FILTER (a value no card filters with), _ANISOTROPY, _ADDRESS (the kind's
+        address field)."""
+        needs: list[tuple[Any, str, Any, str, Any]] = []
         for name in ("MinFilter", "MagFilter", "MipFilter"):
             if self.unknown(name, unit):
                 continue
@@ -229,35 +259,29 @@ class TextureChecks:
             subject = f"{name}[{unit}] = {spelled(name, value)}"
             bit = _LIMITS[name].bit_for(value)
             if bit not in (FIELDS["TextureFilterCaps"].table or {}):
-                self.fail(self.where(name, unit), subject, f"a {name} the card filters with",
-                          f"not in {filter_field}",
-                          f"{subject} is not a {name[:3].lower()}ification filter a Direct3D 9 "
-                          f"card reports; the {self.card()} does not have it")
+                needs.append((_NO_FILTER, name, bit, subject, self.where(name, unit)))
                 continue
-            self.need_bit(filter_field, bit, subject, self.where(name, unit))
+            needs.append((_FILTER, name, bit, subject, self.where(name, unit)))
         mip = self.state.get_enum("MipFilter", unit, default=None)
         if mip not in (None, "NONE"):
             mip_bit = {"CUBE": "MIPCUBEMAP", "3D": "MIPVOLUMEMAP"}.get(kind or "", "MIPMAP")
-            self.need_bit("TextureCaps", mip_bit, f"MipFilter[{unit}] = {spelled('MipFilter', mip)}",
-                          self.where("MipFilter", unit))
+            needs.append(("TextureCaps", "MipFilter", mip_bit,
+                          f"MipFilter[{unit}] = {spelled('MipFilter', mip)}",
+                          self.where("MipFilter", unit)))
         if self.state.assignment("MaxAnisotropy", unit) is not None and not self.unknown("MaxAnisotropy", unit):
             wanted = self.state.get_int("MaxAnisotropy", unit, default=None)
-            have = int(self.profile.get("MaxAnisotropy", 1) or 1)
-            if wanted is not None and wanted > have:
-                self.fail(self.where("MaxAnisotropy", unit), f"MaxAnisotropy[{unit}] = {wanted}",
-                          f"MaxAnisotropy >= {wanted}", f"MaxAnisotropy {have}",
-                          f"MaxAnisotropy[{unit}] = {wanted}; the {self.card()} filters with at most {have}")
-        address_field = "VolumeTextureAddressCaps" if kind == "3D" and self.profile.get(
-            "VolumeTextureAddressCaps") is not None else "TextureAddressCaps"
+            if wanted is not None:
+                needs.append((_ANISOTROPY, "MaxAnisotropy", wanted,
+                              f"MaxAnisotropy[{unit}] = {wanted}", self.where("MaxAnisotropy", unit)))
         names = ("AddressU", "AddressV", "AddressW") if kind == "3D" else ("AddressU", "AddressV")
         for name in names:
             if self.state.assignment(name, unit) is None or self.unknown(name, unit):
                 continue
             value = self.state.get_enum(name, unit, default=None)
             if value:
-                self.need_bit(address_field, _LIMITS[name].bit_for(value),
-                              f"{name}[{unit}] = {spelled(name, value)}",
-                              self.where(name, unit))
+                needs.append((_ADDRESS, name, _LIMITS[name].bit_for(value),
+                              f"{name}[{unit}] = {spelled(name, value)}", self.where(name, unit)))
+        return needs
 
 
 def texture_kind(param: Parameter, effect: Effect | None = None) -> str | None:
