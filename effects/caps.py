@@ -710,9 +710,7 @@ class _Reader:
         prefix = _PREFIXES[id(spec.table)]
         bits = set()
         for item in self.items(node, name):
-            # most items of most profiles: a plain name (what `scalar` returns for it, unasked)
-            bit = item.value if isinstance(item, yaml.ScalarNode) and item.tag == _STR_TAG \
-                else self.scalar(item)
+            bit = self.scalar(item)
             if not isinstance(bit, str):
                 raise self.error(f"{name} entries must be {prefix}* names without the prefix, "
                                  f"not {_describe(bit)}", item)

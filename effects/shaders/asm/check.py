@@ -12,7 +12,7 @@ from effects.errors import AsmError, Location
 from effects.shaders.asm.instructions import versions_having
 from effects.shaders.asm.program import AsmProgram, Instruction, Operand
 from effects.shaders.asm.ps1_rules import PS1Rules
-from effects.shaders.asm.stats import instruction_slots, texture_read_levels
+from effects.shaders.asm.stats import instruction_slots
 from effects.shaders.asm.versions import IDENTITY, KIND_NAMES, PS20_SWIZZLES
 
 _MODIFIER_SYNTAX = {"bias": "_bias", "bx2": "_bx2", "x2": "_x2", "invert": "1-", "dz": "_dz",
@@ -543,7 +543,7 @@ class _Checker(PS1Rules):
         limit = self.rules.dependent_read_limit
         if limit is None:
             return
-        levels = texture_read_levels(self.p)
+        levels = self.p.read_levels
         for pos, level in sorted(levels.items()):
             if level > limit:
                 ins = self.p.instructions[pos]

@@ -10,7 +10,6 @@ from typing import Any, Iterator, Mapping
 
 from effects.errors import AsmError, Location
 from effects.model import ShaderBlock
-from effects.shaders.asm import flow
 from effects.shaders.asm.parser import assemble
 from effects.shaders.asm.program import AsmProgram
 
@@ -144,7 +143,7 @@ def _flow_depths(program: AsmProgram, profile, first: Location, software: bool
         return
     field = "PS20Caps" if program.kind == "ps" else "VS20Caps"
     caps = profile.get(field) or {}
-    static, dynamic = _nesting(program)
+    static, dynamic = program.flow_nesting
     what = "pixel" if program.kind == "ps" else "vertex"
     for name, used in (("StaticFlowControlDepth", static), ("DynamicFlowControlDepth", dynamic)):
         limit = caps.get(name)
@@ -152,14 +151,6 @@ def _flow_depths(program: AsmProgram, profile, first: Location, software: bool
             kind = "static" if name.startswith("Static") else "dynamic"
             yield (first, program.name, f"{field}.{name} >= {used}", f"{name} {limit}",
                    f"the {what} shader nests {kind} flow control {used} deep")
-
-
-def _nesting(program: AsmProgram) -> tuple[int, int]:
-    """`flow.nesting` of the program's instructions, once per program (asked per card)."""
-    hit = program.__dict__.get("_nesting")
-    if hit is None:
-        hit = program.__dict__["_nesting"] = flow.nesting(program.instructions)
-    return hit
 
 
 def _slot_limit(program: AsmProgram, profile, field: str, what: str,

@@ -158,6 +158,21 @@ class AsmProgram:
         from effects.shaders.asm.stats import compute_stats
         return compute_stats(self)
 
+    # Asked of one program once per card: worked out once, kept with it. Read them; don't
+    # change them. (check.check_cached keeps the checker's errors on it the same way: the
+    # checker imports this module, so a property here would make an import cycle.)
+    @cached_property
+    def flow_nesting(self) -> tuple[int, int]:
+        """`flow.nesting` of the instructions: (static, dynamic) flow-control depth."""
+        from effects.shaders.asm.flow import nesting
+        return nesting(self.instructions)
+
+    @cached_property
+    def read_levels(self) -> dict[int, int]:
+        """`stats.texture_read_levels`: the level of every texture read, by position."""
+        from effects.shaders.asm.stats import texture_read_levels
+        return texture_read_levels(self)
+
     def declaration(self, kind: str, index: int) -> Declaration | None:
         for d in self.dcls:
             if d.register.kind == kind and d.register.index == index:

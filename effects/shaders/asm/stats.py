@@ -65,15 +65,8 @@ def instruction_slots(program: "AsmProgram", ins: "Instruction") -> tuple[int, i
 
 
 def texture_read_levels(program: "AsmProgram") -> dict[int, int]:
-    """Level of every texture read, by instruction position (1 = not dependent). Worked out
-    once per program (the checker and the stats both ask) and kept on it: read, don't change."""
-    held = program.__dict__.get("_read_levels")
-    if held is None:
-        held = program.__dict__["_read_levels"] = _read_levels(program)
-    return held
-
-
-def _read_levels(program: "AsmProgram") -> dict[int, int]:
+    """Level of every texture read, by instruction position (1 = not dependent). The checker
+    and the stats both ask: they read it once per program, `AsmProgram.read_levels`."""
     depends: dict[tuple[str, int | None], int] = {}   # register → highest level it derives from
     levels: dict[int, int] = {}
     ps1 = program.rules.is_ps1
@@ -172,7 +165,7 @@ def compute_stats(program: "AsmProgram") -> AsmStats:
             max_depth = max(max_depth, depth)
         elif ins.opcode in ("endif", "endloop", "endrep"):
             depth = max(0, depth - 1)
-    levels = texture_read_levels(program)
+    levels = program.read_levels
     return AsmStats(
         texture_slots=tex, arithmetic_slots=arith, flow_slots=flow,
         total_slots=tex + arith + flow,
