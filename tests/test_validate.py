@@ -808,3 +808,38 @@ def test_shader_model_3_runs_only_with_itself_in_hardware(card_name, body, reaso
         f"{reason}; Shader Model 3 shaders run only with each other in hardware (a vs_3_0 in "
         "software vertex processing excepted)"]
     assert [r.message for r in v.reasons] == want
+
+
+def test_many_cards_at_once_answer_as_each_card_alone():
+    """`validate_on_cards` makes what the stage, sampler and frame-buffer checks ask of a pass
+    once for all the cards; each card's reasons, warnings and notes (those of states set from
+    parameters without a value too, in order) are what validating on that card alone gives."""
+    from effects.validate.technique import validate_on_cards
+    effect = effects.load_effect(textwrap.dedent("""
+        int Op; int Filter; int Blend; texture Tex;
+        sampler S = sampler_state { Texture = <Tex>; MinFilter = <Filter>; MagFilter = Anisotropic;
+                                    MipFilter = Linear; MaxAnisotropy = 16; AddressU = Border; };
+        technique T {
+            pass P0 { ColorOp[0] = BumpEnvMap; ColorArg1[0] = Texture; ColorArg2[0] = Temp;
+                      AlphaOp[0] = <Op>; ColorOp[1] = DotProduct3; ColorArg1[1] = Constant;
+                      Texture[0] = <Tex>; MinFilter[0] = <Filter>; MagFilter[0] = Anisotropic;
+                      MipFilter[0] = Linear; MaxAnisotropy[0] = 16; AddressU[0] = MirrorOnce;
+                      AlphaBlendEnable = TRUE; SrcBlend = <Blend>; DestBlend = BlendFactor;
+                      BlendOp = Max; StencilEnable = TRUE; StencilFunc = Equal;
+                      StencilPass = IncrSat; CullMode = CW; ZFunc = <Op>; }
+            pass P1 { ColorOp[0] = Modulate; AlphaBlendEnable = FALSE; }
+        }"""))
+    cards = [PROFILES[name] for name in CARDS]
+    together = validate_on_cards(effect, effect.techniques[0], cards)
+    rejected = 0
+    for card, v in zip(cards, together):
+        alone = validate_technique(effect, effect.techniques[0], card)
+        assert [str(r) for r in v.reasons] == [str(r) for r in alone.reasons], card.name
+        assert [str(r) for r in v.warnings] == [str(r) for r in alone.warnings], card.name
+        assert v.notes == alone.notes and v.notes, card.name
+        rejected += not v.ok
+    # the checks ran and cards differ: the DX6-DX8 parts lack some of it, the DX9 ones not
+    assert 0 < rejected < len(cards)
+    assert any("BUMPENVMAP" in r.requirement for v in together for r in v.reasons)
+    # the notes of the card-free part, P1 inheriting P0's unset states: seven on every card
+    assert len(together[0].notes) == 7 and "MinFilter[0] is set from parameter Filter" in together[0].notes[1]
