@@ -14,9 +14,10 @@ Rows (names for --only):
   mesh       a 1M-triangle .obj with tangent frames; sphere() of 1M triangles
   textures   Runtime construction over an effect with 100 textures
   sheet      `effects matrix --render` contact sheet, all fxfiles x 19 cards: --jobs 1 vs 2, Dask
-Times are the minimum of several runs (the least disturbed by other work on the machine), of
-the process's CPU time for the growth rows (validate, lower) and of the wall clock elsewhere;
-the exponent is the least-squares slope of log(time) over log(lines).
+The growth rows (validate, lower) give the median CPU time of interleaved rounds over all
+sizes (see `_growth_times`); the other rows the minimum of several runs of the wall clock (the
+least disturbed by other work on the machine). The exponent is the least-squares slope of
+log(time) over log(lines).
 """
 from __future__ import annotations
 
@@ -71,15 +72,39 @@ def _verdict(ok: bool) -> str:
     return "ok" if ok else "MISSED"
 
 
-def _growth_time(fn, lines: int) -> float:
-    """The best of several runs of `fn` over an effect of `lines` lines, measured alike at
-    every size: the garbage its load left collected first (a full collection owed by the
-    load would otherwise land in one size's run and not another's), and more runs for the
-    small sizes, whose few milliseconds the other work on the machine disturbs most. The
-    clock is the process's CPU time (the work is one thread's; on a shared machine the wall
-    clock also counts the time other processes held the core)."""
+# each size's sample is its work repeated until this much CPU time has passed (at least once)
+GROWTH_SAMPLE_S = 0.3
+GROWTH_ROUNDS = 5
+
+
+def _growth_times(fns: list) -> list[tuple[float, float, float]]:
+    """(median, min, max) seconds of CPU time per call of each of `fns` (the same work on
+    effects of growing size), measured alike: GROWTH_ROUNDS rounds, each timing every size
+    once in turn, so that every size is sampled across the whole run and a busy or quiet
+    spell of the machine falls on all of them; within a round a size's work is repeated
+    until GROWTH_SAMPLE_S of CPU time has passed and the sample is the time per call, after
+    one untimed call where a call is shorter than that (a small effect's work fits in the
+    CPU's caches once it has run; a big one's never does). The figure is the median of the rounds. (The minimum of unequal numbers of runs, 7 of the
+    small effect against 2 of the big one, favoured the small size: on a VM where the same
+    work's CPU time varies by 1.5-1.8x between runs it picks a luckier run there.) The
+    garbage the loads left is collected first; the clock is the process's CPU time (the
+    work is one thread's; the wall clock also counts the time other processes held the
+    core)."""
     gc.collect()
-    return best(fn, 7 if lines <= 1000 else 3 if lines <= 30000 else 2, time.process_time)
+    samples: list[list[float]] = [[] for _ in fns]
+    for _ in range(GROWTH_ROUNDS):
+        for fn, times in zip(fns, samples):
+            if not times or times[-1] < GROWTH_SAMPLE_S:
+                fn()   # the other sizes' work has pushed this one's out of the CPU's caches
+            calls, start = 0, time.process_time()
+            while True:
+                fn()
+                calls += 1
+                spent = time.process_time() - start
+                if spent >= GROWTH_SAMPLE_S:
+                    break
+            times.append(spent / calls)
+    return [(statistics.median(t), min(t), max(t)) for t in samples]
 
 
 # -- rows --------------------------------------------------------------------------------------
@@ -104,20 +129,23 @@ def _growth_goals(sizes: list[int], times: list[float]) -> str:
 
 
 def _growth_row(what: str, sizes: list[int], make_fn) -> None:
-    """Time `make_fn(effect)()` over effects of each size and print the row; the biggest
-    effects are timed fewer times (see `_growth_time`), and the seconds each size's
-    load took is said at the end (the 100k-line load is slow)."""
-    times, loads = [], []
+    """Load an effect of each size, time `make_fn(effect)()` over all of them together (see
+    `_growth_times`) and print the row: the medians, each size's spread, the fitted
+    exponent and the ratios against the goals; the seconds each load took are said at the
+    end (the 100k-line load is slow)."""
+    fns, loads = [], []
     for n in sizes:
         start = time.perf_counter()
-        effect = effects.load_effect(make_effect(n))
+        fns.append(make_fn(effects.load_effect(make_effect(n))))
         loads.append(time.perf_counter() - start)
-        times.append(_growth_time(make_fn(effect), n))
-        del effect
+    measured = _growth_times(fns)
+    times = [median for median, _, _ in measured]
     row(f"{what}, {' → '.join(f'{n // 1000}k' for n in sizes)} lines",
         " → ".join(ms(t) for t in times), f"{exponent(sizes, times):.2f}",
         _growth_goals(sizes, times))
-    print(f"  (loads took {', '.join(ms(t) for t in loads)} wall, not counted)", flush=True)
+    print(f"  (CPU time, median of {GROWTH_ROUNDS} interleaved rounds; spread "
+          + ", ".join(f"{ms(lo)}-{ms(hi)}" for _, lo, hi in measured)
+          + f"; loads took {', '.join(ms(t) for t in loads)} wall, not counted)", flush=True)
 
 
 def bench_validate(quick: bool) -> None:

@@ -165,6 +165,27 @@ def test_matrix_table_names_cards_and_effects(capsys):
     assert "phong" in header and "wood" in header
 
 
+def test_matrix_into_a_pipe_is_one_line_per_card_with_whole_names(capsys, monkeypatch):
+    # capsys is not a terminal: eleven effects do not fit 80 columns (rich's width there, or
+    # the width of a terminal on stdin), and folded to them each card took nine lines of name
+    # fragments; here each card's row reads like the JSON
+    monkeypatch.setenv("COLUMNS", "80")
+    fx = sorted(str(p) for p in (ROOT / "fxfiles").glob("*.fx"))
+    code, out, _ = run(capsys, "matrix", *fx)
+    assert code == 0
+    _, text = run(capsys, "matrix", *fx, "--json")[:2]
+    got = json.loads(text)
+    lines = out.splitlines()
+    assert len(lines) == 4 + len(list_profiles())   # top, header, rule, cards, bottom
+    header = [cell.strip() for cell in lines[1].split("┃")[1:-1]]
+    assert header == ["card", *(Path(f).stem for f in fx)]
+    for card, line in zip(list_profiles(), lines[3:-1]):
+        cells = [cell.strip() for cell in line.split("│")[1:-1]]
+        assert cells[0] == card
+        assert cells[1:] == [f"{got[f][card]['technique']} ({got[f][card]['passes']})"
+                             if got[f][card]["technique"] else "none" for f in fx]
+
+
 def test_matrix_bad_policy_is_bad_input(capsys):
     code, out, err = run(capsys, "matrix", PHONG, "--policy", "fastest")
     assert code == 2 and out == ""

@@ -171,7 +171,10 @@ def _matrix_cells(result: dict) -> tuple[list[str], list[list[str]]]:
 
 
 def print_matrix(result: dict, console: Console) -> None:
-    """Cards down, effects across: the chosen technique and its pass count."""
+    """Cards down, effects across: the chosen technique and its pass count. On a terminal
+    the table fits its width (names folded where they must be); into a pipe or a file it is
+    as wide as its names, one line per card: folded to the 80 columns rich assumes there,
+    eleven effects made each card nine lines of name fragments that grep cannot find."""
     header, rows = _matrix_cells(result)
     from rich.table import Table
     from rich.text import Text
@@ -181,7 +184,13 @@ def print_matrix(result: dict, console: Console) -> None:
     for row in rows:
         table.add_row(row[0], *[Text(c) if c != "none" else Text("none", style="red")
                                 for c in row[1:]])
-    console.print(table)
+    if console.is_terminal:
+        console.print(table)
+        return
+    from rich.console import Console as RichConsole
+    from rich.measure import Measurement
+    width = Measurement.get(console, console.options.update_width(1 << 16), table).maximum
+    RichConsole(file=console.file, highlight=False, width=max(width, console.width)).print(table)
 
 
 def _short(path: str) -> str:
