@@ -14,9 +14,10 @@ Rows (names for --only):
   mesh       a 1M-triangle .obj with tangent frames; sphere() of 1M triangles
   textures   Runtime construction over an effect with 100 textures
   sheet      `effects matrix --render` contact sheet, all fxfiles x 19 cards: --jobs 1 vs 2, Dask
-The growth rows (validate, lower) give the median CPU time of interleaved rounds over all
-sizes (see `_growth_times`); the other rows the minimum of several runs of the wall clock (the
-least disturbed by other work on the machine). The exponent is the least-squares slope of
+The growth rows (validate, lower) give the median CPU time of rounds over all sizes in turn
+and the median ratio of samples taken side by side (see `_growth_times`); the other rows
+the minimum of several runs of the wall clock (the least disturbed by other work on the
+machine). The exponent is the least-squares slope of
 log(time) over log(lines).
 """
 from __future__ import annotations
@@ -77,34 +78,47 @@ GROWTH_SAMPLE_S = 0.3
 GROWTH_ROUNDS = 5
 
 
-def _growth_times(fns: list) -> list[tuple[float, float, float]]:
-    """(median, min, max) seconds of CPU time per call of each of `fns` (the same work on
-    effects of growing size), measured alike: GROWTH_ROUNDS rounds, each timing every size
-    once in turn, so that every size is sampled across the whole run and a busy or quiet
-    spell of the machine falls on all of them; within a round a size's work is repeated
-    until GROWTH_SAMPLE_S of CPU time has passed and the sample is the time per call, after
-    one untimed call where a call is shorter than that (a small effect's work fits in the
-    CPU's caches once it has run; a big one's never does). The figure is the median of the rounds. (The minimum of unequal numbers of runs, 7 of the
-    small effect against 2 of the big one, favoured the small size: on a VM where the same
-    work's CPU time varies by 1.5-1.8x between runs it picks a luckier run there.) The
-    garbage the loads left is collected first; the clock is the process's CPU time (the
+def _growth_sample(fn, last: float | None) -> float:
+    """Seconds of CPU time per call of `fn`, repeated until GROWTH_SAMPLE_S have passed.
+    One untimed call first where this is the first sample (`last` None: that call makes
+    what an effect keeps, its shaders assembled) or a call is shorter than the window (a
+    small effect's work fits in the CPU's caches once it has run, after the other sizes'
+    work pushed it out; a big one's never does). The clock is the process's CPU time (the
     work is one thread's; the wall clock also counts the time other processes held the
     core)."""
+    if last is None or last < GROWTH_SAMPLE_S:
+        fn()
+    calls, start = 0, time.process_time()
+    while True:
+        fn()
+        calls += 1
+        spent = time.process_time() - start
+        if spent >= GROWTH_SAMPLE_S:
+            return spent / calls
+
+
+def _growth_times(fns: list) -> tuple[list[list[float]], list[float]]:
+    """Each of `fns` (the same work on effects of growing size) sampled in GROWTH_ROUNDS
+    rounds, every size once a round in turn, and the smallest once more at the end: the
+    samples per size, and each larger size's median ratio to the smallest, a round's ratio
+    taken against the mean of the smallest size's samples on either side of it. On this VM
+    the same work's CPU time drifts by 1.5x over tens of seconds; a ratio made of samples
+    taken side by side cancels the drift, where the minimum of unequal numbers of runs
+    (7 of the 1k effect against 2 of the 100k one, before) picked a luckier moment for the
+    small size. The garbage the loads left is collected first, and the effects' own objects
+    are set aside from the cyclic collector (`gc.freeze`): with every size loaded at once, a
+    full collection during the 1k effect's work would otherwise walk the 100k one's too."""
     gc.collect()
+    gc.freeze()
     samples: list[list[float]] = [[] for _ in fns]
     for _ in range(GROWTH_ROUNDS):
         for fn, times in zip(fns, samples):
-            if not times or times[-1] < GROWTH_SAMPLE_S:
-                fn()   # the other sizes' work has pushed this one's out of the CPU's caches
-            calls, start = 0, time.process_time()
-            while True:
-                fn()
-                calls += 1
-                spent = time.process_time() - start
-                if spent >= GROWTH_SAMPLE_S:
-                    break
-            times.append(spent / calls)
-    return [(statistics.median(t), min(t), max(t)) for t in samples]
+            times.append(_growth_sample(fn, times[-1] if times else None))
+    first = samples[0] + [_growth_sample(fns[0], samples[0][-1])]
+    ratios = [statistics.median(t / ((first[r] + first[r + 1]) / 2) for r, t in enumerate(times))
+              for times in samples[1:]]
+    gc.unfreeze()
+    return samples, ratios
 
 
 # -- rows --------------------------------------------------------------------------------------
@@ -118,33 +132,32 @@ def _growth_sizes(quick: bool) -> list[int]:
     return [1000, 10000, 30000] if quick else [1000, 10000, 100000]
 
 
-def _growth_goals(sizes: list[int], times: list[float]) -> str:
-    """Each size's ratio to the first against its goal (1.1x the line ratio)."""
+def _growth_goals(sizes: list[int], ratios: list[float]) -> str:
+    """Each larger size's ratio to the first against its goal (1.1x the line ratio)."""
     out = []
-    for n, t in zip(sizes[1:], times[1:]):
+    for n, ratio in zip(sizes[1:], ratios):
         limit = GROWTH_GOALS.get(n, 1.1 * n / sizes[0])
-        ratio = t / times[0]
         out.append(f"{n // 1000}k {ratio:.1f}× (≤ {limit:.0f}×) {_verdict(ratio <= limit)}")
     return "; ".join(out)
 
 
 def _growth_row(what: str, sizes: list[int], make_fn) -> None:
     """Load an effect of each size, time `make_fn(effect)()` over all of them together (see
-    `_growth_times`) and print the row: the medians, each size's spread, the fitted
-    exponent and the ratios against the goals; the seconds each load took are said at the
-    end (the 100k-line load is slow)."""
+    `_growth_times`) and print the row: each size's median time, the exponent fitted to
+    them, the paired ratios against the goals, and each size's spread; the seconds each
+    load took are said at the end (the 100k-line load is slow)."""
     fns, loads = [], []
     for n in sizes:
         start = time.perf_counter()
         fns.append(make_fn(effects.load_effect(make_effect(n))))
         loads.append(time.perf_counter() - start)
-    measured = _growth_times(fns)
-    times = [median for median, _, _ in measured]
+    samples, ratios = _growth_times(fns)
+    times = [statistics.median(t) for t in samples]
     row(f"{what}, {' → '.join(f'{n // 1000}k' for n in sizes)} lines",
         " → ".join(ms(t) for t in times), f"{exponent(sizes, times):.2f}",
-        _growth_goals(sizes, times))
-    print(f"  (CPU time, median of {GROWTH_ROUNDS} interleaved rounds; spread "
-          + ", ".join(f"{ms(lo)}-{ms(hi)}" for _, lo, hi in measured)
+        _growth_goals(sizes, ratios))
+    print(f"  (CPU time, median of {GROWTH_ROUNDS} rounds, ratios of side-by-side samples; "
+          "spread " + ", ".join(f"{ms(min(t))}-{ms(max(t))}" for t in samples)
           + f"; loads took {', '.join(ms(t) for t in loads)} wall, not counted)", flush=True)
 
 
