@@ -227,10 +227,31 @@ def bench_frame() -> None:
             runtime.render()
             frames = 30 if size < 512 else 5
             out[threads] = best(lambda: [runtime.render() for _ in range(frames)], 3) / frames
+        figures = f"1 thread {ms(out[1])}, 2 threads {ms(out[2])}"
         goal = {64: ("1 thread ≤ 2.5 ms", out[1] <= 0.0025), 128: ("2 threads ≤ 1 thread", out[2] <= out[1] * 1.05),
                 512: ("≤ 23 ms (today)", min(out.values()) <= 0.023)}[size]
-        row(f"NumPy Phong frame {size}²", f"1 thread {ms(out[1])}, 2 threads {ms(out[2])}", "",
-            f"{goal[0]}: {_verdict(goal[1])}")
+        if size == 512:
+            # the issue's 23 ms was 8-9x the GL path on its machine: the same frame on GL says
+            # what the machine in hand makes of it
+            gl = _gl_frame(effect, card, size)
+            if gl is not None:
+                ratio = min(out.values()) / gl
+                figures += f"; GL {ms(gl)} ({ratio:.1f}×)"
+                goal = ("≤ 23 ms (today) or ≤ 8× GL", goal[1] or ratio <= 8.0)
+        row(f"NumPy Phong frame {size}²", figures, "", f"{goal[0]}: {_verdict(goal[1])}")
+
+
+def _gl_frame(effect, card, size: int) -> float | None:
+    """Seconds per frame of the same Runtime on the GL back end, or None without a GL context."""
+    from effects.backend import create_backend
+    from effects.host.runtime import Runtime
+    try:
+        runtime = Runtime(effect, card, size=(size, size), backend=create_backend("gl"))
+        runtime.render()
+    except Exception as exc:   # no EGL here: say so, the row keeps its absolute goal
+        print(f"  (no GL frame: {type(exc).__name__}: {exc})")
+        return None
+    return best(lambda: [runtime.render() for _ in range(5)], 3) / 5
 
 
 def _command(*argv: str, runs: int = 5) -> float:
