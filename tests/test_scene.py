@@ -204,6 +204,20 @@ def test_look_at_and_perspective_follow_d3dx():
     assert near[2] / near[3] == pytest.approx(0.0) and far[2] / far[3] == pytest.approx(1.0)
 
 
+def test_a_cameras_matrices_are_made_once_and_shared_read_only():
+    # every Runtime takes its camera's matrices: one array per placement, which no caller may
+    # write into (a caller that did would move every other Runtime's camera)
+    a = load_scene({"camera": {"eye": [0, 1, 4], "fov": 60}}).matrices((64, 48))
+    b = load_scene({"camera": {"eye": [0.0, 1.0, 4.0], "fov": 60.0}}).matrices((64, 48))
+    assert a["view"] is b["view"] and a["projection"] is b["projection"]
+    np.testing.assert_array_equal(a["view"], look_at_lh((0, 1, 4), (0, 0, 0), (0, 1, 0)))
+    np.testing.assert_array_equal(a["projection"],
+                                  perspective_fov_lh(math.radians(60), 64 / 48, 0.1, 100.0))
+    with pytest.raises(ValueError):
+        a["view"][3, 2] = 0.0
+    assert load_scene(None).matrices((64, 64))["projection"] is not a["projection"]
+
+
 # ---------------------------------------------------------------------------------------------
 # Values a user writes (--set, params)
 

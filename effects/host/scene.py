@@ -14,6 +14,7 @@ Keys beyond DESIGN.md's list:
 """
 from __future__ import annotations
 
+import functools
 import math
 import os
 from dataclasses import dataclass, field
@@ -186,10 +187,30 @@ class Camera:
     far: float = 100.0
 
     def view(self) -> np.ndarray:
-        return look_at_lh(self.eye, self.target, self.up)
+        """The view matrix (read-only: made once per camera placement, shared)."""
+        return _view(tuple(map(float, self.eye)), tuple(map(float, self.target)),
+                     tuple(map(float, self.up)))
 
     def projection(self, aspect: float) -> np.ndarray:
-        return perspective_fov_lh(math.radians(self.fov), aspect, self.near, self.far)
+        """The projection matrix for `aspect` (read-only, shared like `view`)."""
+        return _projection(float(self.fov), float(aspect), float(self.near), float(self.far))
+
+
+# Every Runtime (and so every `effects.render()` call) takes its camera's matrices: made once
+# per placement, as read-only arrays every caller shares (a caller that wants to change one
+# makes its own; writing into the shared one raises).
+@functools.lru_cache(maxsize=256)
+def _view(eye: tuple, target: tuple, up: tuple) -> np.ndarray:
+    m = look_at_lh(eye, target, up)
+    m.flags.writeable = False
+    return m
+
+
+@functools.lru_cache(maxsize=256)
+def _projection(fov: float, aspect: float, near: float, far: float) -> np.ndarray:
+    m = perspective_fov_lh(math.radians(fov), aspect, near, far)
+    m.flags.writeable = False
+    return m
 
 
 @dataclass

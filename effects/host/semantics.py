@@ -19,6 +19,7 @@ naming the parameter and where the effect declares it.
 """
 from __future__ import annotations
 
+import functools
 import math
 import re
 from typing import Any, Callable, Iterable
@@ -114,13 +115,18 @@ _LIGHT_SEMANTICS = {"LIGHTPOSITION", "LIGHT0POSITION", "LIGHTDIRECTION", "LIGHT0
                     "LIGHTCOLOR", "LIGHTDIFFUSE", "LIGHT0COLOR"}
 
 
+_MATRIX_BASES_LONGEST_FIRST = sorted([*MATRIX_SEMANTICS, *_MATRIX_ALIASES], key=len, reverse=True)
+
+
+# matrix_semantic and name_semantic read only their string and the tables above: every Runtime
+# binds the scene by them, once for each parameter of the effect
+@functools.lru_cache(maxsize=4096)
 def matrix_semantic(semantic: str) -> tuple[str, str] | None:
     """(base row of MATRIX_SEMANTICS, 'INVERSE' / 'TRANSPOSE' / 'INVERSETRANSPOSE' / '') of a
     transform semantic, or None. The longest base that leaves a known suffix wins, so
     WORLDVIEWI is WORLDVIEW inverse, not WORLD + 'VIEWI'."""
     key = semantic.upper()
-    bases = sorted([*MATRIX_SEMANTICS, *_MATRIX_ALIASES], key=len, reverse=True)
-    for base in bases:
+    for base in _MATRIX_BASES_LONGEST_FIRST:
         if key.startswith(base) and key[len(base):] in _SUFFIXES:
             return _MATRIX_ALIASES.get(base, base), _SUFFIXES[key[len(base):]]
     return None
@@ -182,6 +188,7 @@ def _light_object(param: Parameter) -> bool:
     return obj is not None and isinstance(obj.value, str) and "light" in obj.value.lower()
 
 
+@functools.lru_cache(maxsize=4096)
 def name_semantic(name: str) -> str | None:
     """The semantic a parameter without one is bound by for its name (XNA convention, see
     `_NAME_PREFIXES`): 'World' -> WORLD, 'g_mWVP' -> WORLDVIEWPROJECTION, 'mInvWorld' ->
