@@ -4,7 +4,9 @@ one run, with the fitted exponent where the work grows, and the goal.
     .venv/bin/python benchmarks/bench_scale.py [--quick] [--only ROW,...]
 
 Rows (names for --only):
-  validate   every technique of a generated 1k / 10k / 100k-line effect on every bundled card
+  validate   every technique of a generated 1k / 10k / 100k-line effect on every bundled card,
+             card by card (`Effect.validate`)
+  validate-cards  the same, every card at once per technique, as `effects matrix` does
   lower      every pass of a generated 1k / 10k / 100k-line effect
              (--quick: 1k / 10k / 30k for both; goals 10k <= 11x 1k, 100k <= 110x, 30k <= 33x)
   render     effects.render() called again vs a reused Runtime, 64x64 NumPy; memory over 1,000 calls
@@ -171,6 +173,20 @@ def bench_validate(quick: bool) -> None:
                     effect.validate(t, card)
         return validate_all
     _growth_row(f"validate on {len(cards)} cards", _growth_sizes(quick), make)
+
+
+def bench_validate_cards(quick: bool) -> None:
+    """As `bench_validate`, the way `effects matrix` and `effects validate -p ...` validate:
+    each technique on every card at once (`report.validate_cards`: what no card changes
+    about a pass is made once for all of them, and a technique's objects are read while
+    they are in the CPU's caches, where the card-by-card row sweeps the whole effect 20
+    times)."""
+    from effects.cli.report import validate_cards
+    cards = [load_profile(p) for p in list_profiles()]
+
+    def make(effect):
+        return lambda: validate_cards(effect, cards)
+    _growth_row(f"validate on {len(cards)} cards at once", _growth_sizes(quick), make)
 
 
 def bench_lower(quick: bool) -> None:
@@ -378,7 +394,8 @@ def bench_sheet() -> None:
         f"--jobs 2 ≥ 1.7×: {_verdict(speedup >= 1.7)}")
 
 
-BENCHES = {"validate": bench_validate, "lower": bench_lower, "render": bench_render,
+BENCHES = {"validate": bench_validate, "validate-cards": bench_validate_cards,
+           "lower": bench_lower, "render": bench_render,
            "frame": bench_frame, "startup": bench_startup, "memory": bench_memory,
            "mesh": bench_mesh, "textures": bench_textures, "sheet": bench_sheet}
 
@@ -407,7 +424,7 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{'work':<44} {'figures':<46} {'exponent':<10} goal")
     for name in names:
         bench = BENCHES[name]
-        bench(args.quick) if name in ("validate", "lower") else bench()
+        bench(args.quick) if name in ("validate", "validate-cards", "lower") else bench()
     return 0
 
 
