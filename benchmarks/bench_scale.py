@@ -16,11 +16,11 @@ Rows (names for --only):
   mesh       a 1M-triangle .obj with tangent frames; sphere() of 1M triangles
   textures   Runtime construction over an effect with 100 textures
   sheet      `effects matrix --render` contact sheet, all fxfiles x 19 cards: --jobs 1 vs 2, Dask
-The growth rows (validate, lower) give the median CPU time of rounds over all sizes in turn
-and the median ratio of samples taken side by side (see `_growth_times`); the other rows
-the minimum of several runs of the wall clock (the least disturbed by other work on the
-machine). The exponent is the least-squares slope of
-log(time) over log(lines).
+The growth rows (validate, validate-cards, lower) give the median CPU time of rounds over all
+sizes in turn and the median ratio of samples taken side by side (see `_growth_times`); the
+render row the median of rounds of both ways in turn; the other rows the minimum of several
+runs of the wall clock (the least disturbed by other work on the machine). The exponent is
+the least-squares slope of log(time) over log(lines).
 """
 from __future__ import annotations
 
