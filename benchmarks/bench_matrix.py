@@ -15,7 +15,9 @@ The numbers (in process, the on-disk shader store is off: every compile is made)
   (effects/shaders/hlsl/store.py): cold (an empty store folder for every run: it compiles
   and writes), warm (the store filled by a run before), and with the store off
   (EFFECTS_SHADER_CACHE=off: compiles, writes nothing); and warm with `--jobs 1` (every file
-  validated in the command's own process, one after another).
+  validated in the command's own process, one after another);
+- `python -c pass` in the same rounds: the interpreter's start on this machine, the yardstick
+  for comparing figures taken on different machines (20-54 ms on the VMs so far).
 Wall clock, with each run's CPU time (user + system of the child) beside it.
 """
 from __future__ import annotations
@@ -50,16 +52,19 @@ def _in_process(argv: list[str]) -> float:
     return elapsed
 
 
-def _subprocess(argv: list[str], env: dict | None = None) -> tuple[float, float]:
-    """(wall, child CPU) seconds of one run."""
+def _subprocess(argv: list[str], env: dict | None = None, *,
+                command: tuple[str, ...] = ("-m", "effects")) -> tuple[float, float]:
+    """(wall, child CPU) seconds of one run of `python -m effects ARGV` (or of `python
+    COMMAND...`: `command=("-c", "pass")` is the interpreter's start on this machine, the
+    yardstick for comparing figures across machines)."""
     before = os.times()
     start = time.perf_counter()
-    proc = subprocess.run([sys.executable, "-m", "effects", *argv], cwd=ROOT,
+    proc = subprocess.run([sys.executable, *command, *argv], cwd=ROOT,
                           capture_output=True, text=True, env=env)
     elapsed = time.perf_counter() - start
     after = os.times()
     if proc.returncode != 0:
-        raise SystemExit(f"effects {' '.join(argv)} exited with {proc.returncode}: {proc.stderr}")
+        raise SystemExit(f"{' '.join(command)} {' '.join(argv)} exited with {proc.returncode}: {proc.stderr}")
     return elapsed, (after.children_user - before.children_user) + (after.children_system - before.children_system)
 
 
@@ -94,7 +99,7 @@ def main(argv: list[str] | None = None) -> int:
         warm.append(_in_process(command + ["--jobs", "1"]))
     del os.environ["EFFECTS_SHADER_CACHE"]
     with tempfile.TemporaryDirectory(prefix="bench-matrix-") as tmp:
-        cold, stored, off, serial = [], [], [], []
+        cold, stored, off, serial, bare = [], [], [], [], []
         filled = dict(os.environ, EFFECTS_CACHE_DIR=os.path.join(tmp, "warm"))
         _subprocess(command, filled)                           # fill the warm store
         for k in range(args.runs):                              # interleaved: the same load for all
@@ -102,6 +107,7 @@ def main(argv: list[str] | None = None) -> int:
             stored.append(_subprocess(command, filled))
             off.append(_subprocess(command, dict(os.environ, EFFECTS_SHADER_CACHE="off")))
             serial.append(_subprocess(command + ["--jobs", "1"], filled))
+            bare.append(_subprocess([], command=("-c", "pass")))
 
     n_cards = len(caps.list_profiles())
     print(f"effects {' '.join(command[:1])} {len(command) - 1 - args.json} files × {n_cards} cards")
@@ -113,6 +119,8 @@ def main(argv: list[str] | None = None) -> int:
     print(_line("subprocess, warm store:", stored))
     print(_line("subprocess, store off:", off))
     print(_line("warm store, --jobs 1:", serial))
+    print(f"python -c pass:         {statistics.median(w for w, _ in bare) * 1000:7.1f} ms  "
+          "(this machine's interpreter start, in the same rounds)")
     if hasattr(os, "getloadavg"):
         print(f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())} "
               f"({os.cpu_count()} cores)")
