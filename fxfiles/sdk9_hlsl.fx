@@ -17,7 +17,8 @@ float4x4 View                : VIEW;
 float4x4 Projection          : PROJECTION;
 float4   EyePosition         : CAMERAPOSITION = { 0.0, 0.0, 3.0, 1.0 };
 
-float3 LightDirection = { -0.408, 0.816, -0.408 };   // toward the light, world space
+float3 LightDirection = { -0.408, 0.816, 0.408 };    // toward the light, world space: above,
+                                                     // left and in front (the camera is at +z)
 float4 MaterialDiffuse = { 0.9, 0.75, 0.55, 1.0 };
 float4 MaterialAmbient = { 0.12, 0.12, 0.16, 1.0 };
 float  SpecularPower = 24.0;
@@ -124,7 +125,7 @@ technique Scene_ff
         Lighting          = True;
         LightEnable[0]    = True;
         LightType[0]      = Directional;
-        LightDirection[0] = { 0.408, -0.816, 0.408 };   // the way the light travels
+        LightDirection[0] = { 0.408, -0.816, -0.408 };  // the way the light travels
         LightDiffuse[0]   = { 1.0, 1.0, 1.0, 1.0 };
         Ambient           = 0x001f1f28;
         MaterialDiffuse   = { 0.9, 0.75, 0.55, 1.0 };
