@@ -21,7 +21,8 @@ import pytest
 from PIL import Image
 
 import effects
-from effects.viewer.state import Orbit, ViewerState
+from effects.host.scene import Camera, Light
+from effects.viewer.state import LightPath, Orbit, ViewerState
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FXFILES = sorted(glob.glob(os.path.join(ROOT, "fxfiles", "*.fx")))
@@ -288,11 +289,13 @@ def test_keys_step_cards_and_techniques_with_wrap_around():
 
 def test_orbit_camera_positions():
     orbit = Orbit(yaw=0.0, pitch=0.0, distance=3.0)
-    assert orbit.eye() == pytest.approx((0.0, 0.0, -3.0))      # the scene's default eye
+    assert orbit.eye() == pytest.approx(Camera().eye)           # the scene's default eye, +z
     orbit = Orbit(yaw=math.pi / 2, pitch=math.pi / 6, distance=2.0)
-    # x = d cos(p) sin(y) = 2 * (sqrt(3)/2) * 1; y = d sin(p) = 1
-    assert orbit.eye() == pytest.approx((math.sqrt(3), 1.0, 0.0), abs=1e-12)
+    # x = -d cos(p) sin(y) = -2 * (sqrt(3)/2) * 1; y = d sin(p) = 1
+    assert orbit.eye() == pytest.approx((-math.sqrt(3), 1.0, 0.0), abs=1e-12)
     orbit.zoom(100)
     assert orbit.distance == 1.2
+    # the viewer opens where `effects render` looks from, its light where the scene's is
+    assert Orbit().eye()[2] > 0 and LightPath().position() == pytest.approx(Light().position, abs=0.03)
     orbit.drag(0, 10_000)
     assert orbit.pitch == 1.5

@@ -24,8 +24,9 @@ DIFFERENCE_SCALE = 8      # differences of a few LSB become visible
 
 @dataclass
 class Orbit:
-    """A camera circling `target` (Direct3D's left-handed frame: +z into the screen, so yaw 0
-    looks from -z, like the scene default eye (0, 0, -3))."""
+    """A camera circling `target`: yaw 0 looks from +z, as the scene's default eye (0, 0, 3)
+    does, so the viewer starts on the side `effects render` and the thumbnails show (an
+    effect that fixes its light in the file is lit alike in both)."""
 
     yaw: float = 0.0          # radians, around +y
     pitch: float = 0.35       # radians above the horizon
@@ -34,9 +35,9 @@ class Orbit:
 
     def eye(self) -> tuple[float, float, float]:
         c = math.cos(self.pitch)
-        return (self.target[0] + self.distance * c * math.sin(self.yaw),
+        return (self.target[0] - self.distance * c * math.sin(self.yaw),
                 self.target[1] + self.distance * math.sin(self.pitch),
-                self.target[2] - self.distance * c * math.cos(self.yaw))
+                self.target[2] + self.distance * c * math.cos(self.yaw))
 
     def drag(self, dx: float, dy: float) -> None:
         """Mouse drag in pixels: 0.01 rad per pixel; the pitch stops short of the poles."""
@@ -49,7 +50,8 @@ class Orbit:
 
 @dataclass
 class LightPath:
-    """A point light circling the y axis; the viewer animates `angle` or the user drags it."""
+    """A point light circling the y axis; the viewer animates `angle` or the user drags it.
+    It starts above, right and in front, where the scene's default light (2, 2, 2) is."""
 
     angle: float = math.radians(-45.0)
     height: float = 2.0
@@ -58,7 +60,7 @@ class LightPath:
     speed: float = 1.0        # radians per second
 
     def position(self) -> tuple[float, float, float]:
-        return (self.radius * math.sin(self.angle), self.height, -self.radius * math.cos(self.angle))
+        return (-self.radius * math.sin(self.angle), self.height, self.radius * math.cos(self.angle))
 
     def advance(self, seconds: float) -> bool:
         if self.animate:
