@@ -17,8 +17,10 @@ float4x4 View                : VIEW;
 float4x4 Projection          : PROJECTION;
 float4   EyePosition         : CAMERAPOSITION = { 0.0, 0.0, 3.0, 1.0 };
 
-float3 LightDirection = { -0.408, 0.816, 0.408 };    // toward the light, world space: above,
-                                                     // left and in front (the camera is at +z)
+// Toward the light, world space: above, left and in front (the camera is at +z). Named so that
+// no host binds it by name: a scene's LIGHTDIRECTION is the way the light travels
+// (D3DLIGHT9.Direction), the opposite of what the pixel function reads.
+float3 ToLight = { -0.408, 0.816, 0.408 };
 float4 MaterialDiffuse = { 0.9, 0.75, 0.55, 1.0 };
 float4 MaterialAmbient = { 0.12, 0.12, 0.16, 1.0 };
 float  SpecularPower = 24.0;
@@ -62,11 +64,11 @@ float4 ScenePS(float2 Tex : TEXCOORD0, float3 Normal : TEXCOORD1, float3 ToEye :
 {
     // ps_2_0 renormalises the interpolated normal; ps_1_x expands the biased one (_bx2)
     float3 N = Specular ? normalize(Normal) : 2 * Normal - 1;
-    float diffuse = saturate(dot(N, LightDirection));
+    float diffuse = saturate(dot(N, ToLight));
     float4 color = tex2D(DiffuseSampler, Tex) * (MaterialAmbient + MaterialDiffuse * diffuse);
     if (Specular)
     {
-        float3 H = normalize(LightDirection + normalize(ToEye));
+        float3 H = normalize(ToLight + normalize(ToEye));
         color.rgb += pow(saturate(dot(N, H)), SpecularPower) * 0.5;
     }
     color.a = 1.0;
