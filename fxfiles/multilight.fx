@@ -6,7 +6,7 @@
 //   MultiLight_ps20   DX9 ps_2_0 (Radeon 9700, GeForce FX): the same sum, unrolled, per pixel
 //   MultiLight_ff     DX6-DX8: fixed-function vertex lighting with the same four lights
 //
-// colour = Ambient + sum over lights i of LightColor_i * sat(N . L_i), with N the unit surface
+// colour = Ambient + sum over lights i of LightRGB_i * sat(N . L_i), with N the unit surface
 // normal (world space) and L_i the unit direction towards light i. The fixed-function path
 // computes it per vertex (D3D's directional lights: LightDirection is the direction the light
 // travels, so it is -L_i) and interpolates; the shader paths per pixel.
@@ -19,21 +19,23 @@ float4x4 World               : WORLD;
 float4x4 View                : VIEW;
 float4x4 Projection          : PROJECTION;
 
-// unit directions towards each light, world space
-float4 LightDir0 = { 0.8, 0.6, 0.0, 0.0 };
-float4 LightDir1 = { -0.8, 0.6, 0.0, 0.0 };
-float4 LightDir2 = { 0.0, -0.6, 0.8, 0.0 };
-float4 LightDir3 = { 0.0, 0.0, 1.0, 0.0 };
+// unit directions towards each light, world space (ToLight and LightRGB, not LightDir and
+// LightColor: a host binds LightDir0 and LightColor0 to its own light by name, XNA style,
+// and these four lights are the file's)
+float4 ToLight0 = { 0.8, 0.6, 0.0, 0.0 };
+float4 ToLight1 = { -0.8, 0.6, 0.0, 0.0 };
+float4 ToLight2 = { 0.0, -0.6, 0.8, 0.0 };
+float4 ToLight3 = { 0.0, 0.0, 1.0, 0.0 };
 // the same, as the direction the light travels (fixed-function LightDirection)
 float4 LightTravel0 = { -0.8, -0.6, 0.0, 0.0 };
 float4 LightTravel1 = { 0.8, -0.6, 0.0, 0.0 };
 float4 LightTravel2 = { 0.0, 0.6, -0.8, 0.0 };
 float4 LightTravel3 = { 0.0, 0.0, -1.0, 0.0 };
 
-float4 LightColor0 = { 0.9, 0.2, 0.1, 1.0 };
-float4 LightColor1 = { 0.1, 0.7, 0.2, 1.0 };
-float4 LightColor2 = { 0.2, 0.3, 0.9, 1.0 };
-float4 LightColor3 = { 0.25, 0.25, 0.25, 1.0 };
+float4 LightRGB0 = { 0.9, 0.2, 0.1, 1.0 };
+float4 LightRGB1 = { 0.1, 0.7, 0.2, 1.0 };
+float4 LightRGB2 = { 0.2, 0.3, 0.9, 1.0 };
+float4 LightRGB3 = { 0.25, 0.25, 0.25, 1.0 };
 float4 Ambient     = { 0.05, 0.05, 0.05, 1.0 };
 
 //----------------------------------------------------------------------------------------------
@@ -61,14 +63,14 @@ technique MultiLight_ps30
             mov o1.xyz, r0
         };
 
-        PixelShaderConstantF[0] = <LightDir0>;
-        PixelShaderConstantF[1] = <LightDir1>;
-        PixelShaderConstantF[2] = <LightDir2>;
-        PixelShaderConstantF[3] = <LightDir3>;
-        PixelShaderConstantF[4] = <LightColor0>;
-        PixelShaderConstantF[5] = <LightColor1>;
-        PixelShaderConstantF[6] = <LightColor2>;
-        PixelShaderConstantF[7] = <LightColor3>;
+        PixelShaderConstantF[0] = <ToLight0>;
+        PixelShaderConstantF[1] = <ToLight1>;
+        PixelShaderConstantF[2] = <ToLight2>;
+        PixelShaderConstantF[3] = <ToLight3>;
+        PixelShaderConstantF[4] = <LightRGB0>;
+        PixelShaderConstantF[5] = <LightRGB1>;
+        PixelShaderConstantF[6] = <LightRGB2>;
+        PixelShaderConstantF[7] = <LightRGB3>;
         PixelShaderConstantF[8] = <Ambient>;
         PixelShader = asm
         {
@@ -106,14 +108,14 @@ technique MultiLight_ps20
             m3x3 oT0.xyz, v3, c4             // world normal
         };
 
-        PixelShaderConstantF[0] = <LightDir0>;
-        PixelShaderConstantF[1] = <LightDir1>;
-        PixelShaderConstantF[2] = <LightDir2>;
-        PixelShaderConstantF[3] = <LightDir3>;
-        PixelShaderConstantF[4] = <LightColor0>;
-        PixelShaderConstantF[5] = <LightColor1>;
-        PixelShaderConstantF[6] = <LightColor2>;
-        PixelShaderConstantF[7] = <LightColor3>;
+        PixelShaderConstantF[0] = <ToLight0>;
+        PixelShaderConstantF[1] = <ToLight1>;
+        PixelShaderConstantF[2] = <ToLight2>;
+        PixelShaderConstantF[3] = <ToLight3>;
+        PixelShaderConstantF[4] = <LightRGB0>;
+        PixelShaderConstantF[5] = <LightRGB1>;
+        PixelShaderConstantF[6] = <LightRGB2>;
+        PixelShaderConstantF[7] = <LightRGB3>;
         PixelShaderConstantF[8] = <Ambient>;
         PixelShader = asm
         {
@@ -161,19 +163,19 @@ technique MultiLight_ff
         LightEnable[0]    = True;
         LightType[0]      = Directional;
         LightDirection[0] = <LightTravel0>;
-        LightDiffuse[0]   = <LightColor0>;
+        LightDiffuse[0]   = <LightRGB0>;
         LightEnable[1]    = True;
         LightType[1]      = Directional;
         LightDirection[1] = <LightTravel1>;
-        LightDiffuse[1]   = <LightColor1>;
+        LightDiffuse[1]   = <LightRGB1>;
         LightEnable[2]    = True;
         LightType[2]      = Directional;
         LightDirection[2] = <LightTravel2>;
-        LightDiffuse[2]   = <LightColor2>;
+        LightDiffuse[2]   = <LightRGB2>;
         LightEnable[3]    = True;
         LightType[3]      = Directional;
         LightDirection[3] = <LightTravel3>;
-        LightDiffuse[3]   = <LightColor3>;
+        LightDiffuse[3]   = <LightRGB3>;
 
         ColorOp[0]   = SelectArg1;
         ColorArg1[0] = Diffuse;
