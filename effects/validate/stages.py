@@ -62,24 +62,21 @@ class StageChecks:
         in stage order: what `check_texture_stages` asks of each card."""
         needs: list[tuple[str, str, str, Any]] = []
         for stage in stages:
-            self.stage_needs(stage, needs)
+            for op_state, arg_prefix in (("ColorOp", "ColorArg"), ("AlphaOp", "AlphaArg")):
+                if self.unknown(op_state, stage):
+                    continue
+                op = self.state.get_enum(op_state, stage, default=None)
+                if op is None or (op_state == "AlphaOp" and op == "DISABLE"):
+                    continue
+                shown = self._shown(op_state, stage)
+                row = _stage_op(op)
+                needs.append(("TextureOpCaps", row.cap if row is not None else op,
+                              f"{op_state}[{stage}] = {shown}", self.where(op_state, stage)))
+                for n in _args_read(op):
+                    self._arg_needs(f"{arg_prefix}{n}", stage, needs)
         return needs
 
-    def stage_needs(self, stage: int, needs: list[tuple[str, str, str, Any]]) -> None:
-        for op_state, arg_prefix in (("ColorOp", "ColorArg"), ("AlphaOp", "AlphaArg")):
-            if self.unknown(op_state, stage):
-                continue
-            op = self.state.get_enum(op_state, stage, default=None)
-            if op is None or (op_state == "AlphaOp" and op == "DISABLE"):
-                continue
-            shown = self._shown(op_state, stage)
-            row = _stage_op(op)
-            needs.append(("TextureOpCaps", row.cap if row is not None else op,
-                          f"{op_state}[{stage}] = {shown}", self.where(op_state, stage)))
-            for n in _args_read(op):
-                self.arg_needs(f"{arg_prefix}{n}", stage, needs)
-
-    def arg_needs(self, state_name: str, stage: int, needs: list[tuple[str, str, str, Any]]) -> None:
+    def _arg_needs(self, state_name: str, stage: int, needs: list[tuple[str, str, str, Any]]) -> None:
         if self.unknown(state_name, stage):
             return
         select = self.arg_select(state_name, stage)
