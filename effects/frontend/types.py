@@ -1,6 +1,7 @@
 """Type names of the effect language → `TypeSpec`, and the numeric shape of a type."""
 from __future__ import annotations
 
+import functools
 import re
 
 from effects.model import TypeSpec
@@ -40,25 +41,18 @@ def type_shape(spec: TypeSpec) -> tuple[int, ...]:
     return (int(m.group(2)),) if m.group(2) else ()
 
 
-# TypeSpec is immutable: one object per spelling of a built-in type serves every declaration
-# (an effect declares thousands of float4 and texture parameters, annotations typed string);
-# bounded, as spellings come from the file
-_BUILT_IN: dict[str, TypeSpec] = {}
-_BUILT_IN_KEPT = 4096
-
-
 def resolve_type(name: str, structs: set[str] = frozenset()) -> TypeSpec | None:
     """The TypeSpec a type name denotes, or None when no such type exists."""
-    spec = _BUILT_IN.get(name)
-    if spec is None:
-        spec = _built_in(name)
-        if spec is None:
-            return TypeSpec(name, struct=True, spelling=name) if name in structs else None
-        if len(_BUILT_IN) < _BUILT_IN_KEPT:
-            _BUILT_IN[name] = spec
+    spec = _built_in(name)
+    if spec is None and name in structs:
+        return TypeSpec(name, struct=True, spelling=name)
     return spec
 
 
+# TypeSpec is immutable: one object per spelling of a built-in type serves every declaration
+# (an effect declares thousands of float4 and texture parameters, annotations typed string);
+# bounded, as spellings come from the file
+@functools.lru_cache(maxsize=4096)
 def _built_in(name: str) -> TypeSpec | None:
     """`resolve_type` for the language's own types (a struct name is no built-in type)."""
     low = name.lower()
