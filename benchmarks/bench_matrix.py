@@ -8,14 +8,17 @@ The numbers (in process, the on-disk shader store is off: every compile is made)
   effects, validates every effect on every card, prints the table);
 - in-process, median of --runs: the same after the first, with the profile cache cleared before
   each run so every run reads the YAML files again (the parser tables and imports stay warm);
-- subprocess, median of --runs: `python -m effects matrix fxfiles/*.fx`, what a user waits for
+- subprocess, median of --runs: `python -m effects matrix FILES`, what a user waits for
   (the effect files validated on worker processes, one a core: `--jobs` left at its default),
   interpreter start and imports included, its output a pipe (as a script or `| less` reads
-  it): three ways, as the command line keeps compiled shaders on disk between runs
-  (effects/shaders/hlsl/store.py): cold (an empty store folder for every run: it compiles
-  and writes), warm (the store filled by a run before), and with the store off
-  (EFFECTS_SHADER_CACHE=off: compiles, writes nothing); and warm with `--jobs 1` (every file
-  validated in the command's own process, one after another);
+  it). The command line keeps compiled shaders (effects/shaders/hlsl/store.py) and each
+  effect's row of the matrix (effects/cli/matrix_store.py) on disk between runs, so five ways:
+  cold (an empty store folder for every run: it compiles, validates and writes); rows kept
+  (the store filled by a run before: every row read back); one effect edited (copies of the
+  effects, one of them changed before each run: its row is made again, the others read
+  back); every effect edited (each copy changed before each run: every effect loaded and
+  validated again, its shaders read back); and with the store off (EFFECTS_CACHE=off:
+  compiles and validates, writes nothing);
 - `python -c pass` in the same rounds: the interpreter's start on this machine, the yardstick
   for comparing figures taken on different machines (20-54 ms on the VMs so far).
 Wall clock, with each run's CPU time (user + system of the child) beside it.
@@ -68,6 +71,30 @@ def _subprocess(argv: list[str], env: dict | None = None, *,
     return elapsed, (after.children_user - before.children_user) + (after.children_system - before.children_system)
 
 
+def _copies(tmp: str) -> list[str]:
+    """The effect files copied into `tmp` (their rows are the ones the edited runs change)."""
+    folder = os.path.join(tmp, "fxfiles")
+    os.mkdir(folder)
+    out = []
+    for name in _files():
+        out.append(os.path.join(folder, os.path.basename(name)))
+        with open(ROOT / name, "rb") as src, open(out[-1], "wb") as dst:
+            dst.write(src.read())
+    _edit(out, "copied")
+    return out
+
+
+def _edit(paths: list[str], mark: str) -> None:
+    """Add a comment line at the end of each file, as saving an edit does, dated 10 s back: a
+    file written in the last 2 s is not kept (matrix_store), and an editor's save is seldom
+    followed by a command that soon. The shaders' keys do not change (the line is below them)."""
+    then = time.time() - 10
+    for p in paths:
+        with open(p, "a") as f:
+            f.write(f"// {mark}\n")
+        os.utime(p, (then, then))
+
+
 def _line(label: str, runs: list[tuple[float, float]]) -> str:
     wall = [w for w, _ in runs]
     cpu = [c for _, c in runs]
@@ -91,22 +118,29 @@ def main(argv: list[str] | None = None) -> int:
     import effects.cli.main  # noqa: F401  (imports are part of the subprocess figure, not these)
     from effects import caps
 
-    os.environ["EFFECTS_SHADER_CACHE"] = "off"      # in process: the compiles are made
+    os.environ["EFFECTS_CACHE"] = "off"      # in process: compiles and validation are made
     first = _in_process(command + ["--jobs", "1"])
     warm = []
     for _ in range(args.runs):
         caps.clear_cache()
         warm.append(_in_process(command + ["--jobs", "1"]))
-    del os.environ["EFFECTS_SHADER_CACHE"]
+    del os.environ["EFFECTS_CACHE"]
     with tempfile.TemporaryDirectory(prefix="bench-matrix-") as tmp:
-        cold, stored, off, serial, bare = [], [], [], [], []
+        copies = _copies(tmp)
+        edited = [c if a.endswith(".fx") else a for a, c in zip(command, ["matrix", *copies])]
+        edited += command[len(edited):]
+        cold, stored, one, every, off, bare = [], [], [], [], [], []
         filled = dict(os.environ, EFFECTS_CACHE_DIR=os.path.join(tmp, "warm"))
         _subprocess(command, filled)                           # fill the warm store
+        _subprocess(edited, filled)
         for k in range(args.runs):                              # interleaved: the same load for all
             cold.append(_subprocess(command, dict(os.environ, EFFECTS_CACHE_DIR=os.path.join(tmp, f"cold{k}"))))
             stored.append(_subprocess(command, filled))
-            off.append(_subprocess(command, dict(os.environ, EFFECTS_SHADER_CACHE="off")))
-            serial.append(_subprocess(command + ["--jobs", "1"], filled))
+            _edit(copies[k % len(copies):k % len(copies) + 1], f"one {k}")
+            one.append(_subprocess(edited, filled))
+            _edit(copies, f"every {k}")
+            every.append(_subprocess(edited, filled))
+            off.append(_subprocess(command, dict(os.environ, EFFECTS_CACHE="off")))
             bare.append(_subprocess([], command=("-c", "pass")))
 
     n_cards = len(caps.list_profiles())
@@ -116,9 +150,10 @@ def main(argv: list[str] | None = None) -> int:
           f"(min {min(warm) * 1000:.1f}, max {max(warm) * 1000:.1f}, {args.runs} runs)  "
           f"{_verdict(statistics.median(warm))}")
     print(_line("subprocess, cold store:", cold))
-    print(_line("subprocess, warm store:", stored))
+    print(_line("rows kept:", stored))
+    print(_line("one effect edited:", one))
+    print(_line("every effect edited:", every))
     print(_line("subprocess, store off:", off))
-    print(_line("warm store, --jobs 1:", serial))
     print(f"python -c pass:         {statistics.median(w for w, _ in bare) * 1000:7.1f} ms  "
           "(this machine's interpreter start, in the same rounds)")
     if hasattr(os, "getloadavg"):

@@ -40,7 +40,7 @@ print((t1 - t0) * 1e3, (t2 - t1) * 1e3)
 
 _RECORD = """
 import contextlib, glob, io, os, pickle, sys
-os.environ["EFFECTS_SHADER_CACHE"] = "off"
+os.environ["EFFECTS_CACHE"] = "off"
 from effects.cli import main as cli
 from effects.shaders.asm import parser
 blocks = []

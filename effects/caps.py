@@ -57,9 +57,10 @@ from typing import Any, Callable, Mapping
 import yaml
 
 from effects import limits, untrusted, yaml_input
+from effects.bundled import PROFILE_FOLDER
 from effects.errors import Location, ProfileError
 
-PROFILE_DIR = Path(__file__).resolve().parent.parent / "caps_profiles"
+PROFILE_DIR = Path(PROFILE_FOLDER).resolve()
 
 GENERATIONS = ("dx6", "dx7", "dx8", "dx8.1", "dx9", "dx9c")
 

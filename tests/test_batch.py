@@ -128,9 +128,11 @@ def _broken(tmp_path, name: str, line: int) -> str:
 @pytest.mark.parametrize("threads", [False, True])
 def test_matrix_command_reports_the_first_bad_file_in_order(tmp_path, capsys, monkeypatch, threads):
     """Workers or not (a process with other threads running validates in place), the error is
-    the one the serial command reports: the first failing file in the order given."""
+    the one the serial command reports: the first failing file in the order given. (The rows
+    earlier commands kept are off: each command here loads and validates every file.)"""
     import threading
     import effects.host.batch as batch
+    monkeypatch.setenv("EFFECTS_CACHE", "off")
     used = []
     real = batch.run_jobs
     monkeypatch.setattr(batch, "run_jobs", lambda *a, **k: used.append(k["jobs"]) or real(*a, **k))

@@ -1,4 +1,4 @@
-"""The on-disk compile store (effects/shaders/hlsl/store.py): a stored shader is the shader a
+"""The on-disk compile store (effects/shaders/hlsl/store.py, in effects/disk_store.py's folder): a stored shader is the shader a
 compile makes (every field, every location of its program), keys follow every input and no
 other, hold across processes, and the folder is private, bounded and robust to bad files."""
 from __future__ import annotations
@@ -13,7 +13,7 @@ import sys
 import numpy as np
 import pytest
 
-from effects import limits
+from effects import disk_store, limits
 from effects.errors import EffectError
 from effects.frontend.loader import load_effect
 from effects.model import CompileShader
@@ -88,7 +88,7 @@ def test_a_stored_shader_is_the_compiled_shader(tmp_path):
     """Every compile state of the bundled, test and benchmark effects: written out and read
     back, the shader equals a fresh compile field by field, its program instruction by
     instruction with every location; errors come back as the same class, message and place."""
-    assert store.enable(str(tmp_path))
+    assert disk_store.enable(str(tmp_path))
     try:
         shaders = errors = 0
         for path, effect in _loadable():
@@ -113,7 +113,7 @@ def test_a_stored_shader_is_the_compiled_shader(tmp_path):
                     _same(fresh, back, f"{path}:{value.function}")
         assert shaders >= 40 and errors >= 1, (shaders, errors)
     finally:
-        store.disable()
+        disk_store.disable()
 
 
 def _wood():
@@ -148,12 +148,12 @@ def test_keys_follow_every_input_and_only_those():
         moved = dataclasses.replace(value, location=Location(value.location.path, value.location.line + 1, 1))
     assert _key(effect, moved) != first
     # the compiling code
-    held = store._state["fingerprint"]
+    held = disk_store._state["fingerprint"]
     try:
-        store._state["fingerprint"] = "another version"
+        disk_store._state["fingerprint"] = "another version"
         assert _key(effect, value) != first
     finally:
-        store._state["fingerprint"] = held
+        disk_store._state["fingerprint"] = held
     assert _key(effect, value) == first
 
 
@@ -171,7 +171,7 @@ def test_keys_are_the_same_in_every_process():
 
 
 def test_bad_files_are_misses_and_removed(tmp_path):
-    assert store.enable(str(tmp_path))
+    assert disk_store.enable(str(tmp_path))
     try:
         effect = _wood()
         value = next(_states(effect))
@@ -185,37 +185,37 @@ def test_bad_files_are_misses_and_removed(tmp_path):
                     json.dumps({**data, "text": data["text"] + "bogus r0, r1\n"}).encode(),
                     json.dumps({"entry": name, "error": "SystemExit", "message": "x",
                                 "location": None, "source_line": None}).encode(),
-                    b" " * (store.MAX_ENTRY_BYTES + 1)):
+                    b" " * (disk_store.MAX_ENTRY_BYTES + 1)):
             path.write_bytes(bad)
             assert store.load(name) is None
             assert not path.exists()
         path.write_bytes(good)
         assert store.load(name) is not None
     finally:
-        store.disable()
+        disk_store.disable()
 
 
 def test_the_folder_must_be_private(tmp_path):
     open_folder = tmp_path / "open"
     open_folder.mkdir()
     os.chmod(open_folder, 0o777)
-    assert not store.enable(str(open_folder)) and not store.enabled()
+    assert not disk_store.enable(str(open_folder)) and not disk_store.enabled()
     link = tmp_path / "link"
     link.symlink_to(tmp_path / "private")
-    assert not store.enable(str(link)) and not store.enabled()
+    assert not disk_store.enable(str(link)) and not disk_store.enabled()
     made = tmp_path / "made" / "here"
-    assert store.enable(str(made)) and oct(os.stat(made).st_mode & 0o777) == "0o700"
-    store.disable()
+    assert disk_store.enable(str(made)) and oct(os.stat(made).st_mode & 0o777) == "0o700"
+    disk_store.disable()
 
 
 def test_off_switch(tmp_path, monkeypatch):
-    monkeypatch.setenv("EFFECTS_SHADER_CACHE", "off")
-    assert not store.enable(str(tmp_path))
+    monkeypatch.setenv("EFFECTS_CACHE", "off")
+    assert not disk_store.enable(str(tmp_path))
 
 
 def test_bounded(tmp_path, monkeypatch):
-    monkeypatch.setattr(store, "MAX_ENTRIES", 8)
-    assert store.enable(str(tmp_path))
+    monkeypatch.setattr(disk_store, "MAX_ENTRIES", 8)
+    assert disk_store.enable(str(tmp_path))
     try:
         effect = _wood()
         value = next(_states(effect))
@@ -225,7 +225,7 @@ def test_bounded(tmp_path, monkeypatch):
             assert len(list(tmp_path.glob("*.json"))) <= 8
         assert store.load(f"{29:064x}") is not None          # the newest stays
     finally:
-        store.disable()
+        disk_store.disable()
 
 
 def _command(cache_dir, *args):
@@ -242,13 +242,17 @@ def _command(cache_dir, *args):
 def test_the_command_cold_and_warm(tmp_path):
     """`effects matrix` prints the same table and JSON with an empty store, a filled one, and
     without one (on worker processes); the warm run compiles nothing (the compiler is not even
-    imported: --jobs 1 validates in the process that says so)."""
+    imported: --jobs 1 validates in the process that says so). The warm run names every card,
+    in the order the default takes them: the same matrix, but not the rows the cold run kept
+    (matrix_store), so its effects are loaded and validated again."""
+    from effects.caps import list_profiles
     files = sorted(os.path.relpath(f, ROOT) for f in glob.glob(os.path.join(ROOT, "fxfiles", "*.fx")))
+    cards = [a for name in list_profiles() for a in ("-p", name)]
     for n, extra in enumerate(([], ["--json"])):
         cold = _command(tmp_path / str(n), "matrix", *files, *extra, "--jobs", "1")
-        warm = _command(tmp_path / str(n), "matrix", *files, *extra, "--jobs", "1")
+        warm = _command(tmp_path / str(n), "matrix", *files, *extra, *cards, "--jobs", "1")
         off = subprocess.run([sys.executable, "-m", "effects", "matrix", *files, *extra], cwd=ROOT,
-                             env=dict(os.environ, EFFECTS_SHADER_CACHE="off"), capture_output=True,
+                             env=dict(os.environ, EFFECTS_CACHE="off"), capture_output=True,
                              text=True)
         assert cold.returncode == warm.returncode == off.returncode == 0
         assert cold.stdout == warm.stdout == off.stdout

@@ -133,7 +133,7 @@ def _cmd_matrix(args, console: Console) -> int:
     if args.jobs is not None and args.jobs < 1:
         raise UsageError("effects matrix: error: --jobs must be at least 1")
     root = _include_root(args)
-    result, profiles = _matrix(args, root, console)
+    result, cards = _matrix(args, root, console)
     if args.json:
         import json
         print(json.dumps(result, indent=2))
@@ -144,48 +144,65 @@ def _cmd_matrix(args, console: Console) -> int:
         size = _parse_size(args.size, "matrix")
         if min(size) < 1 or max(size) > 1024:
             raise UsageError(f"effects matrix: error: --size {args.size!r}: cells are 1 to 1024 pixels a side")
-        names = list(args.profile) or [p.name for p in profiles]   # as given: workers load them
+        names = list(args.profile) or cards   # as given: workers load them
         render_sheet(list(args.files), names, args.render, size=size, scene=args.scene,
                      backend=args.backend, policy=args.policy, jobs=args.jobs,
                      scheduler=args.scheduler, progress=not args.json)
         if not args.json:
-            console.print(f"contact sheet: {len(args.files)} effects x {len(profiles)} cards "
+            console.print(f"contact sheet: {len(args.files)} effects x {len(cards)} cards "
                           f"-> {args.render}", markup=False, highlight=False, soft_wrap=True)
     return EXIT_OK
 
 
-def _matrix(args, root: str | None, console: Console) -> tuple[dict, list]:
-    """The matrix of `args.files` on the cards, and the cards. The effect files are
-    independent jobs (`effects.host.batch.run_jobs`: --jobs workers, every core by default,
-    or --scheduler), each loaded and validated by a worker; the cards and the policy are read
-    here first, before the workers fork, and the table's console is made while they run.
-    Errors are the serial command's: the first effect file that fails to load, in the order
-    given, then a bad card or policy. One file, or a process with other threads running (a
-    fork copies locks they may hold: a host calling `main`), validates here."""
-    import threading
-    from effects.cli.report import MatrixJob, matrix, matrix_job
-    from effects.validate.select import as_policy
-    try:
-        profiles = _profiles(args.profile)
-        as_policy(args.policy)
-    except EffectError:
-        profiles = None
-    alone = threading.active_count() == 1
-    if profiles is None or (args.scheduler is None and (len(args.files) < 2 or not alone)):
-        from effects.frontend.loader import load_effect
-        effects = {path: load_effect(path, include_root=root, strict=args.strict)
-                   for path in args.files}
-        profiles = _profiles(args.profile)   # the error above, in its turn
-        return matrix(effects, profiles, args.policy), profiles
-    from effects.host.batch import run_jobs
-    jobs = [MatrixJob(path, tuple(args.profile), args.policy, root, args.strict)
+def _matrix(args, root: str | None, console: Console) -> tuple[dict, list[str]]:
+    """The matrix of `args.files` on the cards, and the cards' names. A file whose row an
+    earlier command kept (`effects.cli.matrix_store`: nothing it was made from has changed)
+    is read back; the others are made by `_made_rows`. Errors are the serial command's: the
+    first effect file that fails to load, in the order given, then a bad card or policy."""
+    from effects.cli import matrix_store
+    from effects.cli.report import MatrixJob
+    shared = matrix_store.shared_key(tuple(args.profile), args.policy, args.strict, root)
+    jobs = [MatrixJob(path, tuple(args.profile), args.policy, root, args.strict, shared)
             for path in args.files]
-    rows = run_jobs(matrix_job, jobs, jobs=args.jobs, scheduler=args.scheduler,
-                    meanwhile=None if args.json else lambda: _ready_for_table(console))
+    rows = [matrix_store.stored_row(job) for job in jobs]
+    todo = [job for job, row in zip(jobs, rows) if row is None]
+    if todo:
+        made = iter(_made_rows(args, todo, console))
+        rows = [row if row is not None else next(made) for row in rows]
     for row in rows:
         if isinstance(row, EffectError):
             raise row
-    return dict(zip(args.files, rows)), profiles
+    return dict(zip(args.files, rows)), list(rows[0])
+
+
+def _made_rows(args, todo: list, console: Console) -> list:
+    """The rows of the effect files `todo` (report.matrix_job: an error is returned, not
+    raised). They are independent jobs (`effects.host.batch.run_jobs`: --jobs workers, every
+    core by default, or --scheduler), each loaded and validated by a worker; the cards and
+    the policy are read here first, before the workers fork, and the table's console is made
+    while they run. One file, or a process with other threads running (a fork copies locks
+    they may hold: a host calling `main`), validates here."""
+    import threading
+    from effects.cli.report import matrix_job
+    from effects.validate.select import as_policy
+    try:
+        _profiles(args.profile)
+        as_policy(args.policy)
+    except EffectError:
+        from effects.frontend.loader import load_effect
+        for job in todo:   # a file that fails to load is reported before the card or policy
+            load_effect(job.path, include_root=job.include_root, strict=job.strict)
+        raise
+    if args.scheduler is None and (len(todo) < 2 or threading.active_count() > 1):
+        rows = []
+        for job in todo:
+            rows.append(matrix_job(job))
+            if isinstance(rows[-1], EffectError):
+                break      # reported by _matrix: the files after it are not needed
+        return rows + [None] * (len(todo) - len(rows))
+    from effects.host.batch import run_jobs
+    return run_jobs(matrix_job, todo, jobs=args.jobs, scheduler=args.scheduler,
+                    meanwhile=None if args.json else lambda: _ready_for_table(console))
 
 
 def _ready_for_table(console: Any) -> None:
@@ -434,13 +451,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
         _one_blas_thread(args)
-        # compiled shaders are kept on disk between commands (effects/shaders/hlsl/store.py)
-        from effects.shaders.hlsl import store
-        store.enable()
+        # compiled shaders and matrix rows are kept on disk between commands (effects/disk_store.py)
+        from effects import disk_store
+        disk_store.enable()
         try:
             code = args.run(args, _LazyConsole())
         finally:
-            store.disable()
+            disk_store.disable()
         sys.stdout.flush()   # a closed pipe is found here, inside the handlers below
         return code
     except UsageError as exc:

@@ -10,10 +10,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Mapping, Sequence
 
-from effects.caps import GENERATIONS, CapsProfile
 from effects.errors import EffectError
 
 if TYPE_CHECKING:  # pragma: no cover
+    # the cards' reader (and PyYAML) loads where cards are read: a matrix whose rows are all
+    # stored (matrix_store) reads none
+    from effects.caps import CapsProfile
     # rich loads when a table is drawn (the command line's console is made on first use)
     from rich.console import Console
     # Validation (and numpy with it) loads when a table needs it: `effects profiles` does not.
@@ -138,17 +140,23 @@ class MatrixJob:
     policy: str = "first"
     include_root: str | None = None
     strict: bool = False
+    store_key: str | None = None    # matrix_store.shared_key: where the row is kept (None: not)
 
 
 def matrix_job(job: MatrixJob) -> dict | EffectError:
     """`matrix()`'s entry for one effect file, or the error its load raised (returned, not
-    raised: the command reports the first failing file in the order given)."""
+    raised: the command reports the first failing file in the order given). Where the
+    command line's store is on, the entry is kept for the next command (matrix_store)."""
     from effects.caps import list_profiles, load_profile
+    from effects.cli import matrix_store
     from effects.frontend.loader import load_effect
+    found = matrix_store.inputs(job)
     try:
         effect = load_effect(job.path, include_root=job.include_root, strict=job.strict)
         profiles = [load_profile(n) for n in (job.profiles or list_profiles())]
-        return matrix({job.path: effect}, profiles, job.policy)[job.path]
+        row = matrix({job.path: effect}, profiles, job.policy)[job.path]
+        matrix_store.keep(job, found, effect, row)
+        return row
     except EffectError as err:
         # it travels pickled, and where tblib's pickling is installed (Dask's is) a traceback
         # and chained errors travel too, holding the parser's unpicklable frames: none needed
@@ -187,10 +195,9 @@ def print_matrix(result: dict, console: Console) -> None:
     if console.is_terminal:
         console.print(table)
         return
+    # a table that does not expand is as wide as its cells: on a console this wide, all of it
     from rich.console import Console as RichConsole
-    from rich.measure import Measurement
-    width = Measurement.get(console, console.options.update_width(1 << 16), table).maximum
-    RichConsole(file=console.file, highlight=False, width=max(width, console.width)).print(table)
+    RichConsole(file=console.file, highlight=False, width=1 << 16).print(table)
 
 
 def _short(path: str) -> str:
@@ -233,6 +240,8 @@ def print_profiles(profiles: Sequence[CapsProfile], console: Console) -> None:
     from rich import box
     from rich.table import Table
     from rich.text import Text
+
+    from effects.caps import GENERATIONS
     ordered = sorted(profiles, key=lambda p: (GENERATIONS.index(p.generation), p.name))
     rows = [profile_row(p) for p in ordered]
     table = Table(header_style="bold", box=box.SIMPLE_HEAD, pad_edge=False)

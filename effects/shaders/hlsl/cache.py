@@ -220,9 +220,10 @@ def cached_compile(effect: Any, value: CompileShader, compile: Callable[[], Any]
     a cached error is raised again. Where the on-disk store is enabled (store.py: the command
     line), a shader stored by an earlier process for the same inputs is used first, found by
     a key that needs no parse of the effect's declarations."""
+    from effects import disk_store
     from effects.shaders.hlsl import store
     stored = store.key(key_parts(effect, value, []), declarations(effect), value.location) \
-        if store.enabled() else None
+        if disk_store.enabled() else None
     if stored is not None:
         hit = _STORED.get(stored)
         if hit is None:

@@ -2,125 +2,33 @@
 
 The in-memory compile cache (cache.py) lasts one process; every `effects matrix` run compiled
 each effect's `compile` states again (~60 ms of its ~0.5 s, plus the HLSL front end's import
-and grammar). The command line (`effects.cli.main`) enables this store for the length of a
-command; library use does not touch the disk unless a host calls `enable()`.
+and grammar). Entries live in the command line's store (`effects.disk_store`: the folder, its
+bounds and safety, `EFFECTS_CACHE=off`), enabled for the length of a command.
 
 Correctness: an entry is found by the SHA-256 of everything a compile reads (`key`): the
 compile key of cache.py without its "do all declarations load" flag, with every struct,
 typedef and function declaration of the effect instead (that flag is made from them); the
 `compile` state's location (errors are located there); every resource limit in force
-(`effects.limits`); and the code doing the compiling -- the size and modification time of each
-source and grammar file of the `effects` package, the Python, NumPy and lark versions. A
-value the key cannot spell exactly (an object it knows no canonical form for) keeps that
-compile off the disk.
+(`effects.limits`); and the code doing the compiling (`disk_store.fingerprint`). A value the
+key cannot spell exactly (an object it knows no canonical form for) keeps that compile off the
+disk.
 
 What an entry holds is data, not code: JSON with the generated assembly, its per-line HLSL
 locations, constant/sampler/int/bool register tables, warnings and types, or the error. The
 program is made again from the assembly by `shader.assemble_generated`, the code a compile
-runs, so it is checked by the assembler as any text is. A file that does not read back as such
-an entry is a miss (and removed).
-
-Safety and bounds: the folder is `$EFFECTS_CACHE_DIR`, else `$XDG_CACHE_HOME/effects/shaders`,
-else `~/.cache/effects/shaders`, made private (0700); it is used only when it is a real folder
-(not a link) owned by this user and writable by no one else. Entries are written to a temporary
-file and renamed into place, at most `MAX_ENTRY_BYTES` each; when the folder holds more than
-`MAX_ENTRIES` files or `MAX_BYTES` bytes, the least recently written go until three quarters
-remain. An untrusted effect can only add entries for its own text. `EFFECTS_SHADER_CACHE=off`
-turns the store off.
+runs, so it is checked by the assembler as any text is. An entry that does not decode is a
+miss (and removed). An untrusted effect can only add entries for its own text.
 """
 from __future__ import annotations
 
 import dataclasses
-import hashlib
-import os
-import sys
 from typing import Any
 
+from effects import disk_store
+from effects.disk_store import Unkeyable
 from effects.errors import EffectError, EffectWarning, Location
 
 FORMAT = 1
-MAX_ENTRY_BYTES = 2 << 20
-MAX_ENTRIES = 4096
-MAX_BYTES = 64 << 20
-
-_state: dict[str, Any] = {"dir": None, "fingerprint": None}
-
-
-class _Unkeyable(Exception):
-    """A value the key has no exact, stable spelling for."""
-
-
-# -- the folder ---------------------------------------------------------------------------------
-
-def default_dir() -> str:
-    explicit = os.environ.get("EFFECTS_CACHE_DIR")
-    if explicit:
-        return explicit
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return os.path.join(base, "effects", "shaders")
-
-
-def enable(path: str | None = None) -> bool:
-    """Use the on-disk store (in `path`, or `default_dir()`); False, and off, where the folder
-    cannot be made private to this user or `EFFECTS_SHADER_CACHE` is off."""
-    _state["dir"] = None
-    if os.environ.get("EFFECTS_SHADER_CACHE", "").lower() in ("0", "off", "no", "false"):
-        return False
-    folder = path or default_dir()
-    try:
-        os.makedirs(folder, mode=0o700, exist_ok=True)
-        st = os.lstat(folder)
-    except OSError:
-        return False
-    import stat
-    if not stat.S_ISDIR(st.st_mode) or (hasattr(os, "getuid") and st.st_uid != os.getuid()) \
-            or st.st_mode & 0o022:
-        return False
-    _state["dir"] = folder
-    return True
-
-
-def disable() -> None:
-    _state["dir"] = None
-
-
-def enabled() -> bool:
-    return _state["dir"] is not None
-
-
-# -- the key ------------------------------------------------------------------------------------
-
-def fingerprint() -> str:
-    """The compiling code: each source and grammar file of the package by path, size and
-    modification time, and the Python, NumPy and lark versions (once per process)."""
-    held = _state["fingerprint"]
-    if held is not None:
-        return held
-    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    h = hashlib.sha256()
-    h.update(f"{FORMAT}|{sys.version}|{sys.implementation.cache_tag}".encode())
-    stack = [root]
-    while stack:
-        folder = stack.pop()
-        with os.scandir(folder) as it:
-            entries = sorted(it, key=lambda e: e.name)
-        for e in entries:
-            if e.is_dir(follow_symlinks=False):
-                if e.name != "__pycache__":
-                    stack.append(e.path)
-            elif e.name.endswith((".py", ".lark")):
-                st = e.stat()
-                h.update(f"{os.path.relpath(e.path, root)}|{st.st_size}|{st.st_mtime_ns}\n".encode())
-    import numpy
-    h.update(f"numpy {numpy.__version__}\n".encode())
-    import importlib.util
-    spec = importlib.util.find_spec("lark")
-    origin = spec.origin if spec is not None else None
-    if origin:
-        with open(origin, "rb") as f:          # lark's __init__ holds its __version__
-            h.update(f.read())
-    held = _state["fingerprint"] = h.hexdigest()
-    return held
 
 
 def key(parts: tuple, declarations: tuple, location: Location) -> str | None:
@@ -135,129 +43,41 @@ def key(parts: tuple, declarations: tuple, location: Location) -> str | None:
         reached_spelled = []
         for part in reached:
             out: list[str] = []
-            _spell(part, out)
+            disk_store.spell(part, out)
             reached_spelled.append("".join(out))
-        material = ("effects-compiled-shader", FORMAT, fingerprint(),
+        material = ("effects-compiled-shader", FORMAT, disk_store.fingerprint(),
                     tuple((name, limits.get(name)) for name in sorted(limits.LIMITS)),
                     (path, target, function, args, where), tuple(sorted(reached_spelled)),
                     declarations, location)
-        out = []
-        _spell(material, out)
-    except _Unkeyable:
+        return disk_store.digest(material)
+    except Unkeyable:
         return None
-    return hashlib.sha256("".join(out).encode("utf-8", "surrogatepass")).hexdigest()
-
-
-def _spell(v: Any, out: list[str]) -> None:
-    """An exact, stable text for a key value: types and lengths spelled out, so no two values
-    read alike; an object without a known form raises _Unkeyable."""
-    t = type(v)
-    if v is None or t is bool or t is int or t is float:
-        out.append(f"{t.__name__}:{v!r};")
-    elif t is str:
-        out.append(f"s{len(v)}:{v}")
-    elif t is bytes:
-        out.append(f"b{len(v)}:{v.hex()}")
-    elif t is tuple or t is list:
-        if t is tuple and len(v) == 2 and v[0] == "repr":
-            raise _Unkeyable("a value cache.py keys by its repr")
-        out.append(f"{t.__name__}{len(v)}(")
-        for x in v:
-            _spell(x, out)
-        out.append(")")
-    elif t is Location:
-        out.append(f"L{len(v.path)}:{v.path}:{v.line}:{v.column};")
-    elif dataclasses.is_dataclass(v) and not isinstance(v, type) \
-            and type(v).__dataclass_params__.frozen:       # TypeSpec, Expression ...
-        fields = dataclasses.fields(v)
-        out.append(f"D{t.__module__}.{t.__qualname__}{len(fields)}(")
-        for f in fields:
-            out.append(f"{f.name}=")
-            _spell(getattr(v, f.name), out)
-        out.append(")")
-    else:
-        raise _Unkeyable(t.__qualname__)
 
 
 # -- entries ------------------------------------------------------------------------------------
 
-def _path(name: str) -> str:
-    return os.path.join(_state["dir"], f"{name}.json")
-
-
 def load(name: str) -> Any:
     """The CompiledShader or EffectError stored under `name`, or None."""
-    if _state["dir"] is None:
-        return None
-    path = _path(name)
-    try:
-        with open(path, "rb") as f:
-            data = f.read(MAX_ENTRY_BYTES + 1)
-    except OSError:
+    entry = disk_store.read(name)
+    if entry is None:
         return None
     try:
-        import json
-        if len(data) > MAX_ENTRY_BYTES:
-            raise ValueError("too big")
-        return _decode(json.loads(data), name)
-    except Exception:   # not an entry of ours (truncated, foreign, older): a miss
-        try:
-            os.unlink(path)
-        except OSError:
-            pass
+        return _decode(entry, name)
+    except Exception:   # not a shader entry this code can use: a miss
+        disk_store.discard(name)
         return None
 
 
 def save(name: str, result: Any) -> None:
     """Store a compile's result (a CompiledShader or EffectError) under `name`, if it can be
     written out exactly; never raises."""
-    folder = _state["dir"]
-    if folder is None:
-        return
-    import json
-    import tempfile
-    try:
-        data = json.dumps(_encode(result, name), separators=(",", ":")).encode()
-    except _Unkeyable:
-        return
-    if len(data) > MAX_ENTRY_BYTES:
+    if not disk_store.enabled():
         return
     try:
-        fd, tmp = tempfile.mkstemp(dir=folder, prefix=".tmp-", suffix=".json")
-        try:
-            with os.fdopen(fd, "wb") as f:
-                f.write(data)
-            os.replace(tmp, _path(name))
-        except BaseException:
-            try:
-                os.unlink(tmp)
-            except OSError:
-                pass
-            raise
-        _prune(folder)
-    except OSError:
-        pass
-
-
-def _prune(folder: str) -> None:
-    entries = []
-    total = 0
-    with os.scandir(folder) as it:
-        for e in it:
-            if e.name.endswith(".json") and not e.name.startswith("."):
-                st = e.stat(follow_symlinks=False)
-                entries.append((st.st_mtime_ns, st.st_size, e.path))
-                total += st.st_size
-    if len(entries) <= MAX_ENTRIES and total <= MAX_BYTES:
+        entry = _encode(result)
+    except Unkeyable:
         return
-    entries.sort()
-    while entries and (len(entries) > MAX_ENTRIES * 3 // 4 or total > MAX_BYTES * 3 // 4):
-        _, size, path = entries.pop(0)
-        try:
-            os.unlink(path)
-        except OSError:
-            pass
-        total -= size
+    disk_store.write(name, entry)
 
 
 # -- encoding -----------------------------------------------------------------------------------
@@ -269,7 +89,7 @@ def _loc(v: Location | None) -> Any:
     if v is None:
         return None
     if type(v) is not Location:
-        raise _Unkeyable("not a Location")
+        raise Unkeyable("not a Location")
     return [v.path, v.line, v.column]
 
 
@@ -300,7 +120,7 @@ def _names(d: Any, width: int | None = None) -> dict:
 def _htype(t: Any) -> Any:
     from effects.shaders.hlsl.types import HType
     if type(t) is not HType:
-        raise _Unkeyable("not an HType")
+        raise Unkeyable("not an HType")
     return {"kind": t.kind, "base": t.base, "rows": t.rows, "cols": t.cols, "name": t.name,
             "fields": [[n, _htype(ft), s] for n, ft, s in t.fields],
             "element": None if t.element is None else _htype(t.element), "length": t.length,
@@ -331,26 +151,26 @@ def _unhtype(d: Any) -> Any:
                  d["row_major"])
 
 
-def _encode(result: Any, name: str) -> dict:
+def _encode(result: Any) -> dict:
     from effects.shaders.hlsl.shader import CompiledShader
     if isinstance(result, EffectError):
         cls = type(result).__name__
         if cls not in _ERRORS or type(result).__module__ not in (
                 "effects.errors", "effects.shaders.hlsl.parse"):
-            raise _Unkeyable(cls)
-        return {"entry": name, "error": cls, "message": result.message,
+            raise Unkeyable(cls)
+        return {"error": cls, "message": result.message,
                 "location": _loc(result.location), "source_line": result.source_line}
     if type(result) is not CompiledShader:
-        raise _Unkeyable(type(result).__qualname__)
+        raise Unkeyable(type(result).__qualname__)
     known = {"function", "target", "text", "program", "constants", "samplers", "lines",
              "warnings", "types", "int_registers", "bool_registers"}
     if {f.name for f in dataclasses.fields(CompiledShader)} != known:
-        raise _Unkeyable("CompiledShader has fields this store does not know")
+        raise Unkeyable("CompiledShader has fields this store does not know")
     for w in result.warnings:
         if type(w) is not EffectWarning:
-            raise _Unkeyable("a warning of another kind")
+            raise Unkeyable("a warning of another kind")
     return {
-        "entry": name, "function": result.function, "target": result.target, "text": result.text,
+        "function": result.function, "target": result.target, "text": result.text,
         "entry_location": _loc(result.program.location),
         "constants": {k: list(v) for k, v in result.constants.items()},
         "samplers": dict(result.samplers), "lines": [_loc(x) for x in result.lines],
