@@ -73,6 +73,25 @@ def test_process_pool_and_dask_draw_the_same_cells():
     assert len(drawn) == 4 and sum(c.reason is not None for c in alone) == 2, drawn
 
 
+def test_the_sheet_hands_out_one_effect_a_job(tmp_path, monkeypatch):
+    """Each job is one effect's row, cards in order (a worker then pays an effect's first-cell
+    costs once); render_row draws what render_cell draws, cell by cell."""
+    import effects.cli.sheet as sheet
+    handed = []
+    real = sheet.run_jobs
+    monkeypatch.setattr(sheet, "run_jobs", lambda fn, items, **k: handed.append(list(items)) or real(fn, items, **k))
+    cells = sheet.render_sheet([PHONG, WOOD], CARDS, str(tmp_path / "s.png"), size=(12, 10),
+                               jobs=1, progress=False)
+    assert [[(j.effect, j.profile) for j in row] for row in handed[0]] == \
+        [[(f, c) for c in CARDS] for f in (PHONG, WOOD)]
+    alone = [render_cell(j) for j in sheet_jobs([PHONG, WOOD], CARDS, (12, 10))]
+    for a, b in zip(alone, cells):
+        assert (a.effect, a.profile, a.technique, a.reason) == (b.effect, b.profile, b.technique, b.reason)
+        if a.image is not None:
+            np.testing.assert_array_equal(a.image, b.image)
+    assert len(cells) == len(alone) == 2 * len(CARDS)
+
+
 def test_sheet_layout_places_each_cell_under_its_card():
     cells = run_jobs(render_cell, sheet_jobs([PHONG, WOOD], CARDS, (20, 18)), jobs=1)
     sheet = np.asarray(compose(cells, [PHONG, WOOD], CARDS, (20, 18)))

@@ -2,7 +2,8 @@
 
 One row per effect, one column per card; each cell is the picture the card draws with the
 technique it selects (its name under it), or the reason it draws none, as text. The cells
-are independent renders, run by `effects.host.batch.run_jobs` on a process pool (`--jobs`) or
+are independent renders, an effect's row of them a job (`effects.host.batch.render_row`), run
+by `effects.host.batch.run_jobs` on a process pool (`--jobs`) or
 on Dask (`--scheduler`), with a progress bar on stderr.
 """
 from __future__ import annotations
@@ -12,7 +13,7 @@ import textwrap
 from typing import Any, Sequence
 
 from effects.errors import Location, SceneError
-from effects.host.batch import Cell, CellJob, render_cell, run_jobs
+from effects.host.batch import Cell, CellJob, render_row, run_jobs
 
 _LABEL_H = 14           # a line of PIL's default bitmap font, with spacing
 _HEADER_W = 120         # the effect-name column
@@ -38,17 +39,23 @@ def render_sheet(files: Sequence[str], profiles: Sequence[str], out: str, *,
                  size: tuple[int, int] = (96, 96), scene: str | None = None,
                  backend: str = "numpy", policy: str = "first", jobs: int | None = None,
                  scheduler: Any = None, progress: bool = True) -> list[Cell]:
-    """Render every cell, compose the sheet and write it to `out` (PNG); returns the cells."""
+    """Render every cell, compose the sheet and write it to `out` (PNG); returns the cells.
+    A job is one effect's row (`render_row`): cell by cell, both workers of `--jobs 2` drew
+    cards of every effect, so each paid every effect's first-cell costs, and the command was
+    1.2-1.3x faster than `--jobs 1`, not 2x."""
     todo = sheet_jobs(files, profiles, size, scene, backend, policy)
+    width = max(1, len(profiles))
+    rows = [todo[i:i + width] for i in range(0, len(todo), width)]
     if progress:
         from rich.console import Console
         from rich.progress import Progress
         with Progress(console=Console(stderr=True), transient=True) as bar:
             task = bar.add_task(f"{len(files)} effects × {len(profiles)} cards", total=len(todo))
-            cells = run_jobs(render_cell, todo, jobs=jobs, scheduler=scheduler,
-                             progress=lambda done, total: bar.update(task, completed=done))
+            drawn = run_jobs(render_row, rows, jobs=jobs, scheduler=scheduler,
+                             progress=lambda done, total: bar.update(task, completed=done * width))
     else:
-        cells = run_jobs(render_cell, todo, jobs=jobs, scheduler=scheduler)
+        drawn = run_jobs(render_row, rows, jobs=jobs, scheduler=scheduler)
+    cells = [cell for row in drawn for cell in row]
     image = compose(cells, files, profiles, size)
     try:
         image.save(out)

@@ -13,7 +13,10 @@
 command line imports and sets up what it prints with while the workers run).
 
 `render_cell` is one cell of the contact sheet: the picture a card draws for an effect (the
-technique it selects), or why it draws none. A worker loads each effect and card once.
+technique it selects), or why it draws none. A worker loads each effect and card once;
+`render_row` draws one effect's cells on one worker, so that what an effect's first cell makes
+(its load, compiles and textures: two thirds of a sheet's cold cost) is made once per effect,
+not once in every worker that draws one of its cards.
 """
 from __future__ import annotations
 
@@ -120,6 +123,11 @@ class Cell:
     technique: str | None
     image: Any = None
     reason: str | None = None
+
+
+def render_row(cells: Sequence[CellJob]) -> list[Cell]:
+    """`render_cell` of each of `cells` (one effect's, as the sheet gives them), in order."""
+    return [render_cell(job) for job in cells]
 
 
 _EFFECTS: dict[tuple[str, float], Any] = {}
