@@ -62,7 +62,7 @@ def load(name: str) -> Any:
     if entry is None:
         return None
     try:
-        return _decode(entry, name)
+        return _decode(entry)
     except Exception:   # not a shader entry this code can use: a miss
         disk_store.discard(name)
         return None
@@ -180,9 +180,8 @@ def _encode(result: Any) -> dict:
     }
 
 
-def _decode(d: Any, name: str) -> Any:
-    if type(d) is not dict or d.get("entry") != name:
-        raise ValueError("not this entry")
+def _decode(d: dict) -> Any:
+    """The shader or error of entry `d` (disk_store.read has checked it is this entry's)."""
     if "error" in d:
         cls_name = d["error"]
         if cls_name not in _ERRORS or type(d["message"]) is not str or \
