@@ -173,3 +173,20 @@ def test_matrix_command_reports_the_first_bad_file_in_order(tmp_path, capsys, mo
     assert used == ([] if threads else [2, 2])
     assert main(["matrix", PHONG, WOOD, "--jobs", "1", "--json"]) == 0
     assert capsys.readouterr().out == pooled
+
+
+def test_sheet_labels_are_cut_only_where_they_do_not_fit():
+    """Names are measured in the font the sheet draws with: whole where they fit, else cut
+    with ".." to fit (a count of 6-pixel characters cut geforcefx5900 at 64 px, with room)."""
+    from PIL import Image, ImageDraw
+
+    from effects.caps import list_profiles
+    from effects.cli.sheet import _fit
+    draw = ImageDraw.Draw(Image.new("RGB", (8, 8)))
+    for name in list_profiles() + ["PerPixelPhong_ps20", "a" * 60]:
+        room = draw.textlength(name)
+        assert _fit(draw, name, int(room) + 1) == name
+        for width in (61, 45, 20):
+            cut = _fit(draw, name, width)
+            assert cut == name or (cut.endswith("..") and name.startswith(cut[:-2]))
+            assert draw.textlength(cut) <= width or len(cut) == 3, (name, width, cut)

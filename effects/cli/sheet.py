@@ -74,11 +74,11 @@ def compose(cells: Sequence[Cell], files: Sequence[str], profiles: Sequence[str]
                       _BACKGROUND)
     draw = ImageDraw.Draw(sheet)
     for c, name in enumerate(profiles):
-        draw.text((_HEADER_W + c * w + 2, 1), _fit(os.path.basename(name), w), fill=_INK)
+        draw.text((_HEADER_W + c * w + 2, 1), _fit(draw, os.path.basename(name), w - 3), fill=_INK)
     by_key = {(cell.effect, cell.profile): cell for cell in cells}
     for r, path in enumerate(files):
         top = _LABEL_H + r * cell_h
-        draw.text((2, top + h // 2), _fit(os.path.basename(path), _HEADER_W), fill=_INK)
+        draw.text((2, top + h // 2), _fit(draw, os.path.basename(path), _HEADER_W - 3), fill=_INK)
         for c, profile in enumerate(profiles):
             left = _HEADER_W + c * w
             cell = by_key[(path, profile)]
@@ -86,17 +86,28 @@ def compose(cells: Sequence[Cell], files: Sequence[str], profiles: Sequence[str]
                 # RGBA render target shown opaque, as `effects render` writes it
                 picture = Image.fromarray(cell.image, "RGBA").convert("RGB")
                 sheet.paste(picture, (left, top))
-                draw.text((left + 2, top + h), _fit(cell.technique or "", w), fill=_FAINT)
+                draw.text((left + 2, top + h), _fit(draw, cell.technique or "", w - 3), fill=_FAINT)
             else:
                 _reason(draw, cell.reason or "", left, top, w, cell_h)
     return sheet
 
 
-def _fit(text: str, width: int) -> str:
-    """`text` cut to what fits `width` pixels of the 6-pixel default font."""
-    chars = max(1, width // 6)
+def _fit(draw, text: str, width: int) -> str:
+    """`text` as drawn in `width` pixels: whole, or cut with ".." where it is wider. Measured
+    in the font `draw` draws with (Pillow's default is proportional where FreeType is
+    there: a count of characters cut "geforcefx5900" to "geforcef.." with room to spare)."""
     text = _latin1(text)
-    return text if len(text) <= chars else text[:chars - 2] + ".."
+    if draw.textlength(text) <= width:
+        return text
+    while len(text) > 1 and draw.textlength(text + "..") > width:
+        text = text[:-1]
+    return text + ".."
+
+
+def _char_width(draw) -> float:
+    """The font's mean width of a letter or digit, in pixels (for wrapping by characters)."""
+    sample = "abcdefghijklmnopqrstuvwxyz0123456789"
+    return max(1.0, draw.textlength(sample) / len(sample))
 
 
 def _latin1(text: str) -> str:
@@ -106,6 +117,7 @@ def _latin1(text: str) -> str:
 
 def _reason(draw, text: str, left: int, top: int, w: int, h: int) -> None:
     """The reason a card draws nothing, wrapped into the cell."""
-    lines = textwrap.wrap(_latin1(text), max(4, (w - 4) // 6))[: max(1, (h - 2) // 11)]
+    chars = max(4, int((w - 4) / _char_width(draw)))
+    lines = textwrap.wrap(_latin1(text), chars)[: max(1, (h - 2) // 11)]
     for k, line in enumerate(lines):
         draw.text((left + 2, top + 2 + 11 * k), line, fill=(220, 120, 110))
