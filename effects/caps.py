@@ -57,7 +57,7 @@ from typing import Any, Callable, Mapping
 import yaml
 
 from effects import limits, untrusted, yaml_input
-from effects.bundled import PROFILE_FOLDER
+from effects.bundled import PROFILE_FOLDER, names_a_profile_file
 from effects.errors import Location, ProfileError
 
 PROFILE_DIR = Path(PROFILE_FOLDER).resolve()
@@ -458,8 +458,7 @@ def _resolve(name_or_path: str | Path, relative_to: Path | None = None,
     if not text.strip():
         raise ProfileError("the profile name is empty; name a card (`effects profiles` lists "
                            "them) or a .yaml file", here())
-    looks_like_path = text.endswith((".yaml", ".yml")) or "/" in text or "\\" in text
-    if looks_like_path:
+    if names_a_profile_file(text):
         path = Path(text)
         if not path.is_absolute() and relative_to is not None:
             path = relative_to / path

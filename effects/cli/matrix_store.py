@@ -63,10 +63,9 @@ def shared_key(profiles: tuple[str, ...], policy: str, strict: bool,
     """What every row of one command is found by besides its effect file (`MatrixJob.
     store_key`): the code, the limits, the folder, the cards and the options. None: the
     store is off, or a card is named by path (its rows are not kept)."""
-    if not disk_store.enabled() or \
-            any(n.endswith((".yaml", ".yml")) or "/" in n or "\\" in n for n in profiles):
+    from effects.bundled import PROFILE_FOLDER, names_a_profile_file
+    if not disk_store.enabled() or any(names_a_profile_file(n) for n in profiles):
         return None
-    from effects.bundled import PROFILE_FOLDER
     from effects.errors import ProfileError
     try:
         now = time.time_ns()

@@ -43,16 +43,16 @@ def render_sheet(files: Sequence[str], profiles: Sequence[str], out: str, *,
     A job is one effect's row (`render_row`): cell by cell, both workers of `--jobs 2` drew
     cards of every effect, so each paid every effect's first-cell costs, and the command was
     1.2-1.3x faster than `--jobs 1`, not 2x."""
-    todo = sheet_jobs(files, profiles, size, scene, backend, policy)
-    width = max(1, len(profiles))
-    rows = [todo[i:i + width] for i in range(0, len(todo), width)]
+    rows = [sheet_jobs([f], profiles, size, scene, backend, policy) for f in files]
     if progress:
         from rich.console import Console
         from rich.progress import Progress
         with Progress(console=Console(stderr=True), transient=True) as bar:
-            task = bar.add_task(f"{len(files)} effects × {len(profiles)} cards", total=len(todo))
+            task = bar.add_task(f"{len(files)} effects × {len(profiles)} cards",
+                                total=len(files) * len(profiles))
             drawn = run_jobs(render_row, rows, jobs=jobs, scheduler=scheduler,
-                             progress=lambda done, total: bar.update(task, completed=done * width))
+                             progress=lambda done, total: bar.update(
+                                 task, completed=done * len(profiles)))
     else:
         drawn = run_jobs(render_row, rows, jobs=jobs, scheduler=scheduler)
     cells = [cell for row in drawn for cell in row]
