@@ -54,6 +54,9 @@ class _Context:
         self.killed: np.ndarray | None = None
         self.active: np.ndarray | None = None    # (N,) bool inside control flow, else None
         self.quads = False
+        self.keep: np.ndarray | None = None    # sampling for the kept rows only (see `_Split`)
+        self.sampling: _Context | None = None  # a kept-rows context's: over every row
+        self.every: dict | None = None         # a kept-rows context's: the every-row values
         self.rows: dict[tuple, tuple] = {}
 
     def as_rows(self, columns: Columns) -> np.ndarray:
@@ -74,13 +77,16 @@ class _Context:
     def sample(self, index: int, coord: np.ndarray, kind: str, bias: np.ndarray | None,
                lod: np.ndarray | None, grad: tuple | None = None) -> np.ndarray:
         fn = self.samplers.get(index)
+        count = self.count if self.keep is None else len(self.keep)
         if fn is None:
-            return np.broadcast_to(_UNBOUND_TEXEL, (self.count, 4))
+            return np.broadcast_to(_UNBOUND_TEXEL, (count, 4))
         extra = {} if grad is None else {"grad": grad}    # (d coord/dx, d coord/dy) rows
+        if self.keep is not None:       # the LOD from every row's quad, texels of the kept
+            extra["rows"] = self.keep
         texels = np.asarray(fn(coord, kind=kind, bias=bias, lod=lod, **extra), dtype=np.float32)
-        if texels.shape != (self.count, 4):
+        if texels.shape != (count, 4):
             raise IRError(f"sampler {index} returned shape {texels.shape}, "
-                          f"expected {(self.count, 4)}")
+                          f"expected {(count, 4)}")
         return texels
 
     def derivative(self, x: np.ndarray, axis: int) -> np.ndarray:
@@ -324,12 +330,13 @@ def _run_structured(ctx: _Context, program: Program, values: dict[int, Columns])
     ctx.active = None
 
 
-def _broken(blocks: list[_Block]) -> np.ndarray | bool:
-    """Fragments that broke out of the innermost loop enclosing the current point."""
+def _broken(blocks: list[_Block]) -> np.ndarray | np.bool_:
+    """Fragments that broke out of the innermost loop enclosing the current point (NumPy's
+    False outside loops: Python's ~False is -1, which would turn a mask into integers)."""
     for block in reversed(blocks):
         if block.broken is not None:
             return block.broken
-    return False
+    return np.False_
 
 
 def _row_count(program: Program, inputs: Mapping[str, np.ndarray], count: int | None) -> int:
@@ -444,15 +451,20 @@ def _has_flow(program: Program) -> bool:
     return flow
 
 
-def _run_steps(ctx: _Context, steps: _Steps, values: dict[int, Columns],
+def _run_steps(ctx: _Context, steps: list, values: dict[int, Columns],
                given: Mapping[int, np.ndarray]) -> None:
     """Run a straight-line program's steps; the values are those `_run` gives."""
-    for mode, dest, args, fn, attrs, wanted, order in steps.steps:
+    for mode, dest, args, fn, attrs, wanted, order in steps:
         if mode == _SKIP:                 # nothing reads it
             values[dest] = [None] * 4
             continue
         if mode == _GIVEN:
             values[dest] = _from_rows(given[dest])
+            continue
+        if mode == _SPLIT:                # the coordinate over every row (`_run_split`)
+            sampling = ctx.sampling
+            values[dest] = _from_rows(
+                fn(sampling, [sampling.as_rows(ctx.every[a]) for a in args], attrs))
             continue
         argv = [values[a] for a in args]
         if mode == _COLUMNS:
@@ -483,16 +495,137 @@ def _run_steps(ctx: _Context, steps: _Steps, values: dict[int, Columns],
             values[dest] = result
 
 
+# ------------------------------------------------------------------------------------------------
+# Helper pixels only where derivatives read them. A quad's helper (uncovered) pixels exist for
+# the differences across the quad: the LOD of an implicit-LOD texture read and ddx / ddy. What
+# the kept rows end with never reads a helper's value otherwise, and every other op works row
+# by row, so the program splits in two: the steps those differences read (back from each
+# sample's coordinate and each ddx / ddy argument) run over every row, the rest over the kept
+# rows only, and a sample whose texel only the rest reads takes its LOD from every row's quad
+# and reads texels for the kept rows (`sampler(..., rows=)`). Each kept row's values are those
+# of running everything over every row.
+
+_SPLIT = 6                  # a sample step: coordinate over every row, texels of the kept ones
+
+
+@dataclass
+class _Split:
+    every: list             # steps run over every row, in program order
+    kept: list              # the rest, over the kept rows, in program order
+    carried: tuple          # values made over every row that a kept-rows step reads
+
+
+_SPLIT_CACHE: dict[tuple, tuple[Program, "_Split | None"]] = {}
+
+
+def _step_dests(step) -> tuple:
+    return step[1] if step[0] == _BATCH else (step[1],)
+
+
+def _split(program: Program, steps: _Steps, given: frozenset) -> _Split | None:
+    """The program's steps split as above, or None when every step would run over every row
+    (nothing to gain). Cached per program object and set of given values, as `_steps`."""
+    key = (id(program), given)
+    found = _SPLIT_CACHE.get(key)
+    if found is not None and found[0] is program:
+        return found[1]
+    op_of = {instr.dest: instr.op for instr in program.instrs if instr.dest is not None}
+    producer = {d: k for k, step in enumerate(steps.steps) for d in _step_dests(step)}
+    every: set[int] = set()
+    samples: set[int] = set()
+    pending: list[int] = []
+    for k, step in enumerate(steps.steps):
+        mode, dest = step[0], step[1]
+        if mode in (_SKIP, _BATCH) or dest is None or not OPS[op_of[dest]].needs_quads:
+            continue
+        if mode == _ROWS and OPS[op_of[dest]].names_sampler:
+            samples.add(k)
+            pending.extend(step[2])             # its coordinate, over every row
+        else:                                   # ddx, ddy: run over every row
+            every.add(k)
+            pending.extend(step[2])
+    while pending:
+        k = producer.get(pending.pop())
+        if k is not None and k not in every:
+            every.add(k)
+            pending.extend(step_arg for step_arg in steps.steps[k][2])
+    if len(every) + len(samples - every) >= len(steps.steps):
+        result = None
+    else:
+        made_every = {d for k in every for d in _step_dests(steps.steps[k])}
+        kept, carried = [], set()
+        for k, step in enumerate(steps.steps):
+            if k in every:
+                continue
+            if k in samples:
+                kept.append((_SPLIT, *step[1:]))
+            else:
+                kept.append(step)
+                carried.update(a for a in step[2] if a in made_every)
+        outputs_made = {value for _, value in program.outputs} & made_every
+        result = _Split([steps.steps[k] for k in sorted(every)], kept,
+                        tuple(sorted(carried | outputs_made)))
+    if len(_SPLIT_CACHE) > 1024:
+        _SPLIT_CACHE.clear()
+    _SPLIT_CACHE[key] = (program, result)
+    return result
+
+
+class _KeptInputs(Mapping):
+    """The inputs at the kept rows, each taken once, when a kept-rows step first reads it."""
+
+    def __init__(self, inputs: Mapping[str, np.ndarray], keep: np.ndarray, count: int) -> None:
+        self._inputs, self._keep, self._count = inputs, keep, count
+        self._taken: dict[str, np.ndarray] = {}
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        found = self._taken.get(name)
+        if found is None:
+            value = self._inputs[name]
+            per_row = np.ndim(value) == 2 and np.shape(value)[0] == self._count > 1
+            found = self._taken[name] = (np.asarray(value)[self._keep] if per_row else value)
+        return found
+
+    def __iter__(self):
+        return iter(self._inputs)
+
+    def __len__(self) -> int:
+        return len(self._inputs)
+
+
+def _kept_columns(columns: Columns, keep: np.ndarray) -> Columns:
+    return [c if c is None or len(c) == 1 else c[keep] for c in columns]
+
+
+def _run_split(ctx: _Context, split: _Split, keep: np.ndarray, values: dict[int, Columns],
+               given: Mapping[int, np.ndarray]) -> tuple[_Context, dict[int, Columns]]:
+    """Run `split`: its first part over ctx's rows (into `values`), the rest over the rows
+    `keep`. Returns the kept rows' context (its kill mask) and values."""
+    _run_steps(ctx, split.every, values, given)
+    kept = _Context(ctx.program, _KeptInputs(ctx.inputs, keep, ctx.count), ctx.samplers,
+                    len(keep))
+    sampling = kept.sampling = _Context(ctx.program, ctx.inputs, ctx.samplers, ctx.count)
+    sampling.quads, sampling.keep, sampling.rows = ctx.quads, keep, ctx.rows
+    kept.every = values
+    kept_values = {v: _kept_columns(values[v], keep) for v in split.carried}
+    _run_steps(kept, split.kept, kept_values, {d: g[keep] for d, g in given.items()})
+    return kept, kept_values
+
+
 def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
              samplers: Mapping[int, SamplerFn] | None = None, *,
              count: int | None = None, quads: bool = False,
-             given: Mapping[int, np.ndarray] | None = None) -> EvalResult:
+             given: Mapping[int, np.ndarray] | None = None,
+             keep: np.ndarray | None = None) -> EvalResult:
     """Evaluate `program` over N rows. `inputs` maps every declared input name to an (N, k)
     array (varyings, builtins) or a (k,) vector (uniforms, broadcast); `count` gives N when no
     input is per row. `quads`: the rows are whole 2x2 quads (rasteriser order), which
     gradient ops (ddx, ddy) need. `given` maps value numbers to (N, 4) rows used in place of
     computing them (what only they read is not run): how the reference shades a Phong pass's
-    lighting its own way (`PassProgram.lighting`); not with control flow."""
+    lighting its own way (`PassProgram.lighting`); not with control flow. `keep`: the indices
+    (increasing) of the rows whose results are wanted, with `quads`: the outputs and kill
+    mask then hold those rows only, and the others (helper pixels) run only what derivatives
+    read (samplers are then called with `rows=keep`: see `_Split`)."""
     given = given or {}
     flow = _has_flow(program)
     if given and flow:
@@ -504,12 +637,22 @@ def evaluate(program: Program, inputs: Mapping[str, np.ndarray],
     ctx.quads = quads
     values: dict[int, Columns] = {}
     steps = None
+    split = None
     with np.errstate(all="ignore"):  # inf and NaN are legitimate D3D results (rcp 0, log 0)
         if flow:
             _run_structured(ctx, program, values)
         else:
             steps = _steps(program, frozenset(given))
-            _run_steps(ctx, steps, values, given)
+            if keep is not None and quads and len(keep) < ctx.count:
+                split = _split(program, steps, frozenset(given))
+            if split is not None:
+                ctx, values = _run_split(ctx, split, keep, values, given)
+            else:
+                _run_steps(ctx, steps.steps, values, given)
+    if keep is not None and split is None:      # every row ran: the kept ones
+        values = {v: _kept_columns(values[v], keep) for _, v in program.outputs}
+        ctx.killed = None if ctx.killed is None else ctx.killed[keep]
+        ctx.count = len(keep)
     outputs = {name: _as_rows(values[value], ctx.count) for name, value in program.outputs}
     killed = ctx.killed
     discards = (steps.discards if steps is not None

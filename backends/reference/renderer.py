@@ -102,13 +102,15 @@ def _srgb_levels(level: np.ndarray) -> np.ndarray:
 
 
 def _make_callback(texture_kind: str, levels: list[np.ndarray], settings: SamplerSettings):
-    def callback(coord: np.ndarray, *, kind: str | None = None, bias=None, lod=None, grad=None):
+    def callback(coord: np.ndarray, *, kind: str | None = None, bias=None, lod=None, grad=None,
+                 rows=None):
         # `kind` is what the program declared; PassProgram checks it against the binding, and
         # the texture itself decides how it is addressed. Explicit gradients (texldd) give
-        # the LOD per row, as the quad differences would.
+        # the LOD per row, as the quad differences would. `rows`: the texels of those rows
+        # only (the evaluator's kept rows).
         if grad is not None:
             lod = gradient_lod(texture_kind, levels, *grad, coord=coord)
-        return sample(texture_kind, levels, coord, settings, bias, lod)
+        return sample(texture_kind, levels, coord, settings, bias, lod, rows)
     return callback
 
 
@@ -302,25 +304,25 @@ class _FragmentStage:
         `frags` in draw order, or None."""
         if frags.count == 0:
             return None
-        colour, colour2, depth_out, killed = self._shade(frags)
-        keep = frags.covered
-        if killed is not None:
-            keep = keep & ~killed
-        if keep.all():
-            rows = slice(None)
-        else:
-            rows = np.nonzero(keep)[0]
-            if len(rows) == 0:
+        keep = None if frags.covered.all() else np.nonzero(frags.covered)[0]
+        colour, colour2, depth_out, killed = self._shade(frags, keep)
+        if killed is not None and killed.any():
+            alive = np.nonzero(~killed)[0]
+            if len(alive) == 0:
                 return None
-        color = colour[rows]
-        depth = frags.depth[rows] if depth_out is None else np.clip(depth_out[rows], 0, 1)
+            colour = colour[alive]
+            colour2 = None if colour2 is None else colour2[alive]
+            depth_out = None if depth_out is None else depth_out[alive]
+            keep = alive if keep is None else keep[alive]
+        rows = slice(None) if keep is None else keep
+        depth = frags.depth[rows] if depth_out is None else np.clip(depth_out, 0, 1)
         pixels = frags.y[rows].astype(np.int64) * self.size[0] + frags.x[rows]
-        return (pixels, color, depth, frags.front[rows],
-                None if colour2 is None else colour2[rows])
+        return pixels, colour, depth, frags.front[rows], colour2
 
-    def _shade(self, frags: QuadFragments):
-        """Run the fragment program over every row in chunks of whole quads. Returns colour0,
-        colour1 or None, the depth output or None, killed or None."""
+    def _shade(self, frags: QuadFragments, keep: np.ndarray | None):
+        """Run the fragment program over the rows in chunks of whole quads, for the rows
+        `keep` (every row when None: helper pixels run only what derivatives read). Returns
+        colour0, colour1 or None, the depth output or None, killed or None, of those rows."""
         fragment = self.program.fragment
         chunks = [(s, min(s + _CHUNK_ROWS, frags.count))
                   for s in range(0, frags.count, _CHUNK_ROWS)]
@@ -328,11 +330,16 @@ class _FragmentStage:
         def run(bounds):
             start, stop = bounds
             inputs = _fragment_inputs(fragment, frags, start, stop, self.uniforms)
+            kept = None
+            if keep is not None:
+                lo, hi = np.searchsorted(keep, (start, stop))
+                kept = keep[lo:hi] - start
             return evaluate(fragment, inputs, self.callbacks, count=stop - start,
-                            quads=self.quads, given=self._given(frags, start, stop))
+                            quads=self.quads, given=self._given(frags, start, stop), keep=kept)
 
         results = [run(c) for c in chunks]
         outputs = fragment.output_map
+        count = frags.count if keep is None else len(keep)
 
         def gather(name):
             if name not in outputs:
@@ -342,14 +349,12 @@ class _FragmentStage:
 
         colour = gather("color0")
         if colour is None:
-            colour = np.zeros((frags.count, 4), np.float32)
+            colour = np.zeros((count, 4), np.float32)
         depth = gather("depth")
-        killed = None
-        if any(r.killed is not None for r in results):
-            killed = np.concatenate([np.zeros(b - a, bool) if r.killed is None else r.killed
-                                     for r, (a, b) in zip(results, chunks)])
+        # one program: every chunk has a kill mask (it may discard) or none has
+        killed = (None if results[0].killed is None
+                  else np.concatenate([r.killed for r in results]))
         return colour, gather("color1"), None if depth is None else depth[:, 0], killed
-
 
     def _given(self, frags: QuadFragments, start: int, stop: int) -> dict | None:
         """The Taylor form's lit values for rows [start, stop), by value number."""

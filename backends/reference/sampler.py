@@ -429,28 +429,43 @@ def _same_bits(a: np.ndarray, b: np.ndarray) -> bool:
 
 
 def _sample_levels(levels: list[_Level], coords: list[np.ndarray], sizes: tuple[int, ...],
-                   s: SamplerSettings, bias, lod, modes: Sequence[str]) -> np.ndarray:
-    """LOD from the first len(sizes) coordinates, then the filtered lookup. A mipmapped lookup
-    with a computed LOD reuses the previous lookup's plan on this thread when the coordinates,
-    settings and level sizes are equal (the LOD, levels, addresses and weights are then equal
-    too): a program reading several same-sized textures at one coordinate (base, normal and
-    gloss maps) computes them once."""
+                   s: SamplerSettings, bias, lod, modes: Sequence[str],
+                   rows: np.ndarray | None = None) -> np.ndarray:
+    """LOD from the first len(sizes) coordinates, then the filtered lookup, of the rows `rows`
+    only when given (the LOD still from every row's quad). A mipmapped lookup with a computed
+    LOD reuses the previous lookup's plan on this thread when the coordinates, rows, settings
+    and level sizes are equal (the LOD, levels, addresses and weights are then equal too): a
+    program reading several same-sized textures at one coordinate (base, normal and gloss
+    maps) computes them once."""
     border = np.asarray(s.border, np.float32)
     if bias is not None or lod is not None or not _one_pyramid_pass(levels, s):
         per_row = _lod(coords[:len(sizes)], sizes, len(coords[0]), s, bias, lod)
+        if rows is not None:
+            per_row, coords = per_row[rows], [c[rows] for c in coords]
         return _mip_sample(levels, coords, per_row, s, modes, border)
     pyramid = _pyramid(levels)
     # quad_lod is part of the key: tests substitute another LOD rule.
     key = (quad_lod, tuple(pyramid.shapes), sizes, s, tuple(modes))
     last = getattr(_recent, "plan", None)
     if (last is not None and last[0] == key and len(last[1]) == len(coords)
-            and all(_same_bits(a, b) for a, b in zip(last[1], coords))):
+            and all(_same_bits(a, b) for a, b in zip(last[1], coords))
+            and _same_rows(last[3], rows)):
         plan = last[2]
     else:
         per_row = _lod(coords[:len(sizes)], sizes, len(coords[0]), s, None, None)
-        plan = _mip_plan(pyramid, coords, per_row, s, s.min_filter not in _POINT_FILTERS, modes)
-        _recent.plan = (key, [np.array(c) for c in coords], plan)
+        kept = coords
+        if rows is not None:
+            per_row, kept = per_row[rows], [c[rows] for c in coords]
+        plan = _mip_plan(pyramid, kept, per_row, s, s.min_filter not in _POINT_FILTERS, modes)
+        _recent.plan = (key, [np.array(c) for c in coords], plan,
+                        None if rows is None else np.array(rows))
     return _apply_plan(pyramid.texels, plan, border)
+
+
+def _same_rows(a: np.ndarray | None, b: np.ndarray | None) -> bool:
+    if a is None or b is None:
+        return a is b
+    return np.array_equal(a, b)
 
 
 def _apply_plan(texels: np.ndarray, plan: _MipPlan, border: np.ndarray) -> np.ndarray:
@@ -501,34 +516,38 @@ def _levels(levels: Sequence[np.ndarray]) -> list[_Level]:
 # Public lookups
 
 def sample_2d(levels: Sequence[np.ndarray], uv: np.ndarray, s: SamplerSettings,
-              bias: np.ndarray | float | None = None, lod: np.ndarray | None = None
-              ) -> np.ndarray:
-    """Sample a 2D texture (list of (H, W, 4) levels) at rows of (u, v)."""
+              bias: np.ndarray | float | None = None, lod: np.ndarray | None = None,
+              rows: np.ndarray | None = None) -> np.ndarray:
+    """Sample a 2D texture (list of (H, W, 4) levels) at rows of (u, v); of the rows `rows`
+    only, when given (the LOD still from whole quads)."""
     lv = _levels(levels)
     h, w = lv[0].shape
     coords = [np.ascontiguousarray(uv[:, i], np.float32) for i in range(2)]
-    return _sample_levels(lv, coords, (w, h), s, bias, lod, (s.address_u, s.address_v))
+    return _sample_levels(lv, coords, (w, h), s, bias, lod, (s.address_u, s.address_v), rows)
 
 
 def sample_1d(levels: Sequence[np.ndarray], u: np.ndarray, s: SamplerSettings,
-              bias: np.ndarray | float | None = None, lod: np.ndarray | None = None
-              ) -> np.ndarray:
-    """Sample a 1D texture (levels of (1, W, 4)) at rows of u (the first column)."""
+              bias: np.ndarray | float | None = None, lod: np.ndarray | None = None,
+              rows: np.ndarray | None = None) -> np.ndarray:
+    """Sample a 1D texture (levels of (1, W, 4)) at rows of u (the first column); `rows` as
+    `sample_2d`."""
     lv = _levels(levels)
     coords = [np.asarray(np.reshape(u, (len(u), -1))[:, 0], np.float32)]
     coords.append(np.full(len(u), 0.5, np.float32))
-    return _sample_levels(lv, coords, (lv[0].shape[1],), s, bias, lod, (s.address_u, "CLAMP"))
+    return _sample_levels(lv, coords, (lv[0].shape[1],), s, bias, lod, (s.address_u, "CLAMP"),
+                          rows)
 
 
 def sample_3d(levels: Sequence[np.ndarray], uvw: np.ndarray, s: SamplerSettings,
-              bias: np.ndarray | float | None = None, lod: np.ndarray | None = None
-              ) -> np.ndarray:
-    """Sample a volume texture (levels of (D, H, W, 4)) at rows of (u, v, w)."""
+              bias: np.ndarray | float | None = None, lod: np.ndarray | None = None,
+              rows: np.ndarray | None = None) -> np.ndarray:
+    """Sample a volume texture (levels of (D, H, W, 4)) at rows of (u, v, w); `rows` as
+    `sample_2d`."""
     lv = _levels(levels)
     d, h, w = lv[0].shape
     coords = [np.ascontiguousarray(uvw[:, i], np.float32) for i in range(3)]
     return _sample_levels(lv, coords, (w, h, d), s, bias, lod,
-                          (s.address_u, s.address_v, s.address_w))
+                          (s.address_u, s.address_v, s.address_w), rows)
 
 
 # Per face: (major axis, sign, s axis and sign, t axis and sign), from the D3D9 cube table.
@@ -571,9 +590,10 @@ def cube_face_coords(d: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]
 
 
 def sample_cube(levels: Sequence[np.ndarray], direction: np.ndarray, s: SamplerSettings,
-                bias: np.ndarray | float | None = None, lod: np.ndarray | None = None
-                ) -> np.ndarray:
-    """Sample a cube map (levels of (6, H, W, 4)) along direction rows (x, y, z)."""
+                bias: np.ndarray | float | None = None, lod: np.ndarray | None = None,
+                rows: np.ndarray | None = None) -> np.ndarray:
+    """Sample a cube map (levels of (6, H, W, 4)) along direction rows (x, y, z); `rows` as
+    `sample_2d`."""
     d = np.asarray(direction[:, :3], np.float32)
     face = cube_face(d)
     u, v = _face_uv(d, face)
@@ -584,13 +604,16 @@ def sample_cube(levels: Sequence[np.ndarray], direction: np.ndarray, s: SamplerS
         per_row = _lod([du, dv], (size, size), len(d), s, bias, None)
     else:
         per_row = _lod([u, v], (size, size), len(d), s, bias, lod)
+    if rows is not None:
+        face, u, v, per_row = face[rows], u[rows], v[rows], per_row[rows]
     clamp = ("CLAMP", "CLAMP")
     border = np.asarray(s.border, np.float32)
-    out = np.empty((len(d), 4), np.float32)
+    out = np.empty((len(face), 4), np.float32)
     for f in np.unique(face):
-        rows = np.nonzero(face == f)[0]
+        on_face = np.nonzero(face == f)[0]
         face_levels = [_Level(np.asarray(lvl)[f]) for lvl in levels]
-        out[rows] = _mip_sample(face_levels, [u[rows], v[rows]], per_row[rows], s, clamp, border)
+        out[on_face] = _mip_sample(face_levels, [u[on_face], v[on_face]], per_row[on_face], s,
+                                   clamp, border)
     return out
 
 
@@ -598,10 +621,12 @@ SAMPLE_BY_KIND = {"1d": sample_1d, "2d": sample_2d, "3d": sample_3d, "cube": sam
 
 
 def sample(kind: str, levels: Sequence[np.ndarray], coord: np.ndarray, s: SamplerSettings,
-           bias: np.ndarray | float | None = None, lod: np.ndarray | None = None) -> np.ndarray:
-    """Sample a texture of `kind` ('1d', '2d', '3d', 'cube') at coordinate rows (N, >= 1..3)."""
+           bias: np.ndarray | float | None = None, lod: np.ndarray | None = None,
+           rows: np.ndarray | None = None) -> np.ndarray:
+    """Sample a texture of `kind` ('1d', '2d', '3d', 'cube') at coordinate rows (N, >= 1..3);
+    of the rows `rows` only, when given (the LOD still from every row's quad)."""
     try:
         fn = SAMPLE_BY_KIND[kind]
     except KeyError:
         raise ValueError(f"texture kind must be one of {tuple(SAMPLE_BY_KIND)}, got {kind!r}")
-    return fn(levels, coord, s, bias, lod)
+    return fn(levels, coord, s, bias, lod, rows)
