@@ -29,7 +29,8 @@ from effects.model import (Effect, EnumValue, Expression, NullValue, ParamRef, P
 from effects import states as state_table
 
 Color = tuple[float, float, float, float]
-_RAISE: Any = object()   # no default given: a reader raises
+NO_DEFAULT: Any = object()   # a reader given no default raises (a public sentinel: validation
+                              # passes it on through its own readers)
 
 
 @dataclass
@@ -181,7 +182,7 @@ class DeviceState:
         return 0 if isinstance(value, ParamRef) else value
 
     def _unread(self, name: str, index: int | None, what: str, value: Any, default: Any) -> Any:
-        if default is not _RAISE:
+        if default is not NO_DEFAULT:
             return default
         raise EffectError(f"{name}: expected {what}, got {value!r}", self.where(name, index))
 
@@ -199,7 +200,7 @@ class DeviceState:
             return self.get_vector(name, index, 3 if kind == "float3" else 4)
         return reader(self, name, index)
 
-    def get_int(self, name: str, index: int | None = None, default: Any = _RAISE) -> int:
+    def get_int(self, name: str, index: int | None = None, default: Any = NO_DEFAULT) -> int:
         """The value as a DWORD: enums and flags by number, TRUE as 1, a float truncated."""
         value = self.value(name, index)
         number = value.value if isinstance(value, EnumValue) else value
@@ -210,7 +211,7 @@ class DeviceState:
         except (TypeError, ValueError, IndexError):
             return self._unread(name, index, "a number", value, default)
 
-    def get_float(self, name: str, index: int | None = None, default: Any = _RAISE) -> float:
+    def get_float(self, name: str, index: int | None = None, default: Any = NO_DEFAULT) -> float:
         value = self.value(name, index)
         if type(value) in (float, int):
             return float(value)
@@ -223,7 +224,7 @@ class DeviceState:
         """Whether the state is on; a value the application has not set yet, or NULL, is off."""
         return is_on(self.get(name, index))
 
-    def get_enum(self, name: str, index: int | None = None, default: Any = _RAISE) -> str:
+    def get_enum(self, name: str, index: int | None = None, default: Any = NO_DEFAULT) -> str:
         """The canonical enum name (upper case, no prefix) of the value in force."""
         found = self.enum_name(name, index)
         if found is not None:
@@ -235,14 +236,14 @@ class DeviceState:
             for enum_name, v in table.values.items():
                 if v == number:
                     return enum_name
-        if default is not _RAISE:
+        if default is not NO_DEFAULT:
             return default
         shown = name if index is None else f"{name}[{index}]"
         raise EffectError(f"{shown}: {number if number is not None else self.get(name, index)!r} "
                           f"is not a {table.name if table else 'known'} value",
                           self.where(name, index))
 
-    def get_color(self, name: str, index: int | None = None, default: Any = _RAISE) -> Color:
+    def get_color(self, name: str, index: int | None = None, default: Any = NO_DEFAULT) -> Color:
         """(r, g, b, a): a D3DCOLOR DWORD unpacked, or a float3 / float4 colour parameter."""
         value = self.value(name, index)
         if type(value) is not int:
@@ -257,7 +258,7 @@ class DeviceState:
         return number if number is default else state_table.unpack_color(number)
 
     def get_vector(self, name: str, index: int | None, size: int,
-                   default: Any = _RAISE) -> tuple[float, ...]:
+                   default: Any = NO_DEFAULT) -> tuple[float, ...]:
         """`size` floats; a scalar (an unset parameter reads 0) fills every component, missing
         ones read 0."""
         value = self.value(name, index)
@@ -271,7 +272,7 @@ class DeviceState:
         return tuple(float(x) for x in out)
 
     def get_matrix(self, name: str, index: int | None = None,
-                   default: Any = _RAISE) -> np.ndarray:
+                   default: Any = NO_DEFAULT) -> np.ndarray:
         """A 4x4 matrix (row-major, as the effect writes it); an unset parameter reads zero."""
         value = self.value(name, index)
         try:
@@ -281,7 +282,7 @@ class DeviceState:
         if array.size == 1 and array[0] == 0:
             return np.zeros((4, 4))
         if array.size != 16:
-            if default is not _RAISE:
+            if default is not NO_DEFAULT:
                 return default
             raise EffectError(f"{name}: expected a 4x4 matrix, got {array.size} value(s)",
                               self.where(name, index))

@@ -83,6 +83,47 @@ def test_validate_why_lists_every_reason_warning_and_note(capsys):
     assert "PixelShader is ps_2_0; the GeForce3 runs pixel shaders up to ps_1_1" in out
 
 
+def test_a_pass_from_an_include_is_located_in_the_included_file(capsys, tmp_path):
+    # the technique's lines are the include's: a reason that gave only "line 5" would send
+    # the reader to the wrong file (main.fx has four lines)
+    include = write(tmp_path, "bump.fxh", """\
+        // a technique kept in a header
+        technique Bump
+        {
+            pass P0
+            {
+                ColorOp[0] = BumpEnvMap;
+            }
+            pass P1
+            {
+                PixelShader = asm { ps.1.1 tex t0 mov r0, t0 };
+            }
+        }
+        """)
+    path = write(tmp_path, "main.fx", """\
+        #include "bump.fxh"
+        technique Plain
+        {
+            pass P0 { ColorOp[0] = SelectArg1; ColorArg1[0] = Diffuse; }
+        }
+        """)
+    code, out, _ = run(capsys, "validate", path, "-p", "tnt2", "--why")
+    assert code == 0
+    assert (f"pass P0 ({include}, line 6): ColorOp[0] = BumpEnvMap needs "
+            "D3DTEXOPCAPS_BUMPENVMAP") in out
+    code, out, _ = run(capsys, "matrix", path, "-p", "tnt2", "--json")
+    assert json.loads(out)[path]["tnt2"]["rejected"]["Bump"][0].startswith(
+        f"pass P0 ({include}, line 6): ")
+    # the summary (no cards named) locates the header's shader in the header
+    code, out, _ = run(capsys, "validate", path)
+    assert f"asm ps_1_1 ({include}, line 10)" in out
+    # a pass in the file itself keeps the short form
+    code, out, _ = run(capsys, "validate", PHONG, "-p", "tnt2", "--why")
+    assert f"pass Diffuse (line {version_line(PHONG, 'Diffuse')}): " in out
+    code, out, _ = run(capsys, "validate", PHONG)
+    assert "asm ps_2_0 (line " in out
+
+
 def test_validate_exits_1_when_a_named_card_can_run_no_technique(capsys):
     code, out, _ = run(capsys, "validate", SPECULAR_BUMP, "--profile", "tnt2", "--profile", "radeon9700")
     assert code == 0

@@ -7,9 +7,12 @@ from rich.table import Table
 from effects.model import Effect, ShaderBlock, CompileShader
 
 
-def _shader_label(value) -> str | None:
+def _shader_label(value, effect_path: str) -> str | None:
     if isinstance(value, ShaderBlock):
-        return f"asm {value.version or '(not D3D assembly)'} (line {value.location.line})"
+        where = value.location
+        line = (f"line {where.line}" if where.path == effect_path
+                else f"{where.path}, line {where.line}")     # from an #include
+        return f"asm {value.version or '(not D3D assembly)'} ({line})"
     if isinstance(value, CompileShader):
         return f"compile {value.profile} {value.function}()"
     return None
@@ -25,7 +28,7 @@ def print_effect_summary(effect: Effect, console: Console) -> None:
     table.add_column("shaders")
     for tech in effect.techniques:
         for i, p in enumerate(tech.passes):
-            shaders = [s for s in (_shader_label(a.value) for a in p.states) if s]
+            shaders = [s for s in (_shader_label(a.value, effect.path) for a in p.states) if s]
             table.add_row(tech.name or "<anonymous>" if i == 0 else "", p.name or f"#{i}",
                           str(len(p.states)), ", ".join(shaders))
         if not tech.passes:

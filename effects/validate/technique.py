@@ -53,7 +53,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable, Sequence
 
 from effects.caps import FIELDS, CapsProfile, Quirk, bit_prefix
-from effects.device import _RAISE as _NO_DEFAULT, DeviceState, pass_states
+from effects.device import NO_DEFAULT, DeviceState, pass_states
 from effects.errors import EffectError, Location
 from effects.frontend.references import pass_reference_problems
 from effects.model import Effect, EnumValue, Expression, NullValue, ParamRef, Pass, Technique
@@ -82,9 +82,14 @@ class Reason:
     requirement: str   # what it needs: "D3DTEXOPCAPS_BUMPENVMAP"
     card_value: str    # what the card has: "not in TextureOpCaps", "PixelShaderVersion 1.1"
     message: str       # one plain sentence
+    effect_path: str = ""   # the effect file validated: a location in another (an #include)
+                            # names its file
 
     def __str__(self) -> str:
-        return f"pass {self.pass_name} (line {self.location.line}): {self.message}"
+        where = self.location
+        if where.path and self.effect_path and where.path != self.effect_path:
+            return f"pass {self.pass_name} ({where.path}, line {where.line}): {self.message}"
+        return f"pass {self.pass_name} (line {where.line}): {self.message}"
 
 
 @dataclass
@@ -180,10 +185,10 @@ class _Reads(DeviceState):
             value = self._got[key] = DeviceState.get(self, name, index)
             return value
 
-    def get_enum(self, name: str, index: int | None = None, default: Any = _NO_DEFAULT) -> Any:
+    def get_enum(self, name: str, index: int | None = None, default: Any = NO_DEFAULT) -> Any:
         return self._kept(self._enums, DeviceState.get_enum, name, index, default)
 
-    def get_int(self, name: str, index: int | None = None, default: Any = _NO_DEFAULT) -> Any:
+    def get_int(self, name: str, index: int | None = None, default: Any = NO_DEFAULT) -> Any:
         return self._kept(self._ints, DeviceState.get_int, name, index, default)
 
     def _kept(self, answers: dict, read: Any, name: str, index: int | None, default: Any) -> Any:
@@ -192,7 +197,7 @@ class _Reads(DeviceState):
         try:
             return answers[key]
         except KeyError:
-            value = read(self, name, index) if default is _NO_DEFAULT \
+            value = read(self, name, index) if default is NO_DEFAULT \
                 else read(self, name, index, default)
             answers[key] = value
             return value
@@ -246,11 +251,13 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
     def fail(self, location: Location, subject: str, requirement: str, card_value: str,
              message: str) -> None:
         self.report.reasons.append(Reason(self.technique.name, self.report.name, location,
-                                          subject, requirement, card_value, message))
+                                          subject, requirement, card_value, message,
+                                          self.effect.path))
 
     def warn(self, location: Location, subject: str, quirk: Quirk) -> None:
         reason = Reason(self.technique.name, self.report.name, location, subject,
-                        f"driver rule {quirk.id}", quirk.text, f"{subject}: {quirk.text} ({self.card()})")
+                        f"driver rule {quirk.id}", quirk.text,
+                        f"{subject}: {quirk.text} ({self.card()})", self.effect.path)
         if reason not in self.report.warnings:
             self.report.warnings.append(reason)
 
@@ -258,7 +265,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
                 message: str) -> None:
         """A warning that is no driver quirk: what the card does differently, rejecting nothing."""
         reason = Reason(self.technique.name, self.report.name, location, subject, requirement,
-                        card_value, message)
+                        card_value, message, self.effect.path)
         if reason not in self.report.warnings:
             self.report.warnings.append(reason)
 
