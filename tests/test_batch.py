@@ -24,6 +24,11 @@ def _square(x: int) -> int:   # module level: a process pool pickles it by name
     return x * x
 
 
+def _blas_threads(_: int) -> list[int]:
+    from threadpoolctl import threadpool_info
+    return [pool["num_threads"] for pool in threadpool_info() if pool["user_api"] == "blas"]
+
+
 def _dask():
     if os.environ.get("CI"):
         import distributed   # the test extra installs it: CI must test it
@@ -41,6 +46,19 @@ def test_run_jobs_keeps_job_order_on_every_engine():
     assert run_jobs(_square, range(7), jobs=2) == [x * x for x in range(7)]
     with pytest.raises(ValueError):
         run_jobs(_square, [1], jobs=0)
+
+
+def test_pool_workers_share_the_cores_blas_threads():
+    # a worker per core, each with a BLAS thread per core, oversubscribes the machine
+    from effects.host.batch import default_jobs
+    here = _blas_threads(0)
+    if not here:
+        pytest.skip("NumPy here links no BLAS that threadpoolctl knows")
+    for workers in (2, 3):
+        share = max(1, default_jobs() // workers)
+        assert run_jobs(_blas_threads, range(workers * 2), jobs=workers) == \
+            [[share] * len(here)] * (workers * 2)
+    assert _blas_threads(0) == here          # this process keeps its own
 
 
 def test_a_cell_is_the_render_or_the_reason():
