@@ -458,3 +458,78 @@ def test_ps14_a_third_read_of_one_sampler_is_refused_at_it():
                        "a stage once in each of its two phases") as info:
         compile_shader(effect_for(fn, "ps_1_4"), "PS", "ps_1_4")
     assert info.value.location.line == FIRST_READ_LINE + 2
+
+
+# --- fxc's preshader: what reads only uniforms runs on the host -------------------------------
+
+PRESHADED = "float4 PS(float4 c : COLOR0) : COLOR { return c * -K0 + K1 * Scale; }"
+
+
+def _preshaded(u, v, scale=0.5):
+    # COLOR0 * -K0 + K1 * Scale, each channel by hand:
+    # (0.5, 0.75, 1, 1) * -(0.5, 0.25, 0, 1) + (0, 1, 0.5, 0.5) * Scale
+    d, k0, k1 = np.array(DIFFUSE), np.array([0.5, 0.25, 0.0, 1.0]), np.array([0.0, 1.0, 0.5, 0.5])
+    return d * -k0 + k1 * scale
+
+
+@pytest.mark.parametrize("target", ["ps_1_1", "ps_1_4"])
+def test_uniform_only_expressions_are_computed_on_the_host(backend, target):
+    """`K1 * Scale` reads only uniforms: fxc's preshader computed it on the CPU into a
+    constant of its own, and so does this compiler, on every ps_1_x. `-K0` is a negated
+    constant, which ps_1_4 does not allow: there the negation goes to the host too (without
+    the preshader this shader does not assemble for ps_1_4)."""
+    from effects.shaders.hlsl.registers import constant_values
+    fx = effect_for(PRESHADED, target)
+    shader = compile_shader(fx, "PS", target)
+    assert check(shader.program) == [], shader.text
+    registers = constant_values(fx, shader)
+    host = {name: registers[shader.constants[name][0]] for name in shader.preshaders}
+    values = sorted(host.values())
+    # K1 * Scale = (0, 0.5, 0.25, 0.25); on ps_1_4 also -K0 = (-0.5, -0.25, 0, -1)
+    assert values == ([(-0.5, -0.25, 0.0, -1.0)] if target == "ps_1_4" else []) + \
+        [(0.0, 0.5, 0.25, 0.25)], shader.text
+    assert "K1" not in shader.constants and "Scale" not in shader.constants
+    assert ("K0" in shader.constants) == (target == "ps_1_1")   # ps_1_1 reads -c#
+    img = render(PRESHADED, target, backend)
+    each_pixel(img, _preshaded, target, shader.text)
+    # computed when the pass is drawn, from the values then: not folded at compile time
+    img = effects.render(fx, CARD[target], technique="T", backend=backend, scene=QUAD,
+                         params={"Scale": 1.0, "T": make_texture(TEXELS, mips=False)})
+    each_pixel(img.astype(np.float64) / 255.0, lambda u, v: _preshaded(u, v, 1.0), target,
+               shader.text)
+
+
+def test_a_stored_shader_keeps_its_preshader(tmp_path):
+    from effects import disk_store
+    from effects.shaders.hlsl import cache, store
+    fx = effect_for(PRESHADED, "ps_1_4")
+    value = next(a.value for a in fx.techniques[0].passes[0].states
+                 if type(a.value).__name__ == "CompileShader")
+    fresh = compile_shader(fx, "PS", "ps_1_4")
+    assert disk_store.enable(str(tmp_path))
+    try:
+        name = store.key(cache.key_parts(fx, value, []), cache.declarations(fx), value.location)
+        store.save(name, fresh)
+        back = store.load(name)
+    finally:
+        disk_store.disable()
+    assert back is not fresh and back.preshaders == fresh.preshaders and len(back.preshaders) == 2
+    assert back.text == fresh.text and back.constants == fresh.constants
+
+
+def test_what_a_preshader_reads_is_read_by_the_pass():
+    """`normalize(L)` of a uniform is per-pixel work ps_1_4 has no instruction for (X4532);
+    on the host it is one constant. The pass reads L and Scale through its preshaders: the
+    doctor names Scale as unset, and a `set` between frames is drawn on the next one."""
+    from effects.cli.doctor import parameters_read
+    from effects.host.runtime import Runtime
+    fx = effects.load_effect(PARAMS.replace("float Scale = 0.5;", "float Scale;") + """
+        float4 PS(float4 c : COLOR0) : COLOR { return dot(c.rgb, normalize(L)) * Scale; }
+        technique T { pass P { Lighting = False; PixelShader = compile ps_1_4 PS(); } }""")
+    assert {"L", "Scale"} <= parameters_read(fx, fx.techniques[0])
+    runtime = Runtime(fx, "radeon8500", scene=QUAD, size=SIZE, backend="numpy")
+    assert runtime.render().image.max() == 0          # Scale reads 0 until it is set
+    # dot((0.5, 0.75, 1), (0.5, 0.25, 0) / |..|) = (0.25 + 0.1875) / 0.559 = 0.7826
+    runtime.set_value("Scale", 0.5)
+    lit = runtime.render().image[4, 4, :3] / 255.0
+    assert np.allclose(lit, 0.7826 * 0.5, atol=TOL), lit

@@ -38,7 +38,10 @@ def parameters_read(effect: Effect, technique: Technique) -> set[str]:
             except EffectError:
                 return                       # validation says why; nothing is read
             read.update(n for n in (*shader.constants, *shader.int_registers,
-                                    *shader.bool_registers) if not n.startswith("$"))
+                                    *shader.bool_registers)
+                        if not n.startswith("$") and n not in shader.preshaders)
+            for preshader in shader.preshaders.values():   # what the host computes from
+                read.update(n for n in preshader.uniforms() if not n.startswith("$"))
             for arg in v.args:
                 read.update(n for n in _NAME.findall(arg) if n in names)
         elif isinstance(v, ParamRef):

@@ -92,6 +92,12 @@ def listing(effect: "Effect", shader: Any) -> list[str]:
                        key=lambda r: int(r[0][1:]))
         lines += [f"//   {name:<24} {reg:<5} {n:>4}" for reg, name, n in rows]
         lines.append("//")
+    preshaders = getattr(shader, "preshaders", {})
+    if preshaders:
+        lines += ["// Preshader (computed on the host when the pass is drawn):", "//"]
+        lines += [f"//   c{shader.constants[name][0]} = {preshaders[name].expression()}"
+                  for name in sorted(preshaders, key=lambda n: shader.constants[n][0])]
+        lines.append("//")
     for w in shader.warnings:
         lines.append(f"// {w}")
     source = _SourceLines(effect)

@@ -111,6 +111,15 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
     if ctx.target.kind == "vs" and not any(o.register in ("oPos", "o0") and o.register == "oPos"
                                            or o.register.startswith("o") for o in outputs):
         raise fdef.origin.error(f"X4502: '{entry}': a vertex shader must write POSITION", fdef.tree)
+    preshaders = {}
+    if ctx.target.rules.is_ps1:
+        # fxc's preshader: what reads only uniforms is computed on the host (see preshader.py)
+        from effects.shaders.hlsl.preshader import preshade_ps1
+        roots = [c for o in outputs for c in o.comps] + list(ctx.kills)
+        preshaders = preshade_ps1(ev.g, roots, not ctx.target.rules.is_ps14, ctx.uniforms_used)
+        for o in outputs:
+            o.comps, roots = roots[:len(o.comps)], roots[len(o.comps):]
+        ctx.kills[:] = roots
     nodes = needed([c.node for o in outputs for c in o.comps] + [k.node for k in ctx.kills])
     for n in nodes:
         if n.op == "input" and n.key[0] == "unmapped":
@@ -132,7 +141,8 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
                           generated.samplers, generated.locations, list(ctx.warnings),
                           dict(ctx.uniforms_used),
                           generated.int_registers if not ctx.target.rules.is_ps1 else {},
-                          generated.bool_registers if not ctx.target.rules.is_ps1 else {})
+                          generated.bool_registers if not ctx.target.rules.is_ps1 else {},
+                          {n: p for n, p in preshaders.items() if n in generated.constants})
 
 
 def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int], dict[str, int]]:

@@ -152,7 +152,7 @@ class Graph:
             width = shaped[1] if shaped else max(a.width for a in args)
         consts = [a.const_values() for a in args]
         if op not in OPAQUE and all(c is not None for c in consts):
-            return self.const(tuple(_fold(op, consts, width)), location)
+            return self.const(tuple(fold(op, consts, width)), location)
         simplified = _simplify(self, op, args, consts)
         if simplified is not None:
             return simplified
@@ -161,7 +161,13 @@ class Graph:
         return Operand(node, tuple(range(width)))
 
 
-def _fold(op: str, consts: list[Any], width: int) -> list[float]:
+def can_fold(op: str) -> bool:
+    """Whether `fold` computes `op` (a preshader runs these on the host)."""
+    return op not in OPAQUE and (op in SHAPED or op in LANE_KERNELS)
+
+
+def fold(op: str, consts: list[Any], width: int) -> list[float]:
+    """`op` on constant arguments (each its lanes after swizzle and negation)."""
     shaped = SHAPED.get(op)
     if shaped is not None:
         arrays = [np.array(c[:n], dtype=np.float64) for c, n in zip(consts, shaped[0])]

@@ -1,12 +1,18 @@
-"""Effect-level HLSL values computed on the host (what D3DX compiled to a "preshader" and ran
-on the CPU): a parameter initialiser kept as text (a struct's `{ {..}, {..}, 32.0 }`) as the
+"""HLSL values computed on the host (what D3DX compiled to a "preshader" and ran on the CPU).
+
+Effect level: a parameter initialiser kept as text (a struct's `{ {..}, {..}, 32.0 }`) as the
 flat list of its numbers, and a state's expression (`FogDensity = 1.0 / Distance`,
 `TextureTransform[0] = mul(A, B)`, `VertexShaderConstant[4] = <Light> * 0.5`) with the
-parameters' current values.
+parameters' current values. Both go through the one HLSL evaluator: in a preshader context
+(`Context.host_values`) a uniform global reads as a constant, its current value, so the whole
+expression folds to numbers; what cannot fold (a sampler, a texture read) is fxc's X3013,
+located.
 
-Both go through the one HLSL evaluator: in a preshader context (`Context.host_values`) a
-uniform global reads as a constant, its current value, so the whole expression folds to
-numbers; what cannot fold (a sampler, a texture read) is fxc's X3013, located."""
+Inside a ps_1_x shader (`preshade_ps1`): what reads only uniforms and literals (`-LightDir`,
+`Intensity * 2`, `normalize(LightDir)`) is taken out of the shader, as fxc took it, and
+computed on the host into a constant register of its own before each draw. DX8 pixel
+shaders have eight constants in [-1, 1] and few slots, and ps_1_4 allows no source modifier
+on a constant, so per-pixel code for such values is often impossible there."""
 from __future__ import annotations
 
 import re
@@ -17,6 +23,7 @@ import numpy as np
 from effects.errors import EffectError, Location
 from effects.model import Effect, ParamRef
 from effects.shaders.hlsl.parse import Origin, parse
+from effects.shaders.hlsl.shader import PRESHADER_NAME, ShaderPreshader
 from effects.states import lookup_state
 
 # `<Light>` / `<Lights[2]>`: the effect syntax for a parameter reference inside an expression.
@@ -109,3 +116,68 @@ def shader_element(effect: Effect, text: str, location: Location) -> ParamRef | 
         raise EffectError(f"'{text.strip()}' picks {param.name}[{index}] at the parameters' "
                           f"current values; {param.name} holds {count} shaders", location)
     return ParamRef(param.name, index=index, location=location)
+
+
+# ------------------------------------------------------------------------------------------------
+# A ps_1_x shader's preshader
+
+def preshade_ps1(graph: Any, roots: list[Any], negated_constants: bool,
+                 uniform_types: dict) -> dict[str, ShaderPreshader]:
+    """Take what reads only uniforms and literals out of a ps_1_x shader's DAG: each operand of
+    per-pixel work (or root: an output or kill component) whose node computes from uniforms
+    alone now reads a new uniform leaf, and its computation becomes that leaf's preshader.
+    With `negated_constants` False (ps_1_4), a negated uniform operand does too, its negation
+    folded in. The DAG is rewritten in place; `uniform_types` gets each new register's type.
+    Returns the preshaders by register name."""
+    from effects.shaders.hlsl.dag import Operand, reachable, can_fold
+    from effects.shaders.hlsl.types import scalar, vector
+    nodes = reachable(r.node for r in roots)
+    host = {}                      # node id -> computes from uniforms and literals only
+    for node in nodes:             # creation order: arguments first
+        if node.op in ("const", "uniform"):
+            host[node.id] = True
+        else:
+            host[node.id] = can_fold(node.op) and all(host[a.node.id] for a in node.args)
+    made: dict[tuple, Any] = {}    # (node id, negation folded) -> the new leaf
+    preshaders: dict[str, ShaderPreshader] = {}
+
+    def moved(a: Any) -> Any:
+        node = a.node
+        if not host[node.id] or node.op == "const":
+            return a
+        fold_negation = a.negate and not negated_constants
+        if node.op == "uniform" and not fold_negation:
+            return a
+        key = (node.id, fold_negation)
+        leaf = made.get(key)
+        if leaf is None:
+            name = PRESHADER_NAME.format(len(preshaders))
+            preshaders[name] = _preshader_steps(node, fold_negation)
+            uniform_types[name] = scalar() if node.width == 1 else vector("float", node.width)
+            leaf = made[key] = graph.leaf("uniform", (name, 0), node.width, node.location).node
+        return Operand(leaf, a.swizzle, a.negate and not fold_negation)
+
+    for node in nodes:
+        if not host[node.id]:
+            node.args = tuple(moved(a) for a in node.args)
+    roots[:] = [moved(r) for r in roots]
+    return preshaders
+
+
+def _preshader_steps(node: Any, negate: bool) -> ShaderPreshader:
+    from effects.shaders.hlsl.dag import reachable
+    index: dict[int, int] = {}
+    steps: list[tuple] = []
+    for n in reachable([node]):
+        if n.op == "const":
+            steps.append(("const", tuple(n.value)))
+        elif n.op == "uniform":
+            steps.append(("uniform", n.key[0], n.key[1], n.width))
+        else:
+            steps.append((n.op, n.width, tuple((index[a.node.id], tuple(a.swizzle), a.negate)
+                                               for a in n.args)))
+        index[n.id] = len(steps) - 1
+    if negate:
+        steps.append(("mov", node.width, ((len(steps) - 1, tuple(range(node.width)), True),)))
+    return ShaderPreshader(tuple(steps), node.width)
+

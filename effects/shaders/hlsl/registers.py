@@ -63,12 +63,44 @@ def parameter_numbers(effect: Effect, name: str) -> list[float] | None:
         return None
 
 
+def _register_rows(effect: Effect, shader: Any, name: str) -> list[Row]:
+    """The registers of uniform `name` of `shader` at the parameters' current values (none
+    for a parameter without a value, or an entry uniform no compile argument fixed)."""
+    t = shader.types.get(name)
+    flat = parameter_numbers(effect, name) if not name.startswith("$") else None
+    return _rows(t, flat)[0] if (t is not None and flat is not None) else []
+
+
+def preshader_numbers(effect: Effect, shader: Any, preshader: Any) -> list[float]:
+    """The value of one of `shader`'s preshaders (preshader.ShaderPreshader) at the
+    parameters' current values: its steps folded as the compiler folds constants."""
+    from effects.shaders.hlsl.dag import fold
+    values: list[tuple[float, ...]] = []
+    for step in preshader.steps:
+        if step[0] == "const":
+            values.append(tuple(step[1]))
+        elif step[0] == "uniform":
+            _, name, row, width = step
+            rows = _register_rows(effect, shader, name)
+            values.append(tuple(rows[row][:width]) if row < len(rows) else (0.0,) * width)
+        else:
+            op, width, args = step
+            consts = [tuple(-values[k][i] if negate else values[k][i] for i in swizzle)
+                      for k, swizzle, negate in args]
+            values.append(tuple(float(v) for v in fold(op, consts, width)))
+    return list(values[-1])
+
+
 def constant_values(effect: Effect, shader: Any) -> dict[int, Row]:
-    """c# -> four floats for every uniform register the shader reads."""
+    """c# -> four floats for every uniform register the shader reads, its preshaders' too."""
     out: dict[int, Row] = {}
+    preshaders = getattr(shader, "preshaders", {})
     for name, (start, count) in shader.constants.items():
         t = shader.types.get(name)
-        flat = parameter_numbers(effect, name) if not name.startswith("$") else None
+        if name in preshaders:
+            flat = preshader_numbers(effect, shader, preshaders[name])
+        else:
+            flat = parameter_numbers(effect, name) if not name.startswith("$") else None
         rows = _rows(t, flat)[0] if (t is not None and flat is not None) else []
         if rows and t is not None and t.kind == "scalar" and shader.target.startswith("ps_1"):
             # ps_1_1-1_3 cannot select .x of a register: a scalar is loaded replicated (what

@@ -19,6 +19,47 @@ if TYPE_CHECKING:  # pragma: no cover
     from effects.shaders.hlsl.types import HType
 
 
+PRESHADER_NAME = "<preshader {}>"   # a preshader register's name in the constant table:
+                                    # never a parameter's (not an identifier)
+
+
+@dataclass(frozen=True)
+class ShaderPreshader:
+    """One constant register the host fills before a draw (preshader.preshade_ps1). `steps`
+    run in order and the last is the value (`width` floats): ("uniform", name, row, width)
+    reads a parameter's register row, ("const", values) a literal, (op, width, args) a DAG op
+    on earlier steps, each argument (step, swizzle, negate), computed as the compiler folds
+    constants (`dag.fold`; registers.preshader_numbers)."""
+
+    steps: tuple
+    width: int
+
+    def uniforms(self) -> set[str]:
+        """The parameters (uniform names) it reads."""
+        return {step[1] for step in self.steps if step[0] == "uniform"}
+
+    def expression(self) -> str:
+        """The value as assembly-like text, for listings: `mul(K1, Scale.xxxx)`, `-LightDir`."""
+        def text(k: int) -> str:
+            step = self.steps[k]
+            if step[0] == "const":
+                return ", ".join(f"{v:g}" for v in step[1]).join("()" if len(step[1]) > 1 else "")
+            if step[0] == "uniform":
+                return step[1] if step[2] == 0 else f"{step[1]}[{step[2]}]"
+            args = []
+            for index, swizzle, negate in step[2]:
+                width = self.steps[index][3] if self.steps[index][0] == "uniform" else \
+                    len(self.steps[index][1]) if self.steps[index][0] == "const" else \
+                    self.steps[index][1]
+                picked = "" if tuple(swizzle) == tuple(range(width)) else \
+                    "." + "".join("xyzw"[i] for i in swizzle)
+                args.append(f"{'-' if negate else ''}{text(index)}{picked}")
+            if step[0] == "mov":
+                return args[0]
+            return f"{step[0]}({', '.join(args)})"
+        return text(len(self.steps) - 1)
+
+
 @dataclass
 class CompiledShader:
     function: str
@@ -32,6 +73,8 @@ class CompiledShader:
     types: dict[str, "HType"] = field(default_factory=dict)
     int_registers: dict[str, int] = field(default_factory=dict)
     bool_registers: dict[str, int] = field(default_factory=dict)
+    # constant-table names -> what the host computes into them
+    preshaders: dict[str, ShaderPreshader] = field(default_factory=dict)
 
     @property
     def stage(self) -> str:

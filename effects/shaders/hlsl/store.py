@@ -163,7 +163,7 @@ def _encode(result: Any) -> dict:
     if type(result) is not CompiledShader:
         raise Unkeyable(type(result).__qualname__)
     known = {"function", "target", "text", "program", "constants", "samplers", "lines",
-             "warnings", "types", "int_registers", "bool_registers"}
+             "warnings", "types", "int_registers", "bool_registers", "preshaders"}
     if {f.name for f in dataclasses.fields(CompiledShader)} != known:
         raise Unkeyable("CompiledShader has fields this store does not know")
     for w in result.warnings:
@@ -177,6 +177,8 @@ def _encode(result: Any) -> dict:
         "warnings": [[w.message, _loc(w.location), w.source_line] for w in result.warnings],
         "types": {k: _htype(t) for k, t in result.types.items()},
         "int_registers": dict(result.int_registers), "bool_registers": dict(result.bool_registers),
+        "preshaders": {k: {"width": p.width, "steps": [list(step) for step in p.steps]}
+                       for k, p in result.preshaders.items()},
     }
 
 
@@ -211,7 +213,42 @@ def _decode(d: dict) -> Any:
     return CompiledShader(function, target, text, program, _names(d["constants"], 2),
                           _names(d["samplers"]), lines, warnings,
                           {k: _unhtype(t) for k, t in _checked_dict(d["types"]).items()},
-                          _names(d["int_registers"]), _names(d["bool_registers"]))
+                          _names(d["int_registers"]), _names(d["bool_registers"]),
+                          {k: _unpreshader(p) for k, p in _checked_dict(d["preshaders"]).items()})
+
+
+def _unpreshader(d: Any) -> Any:
+    """A ShaderPreshader from its entry, every step checked (an argument names an earlier
+    step, an op is one the host folds)."""
+    from effects.shaders.hlsl.dag import can_fold
+    from effects.shaders.hlsl.shader import ShaderPreshader
+    if type(d) is not dict or set(d) != {"width", "steps"} or type(d["width"]) is not int \
+            or type(d["steps"]) is not list or not d["steps"]:
+        raise ValueError("bad preshader")
+    steps = []
+    for k, step in enumerate(d["steps"]):
+        if type(step) is not list or not step or type(step[0]) is not str:
+            raise ValueError("bad preshader step")
+        if step[0] == "const" and len(step) == 2 and type(step[1]) is list \
+                and all(type(v) in (int, float) for v in step[1]):
+            steps.append(("const", tuple(float(v) for v in step[1])))
+        elif step[0] == "uniform" and len(step) == 4 and type(step[1]) is str \
+                and type(step[2]) is int and type(step[3]) is int:
+            steps.append(tuple(step))
+        elif can_fold(step[0]) and len(step) == 3 and type(step[1]) is int \
+                and type(step[2]) is list:
+            args = []
+            for arg in step[2]:
+                if (type(arg) is not list or len(arg) != 3 or type(arg[0]) is not int
+                        or not 0 <= arg[0] < k or type(arg[1]) is not list
+                        or any(type(i) is not int or not 0 <= i < 4 for i in arg[1])
+                        or type(arg[2]) is not bool):
+                    raise ValueError("bad preshader argument")
+                args.append((arg[0], tuple(arg[1]), arg[2]))
+            steps.append((step[0], step[1], tuple(args)))
+        else:
+            raise ValueError("bad preshader step")
+    return ShaderPreshader(tuple(steps), d["width"])
 
 
 def _checked_dict(d: Any) -> dict:
