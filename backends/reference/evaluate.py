@@ -548,7 +548,7 @@ def _split(program: Program, steps: _Steps, given: frozenset) -> _Split | None:
         k = producer.get(pending.pop())
         if k is not None and k not in every:
             every.add(k)
-            pending.extend(step_arg for step_arg in steps.steps[k][2])
+            pending.extend(steps.steps[k][2])
     if len(every) + len(samples - every) >= len(steps.steps):
         result = None
     else:
@@ -581,8 +581,8 @@ class _KeptInputs(Mapping):
     def __getitem__(self, name: str) -> np.ndarray:
         found = self._taken.get(name)
         if found is None:
-            value = self._inputs[name]
-            per_row = np.ndim(value) == 2 and np.shape(value)[0] == self._count > 1
+            value = self._inputs[name]      # per row, or one row for all (a uniform)
+            per_row = np.ndim(value) == 2 and np.shape(value)[0] == self._count
             found = self._taken[name] = (np.asarray(value)[self._keep] if per_row else value)
         return found
 

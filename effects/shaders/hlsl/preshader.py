@@ -22,8 +22,10 @@ import numpy as np
 
 from effects.errors import EffectError, Location
 from effects.model import Effect, ParamRef
+from effects.shaders.hlsl.dag import Operand, can_fold, reachable
 from effects.shaders.hlsl.parse import Origin, parse
 from effects.shaders.hlsl.shader import PRESHADER_NAME, ShaderPreshader
+from effects.shaders.hlsl.types import scalar, vector
 from effects.states import lookup_state
 
 # `<Light>` / `<Lights[2]>`: the effect syntax for a parameter reference inside an expression.
@@ -129,8 +131,6 @@ def preshade_ps1(graph: Any, roots: list[Any], negated_constants: bool,
     With `negated_constants` False (ps_1_4), a negated uniform operand does too, its negation
     folded in. The DAG is rewritten in place; `uniform_types` gets each new register's type.
     Returns the preshaders by register name."""
-    from effects.shaders.hlsl.dag import Operand, reachable, can_fold
-    from effects.shaders.hlsl.types import scalar, vector
     nodes = reachable(r.node for r in roots)
     host = {}                      # node id -> computes from uniforms and literals only
     for node in nodes:             # creation order: arguments first
@@ -165,7 +165,6 @@ def preshade_ps1(graph: Any, roots: list[Any], negated_constants: bool,
 
 
 def _preshader_steps(node: Any, negate: bool) -> ShaderPreshader:
-    from effects.shaders.hlsl.dag import reachable
     index: dict[int, int] = {}
     steps: list[tuple] = []
     for n in reachable([node]):
