@@ -241,6 +241,26 @@ def test_invalid_program_reports_exactly(name, src, expected):
     assert problems(src) == expected
 
 
+def test_dependent_read_levels_follow_each_component():
+    """fxc reuses a register for the next tap's coordinate with a write mask (`add r1.xy, t0,
+    c1` into an r1 whose .zw came from a texture): each such read is first-order dependent
+    (level 2), not one level above the last (a 6-tap blur was '5 levels' and rejected)."""
+    taps = ["texld r0, t0, s0"]
+    for k in range(6):
+        src, dst = ("r0", "r1") if k % 2 == 0 else ("r1", "r0")
+        taps += [f"add {dst}.xy, t0, c{k}", f"texld r2, {dst}, s0", f"add {dst}, {src}, r2"]
+    program = assemble(block(lines("ps_2_0", "dcl t0", "dcl_2d s0", *taps, "mov oC0, r1")))
+    assert check(program) == []
+    assert sorted(set(program.read_levels.values())) == [1, 2]
+    # a component still carrying a texel moves the read up a level: r1.z (from r0) is read
+    # by a cube map's coordinate, not by a 2D one's .xy
+    chain = assemble(block(lines("ps_2_0", "dcl t0", "dcl_2d s0", "dcl_cube s1",
+                                 "texld r0, t0, s0", "mov r1, r0", "add r1.xy, t0, c0",
+                                 "texld r2, r1, s0", "texld r3, r2, s0", "texld r4, r3, s1",
+                                 "mov oC0, r4")))
+    assert list(chain.read_levels.values()) == [1, 2, 3, 4]
+
+
 def test_dp4_takes_two_slots_in_ps12():
     # six movs (6) + dp4 (2) = 8 fills ps_1_2; one more mov is the 9th slot
     src = lines("ps.1.2", "tex t0", *repeat(6, "mov r0, t0"), "dp4 r1, t0, t0", "mov r0, r1")

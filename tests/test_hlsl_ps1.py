@@ -308,6 +308,9 @@ REFUSED = [
     ("ps_1_1", "return uv.yxyx * K0;", 12, "ps_1_1 has no swizzle .yxyx"),
     ("ps_1_1", "return tex2D(Checker, uv) + uv.x;", 8, "TEXCOORD0 is both sampled and read as a value"),
     ("ps_1_1", "return max(K0, uv.x);", 8, "ps_1_1 has no max"),
+    # a vector built of parts is located at the expression that reads it (it was line 0)
+    ("ps_1_1", "float4 c = tex2D(Checker, uv); return c * float4(c.b, c.r, c.g, 1);", 42,
+     "ps_1_1 has no swizzle .zxy"),
 ]
 
 

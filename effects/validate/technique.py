@@ -87,7 +87,7 @@ class Reason:
 
     def __str__(self) -> str:
         where = self.location
-        if where.path and self.effect_path and where.path != self.effect_path:
+        if where.line and self.effect_path and where.path != self.effect_path:
             return f"pass {self.pass_name} ({where.path}, line {where.line}): {self.message}"
         return f"pass {self.pass_name} (line {where.line}): {self.message}"
 

@@ -64,42 +64,68 @@ def instruction_slots(program: "AsmProgram", ins: "Instruction") -> tuple[int, i
     return 0, cost, 0
 
 
+# Ops whose result lane L reads lane L of each source (the others, dp3, m4x4, rcp ..., may read
+# any lane of a source: every component its swizzle selects counts).
+_LANEWISE = frozenset({"mov", "add", "sub", "mul", "mad", "lrp", "cmp", "cnd", "min", "max",
+                       "slt", "sge", "frc", "abs", "mova"})
+_ALL_LANES = (0, 1, 2, 3)
+
+
 def texture_read_levels(program: "AsmProgram") -> dict[int, int]:
     """Level of every texture read, by instruction position (1 = not dependent). The checker
-    and the stats both ask: they read it once per program, `AsmProgram.read_levels`."""
-    depends: dict[tuple[str, int | None], int] = {}   # register → highest level it derives from
+    and the stats both ask: they read it once per program, `AsmProgram.read_levels`. Levels
+    are kept per register component, so a write mask leaves the other components' levels as
+    they were (`add r1.xy, t0, c0` makes r1.xy a plain coordinate again, whatever r1.zw hold):
+    fxc reuses registers so, and the reads it makes stay first-order dependent."""
+    depends: dict[tuple[str, int | None, int], int] = {}   # register component -> its level
     levels: dict[int, int] = {}
     ps1 = program.rules.is_ps1
+    # the coordinate components a texld reads: a 2D sampler's .xy, a cube or volume's .xyz
+    # (undeclared: all three); .w too where it projects, biases or sets the LOD
+    coordinate = {d.register.index: (0, 1) if d.sampler_type == "2d" else (0, 1, 2)
+                  for d in program.dcls if d.register.kind == "s"}
+
+    def read(src, lanes=_ALL_LANES) -> int:
+        return max((depends.get((src.kind, src.index, src.swizzle[lane]), 0) for lane in lanes),
+                   default=0)
+
+    def write(dst, level: int) -> None:
+        for c in dst.components:
+            depends[(dst.kind, dst.index, c)] = level
+
     for pos, ins in enumerate(program.instructions):
-        src_regs = [(s.kind, s.index) for s in ins.srcs]
         if ins.opcode in ("texkill", "texdepth"):
             continue   # they read coordinates or r5 but write nothing
         if ps1 and ins.info.category == "tex" and ins.dst is not None:
             # texture-address sources are the t(n) read; tex/texcoord read interpolators only
-            coord = max((depends.get(r, 0) for r in src_regs if r[0] in "tr"), default=0)
+            coord = max((read(s) for s in ins.srcs if s.kind in "tr"), default=0)
             reads = ins.opcode in SAMPLING_PS1 or ins.opcode == "texld"
             level = coord + 1 if reads else coord
-            if ins.opcode == "texld" and program.rules.is_ps14 and src_regs and src_regs[0][0] == "r":
+            if ins.opcode == "texld" and program.rules.is_ps14 and ins.srcs and \
+                    ins.srcs[0].kind == "r":
                 level = max(coord, 1) + 1
             if reads:
                 levels[pos] = level
-            depends[(ins.dst.kind, ins.dst.index)] = level
+            write(ins.dst, level)
             continue
         if ins.opcode in TEXTURE_READS_PS2 and ins.dst is not None:
-            coord_reg = src_regs[0] if src_regs else None
-            dst_key = (ins.dst.kind, ins.dst.index)
-            dep = depends.get(coord_reg, 0) if coord_reg else 0
-            dependent = (coord_reg is not None and coord_reg[0] == "r") or dst_key in depends
-            dep = max(dep, depends.get(dst_key, 0))
-            level = max(dep, 1) + 1 if dependent else 1
+            # a read at coordinates computed in a temporary is dependent (level 2 at least),
+            # one level above what those coordinates derive from
+            coord = ins.srcs[0] if ins.srcs else None
+            if coord is not None and coord.kind == "r":
+                sampler = ins.srcs[1].index if len(ins.srcs) > 1 else None
+                lanes = coordinate.get(sampler, (0, 1, 2))
+                if ins.opcode in ("texldp", "texldb", "texldl"):
+                    lanes = (*lanes, 3)
+                level = max(read(coord, lanes), 1) + 1
+            else:
+                level = 1
             levels[pos] = level
-            depends[dst_key] = level
+            write(ins.dst, level)
             continue
         if ins.dst is not None:
-            key = (ins.dst.kind, ins.dst.index)
-            new = max((depends.get(r, 0) for r in src_regs), default=0)
-            partial = ins.dst.mask is not None
-            depends[key] = max(new, depends.get(key, 0)) if partial else new
+            lanes = ins.dst.components if ins.opcode in _LANEWISE else _ALL_LANES
+            write(ins.dst, max((read(s, lanes) for s in ins.srcs), default=0))
     return levels
 
 

@@ -144,8 +144,11 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             else:
                 home = Home(Reg("vr", self.temp(n.location)), n.width == 1, self.phase)
             self.home[n.id] = home
-        if op == "pack":
-            self.assemble_lanes(home, list(enumerate(n.args)), n.location)
+        if op == "pack":   # a vector built of parts has no expression of its own: say where
+            loc = n.location if n.location.line else next(          # it is read
+                (r.location for r, _ in self.readers.get(n.id, ()) if r is not None
+                 and r.location.line), n.location)
+            self.assemble_lanes(home, list(enumerate(n.args)), loc)
             return
         mask = home.mask or self.mask_for(n.width)
         home.phase = self.phase
