@@ -124,6 +124,20 @@ def test_a_pass_from_an_include_is_located_in_the_included_file(capsys, tmp_path
     assert "asm ps_2_0 (line " in out
 
 
+@pytest.mark.parametrize("shader, label", [
+    ("compile ps_2_a PS()", "ps_2_a"), ("compile ps_2_b PS()", "ps_2_b"),
+    ("compile ps_3_0 PS()", "ps_3_0"), ("compile ps_2_0 PS()", "ps_2_0")])
+def test_a_reason_names_the_shader_profile_as_written(capsys, tmp_path, shader, label):
+    # ps_2_a and ps_2_b are version 2.0 with extended caps: the reason said "ps_2_0"
+    path = write(tmp_path, "p.fx", f"""\
+        sampler2D S;
+        float4 PS(float2 uv : TEXCOORD0) : COLOR {{ return tex2D(S, uv); }}
+        technique T {{ pass P {{ PixelShader = {shader}; }} }}
+        """)
+    code, out, _ = run(capsys, "validate", path, "-p", "geforce3", "--why")
+    assert f"PixelShader is {label}; the GeForce3 runs pixel shaders up to ps_1_1" in out
+
+
 def test_validate_exits_1_when_a_named_card_can_run_no_technique(capsys):
     code, out, _ = run(capsys, "validate", SPECULAR_BUMP, "--profile", "tnt2", "--profile", "radeon9700")
     assert code == 0

@@ -60,7 +60,7 @@ class ShaderChecks:
             return
         self.report.pixel_shader = _version_label("ps", version)
         if version > have:
-            label = self.report.pixel_shader
+            label = _written_label("ps", value, version)
             limit = (f"runs pixel shaders up to {_version_label('ps', have)}" if have > (0, 0)
                      else "has no pixel shader hardware")
             self.fail(_block_location(value, loc), f"PixelShader ({label})",
@@ -82,6 +82,7 @@ class ShaderChecks:
         hardware = self.profile.vertex_shader_version
         software = software_vs_version(self.profile)
         if version > hardware and version > software:
+            label = _written_label("vs", value, version)
             limit = (f"runs vertex shaders up to {_version_label('vs', hardware)}" if hardware > (0, 0)
                      else "has no vertex shader hardware")
             offer = (f"its software vertex processing runs up to {_version_label('vs', software)}"
@@ -218,6 +219,17 @@ def _shader_version(value: Any) -> tuple[int, int] | None:
 
 def _version_label(kind: str, version: tuple[int, int]) -> str:
     return f"{kind}_{version[0]}_{version[1]}"
+
+
+def _written_label(kind: str, value: Any, version: tuple[int, int]) -> str:
+    """The shader's version as a reason names it: the profile as written where it is one of
+    the 2_x family (ps_2_a, ps_2_b, vs_2_x: their version is 2.0, their limits are the
+    card's 2.0 extended caps), else `_version_label`."""
+    text = value.profile if isinstance(value, CompileShader) else getattr(value, "version", None)
+    written = (text or "").strip().lower().replace(".", "_")
+    if written.startswith(f"{kind}_2_") and written[5:] in ("a", "b", "x", "sw"):
+        return written
+    return _version_label(kind, version)
 
 
 def _block_location(value: Any, fallback: Location) -> Location:
