@@ -319,13 +319,14 @@ def _sincos_parts(ev: Any, c: list[Operand], loc: Location) -> tuple[list[Operan
     return sins, coss
 
 
-def _series(ev: Any, x: list[Operand], terms: list[float], loc: Location, odd: bool) -> list[Operand]:
-    """sum terms[k] * x^(2k) (times x when `odd`), one vector mad per term."""
+def _series(ev: Any, x: list[Operand], terms: list[float], loc: Location, odd: bool,
+            power: int = 2) -> list[Operand]:
+    """sum terms[k] * x^(power*k) (times x when `odd`), one vector mad per term."""
     n = len(x)
-    x2 = ev.a.lanes("mul", [x, x], loc)
+    step = ev.a.lanes("mul", [x, x], loc) if power == 2 else x
     acc = [ev.a.const(terms[-1])] * n
     for coefficient in reversed(terms[:-1]):
-        acc = ev.a.lanes("mad", [acc, x2, [ev.a.const(coefficient)] * n], loc)
+        acc = ev.a.lanes("mad", [acc, step, [ev.a.const(coefficient)] * n], loc)
     return ev.a.lanes("mul", [acc, x], loc) if odd else acc
 
 
@@ -340,6 +341,123 @@ def _cos(ev: Any, args: list[Value], loc: Location) -> Value:
 def _tan(ev: Any, args: list[Value], loc: Location) -> Value:
     s, c = _sincos_parts(ev, args[0].comps, loc)
     return Value(_float(args[0]), ev.a.divide(s, c, loc))
+
+
+# Inverse trigonometry and hyperbolic functions, which no shader model has an instruction for,
+# expanded as fxc expanded them, into arithmetic: polynomials of Abramowitz and Stegun,
+# "Handbook of Mathematical Functions" (1964), 4.4.49 (arctan on [0, 1], |error| <= 1e-5)
+# and 4.4.45 (arccos on [0, 1] as sqrt(1 - x) times a cubic, |error| <= 6.7e-5), extended to
+# the whole range by the usual identities.
+_ATAN_TERMS = [0.9998660, -0.3302995, 0.1801410, -0.0851330, 0.0208351]
+_ACOS_TERMS = [1.5707288, -0.2121144, 0.0742610, -0.0187293]
+
+
+def _lanes(ev: Any, op: str, *args: list[Operand], loc: Location) -> list[Operand]:
+    return ev.a.lanes(op, list(args), loc)
+
+
+def _consts(ev: Any, k: float, n: int) -> list[Operand]:
+    return [ev.a.const(k)] * n
+
+
+def _select(ev: Any, flag: list[Operand], yes: list[Operand], no: list[Operand],
+            loc: Location) -> list[Operand]:
+    """yes where flag (1 or 0 per lane) is 1, else no: no + flag * (yes - no)."""
+    return _lanes(ev, "mad", flag, _lanes(ev, "add", yes, [x.neg() for x in no], loc=loc), no,
+                  loc=loc)
+
+
+def _atan_01(ev: Any, t: list[Operand], loc: Location) -> list[Operand]:
+    """atan(t) for t in [0, 1] (4.4.49)."""
+    return _series(ev, t, _ATAN_TERMS, loc, odd=True)
+
+
+def _atan(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    n = len(c)
+    a = _abs(ev, c, loc)
+    big = ev.a.compare(">", a, _consts(ev, 1.0, n), loc)
+    t = ev.a.divide(_lanes(ev, "min", a, _consts(ev, 1.0, n), loc=loc),
+                    _lanes(ev, "max", a, _consts(ev, 1.0, n), loc=loc), loc)
+    p = _atan_01(ev, t, loc)
+    r = _select(ev, big, _lanes(ev, "add", _consts(ev, math.pi / 2, n), [x.neg() for x in p],
+                                loc=loc), p, loc)
+    return _select(ev, ev.a.compare("<", c, _consts(ev, 0.0, n), loc), [x.neg() for x in r], r,
+                   loc)
+
+
+def _atan2(ev: Any, y: list[Operand], x: list[Operand], loc: Location) -> list[Operand]:
+    n = len(y)
+    ay, ax = _abs(ev, y, loc), _abs(ev, x, loc)
+    p = _atan_01(ev, ev.a.divide(_lanes(ev, "min", ax, ay, loc=loc),
+                                 _lanes(ev, "max", ax, ay, loc=loc), loc), loc)
+    p = _select(ev, ev.a.compare(">", ay, ax, loc),
+                _lanes(ev, "add", _consts(ev, math.pi / 2, n), [v.neg() for v in p], loc=loc), p,
+                loc)
+    p = _select(ev, ev.a.compare("<", x, _consts(ev, 0.0, n), loc),
+                _lanes(ev, "add", _consts(ev, math.pi, n), [v.neg() for v in p], loc=loc), p, loc)
+    return _select(ev, ev.a.compare("<", y, _consts(ev, 0.0, n), loc), [v.neg() for v in p], p,
+                   loc)
+
+
+def _acos(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    n = len(c)
+    a = _abs(ev, c, loc)
+    root = _sqrt(ev, _lanes(ev, "add", _consts(ev, 1.0, n), [x.neg() for x in a], loc=loc), loc)
+    p = _lanes(ev, "mul", _series(ev, a, _ACOS_TERMS, loc, odd=False, power=1), root, loc=loc)
+    return _select(ev, ev.a.compare("<", c, _consts(ev, 0.0, n), loc),
+                   _lanes(ev, "add", _consts(ev, math.pi, n), [x.neg() for x in p], loc=loc), p, loc)
+
+
+def _asin(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    return _lanes(ev, "add", _consts(ev, math.pi / 2, len(c)),
+                  [x.neg() for x in _acos(ev, c, loc)], loc=loc)
+
+
+def _exps(ev: Any, c: list[Operand], loc: Location) -> tuple[list[Operand], list[Operand]]:
+    """e^x and e^-x."""
+    return (_exp2(ev, _scale(ev, c, LOG2E, loc), loc),
+            _exp2(ev, _scale(ev, c, -LOG2E, loc), loc))
+
+
+def _sinh(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    up, down = _exps(ev, c, loc)
+    return _scale(ev, _lanes(ev, "add", up, [x.neg() for x in down], loc=loc), 0.5, loc)
+
+
+def _cosh(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    up, down = _exps(ev, c, loc)
+    return _scale(ev, _lanes(ev, "add", up, down, loc=loc), 0.5, loc)
+
+
+def _tanh(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    up, down = _exps(ev, c, loc)
+    return ev.a.divide(_lanes(ev, "add", up, [x.neg() for x in down], loc=loc),
+                       _lanes(ev, "add", up, down, loc=loc), loc)
+
+
+def _faceforward(ev: Any, args: list[Value], loc: Location) -> Value:
+    """n where dot(i, ng) < 0, else -n."""
+    n, i, ng = (v.comps for v in args)
+    d = dot(ev, i, ng, loc)
+    behind = ev.a.compare("<", [d], [ev.a.const(0.0)], loc) * len(n)
+    return Value(_float(args[0]), _select(ev, behind, n, [x.neg() for x in n], loc))
+
+
+def _refract(ev: Any, args: list[Value], loc: Location) -> Value:
+    """eta*i - (eta*dot(n, i) + sqrt(k))*n with k = 1 - eta^2 (1 - dot(n, i)^2); 0 where k < 0
+    (total internal reflection)."""
+    i, n, eta = args[0].comps, args[1].comps, args[2].comps[0]
+    m = len(i)
+    d = dot(ev, n, i, loc)
+    eta2 = ev.a.op("mul", [eta, eta], loc)
+    k = ev.a.op("mad", [ev.a.op("mad", [d.neg(), d, ev.a.const(1.0)], loc).neg(), eta2,
+                        ev.a.const(1.0)], loc)
+    scale = ev.a.op("mad", [eta, d, _sqrt(ev, [ev.a.op("max", [k, ev.a.const(0.0)], loc)],
+                                          loc)[0]], loc)
+    r = _lanes(ev, "mad", [eta] * m, i, [x.neg() for x in _lanes(ev, "mul", [scale] * m, n,
+                                                                   loc=loc)], loc=loc)
+    inside = ev.a.compare(">=", [k], [ev.a.const(0.0)], loc) * m
+    return Value(_float(args[0]), _lanes(ev, "mul", r, inside, loc=loc))
 
 
 def _out(ev: Any, trees: list[Any], k: int, value: Value) -> None:
@@ -489,6 +607,15 @@ INTRINSICS: dict[str, tuple[tuple[int, ...], Callable[..., Value], bool]] = {
     "sin": ((1,), _sin, False),
     "cos": ((1,), _cos, False),
     "tan": ((1,), _tan, False),
+    "asin": ((1,), _unary(_asin), False),
+    "acos": ((1,), _unary(_acos), False),
+    "atan": ((1,), _unary(_atan), False),
+    "atan2": ((2,), _binary(_atan2), False),
+    "sinh": ((1,), _unary(_sinh), False),
+    "cosh": ((1,), _unary(_cosh), False),
+    "tanh": ((1,), _unary(_tanh), False),
+    "faceforward": ((3,), _faceforward, False),
+    "refract": ((3,), _refract, False),
     "sincos": ((3,), _sincos, True),
     "modf": ((2,), _modf, True),
     "lit": ((3,), _lit, False),
