@@ -8,6 +8,8 @@ functions as golden text, and every construct ps_1_x cannot express as a located
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -536,3 +538,22 @@ def test_what_a_preshader_reads_is_read_by_the_pass():
     runtime.set_value("Scale", 0.5)
     lit = runtime.render().image[4, 4, :3] / 255.0
     assert np.allclose(lit, 0.7826 * 0.5, atol=TOL), lit
+
+
+@pytest.mark.parametrize("target", ["ps_1_1", "ps_1_4"])
+def test_sin_of_a_uniform_is_the_preshaders(backend, target):
+    """ps_1_x has no sincos; sin of a uniform is one constant the host computes, as fxc's
+    preshader did; sin of a per-pixel value is still refused, located."""
+    from effects.shaders.listing import listing
+    fn = "float4 PS(float4 c : COLOR0) : COLOR { return c * sin(Scale * 1.0471976); }"
+    fx = effect_for(fn, target)
+    shader = compile_shader(fx, "PS", target)
+    assert list(shader.preshaders) == ["<preshader 0>"] and "Scale" not in shader.constants
+    assert any("= sincos(mad(frc(mad(mul(Scale" in line for line in listing(fx, shader))
+    img = render(fn, target, backend)
+    each_pixel(img, lambda u, v: np.array(DIFFUSE) * math.sin(0.5 * 1.0471976), target,
+               shader.text)                 # sin(pi / 6) = 0.5
+    with pytest.raises(EffectError, match=f"{target} cannot compute sin/cos") as info:
+        compile_shader(effect_for("float4 PS(float2 uv : TEXCOORD0) : COLOR "
+                                  "{ return sin(uv.x); }", target), "PS", target)
+    assert info.value.location.line == PARAMS.count("\n") + 2

@@ -166,6 +166,17 @@ def can_fold(op: str) -> bool:
     return op not in OPAQUE and (op in SHAPED or op in LANE_KERNELS)
 
 
+def host_computable(nodes: list[Node]) -> dict[int, bool]:
+    """For each of `nodes` (in creation order, each node's arguments among them: `reachable`),
+    whether it computes from uniforms and literals alone by ops `fold` computes: what a
+    preshader can take to the host."""
+    host: dict[int, bool] = {}
+    for node in nodes:
+        host[node.id] = node.op in ("const", "uniform") or (
+            can_fold(node.op) and all(host[a.node.id] for a in node.args))
+    return host
+
+
 def fold(op: str, consts: list[Any], width: int) -> list[float]:
     """`op` on constant arguments (each its lanes after swizzle and negation)."""
     shaped = SHAPED.get(op)

@@ -10,7 +10,7 @@ import math
 from typing import Any, Callable
 
 from effects.errors import Location
-from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.dag import Operand, host_computable, reachable
 from effects.shaders.hlsl.types import BOOL, FLOAT, HType, shape_of, vector
 from effects.shaders.hlsl.lvalues import store
 from effects.shaders.hlsl.values import Value, component, operand, split
@@ -301,16 +301,30 @@ _COS_TERMS = [(-1) ** k / math.factorial(2 * k) for k in range(8)]
 def _sincos_parts(ev: Any, c: list[Operand], loc: Location) -> tuple[list[Operand], list[Operand]]:
     t = ev.ctx.target
     if not t.has("sincos") and t.kind != "vs":
-        raise ev.error(f"{t.name} cannot compute sin/cos (no sincos instruction)", loc)
+        # ps_1_x: only of uniforms, which its preshader computes on the host (preshader.py)
+        host = host_computable(reachable(x.node for x in c))
+        if not t.rules.is_ps1 or not all(host[x.node.id] for x in c):
+            raise ev.error(f"{t.name} cannot compute sin/cos (no sincos instruction)", loc)
+        return _sincos_nodes(ev, _reduced(ev, c, loc), loc)
     if t.rules.major < 3:
-        # sincos of shader model 2 (and our vs_1_1 series) wants its argument in [-pi, pi]
-        x = ev.a.lanes("mad", [c, [ev.a.const(1 / (2 * math.pi))] * len(c),
-                               [ev.a.const(0.5)] * len(c)], loc)
-        x = ev.a.frc(x, loc)
-        c = ev.a.lanes("mad", [x, [ev.a.const(2 * math.pi)] * len(c),
-                               [ev.a.const(-math.pi)] * len(c)], loc)
+        c = _reduced(ev, c, loc)
     if not t.has("sincos"):
         return _series(ev, c, _SIN_TERMS, loc, odd=True), _series(ev, c, _COS_TERMS, loc, odd=False)
+    return _sincos_nodes(ev, c, loc)
+
+
+def _reduced(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    """The argument moved into [-pi, pi], as sincos of shader model 2 (and our vs_1_1
+    series) wants it."""
+    x = ev.a.lanes("mad", [c, [ev.a.const(1 / (2 * math.pi))] * len(c),
+                           [ev.a.const(0.5)] * len(c)], loc)
+    x = ev.a.frc(x, loc)
+    return ev.a.lanes("mad", [x, [ev.a.const(2 * math.pi)] * len(c),
+                              [ev.a.const(-math.pi)] * len(c)], loc)
+
+
+def _sincos_nodes(ev: Any, c: list[Operand], loc: Location
+                  ) -> tuple[list[Operand], list[Operand]]:
     sins, coss = [], []
     for x in c:
         r = ev.a.op("sincos", [x], loc, 2)

@@ -22,7 +22,7 @@ import numpy as np
 
 from effects.errors import EffectError, Location
 from effects.model import Effect, ParamRef
-from effects.shaders.hlsl.dag import Operand, can_fold, reachable
+from effects.shaders.hlsl.dag import Operand, host_computable, reachable
 from effects.shaders.hlsl.parse import Origin, parse
 from effects.shaders.hlsl.shader import PRESHADER_NAME, ShaderPreshader
 from effects.shaders.hlsl.types import scalar, vector
@@ -132,12 +132,7 @@ def preshade_ps1(graph: Any, roots: list[Any], negated_constants: bool,
     folded in. The DAG is rewritten in place; `uniform_types` gets each new register's type.
     Returns the preshaders by register name."""
     nodes = reachable(r.node for r in roots)
-    host = {}                      # node id -> computes from uniforms and literals only
-    for node in nodes:             # creation order: arguments first
-        if node.op in ("const", "uniform"):
-            host[node.id] = True
-        else:
-            host[node.id] = can_fold(node.op) and all(host[a.node.id] for a in node.args)
+    host = host_computable(nodes)
     made: dict[tuple, Any] = {}    # (node id, negation folded) -> the new leaf
     preshaders: dict[str, ShaderPreshader] = {}
 

@@ -43,7 +43,8 @@ class ShaderPreshader:
         def text(k: int) -> str:
             step = self.steps[k]
             if step[0] == "const":
-                return ", ".join(f"{v:g}" for v in step[1]).join("()" if len(step[1]) > 1 else "")
+                numbers = ", ".join(f"{v:g}" for v in step[1])
+                return f"({numbers})" if len(step[1]) > 1 else numbers
             if step[0] == "uniform":
                 return step[1] if step[2] == 0 else f"{step[1]}[{step[2]}]"
             args = []
