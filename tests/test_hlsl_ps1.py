@@ -557,3 +557,22 @@ def test_sin_of_a_uniform_is_the_preshaders(backend, target):
         compile_shader(effect_for("float4 PS(float2 uv : TEXCOORD0) : COLOR "
                                   "{ return sin(uv.x); }", target), "PS", target)
     assert info.value.location.line == PARAMS.count("\n") + 2
+
+
+def test_ps14_rearranges_components_through_write_masks(backend):
+    """ps_1_4 reads any one component replicated (.r/.g/.b/.a) and writes any mask, so a
+    swizzle it has no source form for is a mov per selector into a temporary, as fxc compiled
+    `c.r = c.g`; ps_1_1 still refuses it (only .a and .b replicate there)."""
+    fn = ("float4 PS(float4 c : COLOR0) : COLOR "
+          "{ float4 d = c; d.rb = c.gr; return d * float4(c.b, c.r, c.g, 1); }")
+    text = asm(fn, "ps_1_4")
+    import re
+    # d = (c.g, c.g, c.r, c.a): the lanes keeping their own component in one mov, then one
+    # mov per replicated selector
+    assert re.search(r"mov r\d\.ga, v0\n", text) and re.search(r"mov r\d\.b, v0\.r\n", text) \
+        and re.search(r"mov r\d\.r, v0\.g\n", text), text
+    img = render(fn, "ps_1_4", backend)
+    r, g, b, a = DIFFUSE
+    each_pixel(img, lambda u, v: [g * b, g * r, r * g, a], "ps_1_4", text)
+    with pytest.raises(EffectError, match="ps_1_1 has no swizzle"):
+        compile_shader(effect_for(fn, "ps_1_1"), "PS", "ps_1_1")

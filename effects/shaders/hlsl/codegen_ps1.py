@@ -72,7 +72,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         self.sampled: set[tuple[str, int]] = set()     # (sampler, phase) read
         self.carried_alpha: dict[int, Reg] = {}         # phase-1 read -> its .a across phase
         self.used_uniforms: set[str] = set()
-        self.extracted: dict[tuple[int, int], Home] = {}
+        self.extracted: dict[tuple, Home] = {}   # _extract's and _rearranged's temporaries
         self.phase = 2
         self.s = State()
         self._input_homes: dict[str, Home] = {}
@@ -277,9 +277,29 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
                     self.refuse(f"{self.v} keeps only .rgb of a register across phase", loc)
                 return Src(home.reg, k, mod, neg)
             return Src(self._extract(node, k, home, loc).reg, None, mod, neg)
+        if self.ps14 and not across:
+            return Src(self._rearranged(node, comps, home, mod, neg, loc).reg)
         order = "".join("xyzw"[comps[lane]] for lane in sorted(comps))
         self.fail(f"swizzle .{order} (ps_1_x sources take .rgba, .a or .b only)", loc)
         raise AssertionError  # pragma: no cover
+
+    def _rearranged(self, node: Node, comps: dict[int, int], home: Home, mod: str, neg: bool,
+                    loc: Location) -> Home:
+        """ps_1_4: the lanes `comps` asks for (lane -> component of the value), moved into a
+        temporary through write masks, one `mov` per source selector (.r/.g/.b/.a replicate
+        one component; lanes that keep their own component go in one plain `mov`), as fxc
+        compiled `c.r = c.g`."""
+        key = (node.id, tuple(sorted(comps.items())), mod, neg)
+        if key not in self.extracted:
+            vr = self.temp(loc)
+            own = tuple(lane for lane, c in sorted(comps.items()) if lane == c)
+            if own:
+                self.emit(Instr("mov", Reg("vr", vr), own, [Src(home.reg, None, mod, neg)], loc))
+            for k in sorted({c for lane, c in comps.items() if lane != c}):
+                lanes = tuple(lane for lane, c in sorted(comps.items()) if lane != c and c == k)
+                self.emit(Instr("mov", Reg("vr", vr), lanes, [Src(home.reg, k, mod, neg)], loc))
+            self.extracted[key] = Home(Reg("vr", vr), False, self.phase)  # type: ignore[index]
+        return self.extracted[key]  # type: ignore[index]
 
     def _extract(self, node: Node, k: int, home: Home, loc: Location) -> Home:
         """Component k replicated: dp3 with a unit vector (ps_1_1-1_3 cannot select .r/.g)."""
