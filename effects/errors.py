@@ -71,6 +71,13 @@ class Location:
     def __str__(self) -> str:
         return f"{self.path}:{self.line}:{self.column}"
 
+    def line_in(self, main_path: str) -> str:
+        """"line N" for a place in the file `main_path`, "PATH, line N" for one in another (an
+        #include), as a report about that file says where."""
+        if self.line and main_path and self.path != main_path:
+            return f"{self.path}, line {self.line}"
+        return f"line {self.line}"
+
 
 UNKNOWN_LOCATION = Location("<unknown>", 0, 0)
 

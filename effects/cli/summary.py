@@ -9,10 +9,8 @@ from effects.model import Effect, ShaderBlock, CompileShader
 
 def _shader_label(value, effect_path: str) -> str | None:
     if isinstance(value, ShaderBlock):
-        where = value.location
-        line = (f"line {where.line}" if where.path == effect_path
-                else f"{where.path}, line {where.line}")     # from an #include
-        return f"asm {value.version or '(not D3D assembly)'} ({line})"
+        return (f"asm {value.version or '(not D3D assembly)'} "
+                f"({value.location.line_in(effect_path)})")
     if isinstance(value, CompileShader):
         return f"compile {value.profile} {value.function}()"
     return None

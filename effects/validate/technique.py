@@ -86,10 +86,7 @@ class Reason:
                             # names its file
 
     def __str__(self) -> str:
-        where = self.location
-        if where.line and self.effect_path and where.path != self.effect_path:
-            return f"pass {self.pass_name} ({where.path}, line {where.line}): {self.message}"
-        return f"pass {self.pass_name} (line {where.line}): {self.message}"
+        return f"pass {self.pass_name} ({self.location.line_in(self.effect_path)}): {self.message}"
 
 
 @dataclass

@@ -366,19 +366,18 @@ _ATAN_TERMS = [0.9998660, -0.3302995, 0.1801410, -0.0851330, 0.0208351]
 _ACOS_TERMS = [1.5707288, -0.2121144, 0.0742610, -0.0187293]
 
 
-def _lanes(ev: Any, op: str, *args: list[Operand], loc: Location) -> list[Operand]:
-    return ev.a.lanes(op, list(args), loc)
-
-
 def _consts(ev: Any, k: float, n: int) -> list[Operand]:
     return [ev.a.const(k)] * n
 
 
-def _select(ev: Any, flag: list[Operand], yes: list[Operand], no: list[Operand],
-            loc: Location) -> list[Operand]:
-    """yes where flag (1 or 0 per lane) is 1, else no: no + flag * (yes - no)."""
-    return _lanes(ev, "mad", flag, _lanes(ev, "add", yes, [x.neg() for x in no], loc=loc), no,
-                  loc=loc)
+def _less(ev: Any, k: float, c: list[Operand], loc: Location) -> list[Operand]:
+    """k - c per lane."""
+    return ev.a.lanes("add", [_consts(ev, k, len(c)), [x.neg() for x in c]], loc)
+
+
+def _negative(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    """1 where c < 0, else 0."""
+    return ev.a.compare("<", c, _consts(ev, 0.0, len(c)), loc)
 
 
 def _atan_01(ev: Any, t: list[Operand], loc: Location) -> list[Operand]:
@@ -389,42 +388,31 @@ def _atan_01(ev: Any, t: list[Operand], loc: Location) -> list[Operand]:
 def _atan(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
     n = len(c)
     a = _abs(ev, c, loc)
-    big = ev.a.compare(">", a, _consts(ev, 1.0, n), loc)
-    t = ev.a.divide(_lanes(ev, "min", a, _consts(ev, 1.0, n), loc=loc),
-                    _lanes(ev, "max", a, _consts(ev, 1.0, n), loc=loc), loc)
-    p = _atan_01(ev, t, loc)
-    r = _select(ev, big, _lanes(ev, "add", _consts(ev, math.pi / 2, n), [x.neg() for x in p],
-                                loc=loc), p, loc)
-    return _select(ev, ev.a.compare("<", c, _consts(ev, 0.0, n), loc), [x.neg() for x in r], r,
-                   loc)
+    one = _consts(ev, 1.0, n)
+    p = _atan_01(ev, ev.a.divide(ev.a.lanes("min", [a, one], loc),
+                                 ev.a.lanes("max", [a, one], loc), loc), loc)
+    r = ev.a.select(ev.a.compare(">", a, one, loc), _less(ev, math.pi / 2, p, loc), p, loc)
+    return ev.a.select(_negative(ev, c, loc), [x.neg() for x in r], r, loc)
 
 
 def _atan2(ev: Any, y: list[Operand], x: list[Operand], loc: Location) -> list[Operand]:
-    n = len(y)
     ay, ax = _abs(ev, y, loc), _abs(ev, x, loc)
-    p = _atan_01(ev, ev.a.divide(_lanes(ev, "min", ax, ay, loc=loc),
-                                 _lanes(ev, "max", ax, ay, loc=loc), loc), loc)
-    p = _select(ev, ev.a.compare(">", ay, ax, loc),
-                _lanes(ev, "add", _consts(ev, math.pi / 2, n), [v.neg() for v in p], loc=loc), p,
-                loc)
-    p = _select(ev, ev.a.compare("<", x, _consts(ev, 0.0, n), loc),
-                _lanes(ev, "add", _consts(ev, math.pi, n), [v.neg() for v in p], loc=loc), p, loc)
-    return _select(ev, ev.a.compare("<", y, _consts(ev, 0.0, n), loc), [v.neg() for v in p], p,
-                   loc)
+    p = _atan_01(ev, ev.a.divide(ev.a.lanes("min", [ax, ay], loc),
+                                 ev.a.lanes("max", [ax, ay], loc), loc), loc)
+    p = ev.a.select(ev.a.compare(">", ay, ax, loc), _less(ev, math.pi / 2, p, loc), p, loc)
+    p = ev.a.select(_negative(ev, x, loc), _less(ev, math.pi, p, loc), p, loc)
+    return ev.a.select(_negative(ev, y, loc), [v.neg() for v in p], p, loc)
 
 
 def _acos(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
-    n = len(c)
     a = _abs(ev, c, loc)
-    root = _sqrt(ev, _lanes(ev, "add", _consts(ev, 1.0, n), [x.neg() for x in a], loc=loc), loc)
-    p = _lanes(ev, "mul", _series(ev, a, _ACOS_TERMS, loc, odd=False, power=1), root, loc=loc)
-    return _select(ev, ev.a.compare("<", c, _consts(ev, 0.0, n), loc),
-                   _lanes(ev, "add", _consts(ev, math.pi, n), [x.neg() for x in p], loc=loc), p, loc)
+    root = _sqrt(ev, _less(ev, 1.0, a, loc), loc)
+    p = ev.a.lanes("mul", [_series(ev, a, _ACOS_TERMS, loc, odd=False, power=1), root], loc)
+    return ev.a.select(_negative(ev, c, loc), _less(ev, math.pi, p, loc), p, loc)
 
 
 def _asin(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
-    return _lanes(ev, "add", _consts(ev, math.pi / 2, len(c)),
-                  [x.neg() for x in _acos(ev, c, loc)], loc=loc)
+    return _less(ev, math.pi / 2, _acos(ev, c, loc), loc)
 
 
 def _exps(ev: Any, c: list[Operand], loc: Location) -> tuple[list[Operand], list[Operand]]:
@@ -435,26 +423,25 @@ def _exps(ev: Any, c: list[Operand], loc: Location) -> tuple[list[Operand], list
 
 def _sinh(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
     up, down = _exps(ev, c, loc)
-    return _scale(ev, _lanes(ev, "add", up, [x.neg() for x in down], loc=loc), 0.5, loc)
+    return _scale(ev, ev.a.lanes("add", [up, [x.neg() for x in down]], loc), 0.5, loc)
 
 
 def _cosh(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
     up, down = _exps(ev, c, loc)
-    return _scale(ev, _lanes(ev, "add", up, down, loc=loc), 0.5, loc)
+    return _scale(ev, ev.a.lanes("add", [up, down], loc), 0.5, loc)
 
 
 def _tanh(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
     up, down = _exps(ev, c, loc)
-    return ev.a.divide(_lanes(ev, "add", up, [x.neg() for x in down], loc=loc),
-                       _lanes(ev, "add", up, down, loc=loc), loc)
+    return ev.a.divide(ev.a.lanes("add", [up, [x.neg() for x in down]], loc),
+                       ev.a.lanes("add", [up, down], loc), loc)
 
 
 def _faceforward(ev: Any, args: list[Value], loc: Location) -> Value:
     """n where dot(i, ng) < 0, else -n."""
     n, i, ng = (v.comps for v in args)
-    d = dot(ev, i, ng, loc)
-    behind = ev.a.compare("<", [d], [ev.a.const(0.0)], loc) * len(n)
-    return Value(_float(args[0]), _select(ev, behind, n, [x.neg() for x in n], loc))
+    behind = _negative(ev, [dot(ev, i, ng, loc)], loc)
+    return Value(_float(args[0]), ev.a.select(behind, n, [x.neg() for x in n], loc))
 
 
 def _refract(ev: Any, args: list[Value], loc: Location) -> Value:
@@ -468,10 +455,10 @@ def _refract(ev: Any, args: list[Value], loc: Location) -> Value:
                         ev.a.const(1.0)], loc)
     scale = ev.a.op("mad", [eta, d, _sqrt(ev, [ev.a.op("max", [k, ev.a.const(0.0)], loc)],
                                           loc)[0]], loc)
-    r = _lanes(ev, "mad", [eta] * m, i, [x.neg() for x in _lanes(ev, "mul", [scale] * m, n,
-                                                                   loc=loc)], loc=loc)
-    inside = ev.a.compare(">=", [k], [ev.a.const(0.0)], loc) * m
-    return Value(_float(args[0]), _lanes(ev, "mul", r, inside, loc=loc))
+    bent = ev.a.lanes("mul", [[scale] * m, n], loc)
+    r = ev.a.lanes("mad", [[eta] * m, i, [x.neg() for x in bent]], loc)
+    reflected = _negative(ev, [k], loc)
+    return Value(_float(args[0]), ev.a.select(reflected, _consts(ev, 0.0, m), r, loc))
 
 
 def _out(ev: Any, trees: list[Any], k: int, value: Value) -> None:

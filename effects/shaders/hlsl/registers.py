@@ -64,10 +64,14 @@ def parameter_numbers(effect: Effect, name: str) -> list[float] | None:
 
 
 def _register_rows(effect: Effect, shader: Any, name: str) -> list[Row]:
-    """The registers of uniform `name` of `shader` at the parameters' current values (none
-    for a parameter without a value, or an entry uniform no compile argument fixed)."""
+    """The registers of uniform `name` of `shader` at the parameters' current values, or
+    what its preshader computes from them (none for a parameter without a value, or an entry
+    uniform no compile argument fixed)."""
     t = shader.types.get(name)
-    flat = parameter_numbers(effect, name) if not name.startswith("$") else None
+    if name in shader.preshaders:
+        flat = preshader_numbers(effect, shader, shader.preshaders[name])
+    else:
+        flat = parameter_numbers(effect, name) if not name.startswith("$") else None
     return _rows(t, flat)[0] if (t is not None and flat is not None) else []
 
 
@@ -94,14 +98,9 @@ def preshader_numbers(effect: Effect, shader: Any, preshader: Any) -> list[float
 def constant_values(effect: Effect, shader: Any) -> dict[int, Row]:
     """c# -> four floats for every uniform register the shader reads, its preshaders' too."""
     out: dict[int, Row] = {}
-    preshaders = getattr(shader, "preshaders", {})
     for name, (start, count) in shader.constants.items():
         t = shader.types.get(name)
-        if name in preshaders:
-            flat = preshader_numbers(effect, shader, preshaders[name])
-        else:
-            flat = parameter_numbers(effect, name) if not name.startswith("$") else None
-        rows = _rows(t, flat)[0] if (t is not None and flat is not None) else []
+        rows = _register_rows(effect, shader, name)
         if rows and t is not None and t.kind == "scalar" and shader.target.startswith("ps_1"):
             # ps_1_1-1_3 cannot select .x of a register: a scalar is loaded replicated (what
             # D3DX's preshader did for DX8 targets), and codegen_ps1 reads it so

@@ -38,6 +38,11 @@ class ShaderPreshader:
         """The parameters (uniform names) it reads."""
         return {step[1] for step in self.steps if step[0] == "uniform"}
 
+    def _width(self, k: int) -> int:
+        """How many floats step k makes."""
+        step = self.steps[k]
+        return step[3] if step[0] == "uniform" else len(step[1]) if step[0] == "const" else step[1]
+
     def expression(self) -> str:
         """The value as assembly-like text, for listings: `mul(K1, Scale.xxxx)`, `-LightDir`."""
         def text(k: int) -> str:
@@ -49,10 +54,7 @@ class ShaderPreshader:
                 return step[1] if step[2] == 0 else f"{step[1]}[{step[2]}]"
             args = []
             for index, swizzle, negate in step[2]:
-                width = self.steps[index][3] if self.steps[index][0] == "uniform" else \
-                    len(self.steps[index][1]) if self.steps[index][0] == "const" else \
-                    self.steps[index][1]
-                picked = "" if tuple(swizzle) == tuple(range(width)) else \
+                picked = "" if tuple(swizzle) == tuple(range(self._width(index))) else \
                     "." + "".join("xyzw"[i] for i in swizzle)
                 args.append(f"{'-' if negate else ''}{text(index)}{picked}")
             if step[0] == "mov":
