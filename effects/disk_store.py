@@ -14,7 +14,9 @@ else `~/.cache/effects/store`, made private (0700); it is used only when it is a
 (not a link) owned by this user and writable by no one else. Entries are written to a temporary
 file and renamed into place, at most `MAX_ENTRY_BYTES` each; when the folder holds more than
 `MAX_ENTRIES` files or `MAX_BYTES` bytes, the least recently written go until three quarters
-remain. A file that does not read back as the entry asked for is a miss (and removed); what
+remain. The folder is counted at a process's first write and again only when what this process
+wrote since would pass a bound, or after `RESCAN_WRITES` writes or `RESCAN_BYTES` bytes (what
+other processes add meanwhile): a write does not scan thousands of entries. A file that does not read back as the entry asked for is a miss (and removed); what
 an entry holds is data, never code. `EFFECTS_CACHE=off` turns the store off.
 """
 from __future__ import annotations
@@ -31,8 +33,12 @@ FORMAT = 1
 MAX_ENTRY_BYTES = 2 << 20
 MAX_ENTRIES = 4096
 MAX_BYTES = 64 << 20
+RESCAN_WRITES = 64
+RESCAN_BYTES = 4 << 20
 
-_state: dict[str, Any] = {"dir": None, "fingerprint": None}
+# "counted": (entries, bytes) at the last count of the folder, then what this process has
+# written since (entries, bytes); None until this process first writes
+_state: dict[str, Any] = {"dir": None, "fingerprint": None, "counted": None}
 
 
 class Unkeyable(Exception):
@@ -66,11 +72,13 @@ def enable(path: str | None = None) -> bool:
             or st.st_mode & 0o022:
         return False
     _state["dir"] = folder
+    _state["counted"] = None
     return True
 
 
 def disable() -> None:
     _state["dir"] = None
+    _state["counted"] = None
 
 
 def enabled() -> bool:
@@ -223,12 +231,27 @@ def write(name: str, entry: dict) -> None:
             except OSError:
                 pass
             raise
-        _prune(folder)
+        _prune_when_due(folder, len(data))
     except OSError:
         pass
 
 
-def _prune(folder: str) -> None:
+def _prune_when_due(folder: str, written: int) -> None:
+    counted = _state["counted"]
+    if counted is not None:
+        entries, size, writes, wrote = counted
+        writes, wrote = writes + 1, wrote + written
+        # an overwrite is counted as a new entry: at worst a count comes early
+        if (entries + writes <= MAX_ENTRIES and size + wrote <= MAX_BYTES
+                and writes < RESCAN_WRITES and wrote < RESCAN_BYTES):
+            _state["counted"] = (entries, size, writes, wrote)
+            return
+    _state["counted"] = (*_prune(folder), 0, 0)
+
+
+def _prune(folder: str) -> tuple[int, int]:
+    """Count the folder's entries and bytes, drop the least recently written where they pass
+    a bound, and say what remains."""
     entries = []
     total = 0
     with os.scandir(folder) as it:
@@ -238,7 +261,7 @@ def _prune(folder: str) -> None:
                 entries.append((st.st_mtime_ns, st.st_size, e.path))
                 total += st.st_size
     if len(entries) <= MAX_ENTRIES and total <= MAX_BYTES:
-        return
+        return len(entries), total
     entries.sort()
     while entries and (len(entries) > MAX_ENTRIES * 3 // 4 or total > MAX_BYTES * 3 // 4):
         _, size, path = entries.pop(0)
@@ -247,3 +270,4 @@ def _prune(folder: str) -> None:
         except OSError:
             pass
         total -= size
+    return len(entries), total

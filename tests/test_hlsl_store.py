@@ -228,6 +228,28 @@ def test_bounded(tmp_path, monkeypatch):
         disk_store.disable()
 
 
+def test_writes_count_the_folder_only_when_due(tmp_path, monkeypatch):
+    """A write scans the folder at a process's first write, then only when a bound or the
+    rescan interval comes near; entries other processes add are seen at that rescan."""
+    monkeypatch.setattr(disk_store, "MAX_ENTRIES", 8)
+    monkeypatch.setattr(disk_store, "RESCAN_WRITES", 3)
+    scans = []
+    real = disk_store._prune
+    monkeypatch.setattr(disk_store, "_prune", lambda folder: scans.append(1) or real(folder))
+    assert disk_store.enable(str(tmp_path))
+    try:
+        disk_store.write("a" * 64, {"k": 0})
+        disk_store.write("b" * 64, {"k": 1})
+        disk_store.write("c" * 64, {"k": 2})
+        assert len(scans) == 1                        # the first write only
+        for k in range(10):                           # another process fills the folder
+            (tmp_path / f"{k:064x}.json").write_text("{}")
+        disk_store.write("d" * 64, {"k": 3})          # the third write since: a rescan
+        assert len(scans) == 2 and len(list(tmp_path.glob("*.json"))) <= 8
+    finally:
+        disk_store.disable()
+
+
 def _command(cache_dir, *args):
     env = dict(os.environ, EFFECTS_CACHE_DIR=str(cache_dir))
     code = ("import sys, runpy; sys.argv = ['effects', *sys.argv[1:]]\n"
