@@ -16,8 +16,9 @@ file and renamed into place, at most `MAX_ENTRY_BYTES` each; when the folder hol
 `MAX_ENTRIES` files or `MAX_BYTES` bytes, the least recently written go until three quarters
 remain. The folder is counted at a process's first write and again only when what this process
 wrote since would pass a bound, or after `RESCAN_WRITES` writes or `RESCAN_BYTES` bytes (what
-other processes add meanwhile): a write does not scan thousands of entries. A file that does not read back as the entry asked for is a miss (and removed); what
-an entry holds is data, never code. `EFFECTS_CACHE=off` turns the store off.
+other processes add meanwhile): a write does not scan thousands of entries. A file that does
+not read back as the entry asked for is a miss (and removed); what an entry holds is data,
+never code. `EFFECTS_CACHE=off` turns the store off.
 """
 from __future__ import annotations
 
