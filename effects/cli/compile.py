@@ -8,11 +8,12 @@ text for the pass it draws); this module is the command's arguments.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
-
 from effects.errors import EffectError, Location
 
+TYPE_CHECKING = False   # typing is not imported for `effects --help` (effects/cli/main.py)
 if TYPE_CHECKING:  # pragma: no cover
+    from typing import Any
+
     from rich.console import Console
 
 
