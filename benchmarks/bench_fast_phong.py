@@ -28,7 +28,7 @@ import numpy as np
 
 from backends.reference.fast_phong import (SPREADS, Light, pixel_values, prepare,
                                            series_error, spread_normals)
-from effects.host.meshes import sphere
+from effects.assets.meshes import sphere
 from bench_scale import best as best_of  # one timing helper for the benchmarks
 
 PAPER = {"gouraud": 406.0, "taylor, infinite eye": 767.0, "taylor, finite eye": 850.0,
@@ -78,7 +78,7 @@ def renderer_frames(size: int, repeat: int) -> None:
     from pathlib import Path
 
     import effects
-    from effects.backend import create_backend
+    from effects.program.backend import create_backend
     from effects.host.runtime import Runtime
     fx = effects.load_effect(str(Path(__file__).resolve().parent.parent / "fxfiles" / "fast_phong.fx"))
     rows = {"gouraud (vertex lighting)": ("normalised", "Gouraud"),

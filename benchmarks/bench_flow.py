@@ -14,7 +14,7 @@ import argparse
 from pathlib import Path
 
 import effects
-from effects.caps import load_profile
+from effects.d3d9.caps import load_profile
 from bench_scale import best  # one timing helper for the benchmarks
 
 FX = Path(__file__).resolve().parent.parent / "fxfiles" / "multilight.fx"

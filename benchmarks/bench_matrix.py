@@ -116,7 +116,7 @@ def main(argv: list[str] | None = None) -> int:
 
     command = ["matrix", *_files()] + (["--json"] if args.json else [])
     import effects.cli.main  # noqa: F401  (imports are part of the subprocess figure, not these)
-    from effects import caps
+    from effects.d3d9 import caps
 
     os.environ["EFFECTS_CACHE"] = "off"      # in process: compiles and validation are made
     first = _in_process(command + ["--jobs", "1"])

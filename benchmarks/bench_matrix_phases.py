@@ -26,7 +26,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 _PROFILES = """
 import time
-from effects import caps
+from effects.d3d9 import caps
 t0 = time.process_time()
 for name in caps.list_profiles():
     caps.load_profile(name)
@@ -57,7 +57,7 @@ with open(sys.argv[1], "wb") as f:
 
 _ASSEMBLY = """
 import pickle, sys, time
-from effects.errors import AsmError
+from effects.base.errors import AsmError
 from effects.shaders.asm import assemble, check_cached
 from effects.shaders.asm import lower  # noqa: F401  (imported by validation before; not timed)
 from effects.shaders.asm.limits import lowering_cached

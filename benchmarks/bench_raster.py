@@ -15,9 +15,9 @@ import time
 
 import numpy as np
 
-from effects.backend import create_backend
-from effects.ir import Builder
-from effects.passprogram import PassProgram
+from effects.program.backend import create_backend
+from effects.program.ir import Builder
+from effects.program.passprogram import PassProgram
 
 
 def sphere_grid(segments: int = 64) -> tuple[dict[str, np.ndarray], np.ndarray]:

@@ -37,10 +37,10 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from effects.backend import create_backend, triangle_list  # noqa: E402
+from effects.program.backend import create_backend, triangle_list  # noqa: E402
 from backends.gl.context import headless_context  # noqa: E402
-from effects.caps import load_profile  # noqa: E402
-from effects.frontend.loader import load_effect  # noqa: E402
+from effects.d3d9.caps import load_profile  # noqa: E402
+from effects.api import load_effect  # noqa: E402
 from effects.host.runtime import Runtime  # noqa: E402
 
 VERTEX_SHADER = """

@@ -42,7 +42,7 @@ sys.path.insert(0, str(ROOT / "benchmarks"))
 
 import effects  # noqa: E402
 from bench_load import make_effect  # noqa: E402
-from effects.caps import list_profiles, load_profile  # noqa: E402
+from effects.d3d9.caps import list_profiles, load_profile  # noqa: E402
 
 ROWS: list[tuple[str, str, str, str]] = []   # (work, figures, exponent, goal)
 
@@ -238,7 +238,7 @@ def bench_render() -> None:
 
 
 def bench_frame() -> None:
-    from effects.backend import create_backend
+    from effects.program.backend import create_backend
     from effects.host.runtime import Runtime
     effect = effects.load_effect(str(ROOT / "fxfiles" / "phong.fx"))
     card = load_profile("radeon9700")
@@ -266,7 +266,7 @@ def bench_frame() -> None:
 
 def _gl_frame(effect, card, size: int) -> float | None:
     """Seconds per frame of the same Runtime on the GL back end, or None without a GL context."""
-    from effects.backend import create_backend
+    from effects.program.backend import create_backend
     from effects.host.runtime import Runtime
     try:
         runtime = Runtime(effect, card, size=(size, size), backend=create_backend("gl"))
@@ -291,7 +291,7 @@ def bench_startup() -> None:
     imports = _command("-c", "import effects")
     profiles = _command("-m", "effects", "profiles")
     with tempfile.TemporaryDirectory(prefix="bench-scale-store-") as store:
-        # the command line's store (effects/disk_store.py): filled by the first run, so the
+        # the command line's store (effects/base/disk_store.py): filled by the first run, so the
         # others read every row back; and off, every effect loaded and validated
         kept = _command("-m", "effects", "matrix", *files, runs=4, env={"EFFECTS_CACHE_DIR": store})
     made = _command("-m", "effects", "matrix", *files, runs=3, env={"EFFECTS_CACHE": "off"})
@@ -346,7 +346,7 @@ def _grid_obj(path: str, cells: int) -> int:
 
 
 def bench_mesh() -> None:
-    from effects.host.meshes import load_obj, sphere
+    from effects.assets.meshes import load_obj, sphere
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "grid.obj")
         count = _grid_obj(path, 707)
@@ -439,7 +439,7 @@ BENCHES = {"validate": bench_validate, "validate-cards": bench_validate_cards,
 def _raise_limits() -> None:
     """The generated 30k/100k-line effects are bigger than the hostile-input limits allow."""
     try:
-        from effects import limits
+        from effects.base import limits
     except ImportError:   # older code without limits
         return
     limits.set_limit("source_bytes", 1 << 30)

@@ -3,13 +3,16 @@
     effect = effects.load_effect("fxfiles/phong.fx")
     card = effects.load_profile("geforce3")
     tech = effect.find_valid_technique(card)
+    picture = effects.render(effect, card, size=(256, 256))
 """
-from effects.errors import (AsmError, EffectError, EffectWarning, Location, NoValidTechnique, ParseError,
-                     PreprocessError, ProfileError, SceneError, StateError)
+from effects.base.errors import (AsmError, EffectError, EffectWarning, Location, NoValidTechnique,
+                                 ParseError, PreprocessError, ProfileError, SceneError, StateError)
 
-# The model and the loader import numpy and lark; they load on first use (PEP 562), so that
-# `effects --help` and `effects profiles` do not pay for them.
-_LAZY = {"load_effect": "effects.frontend.loader", "Effect": "effects.model",
+# Where each public name lives. The loader, the model and the runtime import numpy and lark;
+# they load on first use (PEP 562), so that `effects --help` and `effects profiles` do not pay.
+_LAZY = {"load_effect": "effects.api", "Effect": "effects.api",
+         "load_profile": "effects.d3d9.caps", "list_profiles": "effects.d3d9.caps",
+         "render": "effects.host.runtime",
          "Parameter": "effects.model", "Pass": "effects.model",
          "StateAssignment": "effects.model", "Technique": "effects.model"}
 
@@ -22,27 +25,14 @@ def __getattr__(name: str):
         return value
     raise AttributeError(f"module 'effects' has no attribute {name!r}")
 
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
+
+
 __all__ = [
     "AsmError", "Effect", "EffectError", "EffectWarning", "Location", "NoValidTechnique",
     "ParseError", "Parameter", "Pass", "PreprocessError", "ProfileError", "SceneError",
     "StateAssignment", "StateError", "Technique", "load_effect", "load_profile", "list_profiles",
     "render",
 ]
-
-
-def load_profile(name_or_path: str):
-    """Load a caps profile by name (`geforce3`) or path; see `effects.caps`."""
-    from effects.caps import load_profile as _load
-    return _load(name_or_path)
-
-
-def list_profiles() -> list[str]:
-    """The names of the bundled caps profiles."""
-    from effects.caps import list_profiles as _list
-    return _list()
-
-
-def render(effect, profile, **kwargs):
-    """Render an effect on a simulated card; see `effects.host.runtime.render`."""
-    from effects.host.runtime import render as _render
-    return _render(effect, profile, **kwargs)

@@ -1,8 +1,10 @@
 """The effect model: what an effect file says, as dataclasses that know where they came from.
 
-The parser builds these; validation, selection, lowering and the printer read them. Locations
-never take part in equality, so an effect printed with `Effect.to_source()` and parsed again
-compares equal to the original.
+The parser builds these; validation, selection, lowering and the printer read them: they are
+functions over this data in the layers above, and this module imports none of them. (The
+`Effect` users get from `effects.load_effect` is `effects.api.Effect`, this class with those
+functions as methods.) Locations never take part in equality, so an effect printed with
+`to_source()` and parsed again compares equal to the original.
 """
 from __future__ import annotations
 
@@ -10,12 +12,10 @@ import sys
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Union
 
-from effects.errors import EffectWarning, Location, UNKNOWN_LOCATION
+from effects.base.errors import EffectWarning, Location, UNKNOWN_LOCATION
 
 if TYPE_CHECKING:  # pragma: no cover
     import numpy as np
-    from effects.caps import CapsProfile
-    from effects.validate.technique import Validation
 
 
 def _loc() -> Any:
@@ -344,7 +344,7 @@ class Effect:
         for t in self.techniques:
             if t.name == name:
                 return t
-        from effects.errors import EffectError
+        from effects.base.errors import EffectError
         known = ", ".join(t.name or "<anonymous>" for t in self.techniques)
         raise EffectError(f"no technique named '{name}' (the effect has: {known})",
                           Location(self.path, 1, 1))
@@ -376,26 +376,6 @@ class Effect:
             index = _ParameterIndex(params)
             self.__dict__["_parameter_index"] = index
         return index
-
-    # -- the spine ---------------------------------------------------------------------------
-    def validate(self, technique: Technique | str, profile: "CapsProfile") -> "Validation":
-        from effects.validate.technique import validate_technique
-        if isinstance(technique, str):
-            technique = self.technique(technique)
-        return validate_technique(self, technique, profile)
-
-    def find_valid_technique(self, profile: "CapsProfile", policy: Any = "first") -> Technique | None:
-        from effects.validate.select import find_valid_technique
-        return find_valid_technique(self, profile, policy)
-
-    def find_next_valid_technique(self, profile: "CapsProfile",
-                                  after: Technique | str | None = None) -> Technique | None:
-        from effects.validate.select import find_next_valid_technique
-        return find_next_valid_technique(self, profile, after)
-
-    def to_source(self) -> str:
-        from effects.frontend.printer import print_effect
-        return print_effect(self)
 
 
 class _ParameterIndex:

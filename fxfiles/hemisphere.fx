@@ -20,7 +20,7 @@
 // fxfiles/README.md. The occlusion term is texcoord0.z (0 = open, 1 = fully occluded), as the
 // chapter's shaders read it (v7.z): VertexStreams below asks the host for the mesh's
 // uv_occlusion attribute, (u, v, occlusion), cast once per mesh over its own triangles
-// ("firing a hemisphere of rays from each normal", effects/host/occlusion.py); inline
+// ("firing a hemisphere of rays from each normal", effects/assets/occlusion.py); inline
 // vertices get 0. The pixel-to-pixel occlusion of the relief ("firing rays in a height field
 // and storing the result in the alpha channel of a normal map") is the normal map's alpha.
 // Constants follow the chapter: c0-c3 world, c8-c11 world*view*projection, c33 = .5,

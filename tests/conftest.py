@@ -17,7 +17,7 @@ os.environ["EFFECTS_CACHE_DIR"] = tempfile.mkdtemp(prefix="effects-test-shaders-
 atexit.register(shutil.rmtree, os.environ["EFFECTS_CACHE_DIR"], ignore_errors=True)
 from PIL import Image
 
-from effects.backend import create_backend
+from effects.program.backend import create_backend
 from backends.gl import GLBackend
 
 

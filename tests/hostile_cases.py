@@ -45,7 +45,7 @@ def load(path_or_text, **kw):
 def profile_file(d: Path, text: str) -> object:
     p = d / "card.yaml"
     p.write_text(text)
-    from effects.caps import load_profile
+    from effects.d3d9.caps import load_profile
     return load_profile(str(p))
 
 
@@ -220,7 +220,7 @@ def profile_inherit_chain_2000(d):
     (d / "p0.yaml").write_text(f"inherit: {GEFORCE3}\nname: p0\n")
     for i in range(1, 2000):
         (d / f"p{i}.yaml").write_text(f"inherit: p{i - 1}.yaml\nname: p{i}\n")
-    from effects.caps import load_profile
+    from effects.d3d9.caps import load_profile
     return lambda: load_profile(str(d / "p1999.yaml"))   # 2,000 files take seconds to write
 
 
@@ -309,7 +309,7 @@ def _dds(width: int, height: int, mips: int, body: bytes = b"", depth: int = 0, 
 
 
 def _load_texture(path):
-    from effects.host.texture_files import load_texture
+    from effects.assets.texture_files import load_texture
     return load_texture(path)
 
 
@@ -356,7 +356,7 @@ def png_12000_squared(d):
 @case
 def png_past_pillows_bomb_limit(d):
     (d / "t.png").write_bytes(_png(20000, 10000, rows=1))
-    from effects import limits
+    from effects.base import limits
     with limits.raised(texture_edge=1 << 20, texture_texels=1 << 40):   # let Pillow's guard speak
         return _load_texture(d / "t.png")
 
@@ -429,7 +429,7 @@ def procedural_width_annotation_huge(d):
 
 @case
 def effect_texel_budget(d):
-    from effects import limits
+    from effects.base import limits
     with limits.raised(effect_texels=5000):   # two 64 x 64 textures: 8,192 texels
         return _render('texture A < string Procedural = "checker:8"; >;\n'
                        'texture B < string Procedural = "gloss"; int Width = 64; >;\n'
@@ -534,7 +534,7 @@ def _alarm(signum, frame):
 
 
 def run_case(name: str) -> dict:
-    from effects.errors import EffectError
+    from effects.base.errors import EffectError
     start = time.perf_counter()
     with tempfile.TemporaryDirectory() as tmp:
         signal.setitimer(signal.ITIMER_REAL, 60)

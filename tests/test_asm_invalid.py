@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from effects.shaders.asm import NOT_ASSEMBLY, assemble, check
-from effects.errors import AsmError, Location
+from effects.base.errors import AsmError, Location
 from effects.model import ShaderBlock, VertexDeclElement
 
 LOC = Location("t.fx", 10, 9)

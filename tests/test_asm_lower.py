@@ -18,9 +18,9 @@ from backends.reference.evaluate import evaluate
 from effects.shaders.asm import assemble, check
 from effects.shaders.asm.lower import (ShaderContext, constant_registers, lower_pixel_shader,
                                        lower_vertex_shader, lowering_problems)
-from effects.errors import AsmError, Location
+from effects.base.errors import AsmError, Location
 from effects.model import ShaderBlock, VertexDeclElement
-from effects.precision import LoweringOptions
+from effects.d3d9.precision import LoweringOptions
 from test_asm_parse import SEEDS, VALID
 
 FLOAT = LoweringOptions()

@@ -9,7 +9,7 @@ from __future__ import annotations
 import pytest
 
 from effects.shaders.asm import INSTRUCTIONS, VERSIONS, assemble, check, lookup
-from effects.errors import Location
+from effects.base.errors import Location
 from effects.model import ShaderBlock, VertexDeclElement
 
 LOC = Location("t.fx", 10, 9)

@@ -22,16 +22,16 @@ import numpy as np
 import pytest
 
 import effects
-from effects.backend import (Backend, DrawError, UnknownBackend, available_backends,
+from effects.program.backend import (Backend, DrawError, UnknownBackend, available_backends,
                            create_backend, render_cube_faces)
 from backends.gl import GLBackend
 from backends.reference.renderer import ReferenceBackend
-from effects.caps import load_profile
-from effects.errors import EffectError
+from effects.d3d9.caps import load_profile
+from effects.base.errors import EffectError
 from effects.lower.passes import lower_pass
-from effects.ir import Builder
-from effects.passprogram import PassProgram, RenderState, TextureBinding
-from effects.host.textures import Texture
+from effects.program.ir import Builder
+from effects.program.passprogram import PassProgram, RenderState, TextureBinding
+from effects.assets.textures import Texture
 
 BACKENDS = ("numpy", "gl")
 

@@ -10,7 +10,7 @@ a tolerable level."
 fxfiles/specular_bump.fx draws both: SpecularMultiply_ps11 (N.H by dp3_sat, then four mul
 squarings: N.H^16) and SpecularTable_ps11 (texm3x2pad/texm3x2tex read N.H^16 from a 256 x 256
 table). The GeForce3 profile holds ps_1_1 results at 8 fraction bits in [-1, 1]
-(effects.precision: quantize to steps of 1/255 after every instruction), `modern` computes
+(effects.d3d9.precision: quantize to steps of 1/255 after every instruction), `modern` computes
 in float. To see the specular term alone, the Earth is black, the normal map flat and the
 ps_2_0 specular colour white; the picture is then N.H^16 (x 255) and nothing else.
 
@@ -32,14 +32,14 @@ import numpy as np
 import pytest
 
 import effects
-from effects.host.textures import make_texture
+from effects.assets.textures import make_texture
 
 FX = os.path.join(os.path.dirname(__file__), "..", "fxfiles", "specular_bump.fx")
 SIZE = 128
 HALF = 128            # the highlight region: where the float picture is at least half bright
 
 
-def solid(rgb) -> "effects.host.textures.Texture":
+def solid(rgb) -> "effects.assets.textures.Texture":
     return make_texture(np.broadcast_to(np.array([*rgb, 1.0], np.float32), (4, 4, 4)).copy(),
                         "X8R8G8B8")
 

@@ -146,8 +146,9 @@ FXFILES = sorted(os.path.join(ROOT, "fxfiles", f) for f in os.listdir(os.path.jo
 
 
 def test_matrix_jobs_on_a_pool_are_the_serial_matrix():
-    from effects.caps import list_profiles, load_profile
-    from effects.cli.report import MatrixJob, matrix, matrix_job
+    from effects.d3d9.caps import list_profiles, load_profile
+    from effects.cli.matrix_store import MatrixJob
+    from effects.cli.report import matrix, matrix_job
     serial = matrix({f: effects.load_effect(f) for f in FXFILES},
                     [load_profile(p) for p in list_profiles()])
     pooled = run_jobs(matrix_job, [MatrixJob(f, ()) for f in FXFILES], jobs=2)
@@ -198,7 +199,7 @@ def test_sheet_labels_are_cut_only_where_they_do_not_fit():
     with ".." to fit (a count of 6-pixel characters cut geforcefx5900 at 64 px, with room)."""
     from PIL import Image, ImageDraw
 
-    from effects.caps import list_profiles
+    from effects.d3d9.caps import list_profiles
     from effects.cli.sheet import _fit
     draw = ImageDraw.Draw(Image.new("RGB", (8, 8)))
     for name in list_profiles() + ["PerPixelPhong_ps20", "a" * 60]:

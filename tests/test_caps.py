@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from effects import ProfileError
-from effects.caps import (GENERATIONS, PROFILE_DIR, TEXOPCAPS, bits_mask, list_profiles,
+from effects.d3d9.caps import (GENERATIONS, PROFILE_DIR, TEXOPCAPS, bits_mask, list_profiles,
                           load_profile)
 
 ALL_CARDS = ["tnt2", "voodoo3", "voodoo5", "rage128", "g400", "geforce256", "geforce2",
@@ -301,7 +301,8 @@ def test_parents_are_loaded_once_and_the_inherit_depth_still_holds(tmp_path):
     """A parent is built once (kept for the next profile that inherits it), and a kept parent
     does not hide a chain deeper than `inherit_depth`: the error is the one a fresh load
     reports, at the same place."""
-    from effects import caps, limits
+    from effects.d3d9 import caps
+    from effects.base import limits
     write(tmp_path, "p0", MINIMAL)
     for k in range(1, 5):
         write(tmp_path, f"p{k}", f"inherit: p{k - 1}.yaml\n" + MINIMAL)

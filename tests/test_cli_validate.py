@@ -11,9 +11,9 @@ from pathlib import Path
 import pytest
 
 import effects
-from effects import caps
+from effects.d3d9 import caps
 from effects.cli import main as cli
-from effects.caps import list_profiles, load_profile
+from effects.d3d9.caps import list_profiles, load_profile
 from effects.cli.report import matrix
 
 ROOT = Path(__file__).resolve().parent.parent

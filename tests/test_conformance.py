@@ -49,13 +49,13 @@ import numpy as np
 import pytest
 
 import backends.reference.sampler as reference_sampler
-from effects.caps import list_profiles, load_profile
-from effects.errors import NoValidTechnique
-from effects.frontend.loader import load_effect
+from effects.d3d9.caps import list_profiles, load_profile
+from effects.base.errors import NoValidTechnique
+from effects.api import load_effect
 from effects.lower.passes import lower_pass
 from effects.model import Effect
 from effects.host.runtime import Runtime, render
-from effects.host.textures import procedural
+from effects.assets.textures import procedural
 
 FXFILES = Path(__file__).resolve().parent.parent / "fxfiles"
 EFFECTS = sorted(p.name for p in FXFILES.glob("*.fx"))

@@ -5,10 +5,10 @@ import struct
 import numpy as np
 import pytest
 
-from effects.host import dds
-from effects.host import pixel_formats as pf
-from effects.errors import SceneError
-from effects.host.textures import Texture, encode, mip_chain
+from effects.assets import dds
+from effects.d3d9 import formats as pf
+from effects.base.errors import SceneError
+from effects.assets.textures import Texture, encode, mip_chain
 
 
 def decode_words(fmt: str, words, nbytes: int) -> np.ndarray:

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import effects
-from effects.errors import ParseError
+from effects.base.errors import ParseError
 
 QUAD = {"mesh": "quad"}
 

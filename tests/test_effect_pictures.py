@@ -30,9 +30,9 @@ import numpy as np
 import pytest
 
 import effects
-import effects.host.textures
-from effects.host.texture_files import load_texture
-from effects.host.textures import Texture, make_texture, procedural
+import effects.assets.textures
+from effects.assets.texture_files import load_texture
+from effects.assets.textures import Texture, make_texture, procedural
 
 FXFILES = os.path.join(os.path.dirname(__file__), "..", "fxfiles")
 SIZE = 128
@@ -91,7 +91,7 @@ def sphere_hits(size: int = SIZE) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def sphere_uv(p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(u, v) of effects.host.meshes.sphere's mapping, whose point at (u, v) is
+    """(u, v) of effects.assets.meshes.sphere's mapping, whose point at (u, v) is
     (sin(pi v) cos(2 pi u), cos(pi v), sin(pi v) sin(2 pi u))."""
     u = np.mod(np.arctan2(p[..., 2], p[..., 0]) / (2 * np.pi), 1.0)
     v = np.arccos(np.clip(p[..., 1], -1, 1)) / np.pi

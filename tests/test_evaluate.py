@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from backends.reference.evaluate import evaluate
-from effects.ir import FLT_MAX, Builder, IRError
+from effects.program.ir import FLT_MAX, Builder, IRError
 
 
 def run_op(method, *rows, **attrs):
@@ -286,7 +286,7 @@ def _matrix_rows_program():
 
 
 def test_dot_rows_of_uniforms_are_one_batch_and_equal_each_dot_on_its_own():
-    """dp3/dp4 of one vector with several uniforms run as one batch (effects.ir OpInfo.batch):
+    """dp3/dp4 of one vector with several uniforms run as one batch (effects.program.ir OpInfo.batch):
     bit for bit the per-instruction dots (x*a + y*b) + z*c (+ w*d) in float32, and the same
     when a 'uniform' comes per row (the batch declines and each dot runs alone)."""
     from backends.reference.evaluate import _BATCH, _steps

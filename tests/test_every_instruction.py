@@ -14,11 +14,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from effects.backend import create_backend
-from effects.errors import Location
+from effects.program.backend import create_backend
+from effects.base.errors import Location
 from effects.model import ShaderBlock
-from effects.passprogram import PassProgram, RenderState
-from effects.precision import LoweringOptions
+from effects.program.passprogram import PassProgram, RenderState
+from effects.d3d9.precision import LoweringOptions
 from effects.shaders.asm import INSTRUCTIONS, assemble, check
 from effects.shaders.asm.lower import (ShaderContext, lower_pixel_shader, lower_vertex_shader,
                                        lowering_problems)

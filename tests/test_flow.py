@@ -11,12 +11,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from effects.backend import create_backend
-from effects.errors import Location
-from effects.ir import IRError
+from effects.program.backend import create_backend
+from effects.base.errors import Location
+from effects.program.ir import IRError
 from effects.model import ShaderBlock
-from effects.passprogram import PassProgram, RenderState
-from effects.precision import LoweringOptions
+from effects.program.passprogram import PassProgram, RenderState
+from effects.d3d9.precision import LoweringOptions
 from effects.shaders.asm import assemble, check
 from effects.shaders.asm.lower import ShaderContext, lower_pixel_shader, lowering_problems
 
@@ -387,7 +387,7 @@ def test_gradients_after_an_early_ret_in_a_dynamic_if_are_rejected():
 
 
 def test_ir_rejects_badly_nested_blocks_and_out_of_scope_values():
-    from effects.ir import Builder
+    from effects.program.ir import Builder
     b = Builder("fragment")
     with pytest.raises(IRError, match="without its opening"):
         b.endif()
@@ -515,8 +515,8 @@ def test_texldd_takes_the_lod_from_its_gradients(backend):
     # A 4x4 texture with three mip levels of one colour each (red, green, blue), point mip
     # filtering: d coord/dx = (g, 0) is 4g texels per pixel, LOD log2(4g): g = 0 -> level 0,
     # g = 0.5 -> level 1 (LOD 1), g = 1 -> level 2 (LOD 2).
-    from effects.host.textures import Texture
-    from effects.passprogram import TextureBinding
+    from effects.assets.textures import Texture
+    from effects.program.passprogram import TextureBinding
     levels = [np.broadcast_to(np.array(c, np.float32), (n, n, 4)).copy()
               for c, n in (((1, 0, 0, 1), 4), ((0, 1, 0, 1), 2), ((0, 0, 1, 1), 1))]
     texture = Texture("2d", "A32B32G32R32F", levels)
@@ -551,8 +551,8 @@ def test_texldd_on_a_cube_map_carries_the_gradients_onto_the_face(backend, direc
     # An 8x8 cube map whose four mip levels are red, green, blue, white on every face, point
     # mip filtering: the LOD is log2(8 |(ds, dt)|) with (ds, dt) the face-coordinate change
     # the direction gradient makes (the OpenGL rule; D3D9 leaves the cube case unspecified)
-    from effects.host.textures import Texture
-    from effects.passprogram import TextureBinding
+    from effects.assets.textures import Texture
+    from effects.program.passprogram import TextureBinding
     colours = ((1, 0, 0, 1), (0, 1, 0, 1), (0, 0, 1, 1), (1, 1, 1, 1))
     levels = [np.broadcast_to(np.array(c, np.float32), (6, n, n, 4)).copy()
               for c, n in zip(colours, (8, 4, 2, 1))]
@@ -637,7 +637,7 @@ def test_flow_golden_program_draws_its_hand_values(backend):
 
 def test_nested_loop_iterations_are_bounded_by_a_named_limit():
     # rep 255 inside rep 255 (65,025 runs) is within the default; a third level is not
-    import effects.limits
+    import effects.base.limits
     nest = "ps_3_0\ndefi i0, 255, 0, 0, 0\ndef c0, 1, 1, 1, 1\nmov r0, c0\n{open}add r0, r0, c0\n{close}mov oC0, r0"
     two = nest.format(open="rep i0\n" * 2, close="endrep\n" * 2)
     three = nest.format(open="rep i0\n" * 3, close="endrep\n" * 3)
@@ -646,7 +646,7 @@ def test_nested_loop_iterations_are_bounded_by_a_named_limit():
     (problem,) = lowering_problems(prog(three))
     assert str(problem).startswith("t.fx:7:1: error: rep (nested 3 deep) has 16,581,375 "
                                    "iterations; the limit is 65,536 (limit shader_loop_iterations")
-    with effects.limits.raised(shader_loop_iterations=17_000_000):
+    with effects.base.limits.raised(shader_loop_iterations=17_000_000):
         assert lowering_problems(prog(three)) == []
 
 

@@ -15,7 +15,7 @@ import pytest
 
 from backends.gl import glsl
 from backends.gl.context import headless_context
-from effects.ir import Builder, IRError, Program, format_program
+from effects.program.ir import Builder, IRError, Program, format_program
 
 GOLDEN_DIR = Path(__file__).parent / "golden" / "glsl"
 UPDATE_GOLDEN = os.environ.get("EFFECTS_UPDATE_GOLDEN") == "1"

@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 from backends.gl import GLBackend, GLUnavailable, context
-from effects import ir
-from effects.ir import Builder
-from effects.passprogram import PassProgram, RenderState, TextureBinding
-from effects.host.textures import Texture
+from effects.program import ir
+from effects.program.ir import Builder
+from effects.program.passprogram import PassProgram, RenderState, TextureBinding
+from effects.assets.textures import Texture
 from test_backends_suite import NO_CULL, quad, render, show, u8
 from test_conformance import psnr
 
@@ -155,7 +155,7 @@ def _n_dot_l_sphere():
     """A lit sphere: vertex program scales the unit sphere into clip space; the fragment
     program normalises the interpolated normal, dots it with the light and adds a specular
     power, all in float."""
-    from effects.host.meshes import sphere
+    from effects.assets.meshes import sphere
     mesh = sphere(12, 24)
     v = Builder("vertex")
     p = v.varying("position", "POSITION", 3)

@@ -19,8 +19,8 @@ import pytest
 
 from backends.gl import glsl
 from backends.gl.renderer import fragment_options
-from effects.caps import list_profiles, load_profile
-from effects.frontend.loader import load_effect
+from effects.d3d9.caps import list_profiles, load_profile
+from effects.api import load_effect
 from effects.lower.passes import lower_pass
 from effects.host.runtime import Runtime
 

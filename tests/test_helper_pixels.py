@@ -9,7 +9,7 @@ import backends.reference.evaluate as evaluate_module
 from backends.reference.evaluate import evaluate
 from backends.reference.renderer import _make_callback
 from backends.reference.sampler import SamplerSettings, sample_2d, sample_cube
-from effects.ir import Builder
+from effects.program.ir import Builder
 
 MIPMAPPED = SamplerSettings(min_filter="LINEAR", mag_filter="LINEAR", mip_filter="LINEAR",
                             address_u="WRAP", address_v="MIRROR")
@@ -147,8 +147,8 @@ def test_cube_reads_of_the_kept_rows_equal_every_row():
 
 def test_a_frame_with_helpers_cut_equals_one_with_every_helper_shaded(monkeypatch):
     import effects
-    from effects.backend import create_backend
-    from effects.caps import load_profile
+    from effects.program.backend import create_backend
+    from effects.d3d9.caps import load_profile
     from effects.host.runtime import Runtime
 
     def frame():

@@ -7,8 +7,8 @@ from __future__ import annotations
 import pytest
 
 import effects
-from effects.errors import EffectError
-from effects.lru import ByteLRU
+from effects.base.errors import EffectError
+from effects.base.lru import ByteLRU
 from effects.model import CompileShader
 from effects.shaders.hlsl import cache, compile_shader, compile_state
 

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import effects
-from effects.errors import EffectError
+from effects.base.errors import EffectError
 from effects.shaders.hlsl import compile_shader
 from effects.shaders.listing import listing
 from tests.test_hlsl_render import QUAD, backend  # noqa: F401
@@ -388,7 +388,7 @@ def test_a_counter_indexing_a_uniform_array_is_loop_al_as_fxc_compiles_it():
 def test_the_pass_sets_the_int_register_as_d3dx_does():
     # D3DX's constant table writes an int into an int4 register as (value, 0, 1, 0): the
     # loop's count, first aL and aL step
-    from effects.device import pass_states
+    from effects.d3d9.device import pass_states
     from effects.lower.passes import _assemble, _int_constants, _shader
     fx = load(LIGHTS + PASS_PS, "compile vs_2_0 VS()")
     fx.parameter("NumLights").value = 3

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 import effects
-from effects.errors import EffectError
+from effects.base.errors import EffectError
 from effects.cli.main import main
 from effects.model import CompileShader
 from effects.shaders.asm import check

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import effects
-from effects.backend import create_backend
+from effects.program.backend import create_backend
 
 SIZE = (8, 8)
 QUAD = {"mesh": "quad", "size": list(SIZE)}
@@ -90,7 +90,7 @@ def test_the_expansions_are_within_their_error_bounds(name, fn, lo, hi, bound):
     points: within Abramowitz and Stegun's bounds (6.7e-5 for arccos, 1e-5 for arctan) plus
     float32 rounding, relative for sinh and cosh."""
     from backends.reference.evaluate import evaluate
-    from effects.precision import LoweringOptions
+    from effects.d3d9.precision import LoweringOptions
     from effects.shaders.asm.lower import ShaderContext, lower_pixel_shader
     from effects.shaders.hlsl.compiler import compile_shader
     fx = effects.load_effect(
@@ -108,7 +108,7 @@ def test_the_expansions_are_within_their_error_bounds(name, fn, lo, hi, bound):
 def test_an_unknown_intrinsic_is_still_located():
     fx = effects.load_effect("float4 PS(float2 uv : TEXCOORD0) : COLOR { return isnan(uv.x); }\n"
                              "technique T { pass P { PixelShader = compile ps_2_0 PS(); } }\n")
-    from effects.caps import load_profile
+    from effects.d3d9.caps import load_profile
     validation = fx.validate(fx.techniques[0], load_profile("radeon9700"))
     assert not validation.ok
     assert "X3004: undeclared identifier 'isnan'" in str(validation.reasons[0])

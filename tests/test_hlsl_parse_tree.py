@@ -7,7 +7,7 @@ from __future__ import annotations
 import lark
 import pytest
 
-from effects.errors import Location
+from effects.base.errors import Location
 from effects.shaders.hlsl.parse import HlslError, Origin, parse, start_of
 
 

@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 import effects
-from effects.backend import create_backend
-from effects.errors import EffectError
-from effects.host.textures import make_texture
+from effects.program.backend import create_backend
+from effects.base.errors import EffectError
+from effects.assets.textures import make_texture
 from effects.shaders.asm import check
 from effects.shaders.hlsl.compiler import compile_shader
 
@@ -505,7 +505,7 @@ def test_uniform_only_expressions_are_computed_on_the_host(backend, target):
 
 
 def test_a_stored_shader_keeps_its_preshader(tmp_path):
-    from effects import disk_store
+    from effects.base import disk_store
     from effects.shaders.hlsl import cache, store
     fx = effect_for(PRESHADED, "ps_1_4")
     value = next(a.value for a in fx.techniques[0].passes[0].states

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from effects.errors import EffectError
+from effects.base.errors import EffectError
 from tests.test_hlsl_render import backend, effect_for, fx_asm, pixel_uv, render  # noqa: F401
 
 TOL = 1.5 / 255

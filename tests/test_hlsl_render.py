@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 import effects
-from effects.backend import create_backend
-from effects.errors import EffectError
+from effects.program.backend import create_backend
+from effects.base.errors import EffectError
 
 ROOT = Path(__file__).resolve().parent.parent
 BACKENDS = ("numpy", "gl")
@@ -260,7 +260,7 @@ float4 PS(float2 uv : TEXCOORD0) : COLOR
 
 
 def test_texture_read_through_a_sampler(backend):
-    from effects.host.textures import procedural
+    from effects.assets.textures import procedural
     fx = effect_for("""
 float4 PS(float2 uv : TEXCOORD0) : COLOR { return tex2D(Checker, uv * 0.5 + 1.0 / 128) * Scale; }""",
                     params="texture T; float Scale = 0.5;\n"

@@ -10,7 +10,7 @@ import pytest
 
 import effects
 from effects.shaders.listing import listing
-from effects.errors import EffectError
+from effects.base.errors import EffectError
 from effects.shaders.hlsl import compile_shader
 from tests.test_hlsl_render import QUAD, backend, effect_for, fx_asm, render  # noqa: F401
 

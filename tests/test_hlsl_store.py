@@ -1,4 +1,4 @@
-"""The on-disk compile store (effects/shaders/hlsl/store.py, in effects/disk_store.py's folder): a stored shader is the shader a
+"""The on-disk compile store (effects/shaders/hlsl/store.py, in effects/base/disk_store.py's folder): a stored shader is the shader a
 compile makes (every field, every location of its program), keys follow every input and no
 other, hold across processes, and the folder is private, bounded and robust to bad files."""
 from __future__ import annotations
@@ -13,9 +13,9 @@ import sys
 import numpy as np
 import pytest
 
-from effects import disk_store, limits
-from effects.errors import EffectError
-from effects.frontend.loader import load_effect
+from effects.base import disk_store, limits
+from effects.base.errors import EffectError
+from effects.api import load_effect
 from effects.model import CompileShader
 from effects.shaders.hlsl import cache, store
 from effects.shaders.hlsl.compiler import compile_shader
@@ -144,7 +144,7 @@ def test_keys_follow_every_input_and_only_those():
     moved = dataclasses.replace(value, location=dataclasses.replace(value.location, line=value.location.line + 1)) \
         if dataclasses.is_dataclass(value.location) else None
     if moved is None:
-        from effects.errors import Location
+        from effects.base.errors import Location
         moved = dataclasses.replace(value, location=Location(value.location.path, value.location.line + 1, 1))
     assert _key(effect, moved) != first
     # the compiling code
@@ -267,7 +267,7 @@ def test_the_command_cold_and_warm(tmp_path):
     imported: --jobs 1 validates in the process that says so). The warm run names every card,
     in the order the default takes them: the same matrix, but not the rows the cold run kept
     (matrix_store), so its effects are loaded and validated again."""
-    from effects.caps import list_profiles
+    from effects.d3d9.caps import list_profiles
     files = sorted(os.path.relpath(f, ROOT) for f in glob.glob(os.path.join(ROOT, "fxfiles", "*.fx")))
     cards = [a for name in list_profiles() for a in ("-p", name)]
     for n, extra in enumerate(([], ["--json"])):

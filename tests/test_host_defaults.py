@@ -11,7 +11,7 @@ import pytest
 
 import effects
 from effects.cli.main import main
-from effects.errors import SceneError
+from effects.base.errors import SceneError
 from effects.host.runtime import Runtime, render_frame
 from effects.host.scene import load_scene
 from effects.host.semantics import bind_scene, binding_table, ui_defaults

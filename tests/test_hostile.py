@@ -25,9 +25,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import effects
-from effects import limits
+from effects.base import limits
 from effects.cli.main import main
-from effects.errors import EffectError, SceneError
+from effects.base.errors import EffectError, SceneError
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -168,7 +168,7 @@ FUZZ = settings(max_examples=60, deadline=None, derandomize=True,
        depth=st.integers(0, 1 << 32 - 1), mips=st.integers(0, 1 << 32 - 1),
        caps2=st.sampled_from([0, 0x200, 0xFE00, 0x200000]), body=st.binary(max_size=300))
 def test_fuzzed_dds_headers(tmp_path, width, height, depth, mips, caps2, body):
-    from effects.host.dds import read_dds
+    from effects.assets.dds import read_dds
     path = tmp_path / "f.dds"
     path.write_bytes(hostile_cases._dds(width, height, mips, body, depth=depth, caps2=caps2))
     try:
@@ -183,7 +183,7 @@ def test_fuzzed_dds_headers(tmp_path, width, height, depth, mips, caps2, body):
 @given(shape=st.lists(st.integers(-3, 10 ** 12), min_size=0, max_size=5),
        dtype=st.sampled_from(["|u1", "<f4", "<i8", "|O", "<U3", "|V7"]), body=st.binary(max_size=200))
 def test_fuzzed_npy_headers(tmp_path, shape, dtype, body):
-    from effects.host.texture_files import load_texture
+    from effects.assets.texture_files import load_texture
     header = "{'descr': '%s', 'fortran_order': False, 'shape': (%s), }" % (
         dtype, "".join(f"{n}, " for n in shape))
     header += " " * (-(len(header) + 11) % 64) + "\n"
@@ -222,8 +222,8 @@ PROFILE_LINES = (ROOT / "caps_profiles" / "geforce3.yaml").read_text().splitline
 @given(st.lists(st.tuples(st.integers(0, len(PROFILE_LINES) - 1), st.sampled_from(YAML_BITS)),
                 max_size=6))
 def test_fuzzed_profiles(tmp_path, edits):
-    from effects.caps import load_profile
-    from effects.errors import ProfileError
+    from effects.d3d9.caps import load_profile
+    from effects.base.errors import ProfileError
     lines = list(PROFILE_LINES)
     for index, bit in edits:
         at = len(lines[index]) // 2
@@ -240,7 +240,7 @@ def test_fuzzed_profiles(tmp_path, edits):
 @given(cut=st.integers(0, 400), flip=st.integers(0, 400), byte=st.integers(0, 255))
 def test_truncated_and_mutated_images(tmp_path, cut, flip, byte):
     from PIL import Image
-    from effects.host.texture_files import load_texture
+    from effects.assets.texture_files import load_texture
     source = tmp_path / "src.png"
     Image.fromarray(np.arange(16 * 16 * 3, dtype=np.uint8).reshape(16, 16, 3)).save(source)
     data = bytearray(source.read_bytes())

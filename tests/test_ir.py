@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from backends.reference.evaluate import evaluate
-from effects.ir import (OPS, Builder, Input, Instr, IRError, Program, SamplerBinding,
+from effects.program.ir import (OPS, Builder, Input, Instr, IRError, Program, SamplerBinding,
                         format_program, glsl_float, normalize_attrs)
-from effects.passprogram import PassProgram, RenderState, TextureBinding
+from effects.program.passprogram import PassProgram, RenderState, TextureBinding
 
 
 def small_program() -> Program:

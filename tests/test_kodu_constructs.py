@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import effects
-from effects.errors import ParseError
+from effects.base.errors import ParseError
 from effects.host.semantics import name_semantic
 from effects.shaders.listing import pass_listing
 

@@ -30,11 +30,11 @@ import numpy as np
 import pytest
 
 import effects
-from effects.host.assets import geometry
-from effects.host.meshes import sphere
+from effects.host.resources import geometry
+from effects.assets.meshes import sphere
 from effects.host.runtime import Runtime
 from effects.host.scene import load_scene
-from effects.host.textures import make_texture
+from effects.assets.textures import make_texture
 
 SIZE = 128
 RINGS, SEGMENTS = 128, 256

@@ -10,8 +10,8 @@ import pytest
 
 import effects
 from backends.reference.evaluate import evaluate
-from effects.caps import load_profile
-from effects.errors import EffectError
+from effects.d3d9.caps import load_profile
+from effects.base.errors import EffectError
 from effects.lower.passes import clear_cache, lower_pass
 
 GOLDEN_DIR = Path(__file__).parent / "golden" / "ir"

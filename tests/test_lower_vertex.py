@@ -9,7 +9,7 @@ import pytest
 
 import effects
 from backends.reference.evaluate import evaluate
-from effects.caps import load_profile
+from effects.d3d9.caps import load_profile
 from effects.lower.passes import lower_pass
 
 

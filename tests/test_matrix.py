@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 import effects
-from effects.caps import list_profiles, load_profile
+from effects.d3d9.caps import list_profiles, load_profile
 from effects.cli.report import matrix, validate_all
 from effects.validate.select import find_valid_technique
 

@@ -14,10 +14,11 @@ import time
 
 import pytest
 
-from effects import bundled, disk_store, limits
+from effects.base import bundled, disk_store, limits
 from effects.cli import matrix_store
 from effects.cli.main import main
-from effects.cli.report import MatrixJob, matrix_job
+from effects.cli.matrix_store import MatrixJob
+from effects.cli.report import matrix_job
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PHONG = os.path.join(ROOT, "fxfiles", "phong.fx")
@@ -65,7 +66,7 @@ def _command(cache_dir, *args, env=None):
     code = ("import sys\n"
             "from effects.cli.main import main\n"
             "rc = main(sys.argv[1:])\n"
-            "print('LOADED', *sorted(m for m in ('numpy', 'yaml', 'lark', 'effects.caps', "
+            "print('LOADED', *sorted(m for m in ('numpy', 'yaml', 'lark', 'effects.d3d9.caps', "
             "'effects.model', 'effects.validate') if m in sys.modules), file=sys.stderr)\n"
             "sys.exit(rc)")
     return subprocess.run([sys.executable, "-c", code, *args], cwd=ROOT,

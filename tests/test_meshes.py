@@ -5,8 +5,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from effects.host import meshes as M
-from effects.errors import SceneError
+from effects.assets import meshes as M
+from effects.base.errors import SceneError
 
 
 def face_normals(mesh):
@@ -243,7 +243,7 @@ def _faces(form: str) -> str:
     ("# a comment\no grid\n" + _OBJ_GRID + _OBJ_UV + _OBJ_N + "s 1\r\n", "{i}/{t}/{n}"),
 ])
 def test_fast_obj_reader_makes_the_per_line_readers_mesh(tmp_path, monkeypatch, header, form):
-    from effects.host import obj_fast
+    from effects.assets import obj_fast
     path = tmp_path / "m.obj"
     path.write_text(header + _faces(form))
     assert obj_fast.parse(path.read_bytes()) is not None
@@ -267,12 +267,12 @@ def test_fast_obj_reader_makes_the_per_line_readers_mesh(tmp_path, monkeypatch, 
     "v 0 0 0\nv 1 0\u00a0 0\nv 0 1 0\nf 1 2 3\n",                    # odd whitespace
 ])
 def test_fast_obj_reader_leaves_irregular_files_to_the_per_line_reader(text):
-    from effects.host import obj_fast
+    from effects.assets import obj_fast
     assert obj_fast.parse(text.encode()) is None
 
 
 def _fast_and_slow(path, monkeypatch):
-    from effects.host import obj_fast
+    from effects.assets import obj_fast
     fast = M.load_obj(path)
     with monkeypatch.context() as patch:
         patch.setattr(obj_fast, "parse", lambda raw, check_counts=None: None)
@@ -295,7 +295,7 @@ _SPELLINGS = ["0.5", "-0.000000", "+1.25", ".5", "-.75", "7.", "00012.5000", "12
 
 @pytest.mark.parametrize("spelling", _SPELLINGS)
 def test_fast_obj_reader_reads_each_number_as_float_does(tmp_path, monkeypatch, spelling):
-    from effects.host import obj_fast
+    from effects.assets import obj_fast
     text = (f"v {spelling} 0 0\nv 1 {spelling} 0\nv 0 1 {spelling}\nvt {spelling} 0.5\n"
             f"vn 0 0 1\nf 1/1/1 2/1/1 3/1/1\n")
     assert obj_fast.parse(text.encode()) is not None
@@ -309,7 +309,7 @@ def test_fast_obj_reader_reads_each_number_as_float_does(tmp_path, monkeypatch, 
 def test_fast_obj_reader_plain_numbers_are_float_exactly():
     """Many random plain spellings (sign, point, 1-15 digits): every double equals float()'s,
     bit for bit (the digits and the power of ten are exact; one division rounds)."""
-    from effects.host import obj_fast
+    from effects.assets import obj_fast
     rng = np.random.default_rng(7)
     words = []
     for _ in range(20000):
@@ -326,7 +326,7 @@ def test_fast_obj_reader_plain_numbers_are_float_exactly():
 def test_fast_obj_reader_in_small_batches_and_scattered_lines(tmp_path, monkeypatch):
     """Batches of a few lines and vertex lines interleaved by kind (gathered, not copied as a
     span) make the same mesh as the per-line reader."""
-    from effects.host import obj_fast
+    from effects.assets import obj_fast
     rng = np.random.default_rng(3)
     n = 150
     lines = []
@@ -343,7 +343,7 @@ def test_fast_obj_reader_in_small_batches_and_scattered_lines(tmp_path, monkeypa
 
 
 def test_fast_obj_reader_wants_one_corner_form_in_every_batch(monkeypatch):
-    from effects.host import obj_fast
+    from effects.assets import obj_fast
     monkeypatch.setattr(obj_fast, "_BATCH", 16)
     head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
     assert obj_fast.parse((head + "f 1/1 2/1 3/1\n" * 4).encode()) is not None
@@ -358,7 +358,7 @@ _CORNERS = {"v": "{i}", "v/vt": "{i}/{t}", "v//vn": "{i}//{n}", "v/vt/vn": "{i}/
 def test_fast_obj_reader_matches_the_per_line_reader_on_random_files(tmp_path, monkeypatch, data):
     """Random regular files (numbers of any spelling float() takes, any corner form, \\r\\n
     or \\n, spaces or tabs): the fast reader's mesh is the per-line reader's, bit for bit."""
-    from effects.host import obj_fast
+    from effects.assets import obj_fast
     number = st.one_of(
         st.floats(-1e6, 1e6, allow_nan=False).map(repr),
         st.floats(-1e3, 1e3, allow_nan=False).map(lambda x: f"{x:.6f}"),
@@ -394,7 +394,7 @@ def test_fast_obj_reader_numbers_corners_by_vertex_or_by_triple(tmp_path, monkey
     every vertex comes with one vt and one vn (as exporters write) the fast reader numbers
     them by vertex through a table; where a vertex comes with two (a UV seam, a crease) by
     a sort of the triples. Both make the per-line reader's mesh."""
-    from effects.host import obj_fast
+    from effects.assets import obj_fast
     taken = []
     for name in ("_number_by_vertex", "_number_by_key"):
         real = getattr(obj_fast, name)
@@ -420,7 +420,7 @@ def test_fast_obj_reader_numbers_corners_by_vertex_or_by_triple(tmp_path, monkey
     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv\t1 1 0\nf 1 2 4 3\n",               # a quad: the per-line one
 ])
 def test_obj_vertex_limit_is_checked_before_either_reader_reads(tmp_path, text):
-    from effects import limits
+    from effects.base import limits
     path = tmp_path / "m.obj"
     path.write_text(text)
     with limits.raised(mesh_vertices=4):

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import effects
-from effects.caps import load_profile
+from effects.d3d9.caps import load_profile
 
 FX = Path(__file__).resolve().parent.parent / "fxfiles" / "multilight.fx"
 SIZE = (64, 64)

@@ -6,9 +6,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from effects.backend import DrawError
+from effects.program.backend import DrawError
 from backends.reference.output import Framebuffer, alpha_test, layers, merge
-from effects.passprogram import RenderState
+from effects.program.passprogram import RenderState
 
 # Source and destination chosen as multiples of 1/255 apart from where noted, so the 8-bit
 # destination holds them exactly.

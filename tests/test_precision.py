@@ -1,4 +1,4 @@
-"""The lowering options a caps profile implies (effects.precision): one precision grid, read by
+"""The lowering options a caps profile implies (effects.d3d9.precision): one precision grid, read by
 the fixed-function and the assembly lowerings, derived from the profile's data only."""
 from __future__ import annotations
 
@@ -6,11 +6,11 @@ import dataclasses
 
 import pytest
 
-from effects.caps import list_profiles, load_profile
-from effects.precision import FLOAT_OPTIONS, LoweringOptions, lowering_options
+from effects.d3d9.caps import list_profiles, load_profile
+from effects.d3d9.precision import FLOAT_OPTIONS, LoweringOptions, lowering_options
 from effects.shaders.asm import assemble
 from effects.shaders.asm.lower import ShaderContext, lower_pixel_shader
-from effects.errors import Location
+from effects.base.errors import Location
 from effects.model import ShaderBlock
 
 

@@ -7,7 +7,7 @@ import time
 
 import pytest
 
-from effects.errors import PreprocessError
+from effects.base.errors import PreprocessError
 from effects.frontend.preprocess import preprocess
 
 

@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 import effects
-from effects.backend import create_backend
-from effects.caps import load_profile
-from effects.device import pass_states
-from effects.errors import EffectError
+from effects.program.backend import create_backend
+from effects.d3d9.caps import load_profile
+from effects.d3d9.device import pass_states
+from effects.base.errors import EffectError
 from effects.lower.passes import lower_pass
 from effects.lower.preshaders import evaluate_expressions
 

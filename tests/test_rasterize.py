@@ -4,7 +4,7 @@ perspective-correct interpolation, against values worked out by hand from D3D9's
 import numpy as np
 import pytest
 
-from effects.backend import DrawError, triangle_list
+from effects.program.backend import DrawError, triangle_list
 from backends.reference.rasterize import rasterize
 
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from effects.caps import load_profile
-from effects.device import pass_states
-from effects.errors import EffectError, ParseError
-from effects.frontend.loader import load_effect
+from effects.d3d9.caps import load_profile
+from effects.d3d9.device import pass_states
+from effects.base.errors import EffectError, ParseError
+from effects.api import load_effect
 from effects.model import NullValue, ParamRef
 
 

@@ -9,7 +9,7 @@ import pytest
 
 import effects
 from effects.cli.main import main
-from effects.errors import ParseError, StateError
+from effects.base.errors import ParseError, StateError
 from effects.host.runtime import render_frame
 from effects.host.scene import Scene
 from effects.host.semantics import bind_scene, name_semantic

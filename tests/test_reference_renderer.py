@@ -8,12 +8,12 @@ import math
 import numpy as np
 import pytest
 
-from effects.backend import create_backend
+from effects.program.backend import create_backend
 from backends.reference.evaluate import _dense, evaluate
 from backends.reference.sampler import SamplerSettings, sample_2d
-from effects.ir import OPS, Builder
-from effects.passprogram import PassProgram, RenderState, TextureBinding
-from effects.host.textures import Texture
+from effects.program.ir import OPS, Builder
+from effects.program.passprogram import PassProgram, RenderState, TextureBinding
+from effects.assets.textures import Texture
 
 
 @pytest.mark.parametrize("band_pixels", [1 << 30, 1 << 10, 200])

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 import effects
-from effects.backend import create_backend
+from effects.program.backend import create_backend
 from effects.host.runtime import Runtime
-from effects.ir import Builder
+from effects.program.ir import Builder
 from backends.reference.evaluate import evaluate
 
 PHONG = "fxfiles/phong.fx"

@@ -14,13 +14,13 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from effects import load_effect
-from effects.errors import Location, StateError
+from effects.base.errors import Location, StateError
 from effects.model import (Annotation, CompileShader, Effect, EnumValue, Expression, Function,
                            NullValue, Parameter, ParamRef, Pass, SamplerState, ShaderBlock,
                            StateAssignment, Struct, Technique, TypeSpec, VertexDeclElement)
 from effects.frontend.parser import resolve_type
 from effects.frontend.printer import print_effect
-from effects.states import STATES, coerce_state_value, lookup_state
+from effects.d3d9.states import STATES, coerce_state_value, lookup_state
 
 FXFILES = Path(__file__).resolve().parent.parent / "fxfiles"
 HERE = Location("<generated>", 1, 1)

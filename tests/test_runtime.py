@@ -12,7 +12,7 @@ import effects
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 from effects import NoValidTechnique, SceneError, load_effect, load_profile
-from effects.host.assets import TextureCache, geometry, scene_mesh
+from effects.host.resources import TextureCache, geometry, scene_mesh
 from effects.host.runtime import Runtime, render_frame
 from effects.host.scene import load_scene
 
@@ -435,8 +435,8 @@ def test_bundled_effects_render_a_lit_textured_sphere(name, card):
 def test_a_scene_param_may_name_a_texture_generator():
     # DX8 files cannot annotate their textures; the bundled scene for sdk8_style.fx gives them,
     # two of them by generator ('sobel_normals:<image>', 'sky_cube:64') rather than by file.
-    from effects.host.assets import resolve_texture, TextureSource
-    from effects.errors import Location
+    from effects.host.resources import resolve_texture, TextureSource
+    from effects.base.errors import Location
     effect = load_effect(os.path.join(ROOT, "fxfiles", "sdk8_style.fx"))
     at = Location("scene.yaml", 1, 1)
     fx_dir = os.path.join(ROOT, "fxfiles")

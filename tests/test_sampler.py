@@ -8,9 +8,9 @@ from backends.reference.evaluate import evaluate
 from backends.reference.renderer import sampler_callbacks
 from backends.reference.sampler import (SamplerSettings, cube_face_coords, sample_1d,
                                         sample_2d, sample_3d, sample_cube)
-from effects.ir import Builder
-from effects.passprogram import PassProgram, TextureBinding
-from effects.host.textures import Texture, cube_face_uv, make_texture
+from effects.program.ir import Builder
+from effects.program.passprogram import PassProgram, TextureBinding
+from effects.assets.textures import Texture, cube_face_uv, make_texture
 
 LINEAR = SamplerSettings(min_filter="LINEAR", mag_filter="LINEAR")
 

@@ -11,7 +11,7 @@ import pytest
 from PIL import Image
 
 import effects
-from effects.errors import EffectError, SceneError
+from effects.base.errors import EffectError, SceneError
 from effects.host.runtime import Runtime
 
 QUAD = {"mesh": "quad"}

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from effects import load_effect
-from effects.errors import SceneError
+from effects.base.errors import SceneError
 from effects.host.scene import InlineMesh, load_scene, look_at_lh, perspective_fov_lh
 from effects.host.semantics import bind_scene, coerce_value, parse_assignments
 
@@ -279,7 +279,7 @@ def test_values_that_do_not_fit_name_the_parameter_and_its_declaration(name, val
 
 
 def test_a_scene_value_error_points_at_the_scene_and_names_the_declaration(tmp_path):
-    from effects.errors import Location
+    from effects.base.errors import Location
     effect = load_effect(VALUES)
     param = effect.parameter("F")
     with pytest.raises(SceneError) as info:

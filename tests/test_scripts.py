@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 import effects
-from effects.errors import EffectError
+from effects.base.errors import EffectError
 from effects.host.runtime import Runtime, render_frame
 from effects.host.scripts import parse_script, target_format, target_size, unsupported_commands
-from effects.host.textures import make_texture
-from effects.errors import Location
+from effects.assets.textures import make_texture
+from effects.base.errors import Location
 
 BACKENDS = ["numpy", "gl"]
 DATA = Path(__file__).resolve().parent / "data" / "realfx"

@@ -1,5 +1,5 @@
 """The chapter's BRDF effect (fxfiles/brdf.fx) with real factor cube maps: McCool, Ang and
-Ahmad's homomorphic factorisation of a known BRDF (effects/host/brdf.py), made at load time by
+Ahmad's homomorphic factorisation of a known BRDF (effects/assets/brdf.py), made at load time by
 the `brdf_factor:MODEL:FACTOR` procedural (fxfiles/brdf.yaml names them)."""
 from __future__ import annotations
 
@@ -8,9 +8,9 @@ import os
 import numpy as np
 import pytest
 
-from effects.errors import SceneError
-from effects.host import brdf
-from effects.host.textures import procedural
+from effects.base.errors import SceneError
+from effects.assets import brdf
+from effects.assets.textures import procedural
 
 import test_effect_pictures as pictures
 

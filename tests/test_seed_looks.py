@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import effects
-from effects.host.textures import make_texture
+from effects.assets.textures import make_texture
 
 FXFILES = os.path.join(os.path.dirname(__file__), "..", "fxfiles")
 

@@ -1,6 +1,6 @@
 """Taylor's three-term hemisphere lighting (fxfiles/hemisphere.fx): the occlusion term cast over
-the mesh (effects/host/occlusion.py), the relief's occlusion in the normal map's alpha
-(effects/host/heightfield.py), and the corrected per-pixel technique against the printed one.
+the mesh (effects/assets/occlusion.py), the relief's occlusion in the normal map's alpha
+(effects/assets/heightfield.py), and the corrected per-pixel technique against the printed one.
 """
 from __future__ import annotations
 
@@ -10,10 +10,10 @@ import os
 import numpy as np
 
 import effects
-from effects.host import meshes
-from effects.host.heightfield import horizon_occlusion
-from effects.host.occlusion import vertex_occlusion
-from effects.host.textures import make_texture
+from effects.assets import meshes
+from effects.assets.heightfield import horizon_occlusion
+from effects.assets.occlusion import vertex_occlusion
+from effects.assets.textures import make_texture
 
 FXFILES = os.path.join(os.path.dirname(__file__), "..", "fxfiles")
 GROUND = np.array([0.30, 0.22, 0.15]) * 255        # hemisphere.fx GroundColor

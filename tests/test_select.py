@@ -5,7 +5,7 @@ import pytest
 
 import effects
 from effects import EffectError
-from effects.caps import load_profile
+from effects.d3d9.caps import load_profile
 from effects.validate.select import (Policy, find_next_valid_technique, find_valid_technique, rank,
                             technique_cost, technique_quality)
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import effects
-from effects.errors import EffectError
+from effects.base.errors import EffectError
 
 import test_effect_pictures as pictures
 
@@ -198,7 +198,7 @@ def test_the_lowering_describes_the_lighting_only_where_the_taylor_form_applies(
 
 def test_given_values_replace_a_computation_and_what_only_it_reads():
     from backends.reference.evaluate import evaluate, input_components
-    from effects.ir import Builder
+    from effects.program.ir import Builder
     b = Builder("fragment")
     n = b.varying("texcoord7")
     lit = b.saturate(b.dp3(n, n))
@@ -217,7 +217,7 @@ def test_the_reference_can_light_phong_by_the_normalised_normal_as_gl_does():
     # ReferenceBackend(phong="normalised") ignores PassProgram.lighting and runs the fragment
     # program's exact lighting: on the big 60-degree triangle it is GL's picture (the Taylor
     # form is 22/255 off there)
-    from effects.backend import create_backend
+    from effects.program.backend import create_backend
     text = open(FX).read().replace("LocalViewer       = True;", "LocalViewer       = False;")
     fx = effects.load_effect(text)
     scene, position, normal = triangle_scene(60)
@@ -239,7 +239,7 @@ def test_on_a_coarse_sphere_the_taylor_form_parts_from_phong():
     # the normalised normal (GL) max 14/255, mean 1.1 over the sphere, 99th percentile 10 --
     # seams along the edges, the README's picture; the reference's normalised mode is GL's
     # picture within 1
-    from effects.backend import create_backend
+    from effects.program.backend import create_backend
     from effects.host.scene import load_scene
     fx = load()
     scene = load_scene(os.path.join(os.path.dirname(FX), "fast_phong_coarse.yaml"))

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import effects
-from effects.caps import load_profile
+from effects.d3d9.caps import load_profile
 
 FX = """
 int Steps = 2;
@@ -113,6 +113,6 @@ def test_an_app_set_count_past_the_iteration_limit_is_a_located_reason():
         f"pass P0 (line {line}): rep (nested 3 deep) has 16,581,375 iterations; the limit is "
         "65,536 (limit shader_loop_iterations: raise it with "
         "EFFECTS_LIMIT_SHADER_LOOP_ITERATIONS=N or "
-        "effects.limits.set_limit('shader_loop_iterations', N))"]
+        "effects.base.limits.set_limit('shader_loop_iterations', N))"]
     effect.parameter("Steps").value = 2                       # 8 iterations: valid again
     assert effect.validate("T", load_profile("geforce6800")).ok

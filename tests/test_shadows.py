@@ -19,11 +19,11 @@ import numpy as np
 import pytest
 
 import effects
-from effects.caps import load_profile
+from effects.d3d9.caps import load_profile
 from effects.host.runtime import Runtime, render_frame
 from effects.host.scene import scene_from_mapping
 from effects.host.scripts import cube_face_matrices, is_cube_target
-from effects.host.textures import cube_directions, cube_face_uv
+from effects.assets.textures import cube_directions, cube_face_uv
 
 BACKENDS = ["numpy", "gl"]
 FXFILES = Path(__file__).resolve().parent.parent / "fxfiles"

@@ -6,10 +6,10 @@ learn.microsoft.com) and the defaults of semantics.md 1.1, written out here by h
 import numpy as np
 import pytest
 
-from effects.errors import Location, StateError
+from effects.base.errors import Location, StateError
 from effects.model import (CompileShader, EnumValue, Expression, NullValue, ParamRef,
                            SamplerState, ShaderBlock)
-from effects.states import (ENUMS, STATES, check_index, coerce_state_value, default_value,
+from effects.d3d9.states import (ENUMS, STATES, check_index, coerce_state_value, default_value,
                             lookup_state, pack_color, suggest_state)
 
 LOC = Location("fx/test.fx", 12, 9)
@@ -427,13 +427,13 @@ def test_a_suggested_name_that_starts_with_a_digit_keeps_its_prefix():
 
 
 # --------------------------------------------------------------------------------------------
-# The contracts' defaults agree with the table (effects.passprogram cannot import it: back ends
+# The contracts' defaults agree with the table (effects.program.passprogram cannot import it: back ends
 # read passprogram and must not see the state table)
 
 
 def _fresh_device():
     import effects
-    from effects.device import DeviceState
+    from effects.d3d9.device import DeviceState
     effect = effects.load_effect("technique t { pass p { } }")
     return effect, DeviceState(effect)
 
@@ -442,7 +442,7 @@ def test_render_state_defaults_are_the_state_tables_defaults():
     from dataclasses import fields
 
     from effects.lower.passes import _RENDER_FIELDS, read_render_state
-    from effects.passprogram import RenderState
+    from effects.program.passprogram import RenderState
     assert set(_RENDER_FIELDS) == {f.name for f in fields(RenderState)}  # every field has a row
     _, state = _fresh_device()
     assert read_render_state(state) == RenderState()
@@ -450,7 +450,7 @@ def test_render_state_defaults_are_the_state_tables_defaults():
 
 def test_texture_binding_defaults_are_the_sampler_state_defaults():
     from effects.lower.passes import texture_binding
-    from effects.passprogram import TextureBinding
+    from effects.program.passprogram import TextureBinding
     effect, state = _fresh_device()
     for sampler in (0, 15):
         assert texture_binding(effect, state, sampler, "2d") == TextureBinding(sampler)
@@ -458,7 +458,7 @@ def test_texture_binding_defaults_are_the_sampler_state_defaults():
 
 def test_typed_readers_read_each_state_as_its_row_types_it():
     import effects
-    from effects.device import DeviceState
+    from effects.d3d9.device import DeviceState
     effect = effects.load_effect("""float Ref = 127.9; float4 Tint = {0.5, 0.25, 1, 0.75};
         technique t { pass p { AlphaRef = <Ref>; BlendFactor = <Tint>; FogEnd = 3;
         ColorWriteEnable = Red | Alpha; CullMode = 2; ZEnable = UseW; } }""")
@@ -476,7 +476,7 @@ def test_typed_readers_read_each_state_as_its_row_types_it():
 def test_every_caps_limit_names_a_bit_field_and_its_bits():
     """Each limited state's row names a D3DCAPS9 bit field, and every value it can take needs a
     bit of that field, except the blend factors that only Direct3D 9Ex reports."""
-    from effects.caps import FIELDS, bit_prefix
+    from effects.d3d9.caps import FIELDS, bit_prefix
     no_caps_bit = {("SrcBlend", "SRCCOLOR2"), ("SrcBlend", "INVSRCCOLOR2"),
                    ("DestBlend", "SRCCOLOR2"), ("DestBlend", "INVSRCCOLOR2"),
                    ("SrcBlendAlpha", "SRCCOLOR2"), ("SrcBlendAlpha", "INVSRCCOLOR2"),

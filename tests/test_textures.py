@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from effects.host import textures as T
-from effects.host.texture_files import load_texture
-from effects.errors import SceneError
+from effects.assets import textures as T
+from effects.assets.texture_files import load_texture
+from effects.base.errors import SceneError
 
 
 # ---- mip chains ------------------------------------------------------------------------------
@@ -213,7 +213,7 @@ def test_npy_cube_volume_and_luminance(tmp_path):
 
 
 def test_dds_through_load_texture(tmp_path):
-    from effects.host.dds import write_dds
+    from effects.assets.dds import write_dds
     tex = T.make_texture(np.zeros((6, 4, 4, 4)), "X8R8G8B8", kind="cube")
     write_dds(tmp_path / "c.dds", tex)
     back = load_texture(tmp_path / "c.dds", kind="cube")
@@ -264,7 +264,7 @@ def test_effect_file_generator_names(tmp_path):
 
 
 def test_missing_height_image_is_reported_at_the_annotation(tmp_path):
-    from effects.errors import Location
+    from effects.base.errors import Location
     where = Location("fx/phong.fx", 94, 5)
     with pytest.raises(SceneError) as info:
         T.procedural("sobel_normals:textures/none.png", base_dir=str(tmp_path), location=where)
@@ -274,7 +274,7 @@ def test_missing_height_image_is_reported_at_the_annotation(tmp_path):
 
 
 def test_the_texture_caches_are_bounded_by_bytes_least_recently_used_first():
-    from effects.lru import ByteLRU
+    from effects.base.lru import ByteLRU
     levels = lambda n: T.Texture("2d", "A8R8G8B8", [np.zeros((n, n, 4), np.float32)])  # noqa: E731
     cache = ByteLRU(max_bytes=3 * 16 * 16 * 4 * 4)       # three 16x16 float textures
     for key in "abc":

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 import effects
-from effects.caps import BLENDCAPS, FORMATS, TEXOPCAPS, list_profiles, load_profile
+from effects.d3d9.caps import BLENDCAPS, FORMATS, TEXOPCAPS, list_profiles, load_profile
 from effects.validate.technique import spelled, validate_technique
 
 CARDS = list_profiles()

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 import effects
-from effects.caps import load_profile
-from effects.host.textures import make_texture
-from effects.ir import Builder, IRError
+from effects.d3d9.caps import load_profile
+from effects.assets.textures import make_texture
+from effects.program.ir import Builder, IRError
 
 # A 4x2 R32F heightfield; bar k (k = 0..7, 8 pixels wide) reads texel (k % 4, k // 4).
 HEIGHTS = np.array([[0.25, 0.5, 0.75, 1.0], [0.125, 0.375, 0.625, 0.875]], np.float32)

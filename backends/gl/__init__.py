@@ -1,6 +1,6 @@
 """The GPU back end: IR printed as GLSL 330, Direct3D 9 state set through moderngl.
 
-    from effects.backend import create_backend
+    from effects.program.backend import create_backend
     backend = create_backend("gl")             # headless EGL context
     backend = GLBackend(window_context())      # the viewer's window context
 

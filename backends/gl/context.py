@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import moderngl
 
-from effects.errors import EffectError, Location
+from effects.base.errors import EffectError, Location
 
 GL_LOCATION = Location("<gl>", 0, 0)
 REQUIRED_VERSION = 330

@@ -2,11 +2,11 @@
 
 Every instruction becomes one line `vec4 vN = <template>;` (a statement for ops without a
 result: `if (...) {`, `for (...) {`, `}`, an assignment) where the template is the op's row in
-`effects.ir.OPS` (`OpInfo.format_glsl`), indented by the blocks the rows open and close;
+`effects.program.ir.OPS` (`OpInfo.format_glsl`), indented by the blocks the rows open and close;
 nothing here knows an op by name. Values live in
 variables because templates may use an argument twice. A `#line` directive before the body
 numbers each instruction line as the same instruction's line in the printed IR
-(`effects.ir.format_program`), so a GLSL compiler message points into the IR listing, and a
+(`effects.program.ir.format_program`), so a GLSL compiler message points into the IR listing, and a
 trailing comment repeats the IR instruction.
 
 Names: the IR's inputs are declared under prefixed names so that no effect name can collide
@@ -31,7 +31,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Iterable, Sequence
 
-from effects.ir import OPS, IRError, Program, format_instr, glsl_float
+from effects.program.ir import OPS, IRError, Program, format_instr, glsl_float
 
 GLSL_VERSION = "#version 330 core"
 SAMPLER_TYPES = {"1d": "sampler1D", "2d": "sampler2D", "3d": "sampler3D", "cube": "samplerCube"}

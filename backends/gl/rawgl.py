@@ -13,7 +13,7 @@ import ctypes.util
 from ctypes import POINTER, c_float, c_int, c_uint, c_void_p
 from typing import Any
 
-from effects.errors import EffectError, Location
+from effects.base.errors import EffectError, Location
 
 # Enum values from the OpenGL 4.5 core registry (gl.xml).
 ZERO, ONE = 0, 1

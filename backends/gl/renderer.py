@@ -3,7 +3,7 @@
 Each draw prints the pass's IR as GLSL (`glsl`), compiles it once per (vertex key, fragment
 key, fixed-function epilogue, stream set) so that changed uniforms never recompile, binds
 textures and sampler objects (`textures`, `state`), sets the render state and draws the
-triangles in `effects.backend.triangle_list` order (so flat shading takes the same provoking
+triangles in `effects.program.backend.triangle_list` order (so flat shading takes the same provoking
 vertex as the reference). The frame is a framebuffer object with a packed 32-bit float depth
 and 8-bit stencil buffer; `end_frame` reads it back, row 0 at the top, without a flip (the
 vertex shader renders upside down; see `glsl`).
@@ -16,9 +16,9 @@ from typing import Mapping
 import moderngl
 import numpy as np
 
-from effects.passprogram import PassProgram, RenderState
+from effects.program.passprogram import PassProgram, RenderState
 
-from effects.backend import TARGET_FORMATS, DrawError, register_backend, triangle_list
+from effects.program.backend import TARGET_FORMATS, DrawError, register_backend, triangle_list
 from backends.gl import glsl
 from backends.gl import rawgl as G
 from backends.gl.context import headless_context

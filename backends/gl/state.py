@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from effects.passprogram import RenderState, TextureBinding
+from effects.program.passprogram import RenderState, TextureBinding
 
 from backends.gl import rawgl as G
 from backends.gl.rawgl import RawGL

@@ -3,7 +3,7 @@
 Every value is held as four component columns, each an (N,) float32 array, or a (1,) array
 when it is the same on every row (uniforms, constants and what is computed from them only).
 Swizzles and write-mask merges then only rearrange columns, a dp3 result is one column shared
-by all four components, and a per-component op runs its `OPS` kernel (`effects.ir`) once per
+by all four components, and a per-component op runs its `OPS` kernel (`effects.program.ir`) once per
 distinct column of its arguments, so replicated scalars (rsq, pow of a dp3) cost one column.
 Only the components some later instruction or output reads are computed. There is no per-row
 Python loop; ops without a column form (sample, crs, kill, ...) run their kernel on (N, 4).
@@ -23,7 +23,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from effects.ir import OPS, IRError, Instr, Program, has_flow
+from effects.program.ir import OPS, IRError, Instr, Program, has_flow
 
 SamplerFn = Callable[..., np.ndarray]
 Columns = list  # four entries: (N,) or (1,) float32 arrays, None where nothing reads them
@@ -43,7 +43,7 @@ class EvalResult:
 
 
 class _Context:
-    """The KernelContext of effects.ir: inputs padded to vec4, samplers, the kill mask."""
+    """The KernelContext of effects.program.ir: inputs padded to vec4, samplers, the kill mask."""
 
     def __init__(self, program: Program, inputs: Mapping[str, np.ndarray],
                  samplers: Mapping[int, SamplerFn], count: int) -> None:

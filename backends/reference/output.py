@@ -20,9 +20,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from effects.passprogram import RenderState
+from effects.program.passprogram import RenderState
 
-from effects.backend import TARGET_FORMATS, DrawError
+from effects.program.backend import TARGET_FORMATS, DrawError
 
 COMPARE_FUNCS = ("NEVER", "LESS", "EQUAL", "LESSEQUAL", "GREATER", "NOTEQUAL", "GREATEREQUAL",
                  "ALWAYS")

@@ -9,7 +9,7 @@ merged on a small thread pool (NumPy releases the GIL inside its kernels) in any
 band's size, not the frame's, bounds the memory a draw takes beyond the frame's own buffers.
 Helper pixels are shaded only when the fragment program samples a texture.
 
-Conventions beyond `effects.backend`:
+Conventions beyond `effects.program.backend`:
 - Vertex colour outputs (color0, color1) are saturated before interpolation (semantics.md
   section 0); with no vertex program the colour streams are saturated too.
 - A varying the fragment program reads but nothing supplies reads as D3D's vertex defaults:
@@ -33,10 +33,10 @@ from typing import Mapping
 
 import numpy as np
 
-from effects.ir import OPS, Program
-from effects.passprogram import PassProgram, TextureBinding
+from effects.program.ir import OPS, Program
+from effects.program.passprogram import PassProgram, TextureBinding
 
-from effects.backend import DrawError, register_backend, triangle_list
+from effects.program.backend import DrawError, register_backend, triangle_list
 from backends.reference import output
 from backends.reference.evaluate import evaluate, input_components
 from backends.reference import taylor_lighting

@@ -2,7 +2,7 @@
 
 Coordinates arrive as rows of quads (row = quad*4 + pixel, pixels in (0,0),(1,0),(0,1),(1,1)
 order), so the level of detail comes from quad differences, as on hardware: one LOD per quad.
-Texel values are already decoded floats (see effects.host.textures.Texture); signed bump formats
+Texel values are already decoded floats (see effects.assets.textures.Texture); signed bump formats
 are filtered like any other (their values are simply in [-1, 1]).
 
 Conventions:
@@ -16,7 +16,7 @@ Conventions:
   back ends do the same).
 - 1D textures are (1, W, 4) levels sampled at v = 0.5.
 - Cube faces in D3D order +X, -X, +Y, -Y, +Z, -Z, with the face (s, t) table of the D3D9
-  docs (the same as OpenGL's, and effects.host.textures.cube_face_uv); addressing clamps within a
+  docs (the same as OpenGL's, and effects.assets.textures.cube_face_uv); addressing clamps within a
   face (D3D9 cube maps are not seamless). The LOD of a quad is taken on the face its first
   pixel selects, so quads straddling a face edge get no spurious minification.
 """

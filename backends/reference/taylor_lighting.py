@@ -26,7 +26,7 @@ import numpy as np
 
 from backends.reference.fast_phong import (interpolation_planes, linear_dot, poly_mul,
                                            power_table, taylor_quotient)
-from effects.passprogram import PixelLighting
+from effects.program.passprogram import PixelLighting
 
 TABLE_ENTRIES = 8192
 

@@ -14,9 +14,9 @@ import numpy as np
 from PIL import Image
 
 import effects
-from effects.host.texture_files import load_texture
-from effects.host import brdf  # noqa: F401  (registers the brdf_factor procedural)
-from effects.host.textures import make_texture, procedural
+from effects.assets.texture_files import load_texture
+from effects.assets import brdf  # noqa: F401  (registers the brdf_factor procedural)
+from effects.assets.textures import make_texture, procedural
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -24,7 +24,7 @@ FX = os.path.join(ROOT, "fxfiles")
 TEXTURES = os.path.join(FX, "textures")
 
 
-def solid(rgb) -> effects.host.textures.Texture:
+def solid(rgb) -> effects.assets.textures.Texture:
     return make_texture(np.broadcast_to(np.array([*rgb, 1.0], np.float32), (4, 4, 4)).copy(),
                         "X8R8G8B8")
 
@@ -36,7 +36,7 @@ SDK8 = {"tBas": os.path.join(TEXTURES, "stones_base.png"),
         "tNrm": procedural("sobel_normals:textures/stones_height.png", base_dir=FX),
         "tEnv": procedural("sky_cube:64"), "tDrt": DIRT}
 # The chapter's BRDF application set the factor cube maps: fxfiles/brdf.yaml's, the
-# homomorphic factorisation of a known BRDF (effects/host/brdf.py).
+# homomorphic factorisation of a known BRDF (effects/assets/brdf.py).
 BRDF = {"BRDFTexture1": procedural("brdf_factor:phong:view"),
         "BRDFTexture2": procedural("brdf_factor:phong:light"),
         "BRDFTexture3": procedural("brdf_factor:phong:half"),

@@ -8,7 +8,7 @@ text for the pass it draws); this module is the command's arguments.
 """
 from __future__ import annotations
 
-from effects.errors import EffectError, Location
+from effects.base.errors import EffectError, Location
 
 TYPE_CHECKING = False   # typing is not imported for `effects --help` (effects/cli/main.py)
 if TYPE_CHECKING:  # pragma: no cover

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from effects.errors import EffectError, NoValidTechnique
+from effects.base.errors import EffectError, NoValidTechnique
 from effects.model import Effect, Technique
 
 

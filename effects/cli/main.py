@@ -9,7 +9,7 @@ import argparse
 import os
 import sys
 
-from effects.errors import EffectError
+from effects.base.errors import EffectError
 
 # typing itself is not imported: it is the largest import `effects --help` would make
 # (9 ms of a 70 ms start on the 2-core VM). Type checkers read the block below.
@@ -113,7 +113,7 @@ def _load(args):
 
 
 def _profiles(names: Sequence[str]):
-    from effects.caps import list_profiles, load_profile
+    from effects.d3d9.caps import list_profiles, load_profile
     return [load_profile(n) for n in (names or list_profiles())]
 
 
@@ -191,7 +191,7 @@ def _matrix(args, root: str | None, console: Console) -> tuple[dict, list[str]]:
     is read back; the others are made by `_made_rows`. Errors are the serial command's: the
     first effect file that fails to load, in the order given, then a bad card or policy."""
     from effects.cli import matrix_store
-    from effects.cli.report import MatrixJob
+    from effects.cli.matrix_store import MatrixJob
     shared = matrix_store.shared_key(tuple(args.profile), args.policy, args.strict, root)
     jobs = [MatrixJob(path, tuple(args.profile), args.policy, root, args.strict, shared)
             for path in args.files]
@@ -301,7 +301,7 @@ def _check_output(path: str) -> None:
 
 
 def _check_backend(name: str) -> None:
-    from effects.backend import available_backends
+    from effects.program.backend import available_backends
     known = available_backends()
     if name not in known:
         raise UsageError(f"effects render: error: unknown back end {name!r} "
@@ -311,7 +311,7 @@ def _check_backend(name: str) -> None:
 def _cmd_render(args, console: Console) -> int:
     import time
     from PIL import Image
-    from effects.errors import NoValidTechnique
+    from effects.base.errors import NoValidTechnique
     from effects.host.runtime import render_frame
     from effects.host.semantics import parse_assignments
     size = _parse_size(args.size)
@@ -339,7 +339,7 @@ def _cmd_render(args, console: Console) -> int:
     try:
         Image.fromarray(image, "RGBA").save(args.output)
     except (OSError, ValueError) as exc:
-        from effects.errors import Location, SceneError
+        from effects.base.errors import Location, SceneError
         raise SceneError(f"cannot write the image: {exc}", Location(args.output, 1, 1)) from None
     card = profile.display_name or profile.name
     print(f"rendered {frame.technique.name or '<anonymous>'} on {card} ({frame.passes} "
@@ -482,8 +482,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
         _one_blas_thread(args)
-        # compiled shaders and matrix rows are kept on disk between commands (effects/disk_store.py)
-        from effects import disk_store
+        # compiled shaders and matrix rows are kept on disk between commands (effects/base/disk_store.py)
+        from effects.base import disk_store
         disk_store.enable()
         try:
             code = args.run(args, _LazyConsole())

@@ -5,7 +5,7 @@ passes and every rejected technique's reasons (`report.matrix_job`). Run again o
 that did not change, the command reads its rows back instead of loading and validating the
 effects again, as a linter keeps its results per file; a file that changed is loaded and
 validated as ever, and its new row kept. Entries live in the command line's store
-(`effects.disk_store`: the folder, its bounds and safety, `EFFECTS_CACHE=off`).
+(`effects.base.disk_store`: the folder, its bounds and safety, `EFFECTS_CACHE=off`).
 
 Correctness: a row is found by the SHA-256 of everything its making read: the effect file's
 bytes, its path as given and its real path, the folder the command runs in (paths in reasons
@@ -32,12 +32,26 @@ import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from effects import disk_store, limits, untrusted
-from effects.errors import EffectError
+from effects.base import disk_store, limits, untrusted
+from effects.base.errors import EffectError
 
 if TYPE_CHECKING:  # pragma: no cover
-    from effects.cli.report import MatrixJob
     from effects.model import Effect
+
+
+@dataclass(frozen=True)
+class MatrixJob:
+    """One effect file's rows of `effects matrix`, as a worker process makes them: the cards by
+    name (a forked worker finds them loaded; another loads them), the policy as written."""
+
+    path: str
+    profiles: tuple[str, ...]
+    policy: str = "first"
+    include_root: str | None = None
+    strict: bool = False
+    store_key: str | None = None    # shared_key: where the row is kept (None: not)
+
+
 
 FORMAT = 1
 SETTLED_NS = 2_000_000_000        # a file written this recently may still be being written
@@ -63,10 +77,10 @@ def shared_key(profiles: tuple[str, ...], policy: str, strict: bool,
     """What every row of one command is found by besides its effect file (`MatrixJob.
     store_key`): the code, the limits, the folder, the cards and the options. None: the
     store is off, or a card is named by path (its rows are not kept)."""
-    from effects.bundled import PROFILE_FOLDER, names_a_profile_file
+    from effects.base.bundled import PROFILE_FOLDER, names_a_profile_file
     if not disk_store.enabled() or any(names_a_profile_file(n) for n in profiles):
         return None
-    from effects.errors import ProfileError
+    from effects.base.errors import ProfileError
     try:
         now = time.time_ns()
         cards = []

@@ -7,21 +7,21 @@ technique the policy refused (max-passes, max-cost), with the policy's reason.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Mapping, Sequence
 
-from effects.errors import EffectError
+from effects.base.errors import EffectError
 
 if TYPE_CHECKING:  # pragma: no cover
     # the cards' reader (and PyYAML) loads where cards are read: a matrix whose rows are all
     # stored (matrix_store) reads none
-    from effects.caps import CapsProfile
+    from effects.d3d9.caps import CapsProfile
     # rich loads when a table is drawn (the command line's console is made on first use)
     from rich.console import Console
     # Validation (and numpy with it) loads when a table needs it: `effects profiles` does not.
     from effects.model import Effect, Technique
     from effects.validate.select import PolicyLike
     from effects.validate.technique import Validation
+    from effects.cli.matrix_store import MatrixJob
 
 
 def technique_name(tech: Technique | None) -> str:
@@ -130,24 +130,11 @@ def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
     return out
 
 
-@dataclass(frozen=True)
-class MatrixJob:
-    """One effect file's rows of `effects matrix`, as a worker process makes them: the cards by
-    name (a forked worker finds them loaded; another loads them), the policy as written."""
-
-    path: str
-    profiles: tuple[str, ...]
-    policy: str = "first"
-    include_root: str | None = None
-    strict: bool = False
-    store_key: str | None = None    # matrix_store.shared_key: where the row is kept (None: not)
-
-
-def matrix_job(job: MatrixJob) -> dict | EffectError:
+def matrix_job(job: "MatrixJob") -> dict | EffectError:
     """`matrix()`'s entry for one effect file, or the error its load raised (returned, not
     raised: the command reports the first failing file in the order given). Where the
     command line's store is on, the entry is kept for the next command (matrix_store)."""
-    from effects.caps import list_profiles, load_profile
+    from effects.d3d9.caps import list_profiles, load_profile
     from effects.cli import matrix_store
     from effects.frontend.loader import load_effect
     found = matrix_store.inputs(job)
@@ -241,7 +228,7 @@ def print_profiles(profiles: Sequence[CapsProfile], console: Console) -> None:
     from rich.table import Table
     from rich.text import Text
 
-    from effects.caps import GENERATIONS
+    from effects.d3d9.caps import GENERATIONS
     ordered = sorted(profiles, key=lambda p: (GENERATIONS.index(p.generation), p.name))
     rows = [profile_row(p) for p in ordered]
     table = Table(header_style="bold", box=box.SIMPLE_HEAD, pad_edge=False)

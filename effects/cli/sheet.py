@@ -12,7 +12,7 @@ import os
 import textwrap
 from typing import Any, Sequence
 
-from effects.errors import Location, SceneError
+from effects.base.errors import Location, SceneError
 from effects.host.batch import Cell, CellJob, render_row, run_jobs
 
 _LABEL_H = 14           # a line of PIL's default bitmap font, with spacing

@@ -1,7 +1,7 @@
 """Raw records → the `Effect` model.
 
 `Builder` resolves types, types parameter values as numpy arrays, coerces state values through
-`effects.states` and reports unknown states (warnings, or errors when strict).
+`effects.d3d9.states` and reports unknown states (warnings, or errors when strict).
 
 Parameter values: numeric parameters are numpy arrays shaped (array dims) + () for a scalar,
 (n,) for a vector, (r, c) for a matrix; float/half/double are float32, bool is bool, and
@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 from lark import Token
 
-from effects.errors import Location, ParseError, StateError
+from effects.base.errors import Location, ParseError, StateError
 from effects.model import (Annotation, CompileShader, register_binding, Effect, Expression, Function, NullValue,
                            Parameter, ParamRef, Pass, SamplerState, ShaderBlock, StateAssignment,
                            Struct, Technique, TypeSpec, VertexDeclElement)
@@ -54,7 +54,7 @@ class Builder:
         self.param_names: set[str] = set()
         self.typedefs: dict[str, TypeSpec] = {}
         self.built: dict[str, Parameter] = {}   # parameters so far, for `[N]` and `= m[3][2]`
-        from effects import states  # the states table; imported late so the parser loads without it
+        from effects.d3d9 import states  # the states table; imported late so the parser loads without it
         self.states = states
 
     # -- locations and errors -------------------------------------------------------------
@@ -72,10 +72,10 @@ class Builder:
         return self.text[v.start:v.end]
 
     # -- the effect -----------------------------------------------------------------------
-    def build(self, items: list) -> Effect:
+    def build(self, items: list, effect_type: type[Effect] = Effect) -> Effect:
         path = self.pre.files[0] if self.pre.files else (
             self.smap.lines[0][0] if self.smap.lines else "<string>")
-        effect = Effect(path)
+        effect = effect_type(path)
         structs: set[str] = set()
         first_param: dict[str, Any] = {}
         for item in items:

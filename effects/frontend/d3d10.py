@@ -23,7 +23,7 @@ from __future__ import annotations
 import re
 from dataclasses import replace
 
-from effects.errors import EffectError, EffectWarning, ParseError
+from effects.base.errors import EffectError, EffectWarning, ParseError
 from effects.frontend.source import Preprocessed
 
 # Words only Direct3D 10/11 effects use: technique keywords, constant/texture buffers, state

@@ -4,8 +4,8 @@ from __future__ import annotations
 import os
 from typing import Callable, Mapping
 
-from effects import limits, untrusted
-from effects.errors import EffectError, Location, PreprocessError
+from effects.base import limits, untrusted
+from effects.base.errors import EffectError, Location, PreprocessError
 from effects.model import Effect
 
 IncludeHandler = Callable[[str, str], "str | None"]
@@ -33,8 +33,10 @@ def read_source_file(path: str) -> str:
 
 def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str, str] | None = None,
                 include_dirs=(), include_handler: IncludeHandler | None = None,
-                include_root: str | None = None, strict: bool = False) -> Effect:
-    """Load an effect file (or effect source text) into an `Effect`.
+                include_root: str | None = None, strict: bool = False,
+                effect_type: type[Effect] = Effect) -> Effect:
+    """Load an effect file (or effect source text) into an `Effect` (or the subclass
+    `effect_type`: `effects.load_effect` gives `effects.api.Effect`).
 
     Raises `EffectError` (located) for every problem in the input.
     """
@@ -53,7 +55,7 @@ def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str,
     pre = preprocess(text, path, defines=defines, include_dirs=tuple(include_dirs),
                      include_handler=include_handler, include_root=include_root)
     try:
-        effect = parse_effect(pre, strict=strict)
+        effect = parse_effect(pre, strict=strict, effect_type=effect_type)
     except EffectError:
         raise
     except RecursionError:

@@ -15,7 +15,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Callable, Mapping
 
-from effects.errors import Location, PreprocessError
+from effects.base.errors import Location, PreprocessError
 from effects.frontend.preprocess_tokens import (IDENT, MAX_TOKENIZED_CHARS, NO_HIDE, Span, Token, next_solid,
                                 strip_blanks, tokenize, word_after)
 

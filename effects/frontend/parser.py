@@ -19,7 +19,7 @@ import gc
 from lark import Token
 from lark.exceptions import LarkError, UnexpectedInput, UnexpectedToken, VisitError
 
-from effects.errors import EffectError, ParseError
+from effects.base.errors import EffectError, ParseError
 from effects.model import Effect
 from effects.frontend.builder import Builder
 from effects.frontend.d3d10 import d3d10_error, d3d10_shader_warning, skip_d3d10_techniques
@@ -36,7 +36,8 @@ __all__ = ["parse_effect", "EffectLexer", "TERMINAL_WORDS", "MAX_NESTING", "reso
 # Entry point
 
 
-def parse_effect(pre: Preprocessed, *, strict: bool = False) -> Effect:
+def parse_effect(pre: Preprocessed, *, strict: bool = False,
+                 effect_type: type[Effect] = Effect) -> Effect:
     """Parse preprocessed effect text into an `Effect`.
 
     Unknown state names become warnings in `effect.warnings` (a `StateError` when `strict`).
@@ -47,16 +48,16 @@ def parse_effect(pre: Preprocessed, *, strict: bool = False) -> Effect:
     collecting = gc.isenabled()
     gc.disable()
     try:
-        return _parse(pre, strict)
+        return _parse(pre, strict, effect_type)
     finally:
         if collecting:
             gc.enable()
 
 
-def _parse(pre: Preprocessed, strict: bool) -> Effect:
+def _parse(pre: Preprocessed, strict: bool, effect_type: type[Effect]) -> Effect:
     pre, skipped = skip_d3d10_techniques(pre)
     try:
-        effect = _parse_d3d9(pre, strict)
+        effect = _parse_d3d9(pre, strict, effect_type)
     except ParseError as exc:
         # a Direct3D 10/11 effect fails at its first fx_4_0 construct: say that, there
         raise d3d10_error(pre, exc) from None
@@ -68,7 +69,7 @@ def _parse(pre: Preprocessed, strict: bool) -> Effect:
     return effect
 
 
-def _parse_d3d9(pre: Preprocessed, strict: bool) -> Effect:
+def _parse_d3d9(pre: Preprocessed, strict: bool, effect_type: type[Effect]) -> Effect:
     lexer = EffectLexer(pre.text)
     try:
         items = lark_parser().parse(lexer)
@@ -89,7 +90,7 @@ def _parse_d3d9(pre: Preprocessed, strict: bool) -> Effect:
             line, col = lexer.end_position()
         raise pre.source_map.error(ParseError, f"syntax error: {exc}", line, col) from None
     try:
-        return Builder(pre, lexer, strict).build(items)
+        return Builder(pre, lexer, strict).build(items, effect_type)
     except EffectError as exc:  # errors from the states table come without the source line
         if exc.source_line is None:
             exc.source_line = pre.source_map.source_line(exc.location)

@@ -20,8 +20,8 @@ from dataclasses import dataclass, field
 from itertools import repeat
 from typing import Callable, Mapping, Sequence
 
-from effects import limits, untrusted
-from effects.errors import Location, PreprocessError
+from effects.base import limits, untrusted
+from effects.base.errors import Location, PreprocessError
 from effects.frontend.macros import MAX_ARGUMENT_PARENS, MAX_EXPANSION_TOKENS, MAX_MACRO_NESTING, MacroTable
 from effects.frontend.preprocess_expr import MAX_EXPRESSION_NESTING, evaluate_condition
 from effects.frontend.preprocess_tokens import BLANKS, MAX_TOKENIZED_CHARS, Span, tokenize, word_after

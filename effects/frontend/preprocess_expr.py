@@ -10,8 +10,8 @@ import operator
 import re
 from typing import Callable, Mapping
 
-from effects import limits
-from effects.errors import Location, PreprocessError
+from effects.base import limits
+from effects.base.errors import Location, PreprocessError
 from effects.frontend.macros import MacroTable
 from effects.frontend.preprocess_tokens import Span, Token, next_solid, tokenize
 

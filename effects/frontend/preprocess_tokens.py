@@ -10,7 +10,7 @@ import re
 from dataclasses import dataclass
 from typing import NamedTuple
 
-from effects.errors import Location
+from effects.base.errors import Location
 
 MAX_TOKENIZED_CHARS = 200_000   # a directive, or a line needing the full macro algorithm
 

@@ -142,7 +142,7 @@ def _state(s: StateAssignment, level: int) -> str:
 def _prefixed_enum(state: str, value: EnumValue) -> str:
     """Enum names that are not identifiers (`2WEIGHTS`) are written with their D3D prefix
     (`D3DVBF_2WEIGHTS`), which the states table also reads."""
-    from effects.states import lookup_state
+    from effects.d3d9.states import lookup_state
     info = lookup_state(state)
     prefix = info.enum.prefixes[0] if info is not None and info.enum is not None \
         and info.enum.prefixes else ""

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from typing import Iterator
 
-from effects.errors import Location
+from effects.base.errors import Location
 from effects.model import Effect, Parameter, ParamRef, Pass, SamplerState, StateAssignment
-from effects.states import lookup_state
+from effects.d3d9.states import lookup_state
 
 # a state's value type -> the parameter types it can name
 _OBJECT_TYPES = {"texture": ("texture",), "sampler": ("sampler",),

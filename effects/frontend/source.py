@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from effects.errors import EffectError, EffectWarning, Location
+from effects.base.errors import EffectError, EffectWarning, Location
 
 
 @dataclass

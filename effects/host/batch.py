@@ -26,7 +26,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 from typing import Any, Callable, Iterable, Sequence, TypeVar
 
-from effects.errors import EffectError, Location
+from effects.base.errors import EffectError, Location
 
 J = TypeVar("J")
 R = TypeVar("R")
@@ -163,7 +163,7 @@ def _backend(name: str) -> Any:
     pool already keeps every core busy."""
     backends = _LOCAL.__dict__.setdefault("backends", {})
     if name not in backends:
-        from effects.backend import create_backend
+        from effects.program.backend import create_backend
         try:
             backends[name] = create_backend(name, threads=1) if name in ("numpy", "reference") \
                 else create_backend(name)
@@ -178,8 +178,8 @@ def _backend(name: str) -> Any:
 def render_cell(job: CellJob) -> Cell:
     """The picture `job.profile` draws for `job.effect`, or the reason it draws none (the first
     reason of the first technique, or the error the render raised)."""
-    from effects.caps import load_profile
-    from effects.errors import NoValidTechnique
+    from effects.d3d9.caps import load_profile
+    from effects.base.errors import NoValidTechnique
     from effects.host.runtime import render_frame
     try:
         effect = _effect(job.effect)

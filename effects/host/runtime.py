@@ -33,21 +33,22 @@ from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
 
-from effects.host.assets import (DEFAULT_TEXTURE_CACHE, Geometry, MissingTexture, TextureCache,
+from effects.host.resources import (DEFAULT_TEXTURE_CACHE, Geometry, MissingTexture, TextureCache,
                                  TextureSource, check_texture_budget, declared_kind, geometry,
                                  resolve_texture, stand_in_texture)
-from effects import limits
-from effects.errors import EffectError, EffectWarning, Location, NoValidTechnique, SceneError
+from effects.base import limits
+from effects.base.errors import EffectError, EffectWarning, Location, NoValidTechnique, SceneError
 from effects.model import Effect, ParamRef, Parameter, SamplerState, Technique
 from effects.host.scene import MAX_SIZE, Scene, load_scene
 from effects.host.semantics import bind_scene, coerce_value, lookup_parameter, ui_defaults
 from effects.host.scripts import (cube_size, is_cube_target, is_render_target, target_format,
                                   target_size)
-from effects.host.textures import Texture, make_texture
+from effects.assets.textures import Texture, make_texture
+from effects.validate.technique import validate_technique
 
 if TYPE_CHECKING:  # pragma: no cover
-    from effects.caps import CapsProfile
-    from effects.passprogram import PassProgram
+    from effects.d3d9.caps import CapsProfile
+    from effects.program.passprogram import PassProgram
     from effects.validate.technique import Validation
 
 _BACKENDS: dict[str, Any] = {}   # back ends by name, made once (a GL context is costly)
@@ -58,7 +59,7 @@ def get_backend(backend: Any) -> Any:
     if not isinstance(backend, str):
         return backend
     if backend not in _BACKENDS:
-        from effects.backend import create_backend
+        from effects.program.backend import create_backend
         try:
             _BACKENDS[backend] = create_backend(backend)
         except EffectError:
@@ -78,7 +79,7 @@ def _as_effect(effect: Effect | str | os.PathLike) -> Effect:
 
 def _as_profile(profile: Any) -> "CapsProfile":
     if isinstance(profile, (str, os.PathLike)):
-        from effects.caps import load_profile
+        from effects.d3d9.caps import load_profile
         return load_profile(os.fspath(profile))
     return profile
 
@@ -407,7 +408,7 @@ class Runtime:
         technique = self.technique or self.technique_drawn
         if technique is None:
             return exc
-        validation = self.effect.validate(technique, self.profile)
+        validation = validate_technique(self.effect, technique, self.profile)
         if validation.ok or not validation.reasons:
             return exc
         reason = validation.reasons[0]

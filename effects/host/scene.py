@@ -7,7 +7,7 @@ offending value. Matrices follow Direct3D's conventions (row vectors, left-hande
 
 Keys beyond DESIGN.md's list:
 - `streams: {texcoord1: tangent, texcoord2: binormal}` — which mesh attribute feeds a vertex
-  stream (see `effects.host.assets`); it overrides the effect's own `string VertexStreams`.
+  stream (see `effects.host.resources`); it overrides the effect's own `string VertexStreams`.
 - `light: {direction: [x, y, z]}` — the direction the light travels (LIGHTDIRECTION); without
   it the light shines from its position towards the camera target.
 - `world: [16 numbers]` (row-major, D3D row-vector convention) and `time: seconds`.
@@ -23,8 +23,8 @@ from typing import Any, Mapping
 import numpy as np
 import yaml
 
-from effects import untrusted, yaml_input
-from effects.errors import Location, SceneError
+from effects.base import untrusted, yaml_input
+from effects.base.errors import Location, SceneError
 
 Color = tuple[float, float, float, float]
 MAX_SIZE = 8192
@@ -439,7 +439,7 @@ def _parse_light(scene: Scene, value: Any, at: Location, given: bool) -> None:
 
 def _parse_mesh(value: Any, at: Location) -> str | InlineMesh:
     if isinstance(value, str):
-        from effects.host.meshes import MESHES
+        from effects.assets.meshes import MESHES
         if value not in MESHES and not value.lower().endswith(".obj"):
             raise SceneError(f"unknown mesh {yaml_input.brief(value)} (known: {', '.join(MESHES)}, a .obj file, "
                              "or {primitive, vertices})", at)

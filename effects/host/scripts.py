@@ -22,7 +22,7 @@ Render-target textures are texture parameters with the `RenderColorTarget` or
 frame size, or `int2 Dimensions = {w, h}` (or `Width`/`Height`), default the frame's; their
 format `string Format = "..."` where a back end can render it (else A8R8G8B8). A technique with
 a `Script` annotation draws only what its script says; without one, every pass once, as D3DX.
-Each target is drawn in one back-end frame (`effects.backend`): switching targets ends the
+Each target is drawn in one back-end frame (`effects.program.backend`): switching targets ends the
 frame and the finished picture becomes that texture parameter's texture (one mip level).
 
 Cube render targets (FX Composer's spelling: `string ResourceType = "Cube"` on the target, or a
@@ -30,7 +30,7 @@ Cube render targets (FX Composer's spelling: `string ResourceType = "Cube"` on t
 their size is `int Width` (or `Dimensions`, square; default 256), and `string CubeOrigin = "P"`
 names the float3/float4 parameter the faces look out from (a light position).
 The draws a script makes into the cube are kept until the target is switched, then replayed
-into each of the six faces (`effects.backend.render_cube_faces`, D3D face order) with the host's
+into each of the six faces (`effects.program.backend.render_cube_faces`, D3D face order) with the host's
 view transform and every parameter with a transform semantic (WORLDVIEWPROJECTION, VIEW, ...)
 set to the face's: a left-handed look-at from the origin along CUBE_FACE_VIEWS, and a 90° square
 perspective over `float2 CubeDepthRange = {near, far}` (default {0.05, 100}).
@@ -38,22 +38,44 @@ perspective over `float2 CubeDepthRange = {near, far}` (default {0.05, 100}).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Mapping, Protocol
 
 import numpy as np
 
 import math
 
-from effects.backend import CUBE_FACE_VIEWS, TARGET_FORMATS, render_cube_faces
-from effects.errors import EffectError, EffectWarning, Location
+from effects.program.backend import CUBE_FACE_VIEWS, TARGET_FORMATS, render_cube_faces
+from effects.base.errors import EffectError, EffectWarning, Location
 from effects.model import Annotation, Effect, Parameter, Technique
-from effects.host.assets import Geometry
+from effects.host.resources import Geometry
 from effects.host.scene import look_at_lh, perspective_fov_lh
 from effects.host.semantics import bind_transforms
-from effects.host.textures import make_texture
+from effects.assets.textures import Texture, make_texture
+from effects.host.scene import Scene
 
 if TYPE_CHECKING:  # pragma: no cover
-    from effects.host.runtime import Runtime
+    from effects.program.passprogram import PassProgram
+
+
+class ScriptHost(Protocol):
+    """What a script needs of the runtime that runs it (`effects.host.runtime.Runtime`): the
+    effect with this render's values, the scene, the back end, and the draws it asks for."""
+
+    effect: Effect
+    scene: Scene
+    size: tuple[int, int]
+    strict: bool
+    warnings: list[EffectWarning]
+    backend: Any
+
+    def lower(self, technique: Technique, index: int,
+              host: Mapping[str, Any] | None = None) -> "PassProgram": ...
+    def draw_program(self, program: "PassProgram", geo: Geometry | None = None,
+                     backend: Any = None) -> None: ...
+    def used_texture(self, name: str, sampled_as: str | None = None) -> Texture: ...
+    def set_target_texture(self, name: str, texture: Texture) -> None: ...
+    def copy_runtime(self) -> "ScriptHost": ...
+    def scene_material_runtime(self) -> "ScriptHost": ...
 
 MAX_LOOP_COUNT = 256          # LoopByCount above this is an error, not a hang
 MAX_SCRIPT_DRAWS = 4096       # draws one frame's script may make
@@ -238,7 +260,7 @@ IDENTITY_HOST = {"WorldTransform": np.identity(4), "ViewTransform": np.identity(
 class ScriptRunner:
     """Runs one technique's script on a Runtime, frame by frame of the back end."""
 
-    def __init__(self, runtime: "Runtime", technique: Technique) -> None:
+    def __init__(self, runtime: ScriptHost, technique: Technique) -> None:
         self.rt = runtime
         self.technique = technique
         self.target: str | None = None          # the colour target (None: the back buffer)

@@ -26,7 +26,7 @@ from typing import Any, Callable, Iterable
 
 import numpy as np
 
-from effects.errors import Location, SceneError
+from effects.base.errors import Location, SceneError
 from effects.model import Effect, Parameter
 from effects.host.scene import Scene, d3dcolor
 
@@ -371,7 +371,7 @@ def _text_numbers(text: str) -> list[Any]:
 def coerce_value(param: Parameter, value: Any, at: Location | None = None, source: str = "") -> Any:
     """A user's value as the parameter holds it: a numpy array shaped like the parameter's
     type (float32 for float/half, int32 int, int64 DWORD, bool bool), a str for strings, and
-    for textures the value unchanged (a path or a Texture; `effects.host.assets` loads it).
+    for textures the value unchanged (a path or a Texture; `effects.host.resources` loads it).
     A value that does not fit raises SceneError at `at` (default: the declaration), its
     message starting with `source` ('--set', 'scene params') when given."""
     at = at or param.location
@@ -382,7 +382,7 @@ def coerce_value(param: Parameter, value: Any, at: Location | None = None, sourc
         return SceneError(f"{prefix}{describe(param, at)}: {why}", at)
 
     if param.type.takes_image:
-        from effects.host.textures import Texture
+        from effects.assets.textures import Texture
         if isinstance(value, Texture) or (isinstance(value, str) and value.strip()):
             return value.strip() if isinstance(value, str) else value
         raise fail(f"a {base} parameter takes an image path, not {value!r}")

@@ -3,11 +3,11 @@
 `lower_pass` takes the device state in force for the pass from the technique's `Validation`
 (`PassReport.state`: the state the validator checked, D3D9 defaults with earlier passes
 persisting), or, for a technique drawn without one (named by the caller, valid or not), plays
-the passes through `effects.device.pass_states` itself; it reads that state with the device
+the passes through `effects.d3d9.device.pass_states` itself; it reads that state with the device
 state's typed readers, resolves it into plain setups, and hands them to
 the lowerings: the texture-stage cascade (`lower_stages`), the fixed-function vertex pipeline
 (`lower_vertex`), or the shader-assembly lowering (`effects.shaders.asm.lower`) for passes with
-shaders. The profile picks the precision (`effects.precision`).
+shaders. The profile picks the precision (`effects.d3d9.precision`).
 
 Decisions both back ends rely on:
 - **Fog and the specular add are folded into the fragment program.** The vertex program
@@ -40,27 +40,27 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 import numpy as np
 
-from effects import states as state_table
-from effects.device import DeviceState, host_states, pass_states
-from effects.errors import EffectError, Location
+from effects.d3d9 import states as state_table
+from effects.d3d9.device import DeviceState, host_states, pass_states
+from effects.base.errors import EffectError, Location
 from effects.shaders.asm import assemble_cached
 from effects.lower.preshaders import evaluate_expressions, evaluate_into
 from effects.shaders.asm import lower as asm_lower
-from effects.ir import Builder
+from effects.program.ir import Builder
 from effects.lower.stages import (FogSetup, FragmentInputs, StageSetup, active_stages, apply_fog,
                                   lower_cascade)
 from effects.lower.vertex import (PHONG_SLOTS, LightSetup, TexCoordSetup, VertexSetup,
                                    lower_pixel_lighting, lower_vertex, pixel_lighting)
 from effects.model import (CompileShader, Effect, NullValue, Parameter, ParamRef,
                     RecordedReads, ShaderBlock, StateAssignment, Technique, still_holds)
-from effects.passprogram import PassProgram, RenderState, TextureBinding
-from effects.precision import lowering_options
-from effects.stage_ops import MAX_STAGES, TCI_MODES, TCI_SET_MASK, TCI_SHIFT, TTFF_PROJECTED
-from effects.states import VERTEX_TEXTURE_SAMPLER0
+from effects.program.passprogram import PassProgram, RenderState, TextureBinding
+from effects.d3d9.precision import lowering_options
+from effects.d3d9.stage_ops import MAX_STAGES, TCI_MODES, TCI_SET_MASK, TCI_SHIFT, TTFF_PROJECTED
+from effects.d3d9.states import VERTEX_TEXTURE_SAMPLER0
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.shaders.asm import AsmProgram
-    from effects.caps import CapsProfile
+    from effects.d3d9.caps import CapsProfile
     from effects.validate.technique import Validation
 
 CACHE_SIZE = 256

@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Any
 
-from effects.device import DeviceState
+from effects.d3d9.device import DeviceState
 from effects.model import Effect, Expression, ParamRef, StateAssignment
 from effects.shaders.hlsl.preshader import shader_element, state_value
 

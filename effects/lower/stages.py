@@ -15,7 +15,7 @@ The rules are semantics.md section 1 (Wine's FFP fragment generator and DXVK, te
 - PREMODULATE returns Arg1, and the next stage reads CURRENT as current * its own texture
   (DXVK and Nine; Wine ignores it).
 
-Every op is one row of `effects.stage_ops.STAGE_OPS`: the caps bit that validation checks, the arguments it reads
+Every op is one row of `effects.d3d9.stage_ops.STAGE_OPS`: the caps bit that validation checks, the arguments it reads
 (for the missing-texture rule), whether the texture is sampled without a TEXTURE argument, and
 its formula over vec4 values. Saturation is written into the formulas exactly where the
 semantics table says "sat"; a fixed-point card then quantises each stage result
@@ -32,11 +32,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
-from effects.errors import EffectError, Location
-from effects.ir import Builder
-from effects.precision import LoweringOptions
+from effects.base.errors import EffectError, Location
+from effects.program.ir import Builder
+from effects.d3d9.precision import LoweringOptions
 
-from effects.stage_ops import (BUMP_OPS, MAX_STAGES, STAGE_OPS, TA_ALPHAREPLICATE,  # noqa: F401
+from effects.d3d9.stage_ops import (BUMP_OPS, MAX_STAGES, STAGE_OPS, TA_ALPHAREPLICATE,  # noqa: F401
                                 TA_COMPLEMENT, TA_CONSTANT, TA_CURRENT, TA_DIFFUSE, TA_SELECTMASK,
                                 TA_SPECULAR, TA_TEMP, TA_TEXTURE, TA_TFACTOR, TTFF_COUNT_MASK,
                                 TTFF_PROJECTED, StageOp, Value, alpha_replicate,

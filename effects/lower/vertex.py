@@ -31,10 +31,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from effects.ir import Builder
+from effects.program.ir import Builder
 from effects.lower.stages import FogSetup, fog_factor
-from effects.passprogram import DirectionalLight, PixelLighting
-from effects.stage_ops import TTFF_COUNT_MASK
+from effects.program.passprogram import DirectionalLight, PixelLighting
+from effects.d3d9.stage_ops import TTFF_COUNT_MASK
 
 Vec4 = tuple[float, float, float, float]
 Value = int

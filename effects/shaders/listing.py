@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from effects.errors import EffectError, Location
+from effects.base.errors import EffectError, Location
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.model import Effect, Technique

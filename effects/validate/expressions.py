@@ -22,10 +22,10 @@ from typing import Any
 
 import numpy as np
 
-from effects.device import DeviceState
-from effects.errors import EffectError, Location
+from effects.d3d9.device import DeviceState
+from effects.base.errors import EffectError, Location
 from effects.model import Effect, EnumValue, Expression, ParamRef, RecordedReads
-from effects.states import lookup_state
+from effects.d3d9.states import lookup_state
 from effects.validate.values import spelled
 
 _SHADERS = ("VertexShader", "PixelShader")     # judged by the shader checks (shader_element)

@@ -12,8 +12,8 @@ from typing import Any
 
 import numpy as np
 
-from effects import states as state_table
-from effects.device import is_on
+from effects.d3d9 import states as state_table
+from effects.d3d9.device import is_on
 from effects.model import EnumValue, Expression, ParamRef
 from effects.validate.values import spelled
 

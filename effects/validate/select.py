@@ -26,8 +26,8 @@ from typing import Union
 
 import numpy as np
 
-from effects.caps import CapsProfile
-from effects.errors import EffectError, Location
+from effects.d3d9.caps import CapsProfile
+from effects.base.errors import EffectError, Location
 from effects.model import Effect, Technique
 from effects.validate.technique import Validation, validate_technique
 

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from effects.caps import CapsProfile
-from effects.errors import EffectError, Location
+from effects.d3d9.caps import CapsProfile
+from effects.base.errors import EffectError, Location
 from effects.model import CompileShader, ShaderBlock
 
 

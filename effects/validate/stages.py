@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from effects.stage_ops import (MAX_STAGES, STAGE_OPS, TA_ALPHAREPLICATE, TA_COMPLEMENT, TA_CONSTANT,
+from effects.d3d9.stage_ops import (MAX_STAGES, STAGE_OPS, TA_ALPHAREPLICATE, TA_COMPLEMENT, TA_CONSTANT,
                                TA_CURRENT, TA_SELECTMASK, TA_TEMP, StageOp)
 
 def _stage_op(op: str) -> StageOp | None:

@@ -40,10 +40,10 @@ without a value. Point sizes are judged against MaxPointSize where the profile g
 
 The checks live in one module per job, each a mixin of the pass checker here: `stages`
 (fixed-function stages), `textures` (textures, samplers, formats), `framebuffer` (one loop
-over the states whose row in `effects.states` names the caps field that limits them: blend,
+over the states whose row in `effects.d3d9.states` names the caps field that limits them: blend,
 compare, stencil, cull, depth and raster states), `shaders` (shader versions, assembly,
 limits); `values` spells state values. Values are read with the device state's typed readers
-(`effects.device`), the ones lowering uses, and each pass's device state is kept in its
+(`effects.d3d9.device`), the ones lowering uses, and each pass's device state is kept in its
 PassReport for lowering to draw from. This module holds the answer types, the pass checker's
 helpers and run order, and the card quirk rules.
 """
@@ -52,9 +52,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable, Sequence
 
-from effects.caps import FIELDS, CapsProfile, Quirk, bit_prefix
-from effects.device import NO_DEFAULT, DeviceState, pass_states
-from effects.errors import EffectError, Location
+from effects.d3d9.caps import FIELDS, CapsProfile, Quirk, bit_prefix
+from effects.d3d9.device import NO_DEFAULT, DeviceState, pass_states
+from effects.base.errors import EffectError, Location
 from effects.frontend.references import pass_reference_problems
 from effects.model import Effect, EnumValue, Expression, NullValue, ParamRef, Pass, Technique
 from effects.validate.expressions import ExpressionValues
@@ -64,7 +64,7 @@ from effects.validate.shaders import ShaderChecks, software_vs_version
 from effects.validate.stages import StageChecks
 from effects.validate.textures import TextureChecks, texture_kind
 from effects.validate.vertex_textures import VertexTextureChecks
-from effects.stage_ops import TA_TEXTURE
+from effects.d3d9.stage_ops import TA_TEXTURE
 from effects.validate.values import _is_indexed, spelled
 
 __all__ = ["PassReport", "Reason", "Validation", "software_vs_version", "spelled", "texture_kind",
@@ -302,7 +302,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
 
     def need_bit(self, caps_field: str, bit: str, subject: str, location: Location) -> None:
         """Fail unless the card reports `bit` in `caps_field` and no error quirk disowns it;
-        messages name the bit with its header prefix (`effects.caps.bit_prefix`)."""
+        messages name the bit with its header prefix (`effects.d3d9.caps.bit_prefix`)."""
         table = FIELDS[caps_field].table or {}
         prefix = bit_prefix(caps_field)
         if bit not in table:  # a value no caps bit covers (Direct3D 9Ex additions ...)

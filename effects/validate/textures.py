@@ -10,16 +10,16 @@ from typing import Any
 
 import numpy as np
 
-from effects import states as state_table
-from effects.caps import FIELDS, FORMATS
-from effects.errors import EffectError
+from effects.d3d9 import states as state_table
+from effects.d3d9.caps import FIELDS, FORMATS
+from effects.base.errors import EffectError
 from effects.model import Effect, Parameter, ParamRef, ShaderBlock
-from effects.stage_ops import (MAX_SAMPLERS, TA_TEXTURE, TCI_CAMERA_SPACE, TCI_SHIFT,
+from effects.d3d9.stage_ops import (MAX_SAMPLERS, TA_TEXTURE, TCI_CAMERA_SPACE, TCI_SHIFT,
                                TTFF_COUNT_MASK, TTFF_PROJECTED)
 from effects.validate.stages import _args_read, _stage_op
 from effects.validate.values import spelled
 
-# The filter and address bits each value needs are the sampler states' rows in effects.states
+# The filter and address bits each value needs are the sampler states' rows in effects.d3d9.states
 # (StateInfo.limit); the field depends on the texture's kind. Filter caps field per texture
 # kind (a card without the field uses TextureFilterCaps).
 _LIMITS = {name: state_table.lookup_state(name).limit

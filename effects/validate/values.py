@@ -1,11 +1,11 @@
 """State values as the validator shows them: enum spellings as the docs write them, and
 whether a state is indexed. (Values are read with the device state's typed readers,
-`effects.device.DeviceState.get_*`, the ones lowering uses.)"""
+`effects.d3d9.device.DeviceState.get_*`, the ones lowering uses.)"""
 from __future__ import annotations
 
 from functools import lru_cache
 
-from effects import states as state_table
+from effects.d3d9 import states as state_table
 
 
 @lru_cache(maxsize=4096)

@@ -26,8 +26,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from effects.errors import EffectError, Location
-from effects.states import VERTEX_TEXTURE_SAMPLER0
+from effects.base.errors import EffectError, Location
+from effects.d3d9.states import VERTEX_TEXTURE_SAMPLER0
 from effects.validate.textures import _annotation_str, texture_kind
 
 _TEXTURE_READS = frozenset({"texldl"})

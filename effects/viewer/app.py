@@ -27,7 +27,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from effects.errors import EffectError
+from effects.base.errors import EffectError
 from effects.viewer.reload import LoadedEffect, Reloader, ReloadResult, build_effect, effect_builder, error_text, loaded_warnings
 from effects.viewer.state import DIFFERENCE_SCALE, MESHES, VIEWS, ViewerState
 
@@ -79,7 +79,7 @@ class Viewer:
 
     def __init__(self, options: ViewerOptions, *, on_frame: Callable[[FrameEvent], None] | None = None,
                  output: Callable[[str], None] = say) -> None:
-        from effects.caps import list_profiles, load_profile
+        from effects.d3d9.caps import list_profiles, load_profile
         from effects.viewer.panel import Status
         self.options = options
         self.on_frame = on_frame
@@ -149,7 +149,7 @@ class Viewer:
         w.mouse_position_event_func = self.imgui.mouse_position_event
         w.unicode_char_entered_func = self.imgui.unicode_char_entered
         w.resize_func = self._resize
-        from effects.backend import create_backend
+        from effects.program.backend import create_backend
         from effects.viewer.draw import Blitter, ReferenceRenderer
         self.backend = create_backend("gl", context=self.ctx)
         self.blitter = Blitter(self.ctx)
@@ -506,11 +506,11 @@ class Viewer:
 def run_viewer(options: ViewerOptions) -> int:
     """Open the viewer; returns the process exit code."""
     if options.mesh not in MESHES and not options.mesh.lower().endswith(".obj"):
-        from effects.errors import Location, SceneError
+        from effects.base.errors import Location, SceneError
         raise SceneError(f"unknown mesh {options.mesh!r} (meshes: {', '.join(MESHES)}, or a "
                          ".obj file)", Location("<--mesh>", 1, 1))
     if options.view not in VIEWS:
-        from effects.errors import Location, SceneError
+        from effects.base.errors import Location, SceneError
         raise SceneError(f"unknown view {options.view!r} (views: {', '.join(VIEWS)})",
                          Location("<--view>", 1, 1))
     viewer = Viewer(options)

@@ -153,7 +153,7 @@ class ReferenceRenderer:
             start = time.perf_counter()
             try:
                 if self._backend is None:
-                    from effects.backend import create_backend
+                    from effects.program.backend import create_backend
                     self._backend = create_backend("numpy")
                 image, error = render_effect(loaded, scene, self._backend), None
             except BaseException as exc:  # noqa: BLE001 - shown in the panel

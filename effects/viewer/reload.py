@@ -27,15 +27,15 @@ import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable
 
-from effects.errors import EffectError, Location
+from effects.base.errors import EffectError, Location
 # Re-exported: the viewer, tests and benchmarks import the watcher's names from here.
 from effects.viewer.watch import (DEBOUNCE_S, MAX_DELAY_S, POLL_ONLY_S, POLL_SAFETY_S,  # noqa: F401
                     SETTLE_S, Watcher, content_hash)
 
 if TYPE_CHECKING:  # pragma: no cover
-    from effects.caps import CapsProfile
+    from effects.d3d9.caps import CapsProfile
     from effects.model import Effect, Technique
-    from effects.passprogram import PassProgram
+    from effects.program.passprogram import PassProgram
     from effects.validate.technique import Validation
 
 # ---------------------------------------------------------------------------------------------
@@ -51,7 +51,7 @@ def referenced_files(effect: "Effect") -> list[str]:
     """Image files the effect's texture parameters name, resolved against the effect's folder:
     `string ResourceName = "file"` and the image argument of `string Procedural = "gen:file"`.
     Missing files are listed too (creating one is a change worth seeing)."""
-    from effects.host.textures import PROCEDURAL, _is_path
+    from effects.assets.textures import PROCEDURAL, _is_path
     base = os.path.dirname(os.path.abspath(effect.files[0])) if effect.files else os.getcwd()
     found: list[str] = []
     for param in effect.parameters:

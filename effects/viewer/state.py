@@ -13,7 +13,7 @@ from effects.viewer.reload import BuildSettings
 from effects.host.scene import Camera, Light, Scene
 
 if TYPE_CHECKING:  # pragma: no cover
-    from effects.caps import CapsProfile
+    from effects.d3d9.caps import CapsProfile
 
 MESHES = ("sphere", "torus", "cube", "teapot", "quad")
 VIEWS = ("gl", "reference", "difference")
@@ -92,7 +92,7 @@ class ViewerState:
 
     @property
     def profile(self) -> "CapsProfile":
-        from effects.caps import load_profile
+        from effects.d3d9.caps import load_profile
         if self.card not in self._profiles:
             self._profiles[self.card] = load_profile(self.card)
         return self._profiles[self.card]

@@ -8,7 +8,7 @@ Limits come from versions.py and costs from instructions.py (sources named there
 """
 from __future__ import annotations
 
-from effects.errors import AsmError, Location
+from effects.base.errors import AsmError, Location
 from effects.shaders.asm.instructions import versions_having
 from effects.shaders.asm.program import AsmProgram, Instruction, Operand
 from effects.shaders.asm.ps1_rules import PS1Rules

@@ -23,10 +23,10 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, Mapping
 
-from effects import limits
+from effects.base import limits
 
-from effects.errors import AsmError
-from effects.ir import MAX_LOOP_COUNT
+from effects.base.errors import AsmError
+from effects.program.ir import MAX_LOOP_COUNT
 from effects.shaders.asm.rewrites import COMPARE
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -142,7 +142,7 @@ def _divergent(instr: Instruction) -> bool:
 def iteration_problems(program: Any, int_constants: Mapping[int, Any] | None = None
                        ) -> list[AsmError]:
     """Nested rep / loop blocks whose counts (defi, else `int_constants`, the pass's i#)
-    multiply past the `shader_loop_iterations` limit (effects.limits): the reference
+    multiply past the `shader_loop_iterations` limit (effects.base.limits): the reference
     evaluator and GL would run them all."""
     found, counts = [], []
     for instr in program.instructions:

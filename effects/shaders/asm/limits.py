@@ -8,7 +8,7 @@ from __future__ import annotations
 from functools import lru_cache
 from typing import Any, Iterator, Mapping
 
-from effects.errors import AsmError, Location
+from effects.base.errors import AsmError, Location
 from effects.model import ShaderBlock
 from effects.shaders.asm.parser import assemble
 from effects.shaders.asm.program import AsmProgram

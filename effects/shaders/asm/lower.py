@@ -61,11 +61,11 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
-from effects.errors import AsmError
-from effects.ir import COMPONENTS, OUTPUTS, Builder, Program
+from effects.base.errors import AsmError
+from effects.program.ir import COMPONENTS, OUTPUTS, Builder, Program
 from effects.model import VertexDeclElement
-from effects.precision import LoweringOptions
-from effects.states import VERTEX_TEXTURE_SAMPLER0
+from effects.d3d9.precision import LoweringOptions
+from effects.d3d9.states import VERTEX_TEXTURE_SAMPLER0
 from effects.shaders.asm import flow
 from effects.shaders.asm.instructions import Handler, NoCode, NotLowered, Rewrite
 from effects.shaders.asm.program import AsmProgram, Instruction, Operand

@@ -14,8 +14,8 @@ import re
 from dataclasses import dataclass
 from functools import lru_cache
 
-from effects import limits
-from effects.errors import AsmError, Location
+from effects.base import limits
+from effects.base.errors import AsmError, Location
 from effects.model import ShaderBlock
 from effects.shaders.asm.instructions import COMPARISONS, is_known, lookup, rows_named
 from effects.shaders.asm.program import (AsmProgram, ConstantDef, Declaration, Instruction, Operand,

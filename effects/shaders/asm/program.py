@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING
 
-from effects.errors import Location, UNKNOWN_LOCATION
+from effects.base.errors import Location, UNKNOWN_LOCATION
 from effects.shaders.asm.instructions import InstrInfo
 from effects.shaders.asm.versions import IDENTITY, VersionRules
 

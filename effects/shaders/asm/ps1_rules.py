@@ -13,7 +13,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # pragma: no cover
-    from effects.errors import Location
+    from effects.base.errors import Location
     from effects.shaders.asm.program import AsmProgram
 
 _PS1_TEXM_FINAL3 = ("texm3x3tex", "texm3x3spec", "texm3x3vspec", "texm3x3")

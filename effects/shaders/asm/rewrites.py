@@ -24,7 +24,7 @@ from __future__ import annotations
 
 from typing import Any, Callable, Mapping, Union
 
-from effects.ir import COMPONENTS, Builder
+from effects.program.ir import COMPONENTS, Builder
 
 Tree = Union[str, float, tuple]
 
@@ -52,7 +52,7 @@ NEGATE: Tree = ("neg", "x")
 
 # -- instruction modifiers: applied to the result "x" in this order ----------------------------
 # shift, then _sat (Wine and DXVK order, semantics.md 2.3), then the card's register range and
-# fixed-point grid (the profile's precision, effects.precision). Each row: (name, tree); the
+# fixed-point grid (the profile's precision, effects.d3d9.precision). Each row: (name, tree); the
 # lowering binds "scale", "range", "neg_range" and "grid" and skips rows whose switch is off.
 # Each row carries its condition (as nir_opt_algebraic rows do), over the write's facts `w`:
 # w.shift, w.saturate (the instruction's), w.computed (an arithmetic result, not a texel),
@@ -169,5 +169,5 @@ class Emitter:
         if head == "quantize":
             bits, signed, scale = env["grid"]
             return self.b.quantize(self.emit(rest[0], env), bits, signed, scale)
-        # any other head is an IR op by name: its row in effects.ir.OPS is all it needs
+        # any other head is an IR op by name: its row in effects.program.ir.OPS is all it needs
         return self.b.emit(head, *(self.emit(t, env) for t in rest))

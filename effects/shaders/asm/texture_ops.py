@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from effects.errors import AsmError
+from effects.base.errors import AsmError
 from effects.shaders.asm.rewrites import BEM
 
 if TYPE_CHECKING:  # pragma: no cover

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
-from effects.errors import Location
+from effects.base.errors import Location
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.values import Value, component, operand, split

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 from typing import Any
 
-from effects.errors import Location, UNKNOWN_LOCATION
+from effects.base.errors import Location, UNKNOWN_LOCATION
 
 _SAMPLER_DCL = {"2d": "2d", "1d": "2d", "3d": "volume", "cube": "cube"}
 

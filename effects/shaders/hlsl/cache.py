@@ -27,8 +27,8 @@ import re
 from functools import lru_cache
 from typing import Any, Callable
 
-from effects.errors import EffectError
-from effects.lru import ByteLRU
+from effects.base.errors import EffectError
+from effects.base.lru import ByteLRU
 from effects.model import CompileShader, Effect, RecordedReads
 
 CACHE_BYTES = 64 << 20
@@ -220,7 +220,7 @@ def cached_compile(effect: Any, value: CompileShader, compile: Callable[[], Any]
     a cached error is raised again. Where the on-disk store is enabled (store.py: the command
     line), a shader stored by an earlier process for the same inputs is used first, found by
     a key that needs no parse of the effect's declarations."""
-    from effects import disk_store
+    from effects.base import disk_store
     from effects.shaders.hlsl import store
     stored = store.key(key_parts(effect, value, []), declarations(effect), value.location) \
         if disk_store.enabled() else None

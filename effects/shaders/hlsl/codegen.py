@@ -19,7 +19,7 @@ Each instruction keeps the HLSL location of the node it comes from.
 from __future__ import annotations
 
 
-from effects.errors import Location
+from effects.base.errors import Location
 from effects.shaders.asm.versions import IDENTITY
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg, Src

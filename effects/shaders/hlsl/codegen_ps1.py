@@ -22,7 +22,7 @@ at the HLSL expression; slot counts are left to the assembler's checks like hand
 """
 from __future__ import annotations
 
-from effects.errors import Location
+from effects.base.errors import Location
 from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.dag import Node, Operand, reachable

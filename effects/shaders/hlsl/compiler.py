@@ -16,7 +16,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from effects.errors import Location
+from effects.base.errors import Location
 from effects.model import Effect
 from effects.shaders.asm import AsmProgram
 # CompiledShader lives in shader.py and compile_state in cache.py: a cached shader needs no

@@ -13,7 +13,7 @@ from typing import Any
 import lark
 import numpy as np
 
-from effects.errors import EffectWarning, Location
+from effects.base.errors import EffectWarning, Location
 from effects.model import Effect, Function, Parameter
 from effects.shaders.asm import lookup
 from effects.shaders.asm.versions import VERSIONS, VersionRules

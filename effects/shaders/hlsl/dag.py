@@ -16,7 +16,7 @@ from typing import Any, Callable, Iterable
 
 import numpy as np
 
-from effects.errors import Location, UNKNOWN_LOCATION
+from effects.base.errors import Location, UNKNOWN_LOCATION
 
 
 @dataclass(eq=False)

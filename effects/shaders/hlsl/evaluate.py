@@ -16,7 +16,7 @@ from typing import Any
 
 import lark
 
-from effects.errors import Location
+from effects.base.errors import Location
 from effects.shaders.hlsl.arith import Arith
 from effects.shaders.hlsl.calls import inline_call
 from effects.shaders.hlsl.expressions import evaluate_expr

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from typing import Any, Callable
 
-from effects.errors import Location
+from effects.base.errors import Location
 from effects.shaders.hlsl.dag import Operand, host_computable, reachable
 from effects.shaders.hlsl.types import BOOL, FLOAT, HType, shape_of, vector
 from effects.shaders.hlsl.lvalues import store

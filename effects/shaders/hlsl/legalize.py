@@ -13,7 +13,7 @@ from __future__ import annotations
 from functools import lru_cache
 from typing import Any
 
-from effects.errors import Location, UNKNOWN_LOCATION
+from effects.base.errors import Location, UNKNOWN_LOCATION
 from effects.shaders.asm.versions import IDENTITY, PS20_SWIZZLES
 from effects.shaders.hlsl.asmcode import Generated, Instr, Reg, Src, _SAMPLER_DCL
 

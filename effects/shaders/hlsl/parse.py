@@ -12,7 +12,7 @@ from typing import Any
 
 import lark
 
-from effects.errors import EffectError, EffectWarning, Location
+from effects.base.errors import EffectError, EffectWarning, Location
 
 
 class HlslError(EffectError):

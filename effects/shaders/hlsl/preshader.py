@@ -20,13 +20,13 @@ from typing import Any
 
 import numpy as np
 
-from effects.errors import EffectError, Location
+from effects.base.errors import EffectError, Location
 from effects.model import Effect, ParamRef
 from effects.shaders.hlsl.dag import Operand, host_computable, reachable
 from effects.shaders.hlsl.parse import Origin, parse
 from effects.shaders.hlsl.shader import PRESHADER_NAME, ShaderPreshader
 from effects.shaders.hlsl.types import scalar, vector
-from effects.states import lookup_state
+from effects.d3d9.states import lookup_state
 
 # `<Light>` / `<Lights[2]>`: the effect syntax for a parameter reference inside an expression.
 # The brackets are blanked to spaces, so every column of the text stays where it was.

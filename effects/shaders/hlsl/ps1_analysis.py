@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from effects.errors import Location
+from effects.base.errors import Location
 from effects.shaders.hlsl.dag import Node, Operand
 from effects.shaders.hlsl.parse import HlslError
 from effects.shaders.hlsl.ps1_asm import FULL, Home

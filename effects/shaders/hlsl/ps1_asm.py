@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from effects.errors import Location, UNKNOWN_LOCATION
+from effects.base.errors import Location, UNKNOWN_LOCATION
 from effects.shaders.hlsl.asmcode import Generated, Instr, Reg
 from effects.shaders.hlsl.parse import HlslError
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from effects.errors import EffectWarning, Location, UNKNOWN_LOCATION
+from effects.base.errors import EffectWarning, Location, UNKNOWN_LOCATION
 from effects.shaders.hlsl.asmcode import Instr, Reg
 from effects.shaders.hlsl.dag import Node
 from effects.shaders.hlsl.parse import HlslError

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from effects.errors import AsmError, EffectWarning, Location
+from effects.base.errors import AsmError, EffectWarning, Location
 from effects.model import ShaderBlock
 from effects.shaders.asm import AsmProgram, assemble
 

@@ -2,14 +2,14 @@
 
 The in-memory compile cache (cache.py) lasts one process; every `effects matrix` run compiled
 each effect's `compile` states again (~60 ms of its ~0.5 s, plus the HLSL front end's import
-and grammar). Entries live in the command line's store (`effects.disk_store`: the folder, its
+and grammar). Entries live in the command line's store (`effects.base.disk_store`: the folder, its
 bounds and safety, `EFFECTS_CACHE=off`), enabled for the length of a command.
 
 Correctness: an entry is found by the SHA-256 of everything a compile reads (`key`): the
 compile key of cache.py without its "do all declarations load" flag, with every struct,
 typedef and function declaration of the effect instead (that flag is made from them); the
 `compile` state's location (errors are located there); every resource limit in force
-(`effects.limits`); and the code doing the compiling (`disk_store.fingerprint`). A value the
+(`effects.base.limits`); and the code doing the compiling (`disk_store.fingerprint`). A value the
 key cannot spell exactly (an object it knows no canonical form for) keeps that compile off the
 disk.
 
@@ -24,9 +24,9 @@ from __future__ import annotations
 import dataclasses
 from typing import Any
 
-from effects import disk_store
-from effects.disk_store import Unkeyable
-from effects.errors import EffectError, EffectWarning, Location
+from effects.base import disk_store
+from effects.base.disk_store import Unkeyable
+from effects.base.errors import EffectError, EffectWarning, Location
 
 FORMAT = 1
 
@@ -35,7 +35,7 @@ def key(parts: tuple, declarations: tuple, location: Location) -> str | None:
     """The entry name for a compile: `parts` and `declarations` as cache.key_parts and
     cache.declarations give them for the `compile` state at `location`. None when some input
     has no exact spelling (that compile is not stored)."""
-    from effects import limits
+    from effects.base import limits
     try:
         path, target, function, args, where, reached = parts
         # the walk finds the reached declarations in an order that follows string hashing,
@@ -156,7 +156,7 @@ def _encode(result: Any) -> dict:
     if isinstance(result, EffectError):
         cls = type(result).__name__
         if cls not in _ERRORS or type(result).__module__ not in (
-                "effects.errors", "effects.shaders.hlsl.parse"):
+                "effects.base.errors", "effects.shaders.hlsl.parse"):
             raise Unkeyable(cls)
         return {"error": cls, "message": result.message,
                 "location": _loc(result.location), "source_line": result.source_line}
@@ -192,8 +192,8 @@ def _decode(d: dict) -> Any:
         if cls_name == "HlslError":
             from effects.shaders.hlsl.parse import HlslError as cls
         else:
-            import effects.errors
-            cls = getattr(effects.errors, cls_name)
+            import effects.base.errors
+            cls = getattr(effects.base.errors, cls_name)
         return cls(d["message"], _unloc(d["location"]), source_line=d["source_line"])
     from effects.shaders.hlsl.shader import CompiledShader, assemble_generated
     function, target, text = d["function"], d["target"], d["text"]

@@ -1,4 +1,4 @@
-"""Tangent frames (and smooth normals) of a triangle mesh, as `effects.host.meshes` defines
+"""Tangent frames (and smooth normals) of a triangle mesh, as `effects.assets.meshes` defines
 them (its module docstring: Boyd and Taylor's per-triangle dP/du, dP/dv, area-weighted sums
 per vertex pooled across texture seams, then orthonormalised).
 

@@ -17,8 +17,8 @@ import codecs
 import os
 import stat
 
-from effects import limits
-from effects.errors import EffectError, Location
+from effects.base import limits
+from effects.base.errors import EffectError, Location
 
 _BOMS = [(codecs.BOM_UTF32_LE, "utf-32-le"), (codecs.BOM_UTF32_BE, "utf-32-be"),
          (codecs.BOM_UTF8, "utf-8"), (codecs.BOM_UTF16_LE, "utf-16-le"),

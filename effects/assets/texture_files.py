@@ -3,11 +3,11 @@
     @register(".ktx")
     def _ktx(path, where, kind): ...  -> Texture
 
-Bundled: images through Pillow (`effects.host.images`; A8R8G8B8, full mip chain), `.dds`
-through our reader (`effects.host.dds`: its own format, kind and mips), `.npy` raw texels
+Bundled: images through Pillow (`effects.assets.images`; A8R8G8B8, full mip chain), `.dds`
+through our reader (`effects.assets.dds`: its own format, kind and mips), `.npy` raw texels
 (H, W, C), (6, H, W, C) cube or (D, H, W, C) volume, uint8 (A8R8G8B8) or float
 (A32B32G32R32F), C = L, LA, RGB or RGBA. Every loader checks the texture limits
-(`effects.limits`) from the file's header, before the texels are allocated.
+(`effects.base.limits`) from the file's header, before the texels are allocated.
 """
 from __future__ import annotations
 
@@ -16,11 +16,11 @@ from typing import Callable
 
 import numpy as np
 
-from effects import limits, untrusted
-from effects.errors import Location, SceneError
-from effects.host import dds
-from effects.host.images import read_image
-from effects.host.textures import KINDS, Texture, make_texture
+from effects.base import limits, untrusted
+from effects.base.errors import Location, SceneError
+from effects.assets import dds
+from effects.assets.images import read_image
+from effects.assets.textures import KINDS, Texture, make_texture
 
 Loader = Callable[[str, Location, "str | None"], Texture]
 LOADERS: dict[str, Loader] = {}

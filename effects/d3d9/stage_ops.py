@@ -1,6 +1,6 @@
 """The Direct3D texture-stage vocabulary that validation and lowering share: the D3DTA_*
 argument selectors and modifiers, the D3DTTFF_* flags, the D3DTSS_TCI_* texgen modes and the
-stage count (each named here from its row in `effects.states`, where it is defined once), and
+stage count (each named here from its row in `effects.d3d9.states`, where it is defined once), and
 one row per D3DTOP
 (`STAGE_OPS`): the caps bit that validation checks, the arguments it reads (for the
 missing-texture rule), whether it samples its texture without a TEXTURE argument, and its
@@ -15,8 +15,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Mapping, Protocol
 
-from effects.ir import Builder
-from effects.states import (D3DTA, D3DTEXTURETRANSFORMFLAGS, D3DTSS_TCI, MAX_SAMPLERS, MAX_STAGES,  # noqa: F401 (re-exported)
+from effects.program.ir import Builder
+from effects.d3d9.states import (D3DTA, D3DTEXTURETRANSFORMFLAGS, D3DTSS_TCI, MAX_SAMPLERS, MAX_STAGES,  # noqa: F401 (re-exported)
                             TCI_SHIFT)
 
 

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # pragma: no cover
-    from effects.caps import CapsProfile, Precision
+    from effects.d3d9.caps import CapsProfile, Precision
 
 # Generations whose fixed-function colour path is fixed point (stage results at 8 bits).
 FIXED_POINT_GENERATIONS = ("dx6", "dx7", "dx8", "dx8.1")

@@ -28,7 +28,7 @@ import os
 import sys
 from typing import Any
 
-from effects.errors import Location
+from effects.base.errors import Location
 
 FORMAT = 1
 MAX_ENTRY_BYTES = 2 << 20
@@ -96,7 +96,7 @@ def fingerprint() -> str:
     held = _state["fingerprint"]
     if held is not None:
         return held
-    root = os.path.dirname(os.path.abspath(__file__))
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))   # the whole package
     h = hashlib.sha256()
     h.update(f"{FORMAT}|{sys.version}|{sys.implementation.cache_tag}".encode())
     stack = [root]

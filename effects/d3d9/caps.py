@@ -56,9 +56,9 @@ from typing import Any, Callable, Mapping
 
 import yaml
 
-from effects import limits, untrusted, yaml_input
-from effects.bundled import PROFILE_FOLDER, names_a_profile_file
-from effects.errors import Location, ProfileError
+from effects.base import limits, untrusted, yaml_input
+from effects.base.bundled import PROFILE_FOLDER, names_a_profile_file
+from effects.base.errors import Location, ProfileError
 
 PROFILE_DIR = Path(PROFILE_FOLDER).resolve()
 

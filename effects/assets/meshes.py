@@ -10,7 +10,7 @@ A `Mesh` is an indexed triangle list. Conventions:
   differences; summed per vertex, weighted by triangle area; then each frame is made
   orthonormal: tangent T = normalize(dP/du - N (N . dP/du)), binormal B = s * (N x T) with
   s = +1 or -1 so that B points the way v grows (s is -1 where the mapping is mirrored).
-  Normal maps therefore store (-dh/du, -dh/dv, 1) in (T, B, N) (see `effects.host.textures`).
+  Normal maps therefore store (-dh/du, -dh/dv, 1) in (T, B, N) (see `effects.assets.textures`).
 - Seams: vertices duplicated at a texture seam (same position, same normal, UVs that differ by
   whole numbers, as at u = 0 and u = 1 of a sphere) pool their sums, so the frame is continuous
   across the seam, as the chapter warns ("tangents need to be averaged, and be careful about
@@ -25,10 +25,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from effects import limits, untrusted
-from effects.errors import Location, SceneError
-from effects.host import obj_fast
-from effects.host.tangents import tangent_frames
+from effects.base import limits, untrusted
+from effects.base.errors import Location, SceneError
+from effects.assets import obj_fast
+from effects.assets.tangents import tangent_frames
 
 
 @dataclass
@@ -85,7 +85,7 @@ def compute_tangent_frames(mesh: Mesh, *, recompute_normals: bool = False) -> Me
 
     Normals, when computed, are area-weighted face normals summed over every vertex at the same
     position (smooth shading; a model wanting creases supplies its own normals). Tangent frames
-    are computed as the module docstring says (`effects.host.tangents`).
+    are computed as the module docstring says (`effects.assets.tangents`).
     """
     given = None if recompute_normals or not np.any(mesh.normals) else mesh.normals
     normals, tangents, binormals = tangent_frames(mesh.positions, mesh.uv, mesh.indices, given)

@@ -8,8 +8,8 @@ bundled kind well under 1 GiB of memory and a few seconds, and are far above wha
 effects, profiles and scenes use.
 
 A host raises a limit with the environment (`EFFECTS_LIMIT_TEXTURE_TEXELS=67108864`, read
-when a limit is looked up) or in code, `effects.limits.set_limit("texture_texels", N)`, or for
-a block, `with effects.limits.raised(texture_texels=N): ...`.
+when a limit is looked up) or in code, `effects.base.limits.set_limit("texture_texels", N)`, or for
+a block, `with effects.base.limits.raised(texture_texels=N): ...`.
 """
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Iterator
 
-from effects.errors import EffectError, Location
+from effects.base.errors import EffectError, Location
 
 
 @dataclass(frozen=True)
@@ -121,7 +121,7 @@ def message(name: str, amount: int, subject: str) -> str:
     limit = LIMITS[name]
     return (f"{subject} has {amount:,} {limit.unit}; the limit is {get(name):,} "
             f"(limit {name}: raise it with {env_name(name)}=N or "
-            f"effects.limits.set_limit({name!r}, N))")
+            f"effects.base.limits.set_limit({name!r}, N))")
 
 
 def check(name: str, amount: int, location: Location, subject: str,

@@ -1,4 +1,4 @@
-"""The fast path of `effects.host.meshes.load_obj`: a whole .obj read at once, vectorised.
+"""The fast path of `effects.assets.meshes.load_obj`: a whole .obj read at once, vectorised.
 
 Most .obj files are regular: `v x y z`, `vt u v`, `vn x y z` lines, then triangles `f a b c`
 whose corners all share one form (`v`, `v/vt`, `v//vn` or `v/vt/vn`) with positive indices.

@@ -1,4 +1,4 @@
-"""DirectDraw Surface (.dds) files: the header around surfaces of `effects.host.pixel_formats`.
+"""DirectDraw Surface (.dds) files: the header around surfaces of `effects.d3d9.formats`.
 
 File layout (Microsoft, "DDS programming guide"): the magic "DDS ", a 124-byte DDS_HEADER
 holding a 32-byte DDS_PIXELFORMAT, then the surfaces: for a cube map each face (+X, -X, +Y,
@@ -13,12 +13,12 @@ import struct
 
 import numpy as np
 
-from effects import limits, untrusted
-from effects.errors import Location, SceneError
-from effects.host.pixel_formats import (BY_CODE, DDPF_ALPHA, DDPF_ALPHAPIXELS, DDPF_BUMPDUDV,
+from effects.base import limits, untrusted
+from effects.base.errors import Location, SceneError
+from effects.d3d9.formats import (BY_CODE, DDPF_ALPHA, DDPF_ALPHAPIXELS, DDPF_BUMPDUDV,
                                          DDPF_BUMPLUMINANCE, DDPF_FOURCC, TABLE, PixelFormat,
                                          fourcc_code, pack, pixel_format, surface_bytes, unpack)
-from effects.host.textures import Texture
+from effects.assets.textures import Texture
 
 # ---------------------------------------------------------------------------------------------
 # The file

@@ -13,8 +13,8 @@ import warnings
 
 import numpy as np
 
-from effects import limits, untrusted
-from effects.errors import Location, SceneError
+from effects.base import limits, untrusted
+from effects.base.errors import Location, SceneError
 
 
 def read_image(path: str, mode: str, where: Location, what: str = "image") -> np.ndarray:

@@ -4,7 +4,7 @@ Texture parameters, first source that applies wins:
   1. a value the user gives (`render(params=)`, `--set Name=path` relative to the current
      folder, the scene's `params` relative to the scene file), a path or a `Texture`;
   2. `string ResourceName = "file"`, relative to the effect file;
-  3. `string Procedural = "generator:argument"` (`effects.host.textures.procedural`; an `int Width`
+  3. `string Procedural = "generator:argument"` (`effects.assets.textures.procedural`; an `int Width`
      annotation gives the size of generators that take one);
   4. nothing: the parameter stays unbound; the runtime draws a stand-in of its kind
      (`stand_in_texture`) with a warning, or fails when strict. A `ResourceName` file that is
@@ -14,7 +14,7 @@ The kind comes from the parameter's type (`textureCUBE`) or its `string Type` an
 takes the kind of what was loaded. Loaded files are cached by (path, modification time), so a
 viewer reload does not read unchanged images again.
 
-Vertex streams from a mesh (names as in `effects.backend`): position, normal, tangent,
+Vertex streams from a mesh (names as in `effects.program.backend`): position, normal, tangent,
 binormal; color0 = the scene's vertex diffuse (default opaque white) and color1 = its vertex
 specular (default 0), as a D3D9 vertex without those components reads; texcoord0..7 = the
 mesh's uv. Which attribute feeds a stream can be changed:
@@ -26,7 +26,7 @@ mesh's uv. Which attribute feeds a stream can be changed:
 Attributes: position, normal, tangent, binormal, uv (texture coordinates), diffuse,
 specular, uv_occlusion (u, v and the vertex's ambient occlusion, the layout of the chapter's
 hemisphere shaders, which read the occlusion from v7.z; cast over the mesh on first use by
-`effects.host.occlusion`, 0 for inline vertices), and for inline scene vertices also tex0..tex7.
+`effects.assets.occlusion`, 0 for inline vertices), and for inline scene vertices also tex0..tex7.
 """
 from __future__ import annotations
 
@@ -37,17 +37,17 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from effects.errors import Location, SceneError
-from effects.host.meshes import Mesh, by_name
-from effects.host.occlusion import vertex_occlusion
-from effects.host import brdf as _brdf  # noqa: F401  (registers the brdf_factor procedural)
+from effects.base.errors import Location, SceneError
+from effects.assets.meshes import Mesh, by_name
+from effects.assets.occlusion import vertex_occlusion
+from effects.assets import brdf as _brdf  # noqa: F401  (registers the brdf_factor procedural)
 from effects.model import Effect, Parameter
 from effects.host.scene import InlineMesh, Scene
-from effects import limits
-from effects.lru import DEFAULT_TEXTURE_BYTES, ByteLRU
-from effects.host.texture_files import load_texture
-from effects.host.textures import PROCEDURAL, Texture, procedural
-from effects.untrusted import confine
+from effects.base import limits
+from effects.base.lru import DEFAULT_TEXTURE_BYTES, ByteLRU
+from effects.assets.texture_files import load_texture
+from effects.assets.textures import PROCEDURAL, Texture, procedural
+from effects.base.untrusted import confine
 
 STREAM_NAMES = ("position", "normal", "tangent", "binormal", "color0", "color1",
                 "blendweight", "blendindices", "psize",   # DX8 v1, v2, v4 without dcl

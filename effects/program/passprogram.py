@@ -12,7 +12,7 @@ from typing import Mapping
 
 import numpy as np
 
-from effects.ir import IRError, Program
+from effects.program.ir import IRError, Program
 
 Color = tuple[float, float, float, float]
 

@@ -1,7 +1,7 @@
 """Textures the effects sample: the `Texture` container, mip chains, quantisation, procedural
-generators (so no large image is committed); files load through `effects.host.texture_files`.
+generators (so no large image is committed); files load through `effects.assets.texture_files`.
 
-Conventions (all of this module, `effects.host.pixel_formats` and `effects.host.dds`):
+Conventions (all of this module, `effects.d3d9.formats` and `effects.assets.dds`):
 - A `Texture` holds DECODED texel values, float32, RGBA in the last axis: what a card's sampler
   returns for each stored texel ([0, 1] for unsigned formats, [-1, 1] for the signed bump
   formats, any float for the float formats). Where the format quantises, the values are exactly
@@ -17,7 +17,7 @@ Conventions (all of this module, `effects.host.pixel_formats` and `effects.host.
       +Z: u = ( x/|z| + 1)/2, v = (-y/|z| + 1)/2      -Z: u = (-x/|z| + 1)/2, v = (-y/|z| + 1)/2
   `cube_face_uv` and `cube_directions` are that mapping and its inverse.
 - Normal maps store 0.5 + 0.5 * n with n in tangent space (T = dP/du, B = dP/dv, N): the
-  frame `effects.host.meshes` computes. A height field h(u, v) raises the surface along N, so its
+  frame `effects.assets.meshes` computes. A height field h(u, v) raises the surface along N, so its
   normal is proportional to (-dh/du, -dh/dv, 1) whatever the handedness of (T, B, N).
 """
 from __future__ import annotations
@@ -28,12 +28,12 @@ from typing import Callable
 
 import numpy as np
 
-from effects import limits
-from effects.untrusted import confine
-from effects.host import pixel_formats
-from effects.host.images import read_image
-from effects.lru import ByteLRU
-from effects.errors import Location, SceneError
+from effects.base import limits
+from effects.base.untrusted import confine
+from effects.d3d9 import formats as pixel_formats
+from effects.assets.images import read_image
+from effects.base.lru import ByteLRU
+from effects.base.errors import Location, SceneError
 
 KINDS = ("1d", "2d", "3d", "cube")
 
@@ -72,7 +72,7 @@ class Texture:
 def encode(values: np.ndarray, format: str) -> np.ndarray:
     """`values` (..., 4) as `format` stores them: the decoded values a card would sample.
 
-    Channels the format lacks read as the format's defaults (see `effects.host.pixel_formats`).
+    Channels the format lacks read as the format's defaults (see `effects.d3d9.formats`).
     """
     return pixel_formats.quantize(values, pixel_formats.pixel_format(format))
 
@@ -360,7 +360,7 @@ def sobel_normal_map(height: np.ndarray, scale: float = 1.0) -> np.ndarray:
 
     n = normalize(-scale * dX, -scale * dY, 1) from the Sobel sums (`sobel_gradients`). Persson
     forms (dX, dY, 1); the minus signs make the normal lean away from rising height in the
-    tangent frame T = dP/du, B = dP/dv that `effects.host.meshes` computes (bumps look raised).
+    tangent frame T = dP/du, B = dP/dv that `effects.assets.meshes` computes (bumps look raised).
     """
     dx, dy = sobel_gradients(height)
     n = np.stack([-scale * dx, -scale * dy, np.ones_like(dx)], axis=-1)
@@ -522,7 +522,7 @@ def _sobel_dudv(heights: np.ndarray, scale: float) -> np.ndarray:
 
 def _with_openness(normals: np.ndarray, heights: np.ndarray, scale: float) -> np.ndarray:
     """The normal map with alpha = 1 - occlusion (`heightfield.horizon_occlusion`)."""
-    from effects.host.heightfield import horizon_occlusion
+    from effects.assets.heightfield import horizon_occlusion
     out = normals.copy()
     out[..., 3] = 1.0 - horizon_occlusion(heights, scale=scale)
     return out
@@ -621,7 +621,7 @@ def procedural(name: str, *, size: int | None = None, base_dir: str | None = Non
     `base_dir`), 'power_table:16', 'normalization_cube:32'. `size` overrides the default edge
     length (an edge-length argument wins over it). Results are cached (image arguments by file
     modification time) and read-only. With `root` (the effect's include root) an image argument
-    must lie inside it (`effects.untrusted.confine`). Problems raise `SceneError` at `location`."""
+    must lie inside it (`effects.base.untrusted.confine`). Problems raise `SceneError` at `location`."""
     where = location or Location(f"procedural:{name}", 1, 1)
     base, _, arg = name.partition(":")
     entry = PROCEDURAL.get(base)

@@ -4,7 +4,7 @@ Everything that reads or writes a state assignment (parser, validator, lowering,
 printer) asks this module: which states exist, what `[n]` means for each, which type its
 value has, which enum names it takes, what the device default is, and which D3DCAPS9 field
 limits the values a card accepts (`StateInfo.limit`, read by the validator; the bit names
-and their header prefixes are `effects.caps`' tables).
+and their header prefixes are `effects.d3d9.caps`' tables).
 
 Sources (facts only, restated here):
 - state names and their order: Wine `dlls/d3dx9_36/effect.c` `state_table`;
@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from effects.errors import Location, StateError
+from effects.base.errors import Location, StateError
 from effects.model import (CompileShader, EnumValue, Expression, NullValue, ParamRef, SamplerState,
                     ShaderBlock)
 

@@ -23,10 +23,10 @@ from typing import Any, Iterator, Mapping
 
 import numpy as np
 
-from effects.errors import EffectError, Location
+from effects.base.errors import EffectError, Location
 from effects.model import (Effect, EnumValue, Expression, NullValue, ParamRef, Pass, SamplerState,
                            StateAssignment)
-from effects import states as state_table
+from effects.d3d9 import states as state_table
 
 Color = tuple[float, float, float, float]
 NO_DEFAULT: Any = object()   # a reader given no default raises (a public sentinel: validation

@@ -3,8 +3,8 @@
 One table, `FORMATS`, says how each D3DFORMAT stores a texel: its bit fields (shift, width,
 encoding, which RGBA channels they feed) and what a sampler reads for the channels the format
 lacks. `pack`/`unpack` turn decoded float texels into stored words and back, so quantisation
-lives in one place. The .dds reader and writer (`effects.host.dds`) and the texture container
-(`effects.host.textures`) both read it; it reads neither, so neither imports the other.
+lives in one place. The .dds reader and writer (`effects.assets.dds`) and the texture container
+(`effects.assets.textures`) both read it; it reads neither, so neither imports the other.
 
 Decoded values (what a card's sampler returns), per ../shared/reference/semantics.md §1.7:
 - unsigned normalised fields: q / (2^n - 1);

@@ -19,8 +19,8 @@ from typing import Any
 
 import yaml
 
-from effects import limits
-from effects.errors import EffectError, Location
+from effects.base import limits
+from effects.base.errors import EffectError, Location
 
 _reprs = reprlib.Repr()
 _reprs.maxstring = _reprs.maxother = 60

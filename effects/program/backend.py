@@ -1,6 +1,6 @@
 """What every back end implements, and the registry that names them.
 
-A back end draws lowered passes (`effects.passprogram.PassProgram`) into a frame:
+A back end draws lowered passes (`effects.program.passprogram.PassProgram`) into a frame:
 
     backend = create_backend("numpy")
     backend.begin_frame((256, 256), clear_color=(0, 0, 0, 1))
@@ -13,7 +13,7 @@ A back end draws lowered passes (`effects.passprogram.PassProgram`) into a frame
   through as the varying of the same name.
 - `indices`: (M,) or (M, 3) vertex indices; `primitive`: 'list', 'strip' or 'fan' (triangle
   strips alternate winding as Direct3D's do; see `triangle_list`).
-- `textures`: TextureBinding.texture name -> `effects.host.textures.Texture`.
+- `textures`: TextureBinding.texture name -> `effects.assets.textures.Texture`.
 - The frame's render target persists across draws (multipass accumulation). Its format is
   A8R8G8B8 unless `begin_frame(format=...)` names one of `TARGET_FORMATS`; `end_frame` returns
   uint8 RGBA for the 8-bit formats and float32 RGBA for the float ones (channels a format lacks
@@ -26,8 +26,8 @@ from typing import Callable, Mapping, Protocol, runtime_checkable
 
 import numpy as np
 
-from effects.errors import EffectError
-from effects.passprogram import PassProgram
+from effects.base.errors import EffectError
+from effects.program.passprogram import PassProgram
 
 PRIMITIVES = ("list", "strip", "fan")
 # Render-target formats: name -> (float?, channels stored)

@@ -24,7 +24,7 @@ from typing import Callable
 
 import numpy as np
 
-from effects.host.textures import PROCEDURAL, Procedural, cube_directions, cube_face_uv, make_texture
+from effects.assets.textures import PROCEDURAL, Procedural, cube_directions, cube_face_uv, make_texture
 
 SIZE = 16            # cube face edge of the fit (the maps are resampled to their own size)
 SAMPLES = 30000      # direction pairs fitted
@@ -154,7 +154,7 @@ def lookup(maps: np.ndarray, d: np.ndarray) -> np.ndarray:
 
 
 # The procedural row: 'brdf_factor:MODEL:FACTOR' (registered here, where the factorisation is;
-# effects.host.assets imports this module).
+# effects.host.resources imports this module).
 PROCEDURAL["brdf_factor"] = Procedural(
     lambda a, s, h: make_texture(brdf_factor_texture(a, s), "X8R8G8B8", kind="cube", mips=False),
     64, "phong:light", "McCool-Ang-Ahmad factor cube map MODEL:view|light|half, X8R8G8B8")
