@@ -11,7 +11,7 @@ eye, as the file's LocalViewer says) against the same pass lit by the normalised
 (`ReferenceBackend(phong="normalised")`), and the Gouraud technique, on one thread.
 
 `--errors` prints instead the series' error against exact Phong as the vertex normals spread
-(tests/test_fast_phong.py asserts it): per span the median and worst over 150 light (or half)
+(tests/looks/test_fast_phong.py asserts it): per span the median and worst over 150 light (or half)
 directions within 75 degrees of the triangle's mean normal, for the diffuse term and for the
 specular at the paper's exponents and table sizes.
 

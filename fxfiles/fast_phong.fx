@@ -7,7 +7,7 @@
 // the same lighting by the paper's Taylor form (a second-order series of N.L/|N| and
 // N.H/(|N||H|) per triangle, the power from an 8K table), with the eye at infinity or, as
 // LocalViewer = True says here, at a finite distance (backends/reference/taylor_lighting.py;
-// the error against exact Phong: tests/test_shade_phong.py). Techniques in fallback order:
+// the error against exact Phong: tests/looks/test_shade_phong.py). Techniques in fallback order:
 //
 //   Phong      ShadeMode = Phong: per-pixel lighting (refrast only)
 //   Gouraud    the same lighting per vertex, interpolated (every card)

@@ -286,7 +286,7 @@ def _reflect(n: np.ndarray, v: np.ndarray | None, L: np.ndarray, light: Light) -
     return light.ambient + light.diffuse * diffuse + light.specular * n_dot_h ** light.exponent
 
 
-# -- Measuring the series against exact Phong (tests/test_fast_phong.py, and
+# -- Measuring the series against exact Phong (tests/looks/test_fast_phong.py, and
 # benchmarks/bench_fast_phong.py --errors print the whole curve)
 
 SPREADS = ("cone", "strip")

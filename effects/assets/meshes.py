@@ -349,7 +349,7 @@ def teapot(divisions: int = 8) -> Mesh:
     # Newell's data is z-up; rotate to y-up, (x, y, z) -> (x, z, -y), centre and scale.
     p = np.stack([p[:, 0], p[:, 2] - 1.575, -p[:, 1]], axis=1) * 0.3
     # In Newell's data every patch's (column, row) parametrisation faces outwards, so the grid
-    # winding needs no per-patch flip (tests/test_meshes.py checks that each patch faces out).
+    # winding needs no per-patch flip (tests/assets/test_meshes.py checks that each patch faces out).
     tris = _drop_degenerate(tris, p)
     return make_mesh(p, np.concatenate(uvs), tris, None, name="teapot")
 

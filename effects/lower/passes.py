@@ -523,7 +523,7 @@ _RENDER_FIELDS: dict[str, tuple[str, Callable[[Any], Any] | None]] = {
 
 def read_render_state(state: DeviceState) -> RenderState:
     """The pass's RenderState from the device state; every RenderState field has a row above
-    (tests/test_states.py checks that the defaults agree with the states table)."""
+    (tests/d3d9/test_states.py checks that the defaults agree with the states table)."""
     values = {}
     for name, (state_name, convert) in _RENDER_FIELDS.items():
         value = state.read(state_name)
