@@ -144,12 +144,25 @@ def _add_matrix(sub) -> None:
     p.add_argument("--render", metavar="SHEET.png",
                    help="also draw the contact sheet: each cell the picture the card draws, or why not")
     p.add_argument("--size", metavar="WxH", default="96x96", help="cell size for --render (default 96x96)")
-    p.add_argument("--scene", metavar="SCENE.yaml",
-                   help="scene for --render (default: NAME.yaml beside NAME.fx, else the default scene)")
+    _add_scene(p, "scene for --render")
     p.add_argument("--backend", "-b", default="numpy", metavar="NAME", help="back end for --render")
     _add_batch(p)
     _add_confinement(p)
     p.set_defaults(run=_cmd_matrix)
+
+
+def _add_scene(p, what: str) -> None:
+    """--scene and --no-scene: NAME.yaml beside NAME.fx is the effect's scene for every
+    command (effects.host.scene.scene_for)."""
+    p.add_argument("--scene", "-s", metavar="SCENE.yaml",
+                   help=f"{what} (default: NAME.yaml beside NAME.fx, else the default scene)")
+    p.add_argument("--no-scene", dest="scene_beside", action="store_false",
+                   help="ignore NAME.yaml beside NAME.fx: the default scene")
+
+
+def _scene(args, path: str) -> str | None:
+    from effects.host.scene import scene_for
+    return scene_for(path, args.scene, beside=args.scene_beside)
 
 
 def _add_batch(p) -> None:
@@ -177,7 +190,7 @@ def _cmd_matrix(args, console: Console) -> int:
             raise UsageError(f"effects matrix: error: --size {args.size!r}: cells are 1 to 1024 pixels a side")
         names = list(args.profile) or cards   # as given: workers load them
         render_sheet(list(args.files), names, args.render, size=size, scene=args.scene,
-                     backend=args.backend, policy=args.policy, jobs=args.jobs,
+                     scene_beside=args.scene_beside, backend=args.backend, policy=args.policy, jobs=args.jobs,
                      scheduler=args.scheduler, progress=not args.json)
         if not args.json:
             console.print(f"contact sheet: {len(args.files)} effects x {len(cards)} cards "
@@ -261,7 +274,7 @@ def _add_render(sub) -> None:
                    help="render this technique, valid on the card or not (default: the card's choice)")
     p.add_argument("--backend", "-b", default="numpy", metavar="NAME",
                    help="numpy (the reference rasteriser, default) or gl")
-    p.add_argument("--scene", "-s", metavar="SCENE.yaml", help="mesh, camera, light, params ...")
+    _add_scene(p, "mesh, camera, light, params ...")
     p.add_argument("--size", metavar="WxH", help="frame size, e.g. 320x240 (wins over the scene's)")
     p.add_argument("--set", dest="assignments", action="append", default=[], metavar="NAME=VALUE",
                    help="a parameter value: number, vector '1,0.5,0.25,1', true/false, "
@@ -323,7 +336,8 @@ def _cmd_render(args, console: Console) -> int:
     start = time.perf_counter()
     try:
         frame = render_frame(effect, profile, technique=args.technique, backend=args.backend,
-                             scene=args.scene, size=size, params=params, policy=args.policy,
+                             scene=_scene(args, args.file), size=size, params=params,
+                             policy=args.policy,
                              strict=args.strict)
     except NoValidTechnique as exc:
         # the load warnings first: they may say why (a Direct3D 10/11 shader file, ...)
@@ -406,7 +420,7 @@ def _add_doctor(sub) -> None:
     p.add_argument("--profile", "-p", default="radeon9700", metavar="P",
                    help="caps profile whose selected technique is examined (default: radeon9700)")
     p.add_argument("--technique", "-t", metavar="T", help="examine this technique instead")
-    p.add_argument("--scene", "-s", metavar="SCENE.yaml", help="the scene a render would use")
+    _add_scene(p, "the scene a render would use")
     p.add_argument("--set", dest="assignments", action="append", default=[], metavar="NAME=VALUE",
                    help="a parameter value, as render takes it (repeatable)")
     _add_preprocessor_options(p)
@@ -419,7 +433,8 @@ def _cmd_doctor(args, console: Console) -> int:
     from effects.host.semantics import parse_assignments
     effect = _load(args)
     profile = _profiles([args.profile])[0]
-    d = diagnose(effect, profile, scene=args.scene, params=parse_assignments(args.assignments),
+    d = diagnose(effect, profile, scene=_scene(args, args.file),
+                 params=parse_assignments(args.assignments),
                  technique=args.technique)
     print_diagnosis(d, args.file, profile.display_name or profile.name, console)
     return EXIT_OK
