@@ -539,6 +539,22 @@ def _fill_closed_streams() -> None:
 def main(argv: Sequence[str] | None = None) -> int:
     _fill_closed_streams()
     try:
+        return _main(argv)
+    except BrokenPipeError:
+        # `effects matrix --json | head`: the reader left (of stdout, or of stderr in `2>&1 |
+        # head` while an error was said). Say nothing, as Unix tools do, and point both at
+        # /dev/null so the interpreter's final flush does not complain.
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        for stream in (sys.stdout, sys.stderr):
+            os.dup2(devnull, stream.fileno())
+        os.close(devnull)
+        return EXIT_CLOSED_PIPE
+
+
+def _main(argv: Sequence[str] | None) -> int:
+    """The command, and what its errors say: main answers a closed pipe, here or while an
+    error is said."""
+    try:
         parser = build_parser()
         try:
             args = parser.parse_args(argv)
@@ -568,11 +584,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         return 130
     except BrokenPipeError:
-        # `effects matrix --json | head`: the reader left. Say nothing, as Unix tools do, and
-        # point stdout at /dev/null so the interpreter's final flush does not complain.
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        return EXIT_CLOSED_PIPE
+        raise                 # main's: not a bug of ours
     except Exception as exc:  # a bug of ours, not bad input: say so briefly
         if os.environ.get("EFFECTS_DEBUG"):
             raise

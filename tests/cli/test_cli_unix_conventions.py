@@ -234,6 +234,17 @@ def test_every_command_that_prints_exits_141_quietly_when_the_reader_leaves(argv
     assert err == ""
 
 
+@pytest.mark.parametrize("argv", [["validate", "missing.fx"], ["frobnicate"]])
+def test_an_error_said_into_a_pipe_the_reader_left_exits_141(argv):
+    """`effects validate missing.fx 2>&1 | head -1`: the error itself meets the closed pipe
+    (it was rich's SystemExit(1), raised while the error was said)."""
+    proc = subprocess.Popen([sys.executable, "-m", "effects", *argv], cwd=ROOT, env=_env(),
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    assert proc.stdout is not None
+    proc.stdout.close()
+    assert proc.wait(120) == 141
+
+
 # --- a closed stdout -----------------------------------------------------------------------------
 
 def test_render_with_stdout_closed_writes_the_png_and_drops_the_line(tmp_path):
