@@ -1,6 +1,6 @@
 """Tables a person reads: techniques × cards with reasons, the selection matrix, the cards.
 
-`matrix()` is also the JSON the command line prints (DESIGN.md's shape):
+`matrix()` is also the JSON the command line prints (docs/design.md's shape):
     {effect: {profile: {"technique": name|null, "passes": n, "rejected": {technique: [reason, ...]}}}}
 "rejected" lists every technique the card cannot run, with all its reasons, and each valid
 technique the policy refused (max-passes, max-cost), with the policy's reason.

@@ -7,10 +7,10 @@ D3DVERTEXTEXTURESAMPLER0..3; a format is usable when CheckDeviceFormat with
 D3DUSAGE_QUERY_VERTEXTEXTURE accepts it; VertexTextureFilterCaps says which filters these
 samplers take, never anisotropic; the LOD is the shader's, as texldl gives it; software vertex
 processing supports the feature, with the textures in the scratch pool). Which formats a card
-accepts is its profile's `vertextexture` usage: the GeForce 6800 R32F and A32B32G32R32F (caps.md
-2.14); ATI's Radeon X1000 parts report vs_3_0 and VertexTextureFilterCaps but accept no format
-(behardware.com "ATI's demos without vertex texturing", 2006; the radeonx1800 profile), so a
-vertex texture fails there whatever its format.
+accepts is its profile's `vertextexture` usage: the GeForce 6800 R32F and A32B32G32R32F
+(docs/reference/caps.md 2.14); ATI's Radeon X1000 parts report vs_3_0 and
+VertexTextureFilterCaps but accept no format (behardware.com "ATI's demos without vertex
+texturing", 2006; the radeonx1800 profile), so a vertex texture fails there whatever its format.
 
 Decisions:
 - A texture whose format the file does not declare (`string Format = "R32F"`) is not judged by

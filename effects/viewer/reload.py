@@ -1,7 +1,7 @@
 """Hot reload: rebuild an effect off the render thread when the files it was built from change.
 
-The habit (STYLE.md 11, after glslViewer's file-watcher thread): watch + debounce + content
-hash + build in a worker + swap on the render thread + keep the last good effect. Watching,
+The habit (docs/design.md habit 11, after glslViewer's file-watcher thread): watch + debounce +
+content hash + build in a worker + swap on the render thread + keep the last good effect. Watching,
 debouncing and hashing are `effects.viewer.watch` (its names are re-exported here); this module is
 the rest:
 
