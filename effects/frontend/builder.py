@@ -117,10 +117,27 @@ class Builder:
                 first = c[0][0] if c[0] else c[1]
                 effect.functions.append(Function(c[2].value, c[1].value,
                                                  self.text[first.start_pos:c[5].end_pos],
-                                                 self.loc(first), self.row_major_at(first.line)))
+                                                 self.loc(first), self.row_major_at(first.line),
+                                                 self.expanded_lines(first.line, c[5].end_line)))
         effect.warnings = self.warnings
         effect.files = tuple(self.pre.files)
         return effect
+
+    def expanded_lines(self, first: int, last: int) -> tuple:
+        """`Function.expanded` for text lines first..last: those macro expansion made."""
+        made = self.smap.expanded
+        if not made:
+            return ()
+        out = []
+        for line in range(first, last + 1):
+            pieces = made.get(line)
+            if pieces:
+                path = self.map_lines[line - 1][0]
+                texts = self.smap.texts.get(path, [])
+                written = tuple((n, texts[n - 1]) for n in sorted({p[1] for p in pieces})
+                                if 0 < n <= len(texts))
+                out.append((line - first + 1, pieces, written))
+        return tuple(out)
 
     def row_major_at(self, line: int) -> bool:
         """Whether `#pragma pack_matrix(row_major)` is in force at `line` of the text."""

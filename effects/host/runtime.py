@@ -132,22 +132,27 @@ def _selected(effect: Effect, profile: "CapsProfile", policy: Any) -> "Validatio
     `effects.render()` call makes a Runtime over a fresh copy of the parameters, and the copy
     shares the techniques. The selection is made again only when a parameter that validation
     read differs (`effects.model.RecordedReads`); the same Validation object comes back, so
-    the lowering cache (which keys on it) hits too."""
+    the lowering cache (which keys on it) hits too. A selection that fell past a technique
+    with a language error (`effects.validate.verdicts`) raises that located error instead."""
     from effects.model import RecordedReads, still_holds
-    from effects.validate.select import select_validation
+    from effects.validate.verdicts import selection
     try:
         key = (id(effect.techniques), id(profile), policy)
         hit = _SELECTIONS.get(key)
     except TypeError:   # an unhashable policy object: no memory
-        return select_validation(effect, profile, policy)
+        hit, key = None, None
     if hit is not None and hit[0] is effect.techniques and hit[1] is profile and still_holds(effect, hit[2]):
-        return hit[3]
-    reads = RecordedReads(effect)
-    chosen = select_validation(reads, profile, policy)  # type: ignore[arg-type]
-    _SELECTIONS.pop(key, None)
-    if len(_SELECTIONS) >= _SELECTIONS_SIZE:
-        _SELECTIONS.pop(next(iter(_SELECTIONS)))
-    _SELECTIONS[key] = (effect.techniques, profile, reads.snapshot(), chosen)
+        chosen, error = hit[3]
+    else:
+        reads = RecordedReads(effect)
+        chosen, error = selection(reads, profile, policy)  # type: ignore[arg-type]
+        if key is not None:
+            _SELECTIONS.pop(key, None)
+            if len(_SELECTIONS) >= _SELECTIONS_SIZE:
+                _SELECTIONS.pop(next(iter(_SELECTIONS)))
+            _SELECTIONS[key] = (effect.techniques, profile, reads.snapshot(), (chosen, error))
+    if error is not None:
+        raise error.with_traceback(None)   # the same error each time: no traceback piled on
     return chosen
 
 

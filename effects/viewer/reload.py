@@ -179,16 +179,21 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
 
     A forced `technique` is drawn when valid on the card; otherwise the card's selection is
     drawn and `forced_rejected` carries the forced one's reasons. Raises EffectError (located)
-    for a broken file, a missing texture, or a pass that cannot be lowered -- the last two are
-    kept in `prepare_error` instead with `keep_prepare_error` (a card change: the file is fine,
-    the panel shows why this card cannot draw it). `defer`: under the default policy, stop
+    for a broken file, a language error in the forced technique or in one the selection fell
+    past (`effects.validate.verdicts`; with `strict`, in any technique), a missing texture,
+    or a pass that cannot be lowered -- the last two are kept in `prepare_error` instead with
+    `keep_prepare_error` (a card change: the file is fine, the panel shows why this card
+    cannot draw it). `defer`: under the default policy, stop
     validating once the technique to draw is known (the first valid one in file order, or a
     valid forced one) and leave the rest `pending` (see LoadedEffect): a reload draws sooner
     when the fallbacks compile the edited function again for their own targets."""
     from effects.frontend.loader import load_effect
     from effects.validate.select import Policy, as_policy, choose
     from effects.validate.technique import validate_technique
+    from effects.validate.verdicts import check_language, language_error, passed_over
     effect = previous if previous is not None else load_effect(path, **load_options)
+    if previous is None and load_options.get("strict"):
+        check_language(effect)    # as D3DXCreateEffect: a language error fails the load
     # Every technique is validated once: the panel lists them all, and selection chooses
     # among these same answers (the first valid one in file order, for the default policy).
     validations = []
@@ -207,6 +212,9 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
                               f"{', '.join(t.name or '<anonymous>' for t in effect.techniques)})",
                               Location(path, 1, 1)) from None
         v = next(v for v in validations if v.technique is forced)
+        error = language_error(v)
+        if error is not None:   # the technique asked for is not HLSL: the reload fails
+            raise error.with_traceback(None)
         if v.ok:
             chosen, chosen_validation = forced, v
         else:
@@ -214,6 +222,11 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     if chosen is None:
         chosen_validation = choose(validations, policy)
         chosen = chosen_validation.technique if chosen_validation is not None else None
+        # a selection that fell past a language error fails the reload, shown in red like a
+        # parse error, and the last good effect stays on screen (effects.validate.verdicts)
+        error = passed_over(validations, chosen_validation, policy)
+        if error is not None:
+            raise error.with_traceback(None)
     programs = None
     prepare_error = None
     runtime = None

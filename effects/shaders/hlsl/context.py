@@ -86,7 +86,7 @@ def load_context(effect: Effect, target_name: str) -> Context:
         ctx.structs[s.name] = struct_type(ctx, tree, origin)
         ctx.struct_origins[s.name] = origin
     for f in effect.functions:
-        origin = Origin(f.location, f.source, row_major=f.row_major)
+        origin = Origin(f.location, f.source, row_major=f.row_major, expanded=f.expanded)
         tree = parse(f.source, "function_def", origin, names)
         ctx.functions.setdefault(f.name, []).append(FunctionDef(f.name, tree, origin, f))
     return ctx
