@@ -50,14 +50,15 @@ def passed_over(results: Sequence[Validation], chosen: Validation | None,
     that the policy's limits (max-passes, max-cost) do not refuse. `results` are the
     validations in file order (for the default policy, those up to the chosen one suffice)."""
     pol = as_policy(policy)
-    position = {id(v): i for i, v in enumerate(results)}
-    bar = _rank_key(pol, chosen, position[id(chosen)]) if chosen is not None else None
+    position = {id(v.technique): i for i, v in enumerate(results)}   # file order
+    bar = None if chosen is None else \
+        _rank_key(pol, chosen, position.get(id(chosen.technique), len(results)))
     ahead = []
-    for v in results:
+    for i, v in enumerate(results):
         error = language_error(v)
         if error is None or pol.refusal(v) is not None:
             continue
-        key = _rank_key(pol, v, position[id(v)])
+        key = _rank_key(pol, v, i)
         if bar is None or key < bar:
             ahead.append((key, error))
     return min(ahead, key=lambda item: item[0])[1] if ahead else None
