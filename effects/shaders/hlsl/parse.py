@@ -43,6 +43,7 @@ LANGUAGE_CODES = frozenset({
     "X3504",    # a literal array index out of bounds
     "X3518",    # break outside a loop
     "X3519",    # continue outside a loop
+    "X3533",    # a non-empty case of a switch that does not end in break or return
 })
 
 
@@ -236,9 +237,10 @@ class Origin:
         pos = start_of(item) if isinstance(item, lark.Tree) else None
         return self.loc(*pos) if pos is not None else self.loc(1, 1)
 
-    def error(self, message: str, item: Any) -> HlslError:
+    def error(self, message: str, item: Any, language: bool | None = None) -> HlslError:
+        """A located error; `language` as HlslError's (None: from the message's code)."""
         loc = item if isinstance(item, Location) else self.at(item)
-        return HlslError(message, loc, source_line=self.source_line(loc))
+        return HlslError(message, loc, source_line=self.source_line(loc), language=language)
 
     def warning(self, message: str, loc: Location) -> EffectWarning:
         return EffectWarning(message, loc, self.source_line(loc))
