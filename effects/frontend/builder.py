@@ -53,6 +53,7 @@ class Builder:
         self.warnings: list = list(pre.warnings)
         self.param_names: set[str] = set()
         self.typedefs: dict[str, TypeSpec] = {}
+        self.array_typedefs: set[str] = set()
         self.built: dict[str, Parameter] = {}   # parameters so far, for `[N]` and `= m[3][2]`
         from effects.d3d9 import states  # the states table; imported late so the parser loads without it
         self.states = states
@@ -150,17 +151,21 @@ class Builder:
 
     # -- parameters -----------------------------------------------------------------------
     def type_of(self, tok: Token, structs: set[str]) -> TypeSpec:
+        if tok.value in self.array_typedefs:
+            raise self.error(ParseError, f"typedef '{tok.value}' is an array type: a parameter "
+                             "of an array typedef is not supported (declare the array)", tok)
         spec = self.typedefs.get(tok.value) or resolve_type(tok.value, structs)
         if spec is None:
             raise self.error(ParseError, f"unknown type '{tok.value}'", tok)
         return spec
 
     def typedef(self, c: list, structs: set[str]) -> None:
-        """`typedef float4 COLOR;` (an array typedef is not kept: nothing real uses one)."""
+        """`typedef float4 COLOR;`. An array typedef (`typedef float2 Pair[2];`) is for the
+        HLSL functions, which read it from the struct list; a parameter may not use one."""
         _, _, type_tok, name_tok, dims, _ = c
         if dims:
-            raise self.error(ParseError, f"typedef '{name_tok.value}': array typedefs are not "
-                             "supported", name_tok)
+            self.array_typedefs.add(name_tok.value)
+            return
         self.typedefs[name_tok.value] = self.type_of(type_tok, structs)
 
     def parameter(self, raw: RawParam, structs: set[str]) -> Parameter:

@@ -133,7 +133,8 @@ def literal_sizes(dims: lark.Tree, origin: Origin) -> list[int]:
     out = []
     for d in dims.children:
         if not (isinstance(d, lark.Tree) and d.data == "int_lit"):
-            raise origin.error("X3058: array dimensions of struct members must be literal", d)
+            raise origin.error("X3058: array dimensions of struct members must be literal",
+                               d if d is not None else dims)
         out.append(int(str(d.children[0]).rstrip("uUlL"), 0))
     return out
 

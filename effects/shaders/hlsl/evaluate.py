@@ -64,6 +64,9 @@ class Evaluator:
         return int(values[0])
 
     def array_of(self, t: HType, dims: Any) -> HType:
+        if any(d is None for d in dims.children):
+            raise self.error(f"an array of implicit size ('[]') needs an initializer list "
+                             f"{NO_CODE}", dims, language=True)
         return array_of(t, [self.const_int(d) for d in dims.children])
 
     # -- diagnostics ------------------------------------------------------------------------
@@ -184,12 +187,25 @@ class Evaluator:
         is_const = mods is not None and any(str(m) == "const" for m in mods.children)
         for d in decls:
             name, dims, _sem, init = d.children
-            t = self.array_of(base, dims)
-            if init is None:
-                value = self.zero(t)
+            if dims.children and dims.children[0] is None and isinstance(init, lark.Tree) \
+                    and init.data == "init_list":
+                t, value = self.implicit_array(base, dims, init)
             else:
-                value = self.initial(init, t)
+                t = self.array_of(base, dims)
+                value = self.zero(t) if init is None else self.initial(init, t)
             self.declare(str(name), t, value, is_const)
+
+    def implicit_array(self, base: HType, dims: Any, init: lark.Tree) -> tuple[HType, Value]:
+        """`T a[] = { ... }`: as many elements as the flattened list fills (fxc's rule: the
+        list's numbers, braces ignored, over the numbers of one element)."""
+        element = self.array_of(base, lark.Tree("dims", dims.children[1:]))
+        comps = self.flatten_list(init)
+        per = count_components(element)
+        if not comps or len(comps) % per:
+            raise self.error(f"X3017: initializer has {len(comps)} values, an array of "
+                             f"'{element}' needs a multiple of {per}", init)
+        t = array_of(element, [len(comps) // per])
+        return t, self.from_list(comps, t, init)
 
     def initial(self, init: Any, t: HType) -> Value:
         if isinstance(init, lark.Tree) and init.data == "init_list":
@@ -208,9 +224,9 @@ class Evaluator:
                     out.extend(self.flatten_list(child))
                 else:
                     out.extend(self.flatten_list(child) if isinstance(child, lark.Tree)
-                               and child.data == "init_list" else self.expr(child).comps)
+                               and child.data == "init_list" else _numbers(self.expr(child)))
             return out
-        return self.expr(init).comps
+        return _numbers(self.expr(init))
 
     def from_list(self, comps: list[Operand], t: HType, where: Any) -> Value:
         need = count_components(t)
@@ -434,6 +450,16 @@ class Evaluator:
     # -- calls ------------------------------------------------------------------------------
     def call_user(self, fdef: FunctionDef, args: list[Value], arg_trees: list[Any], where: Any) -> Value:
         return inline_call(self, fdef, args, arg_trees, where)
+
+
+def _numbers(v: Value) -> list[Operand]:
+    """A value's numbers in declaration order: an initializer list takes a struct or an array
+    as its members' numbers, braces ignored (fxc's flattened initializers)."""
+    if v.type.kind == "struct":
+        return [c for f in v.fields.values() for c in _numbers(f)]
+    if v.type.kind == "array":
+        return [c for e in v.elements for c in _numbers(e)]
+    return list(v.comps)
 
 
 def _complements(p: Operand, q: Operand) -> bool:
