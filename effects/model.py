@@ -297,6 +297,10 @@ class Function:
     source: str
     location: Location = _loc()
     row_major: bool = False  # declared under `#pragma pack_matrix(row_major)`
+    # the lines of `source` macro expansion made: (line of `source`, where its pieces came
+    # from (effects.base.errors.through_expansion), ((file line, its text as written), ...)),
+    # so an HLSL error in them points into the file as written
+    expanded: tuple = field(default=(), compare=False)
 
 
 @dataclass(slots=True)

@@ -82,6 +82,20 @@ class Location:
 UNKNOWN_LOCATION = Location("<unknown>", 0, 0)
 
 
+def through_expansion(pieces: tuple, column: int) -> tuple[int, int]:
+    """(line, column) in the file of `column` (1-based) of a line that macro expansion made.
+    `pieces` (the preprocessor's, in column order) are (column in the made line, file line,
+    file column, verbatim): a verbatim piece is text of the file at that place (a macro
+    argument, the text around a call), any other a macro's body, placed at the call."""
+    found = pieces[0]
+    for piece in pieces:
+        if piece[0] > column:
+            break
+        found = piece
+    start, line, col, verbatim = found
+    return line, col + (column - start if verbatim and column >= start else 0)
+
+
 def caret_lines(source_line: str | None, column: int) -> str:
     """The offending source line and a caret under `column` (1-based), or '' without a line."""
     if source_line is None:
@@ -99,6 +113,11 @@ class EffectError(Exception):
     """A located error in user input. `str()` is `PATH:LINE:COL: error: MESSAGE`."""
 
     severity = "error"
+    # True for an error in a shader's language, which fxc gives whatever the target (a syntax,
+    # type or name error): it rejects a technique on every card, so the commands report it
+    # as an error, where a refusal for one target's limits stays a card's reason. Set where
+    # the error is made (effects.shaders.hlsl.parse.HlslError).
+    language = False
 
     def __init__(self, message: str, location: Location | None = None, *,
                  source_line: str | None = None) -> None:

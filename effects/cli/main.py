@@ -116,9 +116,14 @@ def _defines(items: Sequence[str]) -> dict[str, str]:
 
 def _load(args):
     from effects.frontend.loader import load_effect
-    return load_effect(args.file, defines=_defines(getattr(args, "defines", [])),
-                       include_dirs=getattr(args, "include_dirs", []), include_root=_include_root(args),
-                       strict=getattr(args, "strict", False))
+    strict = getattr(args, "strict", False)
+    effect = load_effect(args.file, defines=_defines(getattr(args, "defines", [])),
+                         include_dirs=getattr(args, "include_dirs", []),
+                         include_root=_include_root(args), strict=strict)
+    if strict:   # a language error in any technique fails the load, as D3DXCreateEffect did
+        from effects.validate.verdicts import check_language
+        check_language(effect)
+    return effect
 
 
 def _profiles(names: Sequence[str]):
@@ -209,7 +214,12 @@ def _cmd_matrix(args, console: Console) -> int:
         if not args.json:
             console.print(f"contact sheet: {len(args.files)} effects x {len(cards)} cards "
                           f"-> {args.render}", markup=False, highlight=False, soft_wrap=True)
-    return EXIT_OK
+    # a card's selection that fell past a language error: the error, once, and exit 1
+    errors = list(dict.fromkeys(cell["error"] for row in result.values() for cell in row.values()
+                                if "error" in cell))
+    for text in errors:
+        _stderr().print(text, markup=False, soft_wrap=True, style="red")
+    return EXIT_INVALID if errors else EXIT_OK
 
 
 def _matrix(args, root: str | None, console: Console) -> tuple[dict, list[str]]:
@@ -369,6 +379,13 @@ def _cmd_render(args, console: Console) -> int:
         for warning in effect.warnings:
             _stderr().print(warning.report(), markup=False, soft_wrap=True, style="yellow")
         _stderr().print(str(exc), markup=False, soft_wrap=True)
+        return EXIT_INVALID
+    except EffectError as exc:
+        if not exc.language:
+            raise
+        # the technique the card would draw does not compile for any target: an error, not a
+        # silent fallback to the next technique (effects.validate.verdicts)
+        _stderr().print(exc.report(), markup=False, soft_wrap=True, style="red")
         return EXIT_INVALID
     ms = (time.perf_counter() - start) * 1000.0
     err = _stderr()

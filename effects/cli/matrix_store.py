@@ -156,7 +156,8 @@ def _checked_row(row: Any) -> dict:
         raise ValueError("not a row")
     for card, cell in row.items():
         if type(card) is not str or type(cell) is not dict or \
-                set(cell) != {"technique", "passes", "rejected"}:
+                set(cell) - {"error"} != {"technique", "passes", "rejected"} or \
+                type(cell.get("error", "")) is not str:
             raise ValueError("not a cell")
         technique, passes, rejected = cell["technique"], cell["passes"], cell["rejected"]
         if (technique is not None and type(technique) is not str) or type(passes) is not int \

@@ -3,7 +3,9 @@
 `matrix()` is also the JSON the command line prints (docs/design.md's shape):
     {effect: {profile: {"technique": name|null, "passes": n, "rejected": {technique: [reason, ...]}}}}
 "rejected" lists every technique the card cannot run, with all its reasons, and each valid
-technique the policy refused (max-passes, max-cost), with the policy's reason.
+technique the policy refused (max-passes, max-cost), with the policy's reason. A card whose
+selection fell past a technique with a language error (HLSL that compiles for no target) has
+"error": that located error, which the command prints as an error.
 """
 from __future__ import annotations
 
@@ -50,8 +52,10 @@ def _passes(n: int) -> str:
 def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], console: Console,
                            *, why: bool = False, policy: PolicyLike = "first") -> bool:
     """Print techniques × cards (✓ with the pass count, ✗ with the first reason) and the
-    technique each card selects; with `why`, then every reason, warning and note. Returns
-    whether every named card can run some technique."""
+    technique each card selects; with `why`, then every reason, warning and note. A language
+    error (HLSL that compiles for no target) is marked as an error in its cells and printed
+    located, with its source line, after the table. Returns whether every named card can run
+    some technique and no card's selection fell past a language error."""
     from rich.table import Table
     from rich.text import Text
     if not effect.techniques:
@@ -69,20 +73,29 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
         row = [technique_name(tech)]
         for profile in profiles:
             v = results[profile.name][i]
+            language = next((r for r in v.reasons if r.error is not None), None)   # the reason
             if v.ok:
                 row.append(Text.assemble(("✓", "green"), f" {_passes(v.passes)}"))
+            elif language is not None:
+                row.append(Text.assemble(("✗ error", "bold red"), f" {language} (below)"))
             else:
                 row.append(Text.assemble(("✗", "red"), f" {v.reasons[0]}"))
         table.add_row(*row)
-    chosen = {p.name: select(effect, p, pol, validations=results[p.name]).chosen
-              for p in profiles}
+    selections = {p.name: select(effect, p, pol, validations=results[p.name]) for p in profiles}
+    chosen = {name: s.chosen for name, s in selections.items()}
     table.add_row(Text("selected", style="bold"),
                   *[Text(technique_name(c.technique)) if c else Text("none", style="red")
                     for c in chosen.values()])
     console.print(table)
+    from effects.validate.select import language_error
+    errors = {(e.location, e.message): e for vs in results.values() for v in vs
+              if (e := language_error(v)) is not None}
+    for error in sorted(errors.values(), key=lambda e: e.location):
+        console.print(Text(error.report(), style="red"), soft_wrap=True)
+    fell_past = any(s.passed_over is not None for s in selections.values())
     if why:
         _print_details(effect, profiles, results, console)
-    return all(c is not None for c in chosen.values())
+    return all(c is not None for c in chosen.values()) and not fell_past
 
 
 def _print_details(effect: Effect, profiles: Sequence[CapsProfile],
@@ -108,7 +121,9 @@ def _print_details(effect: Effect, profiles: Sequence[CapsProfile],
 
 def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
            policy: PolicyLike = "first") -> dict:
-    """{effect: {profile: {"technique": name|None, "passes": n, "rejected": {tech: [reason...]}}}}"""
+    """{effect: {profile: {"technique": name|None, "passes": n, "rejected": {tech: [reason...]}}}},
+    and "error" in a card's entry where its selection fell past a technique with a language
+    error (Selection.passed_over): that error as the console shows it, source line and caret."""
     from effects.validate.select import as_policy, select
     pol = as_policy(policy)
     out: dict = {}
@@ -122,6 +137,9 @@ def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
                 "passes": chosen.passes if chosen else 0,
                 "rejected": selection.rejected(),
             }
+            error = selection.passed_over
+            if error is not None:   # the selection fell past a language error: said as one
+                per_card[profile.name]["error"] = error.report()
         out[path] = per_card
     return out
 
@@ -136,6 +154,9 @@ def matrix_job(job: "MatrixJob") -> dict | EffectError:
     found = matrix_store.inputs(job)
     try:
         effect = load_effect(job.path, include_root=job.include_root, strict=job.strict)
+        if job.strict:   # a language error in any technique fails the load (D3DXCreateEffect)
+            from effects.validate.verdicts import check_language
+            check_language(effect)
         profiles = [load_profile(n) for n in (job.profiles or list_profiles())]
         row = matrix({job.path: effect}, profiles, job.policy)[job.path]
         matrix_store.keep(job, found, effect, row)

@@ -53,6 +53,7 @@ class Builder:
         self.warnings: list = list(pre.warnings)
         self.param_names: set[str] = set()
         self.typedefs: dict[str, TypeSpec] = {}
+        self.array_typedefs: set[str] = set()
         self.built: dict[str, Parameter] = {}   # parameters so far, for `[N]` and `= m[3][2]`
         from effects.d3d9 import states  # the states table; imported late so the parser loads without it
         self.states = states
@@ -117,10 +118,27 @@ class Builder:
                 first = c[0][0] if c[0] else c[1]
                 effect.functions.append(Function(c[2].value, c[1].value,
                                                  self.text[first.start_pos:c[5].end_pos],
-                                                 self.loc(first), self.row_major_at(first.line)))
+                                                 self.loc(first), self.row_major_at(first.line),
+                                                 self.expanded_lines(first.line, c[5].end_line)))
         effect.warnings = self.warnings
         effect.files = tuple(self.pre.files)
         return effect
+
+    def expanded_lines(self, first: int, last: int) -> tuple:
+        """`Function.expanded` for text lines first..last: those macro expansion made."""
+        made = self.smap.expanded
+        if not made:
+            return ()
+        out = []
+        for line in range(first, last + 1):
+            pieces = made.get(line)
+            if pieces:
+                path = self.map_lines[line - 1][0]
+                texts = self.smap.texts.get(path, [])
+                written = tuple((n, texts[n - 1]) for n in sorted({p[1] for p in pieces})
+                                if 0 < n <= len(texts))
+                out.append((line - first + 1, pieces, written))
+        return tuple(out)
 
     def row_major_at(self, line: int) -> bool:
         """Whether `#pragma pack_matrix(row_major)` is in force at `line` of the text."""
@@ -133,17 +151,21 @@ class Builder:
 
     # -- parameters -----------------------------------------------------------------------
     def type_of(self, tok: Token, structs: set[str]) -> TypeSpec:
+        if tok.value in self.array_typedefs:
+            raise self.error(ParseError, f"typedef '{tok.value}' is an array type: a parameter "
+                             "of an array typedef is not supported (declare the array)", tok)
         spec = self.typedefs.get(tok.value) or resolve_type(tok.value, structs)
         if spec is None:
             raise self.error(ParseError, f"unknown type '{tok.value}'", tok)
         return spec
 
     def typedef(self, c: list, structs: set[str]) -> None:
-        """`typedef float4 COLOR;` (an array typedef is not kept: nothing real uses one)."""
+        """`typedef float4 COLOR;`. An array typedef (`typedef float2 Pair[2];`) is for the
+        HLSL functions, which read it from the struct list; a parameter may not use one."""
         _, _, type_tok, name_tok, dims, _ = c
         if dims:
-            raise self.error(ParseError, f"typedef '{name_tok.value}': array typedefs are not "
-                             "supported", name_tok)
+            self.array_typedefs.add(name_tok.value)
+            return
         self.typedefs[name_tok.value] = self.type_of(type_tok, structs)
 
     def parameter(self, raw: RawParam, structs: set[str]) -> Parameter:

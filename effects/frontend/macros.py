@@ -143,14 +143,29 @@ class MacroTable:
 
     # ----------------------------------------------------------------- macro expansion
 
-    def expand_lines(self, lines: list[str], i: int, first_name: int, path: str) -> tuple[str, int]:
+    def expand_lines(self, lines: list[str], i: int, first_name: int,
+                     path: str) -> tuple[str, int, tuple]:
         """Expand macros in lines[i] (and following lines an argument list runs into), whose
         first macro name starts at column index `first_name`. Returns the expanded text, one
-        output line, and how many lines it used; the caller leaves the others empty."""
+        output line, how many lines it used (the caller leaves the others empty), and where
+        its pieces came from (`effects.base.errors.through_expansion`), so that an error in
+        the expanded text is placed at the macro call or the argument it is in."""
         line = lines[i]
         simple = self._expand_simple(line, path, i + 1)
         if simple is not None:
-            return simple, 1
+            pieces: list[tuple[int, int, int, bool]] = []
+            out = prev = 0     # the made text's length so far; the end of the last name
+            for match in self.pattern().finditer(line):
+                a, b = match.span()
+                if a > prev:
+                    pieces.append((out + 1, i + 1, prev + 1, True))
+                    out += a - prev
+                pieces.append((out + 1, i + 1, a + 1, False))
+                out += len(self._flat[match.group()][0])
+                prev = b
+            if prev < len(line):
+                pieces.append((out + 1, i + 1, prev + 1, True))
+            return simple, 1, tuple(pieces)
         # Tokenize from the whitespace before the first macro name: a token never spans a
         # blank, so the text before it can be kept as it is (unless a string starts there).
         start = max(line.rfind(" ", 0, first_name), line.rfind("\t", 0, first_name)) + 1
@@ -183,7 +198,7 @@ class MacroTable:
         text = line[:start] + "".join(t.text for t in tokens)
         if count > 1:  # the call's lines become one output line; the others stay empty
             text = text.replace("\n", " ")
-        return text, count
+        return text, count, _pieces(tokens, span, chunk, start, i + 1)
 
     def _expand_simple(self, line: str, path: str, number: int) -> str | None:
         """The line with each object-like macro replaced by its full expansion (computed once),
@@ -378,6 +393,32 @@ class MacroTable:
         if right[0].kind == "mark":
             return [left] + right[1:]
         return tokenize(left.text + right[0].text, 0, hide, pos) + right[1:]
+
+
+def _pieces(tokens: list[Token], span: Span, chunk: str, start: int,
+            line: int) -> tuple[tuple[int, int, int, bool], ...]:
+    """Where each piece of `chunk[:start] + tokens` came from: a token that stands in the
+    text at its position (`pos`) is verbatim there, any other is a body token placed at its
+    macro's call (`pos` is the call's). Neighbours that continue each other are one piece."""
+    pieces: list[tuple[int, int, int, bool]] = [(1, line, 1, True)] if start else []
+    out = start + 1
+    for tok in tokens:
+        n = len(tok.text)
+        if n == 0 or tok.kind == "ws":
+            out += n
+            continue
+        where = span.location(tok.pos)
+        verbatim = chunk.startswith(tok.text, tok.pos)
+        if pieces:
+            o, ln, col, v = pieces[-1]
+            if v == verbatim and ln == where.line and (
+                    (verbatim and col + (out - o) == where.column) or
+                    (not verbatim and col == where.column)):
+                out += n
+                continue
+        pieces.append((out, where.line, where.column, verbatim))
+        out += n
+    return tuple(pieces)
 
 
 def _stringize(arg: list[Token]) -> str:

@@ -184,9 +184,10 @@ class _Preprocessor:
             elif defined:
                 match = macros.pattern().search(line)
                 if match is not None:
-                    expanded, used = macros.expand_lines(lines, i, match.start(), path)
+                    expanded, used, pieces = macros.expand_lines(lines, i, match.start(), path)
                     out.append(expanded)
                     line_map.append((path, i + 1))
+                    self.smap.expanded[len(out)] = pieces
                     if used > 1:  # an argument list ran on: its other lines stay empty
                         self.emit_blank(path, i + 2, used - 1)
                     i += used

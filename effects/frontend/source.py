@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from effects.base.errors import EffectError, EffectWarning, Location
+from effects.base.errors import EffectError, EffectWarning, Location, through_expansion
 
 
 @dataclass
@@ -16,12 +16,15 @@ class SourceMap:
     """Maps 1-based (line, column) of preprocessed text to original `Location`s.
 
     `lines[i]` is the origin (path, line) of output line i+1. Columns are passed through:
-    the preprocessor keeps each surviving line's text in place (macro expansion may shift
-    columns after the expansion point; the location then points at the expansion site).
+    the preprocessor keeps each surviving line's text in place, but for a line macro
+    expansion made (`expanded`), whose columns lead to the call or the argument they are in.
     """
 
     lines: list[tuple[str, int]] = field(default_factory=list)
     texts: dict[str, list[str]] = field(default_factory=dict)
+    # output line -> where the pieces of a line macro expansion made came from
+    # (`effects.base.errors.through_expansion`): errors in it point at the call or argument
+    expanded: dict[int, tuple] = field(default_factory=dict)
 
     def add_file(self, path: str, text: str) -> None:
         # split on "\n" only: str.splitlines() also breaks at \x85 and friends, which a stray
@@ -33,6 +36,9 @@ class SourceMap:
             return Location("<string>", line, column)
         # past the end (an error at end of file): the last line
         path, original = self.lines[min(max(line, 1), len(self.lines)) - 1]
+        pieces = self.expanded.get(line)
+        if pieces:
+            original, column = through_expansion(pieces, column)
         return Location(path, original, column)
 
     def source_line(self, location: Location) -> str | None:

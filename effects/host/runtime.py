@@ -135,23 +135,28 @@ def _selected(effect: Effect, profile: "CapsProfile", policy: Any) -> "Selection
     `effects.render()` call makes a Runtime over a fresh copy of the parameters, and the copy
     shares the techniques. The selection is made again only when a parameter that validation
     read differs (`effects.model.RecordedReads`); the same Validation object comes back, so
-    the lowering cache (which keys on it) hits too."""
+    the lowering cache (which keys on it) hits too. A selection that fell past a technique
+    with a language error (`Selection.passed_over`) raises that located error instead."""
     from effects.model import RecordedReads, still_holds
     from effects.validate.select import select
     try:
         key = (id(effect.techniques), id(profile), policy)
         hit = _SELECTIONS.get(key)
     except TypeError:   # an unhashable policy object: no memory
-        return select(effect, profile, policy)
+        hit, key = None, None
     if hit is not None and hit[0] is effect.techniques and hit[1] is profile and still_holds(effect, hit[2]):
-        return hit[3]
-    reads = RecordedReads(effect)
-    chosen = select(reads, profile, policy)  # type: ignore[arg-type]
-    _SELECTIONS.pop(key, None)
-    if len(_SELECTIONS) >= _SELECTIONS_SIZE:
-        _SELECTIONS.pop(next(iter(_SELECTIONS)))
-    _SELECTIONS[key] = (effect.techniques, profile, reads.snapshot(), chosen)
-    return chosen
+        selection = hit[3]
+    else:
+        reads = RecordedReads(effect)
+        selection = select(reads, profile, policy)  # type: ignore[arg-type]
+        if key is not None:
+            _SELECTIONS.pop(key, None)
+            if len(_SELECTIONS) >= _SELECTIONS_SIZE:
+                _SELECTIONS.pop(next(iter(_SELECTIONS)))
+            _SELECTIONS[key] = (effect.techniques, profile, reads.snapshot(), selection)
+    if selection.passed_over is not None:
+        raise selection.passed_over.with_traceback(None)   # the same error each time
+    return selection
 
 
 @dataclass

@@ -159,26 +159,41 @@ class Selection:
     def technique(self) -> Technique | None:
         return self.chosen.technique if self.chosen is not None else None
 
+    def preference(self, v: Validation) -> tuple[float, int]:
+        """Where the policy places a technique among those it accepts: its score (quality,
+        cost, or none for file order), then file order."""
+        position = next(i for i, made in enumerate(self.validations) if made is v)
+        if self.policy.order == "quality":
+            return (-technique_quality(v.technique), position)
+        if self.policy.order == "cost":
+            cost = technique_cost(v.technique)
+            return (math.inf if cost is None else cost, position)
+        return (0.0, position)
+
     @property
     def ranked(self) -> list[Validation]:
         """The validations the policy accepts first, in its preferred order, then the others
         in file order; the first is the policy's choice when it accepts it."""
-        pol = self.policy
         position = {id(v): i for i, v in enumerate(self.validations)}
 
         def key(v: Validation) -> tuple[int, float, int]:
-            if not pol.accepts(v):
+            if not self.policy.accepts(v):
                 return (1, 0.0, position[id(v)])
-            if pol.order == "quality":
-                score = -technique_quality(v.technique)
-            elif pol.order == "cost":
-                cost = technique_cost(v.technique)
-                score = math.inf if cost is None else cost
-            else:
-                score = 0.0
-            return (0, score, position[id(v)])
+            return (0, *self.preference(v))
 
         return sorted(self.validations, key=key)
+
+    @property
+    def passed_over(self) -> EffectError | None:
+        """The language error of a technique the selection fell past (effects.validate.
+        verdicts): one the policy would have chosen before the chosen technique (before any,
+        when none was) had it compiled, and that the policy's limits do not refuse. A card
+        limit is the card's reason; a language error is an error, said as one."""
+        bar = None if self.chosen is None else self.preference(self.chosen)
+        ahead = [(self.preference(v), error) for v in self.validations
+                 if (error := language_error(v)) is not None and self.policy.refusal(v) is None]
+        ahead = [item for item in ahead if bar is None or item[0] < bar]
+        return min(ahead, key=lambda item: item[0])[1] if ahead else None
 
     def rejected(self) -> dict[str, list[str]]:
         """By technique name, in file order: every reason of each technique the card cannot
@@ -229,6 +244,12 @@ def select(effect: Effect, profile: CapsProfile, policy: PolicyLike = "first", *
     if ranked and pol.accepts(ranked[0]):
         selection.chosen = ranked[0]
     return selection
+
+
+def language_error(validation: Validation) -> EffectError | None:
+    """The first language error among a technique's reasons on a card (HLSL that compiles for
+    no target: `EffectError.language`), or None."""
+    return next((r.error for r in validation.reasons if r.error is not None), None)
 
 
 def _decided(made: list[Validation], forced: Technique | None) -> bool:

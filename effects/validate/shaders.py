@@ -178,7 +178,7 @@ class ShaderChecks:
         except EffectError as err:
             what = "HLSL that compiles" if isinstance(value, CompileShader) else "valid shader assembly"
             self.fail(err.location, state_name, what, "compile error" if isinstance(value, CompileShader)
-                      else "assembly error", err.message)
+                      else "assembly error", err.message, err)
             return
         if shader is None:
             return

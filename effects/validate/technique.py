@@ -85,6 +85,14 @@ class Reason:
     message: str       # one plain sentence
     effect_path: str = ""   # the effect file validated: a location in another (an #include)
                             # names its file
+    # The language error (EffectError.language: fxc refuses the program for every target)
+    # this reason stands for, None for a refusal by this card or target: the commands print
+    # it as a located error, with its source line, rather than as one card's reason.
+    error: EffectError | None = field(default=None, compare=False, repr=False)
+
+    @property
+    def language(self) -> bool:
+        return self.error is not None
 
     def __str__(self) -> str:
         return f"pass {self.pass_name} ({self.location.line_in(self.effect_path)}): {self.message}"
@@ -251,10 +259,12 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
 
     # -- reason helpers ---------------------------------------------------------------------
     def fail(self, location: Location, subject: str, requirement: str, card_value: str,
-             message: str) -> None:
+             message: str, error: EffectError | None = None) -> None:
+        """A reason this pass cannot run; `error` when it is a language error (Reason.error)."""
         self.report.reasons.append(Reason(self.technique.name, self.report.name, location,
                                           subject, requirement, card_value, message,
-                                          self.effect.path))
+                                          self.effect.path,
+                                          error if error is not None and error.language else None))
 
     def warn(self, location: Location, subject: str, quirk: Quirk) -> None:
         reason = Reason(self.technique.name, self.report.name, location, subject,

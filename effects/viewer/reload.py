@@ -179,15 +179,20 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
 
     A forced `technique` is drawn when valid on the card; otherwise the card's selection is
     drawn and `forced_rejected` carries the forced one's reasons. Raises EffectError (located)
-    for a broken file, a missing texture, or a pass that cannot be lowered -- the last two are
-    kept in `prepare_error` instead with `keep_prepare_error` (a card change: the file is fine,
-    the panel shows why this card cannot draw it). `defer`: under the default policy, stop
+    for a broken file, a language error in the forced technique or in one the selection fell
+    past (`Selection.passed_over`; with `strict`, in any technique), a missing texture,
+    or a pass that cannot be lowered -- the last two are kept in `prepare_error` instead with
+    `keep_prepare_error` (a card change: the file is fine, the panel shows why this card
+    cannot draw it). `defer`: under the default policy, stop
     validating once the technique to draw is known (the first valid one in file order, or a
     valid forced one) and leave the rest `pending` (see LoadedEffect): a reload draws sooner
     when the fallbacks compile the edited function again for their own targets."""
     from effects.frontend.loader import load_effect
-    from effects.validate.select import select
+    from effects.validate.select import language_error, select
+    from effects.validate.verdicts import check_language
     effect = previous if previous is not None else load_effect(path, **load_options)
+    if previous is None and load_options.get("strict"):
+        check_language(effect)    # as D3DXCreateEffect: a language error fails the load
     forced = None
     if technique:
         try:
@@ -200,6 +205,12 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     # among these same answers; `defer` leaves those after the drawn one pending.
     selection = select(effect, profile, policy, forced=forced, lazy=defer)
     chosen, chosen_validation = selection.technique, selection.chosen
+    # A language error in the technique asked for, or in one the selection fell past, fails
+    # the reload: shown in red like a parse error, the last good effect stays on screen.
+    error = language_error(selection.forced_rejected) if selection.forced_rejected else None
+    error = error or selection.passed_over
+    if error is not None:
+        raise error.with_traceback(None)
     programs = None
     prepare_error = None
     runtime = None

@@ -86,7 +86,7 @@ def load_context(effect: Effect, target_name: str) -> Context:
         ctx.structs[s.name] = struct_type(ctx, tree, origin)
         ctx.struct_origins[s.name] = origin
     for f in effect.functions:
-        origin = Origin(f.location, f.source, row_major=f.row_major)
+        origin = Origin(f.location, f.source, row_major=f.row_major, expanded=f.expanded)
         tree = parse(f.source, "function_def", origin, names)
         ctx.functions.setdefault(f.name, []).append(FunctionDef(f.name, tree, origin, f))
     return ctx
@@ -133,7 +133,8 @@ def literal_sizes(dims: lark.Tree, origin: Origin) -> list[int]:
     out = []
     for d in dims.children:
         if not (isinstance(d, lark.Tree) and d.data == "int_lit"):
-            raise origin.error("X3058: array dimensions of struct members must be literal", d)
+            raise origin.error("X3058: array dimensions of struct members must be literal",
+                               d if d is not None else dims)
         out.append(int(str(d.children[0]).rstrip("uUlL"), 0))
     return out
 

@@ -4,11 +4,12 @@ Evaluating, rather than translating, gives fxc's passes for free: every call is 
 (arguments bound by value, `out`/`inout` copied back), a loop is unrolled by running it until
 its condition is a compile-time false (X3511 after 1024 iterations), and an `if` on a value
 not known at compile time runs both branches under a predicate so that every assignment
-becomes a select (flattening: `cmp`/`lrp`). `return`, `break`, `continue` and `discard` under
-such a predicate set their own predicates. Real flow control is generated where the target
-has it: a `for` loop counted by an int uniform becomes `rep i#` (loops.py, with break_comp
-for a break), an `if` on a uniform bool `if b#` and a `[branch] if` `if_comp` (branches.py);
-every other `if` on a run-time value is flattened.
+becomes a select (flattening: `cmp`/`lrp`); a `switch` is one such `if` per case (switch.py).
+`return`, `break`, `continue` and `discard` under such a predicate set their own predicates.
+Real flow control is generated where the target has it: a `for` loop counted by an int
+uniform becomes `rep i#` (loops.py, with break_comp for a break), an `if` on a uniform bool
+`if b#` and a `[branch] if` `if_comp` (branches.py); every other `if` on a run-time value is
+flattened.
 """
 from __future__ import annotations
 
@@ -26,6 +27,7 @@ from effects.shaders.hlsl.branches import bool_register, bool_uniform, compariso
 from effects.shaders.hlsl.flowrules import DYNAMIC_TARGETS, NotReal, TargetFlow
 from effects.shaders.hlsl.loops import bound_of, has_attribute, real_loop
 from effects.shaders.hlsl.parse import Origin
+from effects.shaders.hlsl.switch import NO_CODE, switch_statement
 from effects.shaders.hlsl.types import HType, scalar
 from effects.shaders.hlsl.values import (Frame, Loop, Value, Var, build_value, count_components,
                                           operand)
@@ -62,14 +64,17 @@ class Evaluator:
         return int(values[0])
 
     def array_of(self, t: HType, dims: Any) -> HType:
+        if any(d is None for d in dims.children):
+            raise self.error(f"an array of implicit size ('[]') needs an initializer list "
+                             f"{NO_CODE}", dims, language=True)
         return array_of(t, [self.const_int(d) for d in dims.children])
 
     # -- diagnostics ------------------------------------------------------------------------
     def at(self, item: Any) -> Location:
         return item if isinstance(item, Location) else self.origin.at(item)
 
-    def error(self, message: str, item: Any) -> Exception:
-        return self.origin.error(message, self.at(item))
+    def error(self, message: str, item: Any, language: bool | None = None) -> Exception:
+        return self.origin.error(message, self.at(item), language)
 
     def warn(self, message: str, loc: Location) -> None:
         w = self.origin.warning(message, loc)
@@ -82,6 +87,10 @@ class Evaluator:
             return q
         if q is None:
             return p
+        if _complements(p, q) or _complements(q, p):
+            # a predicate is 0 or 1: p and not p is never (after `if (true) break;` under a
+            # case's or an if's predicate, the rest of its statements are not reached)
+            return self.g.const((0.0,))
         return self.g.op("mul", [p, q], 1)
 
     def _or(self, p: Operand | None, q: Operand | None) -> Operand:
@@ -178,12 +187,25 @@ class Evaluator:
         is_const = mods is not None and any(str(m) == "const" for m in mods.children)
         for d in decls:
             name, dims, _sem, init = d.children
-            t = self.array_of(base, dims)
-            if init is None:
-                value = self.zero(t)
+            if dims.children and dims.children[0] is None and isinstance(init, lark.Tree) \
+                    and init.data == "init_list":
+                t, value = self.implicit_array(base, dims, init)
             else:
-                value = self.initial(init, t)
+                t = self.array_of(base, dims)
+                value = self.zero(t) if init is None else self.initial(init, t)
             self.declare(str(name), t, value, is_const)
+
+    def implicit_array(self, base: HType, dims: Any, init: lark.Tree) -> tuple[HType, Value]:
+        """`T a[] = { ... }`: as many elements as the flattened list fills (fxc's rule: the
+        list's numbers, braces ignored, over the numbers of one element)."""
+        element = self.array_of(base, lark.Tree("dims", dims.children[1:]))
+        comps = self.flatten_list(init)
+        per = count_components(element)
+        if not comps or len(comps) % per:
+            raise self.error(f"X3017: initializer has {len(comps)} values, an array of "
+                             f"'{element}' needs a multiple of {per}", init)
+        t = array_of(element, [len(comps) // per])
+        return t, self.from_list(comps, t, init)
 
     def initial(self, init: Any, t: HType) -> Value:
         if isinstance(init, lark.Tree) and init.data == "init_list":
@@ -202,9 +224,9 @@ class Evaluator:
                     out.extend(self.flatten_list(child))
                 else:
                     out.extend(self.flatten_list(child) if isinstance(child, lark.Tree)
-                               and child.data == "init_list" else self.expr(child).comps)
+                               and child.data == "init_list" else _numbers(self.expr(child)))
             return out
-        return self.expr(init).comps
+        return _numbers(self.expr(init))
 
     def from_list(self, comps: list[Operand], t: HType, where: Any) -> Value:
         need = count_components(t)
@@ -385,10 +407,15 @@ class Evaluator:
         loop = self.loops[-1]
         loop.broken = self._or(loop.broken, self.active() or self.g.const((1.0,)))
 
+    def s_switch_stmt(self, tree: lark.Tree) -> None:
+        switch_statement(self, tree)
+
     def s_continue_stmt(self, tree: lark.Tree) -> None:
         if not self.loops:
             raise self.error("X3519: continue must be inside a loop", tree)
         loop = self.loops[-1]
+        if loop.switch:
+            raise self.error(f"continue cannot be used in a switch {NO_CODE}", tree, language=True)
         loop.continued = self._or(loop.continued, self.active() or self.g.const((1.0,)))
 
     def s_return_stmt(self, tree: lark.Tree) -> None:
@@ -423,6 +450,23 @@ class Evaluator:
     # -- calls ------------------------------------------------------------------------------
     def call_user(self, fdef: FunctionDef, args: list[Value], arg_trees: list[Any], where: Any) -> Value:
         return inline_call(self, fdef, args, arg_trees, where)
+
+
+def _numbers(v: Value) -> list[Operand]:
+    """A value's numbers in declaration order: an initializer list takes a struct or an array
+    as its members' numbers, braces ignored (fxc's flattened initializers)."""
+    if v.type.kind == "struct":
+        return [c for f in v.fields.values() for c in _numbers(f)]
+    if v.type.kind == "array":
+        return [c for e in v.elements for c in _numbers(e)]
+    return list(v.comps)
+
+
+def _complements(p: Operand, q: Operand) -> bool:
+    """Whether `q` is `Evaluator._not(p)`: 1 - p."""
+    n = q.node
+    return n.op == "add" and len(n.args) == 2 and q.swizzle == (0,) and not q.negate and \
+        n.args[0].const_values() == (1.0,) and n.args[1].sig() == p.neg().sig()
 
 
 def _block_in_frame(self: Evaluator, body: lark.Tree) -> None:

@@ -265,6 +265,13 @@ def _construct(ev: Any, tree: lark.Tree) -> Value:
     return _construct_as(ev, t, tree.children[1], tree)
 
 
+def _construct_user(ev: Any, tree: lark.Tree) -> Value:
+    """`vec4(uv, 0, 1)` with `typedef vector<half, 4> vec4;`: the constructor of the type the
+    name stands for (a struct has none: X3037)."""
+    t = resolve_type(ev.ctx, lark.Tree("user_type", [tree.children[0]]), ev.origin)
+    return _construct_as(ev, t, tree.children[1], tree)
+
+
 def _construct_matrix(ev: Any, tree: lark.Tree) -> Value:
     base = builtin(str(tree.children[1]))
     t = shape_of(int(tree.children[2]), int(tree.children[3]), base.base if base else "float")
@@ -373,6 +380,6 @@ _HANDLERS = {
     "float_lit": _float, "int_lit": _int, "bool_lit": _bool, "var": _var, "binary": _binary,
     "prefix": _prefix, "pre_incdec": lambda ev, t: _incdec(ev, t, False),
     "post_incdec": lambda ev, t: _incdec(ev, t, True), "assign": _assign, "member": _member,
-    "index": _index, "construct": _construct, "construct_matrix": _construct_matrix,
+    "index": _index, "construct": _construct, "construct_user": _construct_user, "construct_matrix": _construct_matrix,
     "construct_vector": _construct_vector, "cast": _cast, "ternary": _ternary, "call": _call,
 }

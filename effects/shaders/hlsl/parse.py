@@ -12,11 +12,54 @@ from typing import Any
 
 import lark
 
-from effects.base.errors import EffectError, EffectWarning, Location
+from effects.base.errors import EffectError, EffectWarning, Location, through_expansion
+
+
+# fxc's errors that no target compiles past: the program is not HLSL (syntax, types, names,
+# l-values, calls, flow statements). One row per code; a code not here (X3507 an unknown or
+# too old target, X3511 a loop this target must unroll, X3512 a run-time index this target
+# cannot make, X3535 integer hardware, X3536 a pixel-only statement in a vertex shader, X4014
+# gradients in flow, X4502/X4503/X4507 the target's semantics, X4532 what ps_1_x cannot
+# express, an internal error) is a refusal for the target, which a card's reason reports.
+LANGUAGE_CODES = frozenset({
+    "X3000",    # syntax error; an unknown type or struct; a statement or operator not HLSL
+    "X3004",    # undeclared identifier
+    "X3013",    # no matching function or intrinsic overload; not a compile-time constant
+    "X3014",    # wrong number of arguments to a numeric constructor
+    "X3017",    # cannot convert between types
+    "X3018",    # invalid subscript (member, swizzle, write mask)
+    "X3020",    # type mismatch; a condition that is not a scalar
+    "X3022",    # a unary operator on a non-numeric operand
+    "X3025",    # l-value is const (a global, a uniform, a const local)
+    "X3037",    # a constructor of a non-numeric type
+    "X3058",    # array dimensions of struct members must be literal
+    "X3067",    # ambiguous function call
+    "X3079",    # a void function returns a value
+    "X3080",    # a function must return a value
+    "X3120",    # invalid type for an index
+    "X3121",    # an index on a type that has no elements
+    "X3500",    # recursive call
+    "X3501",    # the entry point is not in the file
+    "X3504",    # a literal array index out of bounds
+    "X3518",    # break outside a loop
+    "X3519",    # continue outside a loop
+    "X3533",    # a non-empty case of a switch that does not end in break or return
+})
+
+
+def is_language_message(message: str) -> bool:
+    """Whether `message` (fxc's code first, as every HlslError's is) is a language error."""
+    return message[:5] in LANGUAGE_CODES and message[5:6] == ":"
 
 
 class HlslError(EffectError):
-    """An HLSL function does not compile (fxc's error number leads the message)."""
+    """An HLSL function does not compile (fxc's error number leads the message). `language`
+    (see EffectError) comes from the code's row in LANGUAGE_CODES unless the raise says."""
+
+    def __init__(self, message: str, location: Location | None = None, *,
+                 source_line: str | None = None, language: bool | None = None) -> None:
+        self.language = is_language_message(message) if language is None else language
+        super().__init__(message, location, source_line=source_line)
 
 
 _LOCK = threading.Lock()
@@ -159,14 +202,27 @@ class Origin:
     """Maps (line, column) in a captured text to the .fx file."""
 
     def __init__(self, base: Location, text: str, source_lines: dict[str, list[str]] | None = None,
-                 row_major: bool = False) -> None:
+                 row_major: bool = False, expanded: tuple = ()) -> None:
         self.base = base
         self.lines = text.split("\n")
         self.row_major = row_major     # the text stands under `#pragma pack_matrix(row_major)`
+        # the lines macro expansion made (`Function.expanded`): their columns lead to the
+        # macro call or argument in the file, and an error shows the line as written there
+        self.expanded = {k: pieces for k, pieces, _ in expanded}
+        self.written = {n: text for _, _, lines in expanded for n, text in lines}
 
     def loc(self, line: int, column: int) -> Location:
         col = column + (self.base.column - 1 if line == 1 else 0)
+        if self.expanded:
+            pieces = self.expanded.get(line)
+            if pieces:
+                return Location(self.base.path, *through_expansion(pieces, col))
         return Location(self.base.path, self.base.line + line - 1, col)
+
+    def source_line(self, loc: Location) -> str | None:
+        """The text of the file line `loc` is on, as written (before macro expansion)."""
+        written = self.written.get(loc.line) if self.written else None
+        return written if written is not None else self.line_text(loc.line - self.base.line + 1)
 
     def line_text(self, line: int) -> str | None:
         if 1 <= line <= len(self.lines):
@@ -181,12 +237,13 @@ class Origin:
         pos = start_of(item) if isinstance(item, lark.Tree) else None
         return self.loc(*pos) if pos is not None else self.loc(1, 1)
 
-    def error(self, message: str, item: Any) -> HlslError:
+    def error(self, message: str, item: Any, language: bool | None = None) -> HlslError:
+        """A located error; `language` as HlslError's (None: from the message's code)."""
         loc = item if isinstance(item, Location) else self.at(item)
-        return HlslError(message, loc, source_line=self.line_text(loc.line - self.base.line + 1))
+        return HlslError(message, loc, source_line=self.source_line(loc), language=language)
 
     def warning(self, message: str, loc: Location) -> EffectWarning:
-        return EffectWarning(message, loc, self.line_text(loc.line - self.base.line + 1))
+        return EffectWarning(message, loc, self.source_line(loc))
 
 
 _TREES: dict[tuple[str, str, frozenset[str]], lark.Tree] = {}

@@ -28,7 +28,7 @@ from effects.base import disk_store
 from effects.base.disk_store import Unkeyable
 from effects.base.errors import EffectError, EffectWarning, Location
 
-FORMAT = 1
+FORMAT = 2     # 2: an error keeps its `language` flag
 
 
 def key(parts: tuple, declarations: tuple, location: Location) -> str | None:
@@ -159,7 +159,8 @@ def _encode(result: Any) -> dict:
                 "effects.base.errors", "effects.shaders.hlsl.parse"):
             raise Unkeyable(cls)
         return {"error": cls, "message": result.message,
-                "location": _loc(result.location), "source_line": result.source_line}
+                "location": _loc(result.location), "source_line": result.source_line,
+                "language": bool(result.language)}
     if type(result) is not CompiledShader:
         raise Unkeyable(type(result).__qualname__)
     known = {"function", "target", "text", "program", "constants", "samplers", "lines",
@@ -187,13 +188,15 @@ def _decode(d: dict) -> Any:
     if "error" in d:
         cls_name = d["error"]
         if cls_name not in _ERRORS or type(d["message"]) is not str or \
-                (d["source_line"] is not None and type(d["source_line"]) is not str):
+                (d["source_line"] is not None and type(d["source_line"]) is not str) or \
+                type(d["language"]) is not bool:
             raise ValueError("bad error")
         if cls_name == "HlslError":
-            from effects.shaders.hlsl.parse import HlslError as cls
-        else:
-            import effects.base.errors
-            cls = getattr(effects.base.errors, cls_name)
+            from effects.shaders.hlsl.parse import HlslError
+            return HlslError(d["message"], _unloc(d["location"]), source_line=d["source_line"],
+                             language=d["language"])
+        import effects.base.errors
+        cls = getattr(effects.base.errors, cls_name)
         return cls(d["message"], _unloc(d["location"]), source_line=d["source_line"])
     from effects.shaders.hlsl.shader import CompiledShader, assemble_generated
     function, target, text = d["function"], d["target"], d["text"]

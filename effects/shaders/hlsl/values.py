@@ -106,6 +106,7 @@ class Loop:
     broken: Operand | None = None
     continued: Operand | None = None
     al: Any = None          # a real loop whose counter may index constants by aL (loops.AL)
+    switch: bool = False    # a `switch` (switch.py): `break` leaves it, `continue` may not
 
 
 @dataclass

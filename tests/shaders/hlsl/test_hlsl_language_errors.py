@@ -1,0 +1,206 @@
+"""Language errors against target refusals (issue 30): each fxc code the compiler raises is
+located at the HLSL line and column, as the user reads it (message, source line, caret), and
+says whether fxc gives it for every target (`language`) or only for the one compiled for.
+Locations hold through #include and macros: the file as written, not the expanded text."""
+from __future__ import annotations
+
+import textwrap
+
+import pytest
+
+import effects
+from effects.base import disk_store
+from effects.base.errors import EffectError
+from effects.shaders.hlsl import cache, compile_shader, store
+from effects.shaders.hlsl.parse import LANGUAGE_CODES, HlslError
+
+TECHNIQUE = "\ntechnique T { pass P { PixelShader = compile ps_2_0 PS(); } }\n"
+
+
+def compile_error(functions: str, target: str = "ps_2_0") -> EffectError:
+    fx = effects.load_effect(functions + TECHNIQUE)
+    with pytest.raises(EffectError) as info:
+        compile_shader(fx, "PS", target)
+    return info.value
+
+
+# (functions, the report as printed); every one is a language error. Line 1 is the first line
+# of `functions`; the caret sits under the column the report names.
+LANGUAGE = {
+    "X3000": ("float4 PS() : COLOR\n{\n    return float4(1, 0, 0, 1) +;\n}",
+              "<string>:3:32: error: X3000: syntax error: unexpected ';'\n"
+              "    return float4(1, 0, 0, 1) +;\n"
+              "                               ^"),
+    "X3004": ("float4 PS() : COLOR\n{\n    return foo * 2;\n}",
+              "<string>:3:12: error: X3004: undeclared identifier 'foo'\n"
+              "    return foo * 2;\n"
+              "           ^"),
+    "X3013": ("float4 PS() : COLOR\n{\n    return lerp(1, 2);\n}",
+              "<string>:3:12: error: X3013: 'lerp': no matching 2 parameter intrinsic function\n"
+              "    return lerp(1, 2);\n"
+              "           ^"),
+    "X3014": ("float4 PS() : COLOR\n{\n    return float4(1, 2);\n}",
+              "<string>:3:12: error: X3014: incorrect number of arguments to numeric-type "
+              "constructor ('float4' needs 4 values, given 2)\n"
+              "    return float4(1, 2);\n"
+              "           ^"),
+    "X3017": ("float4 PS() : COLOR\n{\n    float4x4 m = 0;\n    float3 v = m;\n    return float4(v, 1);\n}",
+              "<string>:4:16: error: X3017: cannot implicitly convert from 'float4x4' to 'float3'\n"
+              "    float3 v = m;\n"
+              "               ^"),
+    "X3018": ("float4 PS() : COLOR\n{\n    float2 v = 1;\n    return float4(v.xyz, 1);\n}",
+              "<string>:4:21: error: X3018: invalid subscript 'xyz'\n"
+              "    return float4(v.xyz, 1);\n"
+              "                    ^"),
+    "X3020": ("struct S { float a; };\nfloat4 PS() : COLOR\n{\n    S s = (S)0;\n    return s + 1;\n}",
+              "<string>:5:14: error: X3020: type mismatch: '+' needs numeric operands, not 'S' and 'int'\n"
+              "    return s + 1;\n"
+              "             ^"),
+    "X3025": ("float4 PS() : COLOR\n{\n    const float k = 1;\n    k = 2;\n    return k;\n}",
+              "<string>:4:5: error: X3025: l-value specifies const object 'k'\n"
+              "    k = 2;\n"
+              "    ^"),
+    "X3037": ("sampler S;\nfloat4 PS() : COLOR\n{\n    return sampler(1);\n}",
+              "<string>:4:12: error: X3037: constructors only defined for numeric base types\n"
+              "    return sampler(1);\n"
+              "           ^"),
+    "X3080": ("float f() { }\nfloat4 PS() : COLOR\n{\n    return f();\n}",
+              "<string>:1:1: error: X3080: 'f': function must return a value\n"
+              "float f() { }\n"
+              "^"),
+    "X3518": ("float4 PS() : COLOR\n{\n    break;\n    return 1;\n}",
+              "<string>:3:5: error: X3518: break must be inside a loop\n"
+              "    break;\n"
+              "    ^"),
+}
+
+
+@pytest.mark.parametrize("code", sorted(LANGUAGE))
+def test_a_language_error_is_located_and_marked_for_every_target(code):
+    functions, report = LANGUAGE[code]
+    for target in ("ps_2_0", "ps_3_0", "ps_1_1"):
+        err = compile_error(functions, target)
+        assert err.report() == report, target
+        assert err.language is True and code in LANGUAGE_CODES
+
+
+# refusals for the target: another target compiles the same function
+TARGET = {
+    "X3511": ("int Count = 2;\nfloat4 PS(float2 uv : TEXCOORD0) : COLOR\n{\n    float s = 0;\n"
+              "    for (int i = 0; i < Count; i++) s += 0.25;\n    return s;\n}",
+              "ps_2_0", "ps_3_0", None),
+    "X3512": ("float4 A[4];\nfloat4 PS(float2 uv : TEXCOORD0) : COLOR\n{\n"
+              "    return A[(int)(uv.x * 4)];\n}", "ps_2_0", "vs_2_0",
+              "<string>:4:14: error: X3512: array index must be a literal expression on ps_2_0 "
+              "(pixel shaders have no relative addressing)"),
+    "X4532": ("sampler S;\nfloat4 PS(float2 uv : TEXCOORD0) : COLOR\n{\n"
+              "    return tex2D(S, uv * uv);\n}", "ps_1_1", "ps_2_0",
+              "<string>:4:12: error: X4532: cannot map expression to pixel shader instruction "
+              "set: ps_1_1 has no texture read at computed coordinates (a dependent read needs "
+              "ps_1_4, or the texbem/texm3x* instructions fxc did not generate)"),
+}
+
+
+@pytest.mark.parametrize("code", sorted(TARGET))
+def test_a_refusal_for_the_target_is_not_a_language_error(code):
+    functions, refused, compiles, first_line = TARGET[code]
+    err = compile_error(functions, refused)
+    assert err.message.startswith(f"{code}: ") and err.language is False
+    assert code not in LANGUAGE_CODES and (first_line is None or str(err) == first_line)
+    if compiles != "vs_2_0":   # X3512's function is a pixel shader; vs_2_0 has a0 for it
+        fx = effects.load_effect(functions + TECHNIQUE)
+        compile_shader(fx, "PS", compiles)
+
+
+def test_the_flag_is_set_where_the_error_is_made_and_a_raise_may_say():
+    assert HlslError("X3004: undeclared identifier 'a'").language is True
+    assert HlslError("X3512: array index must be a literal expression").language is False
+    assert HlslError("internal: no register holds the value").language is False
+    assert HlslError("X3004: said otherwise", language=False).language is False
+    assert EffectError("a parse error").language is False
+
+
+def test_the_disk_store_keeps_the_flag(tmp_path):
+    fx = effects.load_effect(LANGUAGE["X3004"][0] + TECHNIQUE)
+    value = fx.techniques[0].passes[0].state("PixelShader").value
+    assert disk_store.enable(str(tmp_path))
+    try:
+        name = store.key(cache.key_parts(fx, value, []), cache.declarations(fx), value.location)
+        for made in (HlslError("X3004: undeclared identifier 'foo'", value.location, source_line="x"),
+                     HlslError("X3004: undeclared identifier 'foo'", value.location, language=False)):
+            store.save(name, made)
+            back = store.load(name)
+            assert type(back) is HlslError and str(back) == str(made)
+            assert back.language is made.language and back.source_line == made.source_line
+    finally:
+        disk_store.disable()
+
+
+# --- through #include and macros -----------------------------------------------------------------
+
+def write(tmp_path, name: str, text: str) -> str:
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(text).lstrip("\n"))
+    return str(path)
+
+
+def only_error(path: str, entry: str = "PS") -> EffectError:
+    fx = effects.load_effect(path)
+    with pytest.raises(EffectError) as info:
+        compile_shader(fx, entry, "ps_2_0")
+    return info.value
+
+
+def test_an_error_in_an_included_function_is_located_in_the_include(tmp_path):
+    lib = write(tmp_path, "lib.fxh", """
+        // shared lighting
+        float4 Shade(float2 uv)
+        {
+            float3 n = normalize(float3(uv, 1));
+            return float4(n * scalee, 1);
+        }
+        """)
+    path = write(tmp_path, "main.fx", """
+        #include "lib.fxh"
+        float4 PS(float2 uv : TEXCOORD0) : COLOR { return Shade(uv); }
+        technique T { pass P { PixelShader = compile ps_2_0 PS(); } }
+        """)
+    err = only_error(path)
+    assert err.report() == (f"{lib}:5:23: error: X3004: undeclared identifier 'scalee'\n"
+                            "    return float4(n * scalee, 1);\n"
+                            "                      ^")
+
+
+MACROS = """
+    #define TINT(c) (c * Missing)
+    #define SCALE 2.0 * 0.5
+    #define TWICE(x) ((x) + (x))
+    float4 Body(float2 uv : TEXCOORD0) : COLOR
+    {
+        return TINT(float4(uv, 0, 1));
+    }
+    float4 After(float2 uv : TEXCOORD0) : COLOR
+    {
+        float4 v = float4(uv, 0, 1);   return v * SCALE + /* c */ fooz;
+    }
+    float4 Argument(float2 uv : TEXCOORD0) : COLOR
+    {
+        float4 v = float4(uv, 0, 1);   return TWICE(v + quxx) ;
+    }
+    technique T { pass P { PixelShader = compile ps_2_0 Body(); } }
+    """
+
+
+@pytest.mark.parametrize("entry, line, column, name", [
+    ("Body", 6, 12, "Missing"),       # in a macro's body: at the call, `TINT(`
+    ("After", 10, 63, "fooz"),        # after an expansion on the line: where it is written
+    ("Argument", 14, 53, "quxx"),     # in a macro's argument: where the argument is written
+])
+def test_an_error_in_a_macro_expanded_line_is_located_in_the_file_as_written(
+        tmp_path, entry, line, column, name):
+    path = write(tmp_path, "macros.fx", MACROS)
+    written = (tmp_path / "macros.fx").read_text().splitlines()[line - 1]
+    assert written[column - 1:].startswith("TINT(" if name == "Missing" else name)
+    err = only_error(path, entry)
+    assert err.report() == (f"{path}:{line}:{column}: error: X3004: undeclared identifier "
+                            f"'{name}'\n{written}\n{' ' * (column - 1)}^")
