@@ -15,10 +15,11 @@
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from functools import lru_cache
+from dataclasses import dataclass, field
 
 import numpy as np
+
+from effects.base import caches
 
 SUBPIXEL_BITS = 8
 _ONE = 1 << SUBPIXEL_BITS
@@ -70,7 +71,7 @@ class QuadFragments:
 # ------------------------------------------------------------------------------------------------
 # Clipping: dot(plane[:4], position) + plane[4] >= 0 is inside
 
-@lru_cache(maxsize=64)
+@caches.memo("reference.clip_planes", keys="target size", entry_bytes=256, max_bytes=64 * 256)
 def _clip_planes(size: tuple[int, int]) -> np.ndarray:
     """The clip planes for a target size (kept per size: read-only, made once)."""
     planes = _make_clip_planes(size)

@@ -28,11 +28,11 @@ from typing import Callable
 
 import numpy as np
 
-from effects.base import limits
+from effects.base import caches, limits
 from effects.base.untrusted import confine
 from effects.d3d9 import formats as pixel_formats
 from effects.assets.images import read_image
-from effects.base.lru import ByteLRU
+from effects.base.lru import DEFAULT_TEXTURE_BYTES, texture_bytes
 from effects.base.errors import Location, SceneError
 
 KINDS = ("1d", "2d", "3d", "cube")
@@ -592,15 +592,18 @@ def _height_from_image(path: str, where: Location) -> np.ndarray:
     return read_image(path, "L", where, "height image").astype(np.float32) / 255.0
 
 
-_PROCEDURAL_CACHE = ByteLRU()   # by bytes: a 64-entry bound thrashed on effects with many
+# by bytes: a 64-entry bound thrashed on effects with many small textures
+_PROCEDURAL = caches.declare(
+    "assets.procedural", keys="generator, argument, edge length, image path and its "
+    "modification time", max_bytes=DEFAULT_TEXTURE_BYTES, size_of=texture_bytes)
 
 
 def _procedural_cached(base: str, arg: str, size: int, path: str, stamp: float) -> Texture:
     key = (base, arg, size, path, stamp)
-    hit = _PROCEDURAL_CACHE.get(key)
+    hit = _PROCEDURAL.get(key)
     if hit is None:
         hit = _make_procedural(base, arg, size, path)
-        _PROCEDURAL_CACHE.put(key, hit)
+        _PROCEDURAL.put(key, hit)
     return hit
 
 
