@@ -388,6 +388,15 @@ class CapsProfile:
     def quirks(self) -> list[Quirk]:
         return list(self.quirk_list)
 
+    @cached_property
+    def unreliable(self) -> tuple[dict[tuple, Quirk], dict[tuple, Quirk]]:
+        """The quirks that disown a caps bit, by (field, bit), and a format, by (format, usage):
+        worked out once per profile (validation asks per pass of every technique). Read only."""
+        quirks = self.quirk_list
+        return ({(q.get("field"), q.get("bit")): q for q in quirks if q.rule == "cap_unreliable"},
+                {(q.get("format"), q.get("usage")): q for q in quirks
+                 if q.rule == "format_unreliable"})
+
     def location(self, name: str) -> Location:
         """Where `name` was defined (this file or the profile it inherits from)."""
         return self.locations.get(ALIASES.get(name, name), Location(self.path, 1, 1))

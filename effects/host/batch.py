@@ -162,7 +162,9 @@ def _backend(name: str) -> Any:
     """A back end of this thread's own: a back end holds the frame being drawn, and a Dask
     worker runs several cells at once on threads. The NumPy one shades on one thread, as the
     pool already keeps every core busy."""
-    backends = _LOCAL.__dict__.setdefault("backends", {})
+    backends = getattr(_LOCAL, "backends", None)
+    if backends is None:
+        backends = _LOCAL.backends = {}
     if name not in backends:
         from effects.program.backend import create_backend
         try:
