@@ -16,6 +16,7 @@ from effects.base.errors import (AsmError, EffectError, EffectWarning, Location,
 _LAZY = {"load_effect": "effects.api", "Effect": "effects.api",
          "load_profile": "effects.d3d9.caps", "list_profiles": "effects.d3d9.caps",
          "render": "effects.host.runtime",
+         "cache_report": "effects.base.caches", "clear_caches": "effects.base.caches",
          "Parameter": "effects.model", "Pass": "effects.model",
          "StateAssignment": "effects.model", "Technique": "effects.model"}
 
@@ -36,6 +37,6 @@ def __dir__() -> list[str]:
 __all__ = [
     "AsmError", "Effect", "EffectError", "EffectWarning", "Location", "NoValidTechnique",
     "ParseError", "Parameter", "Pass", "PreprocessError", "ProfileError", "SceneError",
-    "StateAssignment", "StateError", "Technique", "load_effect", "load_profile", "list_profiles",
-    "render",
+    "StateAssignment", "StateError", "Technique", "cache_report", "clear_caches", "load_effect",
+    "load_profile", "list_profiles", "render",
 ]

@@ -142,6 +142,9 @@ class ShaderBlock:
     source: str
     decl: tuple[VertexDeclElement, ...] | None = None
     location: Location = _loc()
+    # the assembler's result for this text and position, with the key it was made from, as
+    # effects.shaders.asm.assemble_cached keeps it (derived: no init, repr or compare)
+    _assembled: tuple | None = field(default=None, init=False, repr=False, compare=False)
 
     def __eq__(self, other: object) -> bool:
         return (isinstance(other, ShaderBlock) and self.stage == other.stage
@@ -342,6 +345,14 @@ class Effect:
     files: tuple[str, ...] = field(default=(), compare=False)
     # the folder every file the effect names must lie in (load_effect's include_root), or None
     include_root: str | None = field(default=None, compare=False)
+    # Derived, kept with the effect (so they go with it; a copy made by dataclasses.replace
+    # starts without them): not what the effect says, so no init, repr or compare.
+    # the name, semantic and sampler maps of `_index`
+    _parameter_index: "_ParameterIndex | None" = field(default=None, init=False, repr=False,
+                                                       compare=False)
+    # the HLSL compile cache's keys of this effect's `compile` states, as
+    # effects.shaders.hlsl.cache.compile_key keeps them ({CompileShader: its kept key})
+    _compile_keys: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     # -- lookup ------------------------------------------------------------------------------
     def technique(self, name: str) -> Technique:
@@ -374,11 +385,10 @@ class Effect:
         # Lookups by name happen per state per pass per card: a linear scan made validation
         # and lowering quadratic in the file. The index is rebuilt when the parameter list is
         # replaced or changes length (the parser appends; the runtime copies the list).
-        index = self.__dict__.get("_parameter_index")
+        index = self._parameter_index
         params = self.parameters
         if rebuild or index is None or index.list_id != id(params) or index.size != len(params):
-            index = _ParameterIndex(params)
-            self.__dict__["_parameter_index"] = index
+            index = self._parameter_index = _ParameterIndex(params)
         return index
 
 

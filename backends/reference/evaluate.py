@@ -23,6 +23,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
+from effects.base import caches
 from effects.program.ir import OPS, IRError, Instr, Program, has_flow
 
 SamplerFn = Callable[..., np.ndarray]
@@ -149,7 +150,13 @@ def _dense(value: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(array)
 
 
-_DEMAND_CACHE: dict[int, tuple[Program, list]] = {}
+# Worked out once per program object (kept with it in the entry and compared on a hit, so a
+# recycled id cannot match): 1,024 entries each before, then all cleared. A program's steps
+# and demand hold 24-31 KB together (tracemalloc: phong.fx's and wood.fx's 66-instruction
+# fragment programs)
+_DEMAND_CACHE = caches.declare("reference.demand", keys="program object, the sampler-read "
+                               "rule, the given values", entry_bytes=8 << 10,
+                               max_bytes=1024 * (8 << 10))
 
 
 def _arg_demand(instr: Instr, wanted: frozenset, sample_reads=None) -> tuple[frozenset, ...]:
@@ -186,9 +193,7 @@ def _demand(program: Program, sample_reads: Callable[[Instr], frozenset] | None 
             continue
         for arg, arg_need in zip(instr.args, _arg_demand(instr, wanted, sample_reads)):
             need[arg] = need.get(arg, frozenset()) | arg_need
-    if len(_DEMAND_CACHE) > 1024:
-        _DEMAND_CACHE.clear()
-    _DEMAND_CACHE[(id(program), sample_reads, given)] = (program, per_instr)
+    _DEMAND_CACHE.put((id(program), sample_reads, given), (program, per_instr))
     return per_instr
 
 
@@ -367,7 +372,8 @@ class _Steps:
     discards: bool         # some instruction may discard (a kill mask is always returned)
 
 
-_STEPS_CACHE: dict[tuple, tuple[Program, _Steps]] = {}
+_STEPS_CACHE = caches.declare("reference.steps", keys="program object, the given values",
+                              entry_bytes=16 << 10, max_bytes=1024 * (16 << 10))
 
 
 def _steps(program: Program, given: frozenset) -> _Steps:
@@ -391,9 +397,7 @@ def _steps(program: Program, given: frozenset) -> _Steps:
         steps.append((mode, instr.dest, instr.args, fn, instr.attr_map, wanted,
                       tuple(sorted(wanted))))
     result = _Steps(_batched(program, steps), any(OPS[i.op].discards for i in program.instrs))
-    if len(_STEPS_CACHE) > 1024:
-        _STEPS_CACHE.clear()
-    _STEPS_CACHE[key] = (program, result)
+    _STEPS_CACHE.put(key, (program, result))
     return result
 
 
@@ -436,7 +440,8 @@ def _batched(program: Program, steps: list) -> list:
     return out
 
 
-_FLOW_CACHE: dict[int, tuple[Program, bool]] = {}
+_FLOW_CACHE = caches.declare("reference.flow", keys="program object", entry_bytes=256,
+                             max_bytes=1024 * 256)
 
 
 def _has_flow(program: Program) -> bool:
@@ -444,10 +449,8 @@ def _has_flow(program: Program) -> bool:
     found = _FLOW_CACHE.get(id(program))
     if found is not None and found[0] is program:
         return found[1]
-    if len(_FLOW_CACHE) > 1024:
-        _FLOW_CACHE.clear()
     flow = has_flow(program)
-    _FLOW_CACHE[id(program)] = (program, flow)
+    _FLOW_CACHE.put(id(program), (program, flow))
     return flow
 
 
@@ -515,7 +518,8 @@ class _Split:
     carried: tuple          # values made over every row that a kept-rows step reads
 
 
-_SPLIT_CACHE: dict[tuple, tuple[Program, "_Split | None"]] = {}
+_SPLIT_CACHE = caches.declare("reference.split", keys="program object, the given values",
+                              entry_bytes=16 << 10, max_bytes=1024 * (16 << 10))
 
 
 def _step_dests(step) -> tuple:
@@ -565,9 +569,7 @@ def _split(program: Program, steps: _Steps, given: frozenset) -> _Split | None:
         outputs_made = {value for _, value in program.outputs} & made_every
         result = _Split([steps.steps[k] for k in sorted(every)], kept,
                         tuple(sorted(carried | outputs_made)))
-    if len(_SPLIT_CACHE) > 1024:
-        _SPLIT_CACHE.clear()
-    _SPLIT_CACHE[key] = (program, result)
+    _SPLIT_CACHE.put(key, (program, result))
     return result
 
 

@@ -15,10 +15,11 @@
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from functools import lru_cache
+from dataclasses import dataclass, field
 
 import numpy as np
+
+from effects.base import caches
 
 SUBPIXEL_BITS = 8
 _ONE = 1 << SUBPIXEL_BITS
@@ -70,7 +71,7 @@ class QuadFragments:
 # ------------------------------------------------------------------------------------------------
 # Clipping: dot(plane[:4], position) + plane[4] >= 0 is inside
 
-@lru_cache(maxsize=64)
+@caches.memo("reference.clip_planes", keys="target size", entry_bytes=256, max_bytes=64 * 256)
 def _clip_planes(size: tuple[int, int]) -> np.ndarray:
     """The clip planes for a target size (kept per size: read-only, made once)."""
     planes = _make_clip_planes(size)
@@ -276,6 +277,8 @@ class TriangleSetup:
     y_lo: np.ndarray      # (T,) first and last pixel row each triangle can cover
     y_hi: np.ndarray
     vertex_only: tuple[str, ...] = ()
+    # `attrs` component-major, made on first use (`_attrs_t`): derived, so no init or compare
+    _attrs_t_cache: np.ndarray | None = field(default=None, init=False, repr=False, compare=False)
 
     def rows(self, y0: int = 0, y1: int | None = None) -> QuadFragments:
         """The fragments in pixel rows [y0, y1) (y0 even, so quads stay whole): the same
@@ -316,9 +319,9 @@ class TriangleSetup:
     def _attrs_t(self) -> np.ndarray:
         """The attributes component-major, (K, V): made once per draw, read by every band
         (two bands' threads may both make it; either copy is the same)."""
-        found = self.__dict__.get("_attrs_t_cache")
+        found = self._attrs_t_cache
         if found is None:
-            found = self.__dict__["_attrs_t_cache"] = np.ascontiguousarray(self.attrs.T)
+            found = self._attrs_t_cache = np.ascontiguousarray(self.attrs.T)
         return found
 
 

@@ -34,6 +34,7 @@ from typing import Mapping
 
 import numpy as np
 
+from effects.base import caches
 from effects.program.ir import OPS, Program
 from effects.program.passprogram import PassProgram, TextureBinding
 
@@ -443,15 +444,14 @@ def _needed_varyings(fragment: Program, varyings: dict[str, np.ndarray],
         needed = {i.name: max(reads.get(i.name, ()), default=unread) + 1
                   for i in fragment.inputs if i.kind == "varying"}
         found = (fragment, sorted((n, k) for n, k in needed.items() if k > 0))
-        if len(_NEEDED) > 1024:
-            _NEEDED.clear()
-        _NEEDED[(id(fragment), given)] = found
+        _NEEDED.put((id(fragment), given), found)
     return {n: varyings[n][:, :k] for n, k in found[1] if n in varyings}
 
 
 # (id(fragment program), given) -> (the program, [(varying, components read)]): what a
 # program reads depends on the program alone, so it is worked out once per program object
-_NEEDED: dict[tuple, tuple[Program, list]] = {}
+_NEEDED = caches.declare("reference.varyings_read", keys="fragment program object, the given "
+                         "values", entry_bytes=512, max_bytes=1024 * 512)
 
 
 def _fragment_inputs(fragment: Program, frags: QuadFragments, start: int, stop: int,

@@ -28,6 +28,8 @@ from typing import Sequence
 
 import numpy as np
 
+from effects.base import caches
+
 ADDRESS_MODES = ("WRAP", "MIRROR", "CLAMP", "BORDER", "MIRRORONCE")
 _POINT_FILTERS = ("POINT", "NONE")
 
@@ -92,7 +94,9 @@ class _Pyramid:
         self.shapes = [lv.shape for lv in levels]
 
 
-_PYRAMIDS: dict[tuple, tuple[list, _Pyramid]] = {}
+# 64 entries before, then all cleared; now by the bytes of the texels each entry adds
+_PYRAMIDS = caches.declare("reference.pyramids", keys="the mip level arrays (objects)",
+                           max_bytes=256 << 20, size_of=lambda held: 64 + held[1].texels.nbytes)
 
 
 def _pyramid(levels: Sequence[_Level]) -> _Pyramid:
@@ -102,10 +106,8 @@ def _pyramid(levels: Sequence[_Level]) -> _Pyramid:
     found = _PYRAMIDS.get(key)
     if found is not None and all(a is lv.texels for a, lv in zip(found[0], levels)):
         return found[1]
-    if len(_PYRAMIDS) >= 64:
-        _PYRAMIDS.clear()
     pyramid = _Pyramid(levels)
-    _PYRAMIDS[key] = ([lv.texels for lv in levels], pyramid)
+    _PYRAMIDS.put(key, ([lv.texels for lv in levels], pyramid))
     return pyramid
 
 
@@ -493,7 +495,10 @@ def _by_filter(level: _Level, coords: list[np.ndarray], minify: np.ndarray, min_
     return out
 
 
-_LEVELS: dict[tuple, tuple[list, list[_Level]]] = {}
+_LEVELS = caches.declare(
+    "reference.levels", keys="the mip level arrays (objects)", max_bytes=256 << 20,
+    size_of=lambda held: 64 + sum(lv.flat.nbytes for lv in held[1]
+                                  if not np.may_share_memory(lv.flat, lv.texels)))
 
 
 def _levels(levels: Sequence[np.ndarray]) -> list[_Level]:
@@ -505,10 +510,8 @@ def _levels(levels: Sequence[np.ndarray]) -> list[_Level]:
     found = _LEVELS.get(key)
     if found is not None and all(a is b for a, b in zip(found[0], levels)):
         return found[1]
-    if len(_LEVELS) >= 64:
-        _LEVELS.clear()
     made = [lvl if isinstance(lvl, _Level) else _Level(lvl) for lvl in levels]
-    _LEVELS[key] = (list(levels), made)
+    _LEVELS.put(key, (list(levels), made))
     return made
 
 

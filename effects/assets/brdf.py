@@ -19,11 +19,11 @@ point: few terms, small error). The three maps are scaled so each peaks at 1 (8-
 """
 from __future__ import annotations
 
-import functools
 from typing import Callable
 
 import numpy as np
 
+from effects.base import caches
 from effects.assets.textures import PROCEDURAL, Procedural, cube_directions, cube_face_uv, make_texture
 
 SIZE = 16            # cube face edge of the fit (the maps are resampled to their own size)
@@ -66,9 +66,18 @@ def _smoothness(size: int) -> tuple[np.ndarray, np.ndarray]:
     return pairs[:, 0], pairs[:, 1]
 
 
-@functools.lru_cache(maxsize=8)
+# eight fits of the default size (two 6 x 16 x 16 float64 arrays, 24 KiB)
+_FACTORS = caches.declare("assets.brdf_factors", keys="model, cube edge, samples",
+                          max_bytes=8 * (32 << 10))
+
+
 def factorise(model: str, size: int = SIZE, samples: int = SAMPLES) -> tuple[np.ndarray, np.ndarray]:
-    """(p, q): (6, size, size) texel values of the outer and middle factors (unscaled)."""
+    """(p, q): (6, size, size) texel values of the outer and middle factors (unscaled); kept,
+    shared by every caller (read them, don't change them)."""
+    return _FACTORS.get_or_make((model, size, samples), lambda: _factorise(model, size, samples))
+
+
+def _factorise(model: str, size: int, samples: int) -> tuple[np.ndarray, np.ndarray]:
     f = MODELS[model]
     rng = np.random.default_rng(2001)
     wi, wo = _hemisphere(rng, samples), _hemisphere(rng, samples)

@@ -21,13 +21,13 @@ from typing import Callable
 
 import numpy as np
 
-from effects.base import limits
+from effects.base import caches, limits
 from effects.base.untrusted import confine
 from effects.program.formats import pixel_format
 from effects.program.texture import Texture
 from effects.program.texels import quantize
 from effects.assets.images import read_image
-from effects.base.lru import ByteLRU
+from effects.base.lru import DEFAULT_TEXTURE_BYTES, texture_bytes
 from effects.base.errors import Location, SceneError
 
 # ---------------------------------------------------------------------------------------------
@@ -557,15 +557,18 @@ def _height_from_image(path: str, where: Location) -> np.ndarray:
     return read_image(path, "L", where, "height image").astype(np.float32) / 255.0
 
 
-_PROCEDURAL_CACHE = ByteLRU()   # by bytes: a 64-entry bound thrashed on effects with many
+# by bytes: a 64-entry bound thrashed on effects with many small textures
+_PROCEDURAL = caches.declare(
+    "assets.procedural", keys="generator, argument, edge length, image path and its "
+    "modification time", max_bytes=DEFAULT_TEXTURE_BYTES, size_of=texture_bytes)
 
 
 def _procedural_cached(base: str, arg: str, size: int, path: str, stamp: float) -> Texture:
     key = (base, arg, size, path, stamp)
-    hit = _PROCEDURAL_CACHE.get(key)
+    hit = _PROCEDURAL.get(key)
     if hit is None:
         hit = _make_procedural(base, arg, size, path)
-        _PROCEDURAL_CACHE.put(key, hit)
+        _PROCEDURAL.put(key, hit)
     return hit
 
 

@@ -28,6 +28,7 @@ import os
 import sys
 from typing import Any
 
+from effects.base import caches
 from effects.base.errors import Location
 
 FORMAT = 1
@@ -39,7 +40,8 @@ RESCAN_BYTES = 4 << 20
 
 # "counted": (entries, bytes) at the last count of the folder, then what this process has
 # written since (entries, bytes); None until this process first writes
-_state: dict[str, Any] = {"dir": None, "fingerprint": None, "counted": None}
+_state: dict[str, Any] = {"dir": None, "fingerprint": None, "counted": None, "hits": 0,
+                          "misses": 0}
 
 
 class Unkeyable(Exception):
@@ -182,6 +184,7 @@ def read(name: str) -> dict | None:
         with open(path, "rb") as f:
             data = f.read(MAX_ENTRY_BYTES + 1)
     except OSError:
+        _state["misses"] += 1
         return None
     try:
         import json
@@ -190,8 +193,10 @@ def read(name: str) -> dict | None:
         entry = json.loads(data)
         if type(entry) is not dict or entry.get("entry") != name:
             raise ValueError("not this entry")
+        _state["hits"] += 1
         return entry
     except Exception:   # not an entry of ours (truncated, foreign, older): a miss
+        _state["misses"] += 1
         discard(name)
         return None
 
@@ -272,3 +277,49 @@ def _prune(folder: str) -> tuple[int, int]:
             pass
         total -= size
     return len(entries), total
+
+
+# -- in the cache registry ----------------------------------------------------------------------
+
+def _entries(folder: str) -> list[os.DirEntry]:
+    with os.scandir(folder) as it:
+        return [e for e in it if e.name.endswith(".json") and not e.name.startswith(".")]
+
+
+class _Registered:
+    """The store as `effects.base.caches.report()` lists it: its entries and bytes counted in
+    the folder when enabled (nothing otherwise); `clear` removes every entry of the folder."""
+
+    name, kind = "disk_store", "disk"
+    keys = ("SHA-256 of what made the entry: its kind, the code's fingerprint and the kind's own "
+            "inputs (effects.shaders.hlsl.store, effects.cli.matrix_store)")
+
+    def stats(self) -> caches.CacheStats:
+        count = size = 0
+        folder = _state["dir"]
+        if folder is not None:
+            try:
+                found = _entries(folder)
+                count = len(found)
+                size = sum(e.stat(follow_symlinks=False).st_size for e in found)
+            except OSError:
+                pass
+        return caches.CacheStats(self.name, self.kind, self.keys, count, size, MAX_BYTES,
+                                 _state["hits"], _state["misses"])
+
+    def clear(self) -> None:
+        folder = _state["dir"]
+        if folder is None:
+            return
+        try:
+            for e in _entries(folder):
+                try:
+                    os.unlink(e.path)
+                except OSError:
+                    pass
+        except OSError:
+            pass
+        _state["counted"] = None
+
+
+caches.register(_Registered())

@@ -4,8 +4,7 @@ Textures differ in size by orders of magnitude (a 1x1 stand-in, a 2048^2 cube wi
 count bound either thrashes on an effect with many small textures or pins gigabytes with a few
 big ones. `ByteLRU` evicts the least recently used entries until the total fits `max_bytes`;
 a value bigger than the bound on its own is returned but not kept. With `size_of=lambda v: 1`
-the bound is a count (the HLSL compile cache, effects.shaders.hlsl.cache). Shared by the
-layers, so it sits with the contracts.
+the bound is a count. The storage of every declared cache (effects.base.caches).
 """
 from __future__ import annotations
 
@@ -23,7 +22,9 @@ def texture_bytes(texture: Any) -> int:
 
 class ByteLRU:
     """key -> value, least recently used evicted first once the values pass `max_bytes`
-    (sized by `size_of`). Safe to share between threads (the viewer loads on two)."""
+    (sized by `size_of`). Safe to share between threads (the viewer loads on two): a read
+    takes no lock (each step is one atomic dict operation under the GIL, and an entry evicted
+    between them is a miss), a write does. `hits` and `misses` count the reads."""
 
     def __init__(self, max_bytes: int = DEFAULT_TEXTURE_BYTES,
                  size_of: Callable[[Any], int] = texture_bytes) -> None:
@@ -32,14 +33,17 @@ class ByteLRU:
         self._entries: OrderedDict[Hashable, tuple[Any, int]] = OrderedDict()
         self._lock = threading.Lock()
         self.bytes = 0
+        self.hits = self.misses = 0
 
     def get(self, key: Hashable) -> Any:
-        with self._lock:
-            hit = self._entries.get(key)
-            if hit is None:
-                return None
+        try:
+            hit = self._entries[key]
             self._entries.move_to_end(key)
-            return hit[0]
+        except KeyError:
+            self.misses += 1
+            return None
+        self.hits += 1
+        return hit[0]
 
     def put(self, key: Hashable, value: Any) -> None:
         size = self.size_of(value)
@@ -56,9 +60,11 @@ class ByteLRU:
                 self.bytes -= freed
 
     def clear(self) -> None:
+        """Forget every entry, and the counts of reads (as a memo's clear does)."""
         with self._lock:
             self._entries.clear()
             self.bytes = 0
+            self.hits = self.misses = 0
 
     def __len__(self) -> int:
         return len(self._entries)

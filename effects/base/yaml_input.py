@@ -19,7 +19,7 @@ from typing import Any
 
 import yaml
 
-from effects.base import limits
+from effects.base import caches, limits
 from effects.base.errors import EffectError, Location
 
 _reprs = reprlib.Repr()
@@ -66,18 +66,19 @@ class Resolver(yaml.resolver.Resolver):
     (5,426 asks, 700 texts). The implicit resolvers are the class's, set at import. Only
     short texts are kept, at most 4,096: the memo pins no large value of an untrusted file."""
 
-    _resolved: dict[tuple[type, str, tuple[bool, bool]], str] = {}
-
     def resolve(self, kind: type, value: Any, implicit: Any) -> str:
         if kind is not yaml.ScalarNode or self.yaml_path_resolvers or len(value) > 64:
             return super().resolve(kind, value, implicit)
         key = (type(self), value, implicit)
-        tag = self._resolved.get(key)
+        tag = _TAGS.get(key)
         if tag is None:
-            if len(self._resolved) >= 4096:   # YAML of any size: the memo stays small
-                self._resolved.clear()
-            tag = self._resolved[key] = super().resolve(kind, value, implicit)
+            tag = super().resolve(kind, value, implicit)
+            _TAGS.put(key, tag)
         return tag
+
+
+_TAGS = caches.declare("base.yaml_tags", keys="resolver class, scalar text (64 characters at "
+                       "most), implicit flags", entry_bytes=256, max_bytes=4096 * 256)
 
 
 try:   # PyYAML exports CSafeLoader, not the CParser it is made of

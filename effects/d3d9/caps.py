@@ -49,14 +49,14 @@ import difflib
 import os
 import stat
 from dataclasses import dataclass, field
-from functools import lru_cache
+from functools import cached_property
 from pathlib import Path
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
 import yaml
 
-from effects.base import limits, untrusted, yaml_input
+from effects.base import caches, limits, untrusted, yaml_input
 from effects.base.bundled import PROFILE_FOLDER, names_a_profile_file
 from effects.base.errors import Location, ProfileError
 from effects.program.formats import D3DFORMAT
@@ -383,6 +383,15 @@ class CapsProfile:
     def quirks(self) -> list[Quirk]:
         return list(self.quirk_list)
 
+    @cached_property
+    def unreliable(self) -> tuple[dict[tuple, Quirk], dict[tuple, Quirk]]:
+        """The quirks that disown a caps bit, by (field, bit), and a format, by (format, usage):
+        worked out once per profile (validation asks per pass of every technique). Read only."""
+        quirks = self.quirk_list
+        return ({(q.get("field"), q.get("bit")): q for q in quirks if q.rule == "cap_unreliable"},
+                {(q.get("format"), q.get("usage")): q for q in quirks
+                 if q.rule == "format_unreliable"})
+
     def location(self, name: str) -> Location:
         """Where `name` was defined (this file or the profile it inherits from)."""
         return self.locations.get(ALIASES.get(name, name), Location(self.path, 1, 1))
@@ -395,7 +404,9 @@ class CapsProfile:
         return f"{self.title} ({self.generation})"
 
 
-@lru_cache(maxsize=1024)   # validation asks a few hundred (field, bit) pairs thousands of times
+# validation asks a few hundred (field, bit) pairs thousands of times
+@caches.memo("d3d9.cap_bits", keys="caps field name, bit name", entry_bytes=128,
+             max_bytes=1024 * 128)
 def _cap_bit(name: str, bit: str) -> tuple[str, str]:
     """(the field's canonical name, the bit without its prefix); ValueError for a field that
     has no bits or a bit it does not have."""
@@ -485,20 +496,19 @@ def _resolved_file(path: Path) -> Path | None:
     return path.resolve() if path.is_file() else None
 
 
-@lru_cache(maxsize=16)
+@caches.memo("d3d9.profile_folders", keys="a folder path", entry_bytes=256, max_bytes=16 * 256)
 def _resolved_folder(folder: Path) -> Path:
     return folder.resolve()
 
 
-# resolved path -> its profile: every profile loaded in this process, parents included
-_LOADED: dict[str, CapsProfile] = {}
+# resolved path -> its profile: the profiles loaded in this process, parents included (a
+# profile holds ~80 KB, tracemalloc: the radeon9700's; unbounded before)
+_LOADED = caches.declare("d3d9.profiles", keys="the profile file's resolved path",
+                         entry_bytes=64 << 10, max_bytes=1024 * (64 << 10))
 
 
 def _load_resolved(path: str) -> CapsProfile:
-    held = _LOADED.get(path)
-    if held is None:
-        held = _LOADED[path] = _build(Path(path), ())
-    return held
+    return _LOADED.get_or_make(path, lambda: _build(Path(path), ()))
 
 
 def _build(path: Path, chain: tuple[str, ...]) -> CapsProfile:
@@ -521,7 +531,7 @@ def _build(path: Path, chain: tuple[str, ...]) -> CapsProfile:
         parent = _LOADED.get(str(parent_path))
         if parent is None or len(chain) + 2 + len(parent.inherits) > limits.get("inherit_depth"):
             parent = _build(parent_path, chain + (str(path),))
-            _LOADED[str(parent_path)] = parent
+            _LOADED.put(str(parent_path), parent)
     caps, where_defined, quirks = _merge(parent, raw, key_locations, path)
     missing = [name for name in REQUIRED if name not in caps]
     if missing:

@@ -18,11 +18,11 @@ validator passes None and skips what it cannot read).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import lru_cache
 from typing import Any, Iterator, Mapping
 
 import numpy as np
 
+from effects.base import caches
 from effects.base.errors import EffectError, Location
 from effects.model import (Effect, EnumValue, Expression, NullValue, ParamRef, Pass, SamplerState,
                            StateAssignment)
@@ -311,13 +311,14 @@ _READERS: dict[str, Any] = {
 }
 
 
-@lru_cache(maxsize=None)
+# unbounded before: the names come from the file
+@caches.memo("d3d9.state_rows", keys="a state name", entry_bytes=128, max_bytes=4096 * 128)
 def _info(name: str) -> state_table.StateInfo | None:
     """The states-table row of a name (cached: validation asks for the same few names often)."""
     return state_table.lookup_state(name)
 
 
-@lru_cache(maxsize=4096)
+@caches.memo("d3d9.state_keys", keys="state name, index", entry_bytes=128, max_bytes=4096 * 128)
 def _key(name: str, index: int | None) -> tuple[str, int | None]:
     """The canonical state name, and index 0 for an indexed state written without one
     (`MinFilter = Linear` in a pass means sampler 0, as D3DX reads it)."""

@@ -1,9 +1,9 @@
 """Type names of the effect language → `TypeSpec`, and the numeric shape of a type."""
 from __future__ import annotations
 
-import functools
 import re
 
+from effects.base import caches
 from effects.model import TypeSpec
 
 __all__ = ["type_shape", "resolve_type"]
@@ -52,7 +52,8 @@ def resolve_type(name: str, structs: set[str] = frozenset()) -> TypeSpec | None:
 # TypeSpec is immutable: one object per spelling of a built-in type serves every declaration
 # (an effect declares thousands of float4 and texture parameters, annotations typed string);
 # bounded, as spellings come from the file
-@functools.lru_cache(maxsize=4096)
+@caches.memo("frontend.type_names", keys="a type's spelling", entry_bytes=256,
+             max_bytes=4096 * 256)
 def _built_in(name: str) -> TypeSpec | None:
     """`resolve_type` for the language's own types (a struct name is no built-in type)."""
     low = name.lower()

@@ -26,6 +26,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 from typing import Any, Callable, Iterable, Sequence, TypeVar
 
+from effects.base import caches
 from effects.base.errors import EffectError, Location
 
 J = TypeVar("J")
@@ -142,16 +143,16 @@ def render_row(cells: Sequence[CellJob]) -> list[Cell]:
     return [render_cell(job) for job in cells]
 
 
-_EFFECTS: dict[tuple[str, float], Any] = {}
+# unbounded before; a loaded effect holds 24-144 KB (tracemalloc: the bundled ones)
+_EFFECTS = caches.declare("host.batch_effects", keys="an effect file's absolute path and "
+                          "modification time", entry_bytes=256 << 10, max_bytes=64 << 20)
 
 
 def _effect(path: str):
     """The effect at `path`, loaded once per worker (again when the file changes)."""
     from effects.frontend.loader import load_effect
     key = (os.path.abspath(path), os.stat(path).st_mtime)
-    if key not in _EFFECTS:
-        _EFFECTS[key] = load_effect(path)
-    return _EFFECTS[key]
+    return _EFFECTS.get_or_make(key, lambda: load_effect(path))
 
 
 _LOCAL = threading.local()
@@ -161,7 +162,9 @@ def _backend(name: str) -> Any:
     """A back end of this thread's own: a back end holds the frame being drawn, and a Dask
     worker runs several cells at once on threads. The NumPy one shades on one thread, as the
     pool already keeps every core busy."""
-    backends = _LOCAL.__dict__.setdefault("backends", {})
+    backends = getattr(_LOCAL, "backends", None)
+    if backends is None:
+        backends = _LOCAL.backends = {}
     if name not in backends:
         from effects.program.backend import create_backend
         try:

@@ -43,8 +43,8 @@ from effects.assets.occlusion import vertex_occlusion
 from effects.assets import brdf as _brdf  # noqa: F401  (registers the brdf_factor procedural)
 from effects.model import Effect, Parameter
 from effects.host.scene import InlineMesh, Scene
-from effects.base import limits
-from effects.base.lru import DEFAULT_TEXTURE_BYTES, ByteLRU
+from effects.base import caches, limits
+from effects.base.lru import DEFAULT_TEXTURE_BYTES, ByteLRU, texture_bytes
 from effects.assets.texture_files import load_texture
 from effects.assets.textures import PROCEDURAL, procedural
 from effects.program.texture import Texture
@@ -94,10 +94,15 @@ def stand_in_texture(kind: str) -> Texture:
 class TextureCache:
     """Texture files by (absolute path, modification time, kind): a changed file reloads.
     Bounded by the bytes of the textures kept (least recently used out first), so an effect
-    with many small textures does not thrash it and a few big ones do not pin memory."""
+    with many small textures does not thrash it and a few big ones do not pin memory.
+    `name`: the name it is declared by in the cache registry (effects.base.caches); a host's
+    own cache may go without one."""
 
-    def __init__(self, max_bytes: int = DEFAULT_TEXTURE_BYTES) -> None:
-        self._entries = ByteLRU(max_bytes)
+    KEYS = "absolute path, modification time, size, inode, the kind asked for"
+
+    def __init__(self, max_bytes: int = DEFAULT_TEXTURE_BYTES, name: str | None = None) -> None:
+        self._entries = ByteLRU(max_bytes) if name is None else \
+            caches.declare(name, keys=self.KEYS, max_bytes=max_bytes, size_of=texture_bytes)
         self.loads = 0   # files actually read (tests and the viewer's log use it)
 
     def load(self, path: str, kind: str | None, at: Location) -> Texture:
@@ -122,7 +127,7 @@ class TextureCache:
         return texture
 
 
-DEFAULT_TEXTURE_CACHE = TextureCache()
+DEFAULT_TEXTURE_CACHE = TextureCache(name="host.texture_files")
 
 
 @dataclass(frozen=True)
@@ -217,7 +222,9 @@ class Geometry:
     has_diffuse: bool = True
 
 
-_MESH_CACHE: dict[tuple, Mesh] = {}
+# By the bytes of their arrays: a count bound (16, before) pinned 16 meshes of any size
+_MESHES = caches.declare("host.meshes", keys="a built-in mesh's name; an .obj file's absolute "
+                         "path and modification time", max_bytes=256 << 20)
 
 
 def scene_mesh(scene: Scene) -> Mesh | InlineMesh:
@@ -234,12 +241,10 @@ def scene_mesh(scene: Scene) -> Mesh | InlineMesh:
             key = (os.path.abspath(path), os.stat(path).st_mtime_ns)
         except OSError:
             raise SceneError(f"mesh file not found: {path}", at) from None
-    mesh = _MESH_CACHE.get(key)
+    mesh = _MESHES.get(key)
     if mesh is None:
         mesh = by_name(name, base_dir=scene.base_dir, location=at)
-        if len(_MESH_CACHE) > 16:
-            _MESH_CACHE.pop(next(iter(_MESH_CACHE)))
-        _MESH_CACHE[key] = mesh
+        _MESHES.put(key, mesh)
     return mesh
 
 

@@ -14,7 +14,6 @@ Keys a reader of other hosts' scenes may not expect:
 """
 from __future__ import annotations
 
-import functools
 import math
 import os
 from dataclasses import dataclass, field
@@ -23,7 +22,7 @@ from typing import Any, Mapping
 import numpy as np
 import yaml
 
-from effects.base import untrusted, yaml_input
+from effects.base import caches, untrusted, yaml_input
 from effects.base.errors import Location, SceneError
 
 Color = tuple[float, float, float, float]
@@ -199,14 +198,15 @@ class Camera:
 # Every Runtime (and so every `effects.render()` call) takes its camera's matrices: made once
 # per placement, as read-only arrays every caller shares (a caller that wants to change one
 # makes its own; writing into the shared one raises).
-@functools.lru_cache(maxsize=256)
+@caches.memo("host.view_matrices", keys="eye, target, up", entry_bytes=256, max_bytes=256 * 256)
 def _view(eye: tuple, target: tuple, up: tuple) -> np.ndarray:
     m = look_at_lh(eye, target, up)
     m.flags.writeable = False
     return m
 
 
-@functools.lru_cache(maxsize=256)
+@caches.memo("host.projection_matrices", keys="field of view, aspect, near, far", entry_bytes=256,
+             max_bytes=256 * 256)
 def _projection(fov: float, aspect: float, near: float, far: float) -> np.ndarray:
     m = perspective_fov_lh(math.radians(fov), aspect, near, far)
     m.flags.writeable = False

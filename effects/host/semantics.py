@@ -19,13 +19,13 @@ naming the parameter and where the effect declares it.
 """
 from __future__ import annotations
 
-import functools
 import math
 import re
 from typing import Any, Callable, Iterable
 
 import numpy as np
 
+from effects.base import caches
 from effects.base.errors import Location, SceneError
 from effects.model import Effect, Parameter
 from effects.host.scene import Scene, d3dcolor
@@ -120,7 +120,7 @@ _MATRIX_BASES_LONGEST_FIRST = sorted([*MATRIX_SEMANTICS, *_MATRIX_ALIASES], key=
 
 # matrix_semantic and name_semantic read only their string and the tables above: every Runtime
 # binds the scene by them, once for each parameter of the effect
-@functools.lru_cache(maxsize=4096)
+@caches.memo("host.matrix_semantics", keys="a semantic", entry_bytes=128, max_bytes=4096 * 128)
 def matrix_semantic(semantic: str) -> tuple[str, str] | None:
     """(base row of MATRIX_SEMANTICS, 'INVERSE' / 'TRANSPOSE' / 'INVERSETRANSPOSE' / '') of a
     transform semantic, or None. The longest base that leaves a known suffix wins, so
@@ -188,7 +188,8 @@ def _light_object(param: Parameter) -> bool:
     return obj is not None and isinstance(obj.value, str) and "light" in obj.value.lower()
 
 
-@functools.lru_cache(maxsize=4096)
+@caches.memo("host.name_semantics", keys="a parameter name", entry_bytes=128,
+             max_bytes=4096 * 128)
 def name_semantic(name: str) -> str | None:
     """The semantic a parameter without one is bound by for its name (XNA convention, see
     `_NAME_PREFIXES`): 'World' -> WORLD, 'g_mWVP' -> WORLDVIEWPROJECTION, 'mInvWorld' ->

@@ -158,20 +158,6 @@ class Validation:
         return [f"pass {p.name}: {n}" for p in self.pass_reports for n in p.notes]
 
 
-def _unreliable(profile: CapsProfile) -> tuple[dict, dict]:
-    """The quirks that disown a caps bit, by (field, bit), and a format, by (format, usage):
-    made once per profile (validation asks per pass of every technique) and kept on it with
-    the quirk tuple they were made from. Read only."""
-    held = profile.__dict__.get("_unreliable")
-    if held is None or held[0] is not profile.quirk_list:
-        quirks = profile.quirk_list
-        held = (quirks,
-                {(q.get("field"), q.get("bit")): q for q in quirks if q.rule == "cap_unreliable"},
-                {(q.get("format"), q.get("usage")): q for q in quirks if q.rule == "format_unreliable"})
-        profile.__dict__["_unreliable"] = held
-    return held[1], held[2]
-
-
 class _Reads(DeviceState):
     """A pass's device state as the checks read it, each answer kept: every card's checker
     asks the same questions of the same state (nothing here depends on the card), so on the
@@ -255,7 +241,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
         self.expressions = analysis.expressions
         self.state = analysis.reads
         # quirks that make a reported caps bit or format unusable: (field, bit) / (format, usage)
-        self.unreliable_bits, self.unreliable_formats = _unreliable(profile)
+        self.unreliable_bits, self.unreliable_formats = profile.unreliable
 
     # -- reason helpers ---------------------------------------------------------------------
     def fail(self, location: Location, subject: str, requirement: str, card_value: str,

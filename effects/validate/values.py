@@ -3,12 +3,13 @@ whether a state is indexed. (Values are read with the device state's typed reade
 `effects.d3d9.device.DeviceState.get_*`, the ones lowering uses.)"""
 from __future__ import annotations
 
-from functools import lru_cache
 
+from effects.base import caches
 from effects.d3d9 import states as state_table
 
 
-@lru_cache(maxsize=4096)
+@caches.memo("validate.enum_spellings", keys="state name, enum value name", entry_bytes=128,
+             max_bytes=4096 * 128)
 def spelled(state_name: str, enum_name: str) -> str:
     """An enum value of a state as the D3D docs spell it ('BUMPENVMAP' → 'BumpEnvMap')."""
     info = state_table.lookup_state(state_name)

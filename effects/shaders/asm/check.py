@@ -622,9 +622,10 @@ def check(program: AsmProgram) -> list[AsmError]:
 
 
 def check_cached(program: AsmProgram) -> list[AsmError]:
-    """`check`, once per assembled program object (kept on the program, so it goes with it):
-    validation asks per card, and the lowering check asks again. Read the list; don't change it."""
-    hit = program.__dict__.get("_check_errors")
+    """`check`, once per assembled program object (kept on it, `AsmProgram._check_errors`, so
+    it goes with it): validation asks per card, and the lowering check asks again. Read the
+    list; don't change it."""
+    hit = program._check_errors
     if hit is None:
-        hit = program.__dict__["_check_errors"] = check(program)
+        hit = program._check_errors = check(program)
     return hit

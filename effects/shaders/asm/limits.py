@@ -5,9 +5,9 @@ resource use with one card's values (the caps validator turns each violation int
 """
 from __future__ import annotations
 
-from functools import lru_cache
 from typing import Any, Iterator, Mapping
 
+from effects.base import caches
 from effects.base.errors import AsmError, Location
 from effects.model import ShaderBlock
 from effects.shaders.asm.parser import assemble
@@ -19,34 +19,46 @@ Violation = tuple[Location, str, str, str, str]  # location, subject, requiremen
 SOFTWARE_VS_CONSTANTS = 8192
 
 
-_MEMO = "_assembled"   # the attribute assemble_cached keeps on a ShaderBlock
+def _program_bytes(result: Any) -> int:
+    """About what an assembled program holds: ~1.5 KB an instruction (tracemalloc: the bundled
+    effects' blocks, 1.4-2.9 KB), an error a few KB."""
+    return 2048 + 1600 * len(getattr(result, "instructions", ()))
 
 
-@lru_cache(maxsize=512)
+# 512 programs before; 8 MiB holds ~500 of ten instructions
+_ASSEMBLED = caches.declare("shaders.asm.programs", keys="stage, version, source text, location "
+                            "of an asm block", max_bytes=8 << 20, size_of=_program_bytes)
+
+
 def _assemble_key(stage: str, version: str | None, source: str, path: str, line: int,
                   column: int) -> AsmProgram | AsmError:
-    block = ShaderBlock(stage, version, source, location=Location(path, line, column))
-    try:
-        return assemble(block)
-    except AsmError as err:
-        return err
+    key = (stage, version, source, path, line, column)
+    hit = _ASSEMBLED.get(key)
+    if hit is None:
+        block = ShaderBlock(stage, version, source, location=Location(path, line, column))
+        try:
+            hit = assemble(block)
+        except AsmError as err:
+            hit = err
+        _ASSEMBLED.put(key, hit)
+    return hit
 
 
 def assemble_cached(block: ShaderBlock) -> AsmProgram:
     """`assemble`, memoised on the block's text and position (validation runs per card).
-    The result is kept on the block itself (with the key it was made from, checked on a
-    hit): the process-wide LRU behind it is bounded, and an effect with more blocks than it
-    holds would otherwise parse every block again on every validation and lowering (a
-    30k-line effect has ~1,000). The memo goes with the effect."""
+    The result is kept on the block itself (`ShaderBlock._assembled`, with the key it was made
+    from, checked on a hit): the process-wide cache behind it is bounded, and an effect with
+    more blocks than it holds would otherwise parse every block again on every validation and
+    lowering (a 30k-line effect has ~1,000). The memo goes with the effect."""
     loc = block.location
     key = (block.stage, block.version, block.source, loc)
-    memo = block.__dict__.get(_MEMO)
+    memo = block._assembled
     if memo is not None and memo[0] == key:
         result = memo[1]
     else:
         result = _assemble_key(block.stage, block.version, block.source, loc.path, loc.line,
                                loc.column)
-        block.__dict__[_MEMO] = (key, result)
+        block._assembled = (key, result)
     if isinstance(result, AsmError):
         raise result
     return result
@@ -58,7 +70,7 @@ def lowering_cached(program: AsmProgram, int_constants: Mapping[int, Any] | None
     (kept on the program, so it goes with it): validation asks per card, and a compiled HLSL
     shader is one program for every card."""
     key = tuple(sorted((int_constants or {}).items()))
-    hits = program.__dict__.setdefault("_lowering_problems", {})
+    hits = program._lowering_problems
     hit = hits.get(key)
     if hit is None:
         from effects.shaders.asm.lower import lowering_problems

@@ -12,9 +12,8 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from functools import lru_cache
 
-from effects.base import limits
+from effects.base import caches, limits
 from effects.base.errors import AsmError, Location
 from effects.model import ShaderBlock
 from effects.shaders.asm.instructions import COMPARISONS, is_known, lookup, rows_named
@@ -473,7 +472,9 @@ class _Parser:
             prog.bool_defs[reg.index] = bool(values[0])
 
 
-@lru_cache(maxsize=1024)    # a shader names a few registers many times
+# a shader names a few registers many times
+@caches.memo("shaders.asm.registers", keys="a register word", entry_bytes=128,
+             max_bytes=1024 * 128)
 def _register(word: str) -> tuple[str, int | None, str] | None:
     """'r0_bx2' -> ('r', 0, '_bx2'); 'opos' -> ('oPos', None, ''); None if not a register."""
     m = _REGISTER.match(word)
@@ -483,7 +484,7 @@ def _register(word: str) -> tuple[str, int | None, str] | None:
     return _KIND_CASE.get(kind, kind), None if index is None else int(index), mods
 
 
-@lru_cache(maxsize=1024)
+@caches.memo("shaders.asm.swizzles", keys="swizzle letters", entry_bytes=128, max_bytes=1024 * 128)
 def _swizzle(letters: str) -> tuple[int, int, int, int] | None:
     """'xy' -> (0, 1, 1, 1): the components read, the last one repeated; None if the letters
     are no swizzle (none, more than four, or one that is not x, y, z, w, r, g, b, a)."""

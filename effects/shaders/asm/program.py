@@ -148,6 +148,10 @@ class AsmProgram:
     # the block's lines as the file has them (line 0 padded to its file column), for carets
     source_lines: tuple[str, ...] = ()
     has_decl_block: bool = False
+    # Worked out by modules this one cannot import (they import it), kept with the program:
+    # check.check_cached's errors, and limits.lowering_cached's problems by integer constants
+    _check_errors: list | None = field(default=None, init=False, repr=False, compare=False)
+    _lowering_problems: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
     def phase_location(self) -> Location | None:
@@ -159,7 +163,7 @@ class AsmProgram:
         return compute_stats(self)
 
     # Asked of one program once per card: worked out once, kept with it. Read them; don't
-    # change them. (check.check_cached keeps the checker's errors on it the same way: the
+    # change them. (check.check_cached keeps the checker's errors in a field instead: the
     # checker imports this module, so a property here would make an import cycle.)
     @cached_property
     def flow_nesting(self) -> tuple[int, int]:

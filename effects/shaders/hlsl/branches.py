@@ -127,7 +127,7 @@ def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -
                      + tuple(kills[0]) + tuple(kills[1]))
     if kills[0] or kills[1]:
         ev.ctx.kills.append(node)             # it discards: reached whatever reads it
-        node.node.__dict__["effect"] = True
+        node.node.effect = True
     k = 0
     for v in changed:
         comps: list[Operand] = []
@@ -140,7 +140,7 @@ def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -
 
 def bool_register(ev: Any, name: str) -> int:
     """The b# of a bool parameter: its register(b#) binding, else the next free one."""
-    regs = ev.ctx.__dict__.setdefault("bool_registers", {})
+    regs = ev.ctx.bool_registers
     if name not in regs:
         bound = explicit_register(ev.ctx, name, "b")
         if bound is not None:

@@ -24,11 +24,10 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from functools import lru_cache
 from typing import Any, Callable
 
+from effects.base import caches
 from effects.base.errors import EffectError
-from effects.base.lru import ByteLRU
 from effects.model import CompileShader, Effect, RecordedReads
 
 CACHE_BYTES = 64 << 20
@@ -44,18 +43,27 @@ def entry_bytes(value: Any) -> int:
 
 # key -> CompiledShader | EffectError, bounded by what they hold (64 MiB: ~700 shaders the size
 # of wood.fx's, ~75 of 150-line functions)
-CACHE = ByteLRU(CACHE_BYTES, size_of=entry_bytes)
-# every struct, typedef and function of an effect -> whether they all parse and resolve
-_LOADS = ByteLRU(1024, size_of=lambda value: 1)
+CACHE = caches.declare(
+    "shaders.hlsl.compiles", keys="compile_key: target, entry, arguments, every declaration "
+    "reached (and whether all load); an error with its compile state's location besides",
+    max_bytes=CACHE_BYTES, size_of=entry_bytes)
+# every struct, typedef and function of an effect -> whether they all parse and resolve (the
+# key's tuples share the model's texts: an entry is the tuple and a bool)
+_LOADS = caches.declare("shaders.hlsl.declaration_loads", keys="every struct, typedef and "
+                        "function of an effect as the key holds them", entry_bytes=1024,
+                        max_bytes=1024 * 1024)
 
 
-@lru_cache(maxsize=4096)
+# a set of a function's identifiers: ~2 KB for a 300-character function
+@caches.memo("shaders.hlsl.identifiers", keys="a declaration's text", entry_bytes=2048,
+             max_bytes=4096 * 2048)
 def _names(text: str) -> frozenset[str]:
     """Every identifier in `text` (kept per text: the same function is keyed once per card)."""
     return frozenset(_IDENTIFIER.findall(text))
 
 
-@lru_cache(maxsize=None)
+@caches.memo("shaders.hlsl.field_names", keys="a model class", entry_bytes=256,
+             max_bytes=64 * 256)    # unbounded before; the model has a dozen classes
 def _field_names(cls: type) -> tuple[str, ...]:
     return tuple(f.name for f in dataclasses.fields(cls))
 
@@ -90,7 +98,7 @@ def compile_key(effect: Any, value: CompileShader) -> tuple:
     was made from and every name its walk looked up finds the same parameter with the same
     declaration; the lookups are made again, so a recording view records the same reads."""
     base = effect.effect if isinstance(effect, RecordedReads) else effect
-    memo = base.__dict__.setdefault(_MEMO, {})
+    memo = base._compile_keys
     held = memo.get(value)
     if held is not None and held.holds(effect):
         return held.key
@@ -102,8 +110,7 @@ def compile_key(effect: Any, value: CompileShader) -> tuple:
     return key
 
 
-_MEMO = "_compile_keys"   # the attribute compile_key keeps on an effect: {CompileShader: _KeptKey}
-_MEMO_SIZE = 1024
+_MEMO_SIZE = 1024    # kept keys per effect (Effect._compile_keys)
 
 
 class _KeptKey:
@@ -255,7 +262,8 @@ def cached_compile(effect: Any, value: CompileShader, compile: Callable[[], Any]
 
 # on-disk store key -> what it names, for the length of the process (a stored shader is read
 # once, not once per card)
-_STORED = ByteLRU(CACHE_BYTES, size_of=entry_bytes)
+_STORED = caches.declare("shaders.hlsl.stored", keys="the on-disk store's entry name "
+                         "(store.key)", max_bytes=CACHE_BYTES, size_of=entry_bytes)
 
 
 def compile_state(effect: Effect, value: CompileShader) -> Any:

@@ -213,7 +213,7 @@ class CodeGen:
             if movable and node.uses == uses_here and len(set(comps_used)) == len(comps_used) \
                     and len(pairs) == uses_here:
                 self.home[node.id] = (reg, {comp: lane_of(lane) for comp, lane in pairs})
-                node.__dict__["coalesced"] = True
+                node.coalesced = True
 
     def node(self, n: Node) -> None:
         op = n.op
@@ -232,7 +232,7 @@ class CodeGen:
             base = self.uniform_reg(*n.key).index
             self.home[n.id] = (Reg("c_al", base), {c: c for c in range(4)})
             return
-        if op == "kill" and n.__dict__.get("block") is not None:
+        if op == "kill" and n.block is not None:
             emit_kill(self, n)         # inside a branch side or a loop body
             return
         if op == "kill" or op == "phi":
@@ -252,7 +252,7 @@ class CodeGen:
             reg, _ = self.home_of(n)
             groups: dict[tuple, list[tuple[int, Operand]]] = {}
             for lane, c in enumerate(n.args):
-                if self.home.get(c.node.id, (None,))[0] is reg and getattr(c.node, "coalesced", False):
+                if self.home.get(c.node.id, (None,))[0] is reg and c.node.coalesced:
                     continue
                 key = (c.node.id, c.negate) if c.node.op != "const" else ("const",)
                 groups.setdefault(key, []).append((lane, c))

@@ -198,6 +198,7 @@ class _Binder:
         self.output_dcls: list[str] = []
         self.next_v = 0
         self.next_o = 0
+        self.input_keys: dict[str, tuple] = {}   # v# -> (usage, index) of a vertex input
 
     def uniform_param(self, name: str, t: HType) -> Value:
         from effects.shaders.hlsl.expressions import uniform_value
@@ -235,12 +236,12 @@ class _Binder:
             key = (usage, index)
             reg = None
             for r, d in self.dcls.items():
-                if d.endswith(f" {r}") and getattr(self, "_keys", {}).get(r) == key:
+                if d.endswith(f" {r}") and self.input_keys.get(r) == key:
                     reg = r
             if reg is None:
                 reg = f"v{self.next_v}"
                 self.next_v += 1
-                self.__dict__.setdefault("_keys", {})[reg] = key
+                self.input_keys[reg] = key
                 usage_text = usage.lower() + (str(index) if index else "")
                 if usage_text.startswith("sv_"):
                     usage_text = usage_text[3:]

@@ -60,6 +60,16 @@ class Context:
     # A preshader (an effect-level expression run on the host): uniform globals read as
     # constants, their current values, instead of constant registers
     host_values: bool = False
+    # What the evaluator gives out and works out as it goes (none is an argument): int and
+    # bool parameters' i# and b#, `defi` values by i#, the globals read and those being
+    # initialised, by name, and the real flow control's nesting
+    int_registers: dict[str, int] = field(default_factory=dict, init=False, repr=False)
+    int_defs: dict[int, tuple] = field(default_factory=dict, init=False, repr=False)
+    bool_registers: dict[str, int] = field(default_factory=dict, init=False, repr=False)
+    global_values: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
+    initializing: set[str] = field(default_factory=set, init=False, repr=False)
+    flow_depth: dict[str, int] = field(init=False, repr=False, default_factory=lambda: {
+        "static": 0, "dynamic": 0, "loop": 0})
 
 
 def type_names(effect: Effect) -> frozenset[str]:

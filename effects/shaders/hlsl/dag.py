@@ -29,6 +29,13 @@ class Node:
     location: Location = UNKNOWN_LOCATION       # the HLSL expression it comes from
     id: int = 0
     uses: int = field(default=0, repr=False)
+    # Marks the later passes set: an if or loop that discards (branches, loops); the flow
+    # block it is placed in and a loop's carried groups kept (flowcode); made in the register
+    # of the instruction that reads it (codegen)
+    effect: bool = field(default=False, repr=False)
+    block: Any = field(default=None, repr=False)
+    live: frozenset[int] | None = field(default=None, repr=False)
+    coalesced: bool = field(default=False, repr=False)
 
     @property
     def is_const(self) -> bool:

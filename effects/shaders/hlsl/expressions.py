@@ -55,7 +55,7 @@ def _var(ev: Any, tree: lark.Tree) -> Value:
 
 def global_value(ev: Any, name: str, where: Any) -> Value:
     ctx = ev.ctx
-    cache = ctx.__dict__.setdefault("global_values", {})
+    cache = ctx.global_values
     if name in cache:
         return cache[name]
     param = ctx.effect.parameter(name)
@@ -87,7 +87,7 @@ def _initializer(ev: Any, name: str, init: Any, where: Any) -> np.ndarray:
     """A global's initialiser kept as text, evaluated. In a preshader every component must
     fold (X3013); a compile keeps the old reading of a non-constant component as 0."""
     ctx = ev.ctx
-    busy = ctx.__dict__.setdefault("initializing", set())
+    busy = ctx.initializing
     if name in busy:
         raise ev.error(f"X3013: the initializer of '{name}' refers to '{name}' itself", where)
     busy.add(name)

@@ -86,7 +86,7 @@ def live_nodes(roots: list[Node]) -> list[Node]:
     for n in anchors:
         seen.setdefault(n.id, n)
     for loop_id, n in loops.items():
-        n.__dict__["live"] = frozenset(groups.get(loop_id, ()))
+        n.live = frozenset(groups.get(loop_id, ()))
     return sorted(seen.values(), key=lambda n: n.id)
 
 
@@ -146,14 +146,14 @@ def place(cg: Any, nodes: list[Node]) -> dict[Label, list[Node]]:
             start = max((i + 1 for i, x in enumerate(outer_first)
                          if x[0] == "loop" and x[1] in deps[n.id]), default=0)
             # a discard (or a block holding one) stays where it is: a loop may run 0 times
-            effect = n.op == "kill" or n.__dict__.get("effect", False)
+            effect = n.op == "kill" or n.effect
             for x in outer_first[start:]:
                 if x[0] == "loop" and not effect or \
                         lift_gradients and n.op in _GRADIENT and x in dynamic:
                     label = parent[x]
                     break
         labels[n.id] = label
-        n.__dict__["block"] = label
+        n.block = label
         if lift_gradients and n.op in _GRADIENT and any(x in dynamic for x in chain(label)[:-1]):
             # it reads the loop's values, so it cannot leave the loop, whose pixels diverge
             raise HlslError("X4014: cannot have gradient operations inside loops with "
@@ -207,7 +207,7 @@ def emit_loop(cg: Any, n: Node) -> None:
     loop_id, register, count, has_break, uses_al = n.key
     phis = cg.loop_phis.get(loop_id, {})
     inits, results = n.args[:count], n.args[count:2 * count]
-    live = n.__dict__.get("live", range(count))        # live_nodes: the groups kept
+    live = range(count) if n.live is None else n.live   # live_nodes: the groups kept
     carried: list[Reg] = []
     for k in range(count):
         reg = cg.temp()

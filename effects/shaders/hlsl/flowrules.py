@@ -44,7 +44,7 @@ class NotReal(Exception):
 
 def enter(ev: Any, kind: str) -> None:
     """Count one more level of `kind` flow control (NotReal past the limit)."""
-    depth = ev.ctx.__dict__.setdefault("flow_depth", {"static": 0, "dynamic": 0, "loop": 0})
+    depth = ev.ctx.flow_depth
     if depth[kind] >= MAX_DEPTH[kind]:
         raise NotReal(f"it would nest {_DEPTH_WHAT[kind]} {MAX_DEPTH[kind] + 1} deep, and "
                       f"{ev.ctx.target.name} allows {MAX_DEPTH[kind]}")
@@ -52,7 +52,7 @@ def enter(ev: Any, kind: str) -> None:
 
 
 def leave(ev: Any, kind: str) -> None:
-    ev.ctx.__dict__["flow_depth"][kind] -= 1
+    ev.ctx.flow_depth[kind] -= 1
 
 
 class Flag:

@@ -10,9 +10,9 @@
 """
 from __future__ import annotations
 
-from functools import lru_cache
 from typing import Any
 
+from effects.base import caches
 from effects.base.errors import Location, UNKNOWN_LOCATION
 from effects.shaders.asm.versions import IDENTITY, PS20_SWIZZLES
 from effects.shaders.hlsl.asmcode import Generated, Instr, Reg, Src, _SAMPLER_DCL
@@ -39,7 +39,9 @@ def _choose(needed: dict[int, int], rule: str) -> tuple[int, ...] | None:
 _PS20_ORDER = (IDENTITY, *((k,) * 4 for k in range(4)), *sorted(PS20_SWIZZLES - {IDENTITY}))
 
 
-@lru_cache(maxsize=4096)   # a few hundred distinct lane maps; asked per source per instruction
+# a few hundred distinct lane maps; asked per source per instruction
+@caches.memo("shaders.hlsl.lanes", keys="lanes needed, the swizzle rule", entry_bytes=128,
+             max_bytes=4096 * 128)
 def _choose_lanes(items: tuple[tuple[int, int], ...], rule: str) -> tuple[int, ...] | None:
     needed = dict(items)
     if rule == "any":

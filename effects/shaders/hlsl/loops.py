@@ -215,8 +215,7 @@ def _counter_offset(counter: Operand, index: Operand) -> int | None:
 
 
 def _free_int(ctx: Any) -> int:
-    taken = set(ctx.__dict__.get("int_registers", {}).values()) | set(
-        ctx.__dict__.get("int_defs", {}))
+    taken = set(ctx.int_registers.values()) | set(ctx.int_defs)
     k = 0
     while k in taken:
         k += 1
@@ -230,8 +229,8 @@ def real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
     # a uniform count's i#, given before the body (so an outer loop's count comes first); a
     # literal count's `defi` register once the body says rep or loop; given back when the
     # loop cannot be real
-    ints = ctx.__dict__.setdefault("int_registers", {})
-    defs = ctx.__dict__.setdefault("int_defs", {})
+    ints = ctx.int_registers
+    defs = ctx.int_defs
     had = set(defs)
     fresh = bound.param is not None and bound.param not in ints
     if fresh:
@@ -309,7 +308,7 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
                      ev.at(tree), tuple(inits + results) + extra + tuple(kills))
     if kills:
         ctx.kills.append(loop)                # it discards: reached whatever reads it
-        loop.node.__dict__["effect"] = True
+        loop.node.effect = True
     k = 0
     for v, groups in carried:
         comps: list[Operand] = []
