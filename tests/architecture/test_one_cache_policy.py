@@ -1,4 +1,4 @@
-"""STYLE.md item 14: a cache is declared once, through effects.base.caches, and used by name;
+"""docs/design.md habit 14: a cache is declared once, through effects.base.caches, and used by name;
 values are not stashed on objects' __dict__."""
 from __future__ import annotations
 
