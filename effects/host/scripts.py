@@ -25,6 +25,13 @@ a `Script` annotation draws only what its script says; without one, every pass o
 Each target is drawn in one back-end frame (`effects.program.backend`): switching targets ends the
 frame and the finished picture becomes that texture parameter's texture (one mip level).
 
+Scripts are effect data from strangers: they run without recursion (a stack of running
+scripts), a `Pass=` leading back to a pass still running is an error naming the chain, every
+command counts against the `script_commands` limit and every draw against `script_draws`,
+each command's numbers are checked (finite; a clear depth from 0 to 1), and a target's size
+is checked against `texture_edge` and `target_pixels_<back end>` before a frame is begun for
+it (`target_extent`).
+
 Cube render targets (FX Composer's spelling: `string ResourceType = "Cube"` on the target, or a
 `textureCUBE` declaration) are drawn face by face, as a host draws an omni light's shadow map:
 their size is `int Width` (or `Dimensions`, square; default 256), and `string CubeOrigin = "P"`
