@@ -5,6 +5,9 @@
     tech = effect.find_valid_technique(card)
     picture = effects.render(effect, card, size=(256, 256))
 """
+# the package's version, its one source: pyproject.toml reads it, `effects --version` prints it
+__version__ = "0.1.0"
+
 from effects.base.errors import (AsmError, EffectError, EffectWarning, Location, NoValidTechnique,
                                  ParseError, PreprocessError, ProfileError, SceneError, StateError)
 

@@ -18,7 +18,8 @@ import numpy as np
 
 from effects.program.passprogram import PassProgram, RenderState
 
-from effects.program.backend import TARGET_FORMATS, DrawError, register_backend, triangle_list
+from effects.program.backend import DrawError, register_backend, triangle_list
+from effects.program.formats import TARGET_FORMATS
 from backends.gl import glsl
 from backends.gl import rawgl as G
 from backends.gl.context import headless_context

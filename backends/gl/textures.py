@@ -1,4 +1,4 @@
-"""`effects.assets.textures.Texture`s as GL textures: float32 RGBA texels, every mip level.
+"""`effects.program.texture.Texture`s as GL textures: float32 RGBA texels, every mip level.
 
 A Texture holds decoded texel values (signed bump formats already in [-1, 1], DXT already
 decompressed), so every format uploads as RGBA32F and the GL sampler returns exactly the

@@ -22,7 +22,8 @@ import numpy as np
 
 from effects.program.passprogram import RenderState
 
-from effects.program.backend import TARGET_FORMATS, DrawError
+from effects.program.backend import DrawError
+from effects.program.formats import TARGET_FORMATS
 
 COMPARE_FUNCS = ("NEVER", "LESS", "EQUAL", "LESSEQUAL", "GREATER", "NOTEQUAL", "GREATEREQUAL",
                  "ALWAYS")

@@ -2,7 +2,7 @@
 
 Coordinates arrive as rows of quads (row = quad*4 + pixel, pixels in (0,0),(1,0),(0,1),(1,1)
 order), so the level of detail comes from quad differences, as on hardware: one LOD per quad.
-Texel values are already decoded floats (see effects.assets.textures.Texture); signed bump formats
+Texel values are already decoded floats (see effects.program.texture.Texture); signed bump formats
 are filtered like any other (their values are simply in [-1, 1]).
 
 Conventions:

@@ -24,7 +24,7 @@ FX = os.path.join(ROOT, "fxfiles")
 TEXTURES = os.path.join(FX, "textures")
 
 
-def solid(rgb) -> effects.assets.textures.Texture:
+def solid(rgb) -> effects.program.texture.Texture:
     return make_texture(np.broadcast_to(np.array([*rgb, 1.0], np.float32), (4, 4, 4)).copy(),
                         "X8R8G8B8")
 

@@ -1,4 +1,4 @@
-"""DirectDraw Surface (.dds) files: the header around surfaces of `effects.d3d9.formats`.
+"""DirectDraw Surface (.dds) files: the header around surfaces of `effects.program.formats`.
 
 File layout (Microsoft, "DDS programming guide"): the magic "DDS ", a 124-byte DDS_HEADER
 holding a 32-byte DDS_PIXELFORMAT, then the surfaces: for a cube map each face (+X, -X, +Y,
@@ -15,10 +15,11 @@ import numpy as np
 
 from effects.base import limits, untrusted
 from effects.base.errors import Location, SceneError
-from effects.d3d9.formats import (BY_CODE, DDPF_ALPHA, DDPF_ALPHAPIXELS, DDPF_BUMPDUDV,
-                                         DDPF_BUMPLUMINANCE, DDPF_FOURCC, TABLE, PixelFormat,
-                                         fourcc_code, pack, pixel_format, surface_bytes, unpack)
-from effects.assets.textures import Texture
+from effects.program.formats import (BY_CODE, DDPF_ALPHA, DDPF_ALPHAPIXELS, DDPF_BUMPDUDV,
+                                     DDPF_BUMPLUMINANCE, DDPF_FOURCC, TABLE, PixelFormat,
+                                     fourcc_code, pixel_format, surface_bytes)
+from effects.program.texels import pack, unpack
+from effects.program.texture import Texture
 
 # ---------------------------------------------------------------------------------------------
 # The file

@@ -20,7 +20,8 @@ from effects.base import limits, untrusted
 from effects.base.errors import Location, SceneError
 from effects.assets import dds
 from effects.assets.images import read_image
-from effects.assets.textures import KINDS, Texture, make_texture
+from effects.assets.textures import make_texture
+from effects.program.texture import KINDS, Texture
 
 Loader = Callable[[str, Location, "str | None"], Texture]
 LOADERS: dict[str, Loader] = {}

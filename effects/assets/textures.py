@@ -1,15 +1,8 @@
-"""Textures the effects sample: the `Texture` container, mip chains, quantisation, procedural
+"""Textures the effects sample: mip chains, quantisation, procedural
 generators (so no large image is committed); files load through `effects.assets.texture_files`.
 
-Conventions (all of this module, `effects.d3d9.formats` and `effects.assets.dds`):
-- A `Texture` holds DECODED texel values, float32, RGBA in the last axis: what a card's sampler
-  returns for each stored texel ([0, 1] for unsigned formats, [-1, 1] for the signed bump
-  formats, any float for the float formats). Where the format quantises, the values are exactly
-  the quantised ones (`encode`), so a procedural V8U8 map equals what a card would sample.
-- Level shapes: '2d' (H, W, 4); '1d' (1, W, 4); 'cube' (6, H, W, 4) in D3D face order +X, -X,
-  +Y, -Y, +Z, -Z; '3d' (D, H, W, 4). Row 0 is the top row of the image, v = 0, as Direct3D
-  addresses textures; column 0 is u = 0. Texel (row i, column j) has its centre at
-  u = (j + 0.5) / W, v = (i + 0.5) / H.
+Conventions (all of this module and `effects.assets.dds`; what a `Texture` holds is said in
+`effects.program.texture`):
 - Cube faces follow Direct3D (the same layout as OpenGL's): a direction (x, y, z) picks the
   face of its largest component and
       +X: u = (-z/|x| + 1)/2, v = (-y/|x| + 1)/2      -X: u = ( z/|x| + 1)/2, v = (-y/|x| + 1)/2
@@ -30,40 +23,12 @@ import numpy as np
 
 from effects.base import limits
 from effects.base.untrusted import confine
-from effects.d3d9 import formats as pixel_formats
+from effects.program.formats import pixel_format
+from effects.program.texture import Texture
+from effects.program.texels import quantize
 from effects.assets.images import read_image
 from effects.base.lru import ByteLRU
 from effects.base.errors import Location, SceneError
-
-KINDS = ("1d", "2d", "3d", "cube")
-
-
-@dataclass
-class Texture:
-    """A texture: kind, D3D format name and its mip levels of decoded texel values (see module doc)."""
-
-    kind: str
-    format: str
-    levels: list[np.ndarray]
-    name: str = ""
-
-    @property
-    def width(self) -> int:
-        return int(self.levels[0].shape[-2])
-
-    @property
-    def height(self) -> int:
-        return int(self.levels[0].shape[-3])
-
-    @property
-    def depth(self) -> int:
-        return int(self.levels[0].shape[0]) if self.kind == "3d" else 1
-
-    @property
-    def signed(self) -> bool:
-        """True for the bump formats whose channels decode to [-1, 1]."""
-        return pixel_formats.pixel_format(self.format).signed
-
 
 # ---------------------------------------------------------------------------------------------
 # Quantisation and mip chains
@@ -72,9 +37,9 @@ class Texture:
 def encode(values: np.ndarray, format: str) -> np.ndarray:
     """`values` (..., 4) as `format` stores them: the decoded values a card would sample.
 
-    Channels the format lacks read as the format's defaults (see `effects.d3d9.formats`).
+    Channels the format lacks read as the format's defaults (see `effects.program.formats`).
     """
-    return pixel_formats.quantize(values, pixel_formats.pixel_format(format))
+    return quantize(values, pixel_format(format))
 
 
 def _area_weights(n: int, m: int) -> np.ndarray:

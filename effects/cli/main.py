@@ -1,6 +1,7 @@
 """The `effects` command line: validate, matrix, render, view, profiles, doctor, compile.
 
-Exit codes (DESIGN.md): 0 ok, 1 invalid or not renderable, 2 bad input or usage.
+Exit codes (DESIGN.md): 0 ok, 1 invalid or not renderable, 2 bad input or usage, 141 when
+the reader of the output left (`| head`), as a process ended by SIGPIPE.
 No Python traceback reaches a user: every `EffectError` is printed located, with its line.
 """
 from __future__ import annotations
@@ -9,6 +10,7 @@ import argparse
 import os
 import sys
 
+from effects import __version__
 from effects.base.errors import EffectError
 
 # typing itself is not imported: it is the largest import `effects --help` would make
@@ -21,6 +23,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from rich.console import Console   # imported when a command runs: --help needs none of it
 
 EXIT_OK, EXIT_INVALID, EXIT_BAD_INPUT = 0, 1, 2
+EXIT_CLOSED_PIPE = 128 + 13   # the status of a process ended by SIGPIPE
 
 
 class UsageError(Exception):
@@ -59,6 +62,12 @@ class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # type: ignore[override]
         self.print_usage(sys.stderr)
         raise UsageError(f"{self.prog}: error: {message}")
+
+    def _print_message(self, message: str, file=None) -> None:
+        # argparse's own drops an OSError: `effects --help | head -1` exited 0, not 141 as
+        # every other output does on a closed pipe (main fills a closed stream, not argparse)
+        if message:
+            (file or sys.stderr).write(message)
 
 
 def _add_validate(sub) -> None:
@@ -134,7 +143,12 @@ def _cmd_validate(args, console: Console) -> int:
 
 
 def _add_matrix(sub) -> None:
-    p = sub.add_parser("matrix", help="the technique each card selects, for one or more effects")
+    p = sub.add_parser(
+        "matrix", help="the technique each card selects, for one or more effects",
+        description="The technique each card selects, for one or more effects: cards down, "
+                    "effects across, each cell the technique and its pass count. On a terminal "
+                    "too narrow for the whole table, it is printed as several tables of whole "
+                    "columns, each led by the cards; into a pipe or a file, one line per card.")
     p.add_argument("files", nargs="+", metavar="FILE.fx")
     p.add_argument("--profile", "-p", action="append", default=[], metavar="P",
                    help="caps profile (repeatable; default: every bundled card)")
@@ -144,12 +158,25 @@ def _add_matrix(sub) -> None:
     p.add_argument("--render", metavar="SHEET.png",
                    help="also draw the contact sheet: each cell the picture the card draws, or why not")
     p.add_argument("--size", metavar="WxH", default="96x96", help="cell size for --render (default 96x96)")
-    p.add_argument("--scene", metavar="SCENE.yaml",
-                   help="scene for --render (default: NAME.yaml beside NAME.fx, else the default scene)")
+    _add_scene(p, "scene for --render")
     p.add_argument("--backend", "-b", default="numpy", metavar="NAME", help="back end for --render")
     _add_batch(p)
     _add_confinement(p)
     p.set_defaults(run=_cmd_matrix)
+
+
+def _add_scene(p, what: str) -> None:
+    """--scene and --no-scene: NAME.yaml beside NAME.fx is the effect's scene for every
+    command (effects.host.scene.scene_for)."""
+    p.add_argument("--scene", "-s", metavar="SCENE.yaml",
+                   help=f"{what} (default: NAME.yaml beside NAME.fx, else the default scene)")
+    p.add_argument("--no-scene", dest="scene_beside", action="store_false",
+                   help="ignore NAME.yaml beside NAME.fx: the default scene")
+
+
+def _scene(args, path: str) -> str | None:
+    from effects.host.scene import scene_for
+    return scene_for(path, args.scene, beside=args.scene_beside)
 
 
 def _add_batch(p) -> None:
@@ -177,7 +204,7 @@ def _cmd_matrix(args, console: Console) -> int:
             raise UsageError(f"effects matrix: error: --size {args.size!r}: cells are 1 to 1024 pixels a side")
         names = list(args.profile) or cards   # as given: workers load them
         render_sheet(list(args.files), names, args.render, size=size, scene=args.scene,
-                     backend=args.backend, policy=args.policy, jobs=args.jobs,
+                     scene_beside=args.scene_beside, backend=args.backend, policy=args.policy, jobs=args.jobs,
                      scheduler=args.scheduler, progress=not args.json)
         if not args.json:
             console.print(f"contact sheet: {len(args.files)} effects x {len(cards)} cards "
@@ -243,13 +270,24 @@ def _ready_for_table(console: Any) -> None:
 
 
 def _add_profiles(sub) -> None:
-    p = sub.add_parser("profiles", help="the simulated cards, by generation, with their key caps")
+    p = sub.add_parser(
+        "profiles", help="the simulated cards, by generation, with their key caps",
+        description="The simulated cards, by generation then name, with their key caps: st/tx "
+                    "texture stages / textures per pass, bump the EMBM and dot3 ops, maps cube "
+                    "and volume (3D) textures, size the largest texture side, ps and vs the "
+                    "shader versions (vs sw: vertex shaders in software only). On a terminal, a "
+                    "table; into a pipe or a file, one card per line, its fields separated by "
+                    "tabs: card, generation, name, st/tx, bump, maps, size, ps, vs "
+                    "(`effects profiles | cut -f1` lists the names).")
+    p.add_argument("cards", nargs="*", metavar="CARD",
+                   help="show only these cards: a bundled card's name or a profile YAML path")
     p.set_defaults(run=_cmd_profiles)
 
 
 def _cmd_profiles(args, console: Console) -> int:
     from effects.cli.report import print_profiles
-    print_profiles(_profiles(()), console)
+    # the cards named load first: an unknown name says so (did you mean) before anything prints
+    print_profiles(_profiles(args.cards), console)
     return EXIT_OK
 
 
@@ -261,7 +299,7 @@ def _add_render(sub) -> None:
                    help="render this technique, valid on the card or not (default: the card's choice)")
     p.add_argument("--backend", "-b", default="numpy", metavar="NAME",
                    help="numpy (the reference rasteriser, default) or gl")
-    p.add_argument("--scene", "-s", metavar="SCENE.yaml", help="mesh, camera, light, params ...")
+    _add_scene(p, "mesh, camera, light, params ...")
     p.add_argument("--size", metavar="WxH", help="frame size, e.g. 320x240 (wins over the scene's)")
     p.add_argument("--set", dest="assignments", action="append", default=[], metavar="NAME=VALUE",
                    help="a parameter value: number, vector '1,0.5,0.25,1', true/false, "
@@ -323,7 +361,8 @@ def _cmd_render(args, console: Console) -> int:
     start = time.perf_counter()
     try:
         frame = render_frame(effect, profile, technique=args.technique, backend=args.backend,
-                             scene=args.scene, size=size, params=params, policy=args.policy,
+                             scene=_scene(args, args.file), size=size, params=params,
+                             policy=args.policy,
                              strict=args.strict)
     except NoValidTechnique as exc:
         # the load warnings first: they may say why (a Direct3D 10/11 shader file, ...)
@@ -356,7 +395,12 @@ def opaque(image):
 
 
 def _add_view(sub) -> None:
-    p = sub.add_parser("view", help="the viewer: an effect on a card, hot-reloaded as you edit it")
+    p = sub.add_parser(
+        "view", help="the viewer: an effect on a card, hot-reloaded as you edit it",
+        description="The viewer: an effect on a card, hot-reloaded as you edit it. It opens a "
+                    "window, so it needs a display (DISPLAY); without one, run it under a "
+                    "virtual X server: xvfb-run -a effects view FILE.fx --exit-after 5 "
+                    "--screenshot out.png.")
     p.add_argument("file", help="effect file (.fx)")
     p.add_argument("--profile", "-p", metavar="P", default=None,
                    help="caps profile to start on (default: radeon9700)")
@@ -383,7 +427,7 @@ def _add_view(sub) -> None:
 
 
 def _cmd_view(args, console: Console) -> int:
-    from effects.viewer.app import WINDOW_SIZE, ViewerOptions, run_viewer
+    from effects.viewer.app import WINDOW_SIZE, NoDisplay, ViewerOptions, run_viewer
     size = WINDOW_SIZE
     if args.size:
         w, _, h = args.size.lower().partition("x")
@@ -393,11 +437,17 @@ def _cmd_view(args, console: Console) -> int:
         size = (int(w), int(h))
     if args.exit_after is not None and args.exit_after < 0:
         raise UsageError("effects view: error: --exit-after must not be negative")
-    return run_viewer(ViewerOptions(
-        args.file, profile=args.profile, technique=args.technique, mesh=args.mesh,
-        view=args.view, exit_after=args.exit_after, screenshot=args.screenshot, size=size,
-        tour=args.tour, listing=args.listing, polling=args.poll, defines=_defines(args.defines),
-        include_dirs=args.include_dirs, include_root=_include_root(args), strict=args.strict))
+    try:
+        return run_viewer(ViewerOptions(
+            args.file, profile=args.profile, technique=args.technique, mesh=args.mesh,
+            view=args.view, exit_after=args.exit_after, screenshot=args.screenshot, size=size,
+            tour=args.tour, listing=args.listing, polling=args.poll,
+            defines=_defines(args.defines), include_dirs=args.include_dirs,
+            include_root=_include_root(args), strict=args.strict))
+    except NoDisplay as exc:
+        raise UsageError(f"effects view: error: no display to open the window on ({exc}); "
+                         "run it in a desktop session, set DISPLAY, or under a virtual X "
+                         f"server: xvfb-run -a effects view {args.file}") from None
 
 
 def _add_doctor(sub) -> None:
@@ -406,7 +456,7 @@ def _add_doctor(sub) -> None:
     p.add_argument("--profile", "-p", default="radeon9700", metavar="P",
                    help="caps profile whose selected technique is examined (default: radeon9700)")
     p.add_argument("--technique", "-t", metavar="T", help="examine this technique instead")
-    p.add_argument("--scene", "-s", metavar="SCENE.yaml", help="the scene a render would use")
+    _add_scene(p, "the scene a render would use")
     p.add_argument("--set", dest="assignments", action="append", default=[], metavar="NAME=VALUE",
                    help="a parameter value, as render takes it (repeatable)")
     _add_preprocessor_options(p)
@@ -419,15 +469,21 @@ def _cmd_doctor(args, console: Console) -> int:
     from effects.host.semantics import parse_assignments
     effect = _load(args)
     profile = _profiles([args.profile])[0]
-    d = diagnose(effect, profile, scene=args.scene, params=parse_assignments(args.assignments),
+    d = diagnose(effect, profile, scene=_scene(args, args.file),
+                 params=parse_assignments(args.assignments),
                  technique=args.technique)
     print_diagnosis(d, args.file, profile.display_name or profile.name, console)
     return EXIT_OK
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="effects", description=__doc__.splitlines()[0])
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    parser = _Parser(prog="effects", description=__doc__.splitlines()[0],
+                     epilog="exit status: 0 ok, 1 invalid or not renderable, 2 bad input or "
+                            "usage, 141 the reader of the output left (| head)")
+    parser.add_argument("--version", action="version", version=f"effects {__version__}",
+                        help="print the version (effects X.Y.Z) and exit")
+    # not required: `effects` alone prints this help (main)
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser)
     _add_validate(sub)
     _add_matrix(sub)
     _add_render(sub)
@@ -468,19 +524,62 @@ class _LazyConsole:
     def ready(self) -> "Console":
         """The console, made now if it was not."""
         if self._console is None:
-            from rich.console import Console
-            self._console = Console(highlight=False)
+            from effects.cli.console import make_console
+            self._console = make_console()
         return self._console
 
 
 def _stderr() -> "Console":
-    from rich.console import Console
-    return Console(stderr=True, highlight=False)
+    from effects.cli.console import make_console
+    return make_console(stderr=True)
+
+
+def _fill_closed_streams() -> None:
+    """`effects render ... -o out.png >&-`: a stream the shell closed is None in Python, and
+    the first write to it was an internal error (AttributeError). Its lines are dropped, as
+    the caller asked, and the command does its work: the PNG is its product, the line a
+    report of it, so the exit status is the command's own (141 would say a reader left).
+    The descriptor is filled with /dev/null too, so that no file the command opens takes
+    it and receives what is meant for the stream."""
+    for name, fd in (("stdout", 1), ("stderr", 2)):
+        if getattr(sys, name) is not None:
+            continue
+        null = os.open(os.devnull, os.O_WRONLY)
+        if null != fd:
+            os.dup2(null, fd)
+            os.close(null)
+        setattr(sys, name, open(fd, "w", closefd=False))
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    _fill_closed_streams()
     try:
-        args = build_parser().parse_args(argv)
+        return _main(argv)
+    except BrokenPipeError:
+        # `effects matrix --json | head`: the reader left (of stdout, or of stderr in `2>&1 |
+        # head` while an error was said). Say nothing, as Unix tools do, and point both at
+        # /dev/null so the interpreter's final flush does not complain.
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        for stream in (sys.stdout, sys.stderr):
+            os.dup2(devnull, stream.fileno())
+        os.close(devnull)
+        return EXIT_CLOSED_PIPE
+
+
+def _main(argv: Sequence[str] | None) -> int:
+    """The command, and what its errors say: main answers a closed pipe, here or while an
+    error is said."""
+    try:
+        parser = build_parser()
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as done:   # --help, --version: printed; flushed below, as any output
+            sys.stdout.flush()
+            return done.code if isinstance(done.code, int) else EXIT_OK
+        if args.command is None:     # `effects` alone: what it can do, as pip and cargo say it
+            parser.print_help()
+            sys.stdout.flush()
+            return EXIT_OK
         _one_blas_thread(args)
         # compiled shaders and matrix rows are kept on disk between commands (effects/base/disk_store.py)
         from effects.base import disk_store
@@ -500,11 +599,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         return 130
     except BrokenPipeError:
-        # `effects matrix --json | head`: the reader left. Say nothing, as Unix tools do, and
-        # point stdout at /dev/null so the interpreter's final flush does not complain.
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        return 128 + 13   # the status of a process ended by SIGPIPE
+        raise                 # main's: not a bug of ours
     except Exception as exc:  # a bug of ours, not bad input: say so briefly
         if os.environ.get("EFFECTS_DEBUG"):
             raise

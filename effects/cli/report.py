@@ -7,7 +7,7 @@ technique the policy refused (max-passes, max-cost), with the policy's reason.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 from effects.base.errors import EffectError
 
@@ -166,25 +166,76 @@ def _matrix_cells(result: dict) -> tuple[list[str], list[list[str]]]:
 
 
 def print_matrix(result: dict, console: Console) -> None:
-    """Cards down, effects across: the chosen technique and its pass count. On a terminal
-    the table fits its width (names folded where they must be); into a pipe or a file it is
-    as wide as its names, one line per card: folded to the 80 columns rich assumes there,
-    eleven effects made each card nine lines of name fragments that grep cannot find."""
+    """Cards down, effects across: the chosen technique and its pass count. Names are never
+    folded: on a terminal too narrow for the whole table, the table is split into tables of
+    as many effects as fit, each led by the card column (as pandas prints a wide frame); where
+    not even one effect fits beside the cards, one line per card and effect. (Folded to 80
+    columns, eleven effects made each card nine lines of 3-letter name fragments.) Into a pipe
+    or a file the table is as wide as its names, one line per card, for grep."""
     header, rows = _matrix_cells(result)
+    if not console.is_terminal:
+        from effects.cli.console import make_console
+        # a table that does not expand is as wide as its cells: on a console this wide, all of it
+        make_console(file=console.file, width=1 << 16).print(_matrix_table(header, rows))
+        return
+    groups = _column_groups(header, rows, console.width)
+    if groups is None:
+        _print_matrix_lines(header, rows, console)
+        return
+    for i, columns in enumerate(groups):
+        if i:
+            console.print()
+        console.print(_matrix_table([header[c] for c in columns],
+                                    [[row[c] for c in columns] for row in rows]))
+
+
+def _matrix_table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> Any:
     from rich.table import Table
     from rich.text import Text
     table = Table(header_style="bold", show_lines=False)
     for title in header:
-        table.add_column(title, overflow="fold")
+        table.add_column(title, no_wrap=True)
     for row in rows:
         table.add_row(row[0], *[Text(c) if c != "none" else Text("none", style="red")
                                 for c in row[1:]])
-    if console.is_terminal:
-        console.print(table)
-        return
-    # a table that does not expand is as wide as its cells: on a console this wide, all of it
-    from rich.console import Console as RichConsole
-    RichConsole(file=console.file, highlight=False, width=1 << 16).print(table)
+    return table
+
+
+def _column_groups(header: Sequence[str], rows: Sequence[Sequence[str]],
+                   width: int) -> list[list[int]] | None:
+    """The matrix's columns in groups whose tables fit `width`, each group led by the card
+    column (0); None where the cards and one effect do not fit side by side."""
+    from rich.cells import cell_len
+    widths = [max(cell_len(text) for text in (header[c], *(row[c] for row in rows)))
+              for c in range(len(header))]
+
+    def fits(columns: list[int]) -> bool:
+        # rich's default box: a rule left of each column and one at the end, a space each side
+        return sum(widths[c] + 3 for c in columns) + 1 <= width
+
+    groups = [[0]]
+    for c in range(1, len(header)):
+        if not fits(groups[-1] + [c]):
+            if groups[-1] != [0]:
+                groups.append([0])
+            if not fits([0, c]):
+                return None
+        groups[-1].append(c)
+    return groups
+
+
+def _print_matrix_lines(header: Sequence[str], rows: Sequence[Sequence[str]],
+                        console: Console) -> None:
+    """The matrix one cell a line, under a line per effect: for a terminal too narrow for a
+    table of one effect."""
+    from rich.text import Text
+    pad = max(len(row[0]) for row in rows) if rows else 0
+    for c in range(1, len(header)):
+        console.print(Text(header[c], style="bold"), soft_wrap=True)
+        for row in rows:
+            console.print(Text.assemble(f"  {row[0]:<{pad}}  ",
+                                        (row[c], "red" if row[c] == "none" else "")),
+                          soft_wrap=True)
 
 
 def _short(path: str) -> str:
@@ -223,14 +274,22 @@ def print_profiles(profiles: Sequence[CapsProfile], console: Console) -> None:
     stages / textures per pass, `bump` EMBM and dot3 ops, `maps` cube and volume textures,
     `size` the largest texture side, `ps` and `vs` shader versions. `vs` is the
     hardware vertex shader version, or `sw` when vertex shaders run only in software (where
-    software or mixed vertex processing is offered, it runs up to vs_3_0 on every card)."""
-    from rich import box
-    from rich.table import Table
-    from rich.text import Text
-
+    software or mixed vertex processing is offered, it runs up to vs_3_0 on every card).
+    On a terminal, a table with a heading per generation; into a pipe or a file, one card per
+    line, the fields separated by tabs (card, generation, name, then the caps), for cut and
+    awk: the table folded its names at the 80 columns rich assumes there."""
     from effects.d3d9.caps import GENERATIONS
     ordered = sorted(profiles, key=lambda p: (GENERATIONS.index(p.generation), p.name))
     rows = [profile_row(p) for p in ordered]
+    if not console.is_terminal:
+        for p, row in zip(ordered, rows):
+            fields = [row["card"], p.generation, *list(row.values())[1:]]
+            # a tab or line break inside a field (a YAML display_name) would split the record
+            console.file.write("\t".join(" ".join(f.split()) for f in fields) + "\n")
+        return
+    from rich import box
+    from rich.table import Table
+    from rich.text import Text
     table = Table(header_style="bold", box=box.SIMPLE_HEAD, pad_edge=False)
     for col in (rows[0].keys() if rows else ()):
         if col == "name":

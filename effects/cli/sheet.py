@@ -14,36 +14,29 @@ from typing import Any, Sequence
 
 from effects.base.errors import Location, SceneError
 from effects.host.batch import Cell, CellJob, render_row, run_jobs
+from effects.host.scene import scene_for
 
 _LABEL_H = 14           # a line of PIL's default bitmap font, with spacing
 _HEADER_W = 120         # the effect-name column
 _BACKGROUND, _INK, _FAINT = (32, 32, 36), (230, 230, 230), (150, 150, 160)
 
 
-def scene_for(effect_path: str, scene: str | None) -> str | None:
-    """The scene a cell draws in: the one named, else `NAME.yaml` beside `NAME.fx` (the way
-    fxfiles/sdk8_style.yaml supplies what a DX8 file cannot declare), else the default."""
-    if scene is not None:
-        return scene
-    beside = os.path.splitext(effect_path)[0] + ".yaml"
-    return beside if os.path.isfile(beside) else None
-
-
 def sheet_jobs(files: Sequence[str], profiles: Sequence[str], size: tuple[int, int],
                scene: str | None = None, backend: str = "numpy",
-               policy: str = "first") -> list[CellJob]:
-    return [CellJob(f, p, size, scene_for(f, scene), backend, policy) for f in files for p in profiles]
+               policy: str = "first", scene_beside: bool = True) -> list[CellJob]:
+    return [CellJob(f, p, size, scene_for(f, scene, beside=scene_beside), backend, policy)
+            for f in files for p in profiles]
 
 
 def render_sheet(files: Sequence[str], profiles: Sequence[str], out: str, *,
                  size: tuple[int, int] = (96, 96), scene: str | None = None,
-                 backend: str = "numpy", policy: str = "first", jobs: int | None = None,
+                 scene_beside: bool = True, backend: str = "numpy", policy: str = "first", jobs: int | None = None,
                  scheduler: Any = None, progress: bool = True) -> list[Cell]:
     """Render every cell, compose the sheet and write it to `out` (PNG); returns the cells.
     A job is one effect's row (`render_row`): cell by cell, both workers of `--jobs 2` drew
     cards of every effect, so each paid every effect's first-cell costs, and the command was
     1.2-1.3x faster than `--jobs 1`, not 2x."""
-    rows = [sheet_jobs([f], profiles, size, scene, backend, policy) for f in files]
+    rows = [sheet_jobs([f], profiles, size, scene, backend, policy, scene_beside) for f in files]
     if progress:
         from rich.console import Console
         from rich.progress import Progress

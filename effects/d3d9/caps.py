@@ -59,6 +59,7 @@ import yaml
 from effects.base import limits, untrusted, yaml_input
 from effects.base.bundled import PROFILE_FOLDER, names_a_profile_file
 from effects.base.errors import Location, ProfileError
+from effects.program.formats import D3DFORMAT
 
 PROFILE_DIR = Path(PROFILE_FOLDER).resolve()
 
@@ -162,14 +163,8 @@ def bit_prefix(field: str) -> str:
     return _PREFIXES[id(spec.table)]
 
 
-# D3DFORMAT names a profile may list (DX9 d3d9types.h, without the D3DFMT_ prefix).
-FORMATS = frozenset("""
-    R8G8B8 A8R8G8B8 X8R8G8B8 R5G6B5 X1R5G5B5 A1R5G5B5 A4R4G4B4 R3G3B2 A8 A8R3G3B2 X4R4G4B4
-    A2B10G10R10 A8B8G8R8 X8B8G8R8 G16R16 A2R10G10B10 A16B16G16R16 A8P8 P8 L8 A8L8 A4L4
-    V8U8 L6V5U5 X8L8V8U8 Q8W8V8U8 V16U16 A2W10V10U10 Q16W16V16U16 CxV8U8 L16
-    UYVY YUY2 R8G8_B8G8 G8R8_G8B8 DXT1 DXT2 DXT3 DXT4 DXT5
-    D16_LOCKABLE D32 D15S1 D24S8 D24X8 D24X4S4 D16 D32F_LOCKABLE D24FS8
-    R16F G16R16F A16B16G16R16F R32F G32R32F A32B32G32R32F""".split())
+# D3DFORMAT names a profile may list: every one of d3d9types.h (effects.program.formats).
+FORMATS = frozenset(D3DFORMAT)
 USAGES = ("texture", "cube", "volume", "rendertarget", "depthstencil", "filter", "blend",
           "vertextexture")
 VERTEX_PROCESSING = ("hardware", "mixed", "software")

@@ -46,7 +46,8 @@ from effects.host.scene import InlineMesh, Scene
 from effects.base import limits
 from effects.base.lru import DEFAULT_TEXTURE_BYTES, ByteLRU
 from effects.assets.texture_files import load_texture
-from effects.assets.textures import PROCEDURAL, Texture, procedural
+from effects.assets.textures import PROCEDURAL, procedural
+from effects.program.texture import Texture
 from effects.base.untrusted import confine
 
 STREAM_NAMES = ("position", "normal", "tangent", "binormal", "color0", "color1",

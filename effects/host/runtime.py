@@ -42,7 +42,8 @@ from effects.model import Effect, ParamRef, Parameter, SamplerState, Technique
 from effects.host.scene import MAX_SIZE, Scene, load_scene
 from effects.host.semantics import bind_scene, coerce_value, lookup_parameter, ui_defaults
 from effects.host.scripts import is_cube_target, is_render_target, target_extent, target_format
-from effects.assets.textures import Texture, make_texture
+from effects.assets.textures import make_texture
+from effects.program.texture import Texture
 from effects.validate.technique import validate_technique
 
 if TYPE_CHECKING:  # pragma: no cover

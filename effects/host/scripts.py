@@ -51,14 +51,16 @@ import numpy as np
 
 import math
 
-from effects.program.backend import CUBE_FACE_VIEWS, TARGET_FORMATS, render_cube_faces
+from effects.program.backend import CUBE_FACE_VIEWS, render_cube_faces
+from effects.program.formats import TARGET_FORMATS
 from effects.base import limits
 from effects.base.errors import EffectError, EffectWarning, Location
 from effects.model import Annotation, Effect, Parameter, Technique
 from effects.host.resources import Geometry
 from effects.host.scene import look_at_lh, perspective_fov_lh
 from effects.host.semantics import bind_transforms
-from effects.assets.textures import Texture, make_texture
+from effects.assets.textures import make_texture
+from effects.program.texture import Texture
 from effects.host.scene import Scene
 
 if TYPE_CHECKING:  # pragma: no cover

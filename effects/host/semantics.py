@@ -385,7 +385,7 @@ def coerce_value(param: Parameter, value: Any, at: Location | None = None, sourc
         return SceneError(f"{prefix}{describe(param, at)}: {why}", at)
 
     if param.type.takes_image:
-        from effects.assets.textures import Texture
+        from effects.program.texture import Texture
         if isinstance(value, Texture) or (isinstance(value, str) and value.strip()):
             return value.strip() if isinstance(value, str) else value
         raise fail(f"a {base} parameter takes an image path, not {brief(value)}")

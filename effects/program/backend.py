@@ -13,7 +13,7 @@ A back end draws lowered passes (`effects.program.passprogram.PassProgram`) into
   through as the varying of the same name.
 - `indices`: (M,) or (M, 3) vertex indices; `primitive`: 'list', 'strip' or 'fan' (triangle
   strips alternate winding as Direct3D's do; see `triangle_list`).
-- `textures`: TextureBinding.texture name -> `effects.assets.textures.Texture`.
+- `textures`: TextureBinding.texture name -> `effects.program.texture.Texture`.
 - The frame's render target persists across draws (multipass accumulation). Its format is
   A8R8G8B8 unless `begin_frame(format=...)` names one of `TARGET_FORMATS`; `end_frame` returns
   uint8 RGBA for the 8-bit formats and float32 RGBA for the float ones (channels a format lacks
@@ -30,17 +30,6 @@ from effects.base.errors import EffectError
 from effects.program.passprogram import PassProgram
 
 PRIMITIVES = ("list", "strip", "fan")
-# Render-target formats: name -> (float?, channels stored)
-TARGET_FORMATS = {
-    "A8R8G8B8": (False, 4),
-    "X8R8G8B8": (False, 3),
-    "R16F": (True, 1),
-    "G16R16F": (True, 2),
-    "R32F": (True, 1),
-    "G32R32F": (True, 2),
-    "A16B16G16R16F": (True, 4),
-    "A32B32G32R32F": (True, 4),
-}
 # Cube faces in D3DCUBEMAP_FACES order: (look direction, up) of the left-handed view that
 # renders each face so that it matches the face's texel layout (D3D9 "Cubic Environment
 # Mapping": +X, -X, +Y, -Y, +Z, -Z).

@@ -70,6 +70,10 @@ class FrameEvent:
     render_ms: float | None = None   # the effect's GL render in this frame (None: not redrawn)
 
 
+class NoDisplay(Exception):
+    """No window can be opened: there is no display to open it on (str: why, in a few words)."""
+
+
 def say(line: str) -> None:
     print(line, flush=True)
 
@@ -132,7 +136,16 @@ class Viewer:
             "size": tuple(self.options.size), "vsync": False, "resizable": True,
             "aspect_ratio": None, "title": f"effects view {os.path.basename(self.options.path)}",
         })
-        self.window = mglw.create_window_from_settings()
+        try:
+            self.window = mglw.create_window_from_settings()
+        except Exception as exc:
+            # pyglet's NoSuchDisplayException (a class in pyglet.display.xlib and another in
+            # pyglet.window, raised as its window module loads): known by name, portably
+            if type(exc).__name__ != "NoSuchDisplayException":
+                raise
+            display = os.environ.get("DISPLAY")
+            raise NoDisplay(f"cannot connect to DISPLAY={display}" if display
+                            else "DISPLAY is not set") from None
         mglw.activate_context(window=self.window)
         self.ctx = self.window.ctx
         from imgui_bundle import imgui
@@ -513,6 +526,11 @@ def run_viewer(options: ViewerOptions) -> int:
         from effects.base.errors import Location, SceneError
         raise SceneError(f"unknown view {options.view!r} (views: {', '.join(VIEWS)})",
                          Location("<--view>", 1, 1))
+    # a missing file is said before a window is opened (or found not to open): a broken one
+    # opens the viewer, its error on screen, for the user to fix while it watches
+    from effects.base import untrusted
+    from effects.base.errors import PreprocessError
+    untrusted.check_regular(options.path, "effect file", PreprocessError)
     viewer = Viewer(options)
     try:
         return viewer.run()

@@ -6,14 +6,16 @@ import numpy as np
 import pytest
 
 from effects.assets import dds
-from effects.d3d9 import formats as pf
+from effects.program import formats as pf
+from effects.program.texels import unpack
 from effects.base.errors import SceneError
-from effects.assets.textures import Texture, encode, mip_chain
+from effects.assets.textures import encode, mip_chain
+from effects.program.texture import Texture
 
 
 def decode_words(fmt: str, words, nbytes: int) -> np.ndarray:
     raw = b"".join(int(w).to_bytes(nbytes, "little") for w in words)
-    return pf.unpack(np.frombuffer(raw, np.uint8), pf.pixel_format(fmt), (1, len(words)))[0]
+    return unpack(np.frombuffer(raw, np.uint8), pf.pixel_format(fmt), (1, len(words)))[0]
 
 
 # ---- signed formats, by hand ----------------------------------------------------------------
@@ -57,9 +59,9 @@ def test_missing_channels_of_unsigned_and_float_formats():
     assert decode_words("A8", [0x33], 1)[0].tolist() == pytest.approx([0, 0, 0, 0.2])
     assert decode_words("A8L8", [0x3366], 2)[0].tolist() == pytest.approx([0.4, 0.4, 0.4, 0.2])
     r32 = np.frombuffer(struct.pack("<f", -2.5), np.uint8)
-    assert pf.unpack(r32, pf.pixel_format("R32F"), (1, 1))[0, 0].tolist() == [-2.5, 1, 1, 1]
+    assert unpack(r32, pf.pixel_format("R32F"), (1, 1))[0, 0].tolist() == [-2.5, 1, 1, 1]
     g16r16 = np.frombuffer(np.array([0.5, -3.0], "<f2").tobytes(), np.uint8)
-    assert pf.unpack(g16r16, pf.pixel_format("G16R16F"), (1, 1))[0, 0].tolist() == [0.5, -3.0, 1, 1]
+    assert unpack(g16r16, pf.pixel_format("G16R16F"), (1, 1))[0, 0].tolist() == [0.5, -3.0, 1, 1]
 
 
 def test_encode_is_the_stored_value():

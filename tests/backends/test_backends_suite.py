@@ -31,7 +31,7 @@ from effects.base.errors import EffectError
 from effects.lower.passes import lower_pass
 from effects.program.ir import Builder
 from effects.program.passprogram import PassProgram, RenderState, TextureBinding
-from effects.assets.textures import Texture
+from effects.program.texture import Texture
 
 BACKENDS = ("numpy", "gl")
 

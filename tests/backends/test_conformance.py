@@ -44,7 +44,6 @@ import functools
 import math
 from dataclasses import dataclass
 from functools import lru_cache
-from pathlib import Path
 from unittest import mock
 
 import numpy as np

@@ -11,7 +11,6 @@ from tests.paths import TESTS
 
 import os
 import re
-from pathlib import Path
 
 import pytest
 

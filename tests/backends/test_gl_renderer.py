@@ -16,7 +16,7 @@ from backends.gl import GLBackend, GLUnavailable, context
 from effects.program import ir
 from effects.program.ir import Builder
 from effects.program.passprogram import PassProgram, RenderState, TextureBinding
-from effects.assets.textures import Texture
+from effects.program.texture import Texture
 from tests.backends.test_backends_suite import NO_CULL, quad, render, show, u8
 from tests.backends.test_conformance import psnr
 

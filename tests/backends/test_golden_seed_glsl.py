@@ -15,7 +15,6 @@ from tests.paths import ROOT, TESTS
 
 import os
 from functools import lru_cache
-from pathlib import Path
 
 import pytest
 

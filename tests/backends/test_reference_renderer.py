@@ -13,7 +13,7 @@ from backends.reference.evaluate import _dense, evaluate
 from backends.reference.sampler import SamplerSettings, sample_2d
 from effects.program.ir import OPS, Builder
 from effects.program.passprogram import PassProgram, RenderState, TextureBinding
-from effects.assets.textures import Texture
+from effects.program.texture import Texture
 
 
 @pytest.mark.parametrize("band_pixels", [1 << 30, 1 << 10, 200])

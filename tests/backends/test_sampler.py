@@ -10,7 +10,8 @@ from backends.reference.sampler import (SamplerSettings, cube_face_coords, sampl
                                         sample_2d, sample_3d, sample_cube)
 from effects.program.ir import Builder
 from effects.program.passprogram import PassProgram, TextureBinding
-from effects.assets.textures import Texture, cube_face_uv, make_texture
+from effects.assets.textures import cube_face_uv, make_texture
+from effects.program.texture import Texture
 
 LINEAR = SamplerSettings(min_filter="LINEAR", mag_filter="LINEAR")
 

@@ -138,3 +138,26 @@ def test_bundled_effects_render_from_the_command_line(tmp_path, capsys, name, ca
     assert code == 0, capsys.readouterr().err
     image = np.asarray(Image.open(out)).astype(int)
     assert image[..., :3].std() > 5          # neither black nor uniform
+
+
+def test_the_scene_beside_the_effect_is_its_scene(tmp_path, capsys):
+    """wood.fx's colours and light come from wood.yaml beside it: `render` and `doctor` read
+    it as `matrix --render` does (it drew black, exit 0, without); --no-scene skips it."""
+    wood = ROOT / "fxfiles" / "wood.fx"
+    beside, named, none = (tmp_path / f"{n}.png" for n in ("beside", "named", "none"))
+    common = ("--profile", "radeon9700", "--size", "32x32")
+    assert run("render", wood, *common, "-o", beside) == 0
+    assert run("render", wood, *common, "--scene", ROOT / "fxfiles" / "wood.yaml", "-o", named) == 0
+    assert run("render", wood, *common, "--no-scene", "-o", none) == 0
+    pictures = [np.asarray(Image.open(p).convert("RGB"), np.int32) for p in (beside, named, none)]
+    assert np.array_equal(pictures[0], pictures[1])
+    # ambient white x the wood's own colour: the lit sphere is brown, not black
+    assert pictures[0].max() > 60 and pictures[2].max() == 0
+    capsys.readouterr()
+    assert run("doctor", wood) == 0
+    beside_report = capsys.readouterr().out
+    assert run("doctor", wood, "--no-scene") == 0
+    alone_report = capsys.readouterr().out
+    assert "diffuse_color <- --set / scene params" in beside_report
+    assert "nothing missing" in beside_report
+    assert "set by nothing (they read 0):\n    ambient_color" in alone_report

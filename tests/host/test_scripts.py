@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from tests.paths import TESTS
 
-from pathlib import Path
 
 import numpy as np
 import pytest

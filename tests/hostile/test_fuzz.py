@@ -11,7 +11,6 @@ from tests.paths import ROOT
 import random
 import re
 import time
-from pathlib import Path
 
 import pytest
 

@@ -466,7 +466,7 @@ def test_a_closed_pipe_ends_quietly_as_unix_tools_do():
     (["profiles"], 0),
     (["profiles", "extra"], 2),
     (["frobnicate"], 2),
-    ([], 2),
+    ([], 0),        # `effects` alone prints the help, as pip and cargo do
 ])
 def test_every_command_exits_0_1_or_2(argv, code, tmp_path, capsys):
     (tmp_path / "e.fx").write_text(FLAT)

@@ -41,7 +41,7 @@ SIZE = 128
 HALF = 128            # the highlight region: where the float picture is at least half bright
 
 
-def solid(rgb) -> "effects.assets.textures.Texture":
+def solid(rgb) -> "effects.program.texture.Texture":
     return make_texture(np.broadcast_to(np.array([*rgb, 1.0], np.float32), (4, 4, 4)).copy(),
                         "X8R8G8B8")
 

@@ -34,7 +34,8 @@ import pytest
 import effects
 import effects.assets.textures
 from effects.assets.texture_files import load_texture
-from effects.assets.textures import Texture, make_texture, procedural
+from effects.assets.textures import make_texture, procedural
+from effects.program.texture import Texture
 
 FXFILES = os.path.join(str(ROOT), "fxfiles")
 SIZE = 128

@@ -7,7 +7,6 @@ from tests.paths import TESTS
 
 import hashlib
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest

@@ -17,7 +17,6 @@ import subprocess
 import sys
 import threading
 import time
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -236,8 +235,11 @@ def test_a_stand_in_texture_is_warned_about_once(tmp_path):
 def test_exit_codes_say_what_happened(flat, tmp_path):
     """As the other commands: 2 for a file that does not load (or a screenshot that cannot be
     written), 1 for nothing drawable, 0 otherwise."""
-    viewer = ViewerProcess(str(flat / "missing.fx"), "--size", SIZE, "--exit-after", "0.3")
-    viewer.expect(lambda l: l.startswith("view:"), "view: ... failed")
+    # a missing file is said before a window opens, as the other commands say it
+    missing = flat / "missing.fx"
+    viewer = ViewerProcess(str(missing), "--size", SIZE, "--exit-after", "0.3")
+    viewer.expect(lambda l: l == f"{missing}:1:1: error: cannot read effect file: No such file "
+                                 "or directory", "PATH:1:1: error: cannot read effect file")
     assert viewer.finish() == 2
     viewer = ViewerProcess(str(flat / "flat.fx"), "--profile", "tnt2", "--technique", "Nope",
                            "--size", SIZE, "--exit-after", "0.3")

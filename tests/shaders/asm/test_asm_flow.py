@@ -517,7 +517,7 @@ def test_texldd_takes_the_lod_from_its_gradients(backend):
     # A 4x4 texture with three mip levels of one colour each (red, green, blue), point mip
     # filtering: d coord/dx = (g, 0) is 4g texels per pixel, LOD log2(4g): g = 0 -> level 0,
     # g = 0.5 -> level 1 (LOD 1), g = 1 -> level 2 (LOD 2).
-    from effects.assets.textures import Texture
+    from effects.program.texture import Texture
     from effects.program.passprogram import TextureBinding
     levels = [np.broadcast_to(np.array(c, np.float32), (n, n, 4)).copy()
               for c, n in (((1, 0, 0, 1), 4), ((0, 1, 0, 1), 2), ((0, 0, 1, 1), 1))]
@@ -553,7 +553,7 @@ def test_texldd_on_a_cube_map_carries_the_gradients_onto_the_face(backend, direc
     # An 8x8 cube map whose four mip levels are red, green, blue, white on every face, point
     # mip filtering: the LOD is log2(8 |(ds, dt)|) with (ds, dt) the face-coordinate change
     # the direction gradient makes (the OpenGL rule; D3D9 leaves the cube case unspecified)
-    from effects.assets.textures import Texture
+    from effects.program.texture import Texture
     from effects.program.passprogram import TextureBinding
     colours = ((1, 0, 0, 1), (0, 1, 0, 1), (0, 0, 1, 1), (1, 1, 1, 1))
     levels = [np.broadcast_to(np.array(c, np.float32), (6, n, n, 4)).copy()

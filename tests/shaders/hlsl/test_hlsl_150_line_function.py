@@ -7,7 +7,6 @@ from __future__ import annotations
 from tests.paths import ROOT
 
 import re
-from pathlib import Path
 
 import effects
 from effects.model import CompileShader

@@ -8,7 +8,6 @@ from __future__ import annotations
 from tests.paths import ROOT, TESTS
 
 import os
-from pathlib import Path
 
 import pytest
 

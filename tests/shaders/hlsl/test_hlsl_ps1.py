@@ -367,7 +367,6 @@ def test_sdk9_hlsl_dx8_builds_match_the_dx9_one_but_for_the_highlight():
     """Scene_ps11 on a GeForce3 and Scene_ps14 on a Radeon 8500 draw the ps_2_0 picture of a
     Radeon 9700 without its specular term (the DX8 builds leave pow out) and with the
     interpolated, not renormalised, normal: the same within a step or two everywhere else."""
-    from pathlib import Path
     fx = effects.load_effect(str(ROOT / "fxfiles" / "sdk9_hlsl.fx"))
     pictures = {card: effects.render(fx, card, backend="numpy", size=(64, 64)).astype(int)
                 for card in ("geforce3", "radeon8500", "radeon9700")}

@@ -9,7 +9,6 @@ from __future__ import annotations
 from tests.paths import ROOT
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest

@@ -1,10 +1,7 @@
-"""The texel formats of the Direct3D 7-9 era: how each D3DFORMAT stores a texel, and the codec.
-
-One table, `FORMATS`, says how each D3DFORMAT stores a texel: its bit fields (shift, width,
-encoding, which RGBA channels they feed) and what a sampler reads for the channels the format
-lacks. `pack`/`unpack` turn decoded float texels into stored words and back, so quantisation
-lives in one place. The .dds reader and writer (`effects.assets.dds`) and the texture container
-(`effects.assets.textures`) both read it; it reads neither, so neither imports the other.
+"""The texel codec: decoded float RGBA <-> the stored words of a D3DFORMAT, one place for
+quantisation. `effects.program.formats` says how each format lays its texels out; the .dds reader
+and writer (`effects.assets.dds`) and the texture container (`effects.assets.textures`) both use
+this, and it reads neither.
 
 Decoded values (what a card's sampler returns), per ../shared/reference/semantics.md §1.7:
 - unsigned normalised fields: q / (2^n - 1);
@@ -21,133 +18,9 @@ Decoded values (what a card's sampler returns), per ../shared/reference/semantic
 """
 from __future__ import annotations
 
-import struct
-from dataclasses import dataclass
-
 import numpy as np
 
-# ---------------------------------------------------------------------------------------------
-# The format table
-
-
-@dataclass(frozen=True)
-class Field:
-    """One bit field of a texel word: bits [shift, shift+bits) feeding `channels` (0=R .. 3=A)."""
-
-    shift: int
-    bits: int
-    encoding: str              # 'unorm' | 'snorm' | 'snorm5' (asymmetric L6V5U5 rule)
-    channels: tuple[int, ...]  # luminance feeds (0, 1, 2)
-
-
-@dataclass(frozen=True)
-class PixelFormat:
-    """How one D3DFORMAT stores a texel and what a sampler reads from it."""
-
-    name: str
-    code: int                                   # the D3DFORMAT number (FourCC as an int for DXTn)
-    bits: int                                   # bits per texel (0 for block formats)
-    defaults: tuple[float, float, float, float]  # what the missing channels read
-    fields: tuple[Field, ...] = ()              # integer formats
-    float_dtype: str | None = None              # '<f2' / '<f4' for the float formats
-    float_channels: int = 0                     # R, G, B, A in memory order
-    block_bytes: int = 0                        # 8 or 16 for DXT1-5
-    # DDS_PIXELFORMAT as written: (flags, bit count, R, G, B, A masks); None -> FourCC
-    dds: tuple[int, int, int, int, int, int] | None = None
-
-    @property
-    def signed(self) -> bool:
-        return any(f.encoding != "unorm" for f in self.fields)
-
-    @property
-    def compressed(self) -> bool:
-        return self.block_bytes > 0
-
-
-DDPF_ALPHAPIXELS = 0x1
-DDPF_ALPHA = 0x2
-DDPF_FOURCC = 0x4
-DDPF_RGB = 0x40
-DDPF_LUMINANCE = 0x20000
-DDPF_BUMPLUMINANCE = 0x40000
-DDPF_BUMPDUDV = 0x80000
-
-_RGB, _RGBA = DDPF_RGB, DDPF_RGB | DDPF_ALPHAPIXELS
-_COLOUR = (0.0, 0.0, 0.0, 1.0)   # missing rgb read 0, missing alpha 1
-_ONES = (1.0, 1.0, 1.0, 1.0)
-
-
-def _u(shift: int, bits: int, *channels: int) -> Field:
-    return Field(shift, bits, "unorm", channels)
-
-
-def _s(shift: int, bits: int, *channels: int) -> Field:
-    return Field(shift, bits, "snorm", channels)
-
-
-def fourcc_code(text: str) -> int:
-    return struct.unpack("<I", text.encode("ascii"))[0]
-
-
-TABLE = [
-    PixelFormat("A8R8G8B8", 21, 32, _COLOUR, (_u(16, 8, 0), _u(8, 8, 1), _u(0, 8, 2), _u(24, 8, 3)),
-                dds=(_RGBA, 32, 0xFF0000, 0xFF00, 0xFF, 0xFF000000)),
-    PixelFormat("X8R8G8B8", 22, 32, _COLOUR, (_u(16, 8, 0), _u(8, 8, 1), _u(0, 8, 2)),
-                dds=(_RGB, 32, 0xFF0000, 0xFF00, 0xFF, 0)),
-    PixelFormat("A8B8G8R8", 32, 32, _COLOUR, (_u(0, 8, 0), _u(8, 8, 1), _u(16, 8, 2), _u(24, 8, 3)),
-                dds=(_RGBA, 32, 0xFF, 0xFF00, 0xFF0000, 0xFF000000)),
-    PixelFormat("X8B8G8R8", 33, 32, _COLOUR, (_u(0, 8, 0), _u(8, 8, 1), _u(16, 8, 2)),
-                dds=(_RGB, 32, 0xFF, 0xFF00, 0xFF0000, 0)),
-    PixelFormat("R8G8B8", 20, 24, _COLOUR, (_u(16, 8, 0), _u(8, 8, 1), _u(0, 8, 2)),
-                dds=(_RGB, 24, 0xFF0000, 0xFF00, 0xFF, 0)),
-    PixelFormat("R5G6B5", 23, 16, _COLOUR, (_u(11, 5, 0), _u(5, 6, 1), _u(0, 5, 2)),
-                dds=(_RGB, 16, 0xF800, 0x07E0, 0x001F, 0)),
-    PixelFormat("X1R5G5B5", 24, 16, _COLOUR, (_u(10, 5, 0), _u(5, 5, 1), _u(0, 5, 2)),
-                dds=(_RGB, 16, 0x7C00, 0x03E0, 0x001F, 0)),
-    PixelFormat("A1R5G5B5", 25, 16, _COLOUR,
-                (_u(10, 5, 0), _u(5, 5, 1), _u(0, 5, 2), _u(15, 1, 3)),
-                dds=(_RGBA, 16, 0x7C00, 0x03E0, 0x001F, 0x8000)),
-    PixelFormat("A4R4G4B4", 26, 16, _COLOUR,
-                (_u(8, 4, 0), _u(4, 4, 1), _u(0, 4, 2), _u(12, 4, 3)),
-                dds=(_RGBA, 16, 0x0F00, 0x00F0, 0x000F, 0xF000)),
-    PixelFormat("A8", 28, 8, _COLOUR, (_u(0, 8, 3),), dds=(DDPF_ALPHA, 8, 0, 0, 0, 0xFF)),
-    PixelFormat("L8", 50, 8, _COLOUR, (_u(0, 8, 0, 1, 2),), dds=(DDPF_LUMINANCE, 8, 0xFF, 0, 0, 0)),
-    PixelFormat("A8L8", 51, 16, _COLOUR, (_u(0, 8, 0, 1, 2), _u(8, 8, 3)),
-                dds=(DDPF_LUMINANCE | DDPF_ALPHAPIXELS, 16, 0xFF, 0, 0, 0xFF00)),
-    PixelFormat("V8U8", 60, 16, _ONES, (_s(0, 8, 0), _s(8, 8, 1)),
-                dds=(DDPF_BUMPDUDV, 16, 0xFF, 0xFF00, 0, 0)),
-    PixelFormat("L6V5U5", 61, 16, _ONES,
-                (Field(0, 5, "snorm5", (0,)), Field(5, 5, "snorm5", (1,)), _u(10, 6, 2)),
-                dds=(DDPF_BUMPLUMINANCE, 16, 0x001F, 0x03E0, 0xFC00, 0)),
-    PixelFormat("X8L8V8U8", 62, 32, _ONES, (_s(0, 8, 0), _s(8, 8, 1), _u(16, 8, 2)),
-                dds=(DDPF_BUMPLUMINANCE, 32, 0xFF, 0xFF00, 0xFF0000, 0)),
-    PixelFormat("Q8W8V8U8", 63, 32, _ONES, (_s(0, 8, 0), _s(8, 8, 1), _s(16, 8, 2), _s(24, 8, 3)),
-                dds=(DDPF_BUMPDUDV, 32, 0xFF, 0xFF00, 0xFF0000, 0xFF000000)),
-    PixelFormat("V16U16", 64, 32, _ONES, (_s(0, 16, 0), _s(16, 16, 1)),
-                dds=(DDPF_BUMPDUDV, 32, 0xFFFF, 0xFFFF0000, 0, 0)),
-    PixelFormat("R16F", 111, 16, _ONES, float_dtype="<f2", float_channels=1),
-    PixelFormat("G16R16F", 112, 32, _ONES, float_dtype="<f2", float_channels=2),
-    PixelFormat("A16B16G16R16F", 113, 64, _ONES, float_dtype="<f2", float_channels=4),
-    PixelFormat("R32F", 114, 32, _ONES, float_dtype="<f4", float_channels=1),
-    PixelFormat("G32R32F", 115, 64, _ONES, float_dtype="<f4", float_channels=2),
-    PixelFormat("A32B32G32R32F", 116, 128, _ONES, float_dtype="<f4", float_channels=4),
-] + [PixelFormat(f"DXT{n}", fourcc_code(f"DXT{n}"), 0, _COLOUR, block_bytes=8 if n == 1 else 16)
-     for n in range(1, 6)]
-
-FORMATS: dict[str, PixelFormat] = {f.name: f for f in TABLE}
-BY_CODE: dict[int, PixelFormat] = {f.code: f for f in TABLE}
-
-
-def pixel_format(name: str) -> PixelFormat:
-    """The table row for a D3DFORMAT name ('A8R8G8B8', 'D3DFMT_V8U8' ...); KeyError if unknown."""
-    key = name.upper()
-    if key.startswith("D3DFMT_"):
-        key = key[len("D3DFMT_"):]
-    return FORMATS[key]
-
-
-# ---------------------------------------------------------------------------------------------
-# Texel codec: decoded float RGBA <-> stored words
+from effects.program.formats import Field, PixelFormat
 
 
 def _words(raw: np.ndarray, nbytes: int, count: int) -> np.ndarray:
@@ -296,10 +169,3 @@ def _decode_blocks(raw: np.ndarray, fmt: PixelFormat, h: int, w: int) -> np.ndar
         texels[:, :, 3] = _interpolated_alpha(blocks)
     img = texels.reshape(bh, bw, 4, 4, 4).transpose(0, 2, 1, 3, 4).reshape(bh * 4, bw * 4, 4)
     return img[:h, :w].astype(np.float32)
-
-
-def surface_bytes(fmt: PixelFormat, w: int, h: int) -> int:
-    """Size in bytes of one w x h surface of `fmt`."""
-    if fmt.compressed:
-        return max(1, (w + 3) // 4) * max(1, (h + 3) // 4) * fmt.block_bytes
-    return (w * fmt.bits + 7) // 8 * h
