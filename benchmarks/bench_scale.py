@@ -1,7 +1,7 @@
 """Cost as the work grows (issue 15): each row of the issue's table, measured side by side in
 one run, with the fitted exponent where the work grows, and the goal.
 
-    .venv/bin/python benchmarks/bench_scale.py [--quick] [--only ROW,...]
+    .venv/bin/python benchmarks/bench_scale.py [--quick] [--only ROW,...] [--json]
 
 Rows (names for --only):
   validate   every technique of a generated 1k / 10k / 100k-line effect on every bundled card,
@@ -15,7 +15,7 @@ Rows (names for --only):
   memory     peak memory of a process that draws one 2048x2048 NumPy frame
   mesh       a 1M-triangle .obj with tangent frames; sphere() of 1M triangles
   textures   Runtime construction over an effect with 100 textures
-  sheet      `effects matrix --render` contact sheet, all fxfiles x 19 cards: --jobs 1 vs 2, Dask
+  sheet      `effects matrix --render` contact sheet, all fxfiles x every card: --jobs 1 vs 2, Dask
 The growth rows (validate, validate-cards, lower) give the median CPU time of rounds over all
 sizes in turn and the median ratio of samples taken side by side (see `_growth_times`); the
 render row the median of rounds of both ways in turn; the other rows the minimum of several
@@ -297,7 +297,7 @@ def bench_startup() -> None:
     made = _command("-m", "effects", "matrix", *files, runs=3, env={"EFFECTS_CACHE": "off"})
     row("effects --help / import effects", f"{ms(helps)} / {ms(imports)} (python alone {ms(bare)})", "",
         f"--help ≤ 60 ms: {_verdict(helps <= 0.060)}")
-    row(f"effects profiles / matrix ({len(files)} files × 19 cards)",
+    row(f"effects profiles / matrix ({len(files)} files × {len(list_profiles())} cards)",
         f"{ms(profiles)} / rows kept {ms(kept)}, store off {ms(made)}", "",
         f"matrix ≤ 300 ms: rows kept {_verdict(kept <= 0.300)}, store off {_verdict(made <= 0.300)}")
 
@@ -454,6 +454,9 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="smaller effects for the growth rows")
     ap.add_argument("--only", default="", help="comma-separated row names (see the docstring)")
+    ap.add_argument("--json", action="store_true",
+                    help="end with one line of JSON: the rows as [work, figures, exponent, goal] "
+                         "(docs/make_performance.py reads it)")
     args = ap.parse_args(argv)
     names = [n for n in args.only.split(",") if n] or list(BENCHES)
     print(f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}, Python {sys.version.split()[0]}")
@@ -461,6 +464,9 @@ def main(argv: list[str] | None = None) -> int:
     for name in names:
         bench = BENCHES[name]
         bench(args.quick) if name in ("validate", "validate-cards", "lower") else bench()
+    if args.json:
+        import json
+        print(json.dumps(ROWS, ensure_ascii=False))
     return 0
 
 

@@ -2,7 +2,8 @@
 
 `Effect` here is the model's `Effect` (what the file says) with the spine's functions as its
 methods, D3DX-style: `validate` (effects.validate.technique), `find_valid_technique` and
-`find_next_valid_technique` (effects.validate.select), `to_source` (effects.frontend.printer).
+`find_next_valid_technique` (effects.validate.select; the first is its `select`, the one route
+by which every host selects), `to_source` (effects.frontend.printer).
 They live here, above those layers, so that the model stays data that everything below can
 import. `load_effect` gives this `Effect`.
 """
@@ -14,7 +15,7 @@ from typing import TYPE_CHECKING, Any, Mapping
 from effects import model
 from effects.frontend import loader
 from effects.frontend.printer import print_effect
-from effects.validate.select import find_next_valid_technique, find_valid_technique
+from effects.validate.select import find_next_valid_technique, select
 from effects.validate.technique import validate_technique
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -35,7 +36,7 @@ class Effect(model.Effect):
                              policy: Any = "first") -> model.Technique | None:
         """The technique `profile` selects (D3DX's FindNextValidTechnique from the start, or a
         named policy), or None."""
-        return find_valid_technique(self, profile, policy)
+        return select(self, profile, policy).technique
 
     def find_next_valid_technique(self, profile: "CapsProfile",
                                   after: model.Technique | str | None = None) -> model.Technique | None:

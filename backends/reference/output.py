@@ -1,5 +1,6 @@
 """The output merger: alpha test, stencil, depth, blending, colour mask and the
-render-target write, in Direct3D 9's order (D3DRENDERSTATETYPE docs; semantics.md section 0).
+render-target write, in Direct3D 9's order (D3DRENDERSTATETYPE docs;
+docs/reference/semantics.md section 0).
 
 - Alpha test compares the fragment alpha quantised to 8 bits, round(sat(a) * 255), with
   AlphaRef: `alpha FUNC ref`.

@@ -10,8 +10,9 @@ band's size, not the frame's, bounds the memory a draw takes beyond the frame's 
 Helper pixels are shaded only when the fragment program samples a texture.
 
 Conventions beyond `effects.program.backend`:
-- Vertex colour outputs (color0, color1) are saturated before interpolation (semantics.md
-  section 0); with no vertex program the colour streams are saturated too.
+- Vertex colour outputs (color0, color1) are saturated before interpolation
+  (docs/reference/semantics.md section 0); with no vertex program the colour streams are
+  saturated too.
 - A varying the fragment program reads but nothing supplies reads as D3D's vertex defaults:
   color0 (1, 1, 1, 1), color1 (0, 0, 0, 0), anything else (0, 0, 0, 1). The same defaults fill
   vertex-program inputs missing from `streams`.

@@ -1,5 +1,5 @@
-"""Make the README's thumbnails: every technique of the bundled effects on a card that runs
-it, drawn by the NumPy reference back end on the default scene (the unit sphere seen from
+"""Make the thumbnails of docs/gallery.md: every technique of the bundled effects on a card
+that runs it, drawn by the NumPy reference back end on the default scene (the unit sphere seen from
 (0, 0, 3)) at 256 x 256 and reduced to 128 x 128 (Lanczos), plus the specular-only close-ups
 of the banding comparison. Deterministic; run from anywhere:
 

@@ -32,9 +32,9 @@ def parameters_read(effect: Effect, technique: Technique) -> set[str]:
 
     def value(v: Any) -> None:
         if isinstance(v, CompileShader):
-            from effects.shaders.hlsl import compile_state
+            from effects.shaders.shader_value import shader_of
             try:
-                shader = compile_state(effect, v)
+                shader = shader_of(effect, v).compiled
             except EffectError:
                 return                       # validation says why; nothing is read
             read.update(n for n in (*shader.constants, *shader.int_registers,

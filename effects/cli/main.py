@@ -1,6 +1,6 @@
 """The `effects` command line: validate, matrix, render, view, profiles, doctor, compile.
 
-Exit codes (DESIGN.md): 0 ok, 1 invalid or not renderable, 2 bad input or usage, 141 when
+Exit codes (docs/design.md): 0 ok, 1 invalid or not renderable, 2 bad input or usage, 141 when
 the reader of the output left (`| head`), as a process ended by SIGPIPE.
 No Python traceback reaches a user: every `EffectError` is printed located, with its line.
 """
@@ -91,7 +91,7 @@ def _add_preprocessor_options(p) -> None:
 
 
 def _add_confinement(p, strict: bool = True) -> None:
-    """--include-root (and --strict) for every command that loads an effect (DESIGN.md)."""
+    """--include-root (and --strict) for every command that loads an effect (docs/design.md)."""
     p.add_argument("--include-root", metavar="DIR", default=None,
                    help="confine every file the effect reads (includes, ResourceName, Procedural "
                         "images, scene textures) to this folder")

@@ -1,6 +1,6 @@
 """Tables a person reads: techniques × cards with reasons, the selection matrix, the cards.
 
-`matrix()` is also the JSON the command line prints (DESIGN.md's shape):
+`matrix()` is also the JSON the command line prints (docs/design.md's shape):
     {effect: {profile: {"technique": name|null, "passes": n, "rejected": {technique: [reason, ...]}}}}
 "rejected" lists every technique the card cannot run, with all its reasons, and each valid
 technique the policy refused (max-passes, max-cost), with the policy's reason.
@@ -58,7 +58,7 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
         console.print(Text(f"{effect.path}: the effect has no techniques, so no card can render it"),
                       soft_wrap=True)
         return False
-    from effects.validate.select import as_policy, choose
+    from effects.validate.select import as_policy, select
     pol = as_policy(policy)
     results = dict(zip((p.name for p in profiles), validate_cards(effect, profiles)))
     table = Table(title=effect.path, show_lines=True, header_style="bold")
@@ -74,7 +74,8 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
             else:
                 row.append(Text.assemble(("✗", "red"), f" {v.reasons[0]}"))
         table.add_row(*row)
-    chosen = {p.name: choose(results[p.name], pol) for p in profiles}
+    chosen = {p.name: select(effect, p, pol, validations=results[p.name]).chosen
+              for p in profiles}
     table.add_row(Text("selected", style="bold"),
                   *[Text(technique_name(c.technique)) if c else Text("none", style="red")
                     for c in chosen.values()])
@@ -108,23 +109,18 @@ def _print_details(effect: Effect, profiles: Sequence[CapsProfile],
 def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
            policy: PolicyLike = "first") -> dict:
     """{effect: {profile: {"technique": name|None, "passes": n, "rejected": {tech: [reason...]}}}}"""
-    from effects.validate.select import as_policy, choose
+    from effects.validate.select import as_policy, select
     pol = as_policy(policy)
     out: dict = {}
     for path, effect in effects.items():
         per_card: dict = {}
         for profile, results in zip(profiles, validate_cards(effect, profiles)):
-            chosen = choose(results, pol)
-            rejected: dict[str, list[str]] = {}
-            for v in results:
-                if not v.ok:
-                    rejected[technique_name(v.technique)] = [str(r) for r in v.reasons]
-                elif pol.refusal(v) is not None:
-                    rejected[technique_name(v.technique)] = [f"policy {pol}: {pol.refusal(v)}"]
+            selection = select(effect, profile, pol, validations=results)
+            chosen = selection.chosen
             per_card[profile.name] = {
                 "technique": technique_name(chosen.technique) if chosen else None,
                 "passes": chosen.passes if chosen else 0,
-                "rejected": rejected,
+                "rejected": selection.rejected(),
             }
         out[path] = per_card
     return out

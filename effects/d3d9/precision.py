@@ -11,9 +11,9 @@ Derivation (`lowering_options`):
   unsigned); fp16 / fp24 / fp32 is float.
 - Otherwise the generation decides: dx6 to dx8.1 cards hold fixed-function stage results at
   8 bits (the 8-bit colour combiners of the period); dx9 cards compute in float. Shader models
-  without an entry run in float with no clamp (semantics.md 2.1 decision: fp32, Wine and DXVK
-  behaviour). Nothing here looks at a profile's name: exact float pipelines (`refrast`,
-  `modern`) say fp32 in their own Precision entries.
+  without an entry run in float with no clamp (docs/reference/semantics.md 2.1 decision: fp32,
+  Wine and DXVK behaviour). Nothing here looks at a profile's name: exact float pipelines
+  (`refrast`, `modern`) say fp32 in their own Precision entries.
 """
 from __future__ import annotations
 
@@ -47,7 +47,8 @@ class LoweringOptions:
     ps20_float      'fp16' | 'fp24' | 'fp32': ps_2_0 arithmetic precision. Only fp32 is
                     modelled by the IR today; the field lets a lowering round to fp16 / fp24.
     constant_range  ps_1_x float constants (c#, def) clamp to [-constant_range,
-                    constant_range] on every card (semantics.md 2.1: clamped to [-1, 1]).
+                    constant_range] on every card (docs/reference/semantics.md 2.1: clamped
+                    to [-1, 1]).
     """
 
     stage_bits: int | None = None

@@ -4,7 +4,7 @@ stage count (each named here from its row in `effects.d3d9.states`, where it is 
 one row per D3DTOP
 (`STAGE_OPS`): the caps bit that validation checks, the arguments it reads (for the
 missing-texture rule), whether it samples its texture without a TEXTURE argument, and its
-formula over vec4 IR values (semantics.md section 1).
+formula over vec4 IR values (docs/reference/semantics.md section 1).
 
 A formula takes the cascade being lowered (`effects.lower.stages`; it offers `.b`, the IR
 builder, and the stage's `diffuse`, `current`, `texture()` and `tfactor()` values) and the

@@ -484,7 +484,8 @@ _STAGE_STATES = (
     _ts("ColorArg0", 26, "enum", _ev(D3DTA, "Current"), D3DTA),
     _ts("AlphaArg0", 27, "enum", _ev(D3DTA, "Current"), D3DTA),
     _ts("ResultArg", 28, "enum", _ev(D3DTA, "Current"), D3DTA),
-    # Constant: Wine leaves it 0 (semantics.md 1.1); the D3DTA page claims 0xffffffff.
+    # Constant: Wine leaves it 0 (docs/reference/semantics.md 1.1); the D3DTA page claims
+    # 0xffffffff.
     _ts("Constant", 32, "color", 0),
 )
 
@@ -523,7 +524,7 @@ _SAMPLER_STATES = (
     _ss("MaxAnisotropy", 10, "int", 1),
     _ss("SRGBTexture", 11, "bool", False),
     _ss("ElementIndex", 12, "int", 0),
-    # DMAPOffset: the docs say 0; the debug runtime reports 256 (effect_format.md 2).
+    # DMAPOffset: the docs say 0; the debug runtime reports 256 (docs/reference/effect_format.md 2).
     _ss("DMAPOffset", 13, "int", 0),
 )
 

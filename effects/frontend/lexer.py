@@ -54,7 +54,7 @@ PUNCT = {
     "&": "AMP", "^": "CARET", "!": "BANG", "~": "TILDE", "?": "QMARK", ".": "DOT",
 }
 
-# Effect keywords are case-insensitive in non-strict fxc (effect_format.md §7).
+# Effect keywords are case-insensitive in non-strict fxc (docs/reference/effect_format.md §7).
 _KEYWORDS = {
     "technique": "TECHNIQUE", "pass": "PASS", "compile": "COMPILE",
     "sampler_state": "SAMPLER_STATE", "stateblock_state": "STATEBLOCK_STATE",

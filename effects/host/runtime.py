@@ -9,7 +9,7 @@ The spine, per render:
      (`effects.host.semantics.bind_scene`), then the scene's `params`, then `params=` (the command
      line's --set), each later source winning;
   2. the technique: the one named, rendered as asked whether or not the card can run it, or
-     the one the card selects (`find_valid_technique`, policy as named); none is
+     the one the card selects (`effects.validate.select.select`, policy as named); none is
      `NoValidTechnique` carrying every technique's reasons;
   3. every pass is lowered (`effects.lower.passes.lower_pass`) from Direct3D 9's default device state
      with the scene camera's WORLD/VIEW/PROJECTION transforms set (as an application sets them
@@ -49,6 +49,7 @@ from effects.validate.technique import validate_technique
 if TYPE_CHECKING:  # pragma: no cover
     from effects.d3d9.caps import CapsProfile
     from effects.program.passprogram import PassProgram
+    from effects.validate.select import Selection
     from effects.validate.technique import Validation
 
 _BACKENDS: dict[str, Any] = {}   # back ends by name, made once (a GL context is costly)
@@ -104,12 +105,13 @@ def _check_target(size: tuple[int, int], backend: str) -> None:
                      f"a {size[0]} x {size[1]} render target on the {backend} back end", SceneError)
 
 
-def no_valid_technique(effect: Effect, profile: "CapsProfile", policy: Any = "first") -> NoValidTechnique:
-    """The error for a card that runs none of the effect's techniques, with every reason."""
-    from effects.validate.select import rank
+def no_valid_technique(effect: Effect, profile: "CapsProfile",
+                       selection: "Selection") -> NoValidTechnique:
+    """The error for a card that runs none of the effect's techniques, with every reason
+    (`selection` chose nothing, so it validated every technique)."""
     reasons = {}
     lines = []
-    for validation in rank(effect, profile, policy):
+    for validation in selection.ranked:
         name = validation.technique.name or "<anonymous>"
         reasons[name] = list(validation.reasons)
         why = [str(r) for r in validation.reasons] or ["not chosen by the selection policy"]
@@ -127,23 +129,23 @@ _SELECTIONS: dict[tuple, tuple] = {}
 _SELECTIONS_SIZE = 64
 
 
-def _selected(effect: Effect, profile: "CapsProfile", policy: Any) -> "Validation | None":
-    """`select_validation(effect, profile, policy)`, remembered across Runtimes: each
+def _selected(effect: Effect, profile: "CapsProfile", policy: Any) -> "Selection":
+    """`select(effect, profile, policy)`, remembered across Runtimes: each
     `effects.render()` call makes a Runtime over a fresh copy of the parameters, and the copy
     shares the techniques. The selection is made again only when a parameter that validation
     read differs (`effects.model.RecordedReads`); the same Validation object comes back, so
     the lowering cache (which keys on it) hits too."""
     from effects.model import RecordedReads, still_holds
-    from effects.validate.select import select_validation
+    from effects.validate.select import select
     try:
         key = (id(effect.techniques), id(profile), policy)
         hit = _SELECTIONS.get(key)
     except TypeError:   # an unhashable policy object: no memory
-        return select_validation(effect, profile, policy)
+        return select(effect, profile, policy)
     if hit is not None and hit[0] is effect.techniques and hit[1] is profile and still_holds(effect, hit[2]):
         return hit[3]
     reads = RecordedReads(effect)
-    chosen = select_validation(reads, profile, policy)  # type: ignore[arg-type]
+    chosen = select(reads, profile, policy)  # type: ignore[arg-type]
     _SELECTIONS.pop(key, None)
     if len(_SELECTIONS) >= _SELECTIONS_SIZE:
         _SELECTIONS.pop(next(iter(_SELECTIONS)))
@@ -364,11 +366,11 @@ class Runtime:
             if self.validation is not None and self.validation.technique is not named:
                 self.validation = None
             return named
-        chosen = _selected(self.effect, self.profile, policy)
-        if chosen is None:
-            raise no_valid_technique(self.effect, self.profile, policy)
-        self.validation = chosen
-        return chosen.technique
+        selection = _selected(self.effect, self.profile, policy)
+        if selection.chosen is None:
+            raise no_valid_technique(self.effect, self.profile, selection)
+        self.validation = selection.chosen
+        return selection.chosen.technique
 
     # -- ID3DXEffect-like drawing ----------------------------------------------------------
     def begin(self, technique: Technique | str | None = None, policy: Any = "first") -> int:

@@ -1,11 +1,11 @@
 """The scene a render draws: mesh, camera, light, clear values, size and parameter values.
 
-A scene comes from YAML (every key optional, DESIGN.md gives the shape), from a mapping, or
+A scene comes from YAML (every key optional: docs/guide/scene.md), from a mapping, or
 from defaults. Every problem in a scene file is a `SceneError` at the line and column of the
 offending value. Matrices follow Direct3D's conventions (row vectors, left-handed, clip z in
 0..1), built as D3DXMatrixLookAtLH and D3DXMatrixPerspectiveFovLH build them.
 
-Keys beyond DESIGN.md's list:
+Keys a reader of other hosts' scenes may not expect:
 - `streams: {texcoord1: tangent, texcoord2: binormal}` — which mesh attribute feeds a vertex
   stream (see `effects.host.resources`); it overrides the effect's own `string VertexStreams`.
 - `light: {direction: [x, y, z]}` — the direction the light travels (LIGHTDIRECTION); without

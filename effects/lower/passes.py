@@ -43,23 +43,23 @@ import numpy as np
 from effects.d3d9 import states as state_table
 from effects.d3d9.device import DeviceState, host_states, pass_states
 from effects.base.errors import EffectError, Location
-from effects.shaders.asm import assemble_cached
 from effects.lower.preshaders import evaluate_expressions, evaluate_into
 from effects.shaders.asm import lower as asm_lower
+from effects.shaders.shader_value import shader_of
 from effects.program.ir import Builder
 from effects.lower.stages import (FogSetup, FragmentInputs, StageSetup, active_stages, apply_fog,
                                   lower_cascade)
 from effects.lower.vertex import (PHONG_SLOTS, LightSetup, TexCoordSetup, VertexSetup,
                                    lower_pixel_lighting, lower_vertex, pixel_lighting)
 from effects.model import (CompileShader, Effect, NullValue, Parameter, ParamRef,
-                    RecordedReads, ShaderBlock, StateAssignment, Technique, still_holds)
+                    RecordedReads, StateAssignment, Technique, still_holds)
 from effects.program.passprogram import PassProgram, RenderState, TextureBinding
 from effects.d3d9.precision import lowering_options
 from effects.d3d9.stage_ops import MAX_STAGES, TCI_MODES, TCI_SET_MASK, TCI_SHIFT, TTFF_PROJECTED
-from effects.d3d9.states import VERTEX_TEXTURE_SAMPLER0
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.shaders.asm import AsmProgram
+    from effects.shaders.shader_value import Shader
     from effects.d3d9.caps import CapsProfile
     from effects.validate.technique import Validation
 
@@ -98,7 +98,8 @@ def lower_pass(effect: Effect, technique: Technique, pass_index: int,
     state = _pass_state(reads, technique, pass_index, validation,  # type: ignore[arg-type]
                         host_states(host) if host else None)
     state = evaluate_expressions(reads, state)  # type: ignore[arg-type]
-    program = _lower(reads, state, profile, vertex_colors)  # type: ignore[arg-type]
+    judged = validation.pass_reports[pass_index].shaders if validation is not None else {}
+    program = _lower(reads, state, profile, vertex_colors, judged)  # type: ignore[arg-type]
     with _CACHE_LOCK:  # the viewer lowers on a worker thread and on the render thread
         _CACHE.pop(key, None)
         if len(_CACHE) >= CACHE_SIZE:
@@ -158,7 +159,9 @@ def _cache_key(technique: Technique, pass_index: int, profile: "CapsProfile",
 
 
 def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
-           vertex_colors: bool = True) -> PassProgram:
+           vertex_colors: bool = True, judged: Mapping[str, "Shader"] | None = None) -> PassProgram:
+    """`judged`: the shaders validation judged for this pass, by state name (each one's
+    program and bindings); a shader not among them is made here (`shader_of`)."""
     options = lowering_options(profile)
     uniforms: dict[str, tuple[float, ...]] = {}
     fog = read_fog(state)
@@ -166,6 +169,7 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     vertex_shader = _shader(state, "VertexShader")
     if isinstance(pixel_shader, CompileShader) or isinstance(vertex_shader, CompileShader):
         state = state.copy()   # the compiled shader binds its samplers (may be the validation's state)
+    judged = judged or {}
 
     lit = lighting = None
     if pixel_shader is None:
@@ -186,7 +190,8 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
         if fog.source != "none":
             raise EffectError("fog after a pixel shader is not lowered yet",
                               state.where("FogEnable"))
-        program, compiled = _assemble(effect, state, pixel_shader, "pixel")
+        program, compiled = _assemble(effect, state, pixel_shader, "pixel",
+                                      judged.get("PixelShader"))
         ctx = asm_lower.ShaderContext(
             options, sampler_kinds={s: k for s in range(MAX_STAGES)
                                     if (k := _texture_kind(effect, state, s))},
@@ -215,7 +220,8 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     if vertex_shader is None:
         vertex = lower_vertex(read_vertex(effect, state, needed, fog, vertex_colors), uniforms)
     else:
-        program, compiled = _assemble(effect, state, vertex_shader, "vertex")
+        program, compiled = _assemble(effect, state, vertex_shader, "vertex",
+                                      judged.get("VertexShader"))
         ctx = asm_lower.ShaderContext(options, decl=getattr(vertex_shader, "decl", None),
                                       constant_prefix=VERTEX_CONSTANT_PREFIX,
                                       int_constants=_int_constants(state, "Vertex", compiled),
@@ -249,42 +255,40 @@ def _shader(state: DeviceState, name: str) -> Any:
     return value
 
 
-def _assemble(effect: Effect, state: DeviceState, shader: Any,
-              stage: str) -> tuple["AsmProgram", Any]:
-    """The assembled program of a shader value, and the compiled HLSL shader (or None). An
-    HLSL shader's sampler parameters are bound to the sampler registers the compiler gave
-    them, as D3DX does when it sets the shader (`Sampler[s#] = (param)` in effect terms)."""
+def _assemble(effect: Effect, state: DeviceState, shader: Any, stage: str,
+              judged: "Shader | None" = None) -> tuple["AsmProgram", Any]:
+    """The assembled program of a shader value, and the compiled HLSL shader (or None): the
+    Shader validation judged when it is of this value, else made now (`shader_of`). An HLSL
+    shader's registers are bound as its bindings say, as D3DX does when it sets the shader:
+    each sampler parameter to its sampler (`Sampler[s#] = (param)` in effect terms)."""
     location = getattr(shader, "location", None) or Location("<effect>", 1, 1)
-    if isinstance(shader, CompileShader):
-        from effects.shaders.hlsl import compile_state
-        compiled = compile_state(effect, shader)
-        # a vs_3_0 shader's s# are the vertex texture samplers D3DVERTEXTEXTURESAMPLER0 + n
-        base = 0 if stage == "pixel" else VERTEX_TEXTURE_SAMPLER0
-        for name, register in compiled.samplers.items():
-            state.apply(StateAssignment("Sampler", ParamRef(name), index=base + register,
-                                        location=location))
-            if state.assignment("Texture", base + register) is None:
-                # its sampler_state names no texture: the host sets one on the stage
-                # (SetTexture), named after the sampler (`--set S=image`; else a stand-in)
-                state.apply(StateAssignment("Texture", ParamRef(name), index=base + register,
-                                            location=location))
-        # an int parameter counting a rep sits in the i# the compiler gave it (D3DX sets it
-        # with the shader, as VertexShaderConstantI / PixelShaderConstantI would)
-        family = "PixelShaderConstantI" if stage == "pixel" else "VertexShaderConstantI"
-        for name, register in getattr(compiled, "int_registers", {}).items():
-            state.apply(StateAssignment(family, ParamRef(name), index=register,
-                                        location=location))
-        # a bool parameter an `if b#` tests sits in its b# (VertexShaderConstantB / Pixel...)
-        family = "PixelShaderConstantB" if stage == "pixel" else "VertexShaderConstantB"
-        for name, register in getattr(compiled, "bool_registers", {}).items():
-            state.apply(StateAssignment(family, ParamRef(name), index=register,
-                                        location=location))
-        evaluate_into(effect, state)   # expressions in those samplers' sampler_state blocks
-        return compiled.program, compiled
-    if not isinstance(shader, ShaderBlock):
+    found = judged if judged is not None and judged.value is shader else shader_of(effect, shader)
+    if found is None:
         raise EffectError(f"cannot lower a {stage} shader given as {type(shader).__name__}",
                           location)
-    return assemble_cached(shader), None
+    if found.compiled is None:
+        return found.program, None
+    for binding in found.samplers:
+        if binding.parameter is None:
+            continue
+        state.apply(StateAssignment("Sampler", ParamRef(binding.parameter), index=binding.unit,
+                                    location=location))
+        if state.assignment("Texture", binding.unit) is None:
+            # its sampler_state names no texture: the host sets one on the stage
+            # (SetTexture), named after the sampler (`--set S=image`; else a stand-in)
+            state.apply(StateAssignment("Texture", ParamRef(binding.parameter),
+                                        index=binding.unit, location=location))
+    # an int parameter counting a rep sits in the i# the compiler gave it (D3DX sets it
+    # with the shader, as VertexShaderConstantI / PixelShaderConstantI would)
+    family = "PixelShaderConstantI" if stage == "pixel" else "VertexShaderConstantI"
+    for name, register in found.int_registers.items():
+        state.apply(StateAssignment(family, ParamRef(name), index=register, location=location))
+    # a bool parameter an `if b#` tests sits in its b# (VertexShaderConstantB / Pixel...)
+    family = "PixelShaderConstantB" if stage == "pixel" else "VertexShaderConstantB"
+    for name, register in found.bool_registers.items():
+        state.apply(StateAssignment(family, ParamRef(name), index=register, location=location))
+    evaluate_into(effect, state)   # expressions in those samplers' sampler_state blocks
+    return found.program, found.compiled
 
 
 def _int_constants(state: DeviceState, shader: str, compiled: Any

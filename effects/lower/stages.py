@@ -1,6 +1,7 @@
 """The fixed-function texture-stage cascade (D3DTSS_*) lowered to fragment IR.
 
-The rules are semantics.md section 1 (Wine's FFP fragment generator and DXVK, test-proven):
+The rules are docs/reference/semantics.md section 1 (Wine's FFP fragment generator and DXVK,
+test-proven):
 - `current` starts as the diffuse colour and `temp` as (0, 0, 0, 0); stages run 0..7 and the
   first COLOROP = DISABLE ends the cascade.
 - Each stage computes rgb = colorop(colorargs) and a = alphaop(alphaargs), both reading the

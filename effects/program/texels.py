@@ -3,7 +3,7 @@ quantisation. `effects.program.formats` says how each format lays its texels out
 and writer (`effects.assets.dds`) and the texture container (`effects.assets.textures`) both use
 this, and it reads neither.
 
-Decoded values (what a card's sampler returns), per ../shared/reference/semantics.md §1.7:
+Decoded values (what a card's sampler returns), per docs/reference/semantics.md §1.7:
 - unsigned normalised fields: q / (2^n - 1);
 - signed 8/16-bit fields (V8U8, Q8W8V8U8, X8L8V8U8, V16U16): max(q / (2^(n-1) - 1), -1), so
   0x7f -> 1.0, 0x81 -> -1.0 and 0x80 -> -1.0;

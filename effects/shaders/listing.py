@@ -61,19 +61,18 @@ def pass_listing(effect: "Effect", technique: "Technique", index: int) -> list[s
 
 
 def shader_listing(effect: "Effect", value: Any) -> list[str]:
-    from effects.model import CompileShader, NullValue, ShaderBlock
+    from effects.model import NullValue
     if isinstance(value, NullValue):
         return ["//   NULL: the fixed-function pipeline"]
-    if isinstance(value, CompileShader):
-        from effects.shaders.hlsl import compile_state
-        return listing(effect, compile_state(effect, value))
-    if isinstance(value, ShaderBlock):
-        from effects.shaders.asm import assemble_cached
-        program = assemble_cached(value)
-        lines = ["//   (assembly written in the effect)"]
-        lines += ["    " + line.strip() for line in value.source.strip().splitlines() if line.strip()]
-        return lines + counts(program)
-    return [f"//   {type(value).__name__}: no shader"]
+    from effects.shaders.shader_value import shader_of
+    shader = shader_of(effect, value)
+    if shader is None:
+        return [f"//   {type(value).__name__}: no shader"]
+    if shader.compiled is not None:
+        return listing(effect, shader.compiled)
+    lines = ["//   (assembly written in the effect)"]
+    lines += ["    " + line.strip() for line in value.source.strip().splitlines() if line.strip()]
+    return lines + counts(shader.program)
 
 
 def listing(effect: "Effect", shader: Any) -> list[str]:

@@ -15,14 +15,17 @@ A policy is written as comma-separated parts, each at most once:
     max-cost=X       techniques whose Cost is above X (or unknown) are not chosen
 
 so "quality,max-passes=1" is the best-looking single-pass technique and "quality,max-cost=4"
-the best-looking one under a budget. No valid technique is a normal answer (None, with every
-reason in `rank`), never an exception.
+the best-looking one under a budget. No valid technique is a normal answer (a `Selection`
+with nothing chosen and every reason), never an exception.
+
+`select` is the one route by which a technique is chosen: the runtime, the viewer's reloads,
+`effects render/matrix/validate/doctor` and `Effect.find_valid_technique` all ask it.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Union
+from dataclasses import dataclass, field
+from typing import Sequence, Union
 
 import numpy as np
 
@@ -116,9 +119,6 @@ def as_policy(policy: PolicyLike) -> Policy:
     return policy if isinstance(policy, Policy) else Policy.parse(policy)
 
 
-_as_policy = as_policy   # the name earlier callers used
-
-
 def _annotation_number(tech: Technique, name: str) -> float | None:
     a = tech.annotation(name)
     if a is None or isinstance(a.value, str):
@@ -140,61 +140,112 @@ def technique_cost(tech: Technique) -> float | None:
     return _annotation_number(tech, "Cost")
 
 
-def rank(effect: Effect, profile: CapsProfile, policy: PolicyLike = "first") -> list[Validation]:
-    """Every technique's validation: those the policy accepts first, in its preferred order,
-    then the others in file order. The first entry is the choice when `policy.accepts` it."""
+@dataclass
+class Selection:
+    """What selecting a technique for one effect on one card found (`select`): the technique
+    drawn, every technique's Validation made on the way, and the policy's reasons.
+
+    `validations` are in file order. A lazy selection under the default policy stops at the
+    first valid technique (D3DX's FindNextValidTechnique) and leaves the techniques after it
+    in `pending`; otherwise, or when none is valid, every technique is validated."""
+
+    policy: Policy
+    validations: list[Validation]
+    chosen: Validation | None                  # the technique to draw; None: nothing valid
+    forced_rejected: Validation | None = None  # a forced technique the card cannot run
+    pending: list[Technique] = field(default_factory=list)
+
+    @property
+    def technique(self) -> Technique | None:
+        return self.chosen.technique if self.chosen is not None else None
+
+    @property
+    def ranked(self) -> list[Validation]:
+        """The validations the policy accepts first, in its preferred order, then the others
+        in file order; the first is the policy's choice when it accepts it."""
+        pol = self.policy
+        position = {id(v): i for i, v in enumerate(self.validations)}
+
+        def key(v: Validation) -> tuple[int, float, int]:
+            if not pol.accepts(v):
+                return (1, 0.0, position[id(v)])
+            if pol.order == "quality":
+                score = -technique_quality(v.technique)
+            elif pol.order == "cost":
+                cost = technique_cost(v.technique)
+                score = math.inf if cost is None else cost
+            else:
+                score = 0.0
+            return (0, score, position[id(v)])
+
+        return sorted(self.validations, key=key)
+
+    def rejected(self) -> dict[str, list[str]]:
+        """By technique name, in file order: every reason of each technique the card cannot
+        run, and the policy's reason for each valid one it refuses (max-passes, max-cost)."""
+        out: dict[str, list[str]] = {}
+        for v in self.validations:
+            name = v.technique.name or "<anonymous>"
+            if not v.ok:
+                out[name] = [str(r) for r in v.reasons]
+            else:
+                refusal = self.policy.refusal(v)
+                if refusal is not None:
+                    out[name] = [f"policy {self.policy}: {refusal}"]
+        return out
+
+
+def select(effect: Effect, profile: CapsProfile, policy: PolicyLike = "first", *,
+           forced: Technique | None = None, lazy: bool = True,
+           validations: Sequence[Validation] | None = None) -> Selection:
+    """The one route by which a technique is selected: the runtime, the viewer's reloads, the
+    command line and `Effect.find_valid_technique` all ask here.
+
+    `forced`: a technique the caller would draw; it is chosen when the card can run it
+    (whatever the policy), else the policy chooses and `forced_rejected` says why not.
+    `lazy`: under the default policy, validate in file order only until the answer is known
+    (the first valid technique, and the forced one's answer), as FindNextValidTechnique does;
+    other policies rank every technique. `validations`: every technique's answer on this card
+    already made, in file order (the command line validates all cards at once)."""
     pol = as_policy(policy)
-    results = [validate_technique(effect, t, profile) for t in effect.techniques]
-    return order_validations(results, pol)
+    if validations is not None:
+        made, pending = list(validations), []
+    else:
+        made, pending = [], list(effect.techniques)
+        stop = lazy and pol == Policy()
+        while pending and not (stop and _decided(made, forced)):
+            made.append(validate_technique(effect, pending.pop(0), profile))
+    forced_rejected = None
+    if forced is not None:
+        answer = next((v for v in made if v.technique is forced), None)
+        if answer is None:
+            raise EffectError(f"technique '{forced.name}' is not one of this effect's techniques",
+                              Location(effect.path, 1, 1))
+        if answer.ok:
+            return Selection(pol, made, answer, None, pending)
+        forced_rejected = answer
+    selection = Selection(pol, made, None, forced_rejected, pending)
+    ranked = selection.ranked
+    if ranked and pol.accepts(ranked[0]):
+        selection.chosen = ranked[0]
+    return selection
 
 
-def order_validations(results: list[Validation], policy: PolicyLike = "first") -> list[Validation]:
-    """`rank` for validations already made (in file order)."""
-    pol = as_policy(policy)
-    position = {id(v): i for i, v in enumerate(results)}
-
-    def key(v: Validation):
-        if not pol.accepts(v):
-            return (1, 0.0, position[id(v)])
-        if pol.order == "quality":
-            score = -technique_quality(v.technique)
-        elif pol.order == "cost":
-            cost = technique_cost(v.technique)
-            score = math.inf if cost is None else cost
-        else:
-            score = 0.0
-        return (0, score, position[id(v)])
-
-    return sorted(results, key=key)
-
-
-def choose(results: list[Validation], policy: PolicyLike = "first") -> Validation | None:
-    """The validation of the technique the policy picks, or None."""
-    pol = as_policy(policy)
-    ordered = order_validations(results, pol)
-    return ordered[0] if ordered and pol.accepts(ordered[0]) else None
-
-
-def select_validation(effect: Effect, profile: CapsProfile,
-                      policy: PolicyLike = "first") -> Validation | None:
-    """The validation of the technique the policy picks on this card (None when none is
-    valid). The default policy validates in file order and stops at the first valid one, as
-    FindNextValidTechnique does; the others rank every technique."""
-    pol = as_policy(policy)
-    if pol == Policy():
-        for tech in effect.techniques:
-            validation = validate_technique(effect, tech, profile)
-            if validation.ok:
-                return validation
-        return None
-    return choose([validate_technique(effect, t, profile) for t in effect.techniques], pol)
+def _decided(made: list[Validation], forced: Technique | None) -> bool:
+    """Under the default policy, whether these answers (the first techniques in file order)
+    decide the selection: the forced technique when it is valid, else the first valid one,
+    which nothing later can precede."""
+    first_valid = any(v.ok for v in made)
+    if forced is None:
+        return first_valid
+    answer = next((v for v in made if v.technique is forced), None)
+    return answer is not None and (answer.ok or first_valid)
 
 
 def find_valid_technique(effect: Effect, profile: CapsProfile,
                          policy: PolicyLike = "first") -> Technique | None:
-    """The technique the policy picks on this card, or None when none is valid."""
-    chosen = select_validation(effect, profile, policy)
-    return chosen.technique if chosen else None
+    """The technique the policy picks on this card, or None when none is valid (`select`)."""
+    return select(effect, profile, policy).technique
 
 
 def find_next_valid_technique(effect: Effect, profile: CapsProfile,

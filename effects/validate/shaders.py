@@ -138,44 +138,51 @@ class ShaderChecks:
                   f"{subject} runs with {other}; Shader Model 3 shaders run only with each "
                   "other in hardware (a vs_3_0 in software vertex processing excepted)")
 
-    def program(self, value: Any) -> Any:
-        """`shader_program(effect, value)`, asked once per shader for all the cards one call
-        validates on (the pass analysis keeps it); an error is raised again."""
+    def program(self, value: Any, state_name: str) -> Any:
+        """The Shader of `value` (`effects.shaders.shader_value.shader_of`: its program and
+        register bindings), made once per shader for all the cards one call validates on (the
+        pass analysis keeps it) and recorded on the pass report under `state_name`, where
+        lowering binds from it; None for a value that is no shader. An error is raised again."""
         memo = self.analysis.programs
         held = memo.get(id(value))
         if held is None or held[0] is not value:
+            from effects.shaders.shader_value import shader_of
             try:
-                result = shader_program(self.effect, value)
+                result = shader_of(self.effect, value)
             except EffectError as err:
                 result = err
             held = memo[id(value)] = (value, result)
         if isinstance(held[1], EffectError):
             raise held[1]
+        if held[1] is not None:
+            self.report.shaders[state_name] = held[1]
         return held[1]
 
     def assembly_problems(self, value: Any, software: bool) -> bool:
-        """Whether a shader breaks its version's rules or the card's limits."""
+        """Whether a vertex shader breaks its version's rules or the card's limits."""
         from effects.shaders.asm import card_limit_violations, check_cached
         try:
-            program = self.program(value)
+            shader = self.program(value, "VertexShader")
         except EffectError:
             return True
-        if program is None:
+        if shader is None:
             return False
+        program = shader.program
         return bool(check_cached(program)) or any(
             True for _ in card_limit_violations(program, self.profile, software=software))
 
     def check_assembly(self, value: Any, state_name: str, software: bool = False) -> None:
         from effects.shaders.asm import card_limit_violations, check_cached
         try:
-            program = self.program(value)
+            shader = self.program(value, state_name)
         except EffectError as err:
             what = "HLSL that compiles" if isinstance(value, CompileShader) else "valid shader assembly"
             self.fail(err.location, state_name, what, "compile error" if isinstance(value, CompileShader)
                       else "assembly error", err.message)
             return
-        if program is None:
+        if shader is None:
             return
+        program = shader.program
         errors = check_cached(program)
         for err in errors:
             self.fail(err.location, state_name, "valid shader assembly", "assembly error", err.message)
@@ -195,18 +202,6 @@ class ShaderChecks:
         for loc, subject, requirement, card_value, message in card_limit_violations(
                 program, self.profile, software=software):
             self.fail(loc, subject, requirement, card_value, f"{message}; the {self.card()} has {card_value}")
-
-
-def shader_program(effect: Any, value: Any) -> Any:
-    """The assembled program of an asm block or of a `compile` state (compiled for its
-    target), or None for anything else."""
-    if isinstance(value, ShaderBlock):
-        from effects.shaders.asm import assemble_cached
-        return assemble_cached(value)
-    if isinstance(value, CompileShader):
-        from effects.shaders.hlsl import compile_state
-        return compile_state(effect, value).program
-    return None
 
 
 def _shader_version(value: Any) -> tuple[int, int] | None:

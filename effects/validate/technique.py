@@ -58,6 +58,7 @@ from effects.d3d9.device import NO_DEFAULT, DeviceState, pass_states
 from effects.base.errors import EffectError, Location
 from effects.frontend.references import pass_reference_problems
 from effects.model import Effect, EnumValue, Expression, NullValue, ParamRef, Pass, Technique
+from effects.shaders.shader_value import Shader
 from effects.validate.constants import ConstantChecks
 from effects.validate.expressions import ExpressionValues
 from effects.validate.framebuffer import FrameBufferChecks
@@ -110,6 +111,10 @@ class PassReport:
     # The device state this pass draws with (earlier passes persisting): what was checked is
     # what lowering draws from (`effects.lower.passes.lower_pass(..., validation=)`).
     state: DeviceState | None = field(default=None, repr=False, compare=False)
+    # The shaders the checks judged, by state name ('PixelShader', 'VertexShader'): each one's
+    # program and register bindings (`effects.shaders.shader_value.Shader`), which lowering
+    # binds from rather than working them out again.
+    shaders: dict[str, Shader] = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def ok(self) -> bool:

@@ -38,9 +38,9 @@ class TextureChecks:
         """Stages/samplers whose texture is read in this pass."""
         if shader:
             ps = self.shader("PixelShader")
-            units = _shader_samplers(ps[0]) if ps else None
-            if units is not None:
-                return units
+            asm = self.asm_shader(ps[0]) if ps else None
+            if asm is not None:
+                return [b.register for b in asm.samplers]
             return [n for n in range(MAX_SAMPLERS) if self.state.assignment("Texture", n)]
         units = []
         for stage in self.active_stages():
@@ -89,9 +89,10 @@ class TextureChecks:
         not declare its own (DX8 files cannot): ('CUBE', 'sampled by dcl_cube s0') or (None, '')."""
         if shader:
             ps = self.shader("PixelShader")
-            program = _assembled(ps[0]) if ps else None
-            if program is None:
+            asm = self.asm_shader(ps[0]) if ps else None
+            if asm is None:
                 return None, ""
+            program = asm.program
             for d in program.dcls:
                 if d.register.kind == "s" and d.register.index == unit and d.sampler_type in ("cube", "volume"):
                     return ("CUBE" if d.sampler_type == "cube" else "3D"), f"declared by dcl_{d.sampler_type} s{unit}"
@@ -106,6 +107,17 @@ class TextureChecks:
                 and not flags & TTFF_PROJECTED:
             return "CUBE", "looked up with 3-component camera-space texture coordinates"
         return None, ""
+
+    def asm_shader(self, value: Any) -> Any:
+        """The Shader of a pixel shader's asm block (`program`), or None: not assembly, or
+        it does not assemble (the shader checks say why). For an HLSL shader the units are
+        read from the pass's Texture states."""
+        if not isinstance(value, ShaderBlock):
+            return None
+        try:
+            return self.program(value, "PixelShader")
+        except EffectError:
+            return None
 
     def texture_parameter(self, unit: int) -> Parameter | None:
         a = self.state.assignment("Texture", unit)
@@ -320,18 +332,3 @@ def _annotation_bool(param: Parameter, name: str) -> bool:
     flat = np.asarray(a.value).reshape(-1)
     return bool(flat.size) and bool(flat[0])
 
-
-def _assembled(value: Any):
-    """The assembled program of an asm shader, or None (not asm, or it does not assemble)."""
-    if not isinstance(value, ShaderBlock):
-        return None
-    from effects.shaders.asm import assemble_cached
-    try:
-        return assemble_cached(value)
-    except EffectError:
-        return None
-
-
-def _shader_samplers(value: Any) -> list[int] | None:
-    program = _assembled(value)
-    return None if program is None else sorted(program.stats.samplers_used)

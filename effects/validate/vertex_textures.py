@@ -7,10 +7,10 @@ D3DVERTEXTEXTURESAMPLER0..3; a format is usable when CheckDeviceFormat with
 D3DUSAGE_QUERY_VERTEXTEXTURE accepts it; VertexTextureFilterCaps says which filters these
 samplers take, never anisotropic; the LOD is the shader's, as texldl gives it; software vertex
 processing supports the feature, with the textures in the scratch pool). Which formats a card
-accepts is its profile's `vertextexture` usage: the GeForce 6800 R32F and A32B32G32R32F (caps.md
-2.14); ATI's Radeon X1000 parts report vs_3_0 and VertexTextureFilterCaps but accept no format
-(behardware.com "ATI's demos without vertex texturing", 2006; the radeonx1800 profile), so a
-vertex texture fails there whatever its format.
+accepts is its profile's `vertextexture` usage: the GeForce 6800 R32F and A32B32G32R32F
+(docs/reference/caps.md 2.14); ATI's Radeon X1000 parts report vs_3_0 and
+VertexTextureFilterCaps but accept no format (behardware.com "ATI's demos without vertex
+texturing", 2006; the radeonx1800 profile), so a vertex texture fails there whatever its format.
 
 Decisions:
 - A texture whose format the file does not declare (`string Format = "R32F"`) is not judged by
@@ -20,6 +20,9 @@ Decisions:
   textures are not held to the hardware's formats and filter caps (a note says so).
 - A cube or volume vertex texture needs its format's `cube` / `volume` usage too.
 
+Which samplers a vertex shader reads, and the device sampler each is, are the shader's bindings
+(`effects.shaders.shader_value`), settled once for validation and lowering alike.
+
 A mixin of `validate._PassChecker`: it uses the checker's state, profile, report and reason
 helpers (fail, need_bit, where, note ...)."""
 from __future__ import annotations
@@ -27,10 +30,7 @@ from __future__ import annotations
 from typing import Any
 
 from effects.base.errors import EffectError, Location
-from effects.d3d9.states import VERTEX_TEXTURE_SAMPLER0
 from effects.validate.textures import _annotation_str, texture_kind
-
-_TEXTURE_READS = frozenset({"texldl"})
 
 
 class VertexTextureChecks:
@@ -38,12 +38,13 @@ class VertexTextureChecks:
 
     def check_vertex_textures(self, shader: tuple[Any, Location]) -> None:
         try:
-            program = self.program(shader[0])
+            found = self.program(shader[0], "VertexShader")
         except EffectError:
             return                                   # the shader checks report it
-        if program is None or program.kind != "vs":
+        if found is None or found.kind != "vs":
             return
-        reads = _sampler_reads(program)
+        # the vertex texture samplers the shader samples (texldl), as its bindings settle them
+        reads = [b for b in found.samplers if b.read_at is not None]
         if not reads:
             return
         if self.report.software_vertex_processing:
@@ -52,9 +53,9 @@ class VertexTextureChecks:
             return
         accepted = sorted(f for f in self.profile.caps.get("TextureFormats", {})
                           if "vertextexture" in self.profile.format_usages(f))
-        for register, where in sorted(reads.items()):
-            unit = VERTEX_TEXTURE_SAMPLER0 + register
-            subject = f"VertexShader texldl on s{register} (vertex texture sampler {unit})"
+        for binding in reads:
+            unit, where = binding.unit, binding.read_at
+            subject = f"VertexShader texldl on s{binding.register} (vertex texture sampler {unit})"
             if not accepted:
                 self.fail(where, subject, "a texture format with D3DUSAGE_QUERY_VERTEXTEXTURE",
                           "no vertex texture format",
@@ -91,11 +92,3 @@ class VertexTextureChecks:
                       f"{subject} is read as {what}; the {self.card()} takes vertex textures "
                       f"only in {', '.join(accepted)}")
 
-
-def _sampler_reads(program: Any) -> dict[int, Location]:
-    """s# -> where the first texture read of it stands."""
-    found: dict[int, Location] = {}
-    for ins in program.instructions:
-        if ins.opcode in _TEXTURE_READS and len(ins.srcs) > 1 and ins.srcs[1].kind == "s":
-            found.setdefault(ins.srcs[1].index, ins.location)
-    return found

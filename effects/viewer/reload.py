@@ -1,7 +1,7 @@
 """Hot reload: rebuild an effect off the render thread when the files it was built from change.
 
-The habit (STYLE.md 11, after glslViewer's file-watcher thread): watch + debounce + content
-hash + build in a worker + swap on the render thread + keep the last good effect. Watching,
+The habit (docs/design.md habit 11, after glslViewer's file-watcher thread): watch + debounce +
+content hash + build in a worker + swap on the render thread + keep the last good effect. Watching,
 debouncing and hashing are `effects.viewer.watch` (its names are re-exported here); this module is
 the rest:
 
@@ -186,19 +186,9 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     valid forced one) and leave the rest `pending` (see LoadedEffect): a reload draws sooner
     when the fallbacks compile the edited function again for their own targets."""
     from effects.frontend.loader import load_effect
-    from effects.validate.select import Policy, as_policy, choose
-    from effects.validate.technique import validate_technique
+    from effects.validate.select import select
     effect = previous if previous is not None else load_effect(path, **load_options)
-    # Every technique is validated once: the panel lists them all, and selection chooses
-    # among these same answers (the first valid one in file order, for the default policy).
-    validations = []
-    pending = list(effect.techniques)
-    stop = defer and as_policy(policy) == Policy()
-    while pending and not (stop and _decided(validations, technique)):
-        validations.append(validate_technique(effect, pending.pop(0), profile))
-    chosen = None
-    chosen_validation = None
-    forced_rejected = None
+    forced = None
     if technique:
         try:
             forced = effect.technique(technique)
@@ -206,14 +196,10 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
             raise EffectError(f"no technique named '{technique}' (the effect has: "
                               f"{', '.join(t.name or '<anonymous>' for t in effect.techniques)})",
                               Location(path, 1, 1)) from None
-        v = next(v for v in validations if v.technique is forced)
-        if v.ok:
-            chosen, chosen_validation = forced, v
-        else:
-            forced_rejected = v
-    if chosen is None:
-        chosen_validation = choose(validations, policy)
-        chosen = chosen_validation.technique if chosen_validation is not None else None
+    # Every technique is validated once (the panel lists them all), and selection chooses
+    # among these same answers; `defer` leaves those after the drawn one pending.
+    selection = select(effect, profile, policy, forced=forced, lazy=defer)
+    chosen, chosen_validation = selection.technique, selection.chosen
     programs = None
     prepare_error = None
     runtime = None
@@ -226,20 +212,9 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
                 raise
             prepare_error = exc
     listing = technique_listing(effect, chosen) if chosen is not None else None
-    return LoadedEffect(path, effect, profile, validations, chosen, programs, technique,
-                        forced_rejected, watched_files(effect), prepare_error, runtime, scene_key,
-                        listing, pending)
-
-
-def _decided(validations: list["Validation"], forced: str | None) -> bool:
-    """Under the default policy, whether these answers (the first techniques in file order)
-    already decide what is drawn: the forced technique when it is valid, else the first valid
-    one, which nothing later can precede."""
-    first_valid = any(v.ok for v in validations)
-    if not forced:
-        return first_valid
-    answer = next((v for v in validations if v.technique.name == forced), None)
-    return answer is not None and (answer.ok or first_valid)
+    return LoadedEffect(path, effect, profile, selection.validations, chosen, programs, technique,
+                        selection.forced_rejected, watched_files(effect), prepare_error, runtime,
+                        scene_key, listing, selection.pending)
 
 
 def technique_listing(effect: "Effect", technique: "Technique") -> list[list[str]]:

@@ -9,7 +9,8 @@ otherwise). Events are debounced: the change is reported once the files have bee
 file, or renamed its temporary file onto it), or at the latest `max_delay` after the first
 event, so autosave cannot starve it. A change is reported only for files whose content hash
 (`content_hash`) differs from the last one seen, so a save without edits, a `touch`, or a burst that ends where it
-began does nothing. `effects.viewer.reload` builds hot reload on top of this (STYLE.md 11).
+began does nothing. `effects.viewer.reload` builds hot reload on top of this
+(docs/design.md habit 11).
 """
 from __future__ import annotations
 

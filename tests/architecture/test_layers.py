@@ -1,7 +1,7 @@
-"""The floors of DESIGN.md, checked: import-linter's contracts (pyproject.toml: every module of
-`effects` in a named layer, each importing only those below it) and no import cycle among the
-modules at all, with nothing whitelisted. Imports made only for type checkers are left out, as
-in the contracts."""
+"""The floors (docs/architecture.md), checked: import-linter's contracts (pyproject.toml:
+every module of `effects` in a named layer, each importing only those below it) and no import
+cycle among the modules at all, with nothing whitelisted. Imports made only for type checkers
+are left out, as in the contracts."""
 from __future__ import annotations
 
 from tests.paths import ROOT

@@ -1,5 +1,6 @@
 """The .dds reader/writer and the texel codec: hand-built bytes decoded by the rules of
-semantics.md §1.7, DXT blocks built by hand, and round trips of every uncompressed format."""
+docs/reference/semantics.md §1.7, DXT blocks built by hand, and round trips of every
+uncompressed format."""
 import struct
 
 import numpy as np

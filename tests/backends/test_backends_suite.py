@@ -1,6 +1,6 @@
 """One rendering suite, every back end: the same scene-level tests run on the NumPy reference
 and on the GL back end (the `backend` fixture), each pixel checked against a value worked out
-by hand from the Direct3D 9 rules (STYLE.md item 8).
+by hand from the Direct3D 9 rules (docs/design.md habit 8).
 
 Covered: D3D9 pixel centres, the top-left fill rule and shared edges, depth order and depth
 functions, clip-space depth range, each blend factor, op and separate alpha blend, the alpha
@@ -665,7 +665,7 @@ def test_pixel_centres_on_a_list_quad_and_unorm_rounding(backend):
 
 def assert_unorm(stored, values):
     """8-bit writes of `values`: round(x * 255), except that a value exactly on a half step
-    (0.1 * 255 = 25.5) may go either way (semantics.md section 0)."""
+    (0.1 * 255 = 25.5) may go either way (docs/reference/semantics.md section 0)."""
     scaled = np.asarray(values, np.float64) * 255
     stored = np.asarray(stored, np.int64)
     on_half = np.isclose(scaled % 1, 0.5)

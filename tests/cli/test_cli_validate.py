@@ -1,5 +1,5 @@
 """`effects validate`, `effects matrix`, `effects profiles`: output and exit codes
-(DESIGN.md: 0 ok, 1 invalid or not renderable, 2 bad input or usage)."""
+(docs/design.md: 0 ok, 1 invalid or not renderable, 2 bad input or usage)."""
 from __future__ import annotations
 
 from tests.paths import ROOT

@@ -1,7 +1,7 @@
 """The effect-state table: names, enum numbers, device defaults, value coercion and its errors.
 
 Expected numbers are the documented Direct3D 9 values (d3d9types.h as documented on
-learn.microsoft.com) and the defaults of semantics.md 1.1, written out here by hand.
+learn.microsoft.com) and the defaults of docs/reference/semantics.md 1.1, written out here by hand.
 """
 import numpy as np
 import pytest
@@ -29,7 +29,7 @@ def error_of(state, raw, parameters=()):
 # --------------------------------------------------------------------------------------------
 # Names
 
-# Wine's d3dx9 state_table, in effect-file spelling (effect_format.md section 2).
+# Wine's d3dx9 state_table, in effect-file spelling (docs/reference/effect_format.md section 2).
 WINE_NAMES = """
 ZEnable FillMode ShadeMode ZWriteEnable AlphaTestEnable LastPixel SrcBlend DestBlend CullMode
 ZFunc AlphaRef AlphaFunc DitherEnable AlphaBlendEnable FogEnable SpecularEnable FogColor
@@ -164,7 +164,7 @@ def test_other_enum_numbers():
 
 
 # --------------------------------------------------------------------------------------------
-# Defaults (semantics.md 1.1 and the D3DRENDERSTATETYPE page)
+# Defaults (docs/reference/semantics.md 1.1 and the D3DRENDERSTATETYPE page)
 
 
 def value_of(state, index=None):

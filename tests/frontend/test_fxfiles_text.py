@@ -233,15 +233,15 @@ def test_ps20_blocks_fit_the_version() -> None:
         assert texture <= 32 and arithmetic <= 64, f"{name}: {texture} tex + {arithmetic} arith"
 
 
-def test_every_bundled_effect_is_pictured_on_three_cards_in_the_readme():
-    """The README's pictures: every fxfiles/*.fx on at least three cards (a card is the
-    profile named in the thumbnail's file name), and every picture it shows exists."""
+def test_every_bundled_effect_is_pictured_on_three_cards_in_the_gallery():
+    """The gallery's pictures (docs/gallery.md): every fxfiles/*.fx on at least three cards (a
+    card is the profile named in the thumbnail's file name), and every picture it shows exists."""
     import re
     import effects
-    root = FX_DIR.parent
-    readme = (root / "README.md").read_text()
-    pictures = re.findall(r"!\[[^\]]*\]\((docs/[^)]+\.png)\)", readme)
-    assert pictures and all((root / p).is_file() for p in pictures)
+    docs = FX_DIR.parent / "docs"
+    gallery = (docs / "gallery.md").read_text()
+    pictures = [f"docs/{p}" for p in re.findall(r"!\[[^\]]*\]\(([^)]+\.png)\)", gallery)]
+    assert pictures and all((FX_DIR.parent / p).is_file() for p in pictures)
     profiles = set(effects.list_profiles())
     for fx in sorted(FX_DIR.glob("*.fx")):
         cards = {token for p in pictures if p.startswith(f"docs/thumbs/{fx.stem}_")

@@ -501,9 +501,9 @@ def test_every_bundled_technique_forced_on_a_card_that_rejects_it_renders_or_say
     assert outcomes["rendered"] > 25, outcomes
 
 
-def test_the_readme_states_every_limit_and_its_default():
-    readme = (ROOT / "README.md").read_text()
-    section = readme.split("## Untrusted effects", 1)[1].split("\n## ", 1)[0]
+def test_the_guide_states_every_limit_and_its_default():
+    page = (ROOT / "docs" / "guide" / "limits.md").read_text()
+    section = page.split("## Every limit", 1)[1].split("\n## ", 1)[0]
     for limit in limits.LIMITS.values():
         assert f"| `{limit.name}` | {limit.default:,} {limit.unit} | {limit.what} |" in section, limit.name
 

@@ -1,5 +1,5 @@
 """The fixed-function texture cascade, lowered and run on the NumPy evaluator, against values
-worked out by hand from the D3D formulas (semantics.md section 1)."""
+worked out by hand from the D3D formulas (docs/reference/semantics.md section 1)."""
 from __future__ import annotations
 
 from tests.paths import TESTS
@@ -25,7 +25,8 @@ def argb(value: int) -> tuple[float, float, float, float]:
             (value >> 24 & 255) / 255)
 
 
-# semantics.md 1.4 worked check: tex 0x9900ff00, TFACTOR 0xdd333333, diffuse 0x55ff0000
+# docs/reference/semantics.md 1.4 worked check: tex 0x9900ff00, TFACTOR 0xdd333333,
+# diffuse 0x55ff0000
 TEX = argb(0x9900FF00)       # (0, 1, 0, 0.6)
 DIFFUSE = argb(0x55FF0000)   # (1, 0, 0, 1/3)
 
@@ -122,7 +123,7 @@ def test_every_texture_op_within_one_step_on_an_8_bit_card(op):
 
 
 def test_worked_check_bytes():
-    # semantics.md: DOTPRODUCT3 = 0x99, MULTIPLYADD = 0xff3300
+    # docs/reference/semantics.md: DOTPRODUCT3 = 0x99, MULTIPLYADD = 0xff3300
     dot = shade(lower(f"{STAGE0} ColorOp[0] = DotProduct3;", "geforce2"), textures={0: TEX})
     assert [round(x * 255) for x in dot[:3]] == [0x99] * 3
     mad = shade(lower(f"{STAGE0} ColorOp[0] = MultiplyAdd;", "geforce2"), textures={0: TEX})

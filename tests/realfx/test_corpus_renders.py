@@ -1,4 +1,4 @@
-"""The real-effect corpus (tests/data/realfx, see its MANIFEST.md): each file loads,
+"""The real-effect corpus (tests/data/realfx/MANIFEST.md): each file loads,
 validates and renders a sensible, non-blank picture on the reference device."""
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """Real effect files written by others (tests/data/realfx/<origin>/, unmodified copies from
-Debian packages, see MANIFEST.md) load, validate and render what their engines drew; the
-Direct3D 10/11 ones fail with an error that says so, where it starts."""
+Debian packages, tests/data/realfx/MANIFEST.md) load, validate and render what their engines
+drew; the Direct3D 10/11 ones fail with an error that says so, where it starts."""
 from __future__ import annotations
 
 from tests.paths import TESTS

@@ -6,7 +6,7 @@ import pytest
 import effects
 from effects import EffectError
 from effects.d3d9.caps import load_profile
-from effects.validate.select import (Policy, find_next_valid_technique, find_valid_technique, rank,
+from effects.validate.select import (Policy, find_next_valid_technique, find_valid_technique, select,
                             technique_cost, technique_quality)
 
 # Five techniques; on a TNT2 (no dot3, no pixel shaders) the ones marked * are valid.
@@ -98,14 +98,14 @@ def test_no_valid_technique_is_an_answer_with_every_reason():
                             "technique B { pass p { ColorOp[0] = BumpEnvMap; } }")
     assert find_valid_technique(e, TNT2) is None
     assert find_valid_technique(e, TNT2, "quality") is None
-    ranked = rank(e, TNT2, "quality")
+    ranked = select(e, TNT2, "quality").ranked
     assert [v.technique.name for v in ranked] == ["A", "B"]   # file order when none is usable
     assert [r.requirement for v in ranked for r in v.reasons] == [
         "D3DTEXOPCAPS_DOTPRODUCT3", "D3DTEXOPCAPS_BUMPENVMAP"]
 
 
 def test_rank_puts_the_usable_ones_first_in_policy_order(effect):
-    ranked = rank(effect, TNT2, "quality")
+    ranked = select(effect, TNT2, "quality").ranked
     assert [v.technique.name for v in ranked] == ["TwoPass", "Cheap", "Plain", "Shader", "Dot3"]
     assert [v.ok for v in ranked] == [True, True, True, False, False]
 
@@ -144,3 +144,44 @@ def test_bad_policies_are_located_errors(text, message):
 
 def test_policy_prints_back_to_its_text():
     assert str(Policy.parse("quality,max-passes=1,max-cost=3")) == "quality,max-passes=1,max-cost=3"
+
+
+def test_select_answers_with_the_choice_every_validation_and_the_policys_reasons(effect):
+    chosen = select(effect, TNT2, "quality,max-passes=1", lazy=False)
+    assert name(chosen.technique) == "Cheap" and chosen.chosen.ok
+    assert [v.technique.name for v in chosen.validations] == [
+        "Shader", "Dot3", "TwoPass", "Cheap", "Plain"]                  # file order, all of them
+    rejected = chosen.rejected()
+    assert list(rejected) == ["Shader", "Dot3", "TwoPass"]
+    assert rejected["TwoPass"] == ["policy quality,max-passes=1: the technique takes 2 passes; "
+                                   "the policy allows at most 1"]
+    assert rejected["Dot3"] == [str(r) for r in effect.validate("Dot3", TNT2).reasons]
+
+
+def test_a_lazy_selection_stops_at_the_first_valid_technique_under_the_default_policy(effect):
+    lazy = select(effect, TNT2)
+    assert [v.technique.name for v in lazy.validations] == ["Shader", "Dot3", "TwoPass"]
+    assert [t.name for t in lazy.pending] == ["Cheap", "Plain"]
+    assert name(lazy.technique) == "TwoPass"
+    assert select(effect, TNT2, lazy=False).pending == []
+    assert select(effect, TNT2, "cost").pending == []     # a ranking policy validates all
+
+
+def test_a_forced_technique_is_chosen_when_valid_whatever_the_policy(effect):
+    plain = effect.technique("Plain")
+    forced = select(effect, TNT2, "max-passes=0", forced=plain)
+    assert name(forced.technique) == "Plain" and forced.forced_rejected is None
+    # rejected: the policy chooses, and says why the forced one is not drawn
+    shader = effect.technique("Shader")
+    fallback = select(effect, TNT2, forced=shader)
+    assert name(fallback.technique) == "TwoPass"
+    assert fallback.forced_rejected.technique is shader and not fallback.forced_rejected.ok
+    other = effects.load_effect("technique X { pass p { } }").techniques[0]
+    with pytest.raises(EffectError, match="technique 'X' is not one of this effect's techniques"):
+        select(effect, TNT2, forced=other)
+
+
+def test_select_chooses_among_validations_already_made(effect):
+    made = [effect.validate(t, GF2) for t in effect.techniques]
+    chosen = select(effect, GF2, "cost", validations=made)
+    assert chosen.validations == made and chosen.chosen is made[3]   # Cheap, by the given answers

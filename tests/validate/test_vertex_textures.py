@@ -210,3 +210,40 @@ def test_a_vertex_program_names_its_lod():
     b = Builder("vertex")
     b.output("position", b.sample(257, b.varying("position"), "2d", lod=True))
     assert b.build().samplers[0].index == 257
+
+
+@pytest.mark.parametrize("body, needle, parameter", [(ASM_PASS, "texldl r1", None),
+                                                     (HLSL_PASS, "tex2Dlod", "HeightSampler")],
+                         ids=["asm", "hlsl"])
+def test_validation_records_each_shader_with_its_sampler_bindings(body, needle, parameter):
+    # settled once, on the pass report: the vertex shader's s0 is the vertex texture sampler
+    # 257, first sampled where the effect reads it; the compiler names the parameter in it
+    effect = _effect(body)
+    report = effect.validate("Displace", load_profile("geforce6800")).pass_reports[0]
+    vs, ps = report.shaders["VertexShader"], report.shaders["PixelShader"]
+    assert (vs.kind, ps.kind) == ("vs", "ps")
+    [binding] = vs.samplers
+    assert (binding.register, binding.unit, binding.parameter) == (0, 257, parameter)
+    assert binding.read_at.line == _line(SAMPLER + body, needle)
+    [tint] = ps.samplers
+    assert (tint.register, tint.unit, tint.parameter) == (0, 0, parameter and "TintSampler")
+
+
+def test_lowering_binds_from_the_shaders_validation_judged(monkeypatch):
+    # with the Validation, lowering makes no program of its own; the pass it lowers is the
+    # one lowered without it (which makes them itself)
+    import effects.lower.passes as passes
+    effect = _effect(HLSL_PASS)
+    card = load_profile("geforce6800")
+    technique = effect.techniques[0]
+    validation = effect.validate(technique, card)
+    alone = passes.lower_pass(effect, technique, 0, card)
+    passes.clear_cache()
+
+    def no_second_route(*args):
+        raise AssertionError("lowering worked out a shader validation had settled")
+    monkeypatch.setattr(passes, "shader_of", no_second_route)
+    judged = passes.lower_pass(effect, technique, 0, card, validation=validation)
+    assert [(b.sampler, b.texture) for b in judged.textures] == [(0, "Tint"), (257, "HeightMap")]
+    assert judged.textures == alone.textures
+    assert (str(judged.vertex), str(judged.fragment)) == (str(alone.vertex), str(alone.fragment))

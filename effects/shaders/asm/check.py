@@ -430,7 +430,7 @@ class _Checker(PS1Rules):
             limit = self.rules.read_ports[kind]
             if kind == "c" and ins.opcode == "sincos" and not self.rules.is_ps1:
                 # sincos's two D3DSINCOSCONST operands do not count against the constant
-                # read ports (the one exception, semantics.md §3).
+                # read ports (the one exception, docs/reference/semantics.md §3).
                 limit += 2
             if len(ops) > limit:
                 name = KIND_NAMES.get(kind, kind)

@@ -15,7 +15,7 @@ what runs come from one place.
 Sources: DirectX 9 assembly reference instruction tables (ps_1_x, ps_2_0, ps_2_x, vs_1_1,
 vs_2_0: slot counts; footnote "cmp/dp4: 2 slots in ps_1_2 and ps_1_3"; texbeml "1 + 1"),
 the instruction pages (texld ps_1_4 / ps_2_0, texbem, texm3x2pad ...), and
-../shared/reference/semantics.md §2–4 for the formulas.
+docs/reference/semantics.md §2–4 for the formulas.
 """
 from __future__ import annotations
 
@@ -247,7 +247,8 @@ _ARITH = [
          dst_kinds=("p",), lowers=Handler(fl.setp)),
 ]
 
-# ps_1_1-1_3 texture-address instructions: dst t(m), source t(n) with n < m (semantics.md §2.5).
+# ps_1_1-1_3 texture-address instructions: dst t(m), source t(n) with n < m
+# (docs/reference/semantics.md §2.5).
 _PS1_TEX = dict(dst_kinds=T, src_kinds=(T,), modifiers=False)
 _PAD = Handler(tx.pad)
 _M3X3 = Handler(tx.texm3x3)

@@ -10,7 +10,7 @@ module reads operands, does what the instruction's row says (`InstrInfo.lowers`:
 tree, a handler from texture_ops.py, or nothing), and writes results. `lowering_problems`
 lists, located, what the rows and this module do not lower; validation reports them.
 
-Decisions (sources: ../shared/reference/semantics.md §2-4, caps.md §1):
+Decisions (sources: docs/reference/semantics.md §2-4, docs/reference/caps.md §1):
 - A register read before any write is (0, 0, 0, 0) (the checker rejects such reads anyway).
 - Write masks merge into the register's previous value. Co-issued pairs (`+`) read the state
   from before the pair.
@@ -373,7 +373,7 @@ class _Lowering:
     def source(self, op: Operand, reads: dict, *, scalar: bool = False) -> int:
         """An operand's value: register (or relative constant), dz/dw, swizzle, modifier,
         negate; a scalar source then replicates its selected component (w after the swizzle,
-        so .x gives x and no swizzle gives w: semantics.md §4)."""
+        so .x gives x and no swizzle gives w: docs/reference/semantics.md §4)."""
         value = self.register(op, reads)
         if op.modifier in PRE_SWIZZLE_MODIFIERS:
             value = self.e.emit(SOURCE_MODIFIERS[op.modifier], {"x": value})

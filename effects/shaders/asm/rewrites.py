@@ -16,7 +16,7 @@ Tree grammar
                                    exp2 log2 pow frc abs sin cos cmp cnd lrp nrm crs slt sge
                                    saturate
 
-Sources: ../shared/reference/semantics.md §2.2-2.4 (ps_1_x modifiers and instructions), §3
+Sources: docs/reference/semantics.md §2.2-2.4 (ps_1_x modifiers and instructions), §3
 (ps_2_0), §4 (vs_1_1 macros: expp, logp, lit, dst, frc, m4x4 family), the instruction table's
 `formula` column (instructions.py).
 """
@@ -30,7 +30,7 @@ Tree = Union[str, float, tuple]
 
 # -- source modifiers (applied to "x": the register after its swizzle; negate last) ------------
 # _dz/_dw divide xy by z/w before the swizzle (DXVK order); a zero divisor gives 1
-# (semantics.md 2.2: "division by 0 gives 1").
+# (docs/reference/semantics.md 2.2: "division by 0 gives 1").
 def _divide_xy_by(component: str) -> Tree:
     d = ("swz", component * 4, "x")
     return ("merge", "xy", "x", ("cmp", ("neg", ("abs", d)), 1.0, ("mul", "x", ("rcp", d))))
@@ -51,8 +51,9 @@ PRE_SWIZZLE_MODIFIERS = frozenset({"dz", "dw"})
 NEGATE: Tree = ("neg", "x")
 
 # -- instruction modifiers: applied to the result "x" in this order ----------------------------
-# shift, then _sat (Wine and DXVK order, semantics.md 2.3), then the card's register range and
-# fixed-point grid (the profile's precision, effects.d3d9.precision). Each row: (name, tree); the
+# shift, then _sat (Wine and DXVK order, docs/reference/semantics.md 2.3), then the card's
+# register range and fixed-point grid (the profile's precision, effects.d3d9.precision). Each
+# row: (name, tree); the
 # lowering binds "scale", "range", "neg_range" and "grid" and skips rows whose switch is off.
 # Each row carries its condition (as nir_opt_algebraic rows do), over the write's facts `w`:
 # w.shift, w.saturate (the instruction's), w.computed (an arithmetic result, not a texel),
@@ -94,7 +95,7 @@ COMPARE: dict[str, Tree] = {
 # ps_1_1-1_3: the condition is r0.a for all four components
 CND_ALPHA: Tree = ("cnd", ("swz", "wwww", "a"), "b", "c")
 # ps_1_1-1_3 co-issued cnd writing colour: always the first choice (Wine; the d3d9 cnd test
-# expects src1, semantics.md 2.4)
+# expects src1, docs/reference/semantics.md 2.4)
 CND_COISSUE: Tree = "b"
 # a.x * b.x + a.y * b.y + c (c scalar)
 DP2ADD: Tree = ("add", ("add", ("swz", "xxxx", ("mul", "a", "b")),

@@ -3,7 +3,7 @@ tree: sampling, the ps_1_1-1_3 texm3x* dot-product chains, depth replacement, te
 
 Each function is the `Handler` of its instruction's row (instructions.py) and lowers one
 instruction through the lowering's operand readers and register writes (lower.py). Sources:
-../shared/reference/semantics.md §2.5-2.6 and §3, the table's `formula` column.
+docs/reference/semantics.md §2.5-2.6 and §3, the table's `formula` column.
 """
 from __future__ import annotations
 
@@ -143,7 +143,8 @@ def texdp3tex(lo: Lowering, instr: Instruction, reads: dict) -> None:
 
 
 def texdepth(lo: Lowering, instr: Instruction, reads: dict) -> None:
-    # depth = sat(r5.r / min(r5.g, 1)); g == 0 gives 1 (semantics.md 2.6, Wine's formula)
+    # depth = sat(r5.r / min(r5.g, 1)); g == 0 gives 1 (docs/reference/semantics.md 2.6,
+    # Wine's formula)
     b, r5 = lo.b, lo.source(instr.dst, reads)
     g = lo.e.swizzle(r5, "yyyy")
     ratio = b.saturate(b.mul(lo.e.swizzle(r5, "xxxx"), b.rcp(b.min(g, lo.e.const(ONE)))))

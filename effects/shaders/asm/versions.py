@@ -4,8 +4,8 @@ One row per version; the parser, the checker and the caps validator all read the
 Sources: the DirectX 9 assembly reference (register tables "ps_1_1__ps_1_2__ps_1_3__ps_1_4
 Registers", "ps_2_0 Registers", "ps_2_x Registers", "Registers - vs_1_1/vs_2_0/vs_3_0",
 "Modifiers for ps_1_X", "Pixel Shader Source Register Modifiers", "Source Register Swizzling",
-the per-version instruction tables) as restated in ../shared/reference/caps.md §1 and
-semantics.md §2–4.
+the per-version instruction tables) as restated in docs/reference/caps.md §1 and
+docs/reference/semantics.md §2–4.
 
 Where a limit depends on the card (ps_2_x slots and temps, constants in vertex shaders), the row
 holds the largest value the version can address (`check()` enforces that) and the guaranteed
@@ -166,8 +166,9 @@ VERSIONS: dict[str, VersionRules] = {v.name: v for v in [
     # ps_2_x: every optional PS20Caps feature is allowed here; the card's caps decide.
     _ps2("ps_2_x", 1, temps=32, temps_min=12, slots=512, tex_arith=False, dep_limit=None,
          flow=True, pred=True, grad=True, arb=True),
-    # HLSL profiles (caps.md §1a): 2_a = arbitrary swizzle, gradients, predication, no
-    # dependent-read or texture limit, >= 22 temps; 2_b = no texture limit, 32 temps.
+    # HLSL profiles (docs/reference/caps.md §1a): 2_a = arbitrary swizzle, gradients,
+    # predication, no dependent-read or texture limit, >= 22 temps; 2_b = no texture limit,
+    # 32 temps.
     _ps2("ps_2_a", 1, temps=22, temps_min=22, slots=512, tex_arith=False, dep_limit=None,
          flow=True, pred=True, grad=True, arb=True),
     _ps2("ps_2_b", 1, temps=32, temps_min=32, slots=512, tex_arith=False, dep_limit=4,

@@ -1,6 +1,6 @@
 """ps_1_1–ps_1_4 code generation: what fxc made of a simple HLSL pixel function for DX8 cards.
 
-The DAG (dag.py) is mapped onto the DX8 pixel pipeline (semantics.md §2):
+The DAG (dag.py) is mapped onto the DX8 pixel pipeline (docs/reference/semantics.md §2):
 - texture reads come first: `tex t#` samples stage # at TEXCOORD# (ps_1_1–1_3); `texld r#, t#`
   samples stage # into r# (ps_1_4), and a read at computed coordinates is a phase-2
   `texld r#, r#` after `phase` (one level of dependent read, the only one ps_1_4 has); one
@@ -183,7 +183,8 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
 
     def _cnd(self, n: Node, home: Home, mask: tuple[int, ...], shift: int, sat: bool) -> None:
         """ps_1_1-1_3: cnd d, r0.a, a, b -- the condition is r0.a, one value for all lanes
-        (semantics.md 2.4; the DX9 docs' cnd page); it is computed there or moved there."""
+        (docs/reference/semantics.md 2.4; the DX9 docs' cnd page); it is computed there or
+        moved there."""
         cond, mod = self.resolve(n.args[0])
         if len(set(cond.swizzle)) != 1:
             self.refuse(f"{self.v}'s cnd compares r0.a, one value for every component; this "

@@ -130,7 +130,8 @@ class Ps1Emit:
 
 
 def _cnd_coissued_on_colour(ins: Instr, rules: Any) -> bool:
-    # a co-issued cnd writing .rgb in ps_1_1-1_3 always returns its first choice (semantics.md 2.4)
+    # a co-issued cnd writing .rgb in ps_1_1-1_3 always returns its first choice
+    # (docs/reference/semantics.md 2.4)
     return rules.is_ps11_13 and ins.opcode == "cnd" and tuple(ins.mask) != (3,)
 
 

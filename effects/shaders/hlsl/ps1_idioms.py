@@ -2,7 +2,7 @@
 
 fxc folded these into the instruction that reads (a source modifier) or writes (a result
 shift, `_sat`) the value; without them a DX8 shader does not fit its 8 arithmetic slots and
-the [-1, 1] constant range (semantics.md §2.2–2.3, "Modifiers for ps_1_X"):
+the [-1, 1] constant range (docs/reference/semantics.md §2.2–2.3, "Modifiers for ps_1_X"):
 
     2*x - 1, x*2 - 1, (x - 0.5)*2   ->  x_bx2        (expand a [0, 1] normal map to [-1, 1])
     x - 0.5                         ->  x_bias

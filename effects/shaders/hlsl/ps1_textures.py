@@ -1,6 +1,6 @@
 """ps_1_x texture reads for codegen_ps1: `tex t#` / `texcoord t#` (ps_1_1-1_3), `texld r#` /
 `texcrd r#` (ps_1_4), the stage each sampler takes, and a sampler read in both ps_1_4 phases
-carried across `phase` (semantics.md 2.5-2.6).
+carried across `phase` (docs/reference/semantics.md 2.5-2.6).
 
 A mixin of Ps1CodeGen, like ps1_analysis: it reads the code generator's state (homes, phase,
 the instructions emitted so far).
@@ -109,8 +109,8 @@ class Ps1Textures:
     def _carry_out_of_stage(self, n: Node) -> None:
         """ps_1_4: a phase-1 read of a sampler read again in phase 2 leaves r<stage> (which the
         second texld writes) for other registers: its .rgb in one, its .a replicated in the .rgb
-        of another (only .rgb crosses the phase, semantics.md 2.6); each move is left out if
-        phase 2 does not read it."""
+        of another (only .rgb crosses the phase, docs/reference/semantics.md 2.6); each move is
+        left out if phase 2 does not read it."""
         stage = self.home[n.id].reg
         rgb, alpha = self.temp(n.location), self.temp(n.location)
         self.emit(Instr("mov", Reg("vr", rgb), (0, 1, 2), [Src(stage)], n.location, optional=True))

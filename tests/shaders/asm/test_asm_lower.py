@@ -1,6 +1,6 @@
 """Lowering Direct3D assembly to the IR, checked by evaluating the IR on chosen inputs.
 
-Expected values are worked out by hand from the formulas in ../shared/reference/semantics.md
+Expected values are worked out by hand from the formulas in docs/reference/semantics.md
 §2-4 (each case says how). Golden printed IR for the 18 seed listings lives in
 tests/golden/ir/asm_<name>.txt; regenerate with `UPDATE_GOLDEN=1 pytest tests/shaders/asm/test_asm_lower.py`
 after checking the diff.
@@ -366,7 +366,7 @@ def test_depth_from_texm3x2depth_and_texdepth():
                      "texcoord2": tc2, "c0": (1,) * 4},
               {0: constant_sampler((1, 0, 0, 1))})
     assert res.outputs["depth"][:, 0] == approx((0.5, 1.0))
-    # texdepth r5: sat(r / min(g, 1)), g = 0 gives 1 (semantics.md 2.6's four probes)
+    # texdepth r5: sat(r / min(g, 1)), g = 0 gives 1 (docs/reference/semantics.md 2.6's four probes)
     td = ps("ps.1.4\ntexcrd r5.rgb, t0\nphase\ntexdepth r5\nmov r0, c0")
     rg = np.array([(0.25, 2, 0, 0), (-0.25, -0.5, 0, 0), (-1, 0.1, 0, 0), (0.5, 0, 0, 0)],
                   np.float32)

@@ -1,8 +1,8 @@
 """Direct3D assembly: the seed listings assemble and validate; parsing details; stats by hand.
 
-Listings are copied from ../shared/seeds/boyd-taylor-hardware-shading-with-direct3d.txt (DX8
-vs.1.1 / ps.1.1) and ../shared/seeds/persson-fragment-level-phong-illumination.md (vs.2.0 /
-ps.2.0). Changes to a listing are marked `FIX:` with the reason.
+Listings are copied from Boyd and Taylor, "Hardware Shading with Direct3D" (DX8 vs.1.1 /
+ps.1.1), and Persson, "Fragment level Phong illumination" (vs.2.0 / ps.2.0). Changes to a
+listing are marked `FIX:` with the reason.
 """
 from __future__ import annotations
 

@@ -1,0 +1,86 @@
+"""A shader value as the program it runs: the one place an `asm` block is assembled and an HLSL
+`compile` target compiled, for validation, lowering, `effects compile`'s listings and
+`effects doctor` alike (`shader_of`).
+
+The answer, `Shader`, also settles the shader's register bindings, the facts validation and
+lowering both need: which device sampler each s# the shader samples is (a pixel shader's s#
+is sampler s#; a vs_3_0's is the vertex texture sampler D3DVERTEXTEXTURESAMPLER0 + s#, as
+D3DX binds it), which sampler parameter the HLSL compiler put there, and the int and bool
+registers the compiler gave the parameters a loop counts or an `if` tests. The validator
+records the Shader of each pass (`PassReport.shaders`) and lowering binds from it.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Mapping
+
+from effects.base.errors import Location
+from effects.model import CompileShader, ShaderBlock
+
+if TYPE_CHECKING:  # pragma: no cover
+    from effects.model import Effect
+    from effects.shaders.asm import AsmProgram
+    from effects.shaders.hlsl.shader import CompiledShader
+
+
+@dataclass(frozen=True)
+class SamplerBinding:
+    """One sampler register of a shader and the device sampler it is."""
+
+    register: int              # s# in the shader (for ps_1_x, the texture stage it samples)
+    unit: int                  # the device's sampler: s#, or D3DVERTEXTEXTURESAMPLER0 + s#
+    parameter: str | None      # the sampler parameter the HLSL compiler put in s#; None for
+                               # assembly (the pass's Sampler[n] / Texture[n] states bind it)
+    read_at: Location | None   # the first instruction that samples s# (texld, texldl ...);
+                               # None where none names it (ps_1_x reads stages by t#)
+
+
+@dataclass(frozen=True)
+class Shader:
+    """What a shader value runs: its assembled program, the compiled HLSL shader (register
+    table, preshaders, listing text; None for an asm block) and its register bindings."""
+
+    value: Any                                  # the ShaderBlock or CompileShader
+    program: "AsmProgram"
+    compiled: "CompiledShader | None"
+    samplers: tuple[SamplerBinding, ...] = ()   # by register
+    int_registers: Mapping[str, int] = field(default_factory=dict)    # parameter -> i#
+    bool_registers: Mapping[str, int] = field(default_factory=dict)   # parameter -> b#
+
+    @property
+    def kind(self) -> str:
+        """'vs' or 'ps'."""
+        return self.program.kind
+
+
+def shader_of(effect: "Effect", value: Any) -> Shader | None:
+    """The Shader of an asm block, or of a `compile` state compiled for its target; None for
+    any other value (NULL, a parameter reference). Raises the located EffectError of a block
+    that does not assemble or a function that does not compile. The assembler's and the
+    compiler's caches keep the programs, so asking again costs a lookup."""
+    if isinstance(value, ShaderBlock):
+        from effects.shaders.asm import assemble_cached
+        return _bound(value, assemble_cached(value), None)
+    if isinstance(value, CompileShader):
+        from effects.shaders.hlsl import compile_state
+        compiled = compile_state(effect, value)
+        return _bound(value, compiled.program, compiled)
+    return None
+
+
+def _bound(value: Any, program: "AsmProgram", compiled: "CompiledShader | None") -> Shader:
+    from effects.d3d9.states import VERTEX_TEXTURE_SAMPLER0
+    base = VERTEX_TEXTURE_SAMPLER0 if program.kind == "vs" else 0
+    reads: dict[int, Location] = {}
+    for ins in program.instructions:
+        # a texture read this version has, its sampler the second source (texld r0, t0, s0)
+        if ins.info.is_texture and program.name in ins.info.versions and len(ins.srcs) > 1 \
+                and ins.srcs[1].kind == "s":
+            reads.setdefault(ins.srcs[1].index, ins.location)
+    named = {register: name for name, register in (compiled.samplers if compiled else {}).items()}
+    registers = sorted(set(program.stats.samplers_used) | set(reads) | set(named))
+    samplers = tuple(SamplerBinding(r, base + r, named.get(r), reads.get(r)) for r in registers)
+    if compiled is None:
+        return Shader(value, program, None, samplers)
+    return Shader(value, program, compiled, samplers, dict(compiled.int_registers),
+                  dict(compiled.bool_registers))
