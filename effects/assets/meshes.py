@@ -371,59 +371,98 @@ def load_obj(path: str | os.PathLike[str]) -> Mesh:
     (v -> 1 - v) to Direct3D's top-left origin. Missing normals are computed smooth; missing
     texture coordinates are (0, 0) (tangents then fall back to any unit vector perpendicular to
     the normal). Errors are `SceneError`s at the offending line and column.
+
+    Limits (checked before what they bound is allocated): `mesh_vertices` for the `v` lines
+    and for the mesh's vertices (one per distinct v/vt/vn corner), `mesh_indices` for the
+    indices the faces make (3 per triangle: a face of k corners fans into k - 2 triangles).
     """
     path = os.fspath(path)
     raw = untrusted.read_file(path, ".obj file", SceneError, "mesh_file_bytes")
     where = Location(path, 1, 1)
-    checked = []
-
-    def check(vertices: int, faces: int) -> None:
-        _check_counts(vertices, faces, where)
-        checked.append(True)
 
     # the common, regular shape, read whole with numpy; it checks the counts as soon as it
-    # has told the lines apart (from the same line starts as check_obj_counts)
-    fast = obj_fast.parse(raw, check)
+    # has told the lines apart (from the same line starts as check_obj_counts); all its faces
+    # are triangles, so 3 indices a face line is the count
+    fast = obj_fast.parse(raw, lambda vertices, faces: _check_counts(vertices, 3 * faces, where))
     if fast is not None:
         positions, uv, tris, normals = fast
+        _check_mesh_vertices(len(positions), where)
         return make_mesh(positions, uv, tris, normals, name=os.path.basename(path))
-    if not checked:
-        check_obj_counts(raw, where)
+    check_obj_counts(raw, where)
+    return _read_obj_lines(path, raw)
+
+
+def _read_obj_lines(path: str, raw: bytes) -> Mesh:
+    """The per-line reader: any .obj, every error located. The counts are checked again as
+    the lines are read, exactly, before anything they bound is kept."""
     lines = raw.decode("utf-8", errors="replace").splitlines()
+    most_indices, most_vertices = limits.get("mesh_indices"), limits.get("mesh_vertices")
     v, vt, vn = [], [], []
     corners: dict[tuple[int, int, int], int] = {}
-    out_p, out_t, out_n, tris = [], [], [], []
+    known: dict[str, int] = {}      # a corner's text -> its number, while v/vt/vn stay as they are
+    out_p, out_t, out_n = [], [], []
+    tris: list[int] = []            # flat: three corner numbers a triangle
     any_vt = any_vn = False
 
     def number_list(parts, count, line_no, line, what):
         if len(parts) - 1 < count:
             raise _obj_error(path, line_no, len(line) + 1, f"'{parts[0]}' needs {count} numbers", line)
         values = []
-        col = line.index(parts[0]) + len(parts[0])
-        for token in parts[1:count + 1]:
-            col = line.index(token, col)
+        for k, token in enumerate(parts[1:count + 1], start=1):
             try:
                 values.append(float(token))
             except ValueError:
-                raise _obj_error(path, line_no, col + 1, f"bad {what} number {token!r}", line) from None
-            col += len(token)
+                raise _obj_error(path, line_no, _column(line, parts, k),
+                                 f"bad {what} number {token!r}", line) from None
         return values
 
-    def resolve(token, size, line_no, col, line, what):
+    def resolve(token, size, line_no, line, parts, k, what):
         try:
             i = int(token)
         except ValueError:
-            raise _obj_error(path, line_no, col, f"bad {what} index {token!r}", line) from None
-        k = i - 1 if i > 0 else size + i
-        if i == 0 or not 0 <= k < size:
-            raise _obj_error(path, line_no, col, f"{what} index {i} is out of range (1..{size} defined so far)", line)
-        return k
+            raise _obj_error(path, line_no, _column(line, parts, k), f"bad {what} index {token!r}",
+                             line) from None
+        index = i - 1 if i > 0 else size + i
+        if i == 0 or not 0 <= index < size:
+            raise _obj_error(path, line_no, _column(line, parts, k),
+                             f"{what} index {i} is out of range (1..{size} defined so far)", line)
+        return index
+
+    def corner(parts, k, line_no, line):
+        """The mesh vertex of corner `parts[k]` of a face, made when it is new (a column is
+        worked out only for an error: a face line may have a million corners)."""
+        nonlocal any_vt, any_vn
+        token = parts[k]
+        fields = token.split("/")
+        if len(fields) > 3 or fields[0] == "":
+            raise _obj_error(path, line_no, _column(line, parts, k), f"bad face vertex {token!r}", line)
+        vi = resolve(fields[0], len(v), line_no, line, parts, k, "vertex")
+        ti = resolve(fields[1], len(vt), line_no, line, parts, k, "texture coordinate") \
+            if len(fields) > 1 and fields[1] else -1
+        ni = resolve(fields[2], len(vn), line_no, line, parts, k, "normal") \
+            if len(fields) > 2 and fields[2] else -1
+        any_vt |= ti >= 0
+        any_vn |= ni >= 0
+        key = (vi, ti, ni)
+        number = corners.get(key)
+        if number is None:
+            if len(out_p) >= most_vertices:
+                raise _obj_error(path, line_no, _column(line, parts, k), limits.message(
+                    "mesh_vertices", len(out_p) + 1,
+                    "the .obj file's mesh (a vertex for each distinct v/vt/vn corner)"), line)
+            number = corners[key] = len(out_p)
+            out_p.append(v[vi])
+            out_t.append(vt[ti] if ti >= 0 else [0.0, 0.0])
+            out_n.append(vn[ni] if ni >= 0 else [0.0, 0.0, 0.0])
+        return number
 
     for line_no, line in enumerate(lines, start=1):
         parts = line.split("#", 1)[0].split()
         if not parts:
             continue
         op = parts[0]
+        if op in ("v", "vt", "vn") and known:
+            known.clear()           # a negative index now names another element
         if op == "v":
             v.append(number_list(parts, 3, line_no, line, "vertex")[:3])
         elif op == "vt":
@@ -434,50 +473,61 @@ def load_obj(path: str | os.PathLike[str]) -> Mesh:
         elif op == "f":
             if len(parts) < 4:
                 raise _obj_error(path, line_no, 1, "a face needs at least 3 vertices", line)
+            if len(tris) + 3 * (len(parts) - 3) > most_indices:
+                raise _obj_error(path, line_no, 1, limits.message(
+                    "mesh_indices", len(tris) + 3 * (len(parts) - 3), _FACES), line)
             face = []
-            col = line.index("f") + 1
-            for token in parts[1:]:
-                col = line.index(token, col)
-                fields = token.split("/")
-                if len(fields) > 3 or fields[0] == "":
-                    raise _obj_error(path, line_no, col + 1, f"bad face vertex {token!r}", line)
-                vi = resolve(fields[0], len(v), line_no, col + 1, line, "vertex")
-                ti = resolve(fields[1], len(vt), line_no, col + 1, line, "texture coordinate") \
-                    if len(fields) > 1 and fields[1] else -1
-                ni = resolve(fields[2], len(vn), line_no, col + 1, line, "normal") \
-                    if len(fields) > 2 and fields[2] else -1
-                any_vt |= ti >= 0
-                any_vn |= ni >= 0
-                key = (vi, ti, ni)
-                if key not in corners:
-                    corners[key] = len(out_p)
-                    out_p.append(v[vi])
-                    out_t.append(vt[ti] if ti >= 0 else [0.0, 0.0])
-                    out_n.append(vn[ni] if ni >= 0 else [0.0, 0.0, 0.0])
-                face.append(corners[key])
-                col += len(token)
-            tris += [[face[0], face[i], face[i + 1]] for i in range(1, len(face) - 1)]
+            for k in range(1, len(parts)):
+                number = known.get(parts[k])
+                if number is None:
+                    number = known[parts[k]] = corner(parts, k, line_no, line)
+                face.append(number)
+            first = face[0]
+            for i in range(1, len(face) - 1):
+                tris += (first, face[i], face[i + 1])
     if not tris:
         raise SceneError(".obj file has no faces", Location(path, max(1, len(lines)), 1))
     uv = np.asarray(out_t, np.float64)
     uv[:, 1] = 1.0 - uv[:, 1]
     normals = np.asarray(out_n) if any_vn and all(np.any(n) for n in out_n) else None
-    return make_mesh(out_p, uv, tris, normals, name=os.path.basename(path))
+    return make_mesh(out_p, uv, np.asarray(tris, np.uint32), normals, name=os.path.basename(path))
+
+
+def _column(line: str, parts: list[str], k: int) -> int:
+    """The 1-based column of `parts[k]`, the k-th whitespace-separated token of `line`."""
+    col = 0
+    for token in parts[:k + 1]:
+        col = line.index(token, col) + len(token)
+    return col - len(parts[k]) + 1
 
 
 def check_obj_counts(raw: bytes, where: Location) -> None:
-    """The `mesh_vertices` and `mesh_indices` limits, from a count of `v` and `f` lines made
-    before any line is parsed (a 10M-vertex file is refused, not half read)."""
-    raw = b"\n" + raw
-    vertices = raw.count(b"\nv ") + raw.count(b"\nv\t")
-    faces = raw.count(b"\nf ") + raw.count(b"\nf\t")
-    _check_counts(vertices, faces, where)
+    """The limits, from a count of the `v`, `vt` and `vn` lines (each list against
+    `mesh_vertices`) and of the indices the `f` lines make (`mesh_indices`, located at the face
+    line that passes it), made with numpy over the bytes before any line is parsed: a
+    10M-vertex file, or one face of a million corners, is refused, not half read."""
+    counts = obj_fast.count(raw)
+    for amount, what in ((counts.vertices, "vertex list"), (counts.coords, "texture-coordinate list"),
+                         (counts.normals, "normal list")):
+        limits.check("mesh_vertices", amount, where, f"the .obj file's {what}", SceneError)
+    total = int(counts.indices[-1]) if len(counts.indices) else 0
+    if total > limits.get("mesh_indices"):
+        line = int(counts.face_lines[np.searchsorted(counts.indices, limits.get("mesh_indices"),
+                                                     side="right")])
+        limits.check("mesh_indices", total, Location(where.path, line, 1), _FACES, SceneError)
 
 
-def _check_counts(vertices: int, faces: int, where: Location) -> None:
+_FACES = "the .obj file's face list (3 indices a triangle; a face of k corners makes k - 2 triangles)"
+
+
+def _check_counts(vertices: int, indices: int, where: Location) -> None:
     limits.check("mesh_vertices", vertices, where, "the .obj file's vertex list", SceneError)
-    limits.check("mesh_indices", 3 * faces, where, "the .obj file's faces (3 per triangle at least)",
-                 SceneError)
+    limits.check("mesh_indices", indices, where, _FACES, SceneError)
+
+
+def _check_mesh_vertices(count: int, where: Location) -> None:
+    limits.check("mesh_vertices", count, where,
+                 "the .obj file's mesh (a vertex for each distinct v/vt/vn corner)", SceneError)
 
 
 def _is_float(token: str) -> bool:

@@ -19,7 +19,7 @@ negative or out-of-range index; a vertex after the first face; a bad number.
 """
 from __future__ import annotations
 
-from typing import Callable, Iterator
+from typing import Callable, Iterator, NamedTuple
 
 import numpy as np
 
@@ -116,6 +116,44 @@ def parse(raw: bytes, check_counts: Callable[[int, int], None] | None = None
         if not ((normals[:, 0] != 0) | (normals[:, 1] != 0) | (normals[:, 2] != 0)).all():
             normals = None                             # a zero normal: computed instead
     return positions, uv, tris, normals
+
+
+class Counts(NamedTuple):
+    """What an .obj asks for, counted over its bytes before a line is parsed."""
+
+    vertices: int              # `v` lines
+    coords: int                # `vt` lines
+    normals: int               # `vn` lines
+    face_lines: np.ndarray     # the 1-based line number of each `f` line
+    indices: np.ndarray        # the indices the faces make, running total at each `f` line
+
+
+def count(raw: bytes) -> Counts:
+    """The lines of each kind of any .obj, and the indices its faces make: a face of k
+    corners (whitespace-separated tokens up to a '#') fans into k - 2 triangles of 3 indices.
+    Lines are told apart as `parse` does (a line starting `v `, `vt `, `vn ` or `f `, a space
+    or a tab after the keyword), so an indented line is not counted here; the per-line reader
+    counts again, exactly, as it reads."""
+    data = np.frombuffer(b"\n" + raw + b"\n", np.uint8)
+    nl = np.flatnonzero(data == _NL)
+    starts, ends = nl[:-1] + 1, nl[1:]                # each line, and its '\n'
+    b0, b1, b2 = (data[np.minimum(starts + k, len(data) - 1)] for k in range(3))
+    spaced1, spaced2 = _WS[b1] & (b1 != _NL), _WS[b2] & (b2 != _NL)
+    v = b0 == ord("v")
+    lines = [int(np.count_nonzero(mask)) for mask in
+             (v & spaced1, v & (b1 == ord("t")) & spaced2, v & (b1 == ord("n")) & spaced2)]
+    faces = np.flatnonzero((b0 == ord("f")) & spaced1)
+    first, last = starts[faces], ends[faces]
+    if len(first) and b"#" in raw:                    # a face line ends at its comment
+        hashes = np.flatnonzero(data == _HASH)
+        after = np.searchsorted(hashes, first)
+        cut = hashes[np.minimum(after, len(hashes) - 1)]
+        last = np.where((after < len(hashes)) & (cut < last), cut, last)
+    blank = _WS[data]
+    token_starts = np.flatnonzero(blank[:-1] & ~blank[1:]) + 1
+    corners = np.searchsorted(token_starts, last) - np.searchsorted(token_starts, first) - 1
+    indices = np.cumsum(3 * np.maximum(corners - 2, 0), dtype=np.int64)
+    return Counts(*lines, faces + 1, indices)
 
 
 def _face_columns(data: np.ndarray, starts: np.ndarray, lengths: np.ndarray, which: np.ndarray,

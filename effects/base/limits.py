@@ -61,6 +61,13 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
     # render targets, per back end (the reference works in bands: 2048² peaks near 160 MiB)
     Limit("target_pixels_numpy", 2048 * 2048, "pixels", "render-target pixels on the numpy back end"),
     Limit("target_pixels_gl", 4096 * 4096, "pixels", "render-target pixels on the gl back end"),
+    # DXSAS scripts: LoopByCount blocks nest and Pass= runs another pass's script, so the
+    # commands one frame runs multiply (three nested 256-count loops are 16.7 M commands)
+    Limit("script_commands", 65_536, "commands",
+          "script commands one frame runs (each loop round and Pass= script counted)"),
+    # each draw costs: 4,096 full-screen draws of an 8 x 8 frame took 15 s on the numpy back
+    # end (the 2-core test VM, loaded)
+    Limit("script_draws", 1024, "draws", "draws one frame's script makes"),
 ]}
 
 _overrides: dict[str, int] = {}

@@ -583,14 +583,38 @@ _LIGHT_STATES = (
 )
 
 
+# The shader constant register files of Direct3D 9 (the index of a constant state is the first
+# register it sets). Integer and boolean: 16 each, vertex and pixel (i0-i15, b0-b15 of vs_2_0+
+# and ps_2_x+; Wine WINED3D_MAX_CONSTS_I/B). Float: the card's (MaxVertexShaderConst, or
+# 8192 under software vertex processing; 8 for ps_1_x, 32 for ps_2_x, 224 for ps_3_0: "the
+# runtime validates that the specified register range lies within the legal range",
+# D3DHAL_DP2SETPIXELSHADERCONST / ...VERTEXSHADERCONST); the table bounds the index by the
+# largest of them and validation by the card's (effects.validate.constants).
+INT_BOOL_CONSTANT_REGISTERS = 16
+FLOAT_CONSTANT_REGISTERS_MAX = {"Vertex": 8192, "Pixel": 224}
+
+
 def _constant_states(stage: str) -> tuple[StateInfo, ...]:
     # The bare, F and 1-4 forms all set float registers (Wine); B and I set bool/int registers.
     # Shader constants have no defined initial value: default None.
+    floats = FLOAT_CONSTANT_REGISTERS_MAX[stage]
     rows = [StateInfo(f"{stage}ShaderConstant{suffix}", "shader_const", "constants",
-                      index="required", registers=registers)
-            for suffix, registers in (("F", None), ("B", None), ("I", None), ("", None),
-                                      ("1", 1), ("2", 2), ("3", 3), ("4", 4))]
+                      index="required", max_index=file - 1, registers=registers)
+            for suffix, registers, file in (
+                ("F", None, floats), ("B", None, INT_BOOL_CONSTANT_REGISTERS),
+                ("I", None, INT_BOOL_CONSTANT_REGISTERS), ("", None, floats), ("1", 1, floats),
+                ("2", 2, floats), ("3", 3, floats), ("4", 4, floats))]
     return tuple(rows)
+
+
+def constant_register_count(info: StateInfo, numbers: int) -> int:
+    """How many registers a constant state's value of `numbers` numbers sets: one BOOL a
+    b# register, four a c# or i# register (the last one padded), or the 1-4 forms' own."""
+    if info.registers is not None:
+        return info.registers
+    if info.name.endswith("B"):
+        return numbers
+    return -(-numbers // 4)
 
 
 _MISC_STATES = (

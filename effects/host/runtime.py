@@ -41,8 +41,7 @@ from effects.base.errors import EffectError, EffectWarning, Location, NoValidTec
 from effects.model import Effect, ParamRef, Parameter, SamplerState, Technique
 from effects.host.scene import MAX_SIZE, Scene, load_scene
 from effects.host.semantics import bind_scene, coerce_value, lookup_parameter, ui_defaults
-from effects.host.scripts import (cube_size, is_cube_target, is_render_target, target_format,
-                                  target_size)
+from effects.host.scripts import is_cube_target, is_render_target, target_extent, target_format
 from effects.assets.textures import make_texture
 from effects.program.texture import Texture
 from effects.validate.technique import validate_technique
@@ -298,16 +297,15 @@ class Runtime:
         a sampler3D gets the noise volume), else 2D."""
         texture = self.texture(name)
         if texture is None and is_render_target(self._param(name)):
-            # a render target sampled before anything was drawn into it: cleared to black
+            # a render target sampled before anything was drawn into it: cleared to black.
+            # Its size is checked as if it were drawn, but one black texel samples as any
+            # number of them do, so that is all that is allocated.
             param = self._param(name)
-            if is_cube_target(param):
-                n = cube_size(param)
-                texture = make_texture(np.zeros((6, n, n, 4), np.float32), target_format(param),
-                                       kind="cube", mips=False, name=name)
-            else:
-                w, h = target_size(param, self.size)
-                texture = make_texture(np.zeros((h, w, 4), np.float32), target_format(param),
-                                       mips=False, name=name)
+            target_extent(param, self.size, str(getattr(self.backend, "name", "numpy")))
+            cube = is_cube_target(param)
+            texture = make_texture(np.zeros((6, 1, 1, 4) if cube else (1, 1, 4), np.float32),
+                                   target_format(param), kind="cube" if cube else "2d",
+                                   mips=False, name=name)
             self._textures[name] = texture
         elif texture is None:
             param = self._param(name)

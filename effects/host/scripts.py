@@ -25,6 +25,13 @@ a `Script` annotation draws only what its script says; without one, every pass o
 Each target is drawn in one back-end frame (`effects.program.backend`): switching targets ends the
 frame and the finished picture becomes that texture parameter's texture (one mip level).
 
+Scripts are effect data from strangers: they run without recursion (a stack of running
+scripts), a `Pass=` leading back to a pass still running is an error naming the chain, every
+command counts against the `script_commands` limit and every draw against `script_draws`,
+each command's numbers are checked (finite; a clear depth from 0 to 1), and a target's size
+is checked against `texture_edge` and `target_pixels_<back end>` before a frame is begun for
+it (`target_extent`).
+
 Cube render targets (FX Composer's spelling: `string ResourceType = "Cube"` on the target, or a
 `textureCUBE` declaration) are drawn face by face, as a host draws an omni light's shadow map:
 their size is `int Width` (or `Dimensions`, square; default 256), and `string CubeOrigin = "P"`
@@ -37,7 +44,7 @@ perspective over `float2 CubeDepthRange = {near, far}` (default {0.05, 100}).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Mapping, Protocol
 
 import numpy as np
@@ -46,6 +53,7 @@ import math
 
 from effects.program.backend import CUBE_FACE_VIEWS, render_cube_faces
 from effects.program.formats import TARGET_FORMATS
+from effects.base import limits
 from effects.base.errors import EffectError, EffectWarning, Location
 from effects.model import Annotation, Effect, Parameter, Technique
 from effects.host.resources import Geometry
@@ -80,7 +88,9 @@ class ScriptHost(Protocol):
     def scene_material_runtime(self) -> "ScriptHost": ...
 
 MAX_LOOP_COUNT = 256          # LoopByCount above this is an error, not a hang
-MAX_SCRIPT_DRAWS = 4096       # draws one frame's script may make
+# What one frame's script may spend is bounded by the named limits `script_commands` and
+# `script_draws` (effects.base.limits); its render targets by `texture_edge` and
+# `target_pixels_<back end>`, checked before a target is allocated.
 
 COMMANDS = {
     "rendercolortarget0": "RenderColorTarget0", "rendercolortarget": "RenderColorTarget0",
@@ -129,6 +139,11 @@ class Command:
     location: Location   # the Script annotation's
 
 
+def _shown(text: str) -> str:
+    """A script's text in a message, cut short (a script may be as long as its effect)."""
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 def parse_script(text: str, at: Location) -> list[Command]:
     """'Cmd=Value;...' as commands (blank entries skipped; a missing '=' is an error)."""
     out = []
@@ -173,20 +188,48 @@ def _numbers(value: Any) -> list[float]:
     return [float(x) for x in np.asarray(value, np.float64).reshape(-1)]
 
 
+def _size_numbers(param: Parameter, name: str) -> tuple[Annotation, list[float]] | None:
+    """The numbers of size annotation `name` of render target `param` (None when it is absent
+    or a string), each finite and not negative, else a located error at the annotation."""
+    ann = param.annotation(name)
+    if ann is None or isinstance(ann.value, str):
+        return None
+    try:
+        values = _numbers(ann.value)
+    except (TypeError, ValueError):
+        values = [math.nan]
+    if not values or not all(math.isfinite(v) and v >= 0 for v in values):
+        shown = ", ".join(f"{v:g}" for v in values[:4]) + (", ..." if len(values) > 4 else "")
+        raise EffectError(f"render target {param.name}: {name} = {{{shown}}} must be finite "
+                          "numbers, not negative", ann.location)
+    return ann, values
+
+
+def _edge(value: float, ann: Annotation, param: Parameter) -> int:
+    """One edge in pixels (at least 1), within `texture_edge`: the target becomes a texture."""
+    edge = max(1, int(value))
+    if edge > limits.get("texture_edge"):
+        raise EffectError(limits.message("texture_edge", edge, f"render target {param.name}"),
+                          ann.location)
+    return edge
+
+
 def target_size(param: Parameter, frame: tuple[int, int]) -> tuple[int, int]:
-    """A render target's size: Dimensions, Width/Height, ViewportRatio × frame, or the frame's."""
-    dims = param.annotation("Dimensions")
-    if dims is not None and not isinstance(dims.value, str) and len(_numbers(dims.value)) >= 2:
-        w, h = _numbers(dims.value)[:2]
-        return max(1, int(w)), max(1, int(h))
-    width, height = param.annotation("Width"), param.annotation("Height")
-    if width is not None and height is not None and not isinstance(width.value, str):
-        return max(1, int(_numbers(width.value)[0])), max(1, int(_numbers(height.value)[0]))
-    ratio = param.annotation("ViewportRatio")
-    if ratio is not None and not isinstance(ratio.value, str):
-        r = _numbers(ratio.value) + [1.0, 1.0]
-        rx, ry = r[0], r[1] if len(_numbers(ratio.value)) > 1 else r[0]
-        return max(1, int(round(frame[0] * rx))), max(1, int(round(frame[1] * ry)))
+    """A render target's size: Dimensions, Width/Height, ViewportRatio × frame, or the frame's.
+    A size that is not finite, is negative or has an edge over `texture_edge` is a located
+    error at its annotation."""
+    dims = _size_numbers(param, "Dimensions")
+    if dims is not None and len(dims[1]) >= 2:
+        (ann, (w, h)) = dims[0], dims[1][:2]
+        return _edge(w, ann, param), _edge(h, ann, param)
+    width, height = _size_numbers(param, "Width"), _size_numbers(param, "Height")
+    if width is not None and height is not None:
+        return _edge(width[1][0], width[0], param), _edge(height[1][0], height[0], param)
+    ratio = _size_numbers(param, "ViewportRatio")
+    if ratio is not None:
+        ann, r = ratio
+        rx, ry = r[0], r[1] if len(r) > 1 else r[0]
+        return _edge(round(frame[0] * rx), ann, param), _edge(round(frame[1] * ry), ann, param)
     return frame
 
 
@@ -200,10 +243,36 @@ def is_cube_target(param: Parameter) -> bool:
 
 
 def cube_size(param: Parameter) -> int:
-    dims = param.annotation("Dimensions") or param.annotation("Width")
-    if dims is not None and not isinstance(dims.value, str) and _numbers(dims.value):
-        return max(1, int(_numbers(dims.value)[0]))
+    """A cube target's edge: Dimensions or Width (square), default 256; checked as target_size."""
+    size = _size_numbers(param, "Dimensions") or _size_numbers(param, "Width")
+    if size is not None:
+        return _edge(size[1][0], size[0], param)
     return DEFAULT_CUBE_SIZE
+
+
+def target_extent(param: Parameter, frame: tuple[int, int], backend: str) -> tuple[int, int, int]:
+    """(width, height, faces) of render target `param` on back end `backend` (a cube has six
+    faces), all its pixels checked against `target_pixels_<backend>` before anything is
+    allocated for it (a back end without a limit of its own is held to the numpy one's)."""
+    if is_cube_target(param):
+        w = h = cube_size(param)
+        faces = 6
+    else:
+        (w, h), faces = target_size(param, frame), 1
+    name = f"target_pixels_{backend}"
+    name = name if name in limits.LIMITS else "target_pixels_numpy"
+    shape = f"{w} x {h}" + (" x 6 cube" if faces == 6 else "")
+    limits.check(name, w * h * faces, _size_location(param), f"render target {param.name} ({shape})")
+    return w, h, faces
+
+
+def _size_location(param: Parameter) -> Location:
+    """Where a target's size is written: its size annotation, else its declaration."""
+    for name in ("Dimensions", "Width", "ViewportRatio"):
+        ann = param.annotation(name)
+        if ann is not None and not isinstance(ann.value, str):
+            return ann.location
+    return param.location
 
 
 def cube_face_matrices(param: Parameter, effect: Effect, world: np.ndarray) -> list[dict[str, np.ndarray]]:
@@ -276,21 +345,27 @@ class ScriptRunner:
         self.draws = 0
         self.passes_drawn = 0
         self.cube_draws: list[tuple[int, bool]] = []   # (pass, full-screen?) kept for the faces
+        self.commands_run = 0
+        # read once a frame: a script may run tens of thousands of commands
+        self.command_budget = limits.get("script_commands")
+        self.draw_budget = limits.get("script_draws")
+        self.backend_name = str(getattr(runtime.backend, "name", "numpy"))
 
     # -- targets ---------------------------------------------------------------------------
     def _target_param(self, name: str, at: Location) -> Parameter:
         param = self.rt.effect.parameter(name)
         if param is None or param.type.base != "texture":
-            raise EffectError(f"script: {name!r} is not a texture parameter of the effect", at)
+            raise EffectError(f"script: {repr(_shown(name))} is not a texture parameter of the effect", at)
         return param
 
     def _frame_of(self, name: str | None) -> tuple[tuple[int, int], str]:
+        """The size and format of target `name` (None: the back buffer), its size checked
+        against the render-target limits before any frame is begun for it."""
         if name is None:
             return self.rt.size, "A8R8G8B8"
         param = self.rt.effect.parameter(name)
-        if is_cube_target(param):
-            return (cube_size(param),) * 2, target_format(param)
-        return target_size(param, self.rt.size), target_format(param)
+        w, h, _ = target_extent(param, self.rt.size, self.backend_name)
+        return (w, h), target_format(param)
 
     def _cube(self) -> Parameter | None:
         """The current target's parameter when it is a cube target."""
@@ -406,31 +481,83 @@ class ScriptRunner:
         return self.back_buffer  # type: ignore[return-value]
 
     def execute(self, commands: list[Command], pass_index: int | None) -> None:
-        i = 0
-        while i < len(commands):
-            c = commands[i]
-            if c.name == "LoopByCount":
-                end = _loop_end(commands, i)
-                for _ in range(self._count(c)):
-                    self.execute(commands[i + 1:end], pass_index)
-                i = end + 1
+        """Run `commands` (a technique's script when `pass_index` is None, else that pass's),
+        and the scripts of the passes they run, without recursion: a stack of running
+        scripts, each with its position and its open loops. Every command counts against
+        `script_commands`; a `Pass=` that leads back to a pass still running is an error
+        naming the chain."""
+        stack = [_Running(commands, _loop_ends(commands), pass_index)]
+        while stack:
+            frame = stack[-1]
+            if frame.pc >= len(frame.commands):
+                stack.pop()
+                if stack and frame.pass_index is not None:
+                    self.passes_drawn += 1
                 continue
-            self.command(c, pass_index)
-            i += 1
+            c = frame.commands[frame.pc]
+            self._spend(c)
+            if c.name == "LoopByCount":
+                end = frame.ends[frame.pc]
+                count = self._count(c)
+                if count == 0:
+                    frame.pc = end + 1
+                    continue
+                frame.loops.append([frame.pc, count])
+                frame.pc += 1
+            elif c.name == "LoopEnd":
+                loop = frame.loops[-1]       # _loop_ends paired every LoopEnd with its start
+                loop[1] -= 1
+                if loop[1] > 0:
+                    frame.pc = loop[0] + 1
+                else:
+                    frame.loops.pop()
+                    frame.pc += 1
+            elif c.name == "Pass":
+                index = self._pass_index(c)
+                self._refuse_cycle(c, index, stack)
+                p = self.technique.passes[index]
+                script = script_of(p.annotations) or [Command("Draw", "Geometry", True, p.location)]
+                frame.pc += 1
+                stack.append(_Running(script, _loop_ends(script), index))
+            else:
+                self.command(c, frame.pass_index)
+                frame.pc += 1
+
+    def _spend(self, c: Command) -> None:
+        self.commands_run += 1
+        if self.commands_run > self.command_budget:
+            raise EffectError(limits.message("script_commands", self.commands_run,
+                                             f"script of technique {self.technique.name}"),
+                              c.location)
+
+    def _refuse_cycle(self, c: Command, index: int, stack: list["_Running"]) -> None:
+        """`Pass=P` inside a script that P's own script (directly or through others) runs."""
+        running = [f.pass_index for f in stack if f.pass_index is not None]
+        if index not in running:
+            return
+        names = [self._pass_name(i) for i in running[running.index(index):]]
+        chain = " -> ".join([*names, self._pass_name(index)])
+        raise EffectError(f"script: Pass={_shown(c.value)} runs pass {self._pass_name(index)}, which is "
+                          f"already running ({chain}): a pass's Script cannot lead back to "
+                          "itself", c.location)
+
+    def _pass_name(self, index: int) -> str:
+        return self.technique.passes[index].name or f"<pass {index}>"
 
     def _count(self, c: Command) -> int:
         param = self.rt.effect.parameter(c.value)
         try:
             n = int(_numbers(param.value)[0]) if param is not None else int(c.value)
-        except (TypeError, ValueError, IndexError):
-            raise EffectError(f"script: LoopByCount={c.value}: not a number or a numeric "
+        except (TypeError, ValueError, IndexError, OverflowError):
+            raise EffectError(f"script: LoopByCount={_shown(c.value)}: not a number or a numeric "
                               "parameter with a value", c.location) from None
         if not 0 <= n <= MAX_LOOP_COUNT:
-            raise EffectError(f"script: LoopByCount={c.value} is {n}; at most {MAX_LOOP_COUNT}",
+            raise EffectError(f"script: LoopByCount={_shown(c.value)} is {n}; at most {MAX_LOOP_COUNT}",
                               c.location)
         return n
 
     def command(self, c: Command, pass_index: int | None) -> None:
+        """One command other than LoopByCount, LoopEnd and Pass (`execute` runs those)."""
         name, value = c.name, c.value
         if not c.known:
             self.warn(f"script command {name}={value} is not supported; ignored", c.location)
@@ -445,11 +572,15 @@ class ScriptRunner:
             if value:
                 self._target_param(value, c.location)
         elif name == "ClearSetColor":
-            self.clear_color = tuple((_numbers(self._value(c)) + [0.0] * 4)[:4])
+            self.clear_color = tuple((self._numbers_of(c, 1, 4) + [0.0] * 4)[:4])
         elif name == "ClearSetDepth":
-            self.clear_depth = _numbers(self._value(c))[0]
+            depth = self._numbers_of(c, 1, 1)[0]
+            if not 0.0 <= depth <= 1.0:   # IDirect3DDevice9::Clear takes Z from 0 to 1
+                raise EffectError(f"script: ClearSetDepth={_shown(value)} is {depth:g}; a depth is "
+                                  "from 0 to 1", c.location)
+            self.clear_depth = depth
         elif name == "ClearSetStencil":
-            pass  # the stencil clear value: targets clear stencil to 0
+            self._numbers_of(c, 1, 1)   # checked; targets clear stencil to 0
         elif name == "Clear":
             what = value.lower()
             if what not in ("color", "depth", "stencil"):
@@ -465,16 +596,8 @@ class ScriptRunner:
             self.clear_pending = True
             if self.open and not self.drawn_since_open:
                 self._abandon()                   # reopen with the clear values now set
-        elif name == "Pass":
-            index = self._pass_index(c)
-            p = self.technique.passes[index]
-            self.execute(script_of(p.annotations) or
-                         [Command("Draw", "Geometry", True, p.location)], index)
-            self.passes_drawn += 1
         elif name == "Draw":
             self.draw(c, pass_index)
-        elif name == "LoopEnd":
-            raise EffectError("script: LoopEnd without LoopByCount", c.location)
         elif name == "ScriptExternal":
             if value.lower() == "color":
                 self.draw_scene(c)
@@ -484,15 +607,25 @@ class ScriptRunner:
                 self.warn(f"script command ScriptExternal={value} is not supported; ignored",
                           c.location)
 
-    def _value(self, c: Command) -> Any:
+    def _numbers_of(self, c: Command, least: int, most: int) -> list[float]:
+        """The value of `c`: a numeric parameter's value, or numbers written out; `least` of
+        them at least, finite (only the first `most` are used)."""
         param = self.rt.effect.parameter(c.value)
-        if param is None or param.value is None:
-            try:
-                return [float(x) for x in c.value.replace(",", " ").split()]
-            except ValueError:
-                raise EffectError(f"script: {c.name}={c.value}: no parameter of that name with "
-                                  "a value", c.location) from None
-        return param.value
+        try:
+            if param is None or param.value is None:
+                numbers = [float(x) for x in c.value.replace(",", " ").split()]
+            else:
+                numbers = _numbers(param.value)
+        except (TypeError, ValueError):
+            numbers = None
+        if numbers is None or (param is None and not numbers):
+            raise EffectError(f"script: {c.name}={_shown(c.value)}: no parameter of that name with "
+                              "a value, nor numbers", c.location)
+        if len(numbers) < least or not all(math.isfinite(x) for x in numbers[:most]):
+            raise EffectError(f"script: {c.name}={_shown(c.value)} needs "
+                              f"{least if least == most else f'{least} to {most}'} finite "
+                              f"number{'s' if most > 1 else ''}", c.location)
+        return numbers[:most]
 
     def _pass_index(self, c: Command) -> int:
         for match in (lambda n: n == c.value, lambda n: (n or "").lower() == c.value.lower()):
@@ -535,21 +668,39 @@ class ScriptRunner:
 
     def _count_draw(self, c: Command) -> None:
         self.draws += 1
-        if self.draws > MAX_SCRIPT_DRAWS:
-            raise EffectError(f"script: more than {MAX_SCRIPT_DRAWS} draws in one frame",
+        if self.draws > self.draw_budget:
+            raise EffectError(limits.message("script_draws", self.draws,
+                                             f"script of technique {self.technique.name}"),
                               c.location)
 
 
-def _loop_end(commands: list[Command], start: int) -> int:
-    depth = 0
-    for j in range(start, len(commands)):
-        if commands[j].name == "LoopByCount":
-            depth += 1
-        elif commands[j].name == "LoopEnd":
-            depth -= 1
-            if depth == 0:
-                return j
-    raise EffectError("script: LoopByCount without LoopEnd", commands[start].location)
+@dataclass
+class _Running:
+    """A script being run: its commands, where each LoopByCount's LoopEnd is, the position
+    and the open loops ([position of the LoopByCount, rounds left]), and the pass it is the
+    script of (None: the technique's)."""
+
+    commands: list[Command]
+    ends: dict[int, int]
+    pass_index: int | None
+    pc: int = 0
+    loops: list[list[int]] = field(default_factory=list)
+
+
+def _loop_ends(commands: list[Command]) -> dict[int, int]:
+    """Each LoopByCount's position -> its LoopEnd's, in one pass; an unpaired one is an error."""
+    ends: dict[int, int] = {}
+    opened: list[int] = []
+    for j, c in enumerate(commands):
+        if c.name == "LoopByCount":
+            opened.append(j)
+        elif c.name == "LoopEnd":
+            if not opened:
+                raise EffectError("script: LoopEnd without LoopByCount", c.location)
+            ends[opened.pop()] = j
+    if opened:
+        raise EffectError("script: LoopByCount without LoopEnd", commands[opened[-1]].location)
+    return ends
 
 
 def render_targets(effect: Effect) -> list[Parameter]:
@@ -557,6 +708,7 @@ def render_targets(effect: Effect) -> list[Parameter]:
 
 
 __all__ = ["Command", "parse_script", "script_of", "technique_script", "ScriptRunner",
-           "render_targets", "target_size", "target_format", "is_cube_target", "cube_size",
+           "render_targets", "target_size", "target_extent", "target_format", "is_cube_target",
+           "cube_size",
            "cube_face_matrices", "unsupported_commands",
            "quad_geometry", "SCENE_MATERIAL"]

@@ -27,6 +27,7 @@ import numpy as np
 
 from effects.base import caches
 from effects.base.errors import Location, SceneError
+from effects.base.yaml_input import brief
 from effects.model import Effect, Parameter
 from effects.host.scene import Scene, d3dcolor
 
@@ -377,7 +378,9 @@ def coerce_value(param: Parameter, value: Any, at: Location | None = None, sourc
     message starting with `source` ('--set', 'scene params') when given."""
     at = at or param.location
     base = param.type.base
-    prefix = f"{source} {param.name}={value!r}: " if source else ""
+    # brief: a value is shown cut short and a few levels deep (a list nested 100,000 deep
+    # has a repr that overflows the stack)
+    prefix = f"{source} {param.name}={brief(value)}: " if source else ""
 
     def fail(why: str) -> SceneError:
         return SceneError(f"{prefix}{describe(param, at)}: {why}", at)
@@ -386,11 +389,11 @@ def coerce_value(param: Parameter, value: Any, at: Location | None = None, sourc
         from effects.program.texture import Texture
         if isinstance(value, Texture) or (isinstance(value, str) and value.strip()):
             return value.strip() if isinstance(value, str) else value
-        raise fail(f"a {base} parameter takes an image path, not {value!r}")
+        raise fail(f"a {base} parameter takes an image path, not {brief(value)}")
     if base == "string":
         if isinstance(value, str):
             return value
-        raise fail(f"a string parameter takes text, not {value!r}")
+        raise fail(f"a string parameter takes text, not {brief(value)}")
     if not param.type.is_numeric:
         raise fail(f"a {base} parameter cannot be set from a scene or the command line")
     return _coerce_numeric(param, value, fail)
@@ -409,26 +412,24 @@ def _coerce_numeric(param: Parameter, value: Any, fail: Callable[[str], SceneErr
             try:
                 items = _text_numbers(text)
             except ValueError:
-                raise fail(f"{value!r} is not a number or a list of numbers") from None
-    elif isinstance(value, np.ndarray):
-        items = list(value.reshape(-1))
-    elif isinstance(value, (list, tuple)):
-        items = list(np.asarray(value, dtype=object).reshape(-1)) if value else []
+                raise fail(f"{brief(value)} is not a number or a list of numbers") from None
     else:
-        items = [value]
+        items = _leaves(value, count + 1)
     if colour and param.type.cols == 4 and len(items) == 3:
         items = [*items, 1.0]  # [r, g, b] is an opaque colour, as in the scene's colours
     if len(items) != count:
         shape = "a number" if count == 1 else f"{count} numbers"
-        raise fail(f"takes {shape}, got {len(items)} ({value!r})")
+        capped = not isinstance(value, str) and len(items) > count   # _leaves stopped
+        got = f"more than {count}" if capped else str(len(items))
+        raise fail(f"takes {shape}, got {got} ({brief(value)})")
     numbers = []
     for item in items:
         if isinstance(item, (bool, np.bool_)):
             numbers.append(float(item))
-        elif isinstance(item, (int, float, np.integer, np.floating)) and math.isfinite(float(item)):
+        elif isinstance(item, (int, float, np.integer, np.floating)) and _finite(item):
             numbers.append(item)
         else:
-            raise fail(f"{item!r} is not a finite number")
+            raise fail(f"{brief(item)} is not a finite number")
     shape = (*param.array, *((param.type.rows, param.type.cols) if param.type.rows > 1 else
                              (param.type.cols,) if param.type.cols > 1 else ()))
     if base in ("float", "half"):
@@ -436,14 +437,39 @@ def _coerce_numeric(param: Parameter, value: Any, fail: Callable[[str], SceneErr
     if base == "bool":
         return (np.asarray(numbers, np.float64) != 0).reshape(shape)
     if any(float(n) != int(n) for n in numbers):
-        raise fail(f"an {base} parameter takes whole numbers, got {value!r}")
+        raise fail(f"an {base} parameter takes whole numbers, got {brief(value)}")
     if base == "dword":
         if any(not 0 <= int(n) <= 0xFFFFFFFF for n in numbers):
-            raise fail(f"a DWORD is 0..0xFFFFFFFF, got {value!r}")
+            raise fail(f"a DWORD is 0..0xFFFFFFFF, got {brief(value)}")
         return np.asarray([int(n) for n in numbers], np.int64).reshape(shape)
     if any(not -2**31 <= int(n) < 2**31 for n in numbers):
-        raise fail(f"an int is 32 bits, got {value!r}")
+        raise fail(f"an int is 32 bits, got {brief(value)}")
     return np.asarray([int(n) for n in numbers], np.int32).reshape(shape)
+
+
+def _leaves(value: Any, most: int) -> list[Any]:
+    """The items of a value given as a number or (nested) lists, tuples and arrays, in order,
+    without recursion (a list nested 100,000 deep is data, not a stack) and no more than
+    `most` of them (lists that share sublists can stand for more items than memory holds)."""
+    out: list[Any] = []
+    stack: list[Any] = [value]
+    while stack and len(out) < most:
+        item = stack.pop()
+        if isinstance(item, np.ndarray):
+            item = item.reshape(-1)[:most].tolist() if item.ndim else item.item()
+        if isinstance(item, (list, tuple)):
+            stack.extend(reversed(item[:most]))
+        else:
+            out.append(item)
+    return out
+
+
+def _finite(number: Any) -> bool:
+    """A number that is finite as a float (a huge Python int is not, and float() refuses it)."""
+    try:
+        return math.isfinite(float(number))
+    except OverflowError:
+        return False
 
 
 def lookup_parameter(effect: Effect, name: str, at: Location | None = None,

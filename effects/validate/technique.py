@@ -26,7 +26,8 @@ What is checked, and what is not:
   software or mixed vertex processing, up to the runtime's software version), every
   assembly rule of that version, and the card's own limits (instruction slots, temporaries,
   constants, dependent reads, render-target outputs; a vertex shader over the hardware's
-  limits runs in software where the card offers it). An HLSL `compile ps_2_0 f()` is compiled for
+  limits runs in software where the card offers it); shader constant states against the
+  register files they write (`constants`). An HLSL `compile ps_2_0 f()` is compiled for
   its profile (effects.shaders.hlsl) and its assembly is judged by the same rules; a
   function that does not compile rejects the technique, as D3DX rejects a technique whose
   shader fails to create.
@@ -58,6 +59,7 @@ from effects.base.errors import EffectError, Location
 from effects.frontend.references import pass_reference_problems
 from effects.model import Effect, EnumValue, Expression, NullValue, ParamRef, Pass, Technique
 from effects.shaders.shader_value import Shader
+from effects.validate.constants import ConstantChecks
 from effects.validate.expressions import ExpressionValues
 from effects.validate.framebuffer import FrameBufferChecks
 from effects.validate.points import PointChecks
@@ -227,7 +229,7 @@ class _PassAnalysis:
 
 
 class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
-                   VertexTextureChecks, PointChecks):
+                   VertexTextureChecks, PointChecks, ConstantChecks):
     """Runs every check for one pass and collects its reasons."""
 
     def __init__(self, effect: Effect, technique: Technique, p: Pass, index: int,
@@ -358,6 +360,7 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
             self.check_vertex_shader(vs)
             self.check_vertex_textures(vs)
         self.check_shader_model_3_pairing(ps, vs)
+        self.check_constant_registers()
         self.check_textures(ps is not None)
         self.check_framebuffer()
         self.check_quirks()
