@@ -261,12 +261,13 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any,
         # a vs_3_0 shader's s# are the vertex texture samplers D3DVERTEXTEXTURESAMPLER0 + n
         base = 0 if stage == "pixel" else VERTEX_TEXTURE_SAMPLER0
         for name, register in compiled.samplers.items():
-            state.apply(StateAssignment("Sampler", ParamRef(name), index=base + register,
+            ref = _sampler_ref(name)
+            state.apply(StateAssignment("Sampler", ref, index=base + register,
                                         location=location))
             if state.assignment("Texture", base + register) is None:
                 # its sampler_state names no texture: the host sets one on the stage
                 # (SetTexture), named after the sampler (`--set S=image`; else a stand-in)
-                state.apply(StateAssignment("Texture", ParamRef(name), index=base + register,
+                state.apply(StateAssignment("Texture", ref, index=base + register,
                                             location=location))
         # an int parameter counting a rep sits in the i# the compiler gave it (D3DX sets it
         # with the shader, as VertexShaderConstantI / PixelShaderConstantI would)
@@ -285,6 +286,15 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any,
         raise EffectError(f"cannot lower a {stage} shader given as {type(shader).__name__}",
                           location)
     return assemble_cached(shader), None
+
+
+def _sampler_ref(name: str) -> ParamRef:
+    """A compiled shader's sampler as a parameter reference: `S[1]` (an element of a sampler
+    array the shader indexed by a constant) is element 1 of parameter S."""
+    if name.endswith("]") and "[" in name:
+        base, index = name[:-1].split("[", 1)
+        return ParamRef(base, index=int(index))
+    return ParamRef(name)
 
 
 def _int_constants(state: DeviceState, shader: str, compiled: Any

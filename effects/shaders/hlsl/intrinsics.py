@@ -73,7 +73,7 @@ def _pow(ev: Any, a: list[Operand], b: list[Operand], loc: Location) -> list[Ope
         # fxc expanded a small whole exponent into multiplications (x^8 = three muls); ps_1_x
         # has no exp/log for the rest
         n = [c.const_values() for c in b]
-        if all(v is not None and v[0] == int(v[0]) and 1 <= v[0] <= 16 for v in n):
+        if all(v is not None and 1 <= v[0] <= 16 and v[0] == int(v[0]) for v in n):
             return [_power(ev, x, int(v[0]), loc) for x, v in zip(a, n)]  # type: ignore[index]
         raise ev.error(f"{ev.ctx.target.name} cannot compute pow of a non-constant exponent", loc)
     return _exp2(ev, ev.a.lanes("mul", [b, _log2(ev, a, loc)], loc), loc)
