@@ -117,12 +117,14 @@ def _current(effect: Effect, param: Any, known: dict[str, Any]) -> Any:
     """A parameter's value as the expression read it: one whose initialiser is itself an
     expression (`float P1 = P0 * 2;`) is that expression's numbers, as the state's evaluation
     found them (`known`), else evaluated the same way."""
-    if not isinstance(param.value, Expression):
+    if not isinstance(param.value, (Expression, ParamRef)):
         return param.value
     if param.name not in known:
+        from effects.shaders.hlsl.expressions import initializer_text   # lark: when needed
         from effects.shaders.hlsl.preshader import initializer_numbers
+        init = initializer_text(param)
         known[param.name] = np.asarray(initializer_numbers(
-            param.value.text, param.value.location, effect, host_values=True, known=known))
+            init.text, init.location, effect, host_values=True, known=known))
     return known[param.name]
 
 

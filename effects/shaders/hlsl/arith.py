@@ -34,8 +34,16 @@ class Arith:
         return self.g.op(name, args, width, loc)
 
     def lanes(self, name: str, comps_list: list[list[Operand]], loc: Location) -> list[Operand]:
-        """A component-wise op over equally long component lists, as one vector node (folded
-        at once when every component is a constant: the node Graph.op would fold to)."""
+        """A component-wise op over equally long component lists, as one vector node a group
+        of four (a register's width: a float3x3's nine are three nodes), folded at once when
+        every component is a constant (the node Graph.op would fold to)."""
+        n = max(len(c) for c in comps_list)
+        if n > 4:
+            out: list[Operand] = []
+            for k in range(0, n, 4):
+                out += self.lanes(name, [c[k:k + 4] if len(c) > 1 else c for c in comps_list],
+                                  loc)
+            return out
         values = []
         for comps in comps_list:
             lanes = []

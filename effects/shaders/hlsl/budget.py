@@ -1,10 +1,13 @@
 """What one HLSL evaluation may spend, checked as it grows (limits.py):
 
 - `hlsl_nesting`: the levels the evaluator holds on Python's stack at once: a block, an `if`
-  or a loop inside another, a call inside a call, an expression evaluated inside another's
-  l-value or `out` argument. Expressions themselves take no level per operator (expressions.py
-  evaluates them with an explicit stack), so a 5,000-term sum or a 1,000-deep nesting of
-  parentheses, calls or casts is fine; a `{{{...}}}` 65 deep is a located error.
+  or a loop inside another (one level each), a call inside a call (two: its body's frames
+  are twice a block's), an expression evaluated inside another's l-value or `out` argument
+  (one). Expressions themselves take no level per operator (expressions.py evaluates them
+  with an explicit stack), so a 5,000-term sum or a 1,000-deep nesting of parentheses,
+  calls or casts is fine; a `{{{...}}}` 65 deep is a located error. Measured: at most ~5
+  Python frames a level (a call: ~10 for its two), so the default 64 stays under ~450 of
+  Python's 1,000 frames with the type recursions (two a level), room left for the caller.
 - `hlsl_work`: the DAG nodes asked for (dag.Graph.work counts them) plus the components the
   evaluator copies or merges: unrolled iterations x inlined calls x components. Checked after
   every expression node and statement, so a runaway loop nest or call fan-out stops within
@@ -18,23 +21,20 @@ from effects.base import limits
 from effects.base.errors import Location
 from effects.shaders.hlsl.parse import HlslError
 
-# Python's own stack: each level above takes at most ~12 frames (a block inside an if inside
-# a function: stmt, s_if_stmt, _if, scoped, stmt, s_block, block ...), so the default of 64
-# levels stays under ~800 of Python's 1,000 with room for the caller (a test runner, the viewer).
 
 
-def enter_level(ev: Any, where: Any) -> None:
-    """One more level of nesting at `where` (the located error past hlsl_nesting)."""
+def enter_level(ev: Any, where: Any, levels: int = 1) -> None:
+    """`levels` more levels of nesting at `where` (the located error past hlsl_nesting)."""
     ctx = ev.ctx
-    if ctx.nesting >= ctx.nesting_cap:
-        raise ev.error(limits.message("hlsl_nesting", ctx.nesting + 1,
+    if ctx.nesting + levels > ctx.nesting_cap:
+        raise ev.error(limits.message("hlsl_nesting", ctx.nesting + levels,
                                       "the HLSL nesting here (blocks, ifs, loops and calls "
                                       "inside one another)"), where)
-    ctx.nesting += 1
+    ctx.nesting += levels
 
 
-def leave_level(ev: Any) -> None:
-    ev.ctx.nesting -= 1
+def leave_level(ev: Any, levels: int = 1) -> None:
+    ev.ctx.nesting -= levels
 
 
 def spend(ev: Any, amount: int, where: Any) -> None:

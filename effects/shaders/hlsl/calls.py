@@ -88,13 +88,13 @@ def inline_call(ev: Any, fdef: FunctionDef, args: list[Value], arg_trees: list[A
     calling = ev.ctx.__dict__.setdefault("calling", [])
     if any(f is fdef for f in calling):
         raise ev.error(f"X3500: recursive call to '{fdef.name}' (recursion is not allowed)", where)
-    enter_level(ev, where)
+    enter_level(ev, where, 2)
     calling.append(fdef)
     try:
         return _inline(ev, fdef, args, arg_trees, where)
     finally:
         calling.pop()
-        leave_level(ev)
+        leave_level(ev, 2)
 
 
 def _inline(ev: Any, fdef: FunctionDef, args: list[Value], arg_trees: list[Any], where: Any) -> Value:
@@ -122,8 +122,8 @@ def _inline(ev: Any, fdef: FunctionDef, args: list[Value], arg_trees: list[Any],
         if direction in ("out", "inout") and k < len(arg_trees):
             result = callee.scopes[0][name].value
             target = arg_trees[k]
-            current = ev.expr(target)
-            store(ev, target, ev.a.convert(result, current.type, ev.at(target)))
+            store(ev, target, lambda current, result=result, target=target:
+                  ev.a.convert(result, current.type, ev.at(target)))
     frame = callee.frames[-1]
     if ret_type.kind != "void" and frame.retval is None:
         raise fdef.origin.error(f"X3080: '{fdef.name}': function must return a value", fdef.tree)

@@ -16,7 +16,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from effects.base.errors import Location, UNKNOWN_LOCATION
+from effects.base.errors import EffectError, Location, UNKNOWN_LOCATION
 from effects.model import Effect
 from effects.shaders.asm import AsmProgram
 # CompiledShader lives in shader.py and compile_state in cache.py: a cached shader needs no
@@ -60,11 +60,17 @@ _PS3_MISC = {"VPOS": ("vPos", "dcl vPos.xy"), "VFACE": ("vFace", "dcl vFace")}
 def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...] = (),
                    where: Location | None = None) -> CompiledShader:
     where = where or Location(effect.path, 1, 1)
+    fdefs = [f for f in effect.functions if f.name == entry]
+    at = fdefs[0].location if fdefs else where
     try:
         return _compile_shader(effect, entry, target, args, where)
     except RecursionError:
-        fdefs = [f for f in effect.functions if f.name == entry]
-        raise out_of_stack(fdefs[0].location if fdefs else where) from None
+        raise out_of_stack(at) from None
+    except EffectError as err:
+        if err.location != UNKNOWN_LOCATION:
+            raise
+        # a check deep in code generation that had no place to give: the function's
+        raise type(err)(err.message, at) from None
 
 
 def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...],

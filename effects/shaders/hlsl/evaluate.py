@@ -34,6 +34,8 @@ from effects.shaders.hlsl.values import (Frame, Loop, Value, Var, build_value, c
 
 MAX_ITERATIONS = 1024
 PROBE_AFTER = 8          # most loops end sooner: they never pay for unroll.never_ends
+# the statements that hold others (one level of hlsl_nesting each: budget.py)
+_COMPOUND = frozenset(("block", "if_stmt", "if_else", "for_stmt", "while_stmt", "do_stmt"))
 _COMPARE_NOW = {"lt": lambda a, b: a < b, "le": lambda a, b: a <= b, "gt": lambda a, b: a > b,
                 "ge": lambda a, b: a >= b, "eq": lambda a, b: a == b, "ne": lambda a, b: a != b}
 _SWIZZLE = {c: i for i, c in enumerate("xyzw")} | {c: i for i, c in enumerate("rgba")}
@@ -50,6 +52,7 @@ class Evaluator:
         self.loops: list[Loop] = []
         self.mask: Operand | None = None       # path predicate (None: always)
         self.depth = 0
+        self.in_expression = 0                 # expression evaluations under way (budget.py)
         # the for-init variables of an unrolled loop while its step runs (lvalues.store):
         # stepped whatever the predicate, so the count stays a constant
         self.stepping: frozenset[int] = frozenset()
@@ -173,7 +176,10 @@ class Evaluator:
         if handler is None:
             raise self.error(f"X3000: unsupported statement '{kind}'", tree)
         check(self, tree)
-        enter_level(self, tree)              # a statement inside another: one more level
+        if kind not in _COMPOUND:
+            handler(tree)
+            return
+        enter_level(self, tree)              # a statement holding others: one more level
         try:
             handler(tree)
         finally:
@@ -452,8 +458,9 @@ class Evaluator:
         p = self.active()
         if p is not None:
             comps = self.a.select([p], comps, [self.g.const((0.0,))] * len(comps), loc)
-        op = operand(self.g, comps)
-        self.ctx.kills.append(self.g.leaf("kill", None, op.width, loc, (op,)))
+        for k in range(0, len(comps), 4):          # a texkill tests one register
+            op = operand(self.g, comps[k:k + 4])
+            self.ctx.kills.append(self.g.leaf("kill", None, op.width, loc, (op,)))
 
     # -- expressions live in expressions.py --------------------------------------------------
     def expr(self, tree: Any) -> Value:

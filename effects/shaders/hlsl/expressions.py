@@ -8,6 +8,7 @@ from typing import Any, Generator
 import lark
 import numpy as np
 
+from effects.model import Expression, ParamRef
 from effects.shaders.hlsl.budget import enter_level, leave_level, over_budget
 from effects.shaders.hlsl.context import (int_literal, parameter_type, resolve_type, sized_type,
                                           static_value)
@@ -30,7 +31,10 @@ def evaluate_expr(ev: Any, tree: Any) -> Value:
     Re-entering (an l-value's index, an `out` argument written back) counts one level of
     hlsl_nesting; each node evaluated is checked against the work budget."""
     ctx = ev.ctx
-    enter_level(ev, tree)
+    # a statement's own expression takes no level; one re-entered from inside another does
+    levels = 1 if ev.in_expression else 0
+    enter_level(ev, tree, levels)
+    ev.in_expression += 1
     try:
         waiting: list[Generator[Any, Value, Value]] = []
         value: Value | None = None
@@ -54,7 +58,8 @@ def evaluate_expr(ev: Any, tree: Any) -> Value:
             if ctx.graph.work > ctx.work_cap:
                 raise over_budget(ev, tree)
     finally:
-        leave_level(ev)
+        ev.in_expression -= 1
+        leave_level(ev, levels)
 
 
 def _start(ev: Any, tree: Any) -> Value | Generator[Any, Value, Value]:
@@ -114,7 +119,7 @@ def global_value(ev: Any, name: str, where: Any) -> Value:
     elif "static" in param.storage or ctx.host_values:
         # A static's initialiser; in a preshader (host_values) any global's current value
         numbers = static_value(param)
-        if numbers is None and param.value is not None and hasattr(param.value, "text"):
+        if numbers is None and initializer_text(param) is not None:
             numbers = _initialized(ev, name, where)
         n = t.components
         flat = list(numbers) if numbers is not None else [0.0] * n
@@ -125,6 +130,18 @@ def global_value(ev: Any, name: str, where: Any) -> Value:
         ctx.uniforms_used.setdefault(name, t)
     cache[name] = value
     return value
+
+
+def initializer_text(param: Any) -> Expression | None:
+    """A global's initialiser as text to evaluate: an expression the loader kept as text, or a
+    bare reference to another parameter (`float C = A;`, `float D = G[1];`); None for none."""
+    value = param.value
+    if isinstance(value, Expression):
+        return value
+    if isinstance(value, ParamRef):
+        text = value.name if value.index is None else f"{value.name}[{value.index}]"
+        return Expression(text, value.location)
+    return None
 
 
 class _Needs(Exception):
@@ -159,7 +176,7 @@ def _initialized(ev: Any, name: str, where: Any) -> np.ndarray:
             except _Needs as need:
                 if need.name in stack:
                     cycle = " -> ".join(stack[stack.index(need.name):] + [need.name])
-                    init = ctx.effect.parameter(top).value
+                    init = initializer_text(ctx.effect.parameter(top))
                     raise Origin(init.location, init.text).error(
                         f"X3013: the initializer of '{need.name}' refers to itself "
                         f"({cycle})" if need.name != top else
@@ -176,7 +193,7 @@ def _initializer(ev: Any, name: str) -> np.ndarray:
     initialiser comes first). In a preshader every component must fold (X3013); a compile
     keeps the old reading of a non-constant component as 0."""
     ctx = ev.ctx
-    init = ctx.effect.parameter(name).value
+    init = initializer_text(ctx.effect.parameter(name))
     origin = Origin(init.location, init.text)
     tree = parse(init.text, "initializer", origin, ctx.type_names)
     comps = ev.spawn(origin).flatten_list(tree)
@@ -253,24 +270,31 @@ def _prefix(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     return Value(v.type, [ev.g.const((bitwise_not(c, v.type.base),)) for c in consts])
 
 
-def _incdec(ev: Any, tree: lark.Tree, post: bool) -> Generator[Any, Value, Value]:
+def _incdec(ev: Any, tree: lark.Tree, post: bool) -> Value:
     target, op = (tree.children[0], tree.children[1]) if post else (tree.children[1], tree.children[0])
-    old = yield target
     one = Value(INT, [ev.g.const((1.0,))])
-    new = ev.a.binary("+" if str(op) == "++" else "-", old, one, ev.at(op))
-    store(ev, target, ev.a.convert(new, old.type, ev.at(op)))
+    seen: list[Value] = []
+
+    def step(old: Value) -> Value:
+        new = ev.a.binary("+" if str(op) == "++" else "-", old, one, ev.at(op))
+        seen.extend((old, new))
+        return ev.a.convert(new, old.type, ev.at(op))
+    store(ev, target, step)         # the target (its indices) evaluated once
+    old, new = seen
     return old if post else new
 
 
 def _assign(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     target, op, rhs = tree.children
     value = yield rhs
-    current = yield target
-    if str(op) != "=":
-        value = ev.a.binary(str(op)[:-1], current, value, ev.at(op))
-    value = ev.a.convert(value, current.type, ev.at(rhs))
-    store(ev, target, value)
-    return value
+    written: list[Value] = []
+
+    def assigned(current: Value) -> Value:
+        v = value if str(op) == "=" else ev.a.binary(str(op)[:-1], current, value, ev.at(op))
+        written.append(ev.a.convert(v, current.type, ev.at(rhs)))
+        return written[0]
+    store(ev, target, assigned)     # the target (its indices) evaluated once, after the value
+    return written[0]
 
 
 def member_of(ev: Any, base: Value, name: Any) -> Value:

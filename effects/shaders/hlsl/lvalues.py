@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Any
+from typing import Any, Callable
 
 import lark
 
@@ -16,11 +16,13 @@ _LETTERS = {c: i for i, c in enumerate("xyzw")} | {c: i for i, c in enumerate("r
 _MATRIX_SWIZZLE = re.compile(r"^(?:_m([0-3])([0-3]))+$|^(?:_([1-4])([1-4]))+$")
 
 
-def store(ev: Any, target: Any, value: Value) -> None:
+def store(ev: Any, target: Any, value: Value | Callable[[Value], Value]) -> None:
     """Write `value` to the l-value `target` (a name, member, swizzle or constant index),
     walked without recursion: `a.b[2].xy` is the variable `a`, then member `b`, element 2,
-    lanes xy. The values down that path are read once; the written one is rebuilt back up,
-    each level a shallow copy (the rest is shared: values are never changed in place)."""
+    lanes xy. The values down that path are read once (an index expression is evaluated
+    once: `a[i++] += 1` steps i once); the written one is rebuilt back up, each level a
+    shallow copy (the rest is shared: values are never changed in place). `value` may be a
+    function of the l-value's current value (`+=`, `++`, an `out` argument's conversion)."""
     path: list[lark.Tree] = []
     root = target
     while isinstance(root, lark.Tree) and root.data in ("member", "index"):
@@ -57,6 +59,8 @@ def store(ev: Any, target: Any, value: Value) -> None:
             sub = element_of(ev, base, key, node)
         keys.append(key)
         bases.append(sub)
+    if callable(value):
+        value = value(bases[-1])
     for node, base, key in zip(reversed(path), reversed(bases[:-1]), reversed(keys)):
         out = base.shallow()
         spend(ev, len(out.comps) + len(out.fields) + len(out.elements), node)
