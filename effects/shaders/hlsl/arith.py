@@ -314,6 +314,9 @@ class Arith:
         return self.lanes("mad", [cond, diff, out_b], loc)
 
     def to_bool(self, v: Value, loc: Location) -> Value:
+        if not v.type.numeric:
+            raise self.error(f"X3020: a condition or logical operand needs a numeric value, not "
+                             f"'{v.type}'", loc)
         if v.type.base == "bool":
             return v
         return Value(v.type.with_base("bool"),

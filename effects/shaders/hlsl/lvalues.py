@@ -86,7 +86,10 @@ def const_index(ev: Any, index: Value, tree: Any, t: HType) -> int:
     """The constant `index` (an expression's value) into a value of type `t`, checked
     against its size: an index known only at run time is X3512, one outside X3504 (an
     infinite or NaN index is outside)."""
-    v = index.const_values() if index.type.numeric else None
+    if not index.type.numeric:
+        raise ev.error(f"X3120: invalid type for index - index must be a scalar, not "
+                       f"'{index.type}'", tree)
+    v = index.const_values()
     if v is None:
         raise ev.error(f"X3512: array index must be a literal expression on {ev.ctx.target.name} "
                        "(only uniform arrays read in vertex shaders take a run-time index)", tree)
