@@ -266,3 +266,15 @@ technique T { pass P { PixelShader = compile ps_2_0 PS(); } }""")
                          scene={"mesh": "quad"}, params={"T0": red, "T1": green})
     # 0.25 of red (SA[0]) and 0.5 of green (SA[1]); alpha 0.25 + 0.5
     assert np.abs(img[2, 2].astype(int) - [64, 128, 0, 191]).max() <= 1, img[2, 2]
+
+
+def test_a_compile_refused_at_a_limit_is_compiled_again_when_the_limit_is_raised():
+    # the compile cache keys the limits the compiler reads: validation says why, then passes
+    fx = effects.load_effect("float4 PS(float2 uv : TEXCOORD0) : COLOR { float s = uv.x; "
+                             + "{" * 70 + "s += 1;" + "}" * 70 + " return s; }\n"
+                             "technique T { pass P { PixelShader = compile ps_2_0 PS(); } }")
+    card = effects.load_profile("radeon9700")
+    [reason] = fx.validate("T", card).reasons
+    assert "has 65 levels; the limit is 64 (limit hlsl_nesting" in reason.message
+    with limits.raised(hlsl_nesting=80):
+        assert fx.validate("T", card).ok
