@@ -19,8 +19,8 @@ from effects.shaders.hlsl.types import BOOL, INT, HType, builtin, scalar, vector
 from effects.shaders.hlsl.calls import resolve_overload
 from effects.shaders.hlsl.intrinsics import INTRINSICS, call_intrinsic
 from effects.shaders.hlsl.loops import al_element
-from effects.shaders.hlsl.lvalues import const_index, store, swizzle_lanes
-from effects.shaders.hlsl.values import Value, build_value, count_components
+from effects.shaders.hlsl.lvalues import const_index, element_of, member_of, store
+from effects.shaders.hlsl.values import Value, build_value
 
 
 
@@ -295,31 +295,6 @@ def _assign(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
         return written[0]
     store(ev, target, assigned)     # the target (its indices) evaluated once, after the value
     return written[0]
-
-
-def member_of(ev: Any, base: Value, name: Any) -> Value:
-    """`base.name`: a struct member or a swizzle (a matrix's `._m00_m11`)."""
-    if base.type.kind == "struct":
-        if str(name) not in base.fields:
-            raise ev.error(f"X3018: invalid subscript '{name}'", name)
-        return base.fields[str(name)]
-    if not base.type.numeric:
-        raise ev.error(f"X3018: invalid subscript '{name}' on '{base.type}'", name)
-    lanes = swizzle_lanes(ev, base.type, str(name), name)
-    return Value(vector(base.type.base, len(lanes)), [base.comps[k] for k in lanes])
-
-
-def element_of(ev: Any, base: Value, k: int, tree: Any) -> Value:
-    """`base[k]` for a constant k (const_index checked it against the size)."""
-    t = base.type
-    if t.kind == "array":
-        return base.elements[k]
-    if t.kind == "matrix":
-        return Value(vector(t.base, t.cols), base.comps[k * t.cols:(k + 1) * t.cols])
-    if t.kind == "vector":
-        return Value(scalar(t.base), [base.comps[k]])
-    raise ev.error(f"X3121: array, matrix, vector, or indexable object type expected in index "
-                   f"expression, not '{t}'", tree)
 
 
 def _member(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:

@@ -9,7 +9,7 @@ from typing import Any, Callable
 import lark
 
 from effects.shaders.hlsl.budget import spend
-from effects.shaders.hlsl.types import HType, vector
+from effects.shaders.hlsl.types import HType, scalar, vector
 from effects.shaders.hlsl.values import Value
 
 _LETTERS = {c: i for i, c in enumerate("xyzw")} | {c: i for i, c in enumerate("rgba")}
@@ -40,7 +40,6 @@ def store(ev: Any, target: Any, value: Value | Callable[[Value], Value]) -> None
         raise ev.error(f"X3004: undeclared identifier '{name}'", root)
     if var.const:
         raise ev.error(f"X3025: l-value specifies const object '{name}'", root)
-    from effects.shaders.hlsl.expressions import element_of, member_of
     bases: list[Value] = [var.value]
     keys: list[Any] = []
     for node in path:
@@ -80,6 +79,31 @@ def store(ev: Any, target: Any, value: Value | Callable[[Value], Value]) -> None
         value = out
     p = None if id(var) in ev.stepping else ev.active()     # an unrolled loop's counter
     var.value = ev.merge(var.value, value, p, ev.at(target))
+
+
+def member_of(ev: Any, base: Value, name: Any) -> Value:
+    """`base.name`: a struct member or a swizzle (a matrix's `._m00_m11`)."""
+    if base.type.kind == "struct":
+        if str(name) not in base.fields:
+            raise ev.error(f"X3018: invalid subscript '{name}'", name)
+        return base.fields[str(name)]
+    if not base.type.numeric:
+        raise ev.error(f"X3018: invalid subscript '{name}' on '{base.type}'", name)
+    lanes = swizzle_lanes(ev, base.type, str(name), name)
+    return Value(vector(base.type.base, len(lanes)), [base.comps[k] for k in lanes])
+
+
+def element_of(ev: Any, base: Value, k: int, tree: Any) -> Value:
+    """`base[k]` for a constant k (const_index checked it against the size)."""
+    t = base.type
+    if t.kind == "array":
+        return base.elements[k]
+    if t.kind == "matrix":
+        return Value(vector(t.base, t.cols), base.comps[k * t.cols:(k + 1) * t.cols])
+    if t.kind == "vector":
+        return Value(scalar(t.base), [base.comps[k]])
+    raise ev.error(f"X3121: array, matrix, vector, or indexable object type expected in index "
+                   f"expression, not '{t}'", tree)
 
 
 def const_index(ev: Any, index: Value, tree: Any, t: HType) -> int:
