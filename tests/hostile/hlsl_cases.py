@@ -308,6 +308,17 @@ def normalize_of_zero(d):
     return compiled("float3 z = 0; return float4(normalize(z), 1);", "ps_2_0")
 
 
+@case
+def asm_def_past_float32(d):
+    # the same value written by hand: a def register is a float32 (an IRError at render before)
+    def run() -> object:
+        import effects
+        effect = effects.load_effect("technique t { pass p { PixelShader = asm { ps_2_0\n"
+                                     " def c0, 1e39, 0, 0, 0\n mov oC0, c0\n }; } }")
+        return effects.render(effect, "radeon9700", technique="t", size=(4, 4))
+    return run
+
+
 # ---------------------------------------------------------------------------------------------
 # 3. the work budget and local storage
 

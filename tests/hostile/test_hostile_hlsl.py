@@ -89,6 +89,8 @@ EXPECTED: dict[str, tuple[str, str]] = {
     "state_expression_folding_nan": ("error", "X3013: 'A / A' does not evaluate to finite numbers "
                                               "([nan])"),
     "normalize_of_zero": ("value", "def c0, 0, 0, 0, 1"),
+    "asm_def_past_float32": ("error", "<string>:2:10: error: def takes finite float32 values "
+                                      "(at most 3.4e38); 1e39 is not one"),
     # 3. work and storage
     "local_array_of_a_billion": ("error", "<string>:4:8: error: X3059: array dimension must be "
                                           "between 1 and 65536 ('a': 1e+09)"),
