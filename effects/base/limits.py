@@ -39,7 +39,8 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
     Limit("source_bytes", 1 * _MIB, "bytes", "size of one effect file or effect text"),
     Limit("include_count", 256, "includes", "#include directives expanded in one load"),
     Limit("included_bytes", 1 * _MIB, "bytes", "text read through #include in one load"),
-    Limit("literal_digits", 200, "digits", "digits of one integer literal (#if, asm, YAML)"),
+    Limit("literal_digits", 200, "digits",
+          "digits of one integer literal (#if, asm, YAML, HLSL, register(c#))"),
     # YAML (caps profiles, scenes)
     Limit("yaml_bytes", 2 * _MIB, "bytes", "size of one caps profile or scene file"),
     Limit("yaml_depth", 64, "levels", "nesting of YAML lists and mappings"),
@@ -58,6 +59,18 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
     # shaders: nested rep / loop counts multiply (four nested 255s are 4e9 iterations)
     Limit("shader_loop_iterations", 65_536, "iterations",
           "body runs of the innermost of nested rep / loop blocks (the counts' product)"),
+    # the HLSL compiler evaluates a function symbolically (inlining, unrolling): its work and
+    # storage grow with what the text asks for, not with the text's size
+    Limit("hlsl_nesting", 64, "levels",
+          "HLSL blocks, ifs and loops inside one another, calls inside calls, and structs or "
+          "arrays inside one another"),
+    Limit("hlsl_components", 65_536, "components",
+          "numbers one HLSL variable, parameter or type holds (a float4[16] holds 64)"),
+    # ~20,000 steps a second on a busy 2-core machine: a runaway stops within a few seconds;
+    # a 1,024-iteration loop takes ~16,000, the bundled and sample effects under 200
+    Limit("hlsl_work", 50_000, "steps",
+          "operations one HLSL compile or effect expression builds, copies or emits, one per "
+          "node or component: unrolled iterations x inlined calls x components"),
     # render targets, per back end (the reference works in bands: 2048² peaks near 160 MiB)
     Limit("target_pixels_numpy", 2048 * 2048, "pixels", "render-target pixels on the numpy back end"),
     Limit("target_pixels_gl", 4096 * 4096, "pixels", "render-target pixels on the gl back end"),

@@ -266,12 +266,12 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any, stage: str,
     for binding in found.samplers:
         if binding.parameter is None:
             continue
-        state.apply(StateAssignment("Sampler", ParamRef(binding.parameter), index=binding.unit,
-                                    location=location))
+        state.apply(StateAssignment("Sampler", _sampler_ref(binding.parameter),
+                                    index=binding.unit, location=location))
         if state.assignment("Texture", binding.unit) is None:
             # its sampler_state names no texture: the host sets one on the stage
             # (SetTexture), named after the sampler (`--set S=image`; else a stand-in)
-            state.apply(StateAssignment("Texture", ParamRef(binding.parameter),
+            state.apply(StateAssignment("Texture", _sampler_ref(binding.parameter),
                                         index=binding.unit, location=location))
     # an int parameter counting a rep sits in the i# the compiler gave it (D3DX sets it
     # with the shader, as VertexShaderConstantI / PixelShaderConstantI would)
@@ -284,6 +284,15 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any, stage: str,
         state.apply(StateAssignment(family, ParamRef(name), index=register, location=location))
     evaluate_into(effect, state)   # expressions in those samplers' sampler_state blocks
     return found.program, found.compiled
+
+
+def _sampler_ref(name: str) -> ParamRef:
+    """A compiled shader's sampler as a parameter reference: `S[1]` (an element of a sampler
+    array the shader indexed by a constant) is element 1 of parameter S."""
+    if name.endswith("]") and "[" in name:
+        base, index = name[:-1].split("[", 1)
+        return ParamRef(base, index=int(index))
+    return ParamRef(name)
 
 
 def _int_constants(state: DeviceState, shader: str, compiled: Any

@@ -77,8 +77,9 @@ class ExpressionValues:
         shown = name if index is None or info is None or info.index == "none" else f"{name}[{index}]"
         text = _flag_names(name, info, expression.text.strip())
         view = RecordedReads(effect)
+        known: dict[str, Any] = {}          # the initialisers it evaluated, for the reads below
         try:
-            number = state_value(name, index, expression.text, expression.location, view)
+            number = state_value(name, index, expression.text, expression.location, view, known)
         except EffectError as err:
             self.errors.append((shown, err))
             self.pending[where] = ""        # the error is the reason: no note besides
@@ -92,7 +93,7 @@ class ExpressionValues:
                 self.pending[where] = (f"{shown} = {text} reads {param_name}, which has no value: "
                                        "not checked until the application sets it")
                 return None
-            read = f"{param_name} = {_number_text(param.value)}"
+            read = f"{param_name} = {_number_text(_current(effect, param, known))}"
             if param.semantic:
                 read += (f" (semantic {param.semantic}: the application may set another value "
                          "at render time)")
@@ -110,6 +111,21 @@ class ExpressionValues:
             ev = self.by_location.get(r.location)
             out.append(r if ev is None else replace(r, message=f"{r.message}; {ev.clause()}"))
         return out
+
+
+def _current(effect: Effect, param: Any, known: dict[str, Any]) -> Any:
+    """A parameter's value as the expression read it: one whose initialiser is itself an
+    expression (`float P1 = P0 * 2;`) is that expression's numbers, as the state's evaluation
+    found them (`known`), else evaluated the same way."""
+    if not isinstance(param.value, (Expression, ParamRef)):
+        return param.value
+    if param.name not in known:
+        from effects.shaders.hlsl.expressions import initializer_text   # lark: when needed
+        from effects.shaders.hlsl.preshader import initializer_numbers
+        init = initializer_text(param)
+        known[param.name] = np.asarray(initializer_numbers(
+            init.text, init.location, effect, host_values=True, known=known))
+    return known[param.name]
 
 
 def _expression_of(effect: Effect, value: Any) -> Expression | None:

@@ -12,7 +12,7 @@
 """
 from __future__ import annotations
 
-from tests.paths import ROOT, TESTS
+from tests.paths import ROOT
 
 import json
 import os
@@ -109,13 +109,13 @@ def test_every_case_has_an_expectation():
     assert set(EXPECTED) == set(hostile_cases.CASES)
 
 
-def _run_children(names: list[str], script: str | None = None) -> dict[str, dict]:
-    """Run `names` in as few limited children as hangs allow: a child killed while running a
-    case fails that case; the rest go on in a fresh child. `script`: the case module run as
-    the child (default hostile_cases)."""
+def _run_children(names: list[str], module=hostile_cases) -> dict[str, dict]:
+    """Run `names` (cases of `module`, a script like hostile_cases) in as few limited children
+    as hangs allow: a child killed while running a case fails that case; the rest go on in a
+    fresh child."""
     results: dict[str, dict] = {}
     left = list(names)
-    script = script or str(Path(hostile_cases.__file__))
+    script = str(Path(module.__file__))
     while left:
         proc = subprocess.run([sys.executable, script, *left], capture_output=True, text=True,
                               timeout=60 + 6 * len(left), cwd=ROOT,

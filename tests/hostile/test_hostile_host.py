@@ -4,9 +4,7 @@ rendered or loaded, each within 5 s and 1 GiB (tests/hostile/host_cases.py, run 
 children by test_hostile's machinery); and the command line's exit code and message."""
 from __future__ import annotations
 
-from tests.paths import ROOT
 
-from pathlib import Path
 
 import pytest
 
@@ -112,7 +110,7 @@ def test_every_case_has_an_expectation():
 
 @pytest.fixture(scope="module")
 def outcomes() -> dict[str, dict]:
-    return _run_children(list(host_cases.CASES), script=str(Path(host_cases.__file__)))
+    return _run_children(list(host_cases.CASES), host_cases)
 
 
 @pytest.mark.slow

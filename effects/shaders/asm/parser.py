@@ -455,6 +455,10 @@ class _Parser:
             if op.kind != "imm":
                 raise AsmError(f"{base} takes numbers after the register; '{op.text}' is a "
                                "register", op.location, source_line=self._line_at(op.location))
+            if base == "def" and not abs(op.value) <= _FLT_MAX:
+                # a def register is a float32: 1e39 would be inf, which no constant holds
+                raise AsmError(f"def takes finite float32 values (at most 3.4e38); {op.text} is "
+                               "not one", op.location, source_line=self._line_at(op.location))
             values.append(op.value)
         if base == "defi":
             values = [int(v) for v in values]
@@ -470,6 +474,9 @@ class _Parser:
             prog.int_defs[reg.index] = tuple(values)  # type: ignore[assignment]
         elif values:
             prog.bool_defs[reg.index] = bool(values[0])
+
+
+_FLT_MAX = 3.4028234663852886e38 * (1 + 2.0 ** -25)   # what still rounds to a finite float32
 
 
 # a shader names a few registers many times

@@ -12,7 +12,8 @@ from typing import Any, Callable
 
 from effects.base.errors import Location
 from effects.shaders.hlsl.context import Context
-from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.dag import Operand, can_fold, fold
+from effects.shaders.hlsl.folding import bitwise, truncate
 from effects.shaders.hlsl.values import Value, component, operand, split
 from effects.shaders.hlsl.types import HType, common_base, shape_of, vector
 
@@ -33,7 +34,33 @@ class Arith:
         return self.g.op(name, args, width, loc)
 
     def lanes(self, name: str, comps_list: list[list[Operand]], loc: Location) -> list[Operand]:
-        """A component-wise op over equally long component lists, as one vector node."""
+        """A component-wise op over equally long component lists, as one vector node a group
+        of four (a register's width: a float3x3's nine are three nodes), folded at once when
+        every component is a constant (the node Graph.op would fold to)."""
+        n = max(len(c) for c in comps_list)
+        if n > 4:
+            out: list[Operand] = []
+            for k in range(0, n, 4):
+                out += self.lanes(name, [c[k:k + 4] if len(c) > 1 else c for c in comps_list],
+                                  loc)
+            return out
+        values = []
+        for comps in comps_list:
+            lanes = []
+            for c in comps:
+                v = c.node.value
+                if v is None or len(c.swizzle) != 1:
+                    break
+                x = v[c.swizzle[0]]
+                lanes.append(-x if c.negate else x)
+            else:
+                values.append(tuple(lanes))
+                continue
+            break
+        else:
+            if can_fold(name):
+                width = max(len(v) for v in values)
+                return split(self.g.const(tuple(fold(name, values, width)), loc))
         ops = [operand(self.g, comps) for comps in comps_list]
         return split(self.op(name, ops, loc))
 
@@ -81,8 +108,7 @@ class Arith:
         # toward zero: x - frc(x) is floor; negative non-integers add one back
         fl = self.floor(comps, loc)
         if all(c.const_values() is not None for c in fl):
-            import math
-            return [self.const(float(math.trunc(c.const_values()[0]))) for c in comps]
+            return [self.const(truncate(c.const_values()[0])) for c in comps]  # type: ignore[index]
         neg = self.compare("<", comps, [self.const(0.0)] * len(comps), loc)
         frac = self.frc(comps, loc)
         nonint = self.compare("!=", frac, [self.const(0.0)] * len(comps), loc)
@@ -147,16 +173,25 @@ class Arith:
         elif opname == "*":
             comps = self.lanes("mul", [ca, cb], loc)
         elif opname == "/":
+            self._int_divisor(opname, t, cb, loc)
             comps = self.divide(ca, cb, loc)
             if t.base in ("int", "uint"):
                 comps = self.trunc(comps, loc)
         elif opname == "%":
+            self._int_divisor(opname, t, cb, loc)
             comps = self.fmod(ca, cb, loc)
         elif opname in ("&", "|", "^", "<<", ">>"):
-            comps = self.bitwise(opname, ca, cb, loc)
+            comps = self.bitwise(opname, ca, cb, loc, t.base)
         else:
             raise self.error(f"X3000: operator '{opname}' is not supported", loc)
         return Value(t, comps)
+
+    def _int_divisor(self, opname: str, t: HType, cb: list[Operand], loc: Location) -> None:
+        """An integer divided by a constant 0 has no value: fxc refuses it (vkd3d-shader's
+        tests of fxc, arithmetic-int.shader_test; the X code was not found)."""
+        if t.base in ("int", "uint") and any(c.const_values() == (0.0,) for c in cb):
+            raise self.error(f"integer division by zero ('{opname}' with a constant 0 divisor)",
+                             loc)
 
     def divide(self, ca: list[Operand], cb: list[Operand], loc: Location) -> list[Operand]:
         if all(c.const_values() is not None for c in cb):
@@ -176,16 +211,17 @@ class Arith:
                           [c.neg() for c in fr], fr, loc)
         return self.lanes("mul", [sgn, cb], loc)
 
-    def bitwise(self, opname: str, ca: list[Operand], cb: list[Operand], loc: Location) -> list[Operand]:
+    def bitwise(self, opname: str, ca: list[Operand], cb: list[Operand], loc: Location,
+                base: str = "int") -> list[Operand]:
+        """Constant operands only (DX9 has no integer hardware), folded by fxc's 32-bit rules
+        (folding.bitwise: a shift takes its count's low five bits, results wrap)."""
         out = []
         for x, y in zip(ca, cb):
             vx, vy = x.const_values(), y.const_values()
             if vx is None or vy is None:
                 raise self.error(f"X3535: bitwise operation '{opname}' needs integer hardware; "
                                  f"{self.ctx.target.name} has none (only constant operands fold)", loc)
-            a, b = int(vx[0]), int(vy[0])
-            r = {"&": a & b, "|": a | b, "^": a ^ b, "<<": a << b, ">>": a >> b}[opname]
-            out.append(self.const(float(r)))
+            out.append(self.const(bitwise(opname, vx[0], vy[0], base)))
         return out
 
     # -- comparisons and selects ------------------------------------------------------------
@@ -278,6 +314,9 @@ class Arith:
         return self.lanes("mad", [cond, diff, out_b], loc)
 
     def to_bool(self, v: Value, loc: Location) -> Value:
+        if not v.type.numeric:
+            raise self.error(f"X3020: a condition or logical operand needs a numeric value, not "
+                             f"'{v.type}'", loc)
         if v.type.base == "bool":
             return v
         return Value(v.type.with_base("bool"),

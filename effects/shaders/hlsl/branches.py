@@ -144,7 +144,7 @@ def bool_register(ev: Any, name: str) -> int:
     if name not in regs:
         bound = explicit_register(ev.ctx, name, "b")
         if bound is not None:
-            regs[name] = int(bound[1:])
+            regs[name] = bound
         else:
             taken = set(regs.values())
             k = 0

@@ -26,11 +26,12 @@ import dataclasses
 import re
 from typing import Any, Callable
 
-from effects.base import caches
+from effects.base import caches, limits
 from effects.base.errors import EffectError
 from effects.model import CompileShader, Effect, RecordedReads
 
 CACHE_BYTES = 64 << 20
+_COMPILER_LIMITS = ("hlsl_nesting", "hlsl_components", "hlsl_work", "literal_digits")
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
@@ -241,7 +242,9 @@ def cached_compile(effect: Any, value: CompileShader, compile: Callable[[], Any]
             if isinstance(hit, error_type):
                 raise hit
             return hit
-    key = compile_key(effect, value)
+    # the limits the compiler reads: a compile refused at one limit is tried again when the
+    # host raises it (the on-disk key above holds every limit already)
+    key = compile_key(effect, value) + tuple(limits.get(name) for name in _COMPILER_LIMITS)
     hit = CACHE.get(key)
     if hit is None:
         hit = CACHE.get(key + (value.location,))

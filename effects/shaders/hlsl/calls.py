@@ -13,12 +13,11 @@ from typing import Any
 
 import lark
 
+from effects.shaders.hlsl.budget import enter_level, leave_level, spend
 from effects.shaders.hlsl.context import FunctionDef, resolve_type
 from effects.shaders.hlsl.lvalues import store
 from effects.shaders.hlsl.types import HType
 from effects.shaders.hlsl.values import Frame, Value
-
-MAX_DEPTH = 32
 
 
 def parameters(ev: Any, fdef: FunctionDef) -> list[tuple[str, HType, str, Any, Any]]:
@@ -30,9 +29,16 @@ def parameters(ev: Any, fdef: FunctionDef) -> list[tuple[str, HType, str, Any, A
         words = [str(m) for m in mods.children] if mods is not None else []
         direction = "inout" if "inout" in words else "out" if "out" in words else \
             "uniform" if "uniform" in words else "in"
-        t = ev.array_of(resolve_type(ev.ctx, spec, fdef.origin, mods), dims)
+        t = _array_of(ev, fdef, resolve_type(ev.ctx, spec, fdef.origin, mods), dims, name)
         out.append((str(name), t, direction, default, sem))
     return out
+
+
+def _array_of(ev: Any, fdef: FunctionDef, t: HType, dims: Any, name: Any) -> HType:
+    """A parameter's array type: its sizes are constant expressions of the function's text."""
+    if not dims.children:
+        return t
+    return ev.spawn(fdef.origin).array_of(t, dims, f"parameter '{name}'")
 
 
 def return_type(ctx: Any, fdef: FunctionDef) -> HType:
@@ -77,9 +83,23 @@ def resolve_overload(ev: Any, fdefs: list[FunctionDef], args: list[Value], where
 
 
 def inline_call(ev: Any, fdef: FunctionDef, args: list[Value], arg_trees: list[Any], where: Any) -> Value:
-    if ev.depth >= MAX_DEPTH:
+    """The call's value, its body evaluated in place (one level of hlsl_nesting; a function
+    that is already being inlined is recursion, which fxc refuses whether or not it ends)."""
+    calling = ev.ctx.calling
+    if any(f is fdef for f in calling):
         raise ev.error(f"X3500: recursive call to '{fdef.name}' (recursion is not allowed)", where)
+    enter_level(ev, where, 2)
+    calling.append(fdef)
+    try:
+        return _inline(ev, fdef, args, arg_trees, where)
+    finally:
+        calling.pop()
+        leave_level(ev, 2)
+
+
+def _inline(ev: Any, fdef: FunctionDef, args: list[Value], arg_trees: list[Any], where: Any) -> Value:
     params = parameters(ev, fdef)
+    spend(ev, 1 + sum(t.components for _, t, *_ in params), where)
     callee = ev.spawn(fdef.origin)
     callee.depth = ev.depth + 1
     callee.mask = ev.active()
@@ -102,8 +122,8 @@ def inline_call(ev: Any, fdef: FunctionDef, args: list[Value], arg_trees: list[A
         if direction in ("out", "inout") and k < len(arg_trees):
             result = callee.scopes[0][name].value
             target = arg_trees[k]
-            current = ev.expr(target)
-            store(ev, target, ev.a.convert(result, current.type, ev.at(target)))
+            store(ev, target, lambda current, result=result, target=target:
+                  ev.a.convert(result, current.type, ev.at(target)))
     frame = callee.frames[-1]
     if ret_type.kind != "void" and frame.retval is None:
         raise fdef.origin.error(f"X3080: '{fdef.name}': function must return a value", fdef.tree)

@@ -52,6 +52,13 @@ class CodeGen:
         self.register_sizes = register_sizes
         self.sampler_regs = dict(sampler_registers)
         self.defs: dict[int, list[float | None]] = {}
+        # indexes of defs (const_src finds a constant in O(1), not by scanning every def:
+        # a shader of thousands of literals took quadratic time): the first lane holding each
+        # value, the registers with a free lane (in the order made), each full row's register
+        self._lane_of: dict[float, tuple[int, int]] = {}
+        self._open: list[int] = []
+        self._row_of: dict[tuple[float, ...], int] = {}
+        self._low = 0                  # every register below it is taken (taken only grows)
         self.loop_regs: dict[int, list[Reg]] = {}       # loop id -> carried registers
         self.if_regs: dict[int, list[Reg]] = {}         # if id -> result registers
         self.a0: tuple | None = None                    # the address a0.x holds
@@ -75,34 +82,45 @@ class CodeGen:
 
     def _free_constant(self, count: int) -> int:
         taken = self._taken()
-        k = 0
+        k = self._low if count == 1 else 0
         while any(k + i in taken for i in range(count)):
             k += 1
+        if count == 1:
+            self._low = k
         return k
 
     def const_src(self, values: list[float]) -> Src:
-        """A `def` constant holding `values` (one per instruction lane used)."""
+        """A `def` constant holding `values` (one per instruction lane used): a lane already
+        holding a single value, else a free lane of a scalar pool register, else a new one."""
         if len(set(values)) == 1:
             v = values[0]
-            for reg, slots in self.defs.items():       # a lane already holding it
-                for lane, x in enumerate(slots):
-                    if x == v:
-                        return Src(Reg("c", reg), {}, fixed=(lane,) * 4)
-            for reg, slots in self.defs.items():       # a free lane of a scalar pool register
-                if getattr(slots, "pool", False) or None in slots:
-                    for lane, x in enumerate(slots):
-                        if x is None:
-                            slots[lane] = v
-                            return Src(Reg("c", reg), {}, fixed=(lane,) * 4)
+            hit = self._lane_of.get(v)
+            if hit is not None:                          # a lane already holding it
+                return Src(Reg("c", hit[0]), {}, fixed=(hit[1],) * 4)
+            while self._open:                            # a free lane of a pool register
+                reg = self._open[0]
+                slots = self.defs[reg]
+                if None not in slots:
+                    self._open.pop(0)
+                    continue
+                lane = slots.index(None)
+                slots[lane] = v
+                self._lane_of.setdefault(v, (reg, lane))
+                return Src(Reg("c", reg), {}, fixed=(lane,) * 4)
             reg = self._free_constant(1)
             self.defs[reg] = [v, None, None, None]
+            self._lane_of.setdefault(v, (reg, 0))
+            self._open.append(reg)
             return Src(Reg("c", reg), {}, fixed=(0,) * 4)
         want = tuple(values) + (values[-1],) * (4 - len(values))
-        for reg, slots in self.defs.items():
-            if tuple(slots) == want:
-                return Src(Reg("c", reg), {}, fixed=IDENTITY)
+        reg = self._row_of.get(want)
+        if reg is not None:
+            return Src(Reg("c", reg), {}, fixed=IDENTITY)
         reg = self._free_constant(1)
         self.defs[reg] = list(want)
+        self._row_of[want] = reg
+        for lane, x in enumerate(want):
+            self._lane_of.setdefault(x, (reg, lane))
         return Src(Reg("c", reg), {}, fixed=IDENTITY)
 
     # -- analysis ---------------------------------------------------------------------------

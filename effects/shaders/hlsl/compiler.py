@@ -16,7 +16,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from effects.base.errors import Location
+from effects.base.errors import EffectError, Location, UNKNOWN_LOCATION
 from effects.model import Effect
 from effects.shaders.asm import AsmProgram
 # CompiledShader lives in shader.py and compile_state in cache.py: a cached shader needs no
@@ -24,16 +24,19 @@ from effects.shaders.asm import AsmProgram
 from effects.shaders.hlsl.shader import CompiledShader, assemble_generated
 from effects.shaders.hlsl.calls import parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
+from effects.shaders.hlsl.budget import out_of_stack, spend
 from effects.shaders.hlsl.codegen import CodeGen
 from effects.shaders.hlsl.codegen_ps1 import generate_ps1
 from effects.shaders.hlsl.context import Context, explicit_register as _explicit, load_context
 from effects.shaders.hlsl.dag import Node, Operand
 from effects.shaders.hlsl.flowcode import needed
+from effects.shaders.hlsl.folding import finite32
 from effects.shaders.hlsl.evaluate import Evaluator, Frame
 from effects.shaders.hlsl.parse import HlslError, Origin, parse
 from effects.shaders.hlsl.types import HType, register_count
 from effects.shaders.hlsl.values import Value
 
+EMIT_COST = 4
 _SEMANTIC = re.compile(r"^([A-Za-z_]+?)(\d*)$")
 _VS_OUT = {"POSITION": "oPos", "COLOR": "oD", "TEXCOORD": "oT", "FOG": "oFog", "PSIZE": "oPts"}
 
@@ -57,6 +60,21 @@ _PS3_MISC = {"VPOS": ("vPos", "dcl vPos.xy"), "VFACE": ("vFace", "dcl vFace")}
 def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...] = (),
                    where: Location | None = None) -> CompiledShader:
     where = where or Location(effect.path, 1, 1)
+    fdefs = [f for f in effect.functions if f.name == entry]
+    at = fdefs[0].location if fdefs else where
+    try:
+        return _compile_shader(effect, entry, target, args, where)
+    except RecursionError:
+        raise out_of_stack(at) from None
+    except EffectError as err:
+        if err.location != UNKNOWN_LOCATION:
+            raise
+        # a check deep in code generation that had no place to give: the function's
+        raise type(err)(err.message, at) from None
+
+
+def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...],
+                    where: Location) -> CompiledShader:
     ctx = load_context(effect, target.lower())
     fdefs = ctx.functions.get(entry)
     if not fdefs:
@@ -121,13 +139,15 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
             o.comps, roots = roots[:len(o.comps)], roots[len(o.comps):]
         ctx.kills[:] = roots
     nodes = needed([c.node for o in outputs for c in o.comps] + [k.node for k in ctx.kills])
+    # generating and assembling the code costs about four evaluation steps a node
+    spend(ev, EMIT_COST * len(nodes), fdef.tree)
+    _finite_constants(ctx, nodes, outputs, fdef)
     for n in nodes:
         if n.op == "input" and n.key[0] == "unmapped":
             raise HlslError(f"X4502: invalid {ctx.target.name} input semantic '{n.key[1]}'",
                             n.location)
     constants, sizes = _constant_registers(ctx, nodes)
-    samplers = {name: int(b[1:]) for name in ctx.samplers_used
-                if (b := _explicit(ctx, name, "s")) is not None}
+    samplers = _sampler_registers(ctx)
     if ctx.target.rules.is_ps1:
         # no dcl, no oC#, one texture read per stage, modifiers: a generator of its own
         generated = generate_ps1(ctx, outputs, constants, samplers, sizes)
@@ -145,6 +165,57 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
                           {n: p for n, p in preshaders.items() if n in generated.constants})
 
 
+def _sampler_registers(ctx: Context) -> dict[str, int]:
+    """The s# fixed before code generation: explicit register(s#) bindings, and the elements
+    of a sampler array read by constant indices (`SA[1]`), which take the array's registers
+    in order, as fxc lays an array out (its first free block, by first use, when unbound).
+    Other samplers get theirs in the code generator, by first use."""
+    regs = {name: b for name in ctx.samplers_used if (b := _explicit(ctx, name, "s")) is not None}
+    taken = set(regs.values())
+    blocks: dict[str, int] = {}
+    for name in ctx.samplers_used:
+        if name in regs or not name.endswith("]"):
+            continue
+        base, index = name[:-1].split("[", 1)
+        if base not in blocks:
+            length = ctx.effect.parameter(base).array[0]
+            k = 0
+            while any(k + i in taken for i in range(length)):
+                k += 1
+            blocks[base] = k
+            taken.update(range(k, k + length))
+        regs[name] = blocks[base] + int(index)
+    return regs
+
+
+def _finite_constants(ctx: Context, nodes: list[Node], outputs: list[Output], fdef: Any) -> None:
+    """Every constant the code reads is a finite float32, as a `def` register holds: a value
+    folded to inf or NaN (`1.0 / 0`, `1e39`, `frac(1e39 * 1e39)`) is refused where it is read.
+    fxc refused infinities and NaNs for shader models 1-3 (vkd3d-shader, which follows it:
+    "Infinities and NaNs are not allowed by the shader model"; its X code was not found)."""
+    def refuse(values: tuple[float, ...], loc: Location) -> None:
+        bad = next(v for v in values if not finite32(v))
+        where = loc if loc != UNKNOWN_LOCATION else fdef.origin.at(fdef.tree)
+        raise fdef.origin.error(
+            f"a constant here folds to {bad!r}, which a {ctx.target.name} constant register "
+            "cannot hold (Direct3D 9 shader constants are finite float32: at most "
+            "3.4e38, no infinity or NaN)", where)
+
+    def check(operand: Operand, loc: Location) -> None:
+        values = operand.const_values()
+        if values is not None and not all(finite32(v) for v in values):
+            own = operand.node.location          # a literal's, or the op it was folded from
+            refuse(values, own if own != UNKNOWN_LOCATION else loc)
+
+    for n in nodes:
+        if n.op != "const":
+            for a in n.args:
+                check(a, n.location)
+    for o in outputs:
+        for c in o.comps:
+            check(c, o.location)
+
+
 def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int], dict[str, int]]:
     """fxc's order: explicit register(c#) bindings, then the uniforms by first use (`nodes`:
     what the outputs reach, in creation order)."""
@@ -158,7 +229,7 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
     for name in order:
         b = _explicit(ctx, name, "c")
         if b is not None:
-            regs[name] = int(b[1:])
+            regs[name] = b
             taken.update(range(regs[name], regs[name] + sizes[name]))
     for name in order:
         if name in regs:

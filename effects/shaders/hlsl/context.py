@@ -8,11 +8,12 @@ register), samplers bind sampler registers.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable
 
 import lark
 import numpy as np
 
+from effects.base import limits
 from effects.base.errors import EffectWarning, Location
 from effects.model import Effect, Function, Parameter
 from effects.shaders.asm import lookup
@@ -61,15 +62,29 @@ class Context:
     # constants, their current values, instead of constant registers
     host_values: bool = False
     # What the evaluator gives out and works out as it goes (none is an argument): int and
-    # bool parameters' i# and b#, `defi` values by i#, the globals read and those being
-    # initialised, by name, and the real flow control's nesting
+    # bool parameters' i# and b#, `defi` values by i#, the globals read by name, and the real
+    # flow control's nesting
     int_registers: dict[str, int] = field(default_factory=dict, init=False, repr=False)
     int_defs: dict[int, tuple] = field(default_factory=dict, init=False, repr=False)
     bool_registers: dict[str, int] = field(default_factory=dict, init=False, repr=False)
     global_values: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
-    initializing: set[str] = field(default_factory=set, init=False, repr=False)
+    # the globals whose initialisers are evaluated, and the chain being evaluated now
+    # (expressions._initialized): None outside one
+    initialized: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
+    initializing: list[str] | None = field(default=None, init=False, repr=False)
+    # the functions being inlined (calls.inline_call: one again is recursion, X3500), and what
+    # unroll.never_ends learnt of each loop (by the tree's id) and of each start it was asked
+    calling: list[Any] = field(default_factory=list, init=False, repr=False)
+    loop_facts: dict[int, tuple] = field(default_factory=dict, init=False, repr=False)
+    loop_verdicts: dict[tuple, Any] = field(default_factory=dict, init=False, repr=False)
     flow_depth: dict[str, int] = field(init=False, repr=False, default_factory=lambda: {
         "static": 0, "dynamic": 0, "loop": 0})
+    # what the evaluation may spend (budget.py): levels of nesting now, and the limits, read
+    # once per compile
+    nesting: int = 0
+    nesting_cap: int = field(default_factory=lambda: limits.get("hlsl_nesting"))
+    work_cap: int = field(default_factory=lambda: limits.get("hlsl_work"))
+    digits_cap: int = field(default_factory=lambda: limits.get("literal_digits"))
 
 
 def type_names(effect: Effect) -> frozenset[str]:
@@ -90,7 +105,8 @@ def load_context(effect: Effect, target_name: str) -> Context:
             tree = parse(s.source, "typedef_decl", origin, names)
             _, mods, spec, name, dims = tree.children
             ctx.typedefs[s.name] = array_of(resolve_type(ctx, spec, origin, mods),
-                                            literal_sizes(dims, origin))
+                                            literal_sizes(dims, origin),
+                                            lambda m: origin.error(m, tree), f"'{name}'")
             continue
         tree = parse(s.source, "struct_def", origin, names)
         ctx.structs[s.name] = struct_type(ctx, tree, origin)
@@ -113,9 +129,12 @@ def struct_type(ctx: Context, tree: lark.Tree, origin: Origin) -> HType:
         i = 0
         while i < len(rest):
             fname, dims, sem = rest[i], rest[i + 1], rest[i + 2]
-            fields.append((str(fname), array_of(t, literal_sizes(dims, origin)), semantic_text(sem)))
+            fields.append((str(fname), array_of(t, literal_sizes(dims, origin),
+                                                lambda m: origin.error(m, fname),
+                                                f"member '{fname}'"), semantic_text(sem)))
             i += 3
-    return HType("struct", name=name, fields=tuple(fields))
+    return checked(HType("struct", name=name, fields=tuple(fields)),
+                   lambda m: origin.error(m, tree), f"struct '{name}'")
 
 
 def semantic_text(tree: Any) -> str | None:
@@ -132,10 +151,41 @@ def register_binding(tree: Any) -> str | None:
     return None
 
 
-def array_of(t: HType, sizes: list[int]) -> HType:
+MAX_ARRAY = 65536     # fxc: X3059, array dimension must be between 1 and 65536
+
+
+def array_of(t: HType, sizes: list[float], fail: Callable[[str], Exception],
+             subject: str = "this variable") -> HType:
+    """`t[sizes[0]][sizes[1]]...`, each size checked (fxc's X3059) and the whole against
+    hlsl_components and hlsl_nesting as it is built, before anything is allocated for it.
+    `fail(message)` makes the located error."""
     for n in reversed(sizes):
-        t = HType("array", element=t, length=n)
+        if not (n == n and 1 <= n < MAX_ARRAY + 1):     # NaN and inf too (a folded size)
+            shown = f"{n:g}" if isinstance(n, float) else str(n)
+            raise fail(f"X3059: array dimension must be between 1 and {MAX_ARRAY} "
+                       f"({subject}: {shown})")
+        t = checked(HType("array", element=t, length=int(n)), fail, subject)
     return t
+
+
+def checked(t: HType, fail: Callable[[str], Exception], subject: str) -> HType:
+    """`t`, or the located error when it holds more numbers than hlsl_components or nests
+    deeper than hlsl_nesting (a struct of structs doubling per level, `float a[65536][65536]`):
+    each is known from the type alone (HType.components, .depth)."""
+    if t.components > limits.get("hlsl_components"):
+        raise fail(limits.message("hlsl_components", t.components, f"the type of {subject}"))
+    if t.depth > limits.get("hlsl_nesting"):
+        raise fail(limits.message("hlsl_nesting", t.depth, f"the type of {subject}"))
+    return t
+
+
+def int_literal(text: str, fail: Callable[[str], Exception], cap: int | None = None) -> int:
+    """An HLSL integer literal (`42`, `0x2A`, `7u`), its digits under literal_digits (Python
+    itself refuses more than 4,300; `cap`: that limit as a compile read it)."""
+    digits = text.rstrip("uUlL")
+    if len(digits) > (cap if cap is not None else limits.get("literal_digits")):
+        raise fail(limits.message("literal_digits", len(digits), "an integer literal"))
+    return int(digits, 16) if digits.lower().startswith("0x") else int(digits)
 
 
 def literal_sizes(dims: lark.Tree, origin: Origin) -> list[int]:
@@ -145,8 +195,30 @@ def literal_sizes(dims: lark.Tree, origin: Origin) -> list[int]:
         if not (isinstance(d, lark.Tree) and d.data == "int_lit"):
             raise origin.error("X3058: array dimensions of struct members must be literal",
                                d if d is not None else dims)
-        out.append(int(str(d.children[0]).rstrip("uUlL"), 0))
+        out.append(int_literal(str(d.children[0]), lambda m: origin.error(m, d)))
     return out
+
+
+def sized_type(tree: lark.Tree, origin: Origin) -> HType:
+    """`vector<T, n>` / `matrix<T, r, c>` (a type or a constructor's): fxc takes 1 to 4 for
+    each size (X3052 for a vector's, X3053 for a matrix's: fxc's codes as recalled, their
+    texts not found in a source stored here)."""
+    kids = [c for c in tree.children if isinstance(c, lark.Token)]
+    base_tok = next(c for c in kids if c.type == "TYPE")
+    base = builtin(str(base_tok))
+    sizes = [c for c in kids if c.type == "INT"]
+    values = [int_literal(str(c), lambda m, c=c: origin.error(m, c)) for c in sizes]
+    numeric = base.base if base is not None and base.numeric else "float"
+    if len(values) == 1:
+        if not 1 <= values[0] <= 4:
+            raise origin.error(f"X3052: vector dimension must be between 1 and 4, not "
+                               f"{values[0]}", sizes[0])
+        return vector(numeric, values[0])
+    for tok, n in zip(sizes, values):
+        if not 1 <= n <= 4:
+            raise origin.error(f"X3053: matrix dimensions must be between 1 and 4, not {n}",
+                               tok)
+    return matrix(numeric, values[0], values[1])
 
 
 def resolve_type(ctx: Context, tree: lark.Tree, origin: Origin, mods: Any = None) -> HType:
@@ -157,12 +229,8 @@ def resolve_type(ctx: Context, tree: lark.Tree, origin: Origin, mods: Any = None
     if kind == "builtin_type":
         t = builtin(str(tree.children[0]))
         assert t is not None
-    elif kind == "matrix_type":
-        base = builtin(str(tree.children[1]))
-        t = matrix(base.base if base else "float", int(tree.children[2]), int(tree.children[3]))
-    elif kind == "vector_type":
-        base = builtin(str(tree.children[1]))
-        t = vector(base.base if base else "float", int(tree.children[2]))
+    elif kind in ("matrix_type", "vector_type"):
+        t = sized_type(tree, origin)
     else:
         name = str(tree.children[0])
         t = ctx.structs.get(name) or ctx.typedefs.get(name)
@@ -193,9 +261,7 @@ def parameter_type(ctx: Context, p: Parameter) -> HType:
             t = vector(base, spec.cols)
     else:
         t = HType(spec.base)
-    for n in reversed(p.array):
-        t = HType("array", element=t, length=n)
-    return t
+    return array_of(t, list(p.array), lambda m: HlslError(m, p.location), f"'{p.name}'")
 
 
 def static_value(p: Parameter) -> np.ndarray | None:
@@ -212,7 +278,20 @@ def uniform_count(ctx: Context, t: HType) -> int:
     return register_count(t)
 
 
-def explicit_register(ctx: Context, name: str, kind: str) -> str | None:
-    """A parameter's `: register(c4)` binding of that kind for the target ('c4'), else None."""
-    p = ctx.effect.parameter(name)
-    return None if p is None else p.register_for(ctx.target.name, kind)
+def explicit_register(ctx: Context, name: str, kind: str) -> int | None:
+    """The number of a parameter's `: register(c4)` binding of that kind for the target (4),
+    else None; `S[k]`, an element of a sampler array, is the array's register + k. The number's
+    digits are under literal_digits."""
+    base, k = name, 0
+    if name.endswith("]") and "[" in name:
+        base, index = name[:-1].split("[", 1)
+        k = int(index)
+    p = ctx.effect.parameter(base)
+    register = None if p is None else p.register_for(ctx.target.name, kind)
+    if register is None:
+        return None
+    digits = register[1:]
+    if len(digits) > limits.get("literal_digits"):
+        raise HlslError(limits.message("literal_digits", len(digits),
+                                       f"the register number of '{base}'"), p.location)
+    return int(digits) + k

@@ -10,13 +10,11 @@ loops and turned `if` into selects, so the DAG has no control flow.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterable
-
-import numpy as np
+from typing import Any, Iterable
 
 from effects.base.errors import Location, UNKNOWN_LOCATION
+from effects.shaders.hlsl.folding import FOLDS, fold as _fold
 
 
 @dataclass(eq=False)
@@ -81,46 +79,15 @@ class Operand:
         return Operand(self.node, tuple(self.swizzle[i] for i in swizzle), self.negate)
 
 
-def _safe(f: Callable[..., float]) -> Callable[..., float]:
-    def g(*a: float) -> float:
-        try:
-            r = f(*a)
-        except (ValueError, ZeroDivisionError, OverflowError):
-            r = math.inf
-        return float(r)
-    return g
-
-
-def _log2(x: float) -> float:
-    return -math.inf if x == 0 else math.log2(abs(x))
-
-
-# Component-wise folding kernels: op -> scalar function of the lane's arguments.
-LANE_KERNELS: dict[str, Callable[..., float]] = {
-    "mov": lambda a: a, "add": lambda a, b: a + b, "mul": lambda a, b: a * b,
-    "mad": lambda a, b, c: a * b + c, "min": min, "max": max,
-    "frc": lambda a: a - math.floor(a), "abs": abs,
-    "rcp": _safe(lambda a: math.inf if a == 0 else 1.0 / a),
-    "rsq": _safe(lambda a: math.inf if a == 0 else 1.0 / math.sqrt(abs(a))),
-    "exp": _safe(lambda a: 2.0 ** a), "log": _safe(_log2),
-    "pow": _safe(lambda a, b: abs(a) ** b),
-    "cmp": lambda a, b, c: b if a >= 0 else c, "cnd": lambda a, b, c: b if a > 0.5 else c, "lrp": lambda a, b, c: a * b + (1 - a) * c,
-    "sat": lambda a: min(max(a, 0.0), 1.0),
-    "slt": lambda a, b: 1.0 if a < b else 0.0, "sge": lambda a, b: 1.0 if a >= b else 0.0,
-}
-# Reductions and other shapes: op -> (argument widths, result width, kernel on arrays).
-SHAPED: dict[str, tuple[tuple[int, ...], int, Callable[..., list[float]]]] = {
-    "dp3": ((3, 3), 1, lambda a, b: [float(np.dot(a, b))]),
-    "dp4": ((4, 4), 1, lambda a, b: [float(np.dot(a, b))]),
-    "dp2add": ((2, 2, 1), 1, lambda a, b, c: [float(np.dot(a, b) + c[0])]),
-    "crs": ((3, 3), 3, lambda a, b: [float(x) for x in np.cross(a, b)]),
-    "nrm": ((3,), 3, lambda a: [float(x) for x in (a / math.sqrt(float(np.dot(a, a))))]
-            if float(np.dot(a, a)) else [math.inf] * 3),
-    "sincos": ((1,), 2, lambda a: [math.cos(a[0]), math.sin(a[0])]),
-}
+# Folding: folding.py, the IR's kernels (IEEE results, as the renderer computes them).
+# op -> (argument widths or None, result width or None, fold function)
+SHAPED = {op: spec for op, spec in FOLDS.items() if spec[1] is not None}
 # Leaves and side effects that never fold.
 OPAQUE = {"input", "uniform", "uniform_rel", "uniform_al", "tex", "texldp", "texldb", "texldl", "texldd", "dsx", "dsy",
           "kill", "pack"}
+
+
+_RANGES = [tuple(range(n)) for n in range(5)]
 
 
 class Graph:
@@ -129,8 +96,12 @@ class Graph:
     def __init__(self) -> None:
         self.nodes: list[Node] = []
         self._index: dict[tuple, Node] = {}
+        # nodes asked for (shared or not) and components copied: the compile's work so far,
+        # which the evaluator holds to limits.py's hlsl_work (budget.py)
+        self.work = 0
 
     def _new(self, node: Node, sig: tuple) -> Node:
+        self.work += 1
         hit = self._index.get(sig)
         if hit is not None:
             return hit
@@ -140,15 +111,27 @@ class Graph:
         return node
 
     def const(self, values: tuple[float, ...], location: Location = UNKNOWN_LOCATION) -> Operand:
-        values = tuple(float(v) + 0.0 for v in values)   # -0.0 -> 0.0
-        node = self._new(Node("const", (), len(values), value=values, location=location),
-                         ("const", values))
+        values = (float(values[0]) + 0.0,) if len(values) == 1 else \
+            tuple(float(v) + 0.0 for v in values)   # -0.0 -> 0.0
+        sig = ("const", values)
+        node = self._index.get(sig)
+        if node is None:
+            node = Node("const", (), len(values), value=values, location=location)
+        else:
+            self.work += 1
+            return Operand(node, _RANGES[len(values)] if len(values) < 5 else
+                           tuple(range(len(values))))
+        node = self._new(node, sig)
         return Operand(node, tuple(range(len(values))))
 
     def leaf(self, op: str, key: Any, width: int, location: Location = UNKNOWN_LOCATION,
              args: tuple[Operand, ...] = ()) -> Operand:
         sig = (op, key, width, tuple(a.sig() for a in args))
-        node = self._new(Node(op, args, width, key=key, location=location), sig)
+        node = self._index.get(sig)
+        if node is None:
+            node = self._new(Node(op, args, width, key=key, location=location), sig)
+        else:
+            self.work += 1
         return Operand(node, tuple(range(width)))
 
     def op(self, op: str, args: list[Operand], width: int | None = None,
@@ -156,7 +139,7 @@ class Graph:
         """The operand of `op(args)`, folded when every argument is a constant."""
         shaped = SHAPED.get(op)
         if width is None:
-            width = shaped[1] if shaped else max(a.width for a in args)
+            width = shaped[1] if shaped else max(a.width for a in args)  # type: ignore[index]
         consts = [a.const_values() for a in args]
         if op not in OPAQUE and all(c is not None for c in consts):
             return self.const(tuple(fold(op, consts, width)), location)
@@ -164,13 +147,17 @@ class Graph:
         if simplified is not None:
             return simplified
         sig = (op, width, tuple(a.sig() for a in args))
-        node = self._new(Node(op, tuple(args), width, location=location), sig)
+        node = self._index.get(sig)
+        if node is None:
+            node = self._new(Node(op, tuple(args), width, location=location), sig)
+        else:
+            self.work += 1
         return Operand(node, tuple(range(width)))
 
 
 def can_fold(op: str) -> bool:
     """Whether `fold` computes `op` (a preshader runs these on the host)."""
-    return op not in OPAQUE and (op in SHAPED or op in LANE_KERNELS)
+    return op not in OPAQUE and op in FOLDS
 
 
 def host_computable(nodes: list[Node]) -> dict[int, bool]:
@@ -186,12 +173,7 @@ def host_computable(nodes: list[Node]) -> dict[int, bool]:
 
 def fold(op: str, consts: list[Any], width: int) -> list[float]:
     """`op` on constant arguments (each its lanes after swizzle and negation)."""
-    shaped = SHAPED.get(op)
-    if shaped is not None:
-        arrays = [np.array(c[:n], dtype=np.float64) for c, n in zip(consts, shaped[0])]
-        return shaped[2](*arrays)
-    kernel = LANE_KERNELS[op]
-    return [kernel(*(c[i] if len(c) > 1 else c[0] for c in consts)) for i in range(width)]
+    return _fold(op, consts, width)
 
 
 def _all(values: tuple[float, ...] | None, x: float) -> bool:

@@ -19,8 +19,9 @@ import lark
 
 from effects.base.errors import Location
 from effects.shaders.hlsl.arith import Arith
+from effects.shaders.hlsl.budget import OverBudget, check, enter_level, leave_level, spend
 from effects.shaders.hlsl.calls import inline_call
-from effects.shaders.hlsl.expressions import evaluate_expr
+from effects.shaders.hlsl.expressions import _leaves as leaves, evaluate_expr
 from effects.shaders.hlsl.context import Context, FunctionDef, array_of, resolve_type
 from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.branches import bool_register, bool_uniform, comparison, real_if
@@ -29,10 +30,14 @@ from effects.shaders.hlsl.loops import bound_of, has_attribute, real_loop
 from effects.shaders.hlsl.parse import Origin
 from effects.shaders.hlsl.switch import NO_CODE, switch_statement
 from effects.shaders.hlsl.types import HType, scalar
+from effects.shaders.hlsl.unroll import never_ends
 from effects.shaders.hlsl.values import (Frame, Loop, Value, Var, build_value, count_components,
                                           operand)
 
 MAX_ITERATIONS = 1024
+PROBE_AFTER = 8          # most loops end sooner: they never pay for unroll.never_ends
+# the statements that hold others (one level of hlsl_nesting each: budget.py)
+_COMPOUND = frozenset(("block", "if_stmt", "if_else", "for_stmt", "while_stmt", "do_stmt"))
 _COMPARE_NOW = {"lt": lambda a, b: a < b, "le": lambda a, b: a <= b, "gt": lambda a, b: a > b,
                 "ge": lambda a, b: a >= b, "eq": lambda a, b: a == b, "ne": lambda a, b: a != b}
 _SWIZZLE = {c: i for i, c in enumerate("xyzw")} | {c: i for i, c in enumerate("rgba")}
@@ -49,6 +54,7 @@ class Evaluator:
         self.loops: list[Loop] = []
         self.mask: Operand | None = None       # path predicate (None: always)
         self.depth = 0
+        self.in_expression = 0                 # expression evaluations under way (budget.py)
         # the for-init variables of an unrolled loop while its step runs (lvalues.store):
         # stepped whatever the predicate, so the count stays a constant
         self.stepping: frozenset[int] = frozenset()
@@ -57,17 +63,20 @@ class Evaluator:
         """An evaluator for another text (a called function, a compile argument)."""
         return Evaluator(self.ctx, origin)
 
-    def const_int(self, tree: Any) -> int:
-        values = self.expr(tree).const_values()
+    def const_number(self, tree: Any) -> float:
+        v = self.expr(tree)
+        values = v.const_values() if v.type.numeric else None
         if values is None:
             raise self.error("X3013: expression is not a compile-time constant", tree)
-        return int(values[0])
+        return values[0]
 
-    def array_of(self, t: HType, dims: Any) -> HType:
+    def array_of(self, t: HType, dims: Any, subject: str = "this variable") -> HType:
+        """`t` with the array sizes `dims` (constant expressions), checked (context.array_of)."""
         if any(d is None for d in dims.children):
             raise self.error(f"an array of implicit size ('[]') needs an initializer list "
                              f"{NO_CODE}", dims, language=True)
-        return array_of(t, [self.const_int(d) for d in dims.children])
+        return array_of(t, [self.const_number(d) for d in dims.children],
+                        lambda m: self.error(m, dims), subject)
 
     # -- diagnostics ------------------------------------------------------------------------
     def at(self, item: Any) -> Location:
@@ -125,13 +134,18 @@ class Evaluator:
     def merge(self, old: Value, new: Value, p: Operand | None, loc: Location) -> Value:
         if p is None:
             return new
+        if new.type.kind in ("struct", "array"):      # a select per component
+            spend(self, new.type.components, loc)
+        return self._merge(old, new, p, loc)
+
+    def _merge(self, old: Value, new: Value, p: Operand, loc: Location) -> Value:
         if new.type.numeric:
             return Value(new.type, self.a.select([p], new.comps, old.comps, loc))
         if new.type.kind == "struct":
-            return Value(new.type, fields={k: self.merge(old.fields[k], new.fields[k], p, loc)
+            return Value(new.type, fields={k: self._merge(old.fields[k], new.fields[k], p, loc)
                                            for k in new.fields})
         if new.type.kind == "array":
-            return Value(new.type, elements=[self.merge(o, n, p, loc)
+            return Value(new.type, elements=[self._merge(o, n, p, loc)
                                              for o, n in zip(old.elements, new.elements)])
         return new
 
@@ -170,7 +184,15 @@ class Evaluator:
         handler = getattr(self, f"s_{kind}", None)
         if handler is None:
             raise self.error(f"X3000: unsupported statement '{kind}'", tree)
-        handler(tree)
+        check(self, tree)
+        if kind not in _COMPOUND:
+            handler(tree)
+            return
+        enter_level(self, tree)              # a statement holding others: one more level
+        try:
+            handler(tree)
+        finally:
+            leave_level(self)
 
     def s_block(self, tree: lark.Tree) -> None:
         self.block(tree)
@@ -190,8 +212,10 @@ class Evaluator:
             if dims.children and dims.children[0] is None and isinstance(init, lark.Tree) \
                     and init.data == "init_list":
                 t, value = self.implicit_array(base, dims, init)
+                spend(self, t.components, d)         # the storage it is given
             else:
-                t = self.array_of(base, dims)
+                t = self.array_of(base, dims, f"'{name}'")
+                spend(self, t.components, d)
                 value = self.zero(t) if init is None else self.initial(init, t)
             self.declare(str(name), t, value, is_const)
 
@@ -204,7 +228,7 @@ class Evaluator:
         if not comps or len(comps) % per:
             raise self.error(f"X3017: initializer has {len(comps)} values, an array of "
                              f"'{element}' needs a multiple of {per}", init)
-        t = array_of(element, [len(comps) // per])
+        t = array_of(element, [len(comps) // per], lambda m: self.error(m, init))
         return t, self.from_list(comps, t, init)
 
     def initial(self, init: Any, t: HType) -> Value:
@@ -213,20 +237,23 @@ class Evaluator:
         return self.a.convert(self.expr(init), t, self.at(init))
 
     def flatten_list(self, init: Any) -> list[Operand]:
-        if isinstance(init, lark.Tree) and init.data == "init_list":
-            out: list[Operand] = []
-            for child in init.children:
-                if child is None:
-                    continue
-                if isinstance(child, lark.Tree) and child.data == "init_list" and \
-                        len(child.children) and child.children[0] is not None and \
-                        isinstance(child.children[0], lark.Tree) and child.children[0].data == "init_list":
-                    out.extend(self.flatten_list(child))
-                else:
-                    out.extend(self.flatten_list(child) if isinstance(child, lark.Tree)
-                               and child.data == "init_list" else _numbers(self.expr(child)))
-            return out
-        return _numbers(self.expr(init))
+        """The numbers of an initialiser, `{ {1, 2}, x, {{3}} }` flattened in order (braces
+        walked with an explicit stack: their nesting takes no Python stack)."""
+        out: list[Operand] = []
+        stack = [init]
+        while stack:
+            item = stack.pop()
+            if item is None:
+                continue
+            if isinstance(item, lark.Tree) and item.data == "init_list":
+                stack.extend(reversed(item.children))
+                continue
+            v = self.expr(item)
+            if v.type.numeric:
+                out.extend(v.comps)
+            elif v.type.kind in ("struct", "array"):      # its numbers in declaration order
+                out.extend(c for c, _ in leaves(v))
+        return out
 
     def from_list(self, comps: list[Operand], t: HType, where: Any) -> Value:
         need = count_components(t)
@@ -238,7 +265,7 @@ class Evaluator:
 
     def s_typedef_decl(self, tree: lark.Tree) -> None:
         _, mods, spec, name, dims = tree.children
-        t = self.array_of(resolve_type(self.ctx, spec, self.origin, mods), dims)
+        t = self.array_of(resolve_type(self.ctx, spec, self.origin, mods), dims, f"'{name}'")
         self.ctx.typedefs[str(name)] = t
 
     def s_if_stmt(self, tree: lark.Tree) -> None:
@@ -363,18 +390,26 @@ class Evaluator:
         the for's init declares (`own`) live only in the loop, so its step sets them
         whatever the predicate (a pixel that broke, returned or is masked off reads them
         only under that predicate): a counter stays a constant under a run-time break, an
-        enclosing flattened if or a real loop's body, and the loop ends."""
+        enclosing flattened if or a real loop's body, and the loop ends.
+
+        A loop still running after PROBE_AFTER iterations whose end the body cannot change
+        (unroll.py) is run again from its start without its body: one that never ends is
+        X3511 then, not after 1,024 runs of the body. A loop of exactly 1,024 iterations
+        unrolls (the condition is tested before the count)."""
+        start = [(var, var.value) for scope in self.scopes for var in scope.values()]
         loop = Loop()
         saved = self.mask
         self.loops.append(loop)
         try:
             for i in range(MAX_ITERATIONS + 1):
-                if i == MAX_ITERATIONS and why is not None:
-                    raise self.error(f"X3511: unable to unroll loop: {why}", tree)
-                if i == MAX_ITERATIONS:
-                    raise self.error(f"X3511: unable to unroll loop, loop does not appear to "
-                                     f"terminate in a timely manner ({MAX_ITERATIONS} "
-                                     "iterations)", tree)
+                if i == PROBE_AFTER:          # a long loop: does it end at all? (unroll.py)
+                    never = never_ends(self, tree, cond, body, step, test_first, own,
+                                       MAX_ITERATIONS, start)
+                    if never is not None:
+                        raise self.error(
+                            f"X3511: unable to unroll loop: {why}" if why is not None else
+                            f"X3511: unable to unroll loop, loop does not appear to terminate "
+                            f"in a timely manner ({never})", tree)
                 if cond is not None and (test_first or i > 0):
                     c = self.condition(cond)
                     v = c.const_values()
@@ -385,8 +420,19 @@ class Evaluator:
                         loop.broken = self._or(loop.broken, self._and(self.active(), self._not(c)))
                 if self.dead():
                     break
+                if i == MAX_ITERATIONS:       # the body would run a 1,025th time
+                    raise self.error(f"X3511: unable to unroll loop: {why}" if why is not None
+                                     else f"X3511: unable to unroll loop, loop does not appear "
+                                     f"to terminate in a timely manner ({MAX_ITERATIONS} "
+                                     "iterations)", tree)
                 loop.continued = None
-                self.scoped(body)
+                try:
+                    self.scoped(body)
+                except OverBudget:
+                    if why is None:
+                        raise
+                    # a loop that could not be a rep, unrolled until the budget ran out
+                    raise self.error(f"X3511: unable to unroll loop: {why}", tree) from None
                 loop.continued = None
                 if self.dead():
                     break
@@ -440,8 +486,9 @@ class Evaluator:
         p = self.active()
         if p is not None:
             comps = self.a.select([p], comps, [self.g.const((0.0,))] * len(comps), loc)
-        op = operand(self.g, comps)
-        self.ctx.kills.append(self.g.leaf("kill", None, op.width, loc, (op,)))
+        for k in range(0, len(comps), 4):          # a texkill tests one register
+            op = operand(self.g, comps[k:k + 4])
+            self.ctx.kills.append(self.g.leaf("kill", None, op.width, loc, (op,)))
 
     # -- expressions live in expressions.py --------------------------------------------------
     def expr(self, tree: Any) -> Value:

@@ -3,24 +3,67 @@ indexing, constructors, casts, assignment (read-modify-write of the named variab
 under the current predicate) and calls (user functions first, then intrinsics)."""
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Generator
 
 import lark
 import numpy as np
 
-from effects.shaders.hlsl.context import parameter_type, resolve_type, static_value
+from effects.model import Expression, ParamRef
+from effects.shaders.hlsl.budget import enter_level, leave_level, over_budget
+from effects.shaders.hlsl.context import (int_literal, parameter_type, resolve_type, sized_type,
+                                          static_value)
+from effects.shaders.hlsl.folding import bitwise_not
 from effects.shaders.hlsl.parse import Origin, parse
 from effects.shaders.hlsl.dag import Operand
-from effects.shaders.hlsl.types import BOOL, INT, HType, builtin, scalar, shape_of, vector
+from effects.shaders.hlsl.types import BOOL, INT, HType, builtin, scalar
 from effects.shaders.hlsl.calls import resolve_overload
 from effects.shaders.hlsl.intrinsics import INTRINSICS, call_intrinsic
 from effects.shaders.hlsl.loops import al_element
-from effects.shaders.hlsl.lvalues import const_index, store, swizzle_lanes
-from effects.shaders.hlsl.values import Value, build_value, count_components
+from effects.shaders.hlsl.lvalues import const_index, element_of, member_of, store
+from effects.shaders.hlsl.values import Value, build_value
 
 
 
 def evaluate_expr(ev: Any, tree: Any) -> Value:
+    """The value of expression `tree`, evaluated without recursion: a handler that needs a
+    subexpression's value yields its tree and is sent the value back, so a 5,000-term sum or a
+    1,000-deep nesting takes no Python stack (an explicit stack of the handlers waiting).
+    Re-entering (an l-value's index, an `out` argument written back) counts one level of
+    hlsl_nesting; each node evaluated is checked against the work budget."""
+    ctx = ev.ctx
+    # a statement's own expression takes no level; one re-entered from inside another does
+    levels = 1 if ev.in_expression else 0
+    enter_level(ev, tree, levels)
+    ev.in_expression += 1
+    try:
+        waiting: list[Generator[Any, Value, Value]] = []
+        value: Value | None = None
+        pending: Any = tree
+        while True:
+            if pending is not None:
+                item = _start(ev, pending)
+                if isinstance(item, Value):
+                    value, pending = item, None
+                else:
+                    waiting.append(item)
+                    value = None
+            if pending is None and not waiting:
+                return value  # type: ignore[return-value]
+            try:
+                pending = waiting[-1].send(value)   # the next subexpression it needs
+                continue
+            except StopIteration as done:
+                waiting.pop()
+                value, pending = done.value, None
+            if ctx.graph.work > ctx.work_cap:
+                raise over_budget(ev, tree)
+    finally:
+        ev.in_expression -= 1
+        leave_level(ev, levels)
+
+
+def _start(ev: Any, tree: Any) -> Value | Generator[Any, Value, Value]:
+    """A leaf's value, or the handler (a generator) of a node with subexpressions."""
     if isinstance(tree, lark.Token):
         raise ev.error(f"X3000: unexpected '{tree}'", tree)
     handler = _HANDLERS.get(tree.data)
@@ -32,12 +75,13 @@ def evaluate_expr(ev: Any, tree: Any) -> Value:
 def _float(ev: Any, tree: lark.Tree) -> Value:
     text = str(tree.children[0]).rstrip("fFhH")
     base = "half" if str(tree.children[0])[-1:] in "hH" else "float"
-    return Value(scalar("float" if base == "float" else "half"), [ev.g.const((float(text),))])
+    # located: a literal that cannot be a constant register (1e39) is refused where it is
+    return Value(scalar("float" if base == "float" else "half"),
+                 [ev.g.const((float(text),), ev.at(tree))])
 
 
 def _int(ev: Any, tree: lark.Tree) -> Value:
-    text = str(tree.children[0]).rstrip("uUlL")
-    n = int(text, 16) if text.lower().startswith("0x") else int(text)
+    n = int_literal(str(tree.children[0]), lambda m: ev.error(m, tree), ev.ctx.digits_cap)
     return Value(INT, [ev.g.const((float(n),))])
 
 
@@ -65,14 +109,19 @@ def global_value(ev: Any, name: str, where: Any) -> Value:
     if t.kind == "sampler":
         value = Value(t, sampler=name)
         ctx.samplers_used.setdefault(name, t.base)
+    elif t.kind == "array" and t.element is not None and t.element.kind == "sampler":
+        # `sampler S[2]`: an element read by a constant index is a sampler of its own,
+        # "S[k]" (its register follows the array's: compiler.sampler_registers)
+        value = Value(t, elements=[Value(t.element, sampler=f"{name}[{k}]")
+                                   for k in range(t.length)])
     elif t.kind in ("texture", "string"):
         raise ev.error(f"X3004: '{name}' is a {t.kind}; shaders read textures through samplers", where)
     elif "static" in param.storage or ctx.host_values:
         # A static's initialiser; in a preshader (host_values) any global's current value
         numbers = static_value(param)
-        if numbers is None and param.value is not None and hasattr(param.value, "text"):
-            numbers = _initializer(ev, name, param.value, where)
-        n = count_components(t)
+        if numbers is None and initializer_text(param) is not None:
+            numbers = _initialized(ev, name, where)
+        n = t.components
         flat = list(numbers) if numbers is not None else [0.0] * n
         flat = (flat + [0.0] * n)[:n]
         value = build_value(t, [ev.g.const((float(x),)) for x in flat])
@@ -83,20 +132,70 @@ def global_value(ev: Any, name: str, where: Any) -> Value:
     return value
 
 
-def _initializer(ev: Any, name: str, init: Any, where: Any) -> np.ndarray:
-    """A global's initialiser kept as text, evaluated. In a preshader every component must
-    fold (X3013); a compile keeps the old reading of a non-constant component as 0."""
+def initializer_text(param: Any) -> Expression | None:
+    """A global's initialiser as text to evaluate: an expression the loader kept as text, or a
+    bare reference to another parameter (`float C = A;`, `float D = G[1];`); None for none."""
+    value = param.value
+    if isinstance(value, Expression):
+        return value
+    if isinstance(value, ParamRef):
+        text = value.name if value.index is None else f"{value.name}[{value.index}]"
+        return Expression(text, value.location)
+    return None
+
+
+class _Needs(Exception):
+    """Raised inside an initialiser's evaluation: it reads `name`, whose own initialiser has
+    not been evaluated yet (_initialized evaluates that one first, then this one again)."""
+
+    def __init__(self, name: str) -> None:
+        super().__init__(name)
+        self.name = name
+
+
+def _initialized(ev: Any, name: str, where: Any) -> np.ndarray:
+    """The numbers of global `name`'s initialiser (kept as text). Initialisers that read each
+    other (`float P1 = P0 * 2; float P2 = P1 * 2; ...`) are evaluated from the one that
+    depends on nothing up, with an explicit stack: a chain of any length takes no Python
+    stack, and a cycle is a located error naming it."""
     ctx = ev.ctx
-    busy = ctx.initializing
-    if name in busy:
-        raise ev.error(f"X3013: the initializer of '{name}' refers to '{name}' itself", where)
-    busy.add(name)
+    done: dict[str, np.ndarray] = ctx.initialized
+    if name in done:
+        return done[name]
+    if ctx.initializing is not None:          # inside an initialiser: that one waits for this one
+        raise _Needs(name)
+    stack = [name]
+    ctx.initializing = stack
     try:
-        origin = Origin(init.location, init.text)
-        tree = parse(init.text, "initializer", origin, ctx.type_names)
-        comps = ev.spawn(origin).flatten_list(tree)
+        while stack:
+            top = stack[-1]
+            try:
+                done[top] = _initializer(ev, top)
+                stack.pop()
+            except _Needs as need:
+                if need.name in stack:
+                    cycle = " -> ".join(stack[stack.index(need.name):] + [need.name])
+                    init = initializer_text(ctx.effect.parameter(top))
+                    raise Origin(init.location, init.text).error(
+                        f"X3013: the initializer of '{need.name}' refers to itself "
+                        f"({cycle})" if need.name != top else
+                        f"X3013: the initializer of '{top}' refers to '{top}' itself",
+                        init.location) from None
+                stack.append(need.name)
     finally:
-        busy.discard(name)
+        ctx.initializing = None
+    return done[name]
+
+
+def _initializer(ev: Any, name: str) -> np.ndarray:
+    """A global's initialiser kept as text, evaluated (raises _Needs for a global whose own
+    initialiser comes first). In a preshader every component must fold (X3013); a compile
+    keeps the old reading of a non-constant component as 0."""
+    ctx = ev.ctx
+    init = initializer_text(ctx.effect.parameter(name))
+    origin = Origin(init.location, init.text)
+    tree = parse(init.text, "initializer", origin, ctx.type_names)
+    comps = ev.spawn(origin).flatten_list(tree)
     values = [c.const_values() for c in comps]
     if ctx.host_values and any(v is None for v in values):
         raise origin.error(f"X3013: the initializer of '{name}' is not a constant", tree)
@@ -142,14 +241,16 @@ def uniform_value(ev: Any, name: str, t: HType, offset: int, address: Operand | 
     return Value(t)
 
 
-def _binary(ev: Any, tree: lark.Tree) -> Value:
+def _binary(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     a, op, b = tree.children
-    return ev.a.binary(str(op), ev.expr(a), ev.expr(b), ev.at(op))
+    va = yield a
+    vb = yield b
+    return ev.a.binary(str(op), va, vb, ev.at(op))
 
 
-def _prefix(ev: Any, tree: lark.Tree) -> Value:
+def _prefix(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     op, x = tree.children
-    v = ev.expr(x)
+    v = yield x
     loc = ev.at(op)
     if not v.type.numeric:
         raise ev.error(f"X3022: operator '{op}' needs a numeric operand, not '{v.type}'", op)
@@ -165,59 +266,52 @@ def _prefix(ev: Any, tree: lark.Tree) -> Value:
     if consts is None:
         raise ev.error(f"X3535: bitwise operation '~' needs integer hardware; "
                        f"{ev.ctx.target.name} has none", op)
-    return Value(v.type, [ev.g.const((float(~int(c)),)) for c in consts])
+    return Value(v.type, [ev.g.const((bitwise_not(c, v.type.base),)) for c in consts])
 
 
 def _incdec(ev: Any, tree: lark.Tree, post: bool) -> Value:
     target, op = (tree.children[0], tree.children[1]) if post else (tree.children[1], tree.children[0])
-    old = ev.expr(target)
     one = Value(INT, [ev.g.const((1.0,))])
-    new = ev.a.binary("+" if str(op) == "++" else "-", old, one, ev.at(op))
-    store(ev, target, ev.a.convert(new, old.type, ev.at(op)))
+    seen: list[Value] = []
+
+    def step(old: Value) -> Value:
+        new = ev.a.binary("+" if str(op) == "++" else "-", old, one, ev.at(op))
+        seen.extend((old, new))
+        return ev.a.convert(new, old.type, ev.at(op))
+    store(ev, target, step)         # the target (its indices) evaluated once
+    old, new = seen
     return old if post else new
 
 
-def _assign(ev: Any, tree: lark.Tree) -> Value:
+def _assign(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     target, op, rhs = tree.children
-    value = ev.expr(rhs)
-    if str(op) != "=":
-        value = ev.a.binary(str(op)[:-1], ev.expr(target), value, ev.at(op))
-    current = ev.expr(target)
-    value = ev.a.convert(value, current.type, ev.at(rhs))
-    store(ev, target, value)
-    return value
+    value = yield rhs
+    written: list[Value] = []
+
+    def assigned(current: Value) -> Value:
+        v = value if str(op) == "=" else ev.a.binary(str(op)[:-1], current, value, ev.at(op))
+        written.append(ev.a.convert(v, current.type, ev.at(rhs)))
+        return written[0]
+    store(ev, target, assigned)     # the target (its indices) evaluated once, after the value
+    return written[0]
 
 
-def _member(ev: Any, tree: lark.Tree) -> Value:
+def _member(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     base_tree, name = tree.children
-    base = ev.expr(base_tree)
-    if base.type.kind == "struct":
-        if str(name) not in base.fields:
-            raise ev.error(f"X3018: invalid subscript '{name}'", name)
-        return base.fields[str(name)]
-    if not base.type.numeric:
-        raise ev.error(f"X3018: invalid subscript '{name}' on '{base.type}'", name)
-    lanes = swizzle_lanes(ev, base.type, str(name), name)
-    return Value(vector(base.type.base, len(lanes)), [base.comps[k] for k in lanes])
+    base = yield base_tree
+    return member_of(ev, base, name)
 
 
-def _index(ev: Any, tree: lark.Tree) -> Value:
+def _index(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     base_tree, index_tree = tree.children
-    base = ev.expr(base_tree)
-    if base.type.kind == "array":
-        index = ev.expr(index_tree)
-        if index.const_values() is None:
-            return _relative_element(ev, base_tree, base.type, index, index_tree)
-    k = const_index(ev, index_tree, base.type)
-    t = base.type
-    if t.kind == "array":
-        return base.elements[k]
-    if t.kind == "matrix":
-        return Value(vector(t.base, t.cols), base.comps[k * t.cols:(k + 1) * t.cols])
-    if t.kind == "vector":
-        return Value(scalar(t.base), [base.comps[k]])
-    raise ev.error(f"X3121: array, matrix, vector, or indexable object type expected in index "
-                   f"expression, not '{t}'", tree)
+    base = yield base_tree
+    index = yield index_tree
+    if base.type.kind == "array" and index.const_values() is None:
+        return _relative_element(ev, base_tree, base.type, index, index_tree)
+    if base.type.kind not in ("array", "matrix", "vector"):
+        raise ev.error(f"X3121: array, matrix, vector, or indexable object type expected in "
+                       f"index expression, not '{base.type}'", tree)
+    return element_of(ev, base, const_index(ev, index, index_tree, base.type), tree)
 
 
 def _relative_element(ev: Any, base_tree: Any, t: HType, index: Value, where: Any) -> Value:
@@ -260,36 +354,34 @@ def _relative_element(ev: Any, base_tree: Any, t: HType, index: Value, where: An
     return uniform_value(ev, name, t.element, 0, address)  # type: ignore[arg-type]
 
 
-def _construct(ev: Any, tree: lark.Tree) -> Value:
+def _construct(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     t = builtin(str(tree.children[0]))
-    return _construct_as(ev, t, tree.children[1], tree)
+    return (yield from _construct_as(ev, t, tree.children[1], tree))
 
 
-def _construct_user(ev: Any, tree: lark.Tree) -> Value:
+def _construct_user(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     """`vec4(uv, 0, 1)` with `typedef vector<half, 4> vec4;`: the constructor of the type the
     name stands for (a struct has none: X3037)."""
     t = resolve_type(ev.ctx, lark.Tree("user_type", [tree.children[0]]), ev.origin)
-    return _construct_as(ev, t, tree.children[1], tree)
+    return (yield from _construct_as(ev, t, tree.children[1], tree))
 
 
-def _construct_matrix(ev: Any, tree: lark.Tree) -> Value:
-    base = builtin(str(tree.children[1]))
-    t = shape_of(int(tree.children[2]), int(tree.children[3]), base.base if base else "float")
-    return _construct_as(ev, t, tree.children[4], tree)
+def _construct_matrix(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
+    t = sized_type(tree, ev.origin)
+    return (yield from _construct_as(ev, t, tree.children[4], tree))
 
 
-def _construct_vector(ev: Any, tree: lark.Tree) -> Value:
-    base = builtin(str(tree.children[1]))
-    t = vector(base.base if base else "float", int(tree.children[2]))
-    return _construct_as(ev, t, tree.children[3], tree)
+def _construct_vector(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
+    t = sized_type(tree, ev.origin)
+    return (yield from _construct_as(ev, t, tree.children[3], tree))
 
 
-def _construct_as(ev: Any, t: HType | None, args: Any, tree: Any) -> Value:
+def _construct_as(ev: Any, t: HType | None, args: Any, tree: Any) -> Generator[Any, Value, Value]:
     if t is None or not t.numeric:
         raise ev.error("X3037: constructors only defined for numeric base types", tree)
     comps: list[Operand] = []
     for a in (args.children if args is not None else []):
-        v = ev.expr(a)
+        v = yield a
         if not v.type.numeric:
             raise ev.error(f"X3017: cannot convert from '{v.type}' to '{t}'", a)
         comps.extend(ev.a.convert_base(v.comps, v.type.base, t.base, ev.at(a)))
@@ -301,31 +393,42 @@ def _construct_as(ev: Any, t: HType | None, args: Any, tree: Any) -> Value:
     return Value(t, comps)
 
 
-def _cast(ev: Any, tree: lark.Tree) -> Value:
+def _cast(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     t = resolve_type(ev.ctx, tree.children[0], ev.origin)
-    v = ev.expr(tree.children[1])
+    v = yield tree.children[1]
     if t.numeric and v.type.numeric:
         return ev.a.convert(v, t, ev.at(tree), explicit=True)
     return _cast_flat(ev, v, t, tree)
 
 
 def _leaves(v: Value) -> list[tuple[Operand, str]]:
-    """A value's numbers in declaration order, each with its base type."""
-    if v.type.numeric:
-        return [(c, v.type.base) for c in v.comps]
-    if v.type.kind == "struct":
-        return [leaf for f in v.fields.values() for leaf in _leaves(f)]
-    return [leaf for e in v.elements for leaf in _leaves(e)]
+    """A value's numbers in declaration order, each with its base type (a struct or array
+    walked with an explicit stack: its nesting is bounded, its size by hlsl_components)."""
+    out: list[tuple[Operand, str]] = []
+    stack = [v]
+    while stack:
+        x = stack.pop()
+        if x.type.numeric:
+            out.extend((c, x.type.base) for c in x.comps)
+        elif x.type.kind == "struct":
+            stack.extend(reversed(list(x.fields.values())))
+        else:
+            stack.extend(reversed(x.elements))
+    return out
 
 
 def _leaf_bases(t: HType) -> list[str]:
-    if t.numeric:
-        return [t.base] * t.size
-    if t.kind == "struct":
-        return [b for _, ft, _ in t.fields for b in _leaf_bases(ft)]
-    if t.kind == "array":
-        return _leaf_bases(t.element) * t.length   # type: ignore[arg-type]
-    return []
+    out: list[str] = []
+    stack = [t]
+    while stack:
+        x = stack.pop()
+        if x.numeric:
+            out.extend([x.base] * x.size)
+        elif x.kind == "struct":
+            stack.extend(reversed([ft for _, ft, _ in x.fields]))
+        elif x.kind == "array" and x.element is not None:
+            stack.extend([x.element] * x.length)
+    return out
 
 
 def _cast_flat(ev: Any, v: Value, t: HType, tree: Any) -> Value:
@@ -343,10 +446,11 @@ def _cast_flat(ev: Any, v: Value, t: HType, tree: Any) -> Value:
     return build_value(t, comps)
 
 
-def _ternary(ev: Any, tree: lark.Tree) -> Value:
+def _ternary(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     cond_tree, a_tree, b_tree = tree.children
-    cond = ev.expr(cond_tree)
-    a, b = ev.expr(a_tree), ev.expr(b_tree)
+    cond = yield cond_tree
+    a = yield a_tree
+    b = yield b_tree
     loc = ev.at(tree)
     ca, cb, t = ev.a.broadcast(a, b, loc, "?:")
     c = ev.a.to_bool(cond, loc).comps
@@ -357,11 +461,13 @@ def _ternary(ev: Any, tree: lark.Tree) -> Value:
     return Value(t, ev.a.select(c, ca, cb, loc))
 
 
-def _call(ev: Any, tree: lark.Tree) -> Value:
+def _call(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     name_tok, args = tree.children
     name = str(name_tok)
     arg_trees = list(args.children) if args is not None else []
-    values = [ev.expr(a) for a in arg_trees]
+    values = []
+    for a in arg_trees:
+        values.append((yield a))
     fdefs = ev.ctx.functions.get(name)
     if fdefs:
         fdef = resolve_overload(ev, fdefs, values, tree)

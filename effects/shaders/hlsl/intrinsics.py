@@ -73,7 +73,7 @@ def _pow(ev: Any, a: list[Operand], b: list[Operand], loc: Location) -> list[Ope
         # fxc expanded a small whole exponent into multiplications (x^8 = three muls); ps_1_x
         # has no exp/log for the rest
         n = [c.const_values() for c in b]
-        if all(v is not None and v[0] == int(v[0]) and 1 <= v[0] <= 16 for v in n):
+        if all(v is not None and 1 <= v[0] <= 16 and v[0] == int(v[0]) for v in n):
             return [_power(ev, x, int(v[0]), loc) for x, v in zip(a, n)]  # type: ignore[index]
         raise ev.error(f"{ev.ctx.target.name} cannot compute pow of a non-constant exponent", loc)
     return _exp2(ev, ev.a.lanes("mul", [b, _log2(ev, a, loc)], loc), loc)
@@ -462,8 +462,7 @@ def _refract(ev: Any, args: list[Value], loc: Location) -> Value:
 
 
 def _out(ev: Any, trees: list[Any], k: int, value: Value) -> None:
-    current = ev.expr(trees[k])
-    store(ev, trees[k], ev.a.convert(value, current.type, ev.at(trees[k])))
+    store(ev, trees[k], lambda current: ev.a.convert(value, current.type, ev.at(trees[k])))
 
 
 def _lit(ev: Any, args: list[Value], loc: Location) -> Value:
@@ -632,9 +631,54 @@ INTRINSICS: dict[str, tuple[tuple[int, ...], Callable[..., Value], bool]] = {
 }
 
 
+# Arguments brought to one shape before the builder sees them (fxc's rule for intrinsics
+# taking "the same type": a scalar spreads, a longer vector truncates with X3206): how many
+# of the leading arguments share it. And the vector size an intrinsic takes.
+_SAME_SHAPE = {"lerp": 3, "clamp": 3, "smoothstep": 3, "faceforward": 3, "reflect": 2,
+               "refract": 2, "distance": 2, "dot": 2, "step": 2}
+_SIZE = {"cross": 3, "D3DCOLORtoUBYTE4": 4}
+
+
+def _shaped_args(ev: Any, name: str, args: list[Value], loc: Location) -> list[Value]:
+    """`args` checked and shaped as the builder of `name` reads them (X3013 otherwise)."""
+    first = 1 if name.startswith("tex") else 0
+    for a in args[first:]:
+        if not a.type.numeric:
+            raise ev.error(f"X3013: '{name}': no matching intrinsic function for an argument "
+                           f"of type '{a.type}' (numbers are needed)", loc)
+    k = _SAME_SHAPE.get(name, 0)
+    if k:
+        head = args[:k]
+        kinds = {a.type.kind for a in head if a.type.size > 1}
+        if "matrix" in kinds and len({a.type for a in head if a.type.size > 1}) > 1:
+            raise ev.error(f"X3013: '{name}': its arguments need one shape, not "
+                           f"{', '.join(str(a.type) for a in head)}", loc)
+        if "matrix" not in kinds:
+            sizes = [a.type.size for a in head if a.type.size > 1]
+            n = min(sizes) if sizes else 1
+            if any(size != n for size in sizes):
+                ev.warn("X3206: implicit truncation of vector type", loc)
+            head = [Value(vector(a.type.base, n), a.comps * n if a.type.size == 1 else a.comps[:n])
+                    for a in head]
+            args = head + args[k:]
+    size = _SIZE.get(name)
+    if size is not None:
+        out = []
+        for a in args:
+            if a.type.size != 1 and a.type.size < size:
+                raise ev.error(f"X3013: '{name}' takes float{size} arguments, not '{a.type}'", loc)
+            if a.type.size > size:
+                ev.warn("X3206: implicit truncation of vector type", loc)
+            comps = a.comps * size if a.type.size == 1 else a.comps[:size]
+            out.append(Value(vector(a.type.base, size), comps))
+        args = out
+    return args
+
+
 def call_intrinsic(ev: Any, name: str, args: list[Value], trees: list[Any], where: Any) -> Value:
     counts, build, writes = INTRINSICS[name]
     loc = ev.at(where)
     if len(args) not in counts:
         raise ev.error(f"X3013: '{name}': no matching {len(args)} parameter intrinsic function", where)
+    args = _shaped_args(ev, name, args, loc)
     return build(ev, args, loc, trees) if writes else build(ev, args, loc)

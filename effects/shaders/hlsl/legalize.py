@@ -253,6 +253,6 @@ def _text(cg: Any) -> Generated:
 
 
 def _num(v: float) -> str:
-    if v == int(v) and abs(v) < 1e7:
+    if abs(v) < 1e7 and v == int(v):      # never inf or NaN here (compiler._finite_constants)
         return f"{int(v)}"
     return f"{v:.9g}"

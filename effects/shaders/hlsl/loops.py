@@ -38,6 +38,7 @@ the limit. `[unroll]` always unrolls.
 from __future__ import annotations
 
 import itertools
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -99,7 +100,8 @@ def bound_of(ev: Any, tree: lark.Tree, cond: Any, step: Any, attrs: Any = None) 
     if not has_attribute(attrs, "loop"):
         return None
     last = ev.expr(right).const_values()
-    if last is None or len(last) != 1 or last[0] != int(last[0]) or first[0] != int(first[0]):
+    if last is None or len(last) != 1 or not all(math.isfinite(x) for x in (first[0], last[0])) \
+            or last[0] != int(last[0]) or first[0] != int(first[0]):
         return None
     start, count = int(first[0]), int(last[0]) - int(first[0])
     if not (0 <= start <= 255 and 0 <= count <= 255):
@@ -209,7 +211,7 @@ def _counter_offset(counter: Operand, index: Operand) -> int | None:
         return None
     for a, b in ((n.args[0], n.args[1]), (n.args[1], n.args[0])):
         k = b.const_values()
-        if a.sig() == counter.sig() and k is not None and k[0] == int(k[0]) and k[0] >= 0:
+        if a.sig() == counter.sig() and k is not None and 0 <= k[0] < 1e9 and k[0] == int(k[0]):
             return int(k[0])
     return None
 

@@ -22,6 +22,7 @@ import numpy as np
 
 from effects.base.errors import EffectError, Location
 from effects.model import Effect, ParamRef
+from effects.shaders.hlsl.budget import out_of_stack
 from effects.shaders.hlsl.dag import Operand, host_computable, reachable
 from effects.shaders.hlsl.parse import Origin, parse
 from effects.shaders.hlsl.shader import PRESHADER_NAME, ShaderPreshader
@@ -34,10 +35,13 @@ _REFERENCE = re.compile(r"<(\s*[A-Za-z_]\w*\s*(?:\[\s*\d+\s*\]\s*)?)>")
 
 
 def initializer_numbers(text: str, location: Location, effect: Effect | None = None,
-                        host_values: bool = False) -> list[float]:
+                        host_values: bool = False,
+                        known: dict[str, np.ndarray] | None = None) -> list[float]:
     """The numbers of a constant initialiser, in order (X3013 if it is not constant).
     `host_values`: uniform globals read as their current values (a preshader), not as
-    registers unknown until the shader runs."""
+    registers unknown until the shader runs. `known`: the parameters' initialisers already
+    evaluated (name -> numbers), read and filled in: callers evaluating several expressions
+    of one effect at the same parameter values share them."""
     from effects.shaders.hlsl.context import Context, Target, type_names
     from effects.shaders.asm.versions import VERSIONS
     from effects.shaders.hlsl.evaluate import Evaluator
@@ -46,8 +50,13 @@ def initializer_numbers(text: str, location: Location, effect: Effect | None = N
     tree = parse(text, "initializer", origin, type_names(effect) if effect else frozenset())
     ctx = Context(effect or Effect(location.path), Target("vs_3_0", VERSIONS["vs_3_0"]),
                   host_values=host_values)
+    if known is not None:
+        ctx.initialized = known          # expressions.global_value reads and fills it
     ev = Evaluator(ctx, origin)
-    comps = ev.flatten_list(tree)
+    try:
+        comps = ev.flatten_list(tree)
+    except RecursionError:
+        raise out_of_stack(location, origin.line_text(1)) from None
     out = []
     for c in comps:
         v = c.const_values()
@@ -57,22 +66,24 @@ def initializer_numbers(text: str, location: Location, effect: Effect | None = N
     return out
 
 
-def state_numbers(text: str, location: Location, effect: Effect) -> np.ndarray:
+def state_numbers(text: str, location: Location, effect: Effect,
+                  known: dict[str, np.ndarray] | None = None) -> np.ndarray:
     """A state assignment's expression evaluated with the parameters' current values: its
     components, flat (a matrix row by row, as the effect writes one)."""
-    numbers = initializer_numbers(text, location, effect, host_values=True)
+    numbers = initializer_numbers(text, location, effect, host_values=True, known=known)
     if not all(np.isfinite(numbers)):
         raise Origin(location, text).error(
             f"X3013: '{text.strip()}' does not evaluate to finite numbers ({numbers})", location)
     return np.asarray(numbers, dtype=np.float64)
 
 
-def state_value(name: str, index: int | None, text: str, location: Location, effect: Effect) -> Any:
+def state_value(name: str, index: int | None, text: str, location: Location, effect: Effect,
+                known: dict[str, np.ndarray] | None = None) -> Any:
     """A state's expression as the value its typed readers take (lowering draws it, validation
     judges it): one component a plain number (every typed reader takes one), more an array (a
     vector, a matrix row by row, constant registers four floats each); X3017 when the state's
     type takes another count."""
-    numbers = state_numbers(text, location, effect)
+    numbers = state_numbers(text, location, effect, known)
     need = _SIZES.get(getattr(lookup_state(name), "type", ""))
     if need is not None and numbers.size not in need:
         shown = name if index is None else f"{name}[{index}]"

@@ -169,6 +169,6 @@ def _ins_text(ins: Instr, alloc: dict[int, int]) -> str:
 
 
 def _num(v: float) -> str:
-    if v == int(v):
+    if abs(v) < 1e7 and v == int(v):      # never inf or NaN here (compiler._finite_constants)
         return f"{int(v)}"
     return f"{v:.9g}"

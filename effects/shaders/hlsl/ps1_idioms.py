@@ -89,7 +89,7 @@ def power_of_two(values: tuple[float, ...] | None, shifts: tuple[int, ...]) -> i
         return None
     import math
     v = values[0]
-    if v <= 0:
+    if not (0 < v < math.inf):          # NaN and inf are no power of two
         return None
     k = math.log2(v)
     return int(k) if k == int(k) and int(k) in shifts and k != 0 else None

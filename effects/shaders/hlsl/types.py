@@ -29,6 +29,26 @@ class HType:
     length: int = 0
     row_major: bool = field(default=False, compare=False)
 
+    def __post_init__(self) -> None:
+        # the numbers the type holds and its nesting, from its parts' (already known): a struct
+        # of structs that doubles per level is counted without walking it (limits.py:
+        # hlsl_components, hlsl_nesting are checked against these before anything is built)
+        if self.kind in ("scalar", "vector", "matrix"):
+            n, depth = self.rows * self.cols, 0
+        elif self.kind == "struct":
+            n = sum(f[1].components for f in self.fields)
+            depth = 1 + max((f[1].depth for f in self.fields), default=0)
+        elif self.kind == "array" and self.element is not None:
+            n, depth = self.length * self.element.components, 1 + self.element.depth
+        else:
+            n, depth = 0, 0
+        object.__setattr__(self, "components", n)
+        object.__setattr__(self, "depth", depth)
+
+    # set by __post_init__: not fields, so equality, hashing and the repr stay as they were
+    components: int = field(init=False, repr=False, compare=False, default=0)
+    depth: int = field(init=False, repr=False, compare=False, default=0)
+
     @property
     def numeric(self) -> bool:
         return self.kind in ("scalar", "vector", "matrix")

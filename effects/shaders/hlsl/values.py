@@ -24,6 +24,11 @@ class Value:
         return Value(self.type, list(self.comps), {k: v.copy() for k, v in self.fields.items()},
                      [e.copy() for e in self.elements], self.sampler)
 
+    def shallow(self) -> "Value":
+        """A copy whose own lists can be changed; the values inside are shared (store)."""
+        return Value(self.type, list(self.comps), dict(self.fields), list(self.elements),
+                     self.sampler)
+
     def const_values(self) -> tuple[float, ...] | None:
         out = []
         for c in self.comps:
@@ -68,13 +73,7 @@ def const_value(g: Graph, values: list[float], base: str = "float") -> Value:
 
 
 def count_components(t: HType) -> int:
-    if t.numeric:
-        return t.size
-    if t.kind == "struct":
-        return sum(count_components(ft) for _, ft, _ in t.fields)
-    if t.kind == "array":
-        return t.length * count_components(t.element)  # type: ignore[arg-type]
-    return 0
+    return t.components
 
 
 def build_value(t: HType, comps: list[Operand]) -> Value:
