@@ -31,6 +31,8 @@ from collections.abc import Callable, Container, Iterable, Mapping
 from types import MappingProxyType
 from typing import Any
 
+import math
+
 import numpy as np
 
 from effects.base.errors import Location, StateError
@@ -942,9 +944,13 @@ def pack_color(rgba: Iterable[float]) -> int:
     each channel saturated to [0, 1], then (DWORD)(x * 255 + 0.5) in float32."""
     channels = []
     for x in rgba:
-        f = np.float32(x)
-        channels.append(0xFF if f >= 1 else 0 if f <= 0
-                        else int(f * np.float32(255.0) + np.float32(0.5)))
+        x = float(x)
+        if not x > 0:          # saturated before the float32 cast: 1e39 has no float32; NaN is 0
+            channels.append(0)
+        elif x >= 1:
+            channels.append(0xFF)
+        else:
+            channels.append(int(np.float32(x) * np.float32(255.0) + np.float32(0.5)))
     r, g, b, a = channels
     return (a << 24) | (r << 16) | (g << 8) | b
 
@@ -984,7 +990,15 @@ def _numbers(info: StateInfo, raw: Any, location: Location, dtype: Any = np.floa
         values = [raw]
     if values is None or not values or not all(_is_number(v) for v in values):
         raise _fail(info, f"got {_shown(raw)}", location)
-    return np.array([float(v) for v in values], dtype=dtype)
+    numbers = [float(v) for v in values]
+    if dtype == np.float32 and any(math.isfinite(v) and abs(v) > _FLT_MAX for v in numbers):
+        # D3DX keeps a state's numbers as float32: 1e39 has no float32 (it would be inf)
+        raise _fail(info, f"got {_shown(raw)}: a value past the largest float32 (3.4e38)",
+                    location)
+    return np.array(numbers, dtype=dtype)
+
+
+_FLT_MAX = 3.4028234663852886e38 * (1 + 2.0 ** -25)   # what still rounds to a finite float32
 
 
 def _coerce_vector(info: StateInfo, raw: Any, location: Location, parameters: Container[str]) -> Any:

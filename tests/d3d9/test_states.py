@@ -498,3 +498,22 @@ def test_every_caps_limit_names_a_bit_field_and_its_bits():
         for value in row.enum.values:
             bit = row.limit.bit_for(value)
             assert bit in table or (row.name, value) in no_caps_bit, (row.name, value)
+
+
+def test_a_number_past_float32_is_saturated_in_a_colour_and_refused_in_a_vector():
+    """D3DX keeps state numbers as float32. A colour saturates each channel before its DWORD
+    cast, so 1e39 is 0xFF (and NaN 0), without a float32 overflow; a float3 or float4 state
+    has no float32 for 1e39 and says so, located at the value."""
+    import warnings
+    import effects
+    from effects.d3d9.states import pack_color
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")     # no "overflow encountered in cast"
+        assert pack_color([1e39, 0.5, float("nan"), -3.0]) == 0x00FF8000
+        assert pack_color([1.0, 0.5, 0.25, 1.0]) == 0xFFFF8040
+        with pytest.raises(effects.EffectError) as err:
+            effects.load_effect("technique T { pass P { LightDirection[0] = {1e39, 0, 0}; } }")
+    assert str(err.value) == ("<string>:1:44: error: LightDirection expects a float3 (3 numbers); "
+                              "got {1e+39, 0, 0}: a value past the largest float32 (3.4e38)")
+    # the largest float32 itself is a value
+    effects.load_effect("technique T { pass P { LightDirection[0] = {3.4e38, 0, 0}; } }")
