@@ -17,7 +17,7 @@ from effects.frontend import loader
 from effects.frontend.printer import print_effect
 from effects.validate.select import find_next_valid_technique, select
 from effects.validate.technique import validate_technique
-from effects.validate.verdicts import check_language
+from effects.validate import verdicts
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.d3d9.caps import CapsProfile
@@ -56,10 +56,7 @@ def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str,
     `effects.frontend.loader.load_effect`. Raises a located `EffectError` for bad input;
     `strict` also compiles every HLSL shader of the effect and raises the first language
     error (fxc's for every target: `effects.validate.verdicts`), as D3DXCreateEffect failed."""
-    effect = loader.load_effect(path_or_text, defines=defines, include_dirs=include_dirs,
+    return verdicts.load_effect(path_or_text, defines=defines, include_dirs=include_dirs,
                                 include_handler=include_handler, include_root=include_root,
-                                strict=strict, effect_type=Effect)
-    if strict:
-        check_language(effect)
-    return effect
+                                strict=strict, effect_type=Effect)  # type: ignore[return-value]
 

@@ -115,15 +115,11 @@ def _defines(items: Sequence[str]) -> dict[str, str]:
 
 
 def _load(args):
-    from effects.frontend.loader import load_effect
-    strict = getattr(args, "strict", False)
-    effect = load_effect(args.file, defines=_defines(getattr(args, "defines", [])),
-                         include_dirs=getattr(args, "include_dirs", []),
-                         include_root=_include_root(args), strict=strict)
-    if strict:   # a language error in any technique fails the load, as D3DXCreateEffect did
-        from effects.validate.verdicts import check_language
-        check_language(effect)
-    return effect
+    # with --strict a language error in any technique fails the load, as D3DXCreateEffect did
+    from effects.validate.verdicts import load_effect
+    return load_effect(args.file, defines=_defines(getattr(args, "defines", [])),
+                       include_dirs=getattr(args, "include_dirs", []),
+                       include_root=_include_root(args), strict=getattr(args, "strict", False))
 
 
 def _profiles(names: Sequence[str]):

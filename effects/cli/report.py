@@ -150,13 +150,10 @@ def matrix_job(job: "MatrixJob") -> dict | EffectError:
     command line's store is on, the entry is kept for the next command (matrix_store)."""
     from effects.d3d9.caps import list_profiles, load_profile
     from effects.cli import matrix_store
-    from effects.frontend.loader import load_effect
+    from effects.validate.verdicts import load_effect   # strict: as D3DXCreateEffect
     found = matrix_store.inputs(job)
     try:
         effect = load_effect(job.path, include_root=job.include_root, strict=job.strict)
-        if job.strict:   # a language error in any technique fails the load (D3DXCreateEffect)
-            from effects.validate.verdicts import check_language
-            check_language(effect)
         profiles = [load_profile(n) for n in (job.profiles or list_profiles())]
         row = matrix({job.path: effect}, profiles, job.policy)[job.path]
         matrix_store.keep(job, found, effect, row)

@@ -154,8 +154,9 @@ def _selected(effect: Effect, profile: "CapsProfile", policy: Any) -> "Selection
         selection = select(reads, profile, policy)  # type: ignore[arg-type]
         if key is not None:
             _SELECTIONS.put(key, (effect.techniques, profile, reads.snapshot(), selection))
-    if selection.passed_over is not None:
-        raise selection.passed_over.with_traceback(None)   # the same error each time
+    error = selection.passed_over
+    if error is not None:
+        raise error.with_traceback(None)   # the same error each time
     return selection
 
 

@@ -159,10 +159,9 @@ class Selection:
     def technique(self) -> Technique | None:
         return self.chosen.technique if self.chosen is not None else None
 
-    def preference(self, v: Validation) -> tuple[float, int]:
+    def _preference(self, v: Validation, position: int) -> tuple[float, int]:
         """Where the policy places a technique among those it accepts: its score (quality,
-        cost, or none for file order), then file order."""
-        position = next(i for i, made in enumerate(self.validations) if made is v)
+        cost, or none for file order), then its `position` in file order."""
         if self.policy.order == "quality":
             return (-technique_quality(v.technique), position)
         if self.policy.order == "cost":
@@ -174,14 +173,13 @@ class Selection:
     def ranked(self) -> list[Validation]:
         """The validations the policy accepts first, in its preferred order, then the others
         in file order; the first is the policy's choice when it accepts it."""
-        position = {id(v): i for i, v in enumerate(self.validations)}
-
-        def key(v: Validation) -> tuple[int, float, int]:
+        def key(item: tuple[int, Validation]) -> tuple[int, float, int]:
+            position, v = item
             if not self.policy.accepts(v):
-                return (1, 0.0, position[id(v)])
-            return (0, *self.preference(v))
+                return (1, 0.0, position)
+            return (0, *self._preference(v, position))
 
-        return sorted(self.validations, key=key)
+        return [v for _, v in sorted(enumerate(self.validations), key=key)]
 
     @property
     def passed_over(self) -> EffectError | None:
@@ -189,9 +187,14 @@ class Selection:
         verdicts): one the policy would have chosen before the chosen technique (before any,
         when none was) had it compiled, and that the policy's limits do not refuse. A card
         limit is the card's reason; a language error is an error, said as one."""
-        bar = None if self.chosen is None else self.preference(self.chosen)
-        ahead = [(self.preference(v), error) for v in self.validations
-                 if (error := language_error(v)) is not None and self.policy.refusal(v) is None]
+        bar = None
+        ahead = []
+        for position, v in enumerate(self.validations):
+            if v is self.chosen:
+                bar = self._preference(v, position)
+            error = language_error(v)
+            if error is not None and self.policy.refusal(v) is None:
+                ahead.append((self._preference(v, position), error))
         ahead = [item for item in ahead if bar is None or item[0] < bar]
         return min(ahead, key=lambda item: item[0])[1] if ahead else None
 

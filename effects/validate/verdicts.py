@@ -56,3 +56,14 @@ def check_language(effect: Effect) -> None:
     errors = language_errors(effect)
     if errors:
         raise errors[0]
+
+
+def load_effect(path_or_text: Any, *, strict: bool = False, **options: Any) -> Effect:
+    """`effects.frontend.loader.load_effect`, as D3DXCreateEffect loaded: with `strict`, a
+    language error in any of the effect's shaders also fails the load (`check_language`).
+    Every loader of a user's effect that honours `strict` loads through here."""
+    from effects.frontend.loader import load_effect as read
+    effect = read(path_or_text, strict=strict, **options)
+    if strict:
+        check_language(effect)
+    return effect

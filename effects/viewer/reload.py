@@ -187,12 +187,9 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     validating once the technique to draw is known (the first valid one in file order, or a
     valid forced one) and leave the rest `pending` (see LoadedEffect): a reload draws sooner
     when the fallbacks compile the edited function again for their own targets."""
-    from effects.frontend.loader import load_effect
     from effects.validate.select import language_error, select
-    from effects.validate.verdicts import check_language
+    from effects.validate.verdicts import load_effect   # strict: as D3DXCreateEffect
     effect = previous if previous is not None else load_effect(path, **load_options)
-    if previous is None and load_options.get("strict"):
-        check_language(effect)    # as D3DXCreateEffect: a language error fails the load
     forced = None
     if technique:
         try:
