@@ -78,6 +78,18 @@ class Evaluator:
         return array_of(t, [self.const_number(d) for d in dims.children],
                         lambda m: self.error(m, dims), subject)
 
+    def run_step(self, step: Any, own: frozenset[int]) -> None:
+        """A `for` loop's step expressions (None: none), its counters `own` written as an
+        unrolled loop's counter (lvalues: unpredicated), not as a conditional write."""
+        if step is None:
+            return
+        outer, self.stepping = self.stepping, own
+        try:
+            for e in step.children:
+                self.expr(e)
+        finally:
+            self.stepping = outer
+
     # -- diagnostics ------------------------------------------------------------------------
     def at(self, item: Any) -> Location:
         return item if isinstance(item, Location) else self.origin.at(item)
@@ -436,13 +448,7 @@ class Evaluator:
                 loop.continued = None
                 if self.dead():
                     break
-                if step is not None:
-                    outer, self.stepping = self.stepping, own
-                    try:
-                        for e in step.children:
-                            self.expr(e)
-                    finally:
-                        self.stepping = outer
+                self.run_step(step, own)
         finally:
             self.loops.pop()
             self.mask = saved

@@ -67,13 +67,7 @@ def _run_head(ev: Any, cond: Any, step: Any, own: frozenset[int], cap: int, name
                 return None
             if i == cap:
                 return f"{cap} iterations"
-            if step is not None:
-                outer, ev.stepping = ev.stepping, own
-                try:
-                    for e in step.children:
-                        ev.expr(e)
-                finally:
-                    ev.stepping = outer
+            ev.run_step(step, own)
             state = tuple(_state(ev, name) for name in sorted(names))
             if state in seen:
                 return (f"its condition and step come back to values they had after {i + 1} "
