@@ -3,7 +3,10 @@
 // distance to the light into a floating-point cube map (D3DFMT_R32F); the lighting pass looks
 // the map up in the direction from the light to the pixel and compares the stored value with
 // the pixel's own squared distance times 0.97 ("multiply the distance with a constant slightly
-// less than 1", so the allowed error is a percentage of the distance). 0 in shadow, 1 lit,
+// less than 1", so the allowed error is a percentage of the distance), and here also divided
+// by (1 + tan(theta) a)^2 for a surface tilted theta from the light and a look-up up to `a`
+// radians off the pixel's direction (see "The comparison's margin" below: without it his
+// four offset look-ups darkened the lit top of an occluder by a fifth). 0 in shadow, 1 lit,
 // multiplying diffuse only: the ambient stays visible in the shadow.
 //
 // Techniques in fallback order (D3DX takes the first the card validates):
@@ -64,15 +67,22 @@ float4 ShadowFactors1 < string UIName = "Bias factor, weight (one look-up)"; > =
 float4 ShadowFactors4 < string UIName = "Bias factor, weight (four look-ups)"; > = { 0.97, 0.25, 0.0, 0.0 };
 
 // How far the extra look-ups are offset: his constants times this (world units). The offsets
-// are fixed lengths and the bias a percentage, so a wider soft edge brings the acne back where
-// an offset look-up lands on the receiver nearer the light: in the test scene (light 4 above
-// the floor) 0.03 gives a 2.5-pixel edge and a clean floor, 0.05 a 4.5-pixel edge and acne.
+// are fixed lengths, so an offset look-up reads the receiver itself a little nearer the light
+// on a surface tilted from it; the slope term below widens the margin by exactly that (in the
+// test scene, light 4 above the floor, 0.03 gives a 2.5-pixel edge, 0.05 a 4.5-pixel one, both
+// with the floor and the occluder's top clean).
 float ShadowSpread
 <
     string UIName = "Soft edge: look-up offset scale";
     float UIMin = 0.0;
     float UIMax = 0.1;
 > = 0.03;
+
+// How far (radians) the direction a texel was drawn for may lie from a look-up's: half a
+// texel's diagonal for the nearest texel, and half again for Direct3D 9's pixel centres at
+// integer positions, where texel centres sit at +0.5 -- 2 sqrt(2) / 256 for the 256-wide maps
+// (a cube face spans tan -1..1 over its width; the angle is largest at the face's centre).
+float ShadowTexelAngle < string UIName = "Shadow texel angle (radians)"; > = 0.011;
 
 // The linear fallback stores distance / ShadowRange; this is 1 / ShadowRange (10 units).
 float InverseShadowRange < string UIName = "1 / shadow range (8-bit fallback)"; > = 0.1;
@@ -191,6 +201,20 @@ VertexShader LightVS = asm
     mad      oT6, c12, c9.x, -r0
 };
 
+// The comparison's margin (Persson's bias factor, c1.x) shrinks with the surface's slope to the
+// light: a look-up reads a texel drawn for a direction up to `a` radians off the pixel's own
+// (the texel's size, and for the four-sample shaders the offset), and on a surface tilted by
+// theta from the light direction that ray meets the same surface nearer the light, by a factor
+// of up to 1 / (1 + tan(theta) a) in distance. So the stored value is compared with
+//   biasfactor * d^2 / (1 + tan(theta) a)^2     (squared-distance maps)
+//   biasfactor * d / range / (1 + tan(theta) a)  (the linear map)
+// where a = ShadowTexelAngle (+ |offset| / d = sqrt(6) ShadowSpread / d with four look-ups:
+// his offsets (1,2,-1), (2,-1,1), (-1,1,2) are all sqrt(6) long). Without the slope term the
+// offset look-ups on the lit top of the test scene's cube land on the top itself nearer the
+// light and darken it by a fifth (measured: red 164 where Lambert gives 207); the texel term
+// keeps the default sphere free of acne near its terminator. tan(theta) = sqrt(1/c^2 - 1) for
+// c = N.L, c kept at least 0.01 (where N.L is that small the diffuse it scales is nothing).
+
 PixelShader Light1PS = asm
 {
     ps.2.0
@@ -198,7 +222,9 @@ PixelShader Light1PS = asm
     dcl      t1
     dcl      t3
     dcl_cube s3
-    // c1 = (bias factor, averaging factor, 0, 0), c2 = ambient, c3 = diffuse colour
+    // c1 = (bias factor, averaging factor, 0, 0), c2 = ambient, c3 = diffuse colour,
+    // c5.x = ShadowTexelAngle
+    def      c6, 1.0, 1.0e-8, 0.01, 2.4494897   // 1, a tiny tan^2, the least N.L, sqrt(6)
     texld    r8, t3, s3        // r8 = shadow map
     dp3      r7.x, t0, t0      // r7.x = lengthSqr(light vector)
     rsq      r6.x, r7.x
@@ -207,8 +233,18 @@ PixelShader Light1PS = asm
     rsq      r5.x, r5.x
     mul      r5, t1, r5.x      // N
     dp3_sat  r4.x, r5, r6      // N.L
+    max      r3.x, r4.x, c6.z
+    rcp      r3.x, r3.x
+    mad      r3.x, r3.x, r3.x, -c6.x
+    max      r3.x, r3.x, c6.y  // tan^2(theta) = 1/(N.L)^2 - 1
+    rsq      r3.x, r3.x
+    rcp      r3.x, r3.x        // tan(theta)
+    mad      r3.x, r3.x, c5.x, c6.x
+    mul      r3.x, r3.x, r3.x
+    rcp      r3.x, r3.x        // 1 / (1 + tan(theta) a)^2
     mul      r4, r4.x, c3
     mul      r8.y, r7.x, c1.x  // r8.y = lengthSqr(light vector) * biasfactor
+    mul      r8.y, r8.y, r3.x  // ... less the slope's share
     sub      r8.x, r8.x, r8.y
     cmp      r8.x, r8.x, c1.y, c1.z // r8.x = shadow factor
     mul      r4, r4, r8.x      // diffuse *= shadow factor
@@ -226,19 +262,33 @@ PixelShader Light4PS = asm
     dcl      t5
     dcl      t6
     dcl_cube s3
+    // c4.x = ShadowSpread, c5.x = ShadowTexelAngle
+    def      c6, 1.0, 1.0e-8, 0.01, 2.4494897
     texld    r8, t3, s3
     texld    r9, t4, s3
     texld    r10, t5, s3
     texld    r11, t6, s3
     dp3      r7.x, t0, t0
     rsq      r6.x, r7.x
+    mul      r3.y, r6.x, c4.x  // ShadowSpread / d
+    mad      r3.y, r3.y, c6.w, c5.x // a = texel angle + |offset| / d
     mul      r6, t0, r6.x
     dp3      r5.x, t1, t1
     rsq      r5.x, r5.x
     mul      r5, t1, r5.x
     dp3_sat  r4.x, r5, r6
+    max      r3.x, r4.x, c6.z
+    rcp      r3.x, r3.x
+    mad      r3.x, r3.x, r3.x, -c6.x
+    max      r3.x, r3.x, c6.y
+    rsq      r3.x, r3.x
+    rcp      r3.x, r3.x        // tan(theta)
+    mad      r3.x, r3.x, r3.y, c6.x
+    mul      r3.x, r3.x, r3.x
+    rcp      r3.x, r3.x        // 1 / (1 + tan(theta) a)^2
     mul      r4, r4.x, c3
     mul      r8.y, r7.x, c1.x
+    mul      r8.y, r8.y, r3.x
     sub      r8.x, r8.x, r8.y
     sub      r9.x, r9.x, r8.y
     sub      r10.x, r10.x, r8.y
@@ -255,7 +305,8 @@ PixelShader Light4PS = asm
     mov      oC0, r4
 };
 
-// The linear fallback: the same comparison on distance / range (c0.x = 1 / range).
+// The linear fallback: the same comparison on distance / range (c0.x = 1 / range), the slope
+// term once (a distance, not its square).
 PixelShader Light4LinearPS = asm
 {
     ps.2.0
@@ -266,12 +317,15 @@ PixelShader Light4LinearPS = asm
     dcl      t5
     dcl      t6
     dcl_cube s3
+    def      c6, 1.0, 1.0e-8, 0.01, 2.4494897
     texld    r8, t3, s3
     texld    r9, t4, s3
     texld    r10, t5, s3
     texld    r11, t6, s3
     dp3      r7.x, t0, t0
     rsq      r6.x, r7.x
+    mul      r3.y, r6.x, c4.x
+    mad      r3.y, r3.y, c6.w, c5.x // a = texel angle + |offset| / d
     rcp      r7.x, r6.x        // the distance
     mul      r7.x, r7.x, c0.x  // over the range
     mul      r6, t0, r6.x
@@ -279,8 +333,17 @@ PixelShader Light4LinearPS = asm
     rsq      r5.x, r5.x
     mul      r5, t1, r5.x
     dp3_sat  r4.x, r5, r6
+    max      r3.x, r4.x, c6.z
+    rcp      r3.x, r3.x
+    mad      r3.x, r3.x, r3.x, -c6.x
+    max      r3.x, r3.x, c6.y
+    rsq      r3.x, r3.x
+    rcp      r3.x, r3.x        // tan(theta)
+    mad      r3.x, r3.x, r3.y, c6.x
+    rcp      r3.x, r3.x        // 1 / (1 + tan(theta) a)
     mul      r4, r4.x, c3
     mul      r8.y, r7.x, c1.x
+    mul      r8.y, r8.y, r3.x
     sub      r8.x, r8.x, r8.y
     sub      r9.x, r9.x, r8.y
     sub      r10.x, r10.x, r8.y
@@ -331,6 +394,8 @@ technique Shadow4_R32F
         PixelShaderConstantF[1] = <ShadowFactors4>;
         PixelShaderConstantF[2] = <AmbientColor>;
         PixelShaderConstantF[3] = <SurfaceColor>;
+        PixelShaderConstantF[4] = <ShadowSpread>;
+        PixelShaderConstantF[5] = <ShadowTexelAngle>;
         PixelShader = <Light4PS>;
     }
 }
@@ -366,6 +431,7 @@ technique Shadow1_R32F
         PixelShaderConstantF[1] = <ShadowFactors1>;
         PixelShaderConstantF[2] = <AmbientColor>;
         PixelShaderConstantF[3] = <SurfaceColor>;
+        PixelShaderConstantF[5] = <ShadowTexelAngle>;
         PixelShader = <Light1PS>;
     }
 }
@@ -401,6 +467,8 @@ technique Shadow4_R16F
         PixelShaderConstantF[1] = <ShadowFactors4>;
         PixelShaderConstantF[2] = <AmbientColor>;
         PixelShaderConstantF[3] = <SurfaceColor>;
+        PixelShaderConstantF[4] = <ShadowSpread>;
+        PixelShaderConstantF[5] = <ShadowTexelAngle>;
         PixelShader = <Light4PS>;
     }
 }
@@ -438,6 +506,8 @@ technique Shadow4_Linear8
         PixelShaderConstantF[1] = <ShadowFactors4>;
         PixelShaderConstantF[2] = <AmbientColor>;
         PixelShaderConstantF[3] = <SurfaceColor>;
+        PixelShaderConstantF[4] = <ShadowSpread>;
+        PixelShaderConstantF[5] = <ShadowTexelAngle>;
         PixelShader = <Light4LinearPS>;
     }
 }
