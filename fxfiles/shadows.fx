@@ -11,7 +11,8 @@
 //
 // Techniques in fallback order (D3DX takes the first the card validates):
 //
-//   Shadow4_R32F     ps.2.0 and an R32F cube render target (refrast, modern): Persson's
+//   Shadow4_R32F     ps.2.0 and an R32F cube render target (refrast, modern, and the ATI cards
+//                    he wrote for: Radeon 9700, X1800, caps_profiles/radeon9700.yaml): Persson's
 //                    anti-aliased version, four look-ups offset by his constants (1,2,-1),
 //                    (2,-1,1), (-1,1,2) -- scaled here by ShadowSpread, since his offsets
 //                    were in the units of a larger world -- averaged with 0.25 each
@@ -24,7 +25,7 @@
 //                    A half holds it to 1 part in 2048 (10-bit mantissa), far inside the 3 %
 //                    bias; its largest value is 65504, so the map clears to FarAway16 (past a
 //                    distance of 244 nothing is shadowed)
-//   Shadow4_Linear8  ps.2.0 cards without float cube render targets (Radeon 9700, GeForce FX:
+//   Shadow4_Linear8  ps.2.0 cards without float cube render targets (GeForce FX, GMA 900:
 //                    "some pixel shader 2.0 hardware doesn't support floating
 //                    point cubemaps"): his advice, the linear distance, here divided by
 //                    ShadowRange into an A8R8G8B8 cube map; the same 0.97 factor (8 bits of

@@ -81,9 +81,9 @@ TEAPOT = [("hemisphere", "HemisphereOcclusion_ps11", "geforce3"),
 
 # shadows.fx in its own occluder scene (a floor and a cube under a point light; the default
 # sphere would shadow only its own unlit side): file name + _scene.
-SHADOWS = [("Shadow4_R32F", "refrast"), ("Shadow1_R32F", "refrast"),
-           ("Shadow4_R16F", "geforce6800"), ("Shadow4_Linear8", "radeon9700"),
-           ("Lit_ff", "geforce3")]
+SHADOWS = [("Shadow4_R32F", "refrast"), ("Shadow4_R32F", "radeon9700"),
+           ("Shadow1_R32F", "refrast"), ("Shadow4_R16F", "geforce6800"),
+           ("Shadow4_Linear8", "geforcefx5900"), ("Lit_ff", "geforce3")]
 
 # Drawn through the command line, as a user would (`effects render`): (effect, technique, card,
 # extra arguments, file name suffix). wood.fx reads its colours and vectors from wood.yaml,

@@ -52,13 +52,14 @@ EXPECTED = {
                       radeonx1800=("MultiLight_ps30", 1), refrast=("MultiLight_ps30", 1)),
     "phong": row(dx6=("SingleTexture", 1), dx7=("Dot3_dx7", 1), dx8=("PerPixelPhong_ps11", 2),
                  dx9=("PerPixelPhong_ps20", 1)),
-    # an R32F cube render target on refrast and modern only; the other ps_2_0 cards take the
-    # 8-bit linear-distance cube, except the GeForce 6800's R16F cube (Shadow1_R32F runs
-    # wherever Shadow4_R32F does: never selected)
+    # an R32F cube render target on refrast, modern and the ATI cards (R300's float cube maps,
+    # caps_profiles/radeon9700.yaml); the GeForce FX and GMA 900 take the 8-bit linear-distance
+    # cube, the GeForce 6800 its R16F cube (Shadow1_R32F runs wherever Shadow4_R32F does: never
+    # selected)
     "shadows": row(dx6=("Lit_ff", 1), dx7=("Lit_ff", 1), dx8=("Lit_ff", 1),
                    geforcefx5900=("Shadow4_Linear8", 2), gma900=("Shadow4_Linear8", 2),
-                   radeon9700=("Shadow4_Linear8", 2), geforce6800=("Shadow4_R16F", 2),
-                   radeonx1800=("Shadow4_Linear8", 2), modern=("Shadow4_R32F", 2),
+                   radeon9700=("Shadow4_R32F", 2), geforce6800=("Shadow4_R16F", 2),
+                   radeonx1800=("Shadow4_R32F", 2), modern=("Shadow4_R32F", 2),
                    refrast=("Shadow4_R32F", 2)),
     "sdk8_style": row(dx6=("TDX6", 1), dx7=("TFF7", 1), geforce3=("TPS1", 1),
                       geforce4ti=("TPS1", 1), radeon8500=("TPS4", 1), dx9=("TPS4", 1)),

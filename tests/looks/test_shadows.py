@@ -206,18 +206,34 @@ def test_linear_fallback_casts_the_same_shadow(effect, backend):
 
 @pytest.mark.parametrize("card, technique", [
     ("refrast", "Shadow4_R32F"), ("modern", "Shadow4_R32F"),
-    ("radeon9700", "Shadow4_Linear8"), ("geforcefx5900", "Shadow4_Linear8"),
+    ("radeon9700", "Shadow4_R32F"), ("radeonx1800", "Shadow4_R32F"),
+    ("geforcefx5900", "Shadow4_Linear8"), ("gma900", "Shadow4_Linear8"),
     ("geforce6800", "Shadow4_R16F"), ("geforce3", "Lit_ff"), ("tnt2", "Lit_ff")])
 def test_cards_without_float_cube_targets_fall_back(effect, card, technique):
     from effects.validate.select import find_valid_technique
     chosen = find_valid_technique(effect, load_profile(card))
     assert chosen.name == technique
-    if card in ("radeon9700", "geforce6800"):
+    if card in ("geforcefx5900", "geforce6800"):
         reasons = effect.validate(effect.technique("Shadow4_R32F"), load_profile(card)).reasons
         assert any("R32F" in r.message and "cube" in r.message for r in reasons)
-    if card in ("radeon9700", "geforcefx5900"):    # R16F without the cube usage
+    if card == "geforcefx5900":                   # R16F without the cube usage
         reasons = effect.validate(effect.technique("Shadow4_R16F"), load_profile(card)).reasons
         assert any("R16F" in r.message and "cube" in r.message for r in reasons)
+
+
+def test_the_radeon_9700_draws_persson_s_technique(effect, bundled_scene):
+    """The card Persson wrote for (caps_profiles/radeon9700.yaml: R300's float cube maps,
+    sourced) selects the R32F technique and draws the occluder's top as Lambert gives it,
+    where the 8-bit fallback it used to get dotted 30 % of the top (fp24 arithmetic: the
+    stored squared distance keeps 16 mantissa bits, far inside the margin)."""
+    frame = render_frame(effect, "radeon9700", backend="numpy", scene=bundled_scene)
+    assert frame.technique.name == "Shadow4_R32F"
+    mask, want = top_face_lambert(bundled_scene)
+    red = frame.image[..., 0].astype(float)[mask]
+    assert np.abs(red - want[mask]).max() <= 2
+    floor = frame.image[..., 0].astype(int)
+    refrast = render_frame(effect, "refrast", backend="numpy", scene=bundled_scene).image
+    assert (np.abs(floor - refrast[..., 0].astype(int)) > 2).mean() < 0.002
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
