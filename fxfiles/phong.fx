@@ -107,14 +107,19 @@ texture GlossMap
 >;
 
 // The DX8 technique's specular table (the chapter's LightEval, fxfiles/README.md): at (u, v),
-// rgb = v^96 and alpha = u. 96 = 4 x 24: Blinn's N.H exponent that draws Phong's (R.V)^24.
+// rgb = v^(4 SpecularPower) and alpha = u: Blinn's N.H exponent that draws Phong's
+// (R.V)^SpecularPower (96 for the article's 24). Made again whenever SpecularPower changes.
+// 2048 rows, not the chapter's 256: N.H = 1 reads the last row, at 1 - 0.5/rows, and
+// (1 - 0.5/256)^400 is 0.46 -- the highlight at SpecularPower 100 would lose half its
+// brightness -- where (1 - 0.5/2048)^400 is 0.91. Only N.H (v) matters here (the specular
+// pass uses rgb alone), so 64 columns do; 64 x 2048 is 128 Ki texels.
 texture SpecularTable
 <
-    string Procedural = "power_table:96";
+    string Procedural = "power_table:4*<SpecularPower>";
     string Type = "2D";
     string Format = "A8R8G8B8";
-    int Width = 256;
-    int Height = 256;
+    int Width = 64;
+    int Height = 2048;
 >;
 
 sampler2D BaseSampler = sampler_state
@@ -400,7 +405,8 @@ technique PerPixelPhong_ps20
 
 // DX8: ps.1.1 has 4 texture + 8 arithmetic slots and 8-bit fixed point. Pass 0 is the dot3
 // diffuse and the ambient; pass 1 adds the specular by the chapter's table lookup
-// (texm3x2pad/texm3x2tex: u = N.L, v = N.H, a dependent read of rgb = v^96). Not the
+// (texm3x2pad/texm3x2tex: u = N.L, v = N.H, a dependent read of rgb = v^(4 SpecularPower),
+// v^96 at the article's 24). Not the
 // exponent by multiplies: the chapter advises against powers above 16 that way (8-bit
 // products band), and 16 would be the wrong size. Blinn's N.H^96 stands for Persson's
 // (R.V)^24: the angle between R and V is about twice the angle between N and H, so

@@ -121,10 +121,13 @@ texture EnvMapTexture
     string Type = "2D";
 >;
 
-// The table of the chapter's LightEval: rgb = pow(v, SpecularPower), alpha = u.
+// The table of the chapter's LightEval: rgb = pow(v, SpecularPower), alpha = u, made again
+// whenever SpecularPower changes (as their D3DXFillTexture(LightEval, &fPower) would be
+// called again). 256 rows as in the chapter: N.H = 1 reads the last row's centre, so the
+// table's peak is (1 - 0.5/256)^SpecularPower, 0.82 at 100.
 texture PowerTable
 <
-    string Procedural = "power_table:16";
+    string Procedural = "power_table:<SpecularPower>";
     string Type = "2D";
     string Format = "A8R8G8B8";
     int Width = 256;
@@ -403,8 +406,13 @@ technique Specular_ps20
 
 // DX8: the chapter's table-lookup exponent. texm3x2pad/texm3x2tex compute u = N.L (the light
 // direction in t1's coordinates) and v = N.H (half angle in t2's) and read the table at
-// (u, v): rgb = v^16, alpha = u. The dependent read gives the table's filtered precision
-// instead of 8-bit products, so the highlight is smooth.
+// (u, v): rgb = v^SpecularPower, alpha = u. The dependent read gives the table's filtered
+// precision instead of 8-bit products, so the highlight is smooth. The half angle is the
+// vertex shader's, interpolated and not renormalised (texm3x2tex takes it as coordinates): on
+// the default sphere (vertices 7.5 degrees apart) it runs up to 0.2 % short, which N.H^100
+// turns into a highlight a third the ps_2_0 one's area (49 against 133 pixels above half at
+// 128 x 128; within 10 % at 16 and on a sphere of 96 x 192 quads at 16, 48 and 100:
+// tests/looks/test_power_tables.py).
 technique SpecularTable_ps11
 <
     string Description = "ps.1.1 exponent by table lookup (texm3x2pad / texm3x2tex)";

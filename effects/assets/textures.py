@@ -390,17 +390,21 @@ def normalization_cube(size: int = 32) -> np.ndarray:
     return fill_cube_texture(fn, size)
 
 
-def power_table(size: int = 256, exponent: float = 16.0, *, levels: int = 1) -> list[np.ndarray]:
+def power_table(size: int = 256, exponent: float = 16.0, *, levels: int = 1,
+                rows: int | None = None) -> list[np.ndarray]:
     """The table-lookup specular texture of Boyd and Taylor's chapter, filled like their
-    D3DXFillTexture callback: at texel centre (u, v), rgb = v ** exponent and alpha = u.
+    D3DXFillTexture callback: at texel centre (u, v), rgb = v ** exponent and alpha = u;
+    `size` columns and `rows` rows (default `size`).
 
     In their ps.1.1 shader texm3x2pad/texm3x2tex form u = N.L (first row, t1) and v = N.H
-    (second row, t2): columns (u) index N.L, rows (v, top = 0) index N.H.
+    (second row, t2): columns (u) index N.L, rows (v, top = 0) index N.H. The last row's
+    centre is 1 - 0.5 / rows, so N.H = 1 reads (1 - 0.5 / rows) ** exponent, about
+    exp(-exponent / (2 rows)): 0.82 for 100 over the chapter's 256 rows, 0.91 for 400 over 2048.
     """
     def fn(u, v, _texel):
         p = np.power(v, exponent)
         return np.stack([p, p, p, u], axis=-1)
-    return fill_texture(fn, size, size, levels=levels)
+    return fill_texture(fn, size, rows or size, levels=levels)
 
 
 def power_table_1d(size: int = 256, exponent: float = 16.0) -> np.ndarray:
@@ -460,10 +464,15 @@ class Procedural:
     takes_height: bool = False
     kind: str = "2d"     # with `aspect`, how many texels a size makes (checked before making)
     aspect: int = 1      # width / height
+    # `make_rows(arg, width, rows)`: the entries whose height may differ from their width (a
+    # `Height` annotation); the others are square (or `aspect`)
+    make_rows: Callable[[str, int, int], Texture] | None = None
 
-    def extent(self, size: int) -> tuple[int, int, int]:
-        """(width, height, layers) of the top level at edge length `size`."""
+    def extent(self, size: int, rows: int | None = None) -> tuple[int, int, int]:
+        """(width, height, layers) of the top level at edge length `size` (`rows` high)."""
         layers = {"cube": 6, "3d": size}.get(self.kind, 1)
+        if rows is not None and self.make_rows is not None:
+            return size, rows, layers
         return size * self.aspect, size, layers
 
 
@@ -529,7 +538,9 @@ PROCEDURAL: dict[str, Procedural] = {
         lambda a, s, h: Texture("cube", "X8R8G8B8", [encode(normalization_cube(s), "X8R8G8B8")]), 32,
         doc="normalisation cube map, X8R8G8B8, one level", arg_is_size=True, kind="cube"),
     "power": Procedural(lambda a, s, h: Texture("2d", "A8R8G8B8", [encode(power_table(s, float(a))[0], "A8R8G8B8")]),
-                        256, "16", "Boyd-Taylor table: rgb = v^N (rows N.H), alpha = u (N.L); A8R8G8B8"),
+                        256, "16", "Boyd-Taylor table: rgb = v^N (rows N.H), alpha = u (N.L); A8R8G8B8",
+                        make_rows=lambda a, s, r: Texture("2d", "A8R8G8B8", [
+                            encode(power_table(s, float(a), rows=r)[0], "A8R8G8B8")])),
     "power1d": Procedural(lambda a, s, h: Texture("1d", "L8", [encode(power_table_1d(s, float(a)), "L8")]),
                           256, "16", "1D table rgb = u^N, L8"),
     "power_range": Procedural(lambda a, s, h: Texture("2d", "L8", [encode(power_range_table(s, float(a)), "L8")]),
@@ -563,17 +574,22 @@ _PROCEDURAL = caches.declare(
     "modification time", max_bytes=DEFAULT_TEXTURE_BYTES, size_of=texture_bytes)
 
 
-def _procedural_cached(base: str, arg: str, size: int, path: str, stamp: float) -> Texture:
-    key = (base, arg, size, path, stamp)
+def _procedural_cached(base: str, arg: str, size: int, path: str, stamp: float,
+                       rows: int | None = None) -> Texture:
+    key = (base, arg, size, path, stamp, rows)
     hit = _PROCEDURAL.get(key)
     if hit is None:
-        hit = _make_procedural(base, arg, size, path)
+        hit = _make_procedural(base, arg, size, path, rows)
         _PROCEDURAL.put(key, hit)
     return hit
 
 
-def _make_procedural(base: str, arg: str, size: int, path: str) -> Texture:
+def _make_procedural(base: str, arg: str, size: int, path: str, rows: int | None = None) -> Texture:
     entry = PROCEDURAL[base]
+    if rows is not None and entry.make_rows is not None:
+        texture = entry.make_rows(arg, size, rows)
+        texture.name = f"{base}:{arg}"
+        return _freeze(texture)
     heights = None
     if entry.takes_height:
         heights = _height_from_image(path, Location(path, 1, 1)) if path else height_field(size, arg)
@@ -583,11 +599,13 @@ def _make_procedural(base: str, arg: str, size: int, path: str) -> Texture:
 
 
 def procedural(name: str, *, size: int | None = None, base_dir: str | None = None,
-               location: Location | None = None, root: str | None = None) -> Texture:
+               location: Location | None = None, root: str | None = None,
+               rows: int | None = None) -> Texture:
     """A procedural texture by name, 'NAME' or 'NAME:ARG' (see `PROCEDURAL` and the table above),
     e.g. 'sobel_normals:stones', 'sobel_normals:textures/h.png' (an image path, relative to
     `base_dir`), 'power_table:16', 'normalization_cube:32'. `size` overrides the default edge
-    length (an edge-length argument wins over it). Results are cached (image arguments by file
+    length (an edge-length argument wins over it); `rows` the height of the entries that may
+    be taller or wider than square (`make_rows`: the power table). Results are cached (image arguments by file
     modification time) and read-only. With `root` (the effect's include root) an image argument
     must lie inside it (`effects.base.untrusted.confine`). Problems raise `SceneError` at `location`."""
     where = location or Location(f"procedural:{name}", 1, 1)
@@ -605,7 +623,10 @@ def procedural(name: str, *, size: int | None = None, base_dir: str | None = Non
         size = int(arg)
     if int(size) < 1:
         raise SceneError(f"procedural texture size {size} must be at least 1", where)
-    width, height, layers = entry.extent(int(size))
+    if rows is not None and int(rows) < 1:
+        raise SceneError(f"procedural texture height {rows} must be at least 1", where)
+    rows = int(rows) if rows is not None and entry.make_rows is not None else None
+    width, height, layers = entry.extent(int(size), rows)
     limits.check_texture(width, height, layers, where, f"procedural texture {base!r}", SceneError)
     limits.check("procedural_texels", width * height * layers, where,
                  f"procedural texture {base!r} ({width} x {height} x {layers})", SceneError)
@@ -614,7 +635,7 @@ def procedural(name: str, *, size: int | None = None, base_dir: str | None = Non
         path = confine(arg, base_dir or os.getcwd(), root, "procedural image", SceneError, where)
         stamp = os.path.getmtime(path) if os.path.isfile(path) else -1.0
     try:
-        return _procedural_cached(base, arg, int(size), path, stamp)
+        return _procedural_cached(base, arg, int(size), path, stamp, rows)
     except SceneError as exc:
         raise SceneError(exc.message, where) from None
     except ValueError as exc:

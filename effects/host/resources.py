@@ -5,7 +5,11 @@ Texture parameters, first source that applies wins:
      folder, the scene's `params` relative to the scene file), a path or a `Texture`;
   2. `string ResourceName = "file"`, relative to the effect file;
   3. `string Procedural = "generator:argument"` (`effects.assets.textures.procedural`; an `int Width`
-     annotation gives the size of generators that take one);
+     annotation gives the size of generators that take one). The argument may name a numeric
+     parameter as `<Name>`, optionally scaled, `k*<Name>` or `<Name>*k`: its current value is
+     written there, and a runtime makes the texture again when that parameter changes (a table
+     of pow(v, SpecularPower) follows SpecularPower, as a host refilling it with
+     D3DXFillTexture on SetValue would);
   4. nothing: the parameter stays unbound; the runtime draws a stand-in of its kind
      (`stand_in_texture`) with a warning, or fails when strict. A `ResourceName` file that is
      missing raises `MissingTexture`, which the runtime treats the same way.
@@ -32,6 +36,7 @@ from __future__ import annotations
 
 
 import os
+import re
 from dataclasses import dataclass
 from typing import Any, Mapping
 
@@ -170,19 +175,65 @@ def resolve_texture(param: Parameter, effect: Effect, given: TextureSource | Non
         return cache.load(path, kind, resource.location)
     generator = param.annotation("Procedural")
     if generator is not None and isinstance(generator.value, str):
-        width = param.annotation("Width")
-        size = None
-        if width is not None and not isinstance(width.value, str):
-            first = np.asarray(width.value, np.float64).reshape(-1)
-            if first.size == 0 or not np.isfinite(first[0]) or not 1 <= first[0] <= 1 << 20:
-                raise SceneError(f"Width annotation {str(width.value)[:40]} is not a texture size",
-                                 width.location)
-            size = int(first[0])
-        texture = procedural(generator.value, size=size, base_dir=base, location=generator.location,
-                             root=root)
+        size, rows = _size_annotation(param, "Width"), _size_annotation(param, "Height")
+        text = expand_parameters(generator.value, effect, generator.location)
+        texture = procedural(text, size=size, base_dir=base, location=generator.location,
+                             root=root, rows=rows)
         _check_kind(param, texture, kind, generator.location)
         return texture
     return None
+
+
+def _size_annotation(param: Parameter, name: str) -> int | None:
+    """A texture parameter's `int Width` / `int Height` annotation, checked; None if absent."""
+    given = param.annotation(name)
+    if given is None or isinstance(given.value, str):
+        return None
+    first = np.asarray(given.value, np.float64).reshape(-1)
+    if first.size == 0 or not np.isfinite(first[0]) or not 1 <= first[0] <= 1 << 20:
+        raise SceneError(f"{name} annotation {str(given.value)[:40]} is not a texture size",
+                         given.location)
+    return int(first[0])
+
+
+# `<Name>`, `k*<Name>` or `<Name>*k` in a Procedural argument (k a plain decimal number)
+_NUMBER = r"[0-9]+(?:\.[0-9]*)?"
+_REFERENCE = re.compile(rf"(?:({_NUMBER})\s*\*\s*)?<\s*([A-Za-z_][A-Za-z0-9_]*)\s*>(?:\s*\*\s*({_NUMBER}))?")
+
+
+def procedural_parameters(param: Parameter) -> set[str]:
+    """The parameters a texture parameter's `Procedural` annotation names as `<Name>`: the
+    values its texture is made from."""
+    generator = param.annotation("Procedural")
+    if generator is None or not isinstance(generator.value, str):
+        return set()
+    return {m.group(2) for m in _REFERENCE.finditer(generator.value)}
+
+
+def expand_parameters(text: str, effect: Effect, at: Location) -> str:
+    """`text` with each `<Name>` (times its factor) replaced by the numeric parameter's current
+    value, written so that reading it back gives the same float (a whole number without a
+    decimal point)."""
+    def value(match: re.Match) -> str:
+        before, name, after = match.groups()
+        param = effect.parameter(name)
+        if param is None:
+            raise SceneError(f"Procedural argument names <{name}>, which is no parameter of "
+                             "this effect", at)
+        number = np.asarray(param.value if param.value is not None else np.nan, dtype=object)
+        try:
+            scalar = float(number.reshape(-1)[0]) if number.size == 1 else float("nan")
+        except (TypeError, ValueError):
+            scalar = float("nan")
+        if not np.isfinite(scalar):
+            raise SceneError(f"Procedural argument <{name}>: {name} is not a finite number "
+                             f"(declared at {param.location})", at)
+        for factor in (before, after):
+            if factor is not None:
+                scalar *= float(factor)
+        # a whole number as one (a generator may want an integer: checker:<Squares>)
+        return str(int(scalar)) if scalar.is_integer() and abs(scalar) < 2 ** 53 else repr(scalar)
+    return _REFERENCE.sub(value, text)
 
 
 def check_texture_budget(textures: Mapping[str, "Texture | None"], at: Location) -> None:

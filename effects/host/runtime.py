@@ -34,8 +34,8 @@ from typing import TYPE_CHECKING, Any, Mapping
 import numpy as np
 
 from effects.host.resources import (DEFAULT_TEXTURE_CACHE, Geometry, MissingTexture, TextureCache,
-                                 TextureSource, check_texture_budget, declared_kind, geometry,
-                                 resolve_texture, stand_in_texture)
+                                   TextureSource, check_texture_budget, declared_kind, geometry,
+                                   procedural_parameters, resolve_texture, stand_in_texture)
 from effects.base import caches, limits
 from effects.base.errors import EffectError, EffectWarning, Location, NoValidTechnique, SceneError
 from effects.model import Effect, ParamRef, Parameter, SamplerState, Technique
@@ -258,6 +258,10 @@ class Runtime:
             self._textures.pop(param.name, None)
         else:
             param.value = coerced
+            # a Procedural texture made from this value is made again at its next use
+            for other in self.effect.parameters:
+                if other.type.takes_image and param.name in procedural_parameters(other):
+                    self._textures.pop(other.name, None)
 
     def set_value(self, name: str, value: Any) -> None:
         """ID3DXEffect::SetValue: a parameter's value (as `params=` takes it); takes effect

@@ -309,6 +309,33 @@ def test_procedural_textures_are_generated():
     assert quads(image, WHITE, black, black, WHITE)
 
 
+def test_a_procedural_argument_follows_the_parameter_it_names():
+    # checker:<Squares>: 2 squares a side, then 4 (the texture is made again after set_value)
+    text = 'float Squares = 2;\n' + TEXTURED.replace('string ResourceName = "four.png"',
+                                                     'string Procedural = "checker:<Squares>"')
+    runtime = Runtime(load_effect(text), "tnt2", scene={"mesh": "quad"}, size=(4, 4))
+    black = (0, 0, 0, 255)
+    assert quads(runtime.render().image, WHITE, black, black, WHITE)
+    assert runtime.texture("Tex").name == "checker:2"
+    runtime.set_value("Squares", 4)
+    image = runtime.render().image
+    assert (image[0, 0] == WHITE).all() and (image[0, 1] == black).all()
+    assert runtime.texture("Tex").name == "checker:4"
+
+
+@pytest.mark.parametrize("argument, message", [
+    ("<Nope>", "names <Nope>, which is no parameter"),
+    ("<Name>", "Name is not a finite number"),
+    ("2*<Big>", "texture size|procedural texture 'checker'")])
+def test_a_procedural_argument_naming_a_bad_parameter_is_located(argument, message):
+    text = ('string Name = "x";\nfloat Big = 1e30;\n'
+            + TEXTURED.replace('string ResourceName = "four.png"', f'string Procedural = "checker:{argument}"'))
+    effect = load_effect(text)
+    with pytest.raises(SceneError, match=message) as info:
+        effects.render(effect, "tnt2", scene={"mesh": "quad"}, size=(4, 4))
+    assert info.value.line == 4                    # the texture's annotation
+
+
 def test_an_unbound_texture_samples_nothing_and_the_pass_still_draws():
     effect = load_effect(TEXTURED.replace('string ResourceName = "four.png";', ""))
     image = effects.render(effect, "tnt2", scene={"mesh": "quad"}, size=(2, 2))
