@@ -2,7 +2,7 @@
 measured on the NumPy reference's screen-space shader (backends/reference/fast_phong.py):
 a 64 x 128 sphere seen from the front at 1024 x 1024, one directional light, exponent 20.
 
-    .venv/bin/python benchmarks/bench_fast_phong.py [--size 1024] [--repeat 5] [--errors]
+    .venv/bin/python benchmarks/bench_fast_phong.py [--size 1024] [--repeat 5] [--json] [--errors]
     .venv/bin/python benchmarks/bench_fast_phong.py --renderer [--size 1024] [--repeat 5]
 
 `--renderer` times whole frames of fxfiles/fast_phong.fx (Phong, refrast, the default
@@ -16,13 +16,25 @@ directions within 75 degrees of the triangle's mean normal, for the diffuse term
 specular at the paper's exponents and table sizes.
 
 Shading only: the scan conversion and interpolation planes, which every mode shares, are made
-once (`prepare`) and timed apart. The paper's table (microVAX-II, 14620 polygons at 2048^2):
-Gouraud 406 s, Taylor (infinite eye) 767 s, Taylor (finite eye) 850 s, Phong 3900 s --
-ratios 1, 1.89, 2.09, 9.6.
+once (`prepare`) and timed apart. The modes are timed in interleaved rounds (each round times
+every mode once, in the same order) of CPU time (the process's, so other work on a shared
+machine counts less), so that a machine whose speed drifts slows all of them alike: each ratio is the median over the rounds of that round's time over its Gouraud time,
+printed with the lowest and highest round. `--json` prints the rows as one JSON line
+(docs/make_performance.py puts them on docs/performance.md).
+
+The paper's table (microVAX-II, figure 4's 14620 polygons at 2048^2, CPU seconds): Gouraud
+406, Taylor (infinite eye) 767 (incl. 119 for the Taylor coefficients), Taylor (finite eye)
+850 (incl. 202), Duff 2597 (incl. 1420 in sqrt), Phong 3900 (incl. 1405 in sqrt) -- ratios
+1, 1.89, 2.09, 6.40, 9.61. Duff's form evaluates N.L and |N|^2 by forward differences, then
+divides by a square root at each pixel (its specular here reads the same exponent table as
+the Taylor rows); Phong interpolates the normal and normalises it.
 """
 from __future__ import annotations
 
 import argparse
+import json
+import statistics
+import time
 
 import numpy as np
 
@@ -32,7 +44,7 @@ from effects.assets.meshes import sphere
 from bench_scale import best as best_of  # one timing helper for the benchmarks
 
 PAPER = {"gouraud": 406.0, "taylor, infinite eye": 767.0, "taylor, finite eye": 850.0,
-         "phong (normalised normal), infinite eye": 3900.0}
+         "duff, infinite eye": 2597.0, "phong (normalised normal), infinite eye": 3900.0}
 
 
 def front_sphere(size: int, rings: int = 64, segments: int = 128):
@@ -74,28 +86,50 @@ def error_curves(spans=(10, 20, 25, 30, 40, 50, 60, 75, 90), count: int = 150) -
             print(f"{name:26s} {spread:6s} " + " ".join(f"{c:>12s}" for c in cells), flush=True)
 
 
-def renderer_frames(size: int, repeat: int) -> None:
+def renderer_frames(size: int, repeat: int, as_json: bool = False) -> None:
     from pathlib import Path
 
     import effects
     from effects.program.backend import create_backend
     from effects.host.runtime import Runtime
     fx = effects.load_effect(str(Path(__file__).resolve().parent.parent / "fxfiles" / "fast_phong.fx"))
-    rows = {"gouraud (vertex lighting)": ("normalised", "Gouraud"),
-            "taylor, finite eye": ("taylor", "Phong"),
-            "phong (normalised normal), finite eye": ("normalised", "Phong")}
-    times = {}
-    for name, (mode, technique) in rows.items():
+    cases = {"gouraud (vertex lighting)": ("normalised", "Gouraud"),
+             "taylor, finite eye": ("taylor", "Phong"),
+             "phong (normalised normal), finite eye": ("normalised", "Phong")}
+    draws = {}
+    for name, (mode, technique) in cases.items():
         runtime = Runtime(fx, "refrast", size=(size, size),
                           backend=create_backend("numpy", threads=1, phong=mode))
         tech = fx.technique(technique)
-        runtime.render(tech)
-        times[name] = best_of(lambda: runtime.render(tech), repeat)
-    print(f"fast_phong.fx frames at {size}^2 through the reference back end (one thread)")
-    for name, t in times.items():
-        print(f"{name:42s} {t * 1e3:8.1f} ms {t / times['gouraud (vertex lighting)']:6.2f}")
-    ratio = times["phong (normalised normal), finite eye"] / times["taylor, finite eye"]
-    print(f"normalised-normal Phong / Taylor frame: {ratio:.2f}x")
+        runtime.render(tech)                          # once before timing
+        draws[name] = (runtime, tech)
+    times: dict[str, list[float]] = {name: [] for name in cases}
+    for _ in range(repeat):                           # interleaved rounds, CPU time
+        for name, (runtime, tech) in draws.items():
+            start = time.process_time()
+            runtime.render(tech)
+            times[name].append(time.process_time() - start)
+    base = times["gouraud (vertex lighting)"]
+    rows = []
+    for name in cases:
+        ratios = [t / g for t, g in zip(times[name], base)]
+        rows.append({"name": name, "ms": min(times[name]) * 1e3, "ratio": statistics.median(ratios),
+                     "ratio_low": min(ratios), "ratio_high": max(ratios)})
+    over = [p / t for p, t in zip(times["phong (normalised normal), finite eye"],
+                                  times["taylor, finite eye"])]
+    summary = {"over_taylor": statistics.median(over), "over_taylor_low": min(over),
+               "over_taylor_high": max(over), "faster_rounds": sum(o > 1 for o in over)}
+    if as_json:
+        print(json.dumps({"size": size, "rounds": repeat, "rows": rows, **summary}))
+        return
+    print(f"fast_phong.fx frames at {size}^2 through the reference back end (one thread, "
+          f"{repeat} interleaved rounds)")
+    for row in rows:
+        print(f"{row['name']:42s} {row['ms']:8.1f} ms {row['ratio']:6.2f} "
+              f"({row['ratio_low']:.2f}-{row['ratio_high']:.2f})")
+    print(f"normalised-normal Phong / Taylor frame: {summary['over_taylor']:.2f}x "
+          f"({summary['over_taylor_low']:.2f}-{summary['over_taylor_high']:.2f}; the Taylor "
+          f"frame faster in {summary['faster_rounds']} of {repeat} rounds)")
 
 
 def main() -> None:
@@ -106,35 +140,71 @@ def main() -> None:
                         help="print the series' error against the normals' span instead")
     parser.add_argument("--renderer", action="store_true",
                         help="time fast_phong.fx frames through the reference back end instead")
+    parser.add_argument("--json", action="store_true", help="the table as one JSON line")
     args = parser.parse_args()
     if args.errors:
         error_curves()
         return
     if args.renderer:
-        renderer_frames(args.size, args.repeat)
+        renderer_frames(args.size, args.repeat, args.json)
         return
-    xy, n, v = front_sphere(args.size)
+    rows, pixels, setup = paper_table(args.size, args.repeat)
+    if args.json:
+        print(json.dumps({"size": args.size, "rounds": args.repeat, "pixels": pixels,
+                          "setup_ms": setup * 1e3, "rows": rows}))
+        return
+    print(f"{pixels} pixels at {args.size}^2; scan conversion and planes (shared) "
+          f"{setup * 1e3:.1f} ms; {args.repeat} interleaved rounds")
+    print(f"{'shading':42s} {'ms':>8s} {'ns/pixel':>9s} {'ratio':>6s} {'rounds':>11s} {'paper':>6s}")
+    for row in rows:
+        paper = f"{row['paper_ratio']:.2f}" if row["paper_ratio"] else "-"
+        print(f"{row['name']:42s} {row['ms']:8.1f} {row['ms'] * 1e6 / pixels:9.1f} "
+              f"{row['ratio']:6.2f} {row['ratio_low']:5.2f}-{row['ratio_high']:<5.2f} {paper:>6s}")
+    by_name = {row["name"]: row for row in rows}
+    phong = by_name["phong (normalised normal), infinite eye"]
+    print(f"normalised-normal Phong / Taylor (infinite eye): {phong['over_taylor']:.2f}x, rounds "
+          f"{phong['over_taylor_low']:.2f}-{phong['over_taylor_high']:.2f} (paper "
+          f"{PAPER[phong['name']] / PAPER['taylor, infinite eye']:.2f}x)")
+
+
+CASES = ("gouraud", "taylor, infinite eye", "taylor, finite eye", "duff, infinite eye",
+         "phong (normalised normal), infinite eye", "phong (normalised normal), finite eye")
+
+
+def paper_table(size: int, rounds: int) -> tuple[list[dict], int, float]:
+    """The paper's rows timed in `rounds` interleaved rounds: (rows, pixels, setup seconds);
+    each row: name, best ms, ratio to Gouraud (median of the rounds, with the lowest and the
+    highest), and the paper's seconds and ratio where it has the row."""
+    xy, n, v = front_sphere(size)
     to_light = np.array([0.4, 0.5, 0.77]) / np.linalg.norm([0.4, 0.5, 0.77])
     infinite = Light(to_light, eye=np.array([0.0, 0.0, 1.0]))
     finite = Light(to_light, eye=None)
-    setup = best_of(lambda: prepare(xy, n, (args.size, args.size), v), args.repeat)
-    prep = prepare(xy, n, (args.size, args.size), v)
-    cases = {"gouraud": (infinite, "gouraud"), "taylor, infinite eye": (infinite, "taylor"),
-             "taylor, finite eye": (finite, "taylor"),
+    setup = best_of(lambda: prepare(xy, n, (size, size), v), rounds)
+    prep = prepare(xy, n, (size, size), v)
+    modes = {"gouraud": (infinite, "gouraud"), "taylor, infinite eye": (infinite, "taylor"),
+             "taylor, finite eye": (finite, "taylor"), "duff, infinite eye": (infinite, "duff"),
              "phong (normalised normal), infinite eye": (infinite, "phong"),
              "phong (normalised normal), finite eye": (finite, "phong")}
-    times = {name: best_of(lambda: pixel_values(prep, light, mode), args.repeat)
-             for name, (light, mode) in cases.items()}
-    pixels = len(prep.spans.x)
-    print(f"{len(xy)} triangles, {pixels} pixels at {args.size}^2; scan conversion and planes "
-          f"(shared) {setup * 1e3:.1f} ms")
-    print(f"{'shading':42s} {'ms':>8s} {'ns/pixel':>9s} {'ratio':>6s} {'paper':>6s}")
-    for name, t in times.items():
-        paper = f"{PAPER[name] / PAPER['gouraud']:.2f}" if name in PAPER else "-"
-        print(f"{name:42s} {t * 1e3:8.1f} {t / pixels * 1e9:9.1f} "
-              f"{t / times['gouraud']:6.2f} {paper:>6s}")
-    ratio = times["phong (normalised normal), infinite eye"] / times["taylor, infinite eye"]
-    print(f"normalised-normal Phong / Taylor (infinite eye): {ratio:.2f}x (goal >= 2)")
+    for light, mode in modes.values():                 # once each before timing (warm caches)
+        pixel_values(prep, light, mode)
+    times: dict[str, list[float]] = {name: [] for name in CASES}
+    for _ in range(rounds):
+        for name in CASES:
+            light, mode = modes[name]
+            start = time.process_time()
+            pixel_values(prep, light, mode)
+            times[name].append(time.process_time() - start)
+    rows = []
+    for name in CASES:
+        ratios = [t / g for t, g in zip(times[name], times["gouraud"])]
+        over = [t / g for t, g in zip(times[name], times["taylor, infinite eye"])]
+        paper = PAPER.get(name)
+        rows.append({"name": name, "ms": min(times[name]) * 1e3,
+                     "ratio": statistics.median(ratios), "ratio_low": min(ratios),
+                     "ratio_high": max(ratios), "over_taylor": statistics.median(over),
+                     "over_taylor_low": min(over), "over_taylor_high": max(over),
+                     "paper_s": paper, "paper_ratio": paper / PAPER["gouraud"] if paper else None})
+    return rows, len(prep.spans.x), setup
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
-"""Shading a triangle mesh in screen space four ways, after Bishop and Weimer, "Fast Phong
+"""Shading a triangle mesh in screen space five ways, after Bishop and Weimer, "Fast Phong
 Shading" (SIGGRAPH 1986): flat, Gouraud, Phong (the normal interpolated and normalised at
-every pixel) and their Taylor form, a second-order expansion of the reflection equation about
+every pixel), Duff's form (the dot product and the squared length by forward differences,
+then a division and a square root a pixel; eye at infinity) and their Taylor form, a second-order expansion of the reflection equation about
 each triangle's centre evaluated along scanlines by forward differences (2 additions a pixel
 for the diffuse term, as many for the specular dot product, then a power-table lookup), with
 the eye at infinity or at a finite distance.
@@ -25,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-MODES = ("flat", "gouraud", "phong", "taylor")
+MODES = ("flat", "gouraud", "phong", "taylor", "duff")
 
 # Polynomial coefficients in x, y up to second order, in this order:
 # (1, x, y, x^2, xy, y^2)
@@ -244,6 +245,22 @@ def pixel_values(prep: Prepared, light: Light, mode: str) -> np.ndarray:
             denominator = n_sq
         n_dot_h = forward_differences(taylor_quotient(linear_dot(n_plane, h_plane), denominator),
                                       spans)
+        return (light.ambient + light.diffuse * np.maximum(diffuse, 0.0)
+                + light.specular * table_lookup(table, n_dot_h))
+    if mode == "duff":
+        # Duff's form (the paper's "Duff" row): N.L and |N|^2 of the interpolated normal,
+        # linear and quadratic in x and y, by forward differences, then per pixel one
+        # division and one square root -- exact where the series approximates
+        if finite:
+            raise ValueError("Duff's form is timed, as in the paper, with the eye at infinity")
+        table = power_table(light.exponent, light.table_size)
+        constant = np.array([0.0, 0.0, 1.0])[None, :, None]
+        l_plane = np.broadcast_to(L, n_plane.shape) * constant
+        h = L + np.asarray(light.eye, np.float64)
+        h_plane = np.broadcast_to(h / np.linalg.norm(h), n_plane.shape) * constant
+        inv_length = 1.0 / np.sqrt(forward_differences(linear_dot(n_plane, n_plane), spans))
+        diffuse = forward_differences(linear_dot(n_plane, l_plane), spans) * inv_length
+        n_dot_h = forward_differences(linear_dot(n_plane, h_plane), spans) * inv_length
         return (light.ambient + light.diffuse * np.maximum(diffuse, 0.0)
                 + light.specular * table_lookup(table, n_dot_h))
     if mode == "flat":          # the normal (and eye vector) at the triangle's centre

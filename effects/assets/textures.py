@@ -92,7 +92,10 @@ def mip_chain(level0: np.ndarray, *, blur: bool = False, kind: str = "2d") -> li
     Each texel is the area average of the texels it covers: a 2 x 2 (x 2) box where sizes are
     even; for odd sizes the edge texels are shared with fractional weights. With `blur`, each
     level after the first also gets a soft [1, 2, 1] / 4 blur: Persson's advice for normal and
-    gloss maps, whose lower levels otherwise alias under per-pixel lighting.
+    gloss maps, whose lower levels alias under per-pixel lighting. Measured against a
+    supersampled render it does not help (tests/looks/test_mip_blur.py: phong.fx's normal map
+    blurred is further from the 8 x 8 average, RMS 11.2 against 10.1 levels at 64 x 64), so
+    the bundled generators leave it off.
     """
     level = np.asarray(level0, np.float32)
     axes = _SPATIAL_AXES[kind]
@@ -515,12 +518,12 @@ PROCEDURAL: dict[str, Procedural] = {
                                128, "bumps", "height field in alpha, A8 (emboss)", takes_height=True),
     "sobel_normals": Procedural(
         lambda a, s, h: make_texture(sobel_normal_map(h, 1.0 if _is_path(a) else _normal_scale(s)),
-                                     "X8R8G8B8", blur=True),
-        128, "bumps", "tangent-space normal map of a height field, X8R8G8B8, blurred mips", takes_height=True),
+                                     "X8R8G8B8"),
+        128, "bumps", "tangent-space normal map of a height field, X8R8G8B8", takes_height=True),
     "sobel_normals_ao": Procedural(
         lambda a, s, h: make_texture(_with_openness(sobel_normal_map(h, 1.0 if _is_path(a) else _normal_scale(s)),
                                                     h, 1.0 if _is_path(a) else _normal_scale(s)),
-                                     "A8R8G8B8", blur=True),
+                                     "A8R8G8B8"),
         128, "bumps", "sobel_normals with alpha = 1 - the height field's self-occlusion, A8R8G8B8",
         takes_height=True),
     "sobel_dudv": Procedural(
@@ -529,8 +532,8 @@ PROCEDURAL: dict[str, Procedural] = {
     "dudv": Procedural(lambda a, s, h: Texture("2d", "V8U8", [encode(level, "V8U8") for level in
                                                             mip_chain(bump_map_du_dv(h))]),
                        128, "bumps", "EMBM (du, dv) = -0.05 * height gradient, V8U8", takes_height=True),
-    "gloss": Procedural(lambda a, s, h: make_texture(gloss_map(s), "L8", blur=True), 128,
-                        doc="gloss map, L8, blurred mips"),
+    "gloss": Procedural(lambda a, s, h: make_texture(gloss_map(s), "L8"), 128,
+                        doc="gloss map, L8"),
     "environment": Procedural(lambda a, s, h: make_texture(environment_cube(s), "X8R8G8B8", kind="cube"), 64,
                               doc="sky and checkered ground cube map, X8R8G8B8", arg_is_size=True,
                               kind="cube"),
