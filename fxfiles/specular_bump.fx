@@ -74,10 +74,12 @@ float SpecularPower
 > = 16.0;
 
 // Emboss: how far (in texture coordinates) the height map is shifted toward the light:
-// two texels of the 128x128 height map. One texel (0.008) drew a sixth of the relief the
-// normal map draws (mean change 4.6/255 on the lit side against 29/255): invisible. Two
-// double it and still follow the normal map's relief (correlation 0.84); more shifts the
-// difference past the bumps it should outline (0.65 at five texels).
+// two texels of the 128x128 height map. Measured against the Dot3 technique's relief (the
+// mean change real bumps make over the sunlit side, Earth colour on): one texel (0.008)
+// draws 0.21 of it, two 0.41 (3.3 against 8.0 levels), following its sign (correlation
+// 0.85); four would draw 0.75 but follow it less (0.71), the shift outrunning the bumps it
+// should outline (tests/looks/test_seed_looks.py). The chapter sets no target: the results
+// "can take quite an effort to fine tune".
 float4 EmbossOffset = { 0.016, 0.016, 0.0, 0.0 };
 
 texture EarthTexture
