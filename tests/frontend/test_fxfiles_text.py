@@ -173,7 +173,11 @@ def test_named_texture_files_exist(name: str) -> None:
             generator, _, argument = value.partition(":")
             assert generator in {"sobel_normals", "sobel_normals_ao", "sobel_dudv", "normalization_cube",
                                  "power_table", "noise3d", "sky_cube"}, value
-            if not argument.replace(".", "").isdigit():
+            referenced = re.findall(r"<\s*(\w+)\s*>", argument)
+            if referenced:                   # a parameter's value (effects/host/resources.py)
+                for param in referenced:
+                    assert re.search(rf"\bfloat\s+{param}\b", read(name)), f"{name}: {value}"
+            elif not argument.replace(".", "").isdigit():
                 assert (FX_DIR / argument).is_file(), f"{name}: {value}"
         else:
             assert (FX_DIR / value).is_file(), f"{name}: {value}"
