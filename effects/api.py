@@ -33,10 +33,15 @@ class Effect(model.Effect):
             technique = self.technique(technique)
         return validate_technique(self, technique, profile)
 
-    def find_valid_technique(self, profile: "CapsProfile",
-                             policy: Any = "first") -> model.Technique | None:
+    def find_valid_technique(self, profile: "CapsProfile", policy: Any = "first", *,
+                             scene: Any = None) -> model.Technique | None:
         """The technique `profile` selects (D3DX's FindNextValidTechnique from the start, or a
-        named policy), or None."""
+        named policy), or None. The fidelity policy measures the techniques' pictures in
+        `scene` (a YAML path, mapping or None for the default scene: effects.host.fidelity)."""
+        from effects.validate.select import as_policy
+        if as_policy(policy).order == "fidelity":
+            from effects.host.fidelity import select_by_fidelity
+            return select_by_fidelity(self, profile, policy, scene=scene).technique
         return select(self, profile, policy).technique
 
     def find_next_valid_technique(self, profile: "CapsProfile",

@@ -187,7 +187,7 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     validating once the technique to draw is known (the first valid one in file order, or a
     valid forced one) and leave the rest `pending` (see LoadedEffect): a reload draws sooner
     when the fallbacks compile the edited function again for their own targets."""
-    from effects.validate.select import language_error, select
+    from effects.validate.select import language_error
     from effects.validate.verdicts import load_effect   # strict: as D3DXCreateEffect
     effect = previous if previous is not None else load_effect(path, **load_options)
     forced = None
@@ -200,7 +200,9 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
                               Location(path, 1, 1)) from None
     # Every technique is validated once (the panel lists them all), and selection chooses
     # among these same answers; `defer` leaves those after the drawn one pending.
-    selection = select(effect, profile, policy, forced=forced, lazy=defer)
+    from effects.host.fidelity import select_by_fidelity   # any policy: it measures only
+    selection = select_by_fidelity(effect, profile, policy, scene=scene, forced=forced,
+                                   lazy=defer)              # for the fidelity order
     chosen, chosen_validation = selection.technique, selection.chosen
     # A language error in the technique asked for, or in one the selection fell past, fails
     # the reload: shown in red like a parse error, the last good effect stays on screen.
