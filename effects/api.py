@@ -38,11 +38,8 @@ class Effect(model.Effect):
         """The technique `profile` selects (D3DX's FindNextValidTechnique from the start, or a
         named policy), or None. The fidelity policy measures the techniques' pictures in
         `scene` (a YAML path, mapping or None for the default scene: effects.host.fidelity)."""
-        from effects.validate.select import as_policy
-        if as_policy(policy).order == "fidelity":
-            from effects.host.fidelity import select_by_fidelity
-            return select_by_fidelity(self, profile, policy, scene=scene).technique
-        return select(self, profile, policy).technique
+        from effects.host.fidelity import policy_for
+        return select(self, profile, policy_for(self, policy, scene=scene)).technique
 
     def find_next_valid_technique(self, profile: "CapsProfile",
                                   after: model.Technique | str | None = None) -> model.Technique | None:

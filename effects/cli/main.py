@@ -254,11 +254,9 @@ def _matrix(args, root: str | None, console: Console) -> tuple[dict, list[str]]:
     first effect file that fails to load, in the order given, then a bad card or policy."""
     from effects.cli import matrix_store
     from effects.cli.matrix_store import MatrixJob
-    from effects.validate.select import as_policy
-    try:
-        measured = args.fidelity or as_policy(args.policy).order == "fidelity"
-    except EffectError:
-        measured = False    # a bad policy: said by _made_rows, after the files' own errors
+    # the fidelity order named as Policy.parse reads it (without loading it: stored rows
+    # need no selection code); a bad policy is said by _made_rows, after the files' errors
+    measured = args.fidelity or "fidelity" in (p.strip().lower() for p in args.policy.split(","))
     shared = matrix_store.shared_key(tuple(args.profile), args.policy, args.strict, root,
                                      matrix_store.fidelity_options(measured, args.best))
     jobs = [MatrixJob(path, tuple(args.profile), args.policy, root, args.strict, shared,
@@ -402,9 +400,11 @@ def _cmd_render(args, console: Console) -> int:
     profile = _profiles([args.profile])[0]
     start = time.perf_counter()
     try:
+        from effects.host.fidelity import policy_for   # pictures for the fidelity order only
+        scene = _scene(args, args.file)
         frame = render_frame(effect, profile, technique=args.technique, backend=args.backend,
-                             scene=_scene(args, args.file), size=size, params=params,
-                             policy=args.policy,
+                             scene=scene, size=size, params=params,
+                             policy=policy_for(effect, args.policy, scene=scene, params=params),
                              strict=args.strict)
     except NoValidTechnique as exc:
         # the load warnings first: they may say why (a Direct3D 10/11 shader file, ...)

@@ -87,9 +87,9 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
             else:
                 row.append(Text.assemble(("✗", "red"), f" {v.reasons[0]}"))
         table.add_row(*row)
-    selections = {p.name: select(effect, p, pol, validations=results[p.name],
-                                 likeness=meter.scores(p) if meter is not None
-                                 and pol.order == "fidelity" else None) for p in profiles}
+    if meter is not None and pol.order == "fidelity" and pol.likeness is None:
+        pol = pol.with_likeness(meter.likeness)
+    selections = {p.name: select(effect, p, pol, validations=results[p.name]) for p in profiles}
     chosen = {name: s.chosen for name, s in selections.items()}
     table.add_row(Text("selected", style="bold"),
                   *[Text(technique_name(c.technique)) if c else Text("none", style="red")
@@ -155,15 +155,15 @@ def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
     measured = fidelity or pol.order == "fidelity"
     out: dict = {}
     for path, effect in effects.items():
-        meter = None
+        meter, ranked = None, pol
         if measured:
             from effects.host.fidelity import meter_for
             meter = meter_for(effect, scene=(scenes or {}).get(path), best=best)
+            if pol.order == "fidelity" and pol.likeness is None:
+                ranked = pol.with_likeness(meter.likeness)
         per_card: dict = {}
         for profile, results in zip(profiles, validate_cards(effect, profiles)):
-            scores = meter.scores(profile) if meter is not None and pol.order == "fidelity" \
-                else None
-            selection = select(effect, profile, pol, validations=results, likeness=scores)
+            selection = select(effect, profile, ranked, validations=results)
             chosen = selection.chosen
             per_card[profile.name] = {
                 "technique": technique_name(chosen.technique) if chosen else None,

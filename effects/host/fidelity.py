@@ -37,7 +37,7 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 import numpy as np
 
@@ -48,7 +48,7 @@ from effects.host.scene import Scene, load_scene
 if TYPE_CHECKING:  # pragma: no cover
     from effects.d3d9.caps import CapsProfile
     from effects.model import Effect, Technique
-    from effects.validate.select import PolicyLike, Selection
+    from effects.validate.select import Policy, PolicyLike
     from effects.validate.technique import Validation
 
 SIZE = (128, 128)
@@ -155,18 +155,15 @@ class Meter:
         self._measured[key] = (profile, found)   # the profile held: its id stays its own
         return found
 
-    def scores(self, profile: "CapsProfile") -> Callable[[Sequence["Validation | None"]],
-                                                          dict[int, float | None]]:
-        """The fidelity order's `likeness` for `select` on `profile`: each valid technique's
-        SSIM, by position."""
-        def score(validations: Sequence["Validation | None"]) -> dict[int, float | None]:
-            out: dict[int, float | None] = {}
-            for i, v in enumerate(validations):
-                if v is not None and v.ok:
-                    found = self.measure(v.technique, profile, v)
-                    out[i] = None if found is None else found.ssim
-            return out
-        return score
+    def likeness(self, validations: Sequence["Validation | None"]) -> dict[int, float | None]:
+        """The fidelity order's scores (`effects.validate.select.Likeness`): each valid
+        technique's SSIM on the card that validated it, by position."""
+        out: dict[int, float | None] = {}
+        for i, v in enumerate(validations):
+            if v is not None and v.ok:
+                found = self.measure(v.technique, v.profile, v)
+                out[i] = None if found is None else found.ssim
+        return out
 
 
 # A meter holds its measures (two floats a technique and card) and the best picture
@@ -208,14 +205,14 @@ def meter_for(effect: "Effect", *, scene: Any = None, params: Mapping[str, Any] 
     return meter
 
 
-def select_by_fidelity(effect: "Effect", profile: "CapsProfile",
-                       policy: "PolicyLike" = "fidelity", *, scene: Any = None,
-                       params: Mapping[str, Any] | None = None, best: str | None = None,
-                       **options: Any) -> "Selection":
-    """`effects.validate.select.select` with the fidelity order's scores measured in `scene`
-    (the one route; any other policy selects as ever, and no picture is drawn)."""
-    from effects.validate.select import as_policy, select
+def policy_for(effect: "Effect", policy: "PolicyLike" = "fidelity", *, scene: Any = None,
+               params: Mapping[str, Any] | None = None, best: str | None = None) -> "Policy":
+    """`policy` (a Policy or its text) ready to select `effect`'s techniques: under the fidelity
+    order, with the scores of the effect's meter in `scene` (`meter_for`) unless it has its
+    own; any other policy as it is (no picture is drawn to select). Every route handed the returned object ranks
+    the same measures (effects.validate.select)."""
+    from effects.validate.select import as_policy
     pol = as_policy(policy)
-    scores = meter_for(effect, scene=scene, params=params, best=best).scores(profile) \
-        if pol.order == "fidelity" else None
-    return select(effect, profile, pol, likeness=scores, **options)
+    if pol.order != "fidelity" or pol.likeness is not None:   # measured already: as it is
+        return pol
+    return pol.with_likeness(meter_for(effect, scene=scene, params=params, best=best).likeness)

@@ -133,31 +133,32 @@ _SELECTIONS = caches.declare(
     entry_bytes=16 << 10, max_bytes=64 * (16 << 10))
 
 
-def _selected(effect: Effect, profile: "CapsProfile", policy: Any,
-              meter: Any = None) -> "Selection":
+def _selected(effect: Effect, profile: "CapsProfile", policy: Any) -> "Selection":
     """`select(effect, profile, policy)`, remembered across Runtimes: each
     `effects.render()` call makes a Runtime over a fresh copy of the parameters, and the copy
     shares the techniques. The selection is made again only when a parameter that validation
     read differs (`effects.model.RecordedReads`); the same Validation object comes back, so
     the lowering cache (which keys on it) hits too. A selection that fell past a technique
-    with a language error (`Selection.passed_over`) raises that located error instead.
-    `meter`: the fidelity order's (effects.host.fidelity.Meter), whose scores it ranks."""
+    with a language error (`Selection.passed_over`) raises that located error instead. A
+    fidelity policy's scores (`Policy.likeness`, effects.host.fidelity.policy_for) are part of
+    the key, by identity: a policy measured in another scene is another policy."""
     from effects.model import RecordedReads, still_holds
     from effects.validate.select import select
+    likeness = getattr(policy, "likeness", None)
     try:
-        key = (id(effect.techniques), id(profile), policy, id(meter))
+        key = (id(effect.techniques), id(profile), policy, id(likeness))
         hit = _SELECTIONS.get(key)
     except TypeError:   # an unhashable policy object: no memory
         hit, key = None, None
     if hit is not None and hit[0] is effect.techniques and hit[1] is profile and \
-            hit[4] is meter and still_holds(effect, hit[2]):
+            hit[4] is likeness and still_holds(effect, hit[2]):
         selection = hit[3]
     else:
         reads = RecordedReads(effect)
-        selection = select(reads, profile, policy,  # type: ignore[arg-type]
-                           likeness=None if meter is None else meter.scores(profile))
+        selection = select(reads, profile, policy)  # type: ignore[arg-type]
         if key is not None:
-            _SELECTIONS.put(key, (effect.techniques, profile, reads.snapshot(), selection, meter))
+            _SELECTIONS.put(key, (effect.techniques, profile, reads.snapshot(), selection,
+                                  likeness))
     error = selection.passed_over
     if error is not None:
         raise error.with_traceback(None)   # the same error each time
@@ -194,7 +195,6 @@ class Runtime:
         self.warnings: list[EffectWarning] = []
         self.profile = _as_profile(profile)
         self.scene: Scene = load_scene(scene)
-        self._scene_source, self._params = scene, dict(params or {})   # the fidelity meter's
         self.size = _check_size(size if size is not None else self.scene.size)
         _check_target(self.size, backend if isinstance(backend, str) else getattr(backend, "name", ""))
         # What an application sets with SetTransform before Begin, from the scene's camera
@@ -378,20 +378,11 @@ class Runtime:
             if self.validation is not None and self.validation.technique is not named:
                 self.validation = None
             return named
-        selection = _selected(self.effect, self.profile, policy, self._meter(policy))
+        selection = _selected(self.effect, self.profile, policy)
         if selection.chosen is None:
             raise no_valid_technique(self.effect, self.profile, selection)
         self.validation = selection.chosen
         return selection.chosen.technique
-
-    def _meter(self, policy: Any) -> Any:
-        """The fidelity order's meter (effects.host.fidelity): this effect in this scene with
-        these parameters; None under any other policy (no picture is drawn to select)."""
-        from effects.validate.select import as_policy
-        if as_policy(policy).order != "fidelity":
-            return None
-        from effects.host.fidelity import meter_for
-        return meter_for(self.source_effect, scene=self._scene_source, params=self._params)
 
     # -- ID3DXEffect-like drawing ----------------------------------------------------------
     def begin(self, technique: Technique | str | None = None, policy: Any = "first") -> int:

@@ -25,9 +25,10 @@ with nothing chosen and every reason), never an exception.
 `effects render/matrix/validate/doctor` and `Effect.find_valid_technique` all ask it.
 
 The fidelity order needs pictures, and pictures are made above this floor (a render is the
-host's work): `select` takes them as `likeness`, a function the host supplies that scores the
-valid techniques from their Validations (effects.host.fidelity.Meter.likeness). The ranking
-stays here, so every route ranks the same scores the same way.
+host's work): its Policy carries `likeness`, a function the host supplies that scores the
+valid techniques from their Validations (effects.host.fidelity.policy_for). The ranking stays
+here, so every route ranks the same scores the same way; a route handed that one Policy
+object gives the one answer.
 """
 from __future__ import annotations
 
@@ -43,6 +44,11 @@ from effects.model import Effect, Technique
 from effects.validate.technique import PassReport, Validation, validate_technique
 
 _POLICY_LOCATION = Location("<policy>", 1, 1)
+
+# What the host supplies for the fidelity order: given the validations in file order (None for
+# those the policy may not choose), each valid one's likeness to the effect's best technique
+# on its card (SSIM, 1 alike) by position; None or absent where it could not be measured.
+Likeness = Callable[[Sequence["Validation | None"]], Mapping[int, "float | None"]]
 ORDERS = ("first", "quality", "cost", "fidelity")
 # fidelity scores are compared as shown (SSIM to three places): two techniques whose pictures
 # differ from the best's by less than a shown figure look alike, and the cheaper one is drawn
@@ -57,6 +63,10 @@ class Policy:
     order: str = "first"
     max_passes: int | None = None
     max_cost: float | None = None
+    # the fidelity order's scores, supplied by the host (effects.host.fidelity.policy_for);
+    # not part of equality: two policies differ by what they say, and caches that key on a
+    # policy add its likeness by identity (effects.host.runtime._selected)
+    likeness: "Likeness | None" = field(default=None, compare=False, repr=False)
 
     @classmethod
     def parse(cls, text: str) -> "Policy":
@@ -83,6 +93,11 @@ class Policy:
         max_passes = limits.get("max-passes")
         return cls(order or "first", None if max_passes is None else int(max_passes),
                    limits.get("max-cost"))
+
+    def with_likeness(self, likeness: "Likeness | None") -> "Policy":
+        """This policy with the fidelity order's scores (effects.host.fidelity.policy_for)."""
+        import dataclasses
+        return dataclasses.replace(self, likeness=likeness)
 
     def __str__(self) -> str:
         parts = [self.order]
@@ -172,12 +187,6 @@ def technique_work(validation: Validation) -> int:
     return sum(pass_work(p) for p in validation.pass_reports)
 
 
-# What the host supplies for the fidelity order: given the validations in file order (None for
-# those the policy may not choose), each valid one's likeness to the effect's best technique
-# (SSIM, 1 alike) by position; None or absent where it could not be measured.
-Likeness = Callable[[Sequence["Validation | None"]], Mapping[int, "float | None"]]
-
-
 @dataclass
 class Selection:
     """What selecting a technique for one effect on one card found (`select`): the technique
@@ -259,8 +268,7 @@ class Selection:
 
 def select(effect: Effect, profile: CapsProfile, policy: PolicyLike = "first", *,
            forced: Technique | None = None, lazy: bool = True,
-           validations: Sequence[Validation] | None = None,
-           likeness: Likeness | None = None) -> Selection:
+           validations: Sequence[Validation] | None = None) -> Selection:
     """The one route by which a technique is selected: the runtime, the viewer's reloads, the
     command line and `Effect.find_valid_technique` all ask here.
 
@@ -270,14 +278,14 @@ def select(effect: Effect, profile: CapsProfile, policy: PolicyLike = "first", *
     (the first valid technique, and the forced one's answer), as FindNextValidTechnique does;
     other policies rank every technique. `validations`: every technique's answer on this card
     already made, in file order (the command line validates all cards at once).
-    `likeness`: the fidelity order's scores (`Likeness`), which a host supplies; the fidelity
-    order without them is an error, said where the policy is named."""
+    The fidelity order ranks its Policy's `likeness` (the host's measures); a fidelity policy
+    without them is an error, said where the policy is named."""
     pol = as_policy(policy)
-    if pol.order == "fidelity" and likeness is None:
-        raise EffectError("policy 'fidelity' compares each technique's picture with the best "
-                          "technique's, and this route renders none: choose through a host "
-                          "(effects render/matrix/view, effects.render, "
-                          "effects.host.fidelity.select_by_fidelity)", _POLICY_LOCATION)
+    if pol.order == "fidelity" and pol.likeness is None:
+        raise EffectError("policy 'fidelity' ranks techniques by how like the best technique's "
+                          "their pictures are, and nothing here draws them: the commands "
+                          "(effects render/matrix/validate/view) measure them; in Python pass "
+                          "effects.host.fidelity.policy_for(effect, scene=...)", _POLICY_LOCATION)
     if validations is not None:
         made, pending = list(validations), []
     else:
@@ -295,9 +303,9 @@ def select(effect: Effect, profile: CapsProfile, policy: PolicyLike = "first", *
             return Selection(pol, made, answer, None, pending)
         forced_rejected = answer
     selection = Selection(pol, made, None, forced_rejected, pending)
-    if pol.order == "fidelity" and likeness is not None:
+    if pol.order == "fidelity" and pol.likeness is not None:
         # only the techniques the policy may choose are measured (each costs renders)
-        selection.likeness = dict(likeness([v if pol.accepts(v) else None for v in made]))
+        selection.likeness = dict(pol.likeness([v if pol.accepts(v) else None for v in made]))
     ranked = selection.ranked
     if ranked and pol.accepts(ranked[0]):
         selection.chosen = ranked[0]
