@@ -171,8 +171,8 @@ def _add_matrix(sub) -> None:
     p.add_argument("--policy", default="first", help="selection policy: first, quality, cost, "
                    "fidelity, max-passes=N, max-cost=X, comma-separated (default: first, as D3DX)")
     p.add_argument("--fidelity", action="store_true",
-                   help="measure each card's choice against the best technique (SSIM, PSNR: "
-                        "renders each valid technique; kept with the rows)")
+                   help="measure each card's choice against the best technique: SSIM and PSNR "
+                        "of the two pictures on the reference back end, kept with the rows")
     _add_best(p)
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     p.add_argument("--render", metavar="SHEET.png",
@@ -195,7 +195,7 @@ def _add_scene(p, what: str) -> None:
 
 
 def _scene(args, path: str) -> str | None:
-    from effects.host.scene import scene_for
+    from effects.host.scene_files import scene_for   # without the scene reader's imports
     return scene_for(path, args.scene, beside=args.scene_beside)
 
 

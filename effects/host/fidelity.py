@@ -39,13 +39,14 @@ import os
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
-import numpy as np
-
 from effects.base import caches
 from effects.base.errors import EffectError
-from effects.host.scene import Scene, load_scene
 
 if TYPE_CHECKING:  # pragma: no cover
+    # NumPy and the scene's reader load when something is measured: the command line's key for
+    # stored fidelity rows reads the constants below, and a row read back needs no more
+    import numpy as np
+    from effects.host.scene import Scene
     from effects.d3d9.caps import CapsProfile
     from effects.model import Effect, Technique
     from effects.validate.select import Policy, PolicyLike
@@ -77,6 +78,7 @@ class Likeness:
 def likeness(picture: np.ndarray, reference: np.ndarray) -> Likeness:
     """`picture` against `reference` (H x W x 3 or 4 uint8, the same size), as the module
     docstring says."""
+    import numpy as np
     from skimage.metrics import peak_signal_noise_ratio, structural_similarity
     a = np.asarray(picture)[..., :3].astype(np.float64) / 255.0
     b = np.asarray(reference)[..., :3].astype(np.float64) / 255.0
@@ -96,6 +98,7 @@ class Meter:
     def __init__(self, effect: "Effect", *, scene: Any = None,
                  params: Mapping[str, Any] | None = None, best: str | None = None,
                  size: tuple[int, int] = SIZE) -> None:
+        from effects.host.scene import load_scene
         self.effect = effect
         self.scene: Scene = load_scene(scene)    # once: every picture in the same scene
         self.params = dict(params or {})

@@ -128,3 +128,16 @@ def test_the_sheet_draws_the_figure_under_each_picture():
     assert figured.height == plain.height + 14          # one more label line
     line = np.asarray(figured)[14 + 20 + 14:, 120:140]  # the figure's line, under the name
     assert line.max() > 100                              # drawn in ink
+
+
+def test_rows_with_figures_read_back_load_nothing_heavy(tmp_path):
+    """The second `matrix --fidelity` reads its rows and the named files' digests only: no
+    effect, card, NumPy or PyYAML is loaded, and it prints what the first printed."""
+    from tests.cli.test_matrix_store import _command
+    args = ("matrix", "fxfiles/phong.fx", "fxfiles/wood.fx", "--fidelity", "-p", "geforce2",
+            "-p", "radeon9700")
+    made = _command(tmp_path, *args)
+    read = _command(tmp_path, *args)
+    assert made.returncode == read.returncode == 0, made.stderr
+    assert made.stdout == read.stdout and "SSIM" in made.stdout
+    assert read.stderr.splitlines()[-1] == "LOADED"
