@@ -217,9 +217,11 @@ class Selection:
             cost = technique_cost(v.technique)
             return (math.inf if cost is None else cost, 0.0, position)
         if self.policy.order == "fidelity":
+            if not v.ok:   # never drawn, so never measured: had it compiled, it might have won
+                return (-math.inf, 0.0, position)
             score = self.likeness.get(position)
             shown = math.inf if score is None else -round(score, FIDELITY_PLACES)
-            return (shown, float(technique_work(v)) if v.ok else math.inf, position)
+            return (shown, float(technique_work(v)), position)
         return (0.0, 0.0, position)
 
     @property

@@ -198,3 +198,20 @@ def test_the_api_route_agrees(card):
     profile = load_profile(card)
     assert effect.find_valid_technique(profile, "fidelity", scene=scene) is \
         select(effect, profile, policy_for(effect, scene=scene)).technique
+
+
+def test_under_the_fidelity_policy_any_language_error_is_said():
+    """A technique whose HLSL compiles for no target is never drawn, so never measured: had
+    it compiled it might have looked most like the best, so the selection says its error
+    (Selection.passed_over) wherever it stands in the file."""
+    functions = ("float4 Tint = {1, 0.5, 0.25, 1};\n"
+                 "float4 Broken(float2 uv : TEXCOORD0) : COLOR { return Tint * fooo; }\n"
+                 "float4 Fine(float2 uv : TEXCOORD0) : COLOR { return Tint; }\n")
+    good = "technique Good { pass P0 { PixelShader = compile ps_2_0 Fine(); } }\n"
+    broken = "technique Broken { pass P0 { PixelShader = compile ps_2_0 Broken(); } }\n"
+    card = load_profile("radeon9700")
+    for order in ((good, broken), (broken, good)):
+        effect = effects.load_effect(functions + "".join(order))
+        made = select(effect, card, policy_for(effect, scene={"mesh": "quad"}))
+        assert made.technique.name == "Good"
+        assert "X3004: undeclared identifier 'fooo'" in made.passed_over.report()
