@@ -33,11 +33,13 @@ class Effect(model.Effect):
             technique = self.technique(technique)
         return validate_technique(self, technique, profile)
 
-    def find_valid_technique(self, profile: "CapsProfile",
-                             policy: Any = "first") -> model.Technique | None:
+    def find_valid_technique(self, profile: "CapsProfile", policy: Any = "first", *,
+                             scene: Any = None) -> model.Technique | None:
         """The technique `profile` selects (D3DX's FindNextValidTechnique from the start, or a
-        named policy), or None."""
-        return select(self, profile, policy).technique
+        named policy), or None. The fidelity policy measures the techniques' pictures in
+        `scene` (a YAML path, mapping or None for the default scene: effects.host.fidelity)."""
+        from effects.host.fidelity import policy_for
+        return select(self, profile, policy_for(self, policy, scene=scene)).technique
 
     def find_next_valid_technique(self, profile: "CapsProfile",
                                   after: model.Technique | str | None = None) -> model.Technique | None:

@@ -10,12 +10,21 @@ Every door that opens a file an effect, scene or profile names goes through here
   Latin-1, as Windows-1252-era .fx files need);
 - `confine` keeps a path an effect names inside its include root: no absolute paths, no
   backslashes, nothing (after `..` and symlinks) outside the root.
+
+Since every named file passes here, here is where a caller learns which files some work
+depended on (`recording`): every path confined or read is noted, also those whose contents
+a cache then supplies (the confined name is asked before the cache is). The command line
+keeps the fidelity rows of `effects matrix` on disk by the files their renders named
+(effects.cli.matrix_store).
 """
 from __future__ import annotations
 
 import codecs
+import contextlib
 import os
 import stat
+import threading
+from typing import Iterator
 
 from effects.base import limits
 from effects.base.errors import EffectError, Location
@@ -23,6 +32,30 @@ from effects.base.errors import EffectError, Location
 _BOMS = [(codecs.BOM_UTF32_LE, "utf-32-le"), (codecs.BOM_UTF32_BE, "utf-32-be"),
          (codecs.BOM_UTF8, "utf-8"), (codecs.BOM_UTF16_LE, "utf-16-le"),
          (codecs.BOM_UTF16_BE, "utf-16-be")]   # UTF-32 LE starts like UTF-16 LE: test it first
+
+
+_NOTES = threading.local()
+
+
+@contextlib.contextmanager
+def recording() -> Iterator[set[str]]:
+    """The absolute paths of every file named or read on this thread inside the block."""
+    outer = getattr(_NOTES, "paths", None)
+    paths: set[str] = set()
+    _NOTES.paths = paths
+    try:
+        yield paths
+    finally:
+        _NOTES.paths = outer
+        if outer is not None:
+            outer |= paths
+
+
+def note(path: str | os.PathLike[str]) -> None:
+    """Note `path` as named, for `recording` (a no-op outside one)."""
+    paths = getattr(_NOTES, "paths", None)
+    if paths is not None:
+        paths.add(os.path.abspath(os.fspath(path)))
 
 
 def _kind(mode: int) -> str:
@@ -41,6 +74,7 @@ def check_regular(path: str, what: str, error: type[EffectError], location: Loca
                   limit: str | None = None) -> int:
     """The size of `path` if it is a regular file within `limit`; else a located `error`."""
     where = location or Location(path, 1, 1)
+    note(path)
     try:
         info = os.stat(path)
     except OSError as exc:
@@ -121,7 +155,9 @@ def confine(name: str, base_dir: str, root: str | None, what: str, error: type[E
     Without a root, absolute names and backslashes are taken as they are (trusted input).
     """
     if root is None:
-        return name if os.path.isabs(name) else os.path.join(base_dir, name)
+        path = name if os.path.isabs(name) else os.path.join(base_dir, name)
+        note(path)
+        return path
     shown = name if len(name) <= 80 else name[:77] + "..."
     if "\\" in name:
         raise error(f"{what} '{shown}' contains a backslash; under an include root paths use '/'",
@@ -138,4 +174,5 @@ def confine(name: str, base_dir: str, root: str | None, what: str, error: type[E
         inside = False
     if not inside:
         raise error(f"{what} '{shown}' escapes the include root '{root}'", location)
+    note(path)
     return path

@@ -75,11 +75,21 @@ def _add_validate(sub) -> None:
     p.add_argument("file", help="effect file (.fx)")
     p.add_argument("--profile", "-p", action="append", default=[], metavar="P",
                    help="caps profile name or YAML path (repeatable; default: the model summary only)")
-    p.add_argument("--why", action="store_true", help="list every reason, not just the first")
+    p.add_argument("--why", action="store_true", help="list every reason, not just the first, "
+                   "and each valid technique's fidelity (its picture on the card against the "
+                   "best technique's)")
     p.add_argument("--strict", action="store_true", help="unknown state names are errors")
+    _add_best(p)
+    _add_scene(p, "scene the --why fidelity renders draw")
     _add_preprocessor_options(p)
     _add_confinement(p, strict=False)
     p.set_defaults(run=_cmd_validate)
+
+
+def _add_best(p) -> None:
+    p.add_argument("--best", metavar="NAME", default=None,
+                   help="the technique fidelity is measured against (default: the first valid "
+                        "on refrast)")
 
 
 def _add_preprocessor_options(p) -> None:
@@ -139,7 +149,12 @@ def _cmd_validate(args, console: Console) -> int:
                       "each technique and why not; `effects matrix` shows every card's choice.",
                       markup=False)
         return EXIT_OK
-    every_card_runs_it = print_validation_table(effect, _profiles(args.profile), console, why=args.why)
+    meter = None
+    if args.why:
+        from effects.host.fidelity import meter_for
+        meter = meter_for(effect, scene=_scene(args, args.file), best=args.best)
+    every_card_runs_it = print_validation_table(effect, _profiles(args.profile), console,
+                                                why=args.why, meter=meter)
     return EXIT_OK if every_card_runs_it else EXIT_INVALID
 
 
@@ -154,12 +169,16 @@ def _add_matrix(sub) -> None:
     p.add_argument("--profile", "-p", action="append", default=[], metavar="P",
                    help="caps profile (repeatable; default: every bundled card)")
     p.add_argument("--policy", default="first", help="selection policy: first, quality, cost, "
-                   "max-passes=N, comma-separated (default: first, as D3DX)")
+                   "fidelity, max-passes=N, max-cost=X, comma-separated (default: first, as D3DX)")
+    p.add_argument("--fidelity", action="store_true",
+                   help="measure each card's choice against the best technique: SSIM and PSNR "
+                        "of the two pictures on the reference back end, kept with the rows")
+    _add_best(p)
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     p.add_argument("--render", metavar="SHEET.png",
                    help="also draw the contact sheet: each cell the picture the card draws, or why not")
     p.add_argument("--size", metavar="WxH", default="96x96", help="cell size for --render (default 96x96)")
-    _add_scene(p, "scene for --render")
+    _add_scene(p, "scene for --render and the fidelity renders")
     p.add_argument("--backend", "-b", default="numpy", metavar="NAME", help="back end for --render")
     _add_batch(p)
     _add_confinement(p)
@@ -176,7 +195,7 @@ def _add_scene(p, what: str) -> None:
 
 
 def _scene(args, path: str) -> str | None:
-    from effects.host.scene import scene_for
+    from effects.host.scene_files import scene_for   # without the scene reader's imports
     return scene_for(path, args.scene, beside=args.scene_beside)
 
 
@@ -206,7 +225,8 @@ def _cmd_matrix(args, console: Console) -> int:
         names = list(args.profile) or cards   # as given: workers load them
         render_sheet(list(args.files), names, args.render, size=size, scene=args.scene,
                      scene_beside=args.scene_beside, backend=args.backend, policy=args.policy, jobs=args.jobs,
-                     scheduler=args.scheduler, progress=not args.json)
+                     scheduler=args.scheduler, progress=not args.json,
+                     figures=_figures(result, list(args.files), cards, names))
         if not args.json:
             console.print(f"contact sheet: {len(args.files)} effects x {len(cards)} cards "
                           f"-> {args.render}", markup=False, highlight=False, soft_wrap=True)
@@ -218,6 +238,15 @@ def _cmd_matrix(args, console: Console) -> int:
     return EXIT_INVALID if errors else EXIT_OK
 
 
+def _figures(result: dict, files: list[str], cards: list[str],
+             names: list[str]) -> dict[tuple[str, str], dict] | None:
+    """The fidelity figure of each sheet cell, by (file, card as the sheet names it)."""
+    if not any("fidelity" in cell for row in result.values() for cell in row.values()):
+        return None
+    return {(path, name): result[path][card].get("fidelity")
+            for path in files for card, name in zip(cards, names)}
+
+
 def _matrix(args, root: str | None, console: Console) -> tuple[dict, list[str]]:
     """The matrix of `args.files` on the cards, and the cards' names. A file whose row an
     earlier command kept (`effects.cli.matrix_store`: nothing it was made from has changed)
@@ -225,8 +254,13 @@ def _matrix(args, root: str | None, console: Console) -> tuple[dict, list[str]]:
     first effect file that fails to load, in the order given, then a bad card or policy."""
     from effects.cli import matrix_store
     from effects.cli.matrix_store import MatrixJob
-    shared = matrix_store.shared_key(tuple(args.profile), args.policy, args.strict, root)
-    jobs = [MatrixJob(path, tuple(args.profile), args.policy, root, args.strict, shared)
+    # the fidelity order named as Policy.parse reads it (without loading it: stored rows
+    # need no selection code); a bad policy is said by _made_rows, after the files' errors
+    measured = args.fidelity or "fidelity" in (p.strip().lower() for p in args.policy.split(","))
+    shared = matrix_store.shared_key(tuple(args.profile), args.policy, args.strict, root,
+                                     matrix_store.fidelity_options(measured, args.best))
+    jobs = [MatrixJob(path, tuple(args.profile), args.policy, root, args.strict, shared,
+                      measured, _scene(args, path) if measured else None, args.best)
             for path in args.files]
     rows = [matrix_store.stored_row(job) for job in jobs]
     todo = [job for job, row in zip(jobs, rows) if row is None]
@@ -366,9 +400,11 @@ def _cmd_render(args, console: Console) -> int:
     profile = _profiles([args.profile])[0]
     start = time.perf_counter()
     try:
+        from effects.host.fidelity import policy_for   # pictures for the fidelity order only
+        scene = _scene(args, args.file)
         frame = render_frame(effect, profile, technique=args.technique, backend=args.backend,
-                             scene=_scene(args, args.file), size=size, params=params,
-                             policy=args.policy,
+                             scene=scene, size=size, params=params,
+                             policy=policy_for(effect, args.policy, scene=scene, params=params),
                              strict=args.strict)
     except NoValidTechnique as exc:
         # the load warnings first: they may say why (a Direct3D 10/11 shader file, ...)

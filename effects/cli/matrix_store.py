@@ -21,6 +21,13 @@ kept when it cannot be found again exactly:
   is known by its bytes and its inode, size and modification time;
 - the load or a card failed (errors are reported by loading again).
 
+A row with fidelity figures (`--fidelity`, `--policy fidelity`: effects.host.fidelity) was
+also made from every file its renders named -- the scene, meshes, textures, images a
+procedural texture reads (`effects.base.untrusted.recording`, which notes a name also when a
+cache supplies its contents): the entry lists them with their SHA-256, and a row whose files
+do not all read back the same is a miss. Its key adds the scene as given, the best
+technique's name and the measure's size.
+
 What an entry holds is data: the row as JSON, every field checked when read; a file that
 does not read back as a row is a miss (and removed).
 """
@@ -50,10 +57,13 @@ class MatrixJob:
     include_root: str | None = None
     strict: bool = False
     store_key: str | None = None    # shared_key: where the row is kept (None: not)
+    fidelity: bool = False          # measure each card's choice against the best technique
+    scene: str | None = None        # the scene the fidelity renders draw (None: the default)
+    best: str | None = None         # the technique they are measured against (None: refrast's)
 
 
 
-FORMAT = 1
+FORMAT = 2                        # 2: cells may hold "fidelity"
 SETTLED_NS = 2_000_000_000        # a file written this recently may still be being written
 
 
@@ -73,10 +83,11 @@ def _signature(path: str) -> tuple[int, ...]:
 
 
 def shared_key(profiles: tuple[str, ...], policy: str, strict: bool,
-               include_root: str | None) -> str | None:
+               include_root: str | None, fidelity: tuple = ()) -> str | None:
     """What every row of one command is found by besides its effect file (`MatrixJob.
     store_key`): the code, the limits, the folder, the cards and the options. None: the
-    store is off, or a card is named by path (its rows are not kept)."""
+    store is off, or a card is named by path (its rows are not kept). `fidelity`: what the
+    fidelity figures are measured with besides the scene (`fidelity_options`)."""
     from effects.base.bundled import PROFILE_FOLDER, names_a_profile_file
     if not disk_store.enabled() or any(names_a_profile_file(n) for n in profiles):
         return None
@@ -96,9 +107,19 @@ def shared_key(profiles: tuple[str, ...], policy: str, strict: bool,
             "effects-matrix-rows", FORMAT, disk_store.fingerprint(),
             tuple((name, limits.get(name)) for name in sorted(limits.LIMITS)), os.getcwd(),
             profiles, tuple(cards), policy, strict, root,
-            None if root is None else os.path.realpath(root)))
+            None if root is None else os.path.realpath(root), fidelity))
     except (OSError, EffectError, disk_store.Unkeyable):
         return None
+
+
+def fidelity_options(measured: bool, best: str | None) -> tuple:
+    """The shared key's part for fidelity rows: whether measured, against what, at what size
+    and by which measure (effects.host.fidelity's constants)."""
+    if not measured:
+        return ()
+    from effects.host import fidelity
+    return ("fidelity", best, fidelity.SIZE, fidelity.REFERENCE_CARD, fidelity.SSIM_SIGMA,
+            fidelity.DATA_RANGE)
 
 
 def inputs(job: MatrixJob) -> Inputs | None:
@@ -109,7 +130,8 @@ def inputs(job: MatrixJob) -> Inputs | None:
         signature = _signature(job.path)
         source = untrusted.read_file(job.path, "effect file", EffectError, "source_bytes")
         name = disk_store.digest(("effects-matrix-row", job.store_key, job.path,
-                                  os.path.realpath(job.path), _sha256(source)))
+                                  os.path.realpath(job.path), _sha256(source),
+                                  job.fidelity, job.scene, job.best))
     except (OSError, EffectError):
         return None
     settled = time.time_ns() - signature[3] >= SETTLED_NS
@@ -129,25 +151,61 @@ def stored_row(job: MatrixJob) -> dict | None:
     if entry is None:
         return None
     try:
-        return _checked_row(entry["row"])
-    except (KeyError, TypeError, ValueError):
+        row = _checked_row(entry["row"])
+        named = _checked_files(entry.get("files", []))
+    except (KeyError, TypeError, ValueError, AttributeError):
         disk_store.discard(found.name)
+        return None
+    for path, digest in named:      # a file the renders named has changed: made again
+        if _file_digest(path) != digest:
+            return None
+    return row
+
+
+def _checked_files(files: Any) -> list[tuple[str, str]]:
+    if type(files) is not list or any(type(f) is not list or len(f) != 2 or
+                                      any(type(x) is not str for x in f) for f in files):
+        raise ValueError("bad files")
+    return [(f[0], f[1]) for f in files]
+
+
+def _file_digest(path: str) -> str | None:
+    """The SHA-256 of a file a fidelity row's renders named, None when it is not a readable
+    regular file (then, too, it is compared as such: a file that appears is a change)."""
+    try:
+        return _sha256(untrusted.read_file(path, "file", EffectError, "texture_file_bytes"))
+    except EffectError:
         return None
 
 
-def keep(job: MatrixJob, found: Inputs | None, effect: Effect, row: dict) -> None:
+def keep(job: MatrixJob, found: Inputs | None, effect: Effect, row: dict,
+         named: frozenset[str] | set[str] = frozenset()) -> None:
     """Store `row`, made from `effect` after `found` was read, when it can be found again:
-    the load read no other file, and neither the effect file nor a card changed meanwhile."""
+    the load read no other file, and neither the effect file nor a card changed meanwhile.
+    `named`: the files the row's renders named (fidelity rows), kept with their digests;
+    one written in the last two seconds keeps the row out, as the effect file does."""
     if found is None or not found.settled or list(effect.files) != [found.path]:
+        return
+    files = []
+    now = time.time_ns()
+    for path in sorted(named - {os.path.abspath(found.path)}):
+        try:
+            if now - os.stat(path).st_mtime_ns < SETTLED_NS:
+                return
+        except OSError:
+            pass
+        files.append([path, _file_digest(path)])
+    if any(digest is None for _, digest in files):
         return
     try:
         if _signature(found.path) != found.signature:   # written while it loaded
             return
     except OSError:
         return
-    if shared_key(job.profiles, job.policy, job.strict, job.include_root) != job.store_key:
+    if shared_key(job.profiles, job.policy, job.strict, job.include_root,
+                  fidelity_options(job.fidelity, job.best)) != job.store_key:
         return
-    disk_store.write(found.name, {"row": row})
+    disk_store.write(found.name, {"row": row, "files": files})
 
 
 def _checked_row(row: Any) -> dict:
@@ -156,9 +214,11 @@ def _checked_row(row: Any) -> dict:
         raise ValueError("not a row")
     for card, cell in row.items():
         if type(card) is not str or type(cell) is not dict or \
-                set(cell) - {"error"} != {"technique", "passes", "rejected"} or \
+                set(cell) - {"error", "fidelity"} != {"technique", "passes", "rejected"} or \
                 type(cell.get("error", "")) is not str:
             raise ValueError("not a cell")
+        if "fidelity" in cell:
+            _check_figure(cell["fidelity"])
         technique, passes, rejected = cell["technique"], cell["passes"], cell["rejected"]
         if (technique is not None and type(technique) is not str) or type(passes) is not int \
                 or type(rejected) is not dict:
@@ -168,3 +228,13 @@ def _checked_row(row: Any) -> dict:
                     any(type(r) is not str for r in reasons):
                 raise ValueError("bad reasons")
     return row
+
+
+def _check_figure(figure: Any) -> None:
+    """A cell's "fidelity": null, or {"ssim": number, "psnr": number|null, "best": name}."""
+    if figure is None:
+        return
+    if type(figure) is not dict or set(figure) != {"ssim", "psnr", "best"} or \
+            type(figure["ssim"]) is not float or type(figure["best"]) is not str or \
+            (figure["psnr"] is not None and type(figure["psnr"]) is not float):
+        raise ValueError("bad fidelity")

@@ -2,6 +2,10 @@
 
 `matrix()` is also the JSON the command line prints (docs/design.md's shape):
     {effect: {profile: {"technique": name|null, "passes": n, "rejected": {technique: [reason, ...]}}}}
+and, where fidelity is measured (`--fidelity`, `--policy fidelity`), "fidelity": the chosen
+technique's picture against the effect's best technique's (effects.host.fidelity), as
+{"ssim": 0.9312, "psnr": 27.41, "best": name} -- psnr null for identical pictures -- or null
+where there is nothing to measure (no technique chosen, or none runs on refrast).
 "rejected" lists every technique the card cannot run, with all its reasons, and each valid
 technique the policy refused (max-passes, max-cost), with the policy's reason. A card whose
 selection fell past a technique with a language error (HLSL that compiles for no target) has
@@ -50,11 +54,13 @@ def _passes(n: int) -> str:
 
 
 def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], console: Console,
-                           *, why: bool = False, policy: PolicyLike = "first") -> bool:
+                           *, why: bool = False, policy: PolicyLike = "first",
+                           meter: Any = None) -> bool:
     """Print techniques × cards (✓ with the pass count, ✗ with the first reason) and the
     technique each card selects; with `why`, then every reason, warning and note. A language
     error (HLSL that compiles for no target) is marked as an error in its cells and printed
-    located, with its source line, after the table. Returns whether every named card can run
+    located, with its source line, after the table. With `meter` (effects.host.fidelity.Meter)
+    the details give each valid technique's fidelity on the card. Returns whether every named card can run
     some technique and no card's selection fell past a language error."""
     from rich.table import Table
     from rich.text import Text
@@ -81,6 +87,8 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
             else:
                 row.append(Text.assemble(("✗", "red"), f" {v.reasons[0]}"))
         table.add_row(*row)
+    if meter is not None and pol.order == "fidelity" and pol.likeness is None:
+        pol = pol.with_likeness(meter.likeness)
     selections = {p.name: select(effect, p, pol, validations=results[p.name]) for p in profiles}
     chosen = {name: s.chosen for name, s in selections.items()}
     table.add_row(Text("selected", style="bold"),
@@ -94,21 +102,35 @@ def print_validation_table(effect: Effect, profiles: Sequence[CapsProfile], cons
         console.print(Text(error.report(), style="red"), soft_wrap=True)
     fell_past = any(s.passed_over is not None for s in selections.values())
     if why:
-        _print_details(effect, profiles, results, console)
+        _print_details(effect, profiles, results, console, meter)
     return all(c is not None for c in chosen.values()) and not fell_past
 
 
 def _print_details(effect: Effect, profiles: Sequence[CapsProfile],
-                   results: Mapping[str, list[Validation]], console: Console) -> None:
-    """Every reason, warning and note, one line each, grouped by card and technique."""
+                   results: Mapping[str, list[Validation]], console: Console,
+                   meter: Any = None) -> None:
+    """Every reason, warning and note, one line each, grouped by card and technique; with
+    `meter`, each valid technique's fidelity against the best technique."""
     from rich.text import Text
+    best = meter.best() if meter is not None else None
+    if meter is not None:
+        size = "x".join(map(str, meter.size))
+        console.print(Text(f"fidelity: each valid technique's picture on the card against "
+                           f"{technique_name(best)} on refrast ({size}, reference back end)"
+                           if best is not None else "fidelity: no technique runs on refrast, "
+                           "so there is no best picture to measure against"), soft_wrap=True)
     for profile in profiles:
         console.print(Text(f"{profile.name} ({profile.display_name or profile.name}, {profile.generation})",
                            style="bold"))
         for v in results[profile.name]:
             name = technique_name(v.technique)
             if v.ok:
-                console.print(Text.assemble("  ", ("✓", "green"), f" {name}: {_passes(v.passes)}"))
+                figure = ""
+                if best is not None:
+                    found = meter.measure(v.technique, profile, v)
+                    figure = f", {found}" if found is not None else ", fidelity: not drawn"
+                console.print(Text.assemble("  ", ("✓", "green"),
+                                            f" {name}: {_passes(v.passes)}{figure}"))
             else:
                 console.print(Text.assemble("  ", ("✗", "red"), f" {name}:"))
             for r in v.reasons:
@@ -120,23 +142,36 @@ def _print_details(effect: Effect, profiles: Sequence[CapsProfile],
 
 
 def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
-           policy: PolicyLike = "first") -> dict:
+           policy: PolicyLike = "first", *, fidelity: bool = False,
+           scenes: Mapping[str, Any] | None = None, best: str | None = None) -> dict:
     """{effect: {profile: {"technique": name|None, "passes": n, "rejected": {tech: [reason...]}}}},
     and "error" in a card's entry where its selection fell past a technique with a language
-    error (Selection.passed_over): that error as the console shows it, source line and caret."""
+    error (Selection.passed_over): that error as the console shows it, source line and caret.
+    With `fidelity`, or under the fidelity policy, "fidelity" too, measured in the effect's
+    scene from `scenes` (by path; None the default scene) against `best` (None: the first
+    valid on refrast)."""
     from effects.validate.select import as_policy, select
     pol = as_policy(policy)
+    measured = fidelity or pol.order == "fidelity"
     out: dict = {}
     for path, effect in effects.items():
+        meter, ranked = None, pol
+        if measured:
+            from effects.host.fidelity import meter_for
+            meter = meter_for(effect, scene=(scenes or {}).get(path), best=best)
+            if pol.order == "fidelity" and pol.likeness is None:
+                ranked = pol.with_likeness(meter.likeness)
         per_card: dict = {}
         for profile, results in zip(profiles, validate_cards(effect, profiles)):
-            selection = select(effect, profile, pol, validations=results)
+            selection = select(effect, profile, ranked, validations=results)
             chosen = selection.chosen
             per_card[profile.name] = {
                 "technique": technique_name(chosen.technique) if chosen else None,
                 "passes": chosen.passes if chosen else 0,
                 "rejected": selection.rejected(),
             }
+            if meter is not None:
+                per_card[profile.name]["fidelity"] = _figure(meter, chosen, profile)
             error = selection.passed_over
             if error is not None:   # the selection fell past a language error: said as one
                 per_card[profile.name]["error"] = error.report()
@@ -144,10 +179,20 @@ def matrix(effects: Mapping[str, Effect], profiles: Sequence[CapsProfile],
     return out
 
 
+def _figure(meter: Any, chosen: Validation | None, profile: CapsProfile) -> dict | None:
+    """A cell's "fidelity": the chosen technique against the best, or None."""
+    if chosen is None or meter.best() is None:
+        return None
+    found = meter.measure(chosen.technique, profile, chosen)
+    return None if found is None else {**found.as_json(), "best": technique_name(meter.best())}
+
+
 def matrix_job(job: "MatrixJob") -> dict | EffectError:
     """`matrix()`'s entry for one effect file, or the error its load raised (returned, not
     raised: the command reports the first failing file in the order given). Where the
-    command line's store is on, the entry is kept for the next command (matrix_store)."""
+    command line's store is on, the entry is kept for the next command (matrix_store), with
+    the files a fidelity row's renders named."""
+    from effects.base import untrusted
     from effects.d3d9.caps import list_profiles, load_profile
     from effects.cli import matrix_store
     from effects.validate.verdicts import load_effect   # strict: as D3DXCreateEffect
@@ -155,8 +200,11 @@ def matrix_job(job: "MatrixJob") -> dict | EffectError:
     try:
         effect = load_effect(job.path, include_root=job.include_root, strict=job.strict)
         profiles = [load_profile(n) for n in (job.profiles or list_profiles())]
-        row = matrix({job.path: effect}, profiles, job.policy)[job.path]
-        matrix_store.keep(job, found, effect, row)
+        with untrusted.recording() as named:
+            row = matrix({job.path: effect}, profiles, job.policy, fidelity=job.fidelity,
+                         scenes={job.path: job.scene}, best=job.best)[job.path]
+        measured = any("fidelity" in cell for cell in row.values())
+        matrix_store.keep(job, found, effect, row, named if measured else frozenset())
         return row
     except EffectError as err:
         # it travels pickled, and where tblib's pickling is installed (Dask's is) a traceback
@@ -174,9 +222,22 @@ def _matrix_cells(result: dict) -> tuple[list[str], list[list[str]]]:
         row = [name]
         for path in result:
             cell = result[path][name]
-            row.append(f"{cell['technique']} ({cell['passes']})" if cell["technique"] else "none")
+            text = f"{cell['technique']} ({cell['passes']})" if cell["technique"] else "none"
+            if cell.get("fidelity"):
+                text += f" {figure_text(cell['fidelity'])}"
+            row.append(text)
         rows.append(row)
     return header, rows
+
+
+def figure_text(figure: Mapping[str, Any] | None) -> str:
+    """A fidelity figure as a cell shows it: 'SSIM 0.934' ('= best' where the pictures are
+    the same: SSIM 1 and no pixel differs)."""
+    if not figure:
+        return ""
+    if figure["psnr"] is None:
+        return "= best"
+    return f"SSIM {figure['ssim']:.3f}"
 
 
 def print_matrix(result: dict, console: Console) -> None:

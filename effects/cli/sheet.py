@@ -1,7 +1,8 @@
 """`effects matrix --render SHEET.png`: the contact sheet of effects × cards.
 
 One row per effect, one column per card; each cell is the picture the card draws with the
-technique it selects (its name under it), or the reason it draws none, as text. The cells
+technique it selects (its name under it, and with fidelity figures its SSIM and PSNR against
+the best technique: effects.host.fidelity), or the reason it draws none, as text. The cells
 are independent renders, an effect's row of them a job (`effects.host.batch.render_row`), run
 by `effects.host.batch.run_jobs` on a process pool (`--jobs`) or
 on Dask (`--scheduler`), with a progress bar on stderr.
@@ -10,7 +11,7 @@ from __future__ import annotations
 
 import os
 import textwrap
-from typing import Any, Sequence
+from typing import Any, Mapping, Sequence
 
 from effects.base.errors import Location, SceneError
 from effects.host.batch import Cell, CellJob, render_row, run_jobs
@@ -31,11 +32,13 @@ def sheet_jobs(files: Sequence[str], profiles: Sequence[str], size: tuple[int, i
 def render_sheet(files: Sequence[str], profiles: Sequence[str], out: str, *,
                  size: tuple[int, int] = (96, 96), scene: str | None = None,
                  scene_beside: bool = True, backend: str = "numpy", policy: str = "first", jobs: int | None = None,
-                 scheduler: Any = None, progress: bool = True) -> list[Cell]:
+                 scheduler: Any = None, progress: bool = True,
+                 figures: Mapping[tuple[str, str], Any] | None = None) -> list[Cell]:
     """Render every cell, compose the sheet and write it to `out` (PNG); returns the cells.
     A job is one effect's row (`render_row`): cell by cell, both workers of `--jobs 2` drew
     cards of every effect, so each paid every effect's first-cell costs, and the command was
-    1.2-1.3x faster than `--jobs 1`, not 2x."""
+    1.2-1.3x faster than `--jobs 1`, not 2x. `figures`: the matrix's fidelity figure of each
+    cell, by (file, card), drawn under its technique's name."""
     rows = [sheet_jobs([f], profiles, size, scene, backend, policy, scene_beside) for f in files]
     if progress:
         from rich.console import Console
@@ -49,7 +52,7 @@ def render_sheet(files: Sequence[str], profiles: Sequence[str], out: str, *,
     else:
         drawn = run_jobs(render_row, rows, jobs=jobs, scheduler=scheduler)
     cells = [cell for row in drawn for cell in row]
-    image = compose(cells, files, profiles, size)
+    image = compose(cells, files, profiles, size, figures)
     try:
         image.save(out)
     except (OSError, ValueError) as exc:
@@ -58,11 +61,12 @@ def render_sheet(files: Sequence[str], profiles: Sequence[str], out: str, *,
 
 
 def compose(cells: Sequence[Cell], files: Sequence[str], profiles: Sequence[str],
-            size: tuple[int, int]):
-    """The sheet as a PIL image: a header row of card names, then a row per effect."""
+            size: tuple[int, int], figures: Mapping[tuple[str, str], Any] | None = None):
+    """The sheet as a PIL image: a header row of card names, then a row per effect; with
+    `figures`, a second line under each picture: its fidelity."""
     from PIL import Image, ImageDraw
     w, h = size
-    cell_h = h + _LABEL_H
+    cell_h = h + _LABEL_H * (2 if figures else 1)
     sheet = Image.new("RGB", (_HEADER_W + w * len(profiles), _LABEL_H + cell_h * len(files)),
                       _BACKGROUND)
     draw = ImageDraw.Draw(sheet)
@@ -80,9 +84,22 @@ def compose(cells: Sequence[Cell], files: Sequence[str], profiles: Sequence[str]
                 picture = Image.fromarray(cell.image, "RGBA").convert("RGB")
                 sheet.paste(picture, (left, top))
                 draw.text((left + 2, top + h), _fit(draw, cell.technique or "", w - 3), fill=_FAINT)
+                if figures:
+                    draw.text((left + 2, top + h + _LABEL_H),
+                              _fit(draw, _figure_line(figures.get((path, profile))), w - 3),
+                              fill=_INK)
             else:
                 _reason(draw, cell.reason or "", left, top, w, cell_h)
     return sheet
+
+
+def _figure_line(figure: Any) -> str:
+    """'0.934 27.4dB' (SSIM, PSNR), '= best', or '-' where nothing was measured."""
+    if not figure:
+        return "-"
+    if figure["psnr"] is None:
+        return "= best"
+    return f"{figure['ssim']:.3f} {figure['psnr']:.1f}dB"
 
 
 def _fit(draw, text: str, width: int) -> str:

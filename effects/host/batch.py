@@ -187,8 +187,9 @@ def render_cell(job: CellJob) -> Cell:
     try:
         effect = _effect(job.effect)
         profile = load_profile(job.profile)
+        from effects.host.fidelity import policy_for   # pictures for the fidelity order only
         frame = render_frame(effect, profile, backend=_backend(job.backend), scene=job.scene,
-                             size=job.size, policy=job.policy)
+                             size=job.size, policy=policy_for(effect, job.policy, scene=job.scene))
     except NoValidTechnique as exc:
         reasons = [r for rs in exc.reasons.values() for r in rs]
         why = str(reasons[0]) if reasons else str(exc).splitlines()[0]

@@ -53,6 +53,7 @@ from effects.base.lru import DEFAULT_TEXTURE_BYTES, ByteLRU, texture_bytes
 from effects.assets.texture_files import load_texture
 from effects.assets.textures import PROCEDURAL, procedural
 from effects.program.texture import Texture
+from effects.base import untrusted
 from effects.base.untrusted import confine
 
 STREAM_NAMES = ("position", "normal", "tangent", "binormal", "color0", "color1",
@@ -288,6 +289,7 @@ def scene_mesh(scene: Scene) -> Mesh | InlineMesh:
     key: tuple = (name,)
     if name.lower().endswith(".obj"):
         path = name if os.path.isabs(name) else os.path.join(scene.base_dir, name)
+        untrusted.note(path)   # also when the cache holds it (untrusted.recording)
         try:
             key = (os.path.abspath(path), os.stat(path).st_mtime_ns)
         except OSError:

@@ -139,21 +139,26 @@ def _selected(effect: Effect, profile: "CapsProfile", policy: Any) -> "Selection
     shares the techniques. The selection is made again only when a parameter that validation
     read differs (`effects.model.RecordedReads`); the same Validation object comes back, so
     the lowering cache (which keys on it) hits too. A selection that fell past a technique
-    with a language error (`Selection.passed_over`) raises that located error instead."""
+    with a language error (`Selection.passed_over`) raises that located error instead. A
+    fidelity policy's scores (`Policy.likeness`, effects.host.fidelity.policy_for) are part of
+    the key, by identity: a policy measured in another scene is another policy."""
     from effects.model import RecordedReads, still_holds
     from effects.validate.select import select
+    likeness = getattr(policy, "likeness", None)
     try:
-        key = (id(effect.techniques), id(profile), policy)
+        key = (id(effect.techniques), id(profile), policy, id(likeness))
         hit = _SELECTIONS.get(key)
     except TypeError:   # an unhashable policy object: no memory
         hit, key = None, None
-    if hit is not None and hit[0] is effect.techniques and hit[1] is profile and still_holds(effect, hit[2]):
+    if hit is not None and hit[0] is effect.techniques and hit[1] is profile and \
+            hit[4] is likeness and still_holds(effect, hit[2]):
         selection = hit[3]
     else:
         reads = RecordedReads(effect)
         selection = select(reads, profile, policy)  # type: ignore[arg-type]
         if key is not None:
-            _SELECTIONS.put(key, (effect.techniques, profile, reads.snapshot(), selection))
+            _SELECTIONS.put(key, (effect.techniques, profile, reads.snapshot(), selection,
+                                  likeness))
     error = selection.passed_over
     if error is not None:
         raise error.with_traceback(None)   # the same error each time

@@ -24,6 +24,7 @@ import yaml
 
 from effects.base import caches, untrusted, yaml_input
 from effects.base.errors import Location, SceneError
+from effects.host.scene_files import scene_for  # noqa: F401  (every command asks it here too)
 
 Color = tuple[float, float, float, float]
 MAX_SIZE = 8192
@@ -300,19 +301,6 @@ PRIMITIVES = ("strip", "list", "fan")
 
 # ------------------------------------------------------------------------------------------------
 # Loading
-
-
-def scene_for(effect_path: str, scene: str | None, *, beside: bool = True) -> str | None:
-    """The scene an effect is drawn in: the one named; else, unless `beside` is false
-    (`--no-scene`), `NAME.yaml` next to `NAME.fx` (the way fxfiles/wood.yaml supplies the
-    colours and light a file's techniques read, and sdk8_style.yaml what a DX8 file cannot
-    declare); else None, the default scene. Every command that draws or diagnoses asks this."""
-    if scene is not None:
-        return scene
-    if not beside:
-        return None
-    path = os.path.splitext(os.fspath(effect_path))[0] + ".yaml"
-    return path if os.path.isfile(path) else None
 
 
 def load_scene(source: "str | os.PathLike[str] | Mapping[str, Any] | Scene | None") -> Scene:

@@ -11,6 +11,9 @@ A policy is written as comma-separated parts, each at most once:
     first            file order (D3DX); the default
     quality          the highest Quality first, file order breaking ties
     cost             the lowest Cost first, file order breaking ties
+    fidelity         the technique whose picture on this card is most like the effect's best
+                     technique's (SSIM, measured by the host: effects.host.fidelity), the
+                     least per-pixel work (`technique_work`) breaking ties, then file order
     max-passes=N     techniques with more than N passes are not chosen
     max-cost=X       techniques whose Cost is above X (or unknown) are not chosen
 
@@ -20,22 +23,37 @@ with nothing chosen and every reason), never an exception.
 
 `select` is the one route by which a technique is chosen: the runtime, the viewer's reloads,
 `effects render/matrix/validate/doctor` and `Effect.find_valid_technique` all ask it.
+
+The fidelity order needs pictures, and pictures are made above this floor (a render is the
+host's work): its Policy carries `likeness`, a function the host supplies that scores the
+valid techniques from their Validations (effects.host.fidelity.policy_for). The ranking stays
+here, so every route ranks the same scores the same way; a route handed that one Policy
+object gives the one answer.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Sequence, Union
+from typing import Callable, Mapping, Sequence, Union
 
 import numpy as np
 
 from effects.d3d9.caps import CapsProfile
 from effects.base.errors import EffectError, Location
 from effects.model import Effect, Technique
-from effects.validate.technique import Validation, validate_technique
+from effects.validate.technique import PassReport, Validation, validate_technique
 
 _POLICY_LOCATION = Location("<policy>", 1, 1)
-ORDERS = ("first", "quality", "cost")
+
+# What the host supplies for the fidelity order: given the validations in file order (None for
+# those the policy may not choose), each valid one's likeness to the effect's best technique
+# on its card (SSIM, 1 alike) by position; None or absent where it could not be measured.
+Likeness = Callable[[Sequence["Validation | None"]], Mapping[int, "float | None"]]
+ORDERS = ("first", "quality", "cost", "fidelity")
+# fidelity scores are compared as shown (SSIM to three places): two techniques whose pictures
+# differ from the best's by less than a shown figure look alike, and the cheaper one is drawn
+FIDELITY_PLACES = 3
+_POLICY_NAMES = "first, quality, cost, fidelity, max-passes=N, max-cost=X, comma-separated"
 
 
 @dataclass(frozen=True)
@@ -45,16 +63,20 @@ class Policy:
     order: str = "first"
     max_passes: int | None = None
     max_cost: float | None = None
+    # the fidelity order's scores, supplied by the host (effects.host.fidelity.policy_for);
+    # not part of equality: two policies differ by what they say, and caches that key on a
+    # policy add its likeness by identity (effects.host.runtime._selected)
+    likeness: "Likeness | None" = field(default=None, compare=False, repr=False)
 
     @classmethod
     def parse(cls, text: str) -> "Policy":
-        """Parse 'first', 'quality', 'cost', 'max-passes=N', 'max-cost=X', comma-joined."""
+        """Parse 'first', 'quality', 'cost', 'fidelity', 'max-passes=N', 'max-cost=X',
+        comma-joined."""
         order: str | None = None
         limits: dict[str, float | int] = {}
         parts = [p.strip().lower() for p in text.split(",")]
         if not any(parts):
-            raise EffectError("empty selection policy (use first, quality, cost, max-passes=N, "
-                              "max-cost=X, comma-separated)", _POLICY_LOCATION)
+            raise EffectError(f"empty selection policy (use {_POLICY_NAMES})", _POLICY_LOCATION)
         for part in parts:
             if part in ORDERS:
                 if order is not None and order != part:
@@ -66,11 +88,16 @@ class Policy:
             if key in ("max-passes", "max-cost") and eq:
                 limits[key] = _limit(text, key, value.strip())
                 continue
-            raise EffectError(f"unknown selection policy '{part}' (use first, quality, cost, "
-                              "max-passes=N, max-cost=X, comma-separated)", _POLICY_LOCATION)
+            raise EffectError(f"unknown selection policy '{part}' (use {_POLICY_NAMES})",
+                              _POLICY_LOCATION)
         max_passes = limits.get("max-passes")
         return cls(order or "first", None if max_passes is None else int(max_passes),
                    limits.get("max-cost"))
+
+    def with_likeness(self, likeness: "Likeness | None") -> "Policy":
+        """This policy with the fidelity order's scores (effects.host.fidelity.policy_for)."""
+        import dataclasses
+        return dataclasses.replace(self, likeness=likeness)
 
     def __str__(self) -> str:
         parts = [self.order]
@@ -140,6 +167,26 @@ def technique_cost(tech: Technique) -> float | None:
     return _annotation_number(tech, "Cost")
 
 
+def pass_work(report: "PassReport") -> int:
+    """One pass's per-pixel work in instruction slots, plus one for its fill: a pixel
+    shader's slots as the card's checks count them (`AsmStats.total_slots`: texture,
+    arithmetic and flow slots, co-issued pairs as one), or for the fixed-function stages one
+    slot per texture read and one per stage's combine, as ps_1_1 would spend them (`tex` and
+    an arithmetic instruction). The fill (+1): every pass writes each pixel it covers again,
+    through the blender. A card's fill rate and clock are a factor common to every technique
+    on that card (and no profile records them), so they do not change the order on a card."""
+    shader = report.shaders.get("PixelShader")
+    slots = shader.program.stats.total_slots if shader is not None \
+        else report.textures + report.stages
+    return 1 + slots
+
+
+def technique_work(validation: Validation) -> int:
+    """The per-pixel work of a technique on the card that validated it: the sum of its
+    passes' `pass_work`. The fidelity policy's tie-breaker."""
+    return sum(pass_work(p) for p in validation.pass_reports)
+
+
 @dataclass
 class Selection:
     """What selecting a technique for one effect on one card found (`select`): the technique
@@ -154,29 +201,37 @@ class Selection:
     chosen: Validation | None                  # the technique to draw; None: nothing valid
     forced_rejected: Validation | None = None  # a forced technique the card cannot run
     pending: list[Technique] = field(default_factory=list)
+    # the fidelity order's scores, by position in `validations` (SSIM against the best)
+    likeness: Mapping[int, "float | None"] = field(default_factory=dict)
 
     @property
     def technique(self) -> Technique | None:
         return self.chosen.technique if self.chosen is not None else None
 
-    def _preference(self, v: Validation, position: int) -> tuple[float, int]:
+    def _preference(self, v: Validation, position: int) -> tuple[float, float, int]:
         """Where the policy places a technique among those it accepts: its score (quality,
-        cost, or none for file order), then its `position` in file order."""
+        cost, fidelity then work, or none for file order), then its `position` in file order."""
         if self.policy.order == "quality":
-            return (-technique_quality(v.technique), position)
+            return (-technique_quality(v.technique), 0.0, position)
         if self.policy.order == "cost":
             cost = technique_cost(v.technique)
-            return (math.inf if cost is None else cost, position)
-        return (0.0, position)
+            return (math.inf if cost is None else cost, 0.0, position)
+        if self.policy.order == "fidelity":
+            if not v.ok:   # never drawn, so never measured: had it compiled, it might have won
+                return (-math.inf, 0.0, position)
+            score = self.likeness.get(position)
+            shown = math.inf if score is None else -round(score, FIDELITY_PLACES)
+            return (shown, float(technique_work(v)), position)
+        return (0.0, 0.0, position)
 
     @property
     def ranked(self) -> list[Validation]:
         """The validations the policy accepts first, in its preferred order, then the others
         in file order; the first is the policy's choice when it accepts it."""
-        def key(item: tuple[int, Validation]) -> tuple[int, float, int]:
+        def key(item: tuple[int, Validation]) -> tuple[int, float, float, int]:
             position, v = item
             if not self.policy.accepts(v):
-                return (1, 0.0, position)
+                return (1, 0.0, 0.0, position)
             return (0, *self._preference(v, position))
 
         return [v for _, v in sorted(enumerate(self.validations), key=key)]
@@ -224,8 +279,15 @@ def select(effect: Effect, profile: CapsProfile, policy: PolicyLike = "first", *
     `lazy`: under the default policy, validate in file order only until the answer is known
     (the first valid technique, and the forced one's answer), as FindNextValidTechnique does;
     other policies rank every technique. `validations`: every technique's answer on this card
-    already made, in file order (the command line validates all cards at once)."""
+    already made, in file order (the command line validates all cards at once).
+    The fidelity order ranks its Policy's `likeness` (the host's measures); a fidelity policy
+    without them is an error, said where the policy is named."""
     pol = as_policy(policy)
+    if pol.order == "fidelity" and pol.likeness is None:
+        raise EffectError("policy 'fidelity' ranks techniques by how like the best technique's "
+                          "their pictures are, and nothing here draws them: the commands "
+                          "(effects render/matrix/validate/view) measure them; in Python pass "
+                          "effects.host.fidelity.policy_for(effect, scene=...)", _POLICY_LOCATION)
     if validations is not None:
         made, pending = list(validations), []
     else:
@@ -243,6 +305,9 @@ def select(effect: Effect, profile: CapsProfile, policy: PolicyLike = "first", *
             return Selection(pol, made, answer, None, pending)
         forced_rejected = answer
     selection = Selection(pol, made, None, forced_rejected, pending)
+    if pol.order == "fidelity" and pol.likeness is not None:
+        # only the techniques the policy may choose are measured (each costs renders)
+        selection.likeness = dict(pol.likeness([v if pol.accepts(v) else None for v in made]))
     ranked = selection.ranked
     if ranked and pol.accepts(ranked[0]):
         selection.chosen = ranked[0]

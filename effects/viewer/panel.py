@@ -1,6 +1,8 @@
 """The viewer's on-screen panel, drawn with imgui (imgui-bundle 1.6 through moderngl-window's
 integration): card, technique and pass count, every other technique with its first reason
-(expand for all), render times, the last reload and its error, and the controls.
+(expand for all), each valid technique's fidelity (its picture on the card against the best
+technique's: effects.host.fidelity), render times, the last reload and its error, and the
+controls.
 
 The panel only reads `Status` and calls `ViewerState` methods; the keys do the same things
 (`KEYS`, listed in the panel's help).
@@ -18,6 +20,7 @@ from effects.viewer.state import DIFFERENCE_SCALE, MESHES, VIEW_TITLES, VIEWS, V
 if TYPE_CHECKING:  # pragma: no cover
     from effects.viewer.reload import LoadedEffect
     from effects.viewer.draw import DifferenceStats
+    from effects.validate.technique import Validation
 
 KEYS = (
     ("N / P", "next / previous card"),
@@ -121,7 +124,9 @@ def _techniques(state: ViewerState, status: Status) -> None:
     else:
         how = "forced" if loaded.forced and loaded.technique.name == loaded.forced else "selected"
         imgui.text_colored(GREEN, f"Drawing {selected.technique.name or '<anonymous>'} "
-                                  f"({how}), {selected.passes} pass{'es' if selected.passes != 1 else ''}")
+                                  f"({how}), {selected.passes} pass{'es' if selected.passes != 1 else ''}"
+                                  f"{fidelity_note(loaded, selected)}")
+    imgui.text_colored(GREY, fidelity_heading(loaded))
     if loaded.prepare_error is not None:
         imgui.text_colored(RED, "...but it cannot be drawn:")
         imgui.text_wrapped(error_text(loaded.prepare_error))
@@ -146,7 +151,7 @@ def _techniques(state: ViewerState, status: Status) -> None:
         if v.ok:
             imgui.bullet()
             imgui.text_wrapped(f"{label}: valid, {v.passes} pass{'es' if v.passes != 1 else ''} "
-                               "(not first in file order)")
+                               f"(not chosen){fidelity_note(loaded, v)}")
             continue
         reasons = [str(r) for r in v.reasons] or ["not valid"]
         more = len(reasons) - 1
@@ -166,6 +171,23 @@ def _techniques(state: ViewerState, status: Status) -> None:
         imgui.bullet()
         imgui.text_wrapped(f"{', '.join(t.name or '<anonymous>' for t in pending)}: being "
                            "validated (after the first frame of this reload)")
+
+
+def fidelity_note(loaded: "LoadedEffect", validation: "Validation") -> str:
+    """', SSIM 0.934, PSNR 27.4 dB' for a measured valid technique; '' until it is."""
+    position = next((i for i, v in enumerate(loaded.validations) if v is validation), None)
+    found = getattr(loaded, "fidelity", {}).get(position)
+    return f", {found}" if found is not None else ""
+
+
+def fidelity_heading(loaded: "LoadedEffect") -> str:
+    """What the figures are measured against, or that they are being measured."""
+    best = getattr(loaded, "fidelity_best", None)
+    if getattr(loaded, "fidelity_done", True):
+        return f"fidelity: against {best} on refrast" if best is not None else \
+            "fidelity: nothing runs on refrast to measure against"
+    return "fidelity: measuring..." if best is None else \
+        f"fidelity: against {best} on refrast (measuring...)"
 
 
 def _view(state: ViewerState, status: Status) -> None:

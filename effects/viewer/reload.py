@@ -95,7 +95,10 @@ class LoadedEffect:
     validates in file order only until the drawn technique is known, and the techniques after
     it wait in `pending` until `complete_validations()` (the reload worker's, after the first
     frame). `programs` are the lowered passes of `technique` (None when there is nothing to
-    draw); `forced_rejected` is set when a forced technique is not valid here."""
+    draw); `forced_rejected` is set when a forced technique is not valid here. `fidelity`
+    (by technique position) holds each valid technique's picture on the card against the
+    best technique's (effects.host.fidelity), measured by the worker after the validations,
+    one technique at a time (`measure_next`), so a reload asked for meanwhile goes first."""
 
     path: str
     effect: "Effect"
@@ -111,6 +114,29 @@ class LoadedEffect:
     scene_key: Any = None      # BuildSettings.scene_key of the scene it was prepared for
     listing: list[list[str]] | None = None   # per pass of `technique`: `effects compile`'s lines
     pending: list["Technique"] = field(default_factory=list)   # not validated yet (see above)
+    scene: Any = None          # the scene it was built for: the fidelity renders draw it
+    fidelity: dict[int, Any] = field(default_factory=dict)   # position -> Likeness | None
+    fidelity_best: str | None = None     # the technique measured against, once known
+    fidelity_done: bool = False
+
+    def unfinished(self) -> bool:
+        """Whether the worker has validations or fidelity measures left to make."""
+        return bool(self.pending) or not self.fidelity_done
+
+    def measure_next(self) -> None:
+        """Measure the next valid technique not measured yet (after the validations)."""
+        from effects.host.fidelity import meter_for
+        meter = meter_for(self.effect, scene=self.scene)
+        best = meter.best()
+        if best is None:                 # nothing runs on refrast: nothing to measure against
+            self.fidelity_done = True
+            return
+        self.fidelity_best = best.name or "<anonymous>"
+        for i, v in enumerate(self.validations):
+            if v.ok and i not in self.fidelity:
+                self.fidelity[i] = meter.measure(v.technique, self.profile, v)
+                return
+        self.fidelity_done = True
 
     def complete_validations(self) -> None:
         """Validate the techniques still pending and list every answer in file order. Run off
@@ -200,7 +226,9 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
                               Location(path, 1, 1)) from None
     # Every technique is validated once (the panel lists them all), and selection chooses
     # among these same answers; `defer` leaves those after the drawn one pending.
-    selection = select(effect, profile, policy, forced=forced, lazy=defer)
+    from effects.host.fidelity import policy_for   # draws pictures for the fidelity order only
+    selection = select(effect, profile, policy_for(effect, policy, scene=scene), forced=forced,
+                       lazy=defer)
     chosen, chosen_validation = selection.technique, selection.chosen
     # A language error in the technique asked for, or in one the selection fell past, fails
     # the reload: shown in red like a parse error, the last good effect stays on screen.
@@ -222,7 +250,7 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     listing = technique_listing(effect, chosen) if chosen is not None else None
     return LoadedEffect(path, effect, profile, selection.validations, chosen, programs, technique,
                         selection.forced_rejected, watched_files(effect), prepare_error, runtime,
-                        scene_key, listing, selection.pending)
+                        scene_key, listing, selection.pending, scene)
 
 
 def technique_listing(effect: "Effect", technique: "Technique") -> list[list[str]]:
@@ -269,6 +297,13 @@ def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
 
 # ---------------------------------------------------------------------------------------------
 # Reloader
+
+
+def _unfinished(loaded: Any) -> bool:
+    """Whether a build (a LoadedEffect, or a test's stand-in without the worker's steps) has
+    validations or measures left for the worker."""
+    unfinished = getattr(loaded, "unfinished", None)
+    return bool(unfinished()) if unfinished is not None else bool(getattr(loaded, "pending", None))
 
 
 Build = Callable[["Effect | None"], LoadedEffect]
@@ -371,22 +406,26 @@ class Reloader:
         self._jobs.put(("drawn", (), time.perf_counter()))
 
     def _complete(self) -> None:
-        """Validate what the last good build left pending. A failure is reported as a failed
-        reload would be (the drawn effect stays)."""
+        """Validate what the last good build left pending, else measure one more technique's
+        fidelity. A failure is reported as a failed reload would be (the drawn effect stays)."""
         good = self._good
-        if good is None or not getattr(good, "pending", None):
+        if good is None or not _unfinished(good):
             return
         start = time.perf_counter()
         try:
-            good.complete_validations()
+            if good.pending:
+                good.complete_validations()
+            else:
+                good.measure_next()
         except BaseException as exc:  # noqa: BLE001 - reported; what is drawn stays
             good.pending = []
+            good.fidelity_done = True
             self.results.put(ReloadResult(self.path, "reload", None, exc,
                                           (time.perf_counter() - start) * 1000.0, (), start))
 
     def _work(self) -> None:
         while True:
-            waiting = self._good is not None and bool(getattr(self._good, "pending", None))
+            waiting = self._good is not None and _unfinished(self._good)
             try:
                 # validations left pending wait for the first frame (or, with no render
                 # thread to say so, a short while); a build queued before then goes first

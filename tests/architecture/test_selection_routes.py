@@ -58,3 +58,33 @@ def test_the_routes_agree_under_named_policies(policy):
                        "viewer": _viewer_choice(path, effect, profile, policy),
                        "api": getattr(effect.find_valid_technique(profile, policy), "name", None)}
             assert len(set(answers.values())) == 1, (path.name, profile.name, answers)
+
+
+@pytest.mark.parametrize("path", FX_FILES, ids=lambda p: p.stem)
+def test_the_routes_agree_under_the_fidelity_policy(path):
+    """One fidelity Policy (its measures in the default scene) handed to every route gives one
+    answer, and it is the rule worked out here from the meter's figures: the highest SSIM as
+    shown (three places), then the least work, then file order."""
+    from effects.host.fidelity import meter_for, policy_for
+    from effects.validate.select import technique_work
+    effect = effects.load_effect(str(path))
+    policy = policy_for(effect, "fidelity")
+    meter = meter_for(effect)
+    by_matrix = matrix({str(path): effect}, CARDS, policy)[str(path)]
+    for profile in CARDS:
+        valid = [(i, v) for i, v in enumerate(validate_technique(effect, t, profile)
+                                               for t in effect.techniques) if v.ok]
+
+        def rank(item):
+            i, v = item
+            found = meter.measure(v.technique, profile)
+            return (-round(found.ssim, 3) if found else 1.0, technique_work(v), i)
+        expected = min(valid, key=rank)[1].technique if valid else None
+        answers = {"runtime": _runtime_choice(effect, profile, policy),
+                   "viewer": _viewer_choice(path, effect, profile, policy),
+                   "api": getattr(effect.find_valid_technique(profile, policy), "name", None)}
+        name = getattr(expected, "name", None)
+        assert answers == dict.fromkeys(answers, name), (path.name, profile.name)
+        # the matrix names an anonymous technique as the tables do
+        assert by_matrix[profile.name]["technique"] == (
+            None if expected is None else name or "<anonymous>"), (path.name, profile.name)
