@@ -18,6 +18,9 @@ from effects.shaders.hlsl.values import Value, component, operand, split
 from effects.shaders.hlsl.types import HType, common_base, shape_of, vector
 
 
+_COMPARISONS = frozenset(("<", ">", "<=", ">=", "==", "!="))
+
+
 class Arith:
     def __init__(self, ctx: Context, error: Callable[[str, Any], Exception],
                  warn: Callable[[str, Location], None]) -> None:
@@ -157,6 +160,12 @@ class Arith:
         return a.comps[:n], b.comps[:n], vector(base, n)
 
     def binary(self, opname: str, a: Value, b: Value, loc: Location) -> Value:
+        if opname not in _COMPARISONS and not (a.type.numeric and b.type.numeric):
+            # fxc: arithmetic on a struct or an object is X3022 (a comparison X3020, as
+            # broadcast says); DXC's tests record the text
+            shown = a.type if not a.type.numeric else b.type
+            raise self.error(f"X3022: scalar, vector, or matrix expected ('{opname}' on "
+                             f"'{shown}')", loc)
         if opname in ("&&", "||"):
             ca, cb, t = self.broadcast(self.to_bool(a, loc), self.to_bool(b, loc), loc, opname)
             comps = self.lanes("mul" if opname == "&&" else "max", [ca, cb], loc)

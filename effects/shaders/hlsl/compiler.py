@@ -22,7 +22,7 @@ from effects.shaders.asm import AsmProgram
 # CompiledShader lives in shader.py and compile_state in cache.py: a cached shader needs no
 # compiler (CompiledShader is importable from here as before)
 from effects.shaders.hlsl.shader import CompiledShader, assemble_generated
-from effects.shaders.hlsl.calls import parameters, return_type
+from effects.shaders.hlsl.calls import constant_parameters, parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.budget import out_of_stack, spend
 from effects.shaders.hlsl.codegen import CodeGen
@@ -88,6 +88,7 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
     params = parameters(ev, fdef)
     compile_args = list(args)
     binder = _Binder(ctx, ev)
+    fixed = constant_parameters(fdef)
     outs: list[tuple[str, HType, Any, Any]] = []
     for name, t, direction, default, sem in params:
         sem_text = sem.children[0] if sem is not None and sem.data != "register" else None
@@ -99,14 +100,14 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
                 value = ev.a.convert(ev.expr(default), t, ev.at(default))
             else:
                 value = binder.uniform_param(name, t)
-            ev.declare(name, t, value)
+            ev.declare(name, t, value, const=True)
         elif direction == "out":
             ev.declare(name, t, ev.zero(t))
             outs.append((name, t, sem_text, sem))
         else:
             value = binder.input(t, str(sem_text) if sem_text is not None else None,
                                  fdef.origin.at(sem if sem is not None else fdef.tree), name)
-            ev.declare(name, t, value)
+            ev.declare(name, t, value, const=name in fixed)
             if direction == "inout":
                 outs.append((name, t, sem_text, sem))
     if compile_args:
@@ -171,6 +172,8 @@ def _sampler_registers(ctx: Context) -> dict[str, int]:
     in order, as fxc lays an array out (its first free block, by first use, when unbound).
     Other samplers get theirs in the code generator, by first use."""
     regs = {name: b for name in ctx.samplers_used if (b := _explicit(ctx, name, "s")) is not None}
+    for name, b in regs.items():
+        _within(ctx, name, b, 1, "s")
     taken = set(regs.values())
     blocks: dict[str, int] = {}
     for name in ctx.samplers_used:
@@ -229,6 +232,7 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
     for name in order:
         b = _explicit(ctx, name, "c")
         if b is not None:
+            _within(ctx, name, b, sizes[name], "c")
             regs[name] = b
             taken.update(range(regs[name], regs[name] + sizes[name]))
     for name in order:
@@ -240,6 +244,32 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
         regs[name] = k
         taken.update(range(k, k + sizes[name]))
     return regs, sizes
+
+
+# fxc's refusals of a `register()` past what the target addresses (d3dx's message table:
+# X4507 "maximum constant register index exceeded"; DXC's packreg test: X4509 "maximum sampler
+# register index exceeded"): a refusal for the target, the same binding compiles for a larger one
+_REGISTER_CODES = {"c": ("X4507", "constant"), "s": ("X4509", "sampler")}
+
+
+def _within(ctx: Context, name: str, first: int, count: int, kind: str) -> None:
+    """Refuse parameter `name` bound by `register()` to `first` .. `first + count - 1` of
+    register kind `kind` where the target has fewer (the float constants fxc allows a target:
+    a vertex shader's guaranteed count, 96 or 256; a pixel shader's file)."""
+    rules = ctx.target.rules
+    if kind == "c":
+        have = rules.constants_min or rules.registers.get("c", 0)
+    else:       # ps_1_x samples by stage (t#); a vs_1_1/2_0 sampler is refused where it samples
+        have = rules.registers.get("s") or rules.registers.get("t") or 16
+    if first + count <= have:
+        return
+    code, what = _REGISTER_CODES[kind]
+    base = name.split("[", 1)[0]
+    param = ctx.effect.parameter(base)
+    at = param.location if param is not None else UNKNOWN_LOCATION
+    raise HlslError(f"{code}: maximum {what} register index exceeded: '{base}' is bound to "
+                    f"{kind}{first}{f'..{kind}{first + count - 1}' if count > 1 else ''}, "
+                    f"{ctx.target.name} has {kind}0..{kind}{have - 1}", at)
 
 
 def _compile_argument(ctx: Context, ev: Evaluator, text: str, t: HType, where: Location) -> Value:

@@ -109,13 +109,61 @@ def load_context(effect: Effect, target_name: str) -> Context:
                                             lambda m: origin.error(m, tree), f"'{name}'")
             continue
         tree = parse(s.source, "struct_def", origin, names)
+        if s.name in ctx.structs:                  # d3dx's "redefinition of '%s'"
+            raise origin.error(f"X3003: redefinition of '{s.name}'", tree.children[0])
         ctx.structs[s.name] = struct_type(ctx, tree, origin)
         ctx.struct_origins[s.name] = origin
     for f in effect.functions:
         origin = Origin(f.location, f.source, row_major=f.row_major, expanded=f.expanded)
         tree = parse(f.source, "function_def", origin, names)
-        ctx.functions.setdefault(f.name, []).append(FunctionDef(f.name, tree, origin, f))
+        fdef = FunctionDef(f.name, tree, origin, f)
+        _check_declaration(ctx, fdef, ctx.functions.get(f.name, ()))
+        ctx.functions.setdefault(f.name, []).append(fdef)
     return ctx
+
+
+def _check_declaration(ctx: Context, fdef: FunctionDef, earlier: Any) -> None:
+    """What fxc refuses in a function's declaration whether or not it is called (it compiles
+    the whole file): a void function with a semantic (X3076) and a second body of the same
+    name and parameter types (X3003; d3dx's message table holds both texts)."""
+    tree, origin = fdef.tree, fdef.origin
+    name_tok, semantic = tree.children[2], tree.children[4]
+    if semantic is not None and _spells_void(tree.children[1]):
+        raise origin.error(f"X3076: '{fdef.name}': void function cannot have a semantic",
+                           semantic)
+    if not earlier or not _has_body(tree):
+        return
+    mine = _signature(ctx, fdef)
+    for other in earlier:
+        if _has_body(other.tree) and _signature(ctx, other) == mine:
+            raise origin.error(f"X3003: redefinition of '{fdef.name}'", name_tok)
+
+
+def _spells_void(ret: lark.Tree) -> bool:
+    spec = ret.children[0]
+    return isinstance(spec, lark.Tree) and spec.data == "builtin_type" and \
+        str(spec.children[0]) == "void"
+
+
+def _has_body(tree: lark.Tree) -> bool:
+    last = tree.children[-1]
+    return isinstance(last, lark.Tree) and last.data == "block"
+
+
+def _signature(ctx: Context, fdef: FunctionDef) -> tuple:
+    """A function's parameter types as overloads tell them apart (array sizes by their text:
+    they need the evaluator)."""
+    params = fdef.tree.children[3]
+    out = []
+    for p in (params.children if params is not None else []):
+        mods, spec, _name, dims = p.children[:4]
+        t = resolve_type(ctx, spec, fdef.origin, mods)
+        out.append((t, _text(dims)))
+    return tuple(out)
+
+
+def _text(tree: lark.Tree) -> str:
+    return " ".join(str(t) for t in tree.scan_values(lambda v: isinstance(v, lark.Token)))
 
 
 def struct_type(ctx: Context, tree: lark.Tree, origin: Origin) -> HType:
@@ -129,6 +177,10 @@ def struct_type(ctx: Context, tree: lark.Tree, origin: Origin) -> HType:
         i = 0
         while i < len(rest):
             fname, dims, sem = rest[i], rest[i + 1], rest[i + 2]
+            if t.kind == "void":                # ReShade's text for fxc's X3038
+                raise origin.error(f"X3038: '{fname}': struct members cannot be void", fname)
+            if any(f[0] == str(fname) for f in fields):   # d3dx's "redefinition of '%s'"
+                raise origin.error(f"X3003: redefinition of '{fname}'", fname)
             fields.append((str(fname), array_of(t, literal_sizes(dims, origin),
                                                 lambda m: origin.error(m, fname),
                                                 f"member '{fname}'"), semantic_text(sem)))
@@ -223,6 +275,9 @@ def sized_type(tree: lark.Tree, origin: Origin) -> HType:
 
 def resolve_type(ctx: Context, tree: lark.Tree, origin: Origin, mods: Any = None) -> HType:
     said = {str(m) for m in mods.children} if mods is not None else set()
+    if {"row_major", "column_major"} <= said:      # fxc's text, as DXC's tests record it
+        raise origin.error("X3048: matrix types cannot be both column_major and row_major",
+                           mods)
     # an explicit qualifier, else the `#pragma pack_matrix` the text was declared under
     row_major = "row_major" in said or (origin.row_major and "column_major" not in said)
     kind = tree.data
@@ -236,6 +291,10 @@ def resolve_type(ctx: Context, tree: lark.Tree, origin: Origin, mods: Any = None
         t = ctx.structs.get(name) or ctx.typedefs.get(name)
         if t is None:
             raise origin.error(f"X3000: unrecognized identifier '{name}' (not a type)", tree)
+    if said & {"row_major", "column_major"} and t.numeric and t.kind != "matrix":
+        # fxc's text, as DXC's tests record it (a struct or an array of matrices is let be)
+        raise origin.error("X3077: non-matrix types cannot be declared 'row_major' or "
+                           "'column_major'", mods)
     if row_major and t.kind == "matrix":
         t = HType("matrix", t.base, t.rows, t.cols, row_major=True)
     return t

@@ -145,8 +145,10 @@ def swizzle_lanes(ev: Any, t: HType, name: str, where: Any, write: bool = False)
         if any(k >= t.size for k in lanes):
             raise ev.error(f"X3018: invalid subscript '{name}'", where)
     if write and len(set(lanes)) != len(lanes):
-        raise ev.error(f"X3018: invalid subscript '{name}' (a write mask names each component once)",
-                       where)
+        # a swizzle naming a component twice is a value, not an l-value: fxc's X3025 (DXC's
+        # tests record "l-value specifies const object" for `f.xx = 2`)
+        raise ev.error(f"X3025: l-value specifies const object ('{name}' names a component "
+                       "twice)", where)
     return lanes
 
 
