@@ -52,8 +52,12 @@ LANGUAGE = {
               "<string>:4:21: error: X3018: invalid subscript 'xyz'\n"
               "    return float4(v.xyz, 1);\n"
               "                    ^"),
-    "X3020": ("struct S { float a; };\nfloat4 PS() : COLOR\n{\n    S s = (S)0;\n    return s + 1;\n}",
-              "<string>:5:14: error: X3020: type mismatch: '+' needs numeric operands, not 'S' and 'int'\n"
+    "X3020": ("struct S { float a; };\nfloat4 PS() : COLOR\n{\n    S s = (S)0;\n    return s == 1;\n}",
+              "<string>:5:14: error: X3020: type mismatch: '==' needs numeric operands, not 'S' and 'int'\n"
+              "    return s == 1;\n"
+              "             ^"),
+    "X3022": ("struct S { float a; };\nfloat4 PS() : COLOR\n{\n    S s = (S)0;\n    return s + 1;\n}",
+              "<string>:5:14: error: X3022: scalar, vector, or matrix expected ('+' on 'S')\n"
               "    return s + 1;\n"
               "             ^"),
     "X3025": ("float4 PS() : COLOR\n{\n    const float k = 1;\n    k = 2;\n    return k;\n}",
