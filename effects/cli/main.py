@@ -139,7 +139,11 @@ def _cmd_validate(args, console: Console) -> int:
                       "each technique and why not; `effects matrix` shows every card's choice.",
                       markup=False)
         return EXIT_OK
+    told = len(effect.warnings)
     every_card_runs_it = print_validation_table(effect, _profiles(args.profile), console, why=args.why)
+    # what compiling the shaders added (a write fxc allowed only under /Gec)
+    for warning in effect.warnings[told:]:
+        console.print(warning.report(), markup=False, highlight=False, style="yellow", soft_wrap=True)
     return EXIT_OK if every_card_runs_it else EXIT_INVALID
 
 
