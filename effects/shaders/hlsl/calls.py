@@ -29,12 +29,8 @@ def parameters(ev: Any, fdef: FunctionDef) -> list[tuple[str, HType, str, Any, A
         words = [str(m) for m in mods.children] if mods is not None else []
         direction = "inout" if "inout" in words else "out" if "out" in words else \
             "uniform" if "uniform" in words else "in"
-        base = resolve_type(ev.ctx, spec, fdef.origin, mods)
-        if base.kind == "void":            # ReShade's text for fxc's X3038
-            raise fdef.origin.error(f"X3038: '{name}': function parameters cannot be void", name)
-        if any(str(name) == o[0] for o in out):     # d3dx's "redefinition of '%s'"
-            raise fdef.origin.error(f"X3003: redefinition of '{name}'", name)
-        t = _array_of(ev, fdef, base, dims, name)
+        # (context.load_context checked the declaration: no void, repeated or const out one)
+        t = _array_of(ev, fdef, resolve_type(ev.ctx, spec, fdef.origin, mods), dims, name)
         out.append((str(name), t, direction, default, sem))
     return out
 

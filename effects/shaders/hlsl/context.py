@@ -124,13 +124,28 @@ def load_context(effect: Effect, target_name: str) -> Context:
 
 def _check_declaration(ctx: Context, fdef: FunctionDef, earlier: Any) -> None:
     """What fxc refuses in a function's declaration whether or not it is called (it compiles
-    the whole file): a void function with a semantic (X3076) and a second body of the same
-    name and parameter types (X3003; d3dx's message table holds both texts)."""
+    the whole file): a void function with a semantic (X3076), a parameter that is void
+    (X3038, ReShade's text), named twice (X3003) or const and out (X3046), and a second body
+    of the same name and parameter types (X3003; d3dx's message table holds the texts of
+    X3003, X3046 and X3076)."""
     tree, origin = fdef.tree, fdef.origin
     name_tok, semantic = tree.children[2], tree.children[4]
     if semantic is not None and _spells_void(tree.children[1]):
         raise origin.error(f"X3076: '{fdef.name}': void function cannot have a semantic",
                            semantic)
+    params = tree.children[3]
+    seen: set[str] = set()
+    for p in (params.children if params is not None else []):
+        mods, spec, name = p.children[:3]
+        words = {str(m) for m in mods.children} if mods is not None else set()
+        if resolve_type(ctx, spec, origin, mods).kind == "void":
+            raise origin.error(f"X3038: '{name}': function parameters cannot be void", name)
+        if "const" in words and words & {"out", "inout"}:
+            raise origin.error(f"X3046: '{name}': output paramaters cannot be declared 'const'",
+                               name)
+        if str(name) in seen:
+            raise origin.error(f"X3003: redefinition of '{name}'", name)
+        seen.add(str(name))
     if not earlier or not _has_body(tree):
         return
     mine = _signature(ctx, fdef)

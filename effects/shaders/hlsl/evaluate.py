@@ -42,6 +42,8 @@ _COMPOUND = frozenset(("block", "if_stmt", "if_else", "for_stmt", "while_stmt", 
 _COMPARE_NOW = {"lt": lambda a, b: a < b, "le": lambda a, b: a <= b, "gt": lambda a, b: a > b,
                 "ge": lambda a, b: a >= b, "eq": lambda a, b: a == b, "ne": lambda a, b: a != b}
 _SWIZZLE = {c: i for i, c in enumerate("xyzw")} | {c: i for i, c in enumerate("rgba")}
+# storage a local cannot have: a global's (uniform, extern), and fxc's code for each
+_NOT_LOCAL = (("uniform", "X3047"), ("extern", "X3006"))
 
 
 class Evaluator:
@@ -76,8 +78,16 @@ class Evaluator:
         if any(d is None for d in dims.children):
             raise self.error(f"an array of implicit size ('[]') needs an initializer list "
                              f"{NO_CODE}", dims, language=True)
-        return array_of(t, [self.const_number(d) for d in dims.children],
+        return array_of(t, [self._dimension(d) for d in dims.children],
                         lambda m: self.error(m, dims), subject)
+
+    def _dimension(self, tree: Any) -> float:
+        """An array size: an expression that folds to a number (d3dx's X3058 text else)."""
+        v = self.expr(tree)
+        values = v.const_values() if v.type.numeric and v.type.size == 1 else None
+        if values is None:
+            raise self.error("X3058: array dimensions must be literal scalar expressions", tree)
+        return values[0]
 
     def run_step(self, step: Any, own: frozenset[int]) -> None:
         """A `for` loop's step expressions (None: none), its counters `own` written as an
@@ -232,6 +242,10 @@ class Evaluator:
                 raise self.error(f"X3038: '{name}': variables cannot be void", name)
             if is_const and init is None:     # fxc's text, as DXC's tests record it
                 raise self.error(f"X3012: '{name}': missing initial value", name)
+            for word, code in _NOT_LOCAL:       # ReShade's texts for fxc's codes
+                if mods is not None and any(str(m) == word for m in mods.children):
+                    raise self.error(f"{code}: '{name}': local variables cannot be declared "
+                                     f"'{word}'", name)
             if dims.children and dims.children[0] is None and isinstance(init, lark.Tree) \
                     and init.data == "init_list":
                 t, value = self.implicit_array(base, dims, init)

@@ -30,6 +30,7 @@ LANGUAGE_CODES = frozenset({
     "X3003",    # redefinition of a name in its scope (a local, a parameter, a function of
                 # the same signature, a struct or a member)
     "X3004",    # undeclared identifier
+    "X3006",    # a local declared 'extern'
     "X3012",    # a const local without an initial value
     "X3013",    # no matching function or intrinsic overload; not a compile-time constant
     "X3014",    # wrong number of arguments to a numeric constructor
@@ -41,6 +42,8 @@ LANGUAGE_CODES = frozenset({
     "X3025",    # l-value is const (a global, a uniform, a const local)
     "X3037",    # a constructor of a non-numeric type
     "X3038",    # a void variable, parameter or struct member
+    "X3046",    # an out or inout parameter declared 'const'
+    "X3047",    # a local declared 'uniform'
     "X3048",    # conflicting usages (row_major with column_major)
     "X3052",    # a vector dimension outside 1 to 4
     "X3053",    # a matrix dimension outside 1 to 4
