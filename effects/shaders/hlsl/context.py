@@ -146,12 +146,61 @@ def _check_declaration(ctx: Context, fdef: FunctionDef, earlier: Any) -> None:
         if str(name) in seen:
             raise origin.error(f"X3003: redefinition of '{name}'", name)
         seen.add(str(name))
+    if _has_body(tree) and not _spells_void(tree.children[1]):
+        body = tree.children[-1]
+        if next(body.find_data("return_stmt"), None) is None:
+            raise origin.error(f"X3080: '{fdef.name}': function must return a value", tree)
+        if not _always_returns(body):
+            # from memory (fxc's code and text not found in a stored source); a language
+            # error, though the code is not in LANGUAGE_CODES (X3507 is a target's there too)
+            raise origin.error(f"X3507: '{fdef.name}': Not all control paths return a value",
+                               name_tok, language=True)
     if not earlier or not _has_body(tree):
         return
     mine = _signature(ctx, fdef)
     for other in earlier:
         if _has_body(other.tree) and _signature(ctx, other) == mine:
             raise origin.error(f"X3003: redefinition of '{fdef.name}'", name_tok)
+
+
+# statement -> its parts that must all return for it to (fxc: "not all control paths return
+# a value"); a loop, a switch or a discard counts as returning when its body may: the check
+# refuses only a function that plainly falls off its end
+_PATHS = {"if_else": (3, 5), "for_stmt": (5,), "while_stmt": (3,), "do_stmt": (2,)}
+
+
+def _always_returns(root: Any) -> bool:
+    """Whether every path through statement `root` ends in a return (walked with an explicit
+    stack: a 5,000-deep nesting of blocks takes no Python stack)."""
+    done: dict[int, bool] = {}
+    stack: list[tuple[Any, bool]] = [(root, False)]
+    while stack:
+        node, ready = stack.pop()
+        if not isinstance(node, lark.Tree):
+            done[id(node)] = False
+            continue
+        kind = node.data
+        parts = node.children if kind == "block" else \
+            [node.children[k] for k in _PATHS.get(kind, ())]
+        if not ready:
+            stack.append((node, True))
+            stack.extend((p, False) for p in parts)
+            continue
+        if kind in ("return_stmt", "switch_stmt", "discard_stmt"):
+            done[id(node)] = True
+        elif kind == "block":
+            done[id(node)] = any(done[id(p)] for p in parts)
+        elif kind == "if_else":
+            done[id(node)] = all(done[id(p)] for p in parts)
+        elif parts:      # a loop: its body returns, or may
+            done[id(node)] = done[id(parts[0])] or _returns_in(parts[0])
+        else:
+            done[id(node)] = False
+    return done[id(root)]
+
+
+def _returns_in(stmt: Any) -> bool:
+    return isinstance(stmt, lark.Tree) and next(stmt.find_data("return_stmt"), None) is not None
 
 
 def _spells_void(ret: lark.Tree) -> bool:

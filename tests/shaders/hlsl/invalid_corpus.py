@@ -115,6 +115,10 @@ CORPUS: list[Row] = [
         ps("    f();\n    return 1;", "void f() { return 1; }\n")),
     Row("return with no value", "X3080", ps("    return;")),
     Row("function without return", "X3080", ps("    return f();", "float f() { }\n")),
+    Row("not every path returns", "X3507",     # from memory: fxc's code and text not found
+        ps("    return g(uv.x);", "float g(float x)\n{\n    if (x > 0)\n        return 1;\n}\n")),
+    Row("a function never called returns nothing", "X3080",
+        ps("    return uv.x;", "float unused(float x) { x = 1; }\n")),
     Row("void function with a semantic", "X3076",
         ps("    f();\n    return 1;", "void f() : COLOR { }\n")),
     # -- const, uniform, l-values: X3025, X3012 --------------------------------------------------

@@ -242,3 +242,15 @@ def test_an_error_in_a_macro_expanded_line_is_located_in_the_file_as_written(
     err = only_error(path, entry)
     assert err.report() == (f"{path}:{line}:{column}: error: X3004: undeclared identifier "
                             f"'{name}'\n{written}\n{' ' * (column - 1)}^")
+
+
+def test_a_path_that_falls_off_a_function_is_a_language_error_though_its_code_is_a_targets():
+    # X3507 also names a target fxc does not compile for (a refusal for the target); this
+    # raise marks itself: every target refuses the function, called or not
+    functions = ("float g(float x)\n{\n    if (x > 0)\n        return 1;\n}\n"
+                 "float4 PS() : COLOR\n{\n    return 1;\n}")
+    for target in ("ps_2_0", "ps_3_0", "ps_1_1"):
+        err = compile_error(functions, target)
+        assert err.report() == ("<string>:1:7: error: X3507: 'g': Not all control paths return "
+                                "a value\nfloat g(float x)\n      ^")
+        assert err.language is True
