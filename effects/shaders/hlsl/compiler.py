@@ -19,6 +19,7 @@ from typing import Any
 from effects.base.errors import EffectError, Location, UNKNOWN_LOCATION
 from effects.model import Effect
 from effects.shaders.asm import AsmProgram
+from effects.shaders.asm.parser import USAGES
 # CompiledShader lives in shader.py and compile_state in cache.py: a cached shader needs no
 # compiler (CompiledShader is importable from here as before)
 from effects.shaders.hlsl.shader import CompiledShader, assemble_generated
@@ -323,10 +324,13 @@ class _Binder:
             reg, dcl = _PS3_MISC[usage]
             self.dcls[reg] = dcl
         elif target.kind == "ps" and target.rules.major < 3:
-            if usage == "COLOR":
-                reg = f"v{index}"
-            elif usage == "TEXCOORD":
-                reg = f"t{index}"
+            if usage in ("COLOR", "TEXCOORD"):
+                kind = "v" if usage == "COLOR" else "t"
+                if index >= target.rules.registers.get(kind, 0):     # COLOR2, TEXCOORD8
+                    raise HlslError(f"X4502: invalid {target.name} input semantic "
+                                    f"'{semantic}' ({target.name} has {kind}0.."
+                                    f"{kind}{target.rules.registers.get(kind, 0) - 1})", loc)
+                reg = f"{kind}{index}"
             else:
                 # fxc accepts a pixel input it cannot map (the POSITION0 of a vertex-output struct
                 # reused as the pixel input, as most XNA effects do) as long as nothing reads it
@@ -340,6 +344,9 @@ class _Binder:
                 if d.endswith(f" {r}") and self.input_keys.get(r) == key:
                     reg = r
             if reg is None:
+                if usage.lower().removeprefix("sv_") not in USAGES:   # no dcl_ usage
+                    raise HlslError(f"X4502: invalid {target.name} input semantic "
+                                    f"'{semantic}'", loc)
                 reg = f"v{self.next_v}"
                 self.next_v += 1
                 self.input_keys[reg] = key
@@ -365,16 +372,23 @@ class _Binder:
         target = self.ctx.target
         if target.kind == "ps":
             if usage == "COLOR":
+                if index >= target.rules.registers.get("oC", 1):    # ps_1_x: r0 only
+                    raise HlslError(f"X4503: invalid pixel shader output semantic "
+                                    f"'{semantic}'", loc)
                 reg = f"oC{index}"
             elif usage == "DEPTH":
                 reg = "oDepth"
             else:
                 raise HlslError(f"X4503: invalid pixel shader output semantic '{semantic}'", loc)
         elif target.rules.major < 3:
-            if usage not in _VS_OUT:
+            limit = {"COLOR": "oD", "TEXCOORD": "oT"}.get(usage)
+            if usage not in _VS_OUT or \
+                    (limit is not None and index >= target.rules.registers.get(limit, 0)):
                 raise HlslError(f"X4503: invalid vertex shader output semantic '{semantic}'", loc)
             reg = _VS_OUT[usage] + (str(index) if usage in ("COLOR", "TEXCOORD") else "")
         else:
+            if usage.lower() not in USAGES:         # vs_3_0: any dcl_ usage
+                raise HlslError(f"X4503: invalid vertex shader output semantic '{semantic}'", loc)
             reg = f"o{self.next_o}"
             self.next_o += 1
             self.output_dcls.append(f"dcl_{usage.lower()}{index if index else ''} {reg}")

@@ -202,6 +202,23 @@ CORPUS: list[Row] = [
         ps("    return uv.x;", "float unused(void x) { return 1; }\n")),
     Row("parameter twice in a function never called", "X3003",
         ps("    return uv.x;", "float unused(float a, float2 a) { return 1; }\n")),
+    Row("vertex input of no usage", "X4502",
+        "float4 VS(float4 p : FOO) : POSITION\n{\n    return p;\n}\n", entry="VS", target="vs_2_0"),
+    Row("vertex output COLOR2", "X4503",
+        "void VS(float4 p : POSITION, out float4 o : POSITION, out float4 c : COLOR2)\n"
+        "{\n    o = p;\n    c = p;\n}\n", entry="VS", target="vs_2_0"),
+    Row("vertex output TEXCOORD8", "X4503",
+        "void VS(float4 p : POSITION, out float4 o : POSITION, out float4 t : TEXCOORD8)\n"
+        "{\n    o = p;\n    t = p;\n}\n", entry="VS", target="vs_2_0"),
+    Row("vs_3_0 output of no usage", "X4503",
+        "void VS(float4 p : POSITION, out float4 o : POSITION, out float4 t : BOGUS)\n"
+        "{\n    o = p;\n    t = p;\n}\n", entry="VS", target="vs_3_0"),
+    Row("pixel input TEXCOORD8", "X4502",
+        "float4 PS(float4 t : TEXCOORD8) : COLOR\n{\n    return t;\n}\n"),
+    Row("pixel input COLOR2", "X4502",
+        "float4 PS(float4 c : COLOR2) : COLOR\n{\n    return c;\n}\n"),
+    Row("pixel output COLOR4", "X4503",
+        "float4 PS(float4 c : COLOR0) : COLOR4\n{\n    return c;\n}\n"),
     Row("recursion", "X3500", ps("    return f(uv.x);", "float f(float x) { return f(x); }\n")),
     Row("entry point not there", "X3501", ps("    return 1;"), entry="Main"),
     Row("break outside a loop", "X3518", ps("    break;\n    return 1;")),
