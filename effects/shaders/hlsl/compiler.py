@@ -301,6 +301,7 @@ class _Binder:
         self.next_v = 0
         self.next_o = 0
         self.input_keys: dict[str, tuple] = {}   # v# -> (usage, index) of a vertex input
+        self.written: set[tuple[str, int]] = set()   # the output semantics bound so far
 
     def uniform_param(self, name: str, t: HType) -> Value:
         from effects.shaders.hlsl.expressions import uniform_value
@@ -370,6 +371,10 @@ class _Binder:
         usage, index = split_semantic(semantic)
         usage = _SV_AS_D3D9.get(usage, usage)
         target = self.ctx.target
+        if (usage, index) in self.written:     # d3dx's message table: X4504 (0x1198)
+            raise HlslError(f"X4504: overlapping output semantics ('{semantic}' is written "
+                            "twice)", loc)
+        self.written.add((usage, index))
         if target.kind == "ps":
             if usage == "COLOR":
                 if index >= target.rules.registers.get("oC", 1):    # ps_1_x: r0 only

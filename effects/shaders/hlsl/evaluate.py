@@ -186,6 +186,10 @@ class Evaluator:
         scope = self.scopes[-1]
         if where is not None and name in scope:
             raise self.error(f"X3003: redefinition of '{name}'", where)
+        if where is not None and len(self.scopes) == 2 and self.frames and name in self.scopes[0]:
+            # a local of a function's body named as one of its parameters (scope 0): fxc's
+            # X3036, "redefinition of the specified formal parameter" (its error list)
+            raise self.error(f"X3036: '{name}': formal parameter redefinition", where)
         scope[name] = Var(t, value, const)
 
     def zero(self, t: HType) -> Value:

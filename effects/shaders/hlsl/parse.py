@@ -40,6 +40,7 @@ LANGUAGE_CODES = frozenset({
     "X3020",    # type mismatch (a comparison, a ternary's values or its condition's size)
     "X3022",    # scalar, vector, or matrix expected (an operator on a struct or an object)
     "X3025",    # l-value is const (a global, a uniform, a const local)
+    "X3036",    # a local of a function's body named as one of its parameters
     "X3037",    # a constructor of a non-numeric type
     "X3038",    # a void variable, parameter or struct member
     "X3046",    # an out or inout parameter declared 'const'
