@@ -303,6 +303,10 @@ class _Binder:
         self.input_keys: dict[str, tuple] = {}   # v# -> (usage, index) of a vertex input
         self.written: set[tuple[str, int]] = set()   # the output semantics bound so far
 
+    def _error(self, message: str, loc: Location) -> HlslError:
+        """A located error of the entry's semantics, shown with its line of the file."""
+        return HlslError(message, loc, source_line=self.ev.origin.source_line(loc))
+
     def uniform_param(self, name: str, t: HType) -> Value:
         from effects.shaders.hlsl.expressions import uniform_value
         key = f"${name}"
@@ -316,7 +320,7 @@ class _Binder:
                 out.fields[fname] = self.input(ft, fsem, loc, f"{name}.{fname}")
             return out
         if semantic is None:
-            raise HlslError(f"X4502: input '{name}' of the entry point has no semantic", loc)
+            raise self._error(f"X4502: input '{name}' of the entry point has no semantic", loc)
         usage, index = split_semantic(semantic)
         target = self.ctx.target
         if target.kind == "ps" and usage == "SV_POSITION":
@@ -328,7 +332,7 @@ class _Binder:
             if usage in ("COLOR", "TEXCOORD"):
                 kind = "v" if usage == "COLOR" else "t"
                 if index >= target.rules.registers.get(kind, 0):     # COLOR2, TEXCOORD8
-                    raise HlslError(f"X4502: invalid {target.name} input semantic "
+                    raise self._error(f"X4502: invalid {target.name} input semantic "
                                     f"'{semantic}' ({target.name} has {kind}0.."
                                     f"{kind}{target.rules.registers.get(kind, 0) - 1})", loc)
                 reg = f"{kind}{index}"
@@ -346,7 +350,7 @@ class _Binder:
                     reg = r
             if reg is None:
                 if usage.lower().removeprefix("sv_") not in USAGES:   # no dcl_ usage
-                    raise HlslError(f"X4502: invalid {target.name} input semantic "
+                    raise self._error(f"X4502: invalid {target.name} input semantic "
                                     f"'{semantic}'", loc)
                 reg = f"v{self.next_v}"
                 self.next_v += 1
@@ -356,7 +360,7 @@ class _Binder:
                     usage_text = usage_text[3:]
                 self.dcls[reg] = f"dcl_{usage_text} {reg}"
         if not t.numeric:
-            raise HlslError(f"X4502: input '{name}' must be numeric, not '{t}'", loc)
+            raise self._error(f"X4502: input '{name}' must be numeric, not '{t}'", loc)
         node = self.ctx.graph.leaf("input", ("input", reg), 4, loc)
         comps = [Operand(node.node, (min(i, 3),)) for i in range(t.size)]
         return Value(t, comps)
@@ -367,33 +371,33 @@ class _Binder:
                 self.outputs(value.fields[fname], fsem, loc, out)
             return
         if semantic is None:
-            raise HlslError("X4503: output of the entry point has no semantic", loc)
+            raise self._error("X4503: output of the entry point has no semantic", loc)
         usage, index = split_semantic(semantic)
         usage = _SV_AS_D3D9.get(usage, usage)
         target = self.ctx.target
         if (usage, index) in self.written:     # d3dx's message table: X4504 (0x1198)
-            raise HlslError(f"X4504: overlapping output semantics ('{semantic}' is written "
+            raise self._error(f"X4504: overlapping output semantics ('{semantic}' is written "
                             "twice)", loc)
         self.written.add((usage, index))
         if target.kind == "ps":
             if usage == "COLOR":
                 if index >= target.rules.registers.get("oC", 1):    # ps_1_x: r0 only
-                    raise HlslError(f"X4503: invalid pixel shader output semantic "
+                    raise self._error(f"X4503: invalid pixel shader output semantic "
                                     f"'{semantic}'", loc)
                 reg = f"oC{index}"
             elif usage == "DEPTH":
                 reg = "oDepth"
             else:
-                raise HlslError(f"X4503: invalid pixel shader output semantic '{semantic}'", loc)
+                raise self._error(f"X4503: invalid pixel shader output semantic '{semantic}'", loc)
         elif target.rules.major < 3:
             limit = {"COLOR": "oD", "TEXCOORD": "oT"}.get(usage)
             if usage not in _VS_OUT or \
                     (limit is not None and index >= target.rules.registers.get(limit, 0)):
-                raise HlslError(f"X4503: invalid vertex shader output semantic '{semantic}'", loc)
+                raise self._error(f"X4503: invalid vertex shader output semantic '{semantic}'", loc)
             reg = _VS_OUT[usage] + (str(index) if usage in ("COLOR", "TEXCOORD") else "")
         else:
             if usage.lower() not in USAGES:         # vs_3_0: any dcl_ usage
-                raise HlslError(f"X4503: invalid vertex shader output semantic '{semantic}'", loc)
+                raise self._error(f"X4503: invalid vertex shader output semantic '{semantic}'", loc)
             reg = f"o{self.next_o}"
             self.next_o += 1
             self.output_dcls.append(f"dcl_{usage.lower()}{index if index else ''} {reg}")

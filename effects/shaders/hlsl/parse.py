@@ -63,6 +63,7 @@ LANGUAGE_CODES = frozenset({
     "X3518",    # break outside a loop
     "X3519",    # continue outside a loop
     "X3533",    # a non-empty case of a switch that does not end in break or return
+    "X4504",    # an output semantic written twice (overlapping output semantics)
 })
 
 

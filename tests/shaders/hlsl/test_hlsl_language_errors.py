@@ -77,6 +77,10 @@ LANGUAGE = {
               "<string>:4:5: error: X3025: l-value specifies const object 'k'\n"
               "    k = 2;\n"
               "    ^"),
+    "X3036": ("float4 PS(float2 uv : TEXCOORD0) : COLOR\n{\n    float uv = 1;\n    return uv;\n}",
+              "<string>:3:11: error: X3036: 'uv': formal parameter redefinition\n"
+              "    float uv = 1;\n"
+              "          ^"),
     "X3037": ("sampler S;\nfloat4 PS() : COLOR\n{\n    return sampler(1);\n}",
               "<string>:4:12: error: X3037: constructors only defined for numeric base types\n"
               "    return sampler(1);\n"
@@ -101,6 +105,11 @@ LANGUAGE = {
     "X3080": ("float f() { }\nfloat4 PS() : COLOR\n{\n    return f();\n}",
               "<string>:1:1: error: X3080: 'f': function must return a value\n"
               "float f() { }\n"
+              "^"),
+    "X4504": ("struct O { float4 a : COLOR0; float4 b : COLOR0; };\nO PS()\n{\n    O o = (O)0;\n"
+              "    return o;\n}",
+              "<string>:2:1: error: X4504: overlapping output semantics ('COLOR0' is written twice)\n"
+              "O PS()\n"
               "^"),
     "X3518": ("float4 PS() : COLOR\n{\n    break;\n    return 1;\n}",
               "<string>:3:5: error: X3518: break must be inside a loop\n"
