@@ -19,6 +19,10 @@ from effects.shaders.hlsl.types import HType, common_base, shape_of, vector
 
 
 _COMPARISONS = frozenset(("<", ">", "<=", ">=", "==", "!="))
+_BITWISE = frozenset(("&", "|", "^", "<<", ">>"))
+# the bases a bitwise operator takes (fxc's X3082, "int or unsigned int type required"; a bool
+# is 0 or 1 there)
+INTEGRAL = frozenset(("int", "uint", "bool"))
 
 
 class Arith:
@@ -165,6 +169,10 @@ class Arith:
             # broadcast says); DXC's tests record the text
             shown = a.type if not a.type.numeric else b.type
             raise self.error(f"X3022: scalar, vector, or matrix expected ('{opname}' on "
+                             f"'{shown}')", loc)
+        if opname in _BITWISE and not {a.type.base, b.type.base} <= INTEGRAL:
+            shown = a.type if a.type.base not in INTEGRAL else b.type
+            raise self.error(f"X3082: int or unsigned int type required ('{opname}' on "
                              f"'{shown}')", loc)
         if opname in ("&&", "||"):
             ca, cb, t = self.broadcast(self.to_bool(a, loc), self.to_bool(b, loc), loc, opname)

@@ -135,9 +135,19 @@ def _check_declaration(ctx: Context, fdef: FunctionDef, earlier: Any) -> None:
                            semantic)
     params = tree.children[3]
     seen: set[str] = set()
+    defaulted = None
     for p in (params.children if params is not None else []):
         mods, spec, name = p.children[:3]
+        default = p.children[5]
         words = {str(m) for m in mods.children} if mods is not None else set()
+        if default is not None and words & {"out", "inout"}:     # fxc's error list: X3045
+            raise origin.error(f"X3045: '{name}': output parameters cannot have a default "
+                               "value", name)
+        if default is not None:
+            defaulted = name
+        elif defaulted is not None:                  # d3dx's message table: X3044
+            raise origin.error(f"X3044: '{fdef.name}': missing default value for parameter "
+                               f"'{name}'", name)
         if resolve_type(ctx, spec, origin, mods).kind == "void":
             raise origin.error(f"X3038: '{name}': function parameters cannot be void", name)
         if "const" in words and words & {"out", "inout"}:

@@ -16,6 +16,7 @@ from effects.shaders.hlsl.folding import bitwise_not
 from effects.shaders.hlsl.parse import Origin, parse
 from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.types import BOOL, INT, HType, builtin, scalar
+from effects.shaders.hlsl.arith import INTEGRAL
 from effects.shaders.hlsl.calls import resolve_overload
 from effects.shaders.hlsl.intrinsics import INTRINSICS, call_intrinsic
 from effects.shaders.hlsl.loops import al_element
@@ -265,6 +266,8 @@ def _prefix(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     if str(op) == "!":
         b = ev.a.to_bool(v, loc)
         return Value(b.type, ev.a.logical_not(b.comps, loc))
+    if v.type.base not in INTEGRAL:
+        raise ev.error(f"X3082: int or unsigned int type required ('~' on '{v.type}')", op)
     consts = v.const_values()
     if consts is None:
         raise ev.error(f"X3535: bitwise operation '~' needs integer hardware; "

@@ -43,6 +43,8 @@ LANGUAGE_CODES = frozenset({
     "X3036",    # a local of a function's body named as one of its parameters
     "X3037",    # a constructor of a non-numeric type
     "X3038",    # a void variable, parameter or struct member
+    "X3044",    # a parameter without a default after one with a default
+    "X3045",    # an out or inout parameter with a default value
     "X3046",    # an out or inout parameter declared 'const'
     "X3047",    # a local declared 'uniform'
     "X3048",    # conflicting usages (row_major with column_major)
@@ -55,6 +57,7 @@ LANGUAGE_CODES = frozenset({
     "X3077",    # row_major / column_major on a type that is not a matrix
     "X3079",    # a void function returns a value
     "X3080",    # a function must return a value
+    "X3082",    # a bitwise operator on a float (int or unsigned int type required)
     "X3120",    # invalid type for an index
     "X3121",    # an index on a type that has no elements
     "X3500",    # recursive call

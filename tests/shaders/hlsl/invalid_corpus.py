@@ -230,6 +230,13 @@ CORPUS: list[Row] = [
         "void VS(float4 p : POSITION, out float4 o : POSITION, out float4 t : TEXCOORD0,\n"
         "        out float4 u : TEXCOORD0)\n{\n    o = p;\n    t = p;\n    u = p;\n}\n",
         entry="VS", target="vs_2_0"),
+    Row("default before a parameter without one", "X3044",
+        ps("    return f(uv.x, 1);", "float f(float a = 1, float b) { return a + b; }\n")),
+    Row("out parameter with a default", "X3045",
+        ps("    float r;\n    f(r);\n    return r;", "void f(out float o = 1) { o = 2; }\n")),
+    Row("bitwise and of floats", "X3082", ps("    return 1.5 & 2;")),
+    Row("bitwise not of a float", "X3082", ps("    return ~uv.x;")),
+    Row("shift of a float", "X3082", ps("    int i = 1;\n    return uv.x << i;")),
     Row("recursion", "X3500", ps("    return f(uv.x);", "float f(float x) { return f(x); }\n")),
     Row("entry point not there", "X3501", ps("    return 1;"), entry="Main"),
     Row("break outside a loop", "X3518", ps("    break;\n    return 1;")),
