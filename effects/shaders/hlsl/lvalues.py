@@ -109,7 +109,6 @@ def _global_copy(ev: Any, name: str, root: Any) -> Any:
     (the constant registers read once, then the copy), with a located warning naming X3025.
     A const global, or an object (sampler, texture, string), is no l-value (X3025)."""
     from effects.shaders.hlsl.context import parameter_type
-    from effects.shaders.hlsl.expressions import global_value
     from effects.shaders.hlsl.values import Var
     param = ev.ctx.effect.parameter(name)
     if param is None:
@@ -120,7 +119,7 @@ def _global_copy(ev: Any, name: str, root: Any) -> Any:
         raise ev.error(f"X3025: l-value specifies const object '{name}'", root)
     if "static" not in param.storage:
         ev.warn(f"{GLOBAL_WRITE}: '{name}' {_AS_GEC}", ev.at(root))
-    return Var(t, global_value(ev, name, root))
+    return Var(t, ev.expr(root))       # its value now: the uniform's, or a written copy's
 
 
 def member_of(ev: Any, base: Value, name: Any) -> Value:
