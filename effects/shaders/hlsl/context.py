@@ -124,10 +124,11 @@ def load_context(effect: Effect, target_name: str) -> Context:
 
 def _check_declaration(ctx: Context, fdef: FunctionDef, earlier: Any) -> None:
     """What fxc refuses in a function's declaration whether or not it is called (it compiles
-    the whole file): a void function with a semantic (X3076), a parameter that is void
-    (X3038, ReShade's text), named twice (X3003) or const and out (X3046), and a second body
-    of the same name and parameter types (X3003; d3dx's message table holds the texts of
-    X3003, X3046 and X3076)."""
+    the whole file): a void function with a semantic (X3076); a parameter that is void (X3038,
+    ReShade's text), named twice (X3003), const and out (X3046), out with a default (X3045),
+    or without a default after one with one (X3044); a body with no return (X3080) or one that
+    falls off its end (X3507); and a second body of the same name and parameter types (X3003).
+    d3dx's message table holds the texts of X3003, X3044, X3046, X3076 and X3080."""
     tree, origin = fdef.tree, fdef.origin
     name_tok, semantic = tree.children[2], tree.children[4]
     if semantic is not None and _spells_void(tree.children[1]):
