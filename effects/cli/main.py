@@ -153,8 +153,12 @@ def _cmd_validate(args, console: Console) -> int:
     if args.why:
         from effects.host.fidelity import meter_for
         meter = meter_for(effect, scene=_scene(args, args.file), best=args.best)
+    told = len(effect.warnings)
     every_card_runs_it = print_validation_table(effect, _profiles(args.profile), console,
                                                 why=args.why, meter=meter)
+    # what compiling the shaders added (a write fxc allowed only under /Gec)
+    for warning in effect.warnings[told:]:
+        console.print(warning.report(), markup=False, highlight=False, style="yellow", soft_wrap=True)
     return EXIT_OK if every_card_runs_it else EXIT_INVALID
 
 

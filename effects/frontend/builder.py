@@ -83,7 +83,8 @@ class Builder:
             if isinstance(item, RawParam):
                 prior = first_param.get(item.name.value)
                 if prior is not None:
-                    raise self.error(ParseError, f"duplicate parameter '{item.name.value}' "
+                    # fxc's code and text (d3dx's message table), the first place besides
+                    raise self.error(ParseError, f"X3003: redefinition of '{item.name.value}' "
                                      f"(first declared at line {self.loc(prior).line})", item.name)
                 first_param[item.name.value] = item.name
         self.param_names = set(first_param)

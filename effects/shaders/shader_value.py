@@ -64,8 +64,18 @@ def shader_of(effect: "Effect", value: Any) -> Shader | None:
     if isinstance(value, CompileShader):
         from effects.shaders.hlsl import compile_state
         compiled = compile_state(effect, value)
+        _tell(effect, compiled)
         return _bound(value, compiled.program, compiled)
     return None
+
+
+def _tell(effect: "Effect", compiled: "CompiledShader") -> None:
+    """A compile warning the user must see where the effect's load warnings are shown (the
+    commands, the viewer): what fxc accepted only in compatibility mode (/Gec). Told once."""
+    from effects.shaders.hlsl.lvalues import is_compatibility_warning
+    for w in compiled.warnings:
+        if is_compatibility_warning(w.message) and w not in effect.warnings:
+            effect.warnings.append(w)
 
 
 def _bound(value: Any, program: "AsmProgram", compiled: "CompiledShader | None") -> Shader:

@@ -41,13 +41,23 @@ def language_errors(effect: Effect) -> list[EffectError]:
     values = [s for param in effect.parameters for s in _shaders(param.value)]
     values += [s for tech in effect.techniques for p in tech.passes for a in p.states
                for s in _shaders(a.value)]
+    from effects.shaders.hlsl.lvalues import is_compatibility_warning, strict_message
+    from effects.shaders.hlsl.parse import HlslError
     errors: dict[tuple, EffectError] = {}
     for value in sorted(set(values), key=lambda v: v.location):
         try:
-            compile_state(effect, value)
+            shader = compile_state(effect, value)
         except EffectError as err:
             if err.language:
                 errors.setdefault((err.location, err.message), err)
+            continue
+        for w in shader.warnings:
+            # what fxc accepted only in compatibility mode (/Gec: a write to a uniform
+            # global) is the error it gave without the flag
+            if is_compatibility_warning(w.message):
+                errors.setdefault((w.location, w.message), HlslError(
+                    strict_message(w.message), w.location, source_line=w.source_line,
+                    language=True))
     return sorted(errors.values(), key=lambda e: e.location)
 
 

@@ -134,7 +134,7 @@ CASES = [
     ("sampler initialised with a number", "sampler s = 3;",
      ParseError, "1:13", "'s' (sampler) cannot be initialised with '3'"),
     ("duplicate parameter", "float x;\nfloat4 y;\nint x = 2;",
-     ParseError, "3:5", "duplicate parameter 'x' (first declared at line 1)"),
+     ParseError, "3:5", "X3003: redefinition of 'x' (first declared at line 1)"),
     ("duplicate technique", "technique T { }\n\ntechnique T { }",
      ParseError, "3:11", "duplicate technique 'T' (first declared at line 1)"),
     ("bad decl element",

@@ -46,6 +46,7 @@ _SHIFTS = {"x2": 1, "x4": 2, "x8": 3, "d2": -1, "d4": -2, "d8": -3}
 _SAMPLER_TYPES = {"2d", "cube", "volume"}
 _USAGES = ("positiont", "position", "blendweight", "blendindices", "normal", "psize",
            "texcoord", "tangent", "binormal", "tessfactor", "color", "fog", "depth", "sample")
+USAGES = frozenset(_USAGES)    # the dcl_ usages (D3DDECLUSAGE): the HLSL compiler's inputs too
 _ROLE_NAMES = {"d": "dst", "s": "src", "x": "src", "S": "sampler", "f": "value", "n": "value",
                "B": "value", "l": "label", "b": "condition", "I": "i#", "L": "aL", "p": "p0"}
 

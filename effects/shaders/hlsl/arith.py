@@ -18,6 +18,13 @@ from effects.shaders.hlsl.values import Value, component, operand, split
 from effects.shaders.hlsl.types import HType, common_base, shape_of, vector
 
 
+_COMPARISONS = frozenset(("<", ">", "<=", ">=", "==", "!="))
+_BITWISE = frozenset(("&", "|", "^", "<<", ">>"))
+# the bases a bitwise operator takes (fxc's X3082, "int or unsigned int type required"; a bool
+# is 0 or 1 there)
+INTEGRAL = frozenset(("int", "uint", "bool"))
+
+
 class Arith:
     def __init__(self, ctx: Context, error: Callable[[str, Any], Exception],
                  warn: Callable[[str, Location], None]) -> None:
@@ -157,6 +164,16 @@ class Arith:
         return a.comps[:n], b.comps[:n], vector(base, n)
 
     def binary(self, opname: str, a: Value, b: Value, loc: Location) -> Value:
+        if opname not in _COMPARISONS and not (a.type.numeric and b.type.numeric):
+            # fxc: arithmetic on a struct or an object is X3022 (a comparison X3020, as
+            # broadcast says); DXC's tests record the text
+            shown = a.type if not a.type.numeric else b.type
+            raise self.error(f"X3022: scalar, vector, or matrix expected ('{opname}' on "
+                             f"'{shown}')", loc)
+        if opname in _BITWISE and not {a.type.base, b.type.base} <= INTEGRAL:
+            shown = a.type if a.type.base not in INTEGRAL else b.type
+            raise self.error(f"X3082: int or unsigned int type required ('{opname}' on "
+                             f"'{shown}')", loc)
         if opname in ("&&", "||"):
             ca, cb, t = self.broadcast(self.to_bool(a, loc), self.to_bool(b, loc), loc, opname)
             comps = self.lanes("mul" if opname == "&&" else "max", [ca, cb], loc)

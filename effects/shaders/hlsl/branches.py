@@ -67,8 +67,18 @@ def comparison(ev: Any, cond: Any) -> tuple[str, list[Operand]]:
         if a.type.numeric and b.type.numeric and a.type.size == 1 and b.type.size == 1:
             return _COMPARE[str(op)], [a.comps[0], b.comps[0]]
         c = ev.a.compare(str(op), *_same_width(a.comps, b.comps), ev.at(cond))
+        if len(c) > 1:              # a vector comparison is no condition (fxc's X3019)
+            raise ev.error(condition_error("if", a.type if a.type.size > 1 else b.type), cond)
         return "ne", [c[0], ev.g.const((0.0,))]
     return "ne", [ev.condition(cond), ev.g.const((0.0,))]
+
+
+def condition_error(statement: str, t: Any) -> str:
+    """fxc's X3019 for a condition that is not a scalar (ReShade's texts for fxc's code: a
+    vector is not truncated to its x, as an operand would be)."""
+    what = "if statement conditional expressions must evaluate to a scalar" if statement == "if" \
+        else "scalar value expected"
+    return f"X3019: {what} (not '{t}')"
 
 
 def _same_width(a: list[Operand], b: list[Operand]) -> tuple[list[Operand], list[Operand]]:

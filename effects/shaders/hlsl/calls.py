@@ -29,9 +29,24 @@ def parameters(ev: Any, fdef: FunctionDef) -> list[tuple[str, HType, str, Any, A
         words = [str(m) for m in mods.children] if mods is not None else []
         direction = "inout" if "inout" in words else "out" if "out" in words else \
             "uniform" if "uniform" in words else "in"
+        # (context.load_context checked the declaration: no void, repeated or const out one)
         t = _array_of(ev, fdef, resolve_type(ev.ctx, spec, fdef.origin, mods), dims, name)
         out.append((str(name), t, direction, default, sem))
     return out
+
+
+def constant_parameters(fdef: FunctionDef) -> frozenset[str]:
+    """The parameters a body may not write (fxc's X3025, "l-value specifies const object"):
+    `const` ones and `uniform` ones (the constant registers a compile argument or the host
+    sets; from memory: no fxc text for writing one was found)."""
+    params = fdef.tree.children[3]
+    out = set()
+    for p in (params.children if params is not None else []):
+        mods = p.children[0]
+        words = {str(m) for m in mods.children} if mods is not None else set()
+        if words & {"const", "uniform"} and not words & {"out", "inout"}:
+            out.add(str(p.children[2]))
+    return frozenset(out)
 
 
 def _array_of(ev: Any, fdef: FunctionDef, t: HType, dims: Any, name: Any) -> HType:
@@ -105,6 +120,7 @@ def _inline(ev: Any, fdef: FunctionDef, args: list[Value], arg_trees: list[Any],
     callee.mask = ev.active()
     ret_type = return_type(ev.ctx, fdef)
     callee.frames.append(Frame(ret_type))
+    fixed = constant_parameters(fdef)
     for k, (name, t, direction, default, _sem) in enumerate(params):
         if k < len(args):
             value = args[k]
@@ -115,7 +131,7 @@ def _inline(ev: Any, fdef: FunctionDef, args: list[Value], arg_trees: list[Any],
             bound = callee.zero(t)
         else:
             bound = ev.a.convert(value, t, loc)
-        callee.declare(name, t, bound, const=False)
+        callee.declare(name, t, bound, const=name in fixed)
     body = fdef.tree.children[-1]
     callee.block_in_frame(body)
     for k, (name, t, direction, _d, _s) in enumerate(params):

@@ -19,10 +19,11 @@ from typing import Any
 from effects.base.errors import EffectError, Location, UNKNOWN_LOCATION
 from effects.model import Effect
 from effects.shaders.asm import AsmProgram
+from effects.shaders.asm.parser import USAGES
 # CompiledShader lives in shader.py and compile_state in cache.py: a cached shader needs no
 # compiler (CompiledShader is importable from here as before)
 from effects.shaders.hlsl.shader import CompiledShader, assemble_generated
-from effects.shaders.hlsl.calls import parameters, return_type
+from effects.shaders.hlsl.calls import constant_parameters, parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.budget import out_of_stack, spend
 from effects.shaders.hlsl.codegen import CodeGen
@@ -88,6 +89,7 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
     params = parameters(ev, fdef)
     compile_args = list(args)
     binder = _Binder(ctx, ev)
+    fixed = constant_parameters(fdef)
     outs: list[tuple[str, HType, Any, Any]] = []
     for name, t, direction, default, sem in params:
         sem_text = sem.children[0] if sem is not None and sem.data != "register" else None
@@ -99,14 +101,14 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
                 value = ev.a.convert(ev.expr(default), t, ev.at(default))
             else:
                 value = binder.uniform_param(name, t)
-            ev.declare(name, t, value)
+            ev.declare(name, t, value, const=True)
         elif direction == "out":
             ev.declare(name, t, ev.zero(t))
             outs.append((name, t, sem_text, sem))
         else:
             value = binder.input(t, str(sem_text) if sem_text is not None else None,
                                  fdef.origin.at(sem if sem is not None else fdef.tree), name)
-            ev.declare(name, t, value)
+            ev.declare(name, t, value, const=name in fixed)
             if direction == "inout":
                 outs.append((name, t, sem_text, sem))
     if compile_args:
@@ -171,6 +173,8 @@ def _sampler_registers(ctx: Context) -> dict[str, int]:
     in order, as fxc lays an array out (its first free block, by first use, when unbound).
     Other samplers get theirs in the code generator, by first use."""
     regs = {name: b for name in ctx.samplers_used if (b := _explicit(ctx, name, "s")) is not None}
+    for name, b in regs.items():
+        _within(ctx, name, b, 1, "s")
     taken = set(regs.values())
     blocks: dict[str, int] = {}
     for name in ctx.samplers_used:
@@ -229,6 +233,7 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
     for name in order:
         b = _explicit(ctx, name, "c")
         if b is not None:
+            _within(ctx, name, b, sizes[name], "c")
             regs[name] = b
             taken.update(range(regs[name], regs[name] + sizes[name]))
     for name in order:
@@ -240,6 +245,32 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
         regs[name] = k
         taken.update(range(k, k + sizes[name]))
     return regs, sizes
+
+
+# fxc's refusals of a `register()` past what the target addresses (d3dx's message table:
+# X4507 "maximum constant register index exceeded"; DXC's packreg test: X4509 "maximum sampler
+# register index exceeded"): a refusal for the target, the same binding compiles for a larger one
+_REGISTER_CODES = {"c": ("X4507", "constant"), "s": ("X4509", "sampler")}
+
+
+def _within(ctx: Context, name: str, first: int, count: int, kind: str) -> None:
+    """Refuse parameter `name` bound by `register()` to `first` .. `first + count - 1` of
+    register kind `kind` where the target has fewer (the float constants fxc allows a target:
+    a vertex shader's guaranteed count, 96 or 256; a pixel shader's file)."""
+    rules = ctx.target.rules
+    if kind == "c":
+        have = rules.constants_min or rules.registers.get("c", 0)
+    else:       # ps_1_x samples by stage (t#); a vs_1_1/2_0 sampler is refused where it samples
+        have = rules.registers.get("s") or rules.registers.get("t") or 16
+    if first + count <= have:
+        return
+    code, what = _REGISTER_CODES[kind]
+    base = name.split("[", 1)[0]
+    param = ctx.effect.parameter(base)
+    at = param.location if param is not None else UNKNOWN_LOCATION
+    raise HlslError(f"{code}: maximum {what} register index exceeded: '{base}' is bound to "
+                    f"{kind}{first}{f'..{kind}{first + count - 1}' if count > 1 else ''}, "
+                    f"{ctx.target.name} has {kind}0..{kind}{have - 1}", at)
 
 
 def _compile_argument(ctx: Context, ev: Evaluator, text: str, t: HType, where: Location) -> Value:
@@ -270,6 +301,11 @@ class _Binder:
         self.next_v = 0
         self.next_o = 0
         self.input_keys: dict[str, tuple] = {}   # v# -> (usage, index) of a vertex input
+        self.written: set[tuple[str, int]] = set()   # the output semantics bound so far
+
+    def _error(self, message: str, loc: Location) -> HlslError:
+        """A located error of the entry's semantics, shown with its line of the file."""
+        return HlslError(message, loc, source_line=self.ev.origin.source_line(loc))
 
     def uniform_param(self, name: str, t: HType) -> Value:
         from effects.shaders.hlsl.expressions import uniform_value
@@ -284,7 +320,7 @@ class _Binder:
                 out.fields[fname] = self.input(ft, fsem, loc, f"{name}.{fname}")
             return out
         if semantic is None:
-            raise HlslError(f"X4502: input '{name}' of the entry point has no semantic", loc)
+            raise self._error(f"X4502: input '{name}' of the entry point has no semantic", loc)
         usage, index = split_semantic(semantic)
         target = self.ctx.target
         if target.kind == "ps" and usage == "SV_POSITION":
@@ -293,10 +329,13 @@ class _Binder:
             reg, dcl = _PS3_MISC[usage]
             self.dcls[reg] = dcl
         elif target.kind == "ps" and target.rules.major < 3:
-            if usage == "COLOR":
-                reg = f"v{index}"
-            elif usage == "TEXCOORD":
-                reg = f"t{index}"
+            if usage in ("COLOR", "TEXCOORD"):
+                kind = "v" if usage == "COLOR" else "t"
+                if index >= target.rules.registers.get(kind, 0):     # COLOR2, TEXCOORD8
+                    raise self._error(f"X4502: invalid {target.name} input semantic "
+                                    f"'{semantic}' ({target.name} has {kind}0.."
+                                    f"{kind}{target.rules.registers.get(kind, 0) - 1})", loc)
+                reg = f"{kind}{index}"
             else:
                 # fxc accepts a pixel input it cannot map (the POSITION0 of a vertex-output struct
                 # reused as the pixel input, as most XNA effects do) as long as nothing reads it
@@ -310,6 +349,9 @@ class _Binder:
                 if d.endswith(f" {r}") and self.input_keys.get(r) == key:
                     reg = r
             if reg is None:
+                if usage.lower().removeprefix("sv_") not in USAGES:   # no dcl_ usage
+                    raise self._error(f"X4502: invalid {target.name} input semantic "
+                                    f"'{semantic}'", loc)
                 reg = f"v{self.next_v}"
                 self.next_v += 1
                 self.input_keys[reg] = key
@@ -318,7 +360,7 @@ class _Binder:
                     usage_text = usage_text[3:]
                 self.dcls[reg] = f"dcl_{usage_text} {reg}"
         if not t.numeric:
-            raise HlslError(f"X4502: input '{name}' must be numeric, not '{t}'", loc)
+            raise self._error(f"X4502: input '{name}' must be numeric, not '{t}'", loc)
         node = self.ctx.graph.leaf("input", ("input", reg), 4, loc)
         comps = [Operand(node.node, (min(i, 3),)) for i in range(t.size)]
         return Value(t, comps)
@@ -329,22 +371,33 @@ class _Binder:
                 self.outputs(value.fields[fname], fsem, loc, out)
             return
         if semantic is None:
-            raise HlslError("X4503: output of the entry point has no semantic", loc)
+            raise self._error("X4503: output of the entry point has no semantic", loc)
         usage, index = split_semantic(semantic)
         usage = _SV_AS_D3D9.get(usage, usage)
         target = self.ctx.target
+        if (usage, index) in self.written:     # d3dx's message table: X4504 (0x1198)
+            raise self._error(f"X4504: overlapping output semantics ('{semantic}' is written "
+                            "twice)", loc)
+        self.written.add((usage, index))
         if target.kind == "ps":
             if usage == "COLOR":
+                if index >= target.rules.registers.get("oC", 1):    # ps_1_x: r0 only
+                    raise self._error(f"X4503: invalid pixel shader output semantic "
+                                    f"'{semantic}'", loc)
                 reg = f"oC{index}"
             elif usage == "DEPTH":
                 reg = "oDepth"
             else:
-                raise HlslError(f"X4503: invalid pixel shader output semantic '{semantic}'", loc)
+                raise self._error(f"X4503: invalid pixel shader output semantic '{semantic}'", loc)
         elif target.rules.major < 3:
-            if usage not in _VS_OUT:
-                raise HlslError(f"X4503: invalid vertex shader output semantic '{semantic}'", loc)
+            limit = {"COLOR": "oD", "TEXCOORD": "oT"}.get(usage)
+            if usage not in _VS_OUT or \
+                    (limit is not None and index >= target.rules.registers.get(limit, 0)):
+                raise self._error(f"X4503: invalid vertex shader output semantic '{semantic}'", loc)
             reg = _VS_OUT[usage] + (str(index) if usage in ("COLOR", "TEXCOORD") else "")
         else:
+            if usage.lower() not in USAGES:         # vs_3_0: any dcl_ usage
+                raise self._error(f"X4503: invalid vertex shader output semantic '{semantic}'", loc)
             reg = f"o{self.next_o}"
             self.next_o += 1
             self.output_dcls.append(f"dcl_{usage.lower()}{index if index else ''} {reg}")

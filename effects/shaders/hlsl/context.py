@@ -109,13 +109,136 @@ def load_context(effect: Effect, target_name: str) -> Context:
                                             lambda m: origin.error(m, tree), f"'{name}'")
             continue
         tree = parse(s.source, "struct_def", origin, names)
+        if s.name in ctx.structs:                  # d3dx's "redefinition of '%s'"
+            raise origin.error(f"X3003: redefinition of '{s.name}'", tree.children[0])
         ctx.structs[s.name] = struct_type(ctx, tree, origin)
         ctx.struct_origins[s.name] = origin
     for f in effect.functions:
         origin = Origin(f.location, f.source, row_major=f.row_major, expanded=f.expanded)
         tree = parse(f.source, "function_def", origin, names)
-        ctx.functions.setdefault(f.name, []).append(FunctionDef(f.name, tree, origin, f))
+        fdef = FunctionDef(f.name, tree, origin, f)
+        _check_declaration(ctx, fdef, ctx.functions.get(f.name, ()))
+        ctx.functions.setdefault(f.name, []).append(fdef)
     return ctx
+
+
+def _check_declaration(ctx: Context, fdef: FunctionDef, earlier: Any) -> None:
+    """What fxc refuses in a function's declaration whether or not it is called (it compiles
+    the whole file): a void function with a semantic (X3076); a parameter that is void (X3038,
+    ReShade's text), named twice (X3003), const and out (X3046), out with a default (X3045),
+    or without a default after one with one (X3044); a body with no return (X3080) or one that
+    falls off its end (X3507); and a second body of the same name and parameter types (X3003).
+    d3dx's message table holds the texts of X3003, X3044, X3046, X3076 and X3080."""
+    tree, origin = fdef.tree, fdef.origin
+    name_tok, semantic = tree.children[2], tree.children[4]
+    if semantic is not None and _spells_void(tree.children[1]):
+        raise origin.error(f"X3076: '{fdef.name}': void function cannot have a semantic",
+                           semantic)
+    params = tree.children[3]
+    seen: set[str] = set()
+    defaulted = None
+    for p in (params.children if params is not None else []):
+        mods, spec, name = p.children[:3]
+        default = p.children[5]
+        words = {str(m) for m in mods.children} if mods is not None else set()
+        if default is not None and words & {"out", "inout"}:     # fxc's error list: X3045
+            raise origin.error(f"X3045: '{name}': output parameters cannot have a default "
+                               "value", name)
+        if default is not None:
+            defaulted = name
+        elif defaulted is not None:                  # d3dx's message table: X3044
+            raise origin.error(f"X3044: '{fdef.name}': missing default value for parameter "
+                               f"'{name}'", name)
+        if resolve_type(ctx, spec, origin, mods).kind == "void":
+            raise origin.error(f"X3038: '{name}': function parameters cannot be void", name)
+        if "const" in words and words & {"out", "inout"}:
+            raise origin.error(f"X3046: '{name}': output paramaters cannot be declared 'const'",
+                               name)
+        if str(name) in seen:
+            raise origin.error(f"X3003: redefinition of '{name}'", name)
+        seen.add(str(name))
+    if _has_body(tree) and not _spells_void(tree.children[1]):
+        body = tree.children[-1]
+        if next(body.find_data("return_stmt"), None) is None:
+            raise origin.error(f"X3080: '{fdef.name}': function must return a value", tree)
+        if not _always_returns(body):
+            # from memory (fxc's code and text not found in a stored source); a language
+            # error, though the code is not in LANGUAGE_CODES (X3507 is a target's there too)
+            raise origin.error(f"X3507: '{fdef.name}': Not all control paths return a value",
+                               name_tok, language=True)
+    if not earlier or not _has_body(tree):
+        return
+    mine = _signature(ctx, fdef)
+    for other in earlier:
+        if _has_body(other.tree) and _signature(ctx, other) == mine:
+            raise origin.error(f"X3003: redefinition of '{fdef.name}'", name_tok)
+
+
+# statement -> its parts that must all return for it to (fxc: "not all control paths return
+# a value"); a loop, a switch or a discard counts as returning when its body may: the check
+# refuses only a function that plainly falls off its end
+_PATHS = {"if_else": (3, 5), "for_stmt": (5,), "while_stmt": (3,), "do_stmt": (2,)}
+
+
+def _always_returns(root: Any) -> bool:
+    """Whether every path through statement `root` ends in a return (walked with an explicit
+    stack: a 5,000-deep nesting of blocks takes no Python stack)."""
+    done: dict[int, bool] = {}
+    stack: list[tuple[Any, bool]] = [(root, False)]
+    while stack:
+        node, ready = stack.pop()
+        if not isinstance(node, lark.Tree):
+            done[id(node)] = False
+            continue
+        kind = node.data
+        parts = node.children if kind == "block" else \
+            [node.children[k] for k in _PATHS.get(kind, ())]
+        if not ready:
+            stack.append((node, True))
+            stack.extend((p, False) for p in parts)
+            continue
+        if kind in ("return_stmt", "switch_stmt", "discard_stmt"):
+            done[id(node)] = True
+        elif kind == "block":
+            done[id(node)] = any(done[id(p)] for p in parts)
+        elif kind == "if_else":
+            done[id(node)] = all(done[id(p)] for p in parts)
+        elif parts:      # a loop: its body returns, or may
+            done[id(node)] = done[id(parts[0])] or _returns_in(parts[0])
+        else:
+            done[id(node)] = False
+    return done[id(root)]
+
+
+def _returns_in(stmt: Any) -> bool:
+    return isinstance(stmt, lark.Tree) and next(stmt.find_data("return_stmt"), None) is not None
+
+
+def _spells_void(ret: lark.Tree) -> bool:
+    spec = ret.children[0]
+    return isinstance(spec, lark.Tree) and spec.data == "builtin_type" and \
+        str(spec.children[0]) == "void"
+
+
+def _has_body(tree: lark.Tree) -> bool:
+    last = tree.children[-1]
+    return isinstance(last, lark.Tree) and last.data == "block"
+
+
+def _signature(ctx: Context, fdef: FunctionDef) -> tuple:
+    """A function's parameter types as overloads tell them apart (array sizes by their text:
+    they need the evaluator)."""
+    params = fdef.tree.children[3]
+    out = []
+    for p in (params.children if params is not None else []):
+        mods, spec, _name, dims = p.children[:4]
+        t = resolve_type(ctx, spec, fdef.origin, mods)
+        out.append((t, _text(dims)))
+    return tuple(out)
+
+
+def _text(tree: lark.Tree) -> str:
+    return " ".join(str(t) for t in tree.scan_values(lambda v: isinstance(v, lark.Token)))
 
 
 def struct_type(ctx: Context, tree: lark.Tree, origin: Origin) -> HType:
@@ -129,6 +252,10 @@ def struct_type(ctx: Context, tree: lark.Tree, origin: Origin) -> HType:
         i = 0
         while i < len(rest):
             fname, dims, sem = rest[i], rest[i + 1], rest[i + 2]
+            if t.kind == "void":                # ReShade's text for fxc's X3038
+                raise origin.error(f"X3038: '{fname}': struct members cannot be void", fname)
+            if any(f[0] == str(fname) for f in fields):   # d3dx's "redefinition of '%s'"
+                raise origin.error(f"X3003: redefinition of '{fname}'", fname)
             fields.append((str(fname), array_of(t, literal_sizes(dims, origin),
                                                 lambda m: origin.error(m, fname),
                                                 f"member '{fname}'"), semantic_text(sem)))
@@ -223,6 +350,9 @@ def sized_type(tree: lark.Tree, origin: Origin) -> HType:
 
 def resolve_type(ctx: Context, tree: lark.Tree, origin: Origin, mods: Any = None) -> HType:
     said = {str(m) for m in mods.children} if mods is not None else set()
+    if {"row_major", "column_major"} <= said:      # fxc's text, as DXC's tests record it
+        raise origin.error("X3048: matrix types cannot be both column_major and row_major",
+                           mods)
     # an explicit qualifier, else the `#pragma pack_matrix` the text was declared under
     row_major = "row_major" in said or (origin.row_major and "column_major" not in said)
     kind = tree.data
@@ -236,6 +366,10 @@ def resolve_type(ctx: Context, tree: lark.Tree, origin: Origin, mods: Any = None
         t = ctx.structs.get(name) or ctx.typedefs.get(name)
         if t is None:
             raise origin.error(f"X3000: unrecognized identifier '{name}' (not a type)", tree)
+    if said & {"row_major", "column_major"} and t.numeric and t.kind != "matrix":
+        # fxc's text, as DXC's tests record it (a struct or an array of matrices is let be)
+        raise origin.error("X3077: non-matrix types cannot be declared 'row_major' or "
+                           "'column_major'", mods)
     if row_major and t.kind == "matrix":
         t = HType("matrix", t.base, t.rows, t.cols, row_major=True)
     return t

@@ -24,7 +24,8 @@ from effects.shaders.hlsl.calls import inline_call
 from effects.shaders.hlsl.expressions import _leaves as leaves, evaluate_expr
 from effects.shaders.hlsl.context import Context, FunctionDef, array_of, resolve_type
 from effects.shaders.hlsl.dag import Operand
-from effects.shaders.hlsl.branches import bool_register, bool_uniform, comparison, real_if
+from effects.shaders.hlsl.branches import (bool_register, bool_uniform, comparison,
+                                            condition_error, real_if)
 from effects.shaders.hlsl.flowrules import DYNAMIC_TARGETS, NotReal, TargetFlow
 from effects.shaders.hlsl.loops import bound_of, has_attribute, real_loop
 from effects.shaders.hlsl.parse import Origin
@@ -41,6 +42,8 @@ _COMPOUND = frozenset(("block", "if_stmt", "if_else", "for_stmt", "while_stmt", 
 _COMPARE_NOW = {"lt": lambda a, b: a < b, "le": lambda a, b: a <= b, "gt": lambda a, b: a > b,
                 "ge": lambda a, b: a >= b, "eq": lambda a, b: a == b, "ne": lambda a, b: a != b}
 _SWIZZLE = {c: i for i, c in enumerate("xyzw")} | {c: i for i, c in enumerate("rgba")}
+# storage a local cannot have: a global's (uniform, extern), and fxc's code for each
+_NOT_LOCAL = (("uniform", "X3047"), ("extern", "X3006"))
 
 
 class Evaluator:
@@ -75,8 +78,16 @@ class Evaluator:
         if any(d is None for d in dims.children):
             raise self.error(f"an array of implicit size ('[]') needs an initializer list "
                              f"{NO_CODE}", dims, language=True)
-        return array_of(t, [self.const_number(d) for d in dims.children],
+        return array_of(t, [self._dimension(d) for d in dims.children],
                         lambda m: self.error(m, dims), subject)
+
+    def _dimension(self, tree: Any) -> float:
+        """An array size: an expression that folds to a number (d3dx's X3058 text else)."""
+        v = self.expr(tree)
+        values = v.const_values() if v.type.numeric and v.type.size == 1 else None
+        if values is None:
+            raise self.error("X3058: array dimensions must be literal scalar expressions", tree)
+        return values[0]
 
     def run_step(self, step: Any, own: frozenset[int]) -> None:
         """A `for` loop's step expressions (None: none), its counters `own` written as an
@@ -168,8 +179,18 @@ class Evaluator:
                 return scope[name]
         return None
 
-    def declare(self, name: str, t: HType, value: Value, const: bool = False) -> None:
-        self.scopes[-1][name] = Var(t, value, const)
+    def declare(self, name: str, t: HType, value: Value, const: bool = False,
+                where: Any = None) -> None:
+        """`name` in the innermost scope; `where` (its declarator) when a second declaration
+        of the name in that scope is fxc's X3003 (d3dx's "redefinition of '%s'")."""
+        scope = self.scopes[-1]
+        if where is not None and name in scope:
+            raise self.error(f"X3003: redefinition of '{name}'", where)
+        if where is not None and len(self.scopes) == 2 and self.frames and name in self.scopes[0]:
+            # a local of a function's body named as one of its parameters (scope 0): fxc's
+            # X3036, "redefinition of the specified formal parameter" (its error list)
+            raise self.error(f"X3036: '{name}': formal parameter redefinition", where)
+        scope[name] = Var(t, value, const)
 
     def zero(self, t: HType) -> Value:
         if t.numeric:
@@ -221,6 +242,14 @@ class Evaluator:
         is_const = mods is not None and any(str(m) == "const" for m in mods.children)
         for d in decls:
             name, dims, _sem, init = d.children
+            if base.kind == "void":      # ReShade's text for fxc's X3038
+                raise self.error(f"X3038: '{name}': variables cannot be void", name)
+            if is_const and init is None:     # fxc's text, as DXC's tests record it
+                raise self.error(f"X3012: '{name}': missing initial value", name)
+            for word, code in _NOT_LOCAL:       # ReShade's texts for fxc's codes
+                if mods is not None and any(str(m) == word for m in mods.children):
+                    raise self.error(f"{code}: '{name}': local variables cannot be declared "
+                                     f"'{word}'", name)
             if dims.children and dims.children[0] is None and isinstance(init, lark.Tree) \
                     and init.data == "init_list":
                 t, value = self.implicit_array(base, dims, init)
@@ -229,7 +258,7 @@ class Evaluator:
                 t = self.array_of(base, dims, f"'{name}'")
                 spend(self, t.components, d)
                 value = self.zero(t) if init is None else self.initial(init, t)
-            self.declare(str(name), t, value, is_const)
+            self.declare(str(name), t, value, is_const, where=name)
 
     def implicit_array(self, base: HType, dims: Any, init: lark.Tree) -> tuple[HType, Value]:
         """`T a[] = { ... }`: as many elements as the flattened list fills (fxc's rule: the
@@ -345,14 +374,12 @@ class Evaluator:
         finally:
             self.scopes.pop()
 
-    def condition(self, tree: Any) -> Operand:
+    def condition(self, tree: Any, statement: str = "if") -> Operand:
+        """The 0/1 truth of an `if`'s or a loop's (`statement` "loop") condition, a scalar."""
         v = self.expr(tree)
-        if not v.type.numeric:
-            raise self.error(f"X3020: a condition needs a scalar, not '{v.type}'", tree)
-        if v.type.size > 1:
-            self.warn("X3206: implicit truncation of vector type", self.at(tree))
-        return self.a.to_bool(Value(v.type.with_base(v.type.base) if v.type.size == 1 else
-                                    scalar(v.type.base), v.comps[:1]), self.at(tree)).comps[0]
+        if not v.type.numeric or v.type.size > 1:
+            raise self.error(condition_error(statement, v.type), tree)
+        return self.a.to_bool(v, self.at(tree)).comps[0]
 
     def s_for_stmt(self, tree: lark.Tree) -> None:
         attrs, _tok, init, cond, step, body = tree.children
@@ -423,7 +450,7 @@ class Evaluator:
                             f"X3511: unable to unroll loop, loop does not appear to terminate "
                             f"in a timely manner ({never})", tree)
                 if cond is not None and (test_first or i > 0):
-                    c = self.condition(cond)
+                    c = self.condition(cond, "loop")
                     v = c.const_values()
                     if v is not None and not v[0]:
                         break

@@ -16,6 +16,7 @@ from effects.shaders.hlsl.folding import bitwise_not
 from effects.shaders.hlsl.parse import Origin, parse
 from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.types import BOOL, INT, HType, builtin, scalar
+from effects.shaders.hlsl.arith import INTEGRAL
 from effects.shaders.hlsl.calls import resolve_overload
 from effects.shaders.hlsl.intrinsics import INTRINSICS, call_intrinsic
 from effects.shaders.hlsl.loops import al_element
@@ -115,7 +116,10 @@ def global_value(ev: Any, name: str, where: Any) -> Value:
         value = Value(t, elements=[Value(t.element, sampler=f"{name}[{k}]")
                                    for k in range(t.length)])
     elif t.kind in ("texture", "string"):
-        raise ev.error(f"X3004: '{name}' is a {t.kind}; shaders read textures through samplers", where)
+        # a value no operator or conversion takes: `return Tex;` is fxc's X3017 "cannot
+        # implicitly convert from 'string' to 'float4'" (DXC's tests record the text), an
+        # operator on it X3022, tex2D(Tex, uv) X3013 (the first argument must be a sampler)
+        value = Value(t)
     elif "static" in param.storage or ctx.host_values:
         # A static's initialiser; in a preshader (host_values) any global's current value
         numbers = static_value(param)
@@ -262,6 +266,8 @@ def _prefix(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     if str(op) == "!":
         b = ev.a.to_bool(v, loc)
         return Value(b.type, ev.a.logical_not(b.comps, loc))
+    if v.type.base not in INTEGRAL:
+        raise ev.error(f"X3082: int or unsigned int type required ('~' on '{v.type}')", op)
     consts = v.const_values()
     if consts is None:
         raise ev.error(f"X3535: bitwise operation '~' needs integer hardware; "
@@ -275,6 +281,8 @@ def _incdec(ev: Any, tree: lark.Tree, post: bool) -> Value:
     seen: list[Value] = []
 
     def step(old: Value) -> Value:
+        if old.type.numeric and old.type.base == "bool":   # fxc's text (DXC's tests)
+            raise ev.error("X3020: operator cannot be used with a bool lvalue", op)
         new = ev.a.binary("+" if str(op) == "++" else "-", old, one, ev.at(op))
         seen.extend((old, new))
         return ev.a.convert(new, old.type, ev.at(op))
@@ -437,9 +445,10 @@ def _cast_flat(ev: Any, v: Value, t: HType, tree: Any) -> Value:
     least as many as the destination (each converted to its member's base type)."""
     bases = _leaf_bases(t)
     src = _leaves(v) if v.type.numeric or v.type.kind in ("struct", "array") else []
-    if not bases or not src or (len(src) != 1 and len(src) < len(bases)):
+    spread = len(src) == 1 and v.type.numeric        # only a scalar spreads: `(S)0`
+    if not bases or not src or (not spread and len(src) < len(bases)):
         raise ev.error(f"X3017: cannot convert from '{v.type}' to '{t}'", tree)
-    if len(src) == 1:
+    if spread:
         src = src * len(bases)
     loc = ev.at(tree)
     comps = [ev.a.convert_base([c], base, want, loc)[0] for (c, base), want in zip(src, bases)]
@@ -452,12 +461,17 @@ def _ternary(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     a = yield a_tree
     b = yield b_tree
     loc = ev.at(tree)
+    if not (a.type.numeric and b.type.numeric):
+        raise ev.error(f"X3020: type mismatch between conditional values ('{a.type}' and "
+                       f"'{b.type}')", tree)
     ca, cb, t = ev.a.broadcast(a, b, loc, "?:")
     c = ev.a.to_bool(cond, loc).comps
     if len(c) == 1:
         c = c * len(ca)
-    elif len(c) != len(ca):
-        c = (c * len(ca))[:len(ca)]
+    elif len(ca) == 1:                 # scalar values: one per component of the condition
+        ca, cb, t = ca * len(c), cb * len(c), cond.type.with_base(t.base)
+    elif len(c) != len(ca):            # fxc's text, as DXC's tests record it
+        raise ev.error("X3020: dimension of conditional does not match value", tree)
     return Value(t, ev.a.select(c, ca, cb, loc))
 
 

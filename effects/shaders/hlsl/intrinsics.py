@@ -675,9 +675,25 @@ def _shaped_args(ev: Any, name: str, args: list[Value], loc: Location) -> list[V
     return args
 
 
+def _sampler_kind(ev: Any, name: str, args: list[Value], where: Any) -> None:
+    """tex2D of a samplerCUBE (or any texture read of a sampler declared for another kind) is
+    no overload fxc has (X3013); an untyped `sampler` reads as any kind."""
+    kind = _TEX_KINDS.get(name[3:].replace("proj", "").replace("bias", "").replace("lod", "")
+                          .replace("grad", ""))
+    s = args[0] if args else None
+    if kind is None or s is None or s.sampler is None:
+        return
+    param = ev.ctx.effect.parameter(s.sampler.split("[", 1)[0])
+    dim = param.type.dim if param is not None and param.type.base == "sampler" else ""
+    if dim and _TEX_KINDS.get(dim, kind) != kind:
+        raise ev.error(f"X3013: '{name}': no matching intrinsic function for '{s.sampler}', "
+                       f"a sampler{dim}", where)
+
+
 def call_intrinsic(ev: Any, name: str, args: list[Value], trees: list[Any], where: Any) -> Value:
     counts, build, writes = INTRINSICS[name]
     loc = ev.at(where)
+    _sampler_kind(ev, name, args, where)
     if len(args) not in counts:
         raise ev.error(f"X3013: '{name}': no matching {len(args)} parameter intrinsic function", where)
     args = _shaped_args(ev, name, args, loc)

@@ -33,11 +33,9 @@ def store(ev: Any, target: Any, value: Value | Callable[[Value], Value]) -> None
         raise ev.error("X3025: l-value expected (a variable, member, swizzle or element)", root)
     name = str(root.children[0])
     var = ev.lookup(name)
+    written_global = var is None
     if var is None:
-        if ev.ctx.effect.parameter(name) is not None:
-            raise ev.error(f"X3025: global variables are implicitly constant; '{name}' "
-                           "cannot be written in a shader (copy it to a local)", root)
-        raise ev.error(f"X3004: undeclared identifier '{name}'", root)
+        var = _global_copy(ev, name, root)
     if var.const:
         raise ev.error(f"X3025: l-value specifies const object '{name}'", root)
     bases: list[Value] = [var.value]
@@ -79,6 +77,49 @@ def store(ev: Any, target: Any, value: Value | Callable[[Value], Value]) -> None
         value = out
     p = None if id(var) in ev.stepping else ev.active()     # an unrolled loop's counter
     var.value = ev.merge(var.value, value, p, ev.at(target))
+    if written_global:         # every later read of the global, in any function, sees it
+        ev.ctx.global_values[name] = var.value
+
+
+# fxc's text for a write to a global that is not static (DXC's tests record it); fxc's
+# backwards-compatibility mode (/Gec, D3DXSHADER_ENABLE_BACKWARDS_COMPATIBILITY), which hosts
+# such as MikuMikuDance compiled with, allowed it
+GLOBAL_WRITE = "X3025: global variables are implicitly constant, enable compatibility mode to " \
+    "allow modification"
+
+
+_AS_GEC = "is written as fxc's /Gec compiled it, a private copy initialised from the uniform"
+_STRICT = "cannot be written: a strict load compiles as fxc did without /Gec"
+
+
+def is_compatibility_warning(message: str) -> bool:
+    """Whether a compile warning is a write fxc allowed only in compatibility mode (/Gec): a
+    strict load refuses it as the error fxc gave without the flag (validate.verdicts)."""
+    return message.startswith(GLOBAL_WRITE)
+
+
+def strict_message(message: str) -> str:
+    """The error a strict load gives for the compatibility warning `message`."""
+    return message.replace(_AS_GEC, _STRICT)
+
+
+def _global_copy(ev: Any, name: str, root: Any) -> Any:
+    """The variable a write to global `name` writes. A static global is the shader's own; a
+    uniform one is written as /Gec compiled it: a private copy, first the uniform's value
+    (the constant registers read once, then the copy), with a located warning naming X3025.
+    A const global, or an object (sampler, texture, string), is no l-value (X3025)."""
+    from effects.shaders.hlsl.context import parameter_type
+    from effects.shaders.hlsl.values import Var
+    param = ev.ctx.effect.parameter(name)
+    if param is None:
+        raise ev.error(f"X3004: undeclared identifier '{name}'", root)
+    t = parameter_type(ev.ctx, param)
+    if "const" in param.storage or not (t.numeric or t.kind in ("struct", "array")) or \
+            (t.kind == "array" and t.element is not None and t.element.kind == "sampler"):
+        raise ev.error(f"X3025: l-value specifies const object '{name}'", root)
+    if "static" not in param.storage:
+        ev.warn(f"{GLOBAL_WRITE}: '{name}' {_AS_GEC}", ev.at(root))
+    return Var(t, ev.expr(root))       # its value now: the uniform's, or a written copy's
 
 
 def member_of(ev: Any, base: Value, name: Any) -> Value:
@@ -145,8 +186,10 @@ def swizzle_lanes(ev: Any, t: HType, name: str, where: Any, write: bool = False)
         if any(k >= t.size for k in lanes):
             raise ev.error(f"X3018: invalid subscript '{name}'", where)
     if write and len(set(lanes)) != len(lanes):
-        raise ev.error(f"X3018: invalid subscript '{name}' (a write mask names each component once)",
-                       where)
+        # a swizzle naming a component twice is a value, not an l-value: fxc's X3025 (DXC's
+        # tests record "l-value specifies const object" for `f.xx = 2`)
+        raise ev.error(f"X3025: l-value specifies const object ('{name}' names a component "
+                       "twice)", where)
     return lanes
 
 

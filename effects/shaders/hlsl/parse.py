@@ -22,21 +22,42 @@ from effects.base.errors import EffectError, EffectWarning, Location, through_ex
 # cannot make, X3535 integer hardware, X3536 a pixel-only statement in a vertex shader, X4014
 # gradients in flow, X4502/X4503/X4507 the target's semantics, X4532 what ps_1_x cannot
 # express, an internal error) is a refusal for the target, which a card's reason reports.
+# The codes and texts are fxc's as recorded by DXC's verify tests (`fxc-error {{...}}` notes in
+# tools/clang/test/HLSL*), the d3dx9 HLSL compiler's message table, and ReShade's FX parser,
+# which reports fxc's codes; each raise says which where it is not obvious.
 LANGUAGE_CODES = frozenset({
     "X3000",    # syntax error; an unknown type or struct; a statement or operator not HLSL
+    "X3003",    # redefinition of a name in its scope (a local, a parameter, a function of
+                # the same signature, a struct or a member)
     "X3004",    # undeclared identifier
+    "X3006",    # a local declared 'extern'
+    "X3012",    # a const local without an initial value
     "X3013",    # no matching function or intrinsic overload; not a compile-time constant
     "X3014",    # wrong number of arguments to a numeric constructor
     "X3017",    # cannot convert between types
     "X3018",    # invalid subscript (member, swizzle, write mask)
-    "X3020",    # type mismatch; a condition that is not a scalar
-    "X3022",    # a unary operator on a non-numeric operand
+    "X3019",    # a condition (if, while, do, for) that is not a scalar
+    "X3020",    # type mismatch (a comparison, a ternary's values or its condition's size)
+    "X3022",    # scalar, vector, or matrix expected (an operator on a struct or an object)
     "X3025",    # l-value is const (a global, a uniform, a const local)
+    "X3036",    # a local of a function's body named as one of its parameters
     "X3037",    # a constructor of a non-numeric type
+    "X3038",    # a void variable, parameter or struct member
+    "X3044",    # a parameter without a default after one with a default
+    "X3045",    # an out or inout parameter with a default value
+    "X3046",    # an out or inout parameter declared 'const'
+    "X3047",    # a local declared 'uniform'
+    "X3048",    # conflicting usages (row_major with column_major)
+    "X3052",    # a vector dimension outside 1 to 4
+    "X3053",    # a matrix dimension outside 1 to 4
     "X3058",    # array dimensions of struct members must be literal
+    "X3059",    # an array dimension outside 1 to 65536
     "X3067",    # ambiguous function call
+    "X3076",    # a void function with a semantic
+    "X3077",    # row_major / column_major on a type that is not a matrix
     "X3079",    # a void function returns a value
     "X3080",    # a function must return a value
+    "X3082",    # a bitwise operator on a float (int or unsigned int type required)
     "X3120",    # invalid type for an index
     "X3121",    # an index on a type that has no elements
     "X3500",    # recursive call
@@ -45,6 +66,7 @@ LANGUAGE_CODES = frozenset({
     "X3518",    # break outside a loop
     "X3519",    # continue outside a loop
     "X3533",    # a non-empty case of a switch that does not end in break or return
+    "X4504",    # an output semantic written twice (overlapping output semantics)
 })
 
 

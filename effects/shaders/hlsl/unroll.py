@@ -60,7 +60,7 @@ def _run_head(ev: Any, cond: Any, step: Any, own: frozenset[int], cap: int, name
     try:
         for i in range(cap + 1):
             if cond is not None:
-                v = ev.condition(cond).const_values()
+                v = ev.condition(cond, "loop").const_values()
                 if v is not None and not v[0]:
                     return None
             if ev.dead():

@@ -31,6 +31,19 @@ LANGUAGE = {
               "<string>:3:32: error: X3000: syntax error: unexpected ';'\n"
               "    return float4(1, 0, 0, 1) +;\n"
               "                               ^"),
+    "X3003": ("float4 PS() : COLOR\n{\n    float a = 1;\n    float a = 2;\n    return a;\n}",
+              "<string>:4:11: error: X3003: redefinition of 'a'\n"
+              "    float a = 2;\n"
+              "          ^"),
+    "X3012": ("float4 PS() : COLOR\n{\n    const float k;\n    return k;\n}",
+              "<string>:3:17: error: X3012: 'k': missing initial value\n"
+              "    const float k;\n"
+              "                ^"),
+    "X3019": ("float4 PS(float3 v : TEXCOORD0) : COLOR\n{\n    if (v)\n        return 1;\n    return 0;\n}",
+              "<string>:3:9: error: X3019: if statement conditional expressions must evaluate to "
+              "a scalar (not 'float3')\n"
+              "    if (v)\n"
+              "        ^"),
     "X3004": ("float4 PS() : COLOR\n{\n    return foo * 2;\n}",
               "<string>:3:12: error: X3004: undeclared identifier 'foo'\n"
               "    return foo * 2;\n"
@@ -52,21 +65,51 @@ LANGUAGE = {
               "<string>:4:21: error: X3018: invalid subscript 'xyz'\n"
               "    return float4(v.xyz, 1);\n"
               "                    ^"),
-    "X3020": ("struct S { float a; };\nfloat4 PS() : COLOR\n{\n    S s = (S)0;\n    return s + 1;\n}",
-              "<string>:5:14: error: X3020: type mismatch: '+' needs numeric operands, not 'S' and 'int'\n"
+    "X3020": ("struct S { float a; };\nfloat4 PS() : COLOR\n{\n    S s = (S)0;\n    return s == 1;\n}",
+              "<string>:5:14: error: X3020: type mismatch: '==' needs numeric operands, not 'S' and 'int'\n"
+              "    return s == 1;\n"
+              "             ^"),
+    "X3022": ("struct S { float a; };\nfloat4 PS() : COLOR\n{\n    S s = (S)0;\n    return s + 1;\n}",
+              "<string>:5:14: error: X3022: scalar, vector, or matrix expected ('+' on 'S')\n"
               "    return s + 1;\n"
               "             ^"),
     "X3025": ("float4 PS() : COLOR\n{\n    const float k = 1;\n    k = 2;\n    return k;\n}",
               "<string>:4:5: error: X3025: l-value specifies const object 'k'\n"
               "    k = 2;\n"
               "    ^"),
+    "X3036": ("float4 PS(float2 uv : TEXCOORD0) : COLOR\n{\n    float uv = 1;\n    return uv;\n}",
+              "<string>:3:11: error: X3036: 'uv': formal parameter redefinition\n"
+              "    float uv = 1;\n"
+              "          ^"),
     "X3037": ("sampler S;\nfloat4 PS() : COLOR\n{\n    return sampler(1);\n}",
               "<string>:4:12: error: X3037: constructors only defined for numeric base types\n"
               "    return sampler(1);\n"
               "           ^"),
+    "X3038": ("float4 PS() : COLOR\n{\n    void v;\n    return 1;\n}",
+              "<string>:3:10: error: X3038: 'v': variables cannot be void\n"
+              "    void v;\n"
+              "         ^"),
+    "X3048": ("float4 PS() : COLOR\n{\n    row_major column_major float2x2 m = 0;\n    return m[0].x;\n}",
+              "<string>:3:5: error: X3048: matrix types cannot be both column_major and row_major\n"
+              "    row_major column_major float2x2 m = 0;\n"
+              "    ^"),
+    "X3076": ("void f() : COLOR { }\nfloat4 PS() : COLOR\n{\n    return 1;\n}",
+              "<string>:1:10: error: X3076: 'f': void function cannot have a semantic\n"
+              "void f() : COLOR { }\n"
+              "         ^"),
+    "X3077": ("float4 PS() : COLOR\n{\n    row_major float4 v = 1;\n    return v;\n}",
+              "<string>:3:5: error: X3077: non-matrix types cannot be declared 'row_major' or "
+              "'column_major'\n"
+              "    row_major float4 v = 1;\n"
+              "    ^"),
     "X3080": ("float f() { }\nfloat4 PS() : COLOR\n{\n    return f();\n}",
               "<string>:1:1: error: X3080: 'f': function must return a value\n"
               "float f() { }\n"
+              "^"),
+    "X4504": ("struct O { float4 a : COLOR0; float4 b : COLOR0; };\nO PS()\n{\n    O o = (O)0;\n"
+              "    return o;\n}",
+              "<string>:2:1: error: X4504: overlapping output semantics ('COLOR0' is written twice)\n"
+              "O PS()\n"
               "^"),
     "X3518": ("float4 PS() : COLOR\n{\n    break;\n    return 1;\n}",
               "<string>:3:5: error: X3518: break must be inside a loop\n"
@@ -93,6 +136,10 @@ TARGET = {
               "    return A[(int)(uv.x * 4)];\n}", "ps_2_0", "vs_2_0",
               "<string>:4:14: error: X3512: array index must be a literal expression on ps_2_0 "
               "(pixel shaders have no relative addressing)"),
+    "X4507": ("float4 Far : register(c40);\nfloat4 PS() : COLOR\n{\n    return Far;\n}",
+              "ps_2_0", "ps_3_0",
+              "<string>:1:8: error: X4507: maximum constant register index exceeded: 'Far' is "
+              "bound to c40, ps_2_0 has c0..c31"),
     "X4532": ("sampler S;\nfloat4 PS(float2 uv : TEXCOORD0) : COLOR\n{\n"
               "    return tex2D(S, uv * uv);\n}", "ps_1_1", "ps_2_0",
               "<string>:4:12: error: X4532: cannot map expression to pixel shader instruction "
@@ -204,3 +251,15 @@ def test_an_error_in_a_macro_expanded_line_is_located_in_the_file_as_written(
     err = only_error(path, entry)
     assert err.report() == (f"{path}:{line}:{column}: error: X3004: undeclared identifier "
                             f"'{name}'\n{written}\n{' ' * (column - 1)}^")
+
+
+def test_a_path_that_falls_off_a_function_is_a_language_error_though_its_code_is_a_targets():
+    # X3507 also names a target fxc does not compile for (a refusal for the target); this
+    # raise marks itself: every target refuses the function, called or not
+    functions = ("float g(float x)\n{\n    if (x > 0)\n        return 1;\n}\n"
+                 "float4 PS() : COLOR\n{\n    return 1;\n}")
+    for target in ("ps_2_0", "ps_3_0", "ps_1_1"):
+        err = compile_error(functions, target)
+        assert err.report() == ("<string>:1:7: error: X3507: 'g': Not all control paths return "
+                                "a value\nfloat g(float x)\n      ^")
+        assert err.language is True
