@@ -149,11 +149,11 @@ def _cmd_validate(args, console: Console) -> int:
                       "each technique and why not; `effects matrix` shows every card's choice.",
                       markup=False)
         return EXIT_OK
+    told = len(effect.warnings)
     meter = None
     if args.why:
         from effects.host.fidelity import meter_for
         meter = meter_for(effect, scene=_scene(args, args.file), best=args.best)
-    told = len(effect.warnings)
     every_card_runs_it = print_validation_table(effect, _profiles(args.profile), console,
                                                 why=args.why, meter=meter)
     # what compiling the shaders added (a write fxc allowed only under /Gec)
