@@ -197,6 +197,11 @@ class _Reader:
                 dst, sat, pp, centroid, shift = self._dst()
                 roles = roles[1:]
             predicate = self._src() if predicated else None
+            if info.name == "texkill" and roles == "s":    # a destination token (writer.py)
+                killed = self._dst()[0]
+                killed.mask, killed.swizzle_text = None, ""
+                srcs.append(killed)
+                roles = ""
             for _ in roles:
                 srcs.append(self._src())
             prog.instructions.append(Instruction(
@@ -212,11 +217,9 @@ class _Reader:
         if self.end is not None and self.pos >= self.end:
             raise self.fail(f"the instruction's length leaves no token for its {what}", self.at)
         at = self.pos
-        token = self.word(f"the instruction's {what}")
-        if not token & tk.PARAM:
-            raise self.fail(f"0x{token:08X} is no parameter token (bit 31 clear) where the "
-                            f"{what} belongs", at)
-        return token, at
+        # bit 31 is set in every parameter token fxc writes; not checked, as other compilers
+        # (the Source engine's) leave it clear in destinations and DXVK and Wine read them
+        return self.word(f"the instruction's {what}"), at
 
     def _register(self, token: int, at: int) -> tuple[str, int | None]:
         rtype = tk.register_type(token)
@@ -260,7 +263,7 @@ class _Reader:
         kind = {tk.ADDR_TEXTURE: "a", tk.LOOP: "aL"}.get(rtype)
         if kind is None or (kind == "a" and prog.kind == "ps"):
             raise self.fail("a relative address names neither a0 nor aL", rel_at)
-        return RelativeAddress(kind, 0, rel >> tk.SWIZZLE_SHIFT & 3)
+        return RelativeAddress(kind, 0, 0 if kind == "aL" else rel >> tk.SWIZZLE_SHIFT & 3)
 
     def _dst(self) -> tuple[Operand, bool, bool, bool, int]:
         token, at = self._param("destination")

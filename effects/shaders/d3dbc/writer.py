@@ -112,7 +112,7 @@ class _Writer:
         params: list[int] = []
         if ins.dst is not None:
             params += self._dst(ins.dst, ins.saturate, ins.partial_precision, ins.centroid,
-                                ins.shift)
+                                ins.shift, info.writes)
         elif ins.saturate or ins.partial_precision or ins.centroid or ins.shift:
             raise EncodeError(f"{ins.opcode} has no destination to carry its modifiers",
                               ins.location)
@@ -120,7 +120,10 @@ class _Writer:
             if self.major < 2:
                 raise EncodeError("predication needs version 2_0 or later", ins.location)
             params += self._src(ins.predicate)
-        params += [t for src in ins.srcs for t in self._src(src)]
+        if info.name == "texkill" and ins.dst is None:
+            params += self._killed(ins.srcs[0])
+        else:
+            params += [t for src in ins.srcs for t in self._src(src)]
         if ins.coissue and not (self.p.kind == "ps" and self.major == 1):
             raise EncodeError("co-issue (+) exists in ps_1_x only", ins.location)
         self._emit(code, params, ins, control=control, predicated=ins.predicate is not None,
@@ -182,19 +185,31 @@ class _Writer:
             return []          # bit 13 alone: a0.x is implied, no address token
         if self.p.kind == "ps" and self.major < 3:
             raise EncodeError(f"{self.p.name} has no relative addressing", op.location)
-        rtype = tk.LOOP if rel.kind == "aL" else tk.ADDR_TEXTURE
-        return [tk.PARAM | tk.register_bits(rtype) | rel.index
+        if rel.kind == "aL":     # a scalar: the identity swizzle (as MojoShader writes it)
+            return [tk.PARAM | tk.register_bits(tk.LOOP) | 0xE4 << tk.SWIZZLE_SHIFT]
+        return [tk.PARAM | tk.register_bits(tk.ADDR_TEXTURE) | rel.index
                 | (rel.component * 0x55) << tk.SWIZZLE_SHIFT]
 
-    def _dst(self, op: Operand, sat: bool, pp: bool, centroid: bool, shift: int) -> list[int]:
+    def _dst(self, op: Operand, sat: bool, pp: bool, centroid: bool, shift: int,
+             writes: str = "") -> list[int]:
         if op.kind == "imm":
             raise EncodeError(f"a number ({op.text}) where a register belongs", op.location)
         mask = 0xF if op.mask is None else sum(1 << c for c in op.mask)
+        if op.mask is None and writes:   # m3x3 r0: D3DX writes the .xyz the matrix macro fixes
+            mask = sum(1 << "xyzw".index(c) for c in writes)
         token = (self._register(op) | mask << tk.WRITEMASK_SHIFT
                  | (sat * tk.SATURATE | pp * tk.PARTIAL_PRECISION | centroid * tk.CENTROID)
                  << tk.RESULT_SHIFT | tk.shift_bits(shift) << tk.DSTSHIFT_SHIFT)
         rel = self._relative(op)
         return [token | (tk.RELATIVE if op.relative else 0), *rel]
+
+    def _killed(self, op: Operand) -> list[int]:
+        """ps_2_0+ `texkill src`: its register is a destination token (all four components),
+        as in ps_1_x (MojoShader, Wine and vkd3d-shader read one)."""
+        if op.swizzle != IDENTITY or op.negate or op.modifier or op.kind == "imm":
+            raise EncodeError("texkill's register is a destination token: no swizzle or "
+                              f"modifier fits it ({op.text or op.name})", op.location)
+        return self._dst(op, False, False, False, 0)
 
     def _src(self, op: Operand) -> list[int]:
         if op.kind == "imm":

@@ -148,6 +148,8 @@ dst r2, r1, v1
 crs r3.xyz, v1, v2
 nrm r4, v1
 pow r5, r1.x, v1.y
+mov r7, v0
+mov r8, v0
 sgn r6, v1, r7, r8
 m3x2 r9.xy, v0, c[a0.x + 10]
 rep i15
@@ -246,12 +248,19 @@ def _f32(values) -> tuple:
         else tuple(values)
 
 
+def _fixed_mask(ins) -> Operand | None:
+    """`m3x3 r0` writes the .xyz its row fixes: bytecode spells that mask out."""
+    if ins.dst is None or ins.dst.mask is not None or not ins.info.writes:
+        return ins.dst
+    return dataclasses.replace(ins.dst, mask=tuple("xyzw".index(c) for c in ins.info.writes))
+
+
 def normalized(p: AsmProgram) -> AsmProgram:
     """`p` as bytecode holds it: no source positions, a swizzle in its shortest spelling, a
-    .xyzw write mask as none, def values as float32, no DX8 decl{} inputs (a vertex
+    .xyzw write mask as none, a matrix macro's missing mask as the one it writes, def values as float32, no DX8 decl{} inputs (a vertex
     declaration, not shader tokens)."""
     instructions = [dataclasses.replace(
-        ins, dst=_operand(ins.dst, dst=True), srcs=[_operand(s) for s in ins.srcs],
+        ins, dst=_operand(_fixed_mask(ins), dst=True), srcs=[_operand(s) for s in ins.srcs],
         predicate=_operand(ins.predicate)) for ins in p.instructions]
     defs = [dataclasses.replace(d, register=_operand(d.register, dst=True),
                                 values=_f32(d.values) if d.register.kind == "c" else d.values)
