@@ -3,6 +3,8 @@ program: what the bytecode disassembler prints (effects/shaders/d3dbc), in fxc's
 (`dcl_texcoord v0`, `c[a0.x + 5]`, `(!p0.x) add`, `+mov`, `texld_pp`)."""
 from __future__ import annotations
 
+import struct
+
 from effects.shaders.asm.program import (COMPONENTS, AsmProgram, ConstantDef, Declaration,
                                          Instruction, Operand)
 from effects.shaders.asm.versions import IDENTITY
@@ -38,8 +40,20 @@ def program_text(program: AsmProgram) -> str:
 
 
 def _number(value: float) -> str:
-    text = repr(float(value))
-    return text[:-2] if text.endswith(".0") else text
+    """The shortest decimal that is the same float32 (0.8, not 0.800000011920929): a def
+    register holds a float32, so that is all the text must keep."""
+    value = float(value)
+    if value != value or value in (float("inf"), float("-inf")):
+        return repr(value)
+    try:
+        bits = struct.pack("<f", value)
+    except OverflowError:
+        return repr(value)
+    for digits in range(1, 18):
+        text = f"{value:.{digits}g}"
+        if struct.pack("<f", float(text)) == bits:
+            break
+    return text
 
 
 def constant_text(d: ConstantDef) -> str:

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 from effects.shaders.asm.program import AsmProgram
 from effects.shaders.asm.text import program_text
+from effects.shaders.d3dbc.header import read_header, variable_name, write_header
 from effects.shaders.d3dbc.ctab import ConstantInfo, ConstantTable, CtabError, TypeInfo
 from effects.shaders.d3dbc.reader import BytecodeError, ShaderBinary, read_shader
 from effects.shaders.d3dbc.writer import EncodeError, constant_table, write_program
@@ -31,7 +32,11 @@ def write_shader(program: AsmProgram, compiled: "CompiledShader | None" = None, 
 
 def disassemble(data: bytes, path: str = "<bytecode>") -> str:
     """The assembly text of shader bytecode, with the constant table as fxc /Fc lists it."""
-    binary = read_shader(data, path)
+    return binary_listing(read_shader(data, path))
+
+
+def binary_listing(binary: ShaderBinary) -> str:
+    """A read shader as assembly text, its constant table above as // comments."""
     lines: list[str] = []
     if binary.table is not None:
         t = binary.table
@@ -47,6 +52,6 @@ def disassemble(data: bytes, path: str = "<bytecode>") -> str:
     return "\n".join(lines) + program_text(binary.program)
 
 
-__all__ = ["BytecodeError", "ConstantInfo", "ConstantTable", "CtabError", "EncodeError",
+__all__ = ["BytecodeError", "binary_listing", "ConstantInfo", "ConstantTable", "CtabError", "EncodeError",
            "ShaderBinary", "TypeInfo", "constant_table", "disassemble", "read_shader",
-           "write_program", "write_shader"]
+           "read_header", "variable_name", "write_header", "write_program", "write_shader"]

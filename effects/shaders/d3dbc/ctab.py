@@ -133,7 +133,8 @@ class _Reader:
                                                # times is read once (no exponential walk)
 
     def fail(self, message: str, at: int) -> CtabError:
-        return CtabError(f"constant table: {message}", Location(self.path, 1, self.base + at))
+        return CtabError(f"constant table: {message} (at byte {self.base + at})",
+                         Location(self.path, 1, self.base + at + 1))
 
     def unpack(self, fmt: str, at: int, what: str) -> tuple:
         size = struct.calcsize(fmt)
@@ -158,7 +159,9 @@ class _Reader:
         cls, typ, rows, cols, elements, count, members_at = self.unpack("<6HI", at, "type")
         members = []
         if count:
-            self.unpack(f"<{2 * count}I", members_at, "struct members")   # all of them lie inside
+            if members_at + 8 * count > len(self.data):
+                raise self.fail(f"{count} struct members at byte {members_at} run past the "
+                                "table", at)
             for k in range(count):
                 name_at, type_at = self.unpack("<II", members_at + 8 * k, "struct member")
                 members.append((self.string(name_at, "member name"), self.type(type_at, depth + 1)))
@@ -173,7 +176,9 @@ def read_ctab(data: bytes, base: int, path: str) -> ConstantTable:
     size, creator, version, n, info_at, flags, target = r.unpack("<7I", 0, "header")
     if size != HEADER_SIZE:
         raise r.fail(f"header size {size}, expected {HEADER_SIZE}", 0)
-    r.unpack(f"<{5 * n}I", info_at, f"{n} constant records")
+    if info_at + 20 * n > len(data):
+        raise r.fail(f"{n:,} constant records at byte {info_at} run past the table's "
+                     f"{len(data)} bytes", 12)
     constants = []
     for k in range(n):
         at = info_at + 20 * k

@@ -4,7 +4,7 @@ shader, so a compiled shader is checked per card, listed and lowered like assemb
 Untrusted input: every token is bounds-checked before it is used; a bad stream (truncated,
 wrong instruction lengths, unknown opcodes, registers the version does not have) is a
 `BytecodeError` located at the offending token's byte offset (line 1, the offset as the
-column), and the whole stream is first held against the `bytecode_bytes` limit
+column, byte 0 being column 1), and the whole stream is first held against the `bytecode_bytes` limit
 (effects/base/limits.py). The token fields: tokens.py; the opcodes: the instruction table.
 """
 from __future__ import annotations
@@ -50,7 +50,7 @@ def version_names(kind: str, major: int, minor: int) -> list[str]:
 
 def read_shader(data: bytes, path: str = "<bytecode>") -> ShaderBinary:
     """Read shader bytecode. Raises BytecodeError (located by byte offset)."""
-    limits.check("bytecode_bytes", len(data), Location(path, 1, 0), "the shader bytecode",
+    limits.check("bytecode_bytes", len(data), Location(path, 1, 1), "the shader bytecode",
                  BytecodeError)
     return _Reader(bytes(data), path).read()
 
@@ -63,7 +63,9 @@ class _Reader:
         self.pos = 0
 
     def loc(self, word: int) -> Location:
-        return Location(self.path, 1, 4 * word)
+        """Line 1, the token's byte offset as the column (1-based, as columns are: byte 0 is
+        column 1)."""
+        return Location(self.path, 1, 4 * word + 1)
 
     def fail(self, message: str, word: int) -> BytecodeError:
         return BytecodeError(f"{message} (at byte {4 * word})", self.loc(word))
@@ -303,6 +305,9 @@ class _Reader:
 
     def _def(self, prog: AsmProgram, name: str, at: int) -> None:
         reg, *_ = self._dst()
+        want = {"def": "c", "defi": "i", "defb": "b"}[name]
+        if reg.kind != want or reg.relative is not None:
+            raise self.fail(f"{name} defines {reg.name}; it defines {want}# registers", at)
         if name == "def":
             raw = [self._raw() for _ in range(4)]
             values: tuple = struct.unpack("<4f", struct.pack("<4I", *raw))
@@ -313,9 +318,6 @@ class _Reader:
         else:
             values = (bool(self._raw()),)
             prog.bool_defs[reg.index or 0] = values[0]
-        want = {"def": "c", "defi": "i", "defb": "b"}[name]
-        if reg.kind != want:
-            raise self.fail(f"{name} defines {reg.name}; it defines {want}# registers", at)
         reg.mask, reg.swizzle_text = None, ""
         prog.def_statements.append(ConstantDef(reg, values, self.loc(at),
                                                after_code=bool(prog.instructions)))
