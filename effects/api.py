@@ -63,27 +63,10 @@ def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str,
 
 
 
-HEADER_SUFFIXES = (".h", ".hpp", ".hxx", ".inc", ".inl")
-
 
 def load_shader(path: "str | os.PathLike[str]", name: str | None = None) -> "ShaderBinary":
     """Read one compiled shader: raw Direct3D 9 bytecode (.pso, .vso, .cso, fxc /Fo) or, for
-    a C header (.h: fxc /Fh), its array `name` (default: the first). The answer's `program`
-    is the AsmProgram the assembler would give, `table` fxc's constant table. Raises a
-    located EffectError (the byte offset as the column) for anything that is not bytecode,
-    within the `bytecode_bytes` limit."""
-    from effects.base.untrusted import read_file
-    from effects.base.errors import Location
-    from effects.shaders.d3dbc import BytecodeError, read_header, read_shader
-    path = os.fspath(path)
-    if path.lower().endswith(HEADER_SUFFIXES):
-        text = read_file(path, "shader header", BytecodeError, "source_bytes").decode(
-            "latin-1")
-        arrays = read_header(text, path)
-        chosen = [data for n, data in arrays if name is None or n == name]
-        if not chosen:
-            known = ", ".join(n for n, _ in arrays) or "none"
-            raise BytecodeError(f"no shader array {name or ''} in the header (arrays: {known})",
-                                Location(path, 1, 1))
-        return read_shader(chosen[0], path)
-    return read_shader(read_file(path, "shader bytecode", BytecodeError, "bytecode_bytes"), path)
+    a C header (.h: fxc /Fh), its array `name` (default: the first); see
+    `effects.shaders.d3dbc.load_shader`."""
+    from effects.shaders.d3dbc import load_shader as load
+    return load(path, name)

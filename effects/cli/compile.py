@@ -53,8 +53,7 @@ def _say(console: "Console", text: str) -> None:
 
 def run_compile(args: Any, console: "Console", load: Any) -> int:
     if args.disassemble:
-        from effects.api import load_shader
-        from effects.shaders.d3dbc import binary_listing
+        from effects.shaders.d3dbc import binary_listing, load_shader
         from effects.shaders.listing import counts
         binary = load_shader(args.file)
         _say(console, binary_listing(binary) + "\n".join(counts(binary.program)))

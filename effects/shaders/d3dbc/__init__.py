@@ -10,7 +10,11 @@ the opcodes a column of the instruction table (effects/shaders/asm/instructions.
 """
 from __future__ import annotations
 
+import os
 from typing import TYPE_CHECKING
+
+from effects.base.errors import Location
+from effects.base.untrusted import read_file
 
 from effects.shaders.asm.program import AsmProgram
 from effects.shaders.asm.text import program_text
@@ -52,6 +56,30 @@ def binary_listing(binary: ShaderBinary) -> str:
     return "\n".join(lines) + program_text(binary.program)
 
 
-__all__ = ["BytecodeError", "binary_listing", "ConstantInfo", "ConstantTable", "CtabError", "EncodeError",
-           "ShaderBinary", "TypeInfo", "constant_table", "disassemble", "read_shader",
-           "read_header", "variable_name", "write_header", "write_program", "write_shader"]
+HEADER_SUFFIXES = (".h", ".hpp", ".hxx", ".inc", ".inl")
+
+
+def load_shader(path: str | os.PathLike[str], name: str | None = None) -> ShaderBinary:
+    """Read one compiled shader: raw Direct3D 9 bytecode (.pso, .vso, .cso, fxc /Fo) or, for
+    a C header (.h: fxc /Fh), its array `name` (default: the first). The answer's `program`
+    is the AsmProgram the assembler would give, `table` fxc's constant table. Raises a
+    located EffectError (the byte offset as the column) for anything that is not bytecode,
+    within the `bytecode_bytes` limit."""
+    path = os.fspath(path)
+    if path.lower().endswith(HEADER_SUFFIXES):
+        text = read_file(path, "shader header", BytecodeError, "source_bytes").decode(
+            "latin-1")
+        arrays = read_header(text, path)
+        chosen = [data for n, data in arrays if name is None or n == name]
+        if not chosen:
+            known = ", ".join(n for n, _ in arrays) or "none"
+            raise BytecodeError(f"no shader array {name or ''} in the header (arrays: {known})",
+                                Location(path, 1, 1))
+        return read_shader(chosen[0], path)
+    return read_shader(read_file(path, "shader bytecode", BytecodeError, "bytecode_bytes"), path)
+
+
+__all__ = ["BytecodeError", "ConstantInfo", "ConstantTable", "CtabError", "EncodeError",
+           "ShaderBinary", "TypeInfo", "binary_listing", "constant_table", "disassemble",
+           "load_shader", "read_header", "read_shader", "variable_name", "write_header",
+           "write_program", "write_shader"]
