@@ -9,7 +9,8 @@ type records (Class, Type, Rows, Columns, Elements, StructMembers, StructMemberI
 8-byte struct member records (Name, TypeInfo). Every offset counts bytes from the header's
 first byte (the DWORD after the 'CTAB' code); strings end with a NUL. fxc writes the strings
 and records after the constant array, the target and then the creator last, and pads the
-comment to whole DWORDs.
+comment to whole DWORDs; a numeric type several constants share is written once, and the padding
+before a record is 0xAB bytes.
 """
 from __future__ import annotations
 
@@ -75,9 +76,10 @@ class _Blob:
 
     def __init__(self, size: int) -> None:
         self.data = bytearray(size)
+        self.types: dict[TypeInfo, int] = {}    # a type written once, shared (as fxc does)
 
     def align(self) -> None:
-        self.data += b"\0" * (-len(self.data) % 4)
+        self.data += b"\xab" * (-len(self.data) % 4)     # fxc pads with 0xAB bytes
 
     def add(self, chunk: bytes) -> int:
         at = len(self.data)
@@ -95,7 +97,6 @@ def write_ctab(table: ConstantTable) -> bytes:
     records = []
     for c in table.constants:
         name = blob.string(c.name)
-        blob.align()
         type_at = _write_type(blob, c.type)
         default = blob.add(c.default) if c.default else 0
         records.append(struct.pack("<IHHHHII", name, REGISTER_SETS.index(c.register_set),
@@ -110,14 +111,20 @@ def write_ctab(table: ConstantTable) -> bytes:
 
 
 def _write_type(blob: _Blob, t: TypeInfo) -> int:
+    """The offset of `t`'s record: a new one (aligned to 4 bytes) or, for a numeric type, the
+    same type's (fxc 10.1 shares float4's record among constants, never a sampler's)."""
+    if t.cls != OBJECT and t in blob.types:
+        return blob.types[t]
     members_at = 0
     if t.members:
         names = [blob.string(name) for name, _ in t.members]
-        blob.align()
         types = [_write_type(blob, mt) for _, mt in t.members]
+        blob.align()
         members_at = blob.add(b"".join(struct.pack("<II", a, b) for a, b in zip(names, types)))
+    blob.align()
     at = blob.add(struct.pack("<6HI", t.cls, t.type, t.rows, t.columns, t.elements,
                               len(t.members), members_at))
+    blob.types[t] = at
     return at
 
 
