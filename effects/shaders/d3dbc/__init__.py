@@ -34,6 +34,12 @@ def write_shader(program: AsmProgram, compiled: "CompiledShader | None" = None, 
     return write_program(program, constant_table(program, compiled) if table else None)
 
 
+def write_binary(binary: ShaderBinary) -> bytes:
+    """A read shader written again: its program, its constant table first and then its other
+    comments (fxc's debug or preshader blocks) in the order they came."""
+    return write_program(binary.program, binary.table, [body for _, _, body in binary.comments])
+
+
 def disassemble(data: bytes, path: str = "<bytecode>") -> str:
     """The assembly text of shader bytecode, with the constant table as fxc /Fc lists it."""
     return binary_listing(read_shader(data, path))
@@ -81,5 +87,5 @@ def load_shader(path: str | os.PathLike[str], name: str | None = None) -> Shader
 
 __all__ = ["BytecodeError", "ConstantInfo", "ConstantTable", "CtabError", "EncodeError",
            "ShaderBinary", "TypeInfo", "binary_listing", "constant_table", "disassemble",
-           "load_shader", "read_header", "read_shader", "variable_name", "write_header",
-           "write_program", "write_shader"]
+           "load_shader", "read_header", "read_shader", "variable_name", "write_binary",
+           "write_header", "write_program", "write_shader"]

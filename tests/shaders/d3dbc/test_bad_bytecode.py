@@ -14,7 +14,8 @@ from effects.base import limits
 from effects.base.errors import EffectError
 from effects.shaders.asm import check
 from effects.shaders.asm.text import program_text
-from effects.shaders.d3dbc import BytecodeError, disassemble, read_shader, write_program, write_shader
+from effects.shaders.d3dbc import (BytecodeError, disassemble, read_shader, write_binary,
+                                   write_shader)
 from effects.shaders.d3dbc.ctab import ConstantInfo, ConstantTable, TypeInfo, write_ctab
 from effects.shaders.d3dbc.writer import comment
 from effects.shaders.asm import assemble
@@ -135,6 +136,15 @@ def test_a_cyclic_struct_type_is_refused():
     assert "nested more than 16 deep" in error(_with_table(body)).message
 
 
+def test_other_comments_are_kept_and_written_back():
+    ws = words(GOOD)
+    end = 2 + (ws[1] >> 16)                       # after the version token and the CTAB
+    data = pack([*ws[:end], *comment(b"DBUGsome debug bytes"), *ws[end:]])
+    binary = read_shader(data)
+    assert [(at, code) for at, code, _ in binary.comments] == [(4 * end, "DBUG")]
+    assert write_binary(binary) == data
+
+
 def test_the_size_limit_comes_first():
     with limits.raised(bytecode_bytes=64):
         err = error(GOOD + b"\0" * 64)
@@ -184,7 +194,7 @@ def test_hostile_mutations_give_a_program_or_a_located_error(which, edits):
     check(binary.program)
     program_text(binary.program)
     try:
-        again = write_program(binary.program, binary.table)
+        again = write_binary(binary)
     except EffectError:
         return
     assert read_shader(again).program.name == binary.program.name
