@@ -13,6 +13,7 @@ import struct
 from typing import TYPE_CHECKING, Any, Iterable
 
 from effects.base.errors import EffectError
+from effects.shaders.asm.instructions import rows_named
 from effects.shaders.asm.program import AsmProgram, Declaration, Instruction, Operand
 from effects.shaders.asm.versions import IDENTITY
 from effects.shaders.d3dbc import tokens as tk
@@ -134,7 +135,6 @@ class _Writer:
         base = {"c": "def", "i": "defi", "b": "defb"}.get(reg.kind)
         if base is None:
             raise EncodeError(f"a constant definition of {reg.name}", d.location)
-        from effects.shaders.asm.instructions import rows_named
         code = rows_named(base)[0].code
         params = self._dst(reg, False, False, False, 0)
         if base == "def":
@@ -152,7 +152,6 @@ class _Writer:
         else:
             usage = tk.USAGES.index(dcl.usage) if dcl.usage else 0
             token = tk.PARAM | usage | dcl.usage_index << tk.USAGE_INDEX_SHIFT
-        from effects.shaders.asm.instructions import rows_named
         self._emit(rows_named("dcl")[0].code,
                    [token, *self._dst(reg, False, dcl.partial_precision, dcl.centroid, 0)], dcl)
 
