@@ -271,14 +271,22 @@ class _Reader:
         token, at = self._param("destination")
         kind, index = self._register(token, at)
         bits = token >> tk.WRITEMASK_SHIFT & 0xF
+        if not bits:
+            raise self.fail("a destination that writes no component (write mask 0)", at)
         mask = None if bits == 0xF else tuple(c for c in range(4) if bits >> c & 1)
         result = token >> tk.RESULT_SHIFT & 0xF
+        if result & ~(tk.SATURATE | tk.PARTIAL_PRECISION | tk.CENTROID):
+            raise self.fail(f"result modifier bits 0x{result:X}: D3D9 defines saturate (1), "
+                            "partial precision (2) and centroid (4)", at)
+        shift = tk.shift_value(token >> tk.DSTSHIFT_SHIFT & 0xF)
+        if shift not in tk.SHIFTS:
+            raise self.fail(f"result shift {shift} is none of _x2, _x4, _x8, _d2, _d4, _d8", at)
         op = Operand(kind, index, self.loc(at), mask=mask,
                      swizzle_text="" if mask is None else "".join(COMPONENTS[c] for c in mask))
         op.text = op.name
         op.relative = self._relative(token, at)
         return (op, bool(result & tk.SATURATE), bool(result & tk.PARTIAL_PRECISION),
-                bool(result & tk.CENTROID), tk.shift_value(token >> tk.DSTSHIFT_SHIFT & 0xF))
+                bool(result & tk.CENTROID), shift)
 
     def _src(self) -> Operand:
         token, at = self._param("source")

@@ -96,7 +96,10 @@ SAMPLER_TYPE_SHIFT = 27
 SAMPLER_TYPES = {"2d": 2, "cube": 3, "volume": 4}
 SAMPLER_TYPE_NAMES = {n: name for name, n in SAMPLER_TYPES.items()}
 
-# the result shift, a signed 4-bit number: _x2 = 1 ... _d8 = -3 (0xD)
+# the result shift, a signed 4-bit number: _x2 = 1 ... _d8 = -3 (0xD); D3D9 defines these
+SHIFTS = (-3, -2, -1, 0, 1, 2, 3)
+
+
 def shift_bits(shift: int) -> int:
     return shift & 0xF
 

@@ -100,6 +100,16 @@ def test_registers_the_version_lacks_are_out_of_range():
     assert "has no oPos registers" in error(pack(ws)).message
 
 
+def test_destination_fields_d3d9_does_not_define():
+    ws = words(GOOD)
+    k = ws.index(0x03000005)
+    for bits, message in ((0x0C000000, "result shift -4"), (0x00800000, "result modifier bits"),
+                          (-0x000F0000, "writes no component")):
+        bad = list(ws)
+        bad[k + 1] = (bad[k + 1] + bits) & 0xFFFFFFFF
+        assert message in error(pack(bad)).message
+
+
 def test_relative_addressing_where_the_version_has_none():
     ws = words(GOOD)
     k = ws.index(0x03000005)
