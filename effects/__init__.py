@@ -13,7 +13,7 @@ from effects.base.errors import (AsmError, EffectError, EffectWarning, Location,
 
 # Where each public name lives. The loader, the model and the runtime import numpy and lark;
 # they load on first use (PEP 562), so that `effects --help` and `effects profiles` do not pay.
-_LAZY = {"load_effect": "effects.api", "Effect": "effects.api",
+_LAZY = {"load_effect": "effects.api", "Effect": "effects.api", "load_shader": "effects.api",
          "load_profile": "effects.d3d9.caps", "list_profiles": "effects.d3d9.caps",
          "render": "effects.host.runtime",
          "cache_report": "effects.base.caches", "clear_caches": "effects.base.caches",
@@ -38,5 +38,5 @@ __all__ = [
     "AsmError", "Effect", "EffectError", "EffectWarning", "Location", "NoValidTechnique",
     "ParseError", "Parameter", "Pass", "PreprocessError", "ProfileError", "SceneError",
     "StateAssignment", "StateError", "Technique", "cache_report", "clear_caches", "load_effect",
-    "load_profile", "list_profiles", "render",
+    "load_shader", "load_profile", "list_profiles", "render",
 ]

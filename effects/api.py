@@ -21,6 +21,7 @@ from effects.validate import verdicts
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.d3d9.caps import CapsProfile
+    from effects.shaders.d3dbc import ShaderBinary
     from effects.validate.technique import Validation
 
 
@@ -62,3 +63,12 @@ def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str,
                                 include_handler=include_handler, include_root=include_root,
                                 strict=strict, effect_type=Effect)  # type: ignore[return-value]
 
+
+
+
+def load_shader(path: "str | os.PathLike[str]", name: str | None = None) -> "ShaderBinary":
+    """Read one compiled shader: raw Direct3D 9 bytecode (.pso, .vso, .cso, fxc /Fo) or, for
+    a C header (.h: fxc /Fh), its array `name` (default: the first); see
+    `effects.shaders.d3dbc.load_shader`."""
+    from effects.shaders.d3dbc import load_shader as load
+    return load(path, name)

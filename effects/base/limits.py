@@ -56,6 +56,8 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
     Limit("mesh_file_bytes", 32 * _MIB, "bytes", "size of one .obj file"),
     Limit("mesh_vertices", 500_000, "vertices", "vertices of one mesh"),
     Limit("mesh_indices", 3_000_000, "indices", "indices of one mesh (3 per triangle)"),
+    # compiled shaders (effects/shaders/d3dbc): a ps_3_0 of 32,768 slots is ~1 MiB of tokens
+    Limit("bytecode_bytes", 4 * _MIB, "bytes", "size of one shader's bytecode"),
     # shaders: nested rep / loop counts multiply (four nested 255s are 4e9 iterations)
     Limit("shader_loop_iterations", 65_536, "iterations",
           "body runs of the innermost of nested rep / loop blocks (the counts' product)"),

@@ -12,6 +12,9 @@ with the reason, which validation reports, so a valid shader is one that renders
 The checker, the stats, validation and the lowering all read these rows, so what validates and
 what runs come from one place.
 
+`code` is the instruction's D3DSIO_* number in the bytecode (D3DSHADER_INSTRUCTION_OPCODE_TYPE
+of d3d9types.h, as the Windows driver documentation's "Instruction Token" pages list it).
+
 Sources: DirectX 9 assembly reference instruction tables (ps_1_x, ps_2_0, ps_2_x, vs_1_1,
 vs_2_0: slot counts; footnote "cmp/dp4: 2 slots in ps_1_2 and ps_1_3"; texbeml "1 + 1"),
 the instruction pages (texld ps_1_4 / ps_2_0, texbem, texm3x2pad ...), and
@@ -92,6 +95,12 @@ class InstrInfo:
     matrix_rows: int = 0           # m4x4 r0, v0, c4 reads c4..c7: 4
     ends_body: bool = False        # ret, label: the main program or a subroutine ends here
     gradient: bool = False         # takes screen-space gradients (dsx, dsy, texld's LOD)
+    # the bytecode (effects/shaders/d3dbc): D3DSIO_* opcode (bits 0-15 of the instruction
+    # token), the opcode of the comparing form (if_gt is D3DSIO_IFC, break_ne D3DSIO_BREAKC),
+    # and the fixed opcode-specific control bits 16-23 (texldp 1, texldb 2)
+    code: int = -1
+    compare_code: int | None = None
+    control: int = 0
 
     # read for every operand the assembler and the checker see: worked out once per row
     @cached_property
@@ -116,8 +125,8 @@ class InstrInfo:
         return self.src_kinds[i] if i < len(self.src_kinds) else None
 
 
-def _row(name, versions, operands, category, formula, *, op=None, **kw) -> InstrInfo:
-    return InstrInfo(name, versions, operands, category, op or name, formula, **kw)
+def _row(name, code, versions, operands, category, formula, *, op=None, **kw) -> InstrInfo:
+    return InstrInfo(name, versions, operands, category, op or name, formula, code=code, **kw)
 
 
 def _ir(op: str, *args: str) -> Rewrite:
@@ -148,102 +157,102 @@ C = ("c",)
 S = ("s",)
 
 _ARITH = [
-    _row("add", PS_ALL | VS, "dss", "arith", "d = a + b",
+    _row("add", 2, PS_ALL | VS, "dss", "arith", "d = a + b",
          lowers=_ir("add")),
-    _row("sub", PS_ALL | VS, "dss", "arith", "d = a - b",
+    _row("sub", 3, PS_ALL | VS, "dss", "arith", "d = a - b",
          lowers=_ir("sub")),
-    _row("mul", PS_ALL | VS, "dss", "arith", "d = a * b",
+    _row("mul", 5, PS_ALL | VS, "dss", "arith", "d = a * b",
          lowers=_ir("mul")),
-    _row("mad", PS_ALL | VS, "dsss", "arith", "d = a * b + c",
+    _row("mad", 4, PS_ALL | VS, "dsss", "arith", "d = a * b + c",
          lowers=_ir("mad", "a", "b", "c")),
-    _row("mov", PS_ALL | VS, "ds", "arith", "d = a",
+    _row("mov", 1, PS_ALL | VS, "ds", "arith", "d = a",
          lowers=Rewrite("a", variants=((_to_address, rw.MOV_A0),))),
-    _row("nop", PS_ALL | VS, "", "arith", "nothing", slot_overrides=tuple(
+    _row("nop", 0, PS_ALL | VS, "", "arith", "nothing", slot_overrides=tuple(
         (v, 0) for v in sorted(PS1.names)), lowers=NO_CODE),
-    _row("dp3", PS_ALL | VS, "dss", "arith", "d = a.x*b.x + a.y*b.y + a.z*b.z (replicated)",
+    _row("dp3", 8, PS_ALL | VS, "dss", "arith", "d = a.x*b.x + a.y*b.y + a.z*b.z (replicated)",
          lowers=_ir("dp3")),
-    _row("dp4", PS12_13 | PS14 | PS2UP | VS, "dss", "arith",
+    _row("dp4", 9, PS12_13 | PS14 | PS2UP | VS, "dss", "arith",
          "d = a.x*b.x + a.y*b.y + a.z*b.z + a.w*b.w (replicated)",
          slot_overrides=(("ps_1_2", 2), ("ps_1_3", 2)), lowers=_ir("dp4")),
-    _row("lrp", PS1 | PS2UP | VS2UP, "dsss", "arith", "d = a*b + (1-a)*c",
+    _row("lrp", 18, PS1 | PS2UP | VS2UP, "dsss", "arith", "d = a*b + (1-a)*c",
          slots=2, slot_overrides=tuple((v, 1) for v in sorted(PS1.names)),
          lowers=_ir("lrp", "a", "b", "c")),
-    _row("cnd", PS10_13, "dsss", "arith", "d = (r0.a > 0.5) ? b : c for all components",
+    _row("cnd", 80, PS10_13, "dsss", "arith", "d = (r0.a > 0.5) ? b : c for all components",
          lowers=Rewrite(rw.CND_ALPHA, variants=((_coissued_colour, rw.CND_COISSUE),))),
-    _row("cnd", PS14, "dsss", "arith", "d = (a > 0.5) ? b : c per component",
+    _row("cnd", 80, PS14, "dsss", "arith", "d = (a > 0.5) ? b : c per component",
          lowers=_ir("cnd", "a", "b", "c")),
-    _row("cmp", PS12_13 | PS14 | PS2UP, "dsss", "arith", "d = (a >= 0) ? b : c per component",
+    _row("cmp", 88, PS12_13 | PS14 | PS2UP, "dsss", "arith", "d = (a >= 0) ? b : c per component",
          slot_overrides=(("ps_1_2", 2), ("ps_1_3", 2)), lowers=_ir("cmp", "a", "b", "c")),
-    _row("bem", PS14, "dss", "arith",
+    _row("bem", 89, PS14, "dss", "arith",
          "d.r = a.r + M00(n)*b.r + M10(n)*b.g; d.g = a.g + M01(n)*b.r + M11(n)*b.g "
          "(n = destination register number, M = D3DTSS_BUMPENVMAT of stage n)",
          slots=2, dst_kinds=R, writes="xy",
          lowers=Rewrite(rw.BEM, dst_uniform=("bumpenv", "bumpenv"))),
-    _row("min", PS2UP | VS, "dss", "arith", "d = min(a, b) per component",
+    _row("min", 10, PS2UP | VS, "dss", "arith", "d = min(a, b) per component",
          lowers=_ir("min")),
-    _row("max", PS2UP | VS, "dss", "arith", "d = max(a, b) per component",
+    _row("max", 11, PS2UP | VS, "dss", "arith", "d = max(a, b) per component",
          lowers=_ir("max")),
-    _row("sge", VS, "dss", "arith", "d = (a >= b) ? 1 : 0 per component",
+    _row("sge", 13, VS, "dss", "arith", "d = (a >= b) ? 1 : 0 per component",
          lowers=_ir("sge")),
-    _row("slt", VS, "dss", "arith", "d = (a < b) ? 1 : 0 per component",
+    _row("slt", 12, VS, "dss", "arith", "d = (a < b) ? 1 : 0 per component",
          lowers=_ir("slt")),
-    _row("rcp", PS2UP | VS, "dx", "arith", "d = 1/a (replicated; 1/0 = +inf)",
+    _row("rcp", 6, PS2UP | VS, "dx", "arith", "d = 1/a (replicated; 1/0 = +inf)",
          lowers=_ir("rcp", "a")),
-    _row("rsq", PS2UP | VS, "dx", "arith", "d = 1/sqrt(|a|) (replicated)",
+    _row("rsq", 7, PS2UP | VS, "dx", "arith", "d = 1/sqrt(|a|) (replicated)",
          lowers=_ir("rsq", "a")),
-    _row("exp", PS2UP | VS, "dx", "arith", "d = 2^a (full precision, replicated)",
+    _row("exp", 14, PS2UP | VS, "dx", "arith", "d = 2^a (full precision, replicated)",
          slot_overrides=(("vs_1_1", 10),), lowers=_ir("exp2", "a")),
-    _row("log", PS2UP | VS, "dx", "arith", "d = log2(|a|) (full precision, replicated)",
+    _row("log", 15, PS2UP | VS, "dx", "arith", "d = log2(|a|) (full precision, replicated)",
          slot_overrides=(("vs_1_1", 10),), lowers=_ir("log2", "a")),
-    _row("expp", VS1, "dx", "arith", "d = (2^floor(a), a - floor(a), 2^a approx, 1)",
+    _row("expp", 78, VS1, "dx", "arith", "d = (2^floor(a), a - floor(a), 2^a approx, 1)",
          lowers=Rewrite(rw.EXPP_VS1)),
-    _row("expp", VS2 | VS3, "dx", "arith", "d = 2^a partial precision",
+    _row("expp", 78, VS2 | VS3, "dx", "arith", "d = 2^a partial precision",
          lowers=_ir("exp2", "a")),
-    _row("logp", VS1, "dx", "arith",
+    _row("logp", 79, VS1, "dx", "arith",
          "v = |a|; d = (floor(log2 v), v / 2^floor(log2 v), log2 v approx, 1)",
          lowers=Rewrite(rw.LOGP_VS1)),
-    _row("logp", VS2 | VS3, "dx", "arith", "d = log2(|a|) partial precision",
+    _row("logp", 79, VS2 | VS3, "dx", "arith", "d = log2(|a|) partial precision",
          lowers=_ir("log2", "a")),
-    _row("frc", PS2UP | VS, "ds", "arith", "d = a - floor(a)",
+    _row("frc", 19, PS2UP | VS, "ds", "arith", "d = a - floor(a)",
          slot_overrides=(("vs_1_1", 3),), lowers=_ir("frc", "a")),
-    _row("lit", VS, "ds", "arith",
+    _row("lit", 16, VS, "ds", "arith",
          "d = (1, max(a.x, 0), a.x > 0 ? max(a.y, 0)^clamp(a.w, -128, 128) : 0, 1)",
          slot_overrides=(("vs_2_0", 3), ("vs_2_x", 3), ("vs_2_a", 3), ("vs_3_0", 3)),
          lowers=Rewrite(rw.LIT)),
-    _row("dst", VS, "dss", "arith", "d = (1, a.y*b.y, a.z, b.w)", lowers=Rewrite(rw.DST)),
-    _row("m3x2", PS2UP | VS, "dss", "arith", "d.x = dp3(a, b[0]); d.y = dp3(a, b[1])",
+    _row("dst", 17, VS, "dss", "arith", "d = (1, a.y*b.y, a.z, b.w)", lowers=Rewrite(rw.DST)),
+    _row("m3x2", 24, PS2UP | VS, "dss", "arith", "d.x = dp3(a, b[0]); d.y = dp3(a, b[1])",
          slots=2, writes="xy", lowers=_ir("dp3"), matrix_rows=2),
-    _row("m3x3", PS2UP | VS, "dss", "arith", "d.i = dp3(a, b[i]) for i = 0..2 (b[i] = b + i)",
+    _row("m3x3", 23, PS2UP | VS, "dss", "arith", "d.i = dp3(a, b[i]) for i = 0..2 (b[i] = b + i)",
          slots=3, writes="xyz", lowers=_ir("dp3"), matrix_rows=3),
-    _row("m3x4", PS2UP | VS, "dss", "arith", "d.i = dp3(a, b[i]) for i = 0..3", slots=4,
+    _row("m3x4", 22, PS2UP | VS, "dss", "arith", "d.i = dp3(a, b[i]) for i = 0..3", slots=4,
          writes="xyzw", lowers=_ir("dp3"), matrix_rows=4),
-    _row("m4x3", PS2UP | VS, "dss", "arith", "d.i = dp4(a, b[i]) for i = 0..2", slots=3,
+    _row("m4x3", 21, PS2UP | VS, "dss", "arith", "d.i = dp4(a, b[i]) for i = 0..2", slots=3,
          writes="xyz", lowers=_ir("dp4"), matrix_rows=3),
-    _row("m4x4", PS2UP | VS, "dss", "arith", "d.i = dp4(a, b[i]) for i = 0..3", slots=4,
+    _row("m4x4", 20, PS2UP | VS, "dss", "arith", "d.i = dp4(a, b[i]) for i = 0..3", slots=4,
          writes="xyzw", lowers=_ir("dp4"), matrix_rows=4),
-    _row("abs", PS2UP | VS2UP, "ds", "arith", "d = |a|", lowers=_ir("abs", "a")),
-    _row("crs", PS2UP | VS2UP, "dss", "arith", "d.xyz = cross(a.xyz, b.xyz)", slots=2,
+    _row("abs", 35, PS2UP | VS2UP, "ds", "arith", "d = |a|", lowers=_ir("abs", "a")),
+    _row("crs", 33, PS2UP | VS2UP, "dss", "arith", "d.xyz = cross(a.xyz, b.xyz)", slots=2,
          lowers=_ir("crs")),
-    _row("nrm", PS2UP | VS2UP, "ds", "arith", "d = a / length(a.xyz)", slots=3,
+    _row("nrm", 36, PS2UP | VS2UP, "ds", "arith", "d = a / length(a.xyz)", slots=3,
          lowers=_ir("nrm", "a")),
-    _row("pow", PS2UP | VS2UP, "dxx", "arith", "d = |a|^b (replicated)", slots=3,
+    _row("pow", 32, PS2UP | VS2UP, "dxx", "arith", "d = |a|^b (replicated)", slots=3,
          lowers=_ir("pow")),
-    _row("sgn", VS2UP, "dsss", "arith", "d = sign(a) per component (b, c: scratch temps)",
+    _row("sgn", 34, VS2UP, "dsss", "arith", "d = sign(a) per component (b, c: scratch temps)",
          slots=3, lowers=_ir("sign", "a")),
-    _row("sincos", PS2 | VS2, "dxss", "arith",
+    _row("sincos", 37, PS2 | VS2, "dxss", "arith",
          "d.x = cos(a), d.y = sin(a) (b, c = D3DSINCOSCONST1/2)", slots=8,
          lowers=Rewrite(rw.SINCOS)),
-    _row("sincos", PS3 | VS3, "dx", "arith", "d.x = cos(a), d.y = sin(a)", slots=8,
+    _row("sincos", 37, PS3 | VS3, "dx", "arith", "d.x = cos(a), d.y = sin(a)", slots=8,
          lowers=Rewrite(rw.SINCOS)),
-    _row("dp2add", PS2UP, "dssx", "arith", "d = a.x*b.x + a.y*b.y + c (replicated)", slots=2,
+    _row("dp2add", 90, PS2UP, "dssx", "arith", "d = a.x*b.x + a.y*b.y + c (replicated)", slots=2,
          lowers=Rewrite(rw.DP2ADD)),
-    _row("mova", VS2UP, "ds", "arith", "a0 = round_half_away_from_zero(a)",
+    _row("mova", 46, VS2UP, "ds", "arith", "a0 = round_half_away_from_zero(a)",
          dst_kinds=("a",), lowers=Rewrite(rw.MOVA)),
-    _row("dsx", PS2X | PS3, "ds", "arith", "d = d(a)/dx (screen-space gradient)", slots=2,
+    _row("dsx", 91, PS2X | PS3, "ds", "arith", "d = d(a)/dx (screen-space gradient)", slots=2,
          lowers=_ir("ddx", "a"), gradient=True),
-    _row("dsy", PS2X | PS3, "ds", "arith", "d = d(a)/dy (screen-space gradient)", slots=2,
+    _row("dsy", 92, PS2X | PS3, "ds", "arith", "d = d(a)/dy (screen-space gradient)", slots=2,
          lowers=_ir("ddy", "a"), gradient=True),
-    _row("setp", PREDICATE_VERSIONS, "dss", "flow", "p0 = a <cmp> b per component",
+    _row("setp", 94, PREDICATE_VERSIONS, "dss", "flow", "p0 = a <cmp> b per component",
          dst_kinds=("p",), lowers=Handler(fl.setp)),
 ]
 
@@ -253,112 +262,113 @@ _PS1_TEX = dict(dst_kinds=T, src_kinds=(T,), modifiers=False)
 _PAD = Handler(tx.pad)
 _M3X3 = Handler(tx.texm3x3)
 _TEXTURE = [
-    _row("tex", PS10_13, "d", "tex", "t(m) = sample(stage m, texcoord m)", dst_kinds=T,
+    _row("tex", 66, PS10_13, "d", "tex", "t(m) = sample(stage m, texcoord m)", dst_kinds=T,
          modifiers=False, lowers=Handler(tx.tex)),
-    _row("texcoord", PS10_13, "d", "tex", "t(m) = (sat(tc.x), sat(tc.y), sat(tc.z), 1)",
+    _row("texcoord", 64, PS10_13, "d", "tex", "t(m) = (sat(tc.x), sat(tc.y), sat(tc.z), 1)",
          dst_kinds=T, modifiers=False, lowers=Handler(tx.texcoord)),
-    _row("texbem", PS10_13, "ds", "tex",
+    _row("texbem", 67, PS10_13, "ds", "tex",
          "t(m) = sample(m, tc(m).uv + M(m) * t(n).rg)", lowers=Handler(tx.texbem), **_PS1_TEX),
-    _row("texbeml", PS10_13, "ds", "tex",
+    _row("texbeml", 68, PS10_13, "ds", "tex",
          "texbem, then t(m) *= sat(t(n).b * LSCALE(m) + LOFFSET(m))", extra_arith=1,
          lowers=Handler(tx.texbeml), **_PS1_TEX),
-    _row("texreg2ar", PS10_13, "ds", "tex", "t(m) = sample(m, (t(n).a, t(n).r))",
+    _row("texreg2ar", 69, PS10_13, "ds", "tex", "t(m) = sample(m, (t(n).a, t(n).r))",
          lowers=Handler(partial(tx.texreg2, pattern="wxxx")), **_PS1_TEX),
-    _row("texreg2gb", PS10_13, "ds", "tex", "t(m) = sample(m, (t(n).g, t(n).b))",
+    _row("texreg2gb", 70, PS10_13, "ds", "tex", "t(m) = sample(m, (t(n).g, t(n).b))",
          lowers=Handler(partial(tx.texreg2, pattern="yzzz")), **_PS1_TEX),
-    _row("texreg2rgb", PS12_13, "ds", "tex", "t(m) = sample(m, t(n).rgb)",
+    _row("texreg2rgb", 82, PS12_13, "ds", "tex", "t(m) = sample(m, t(n).rgb)",
          lowers=Handler(partial(tx.texreg2, pattern="xyzz", default="3d")), **_PS1_TEX),
-    _row("texm3x2pad", PS10_13, "ds", "tex", "u = tc(m).xyz . t(n).rgb (no write)",
+    _row("texm3x2pad", 71, PS10_13, "ds", "tex", "u = tc(m).xyz . t(n).rgb (no write)",
          lowers=_PAD, **_PS1_TEX),
-    _row("texm3x2tex", PS10_13, "ds", "tex",
+    _row("texm3x2tex", 72, PS10_13, "ds", "tex",
          "v = tc(m+1).xyz . t(n).rgb; t(m+1) = sample(m+1, (u, v))",
          lowers=Handler(tx.texm3x2tex), **_PS1_TEX),
-    _row("texm3x2depth", PS13, "ds", "tex",
+    _row("texm3x2depth", 84, PS13, "ds", "tex",
          "w = tc(m+1).xyz . t(n).rgb; depth = (w == 0) ? 1 : sat(u / w)",
          lowers=Handler(tx.texm3x2depth), **_PS1_TEX),
-    _row("texm3x3pad", PS10_13, "ds", "tex", "row k of a 3x3: tc(m).xyz . t(n).rgb (no write)",
+    _row("texm3x3pad", 73, PS10_13, "ds", "tex", "row k of a 3x3: tc(m).xyz . t(n).rgb (no write)",
          lowers=_PAD, **_PS1_TEX),
-    _row("texm3x3tex", PS10_13, "ds", "tex",
+    _row("texm3x3tex", 74, PS10_13, "ds", "tex",
          "w = tc(m+2).xyz . t(n).rgb; t(m+2) = sample(m+2, (u, v, w))",
          lowers=_M3X3, **_PS1_TEX),
-    _row("texm3x3", PS12_13, "ds", "tex", "t(m+2) = (u, v, w, 1)", lowers=_M3X3,
+    _row("texm3x3", 86, PS12_13, "ds", "tex", "t(m+2) = (u, v, w, 1)", lowers=_M3X3,
          **_PS1_TEX),
-    _row("texm3x3spec", PS10_13, "dss", "tex",
+    _row("texm3x3spec", 76, PS10_13, "dss", "tex",
          "N = (u, v, w), E = c.xyz; t(m+2) = sample(m+2, 2 N (N.E)/(N.N) - E)",
          dst_kinds=T, src_kinds=(T, C), modifiers=False, lowers=_M3X3),
-    _row("texm3x3vspec", PS10_13, "ds", "tex",
+    _row("texm3x3vspec", 77, PS10_13, "ds", "tex",
          "as texm3x3spec with E = (tc(m).w, tc(m+1).w, tc(m+2).w)", lowers=_M3X3,
          **_PS1_TEX),
-    _row("texdp3", PS12_13, "ds", "tex", "t(m) = tc(m).xyz . t(n).rgb (replicated)",
+    _row("texdp3", 85, PS12_13, "ds", "tex", "t(m) = tc(m).xyz . t(n).rgb (replicated)",
          lowers=Handler(tx.texdp3), **_PS1_TEX),
-    _row("texdp3tex", PS12_13, "ds", "tex",
+    _row("texdp3tex", 83, PS12_13, "ds", "tex",
          "t(m) = sample(m, (tc(m).xyz . t(n).rgb, 0))",
          lowers=Handler(tx.texdp3tex), **_PS1_TEX),
-    _row("texkill", PS10_13, "d", "tex", "discard if any of tc(m).xyz < 0", op="texkill",
+    _row("texkill", 65, PS10_13, "d", "tex", "discard if any of tc(m).xyz < 0", op="texkill",
          dst_kinds=T, modifiers=False, lowers=Handler(tx.texkill)),
-    _row("texkill", PS14, "d", "tex", "discard if any of a.xyz < 0", dst_kinds=TR,
+    _row("texkill", 65, PS14, "d", "tex", "discard if any of a.xyz < 0", dst_kinds=TR,
          modifiers=False, lowers=Handler(tx.texkill)),
-    _row("texkill", PS2, "s", "tex", "discard if any of a.xyzw < 0", src_kinds=(TR,),
+    _row("texkill", 65, PS2, "s", "tex", "discard if any of a.xyzw < 0", src_kinds=(TR,),
          modifiers=False, lowers=Handler(tx.texkill)),
-    _row("texkill", PS3, "s", "tex", "discard if any of a.xyzw < 0", modifiers=False,
+    _row("texkill", 65, PS3, "s", "tex", "discard if any of a.xyzw < 0", modifiers=False,
          lowers=Handler(tx.texkill)),
-    _row("texld", PS14, "ds", "tex",
+    _row("texld", 66, PS14, "ds", "tex",
          "r(n) = sample(stage n, a.xyz) (a = t# coordinates or, in phase 2, r# dependent)",
          dst_kinds=R, src_kinds=(TR,), modifiers=False, lowers=Handler(tx.texld)),
-    _row("texcrd", PS14, "ds", "tex", "r(n) = texcoord a (unclamped; .w undefined)",
+    _row("texcrd", 64, PS14, "ds", "tex", "r(n) = texcoord a (unclamped; .w undefined)",
          dst_kinds=R, src_kinds=(T,), lowers=Handler(tx.texcrd)),
-    _row("texdepth", PS14, "d", "tex", "depth = (r5.g == 0) ? 1 : sat(r5.r / r5.g)",
+    _row("texdepth", 87, PS14, "d", "tex", "depth = (r5.g == 0) ? 1 : sat(r5.r / r5.g)",
          dst_kinds=R, modifiers=False, lowers=Handler(tx.texdepth)),
-    *[_row(name, versions, "dsS", "tex", formula, dst_kinds=R, src_kinds=(coords, S),
-           lowers=Handler(partial(tx.texld, **flags)), gradient=True)
+    *[_row(name, 66, versions, "dsS", "tex", formula, control=control, dst_kinds=R,
+           src_kinds=(coords, S), lowers=Handler(partial(tx.texld, **flags)), gradient=True)
       # ps_2_x reads coordinates from t# or r#; ps_3_0 from any readable register (v#, r# ...)
       for versions, coords in ((PS2, TR), (PS3, None))
-      for name, formula, flags in (("texld", "d = sample(sampler b, a)", {}),
-                                   ("texldp", "d = sample(sampler b, a.xyz / a.w)",
-                                    {"proj": True}),
-                                   ("texldb", "d = sample(sampler b, a.xyz, lod bias a.w)",
-                                    {"bias": True}))],
-    _row("texldd", PS2X | PS3, "dsSss", "tex", "d = sample(sampler b, a, ddx = c, ddy = e)",
+      # one opcode, D3DSIO_TEX; bits 16-17 of the token say projected (1) or biased (2)
+      for name, formula, flags, control in (
+          ("texld", "d = sample(sampler b, a)", {}, 0),
+          ("texldp", "d = sample(sampler b, a.xyz / a.w)", {"proj": True}, 1),
+          ("texldb", "d = sample(sampler b, a.xyz, lod bias a.w)", {"bias": True}, 2))],
+    _row("texldd", 93, PS2X | PS3, "dsSss", "tex", "d = sample(sampler b, a, ddx = c, ddy = e)",
          slots=3, dst_kinds=R, src_kinds=(None, S), lowers=Handler(tx.texldd)),
-    _row("texldl", PS3 | VS3, "dsS", "tex", "d = sample(sampler b, a.xyz, lod a.w)", slots=2,
+    _row("texldl", 95, PS3 | VS3, "dsS", "tex", "d = sample(sampler b, a.xyz, lod a.w)", slots=2,
          src_kinds=(None, S), lowers=Handler(partial(tx.texld, lod=True))),
 ]
 
 _FLOW = [
-    _row("call", FLOW_VERSIONS, "l", "flow", "call subroutine l", slots=2,
+    _row("call", 25, FLOW_VERSIONS, "l", "flow", "call subroutine l", slots=2,
          lowers=Handler(fl.call)),
-    _row("callnz", FLOW_VERSIONS, "lb", "flow", "call subroutine l if b", slots=3,
+    _row("callnz", 26, FLOW_VERSIONS, "lb", "flow", "call subroutine l if b", slots=3,
          lowers=Handler(fl.callnz)),
-    _row("ret", FLOW_VERSIONS, "", "flow", "return", slots=1, lowers=Handler(fl.ret),
+    _row("ret", 28, FLOW_VERSIONS, "", "flow", "return", slots=1, lowers=Handler(fl.ret),
          ends_body=True),
-    _row("label", FLOW_VERSIONS, "l", "flow", "subroutine entry", slots=0, lowers=NO_CODE,
+    _row("label", 30, FLOW_VERSIONS, "l", "flow", "subroutine entry", slots=0, lowers=NO_CODE,
          ends_body=True),
-    _row("loop", LOOP_VERSIONS, "LI", "flow", "loop i.x times, aL from i.y step i.z", slots=3,
+    _row("loop", 27, LOOP_VERSIONS, "LI", "flow", "loop i.x times, aL from i.y step i.z", slots=3,
          lowers=Handler(fl.loop)),
-    _row("endloop", LOOP_VERSIONS, "", "flow", "end of loop", slots=2,
+    _row("endloop", 29, LOOP_VERSIONS, "", "flow", "end of loop", slots=2,
          lowers=Handler(fl.endloop)),
-    _row("rep", FLOW_VERSIONS, "I", "flow", "repeat i.x times", slots=3,
+    _row("rep", 38, FLOW_VERSIONS, "I", "flow", "repeat i.x times", slots=3,
          lowers=Handler(fl.rep)),
-    _row("endrep", FLOW_VERSIONS, "", "flow", "end of rep", slots=2,
+    _row("endrep", 39, FLOW_VERSIONS, "", "flow", "end of rep", slots=2,
          lowers=Handler(fl.endrep)),
-    _row("if", FLOW_VERSIONS, "b", "flow", "if b (or if_cmp a, b)", slots=3,
+    _row("if", 40, FLOW_VERSIONS, "b", "flow", "if b (or if_cmp a, b)", slots=3, compare_code=41,
          lowers=Handler(fl.if_)),
-    _row("else", FLOW_VERSIONS, "", "flow", "else", slots=1, lowers=Handler(fl.else_)),
-    _row("endif", FLOW_VERSIONS, "", "flow", "end of if", slots=1, lowers=Handler(fl.endif)),
-    _row("break", FLOW_VERSIONS, "", "flow", "leave the loop (break_cmp a, b: if a <cmp> b)",
+    _row("else", 42, FLOW_VERSIONS, "", "flow", "else", slots=1, lowers=Handler(fl.else_)),
+    _row("endif", 43, FLOW_VERSIONS, "", "flow", "end of if", slots=1, lowers=Handler(fl.endif)),
+    _row("break", 44, FLOW_VERSIONS, "", "flow", "leave the loop (break_cmp a, b: if a <cmp> b)",
+         compare_code=45,
          slots=1, lowers=Handler(fl.break_)),
-    _row("breakp", PREDICATE_VERSIONS, "p", "flow", "leave the loop if p0", slots=3,
+    _row("breakp", 96, PREDICATE_VERSIONS, "p", "flow", "leave the loop if p0", slots=3,
          lowers=Handler(fl.break_)),
 ]
 
 # Instructions that are no instruction: the version token, constants, declarations, phase.
 _SETUP = [
-    _row("def", PS_ALL | VS, "dffff", "setup", "c# = (x, y, z, w)", slots=0, lowers=NO_CODE, dst_kinds=C),
-    _row("defi", PS2X | PS3 | VS2UP, "dnnnn", "setup", "i# = (x, y, z, w)", slots=0, lowers=NO_CODE,
+    _row("def", 81, PS_ALL | VS, "dffff", "setup", "c# = (x, y, z, w)", slots=0, lowers=NO_CODE, dst_kinds=C),
+    _row("defi", 48, PS2X | PS3 | VS2UP, "dnnnn", "setup", "i# = (x, y, z, w)", slots=0, lowers=NO_CODE,
          dst_kinds=("i",)),
-    _row("defb", PS2X | PS3 | VS2UP, "dB", "setup", "b# = value", slots=0, lowers=NO_CODE, dst_kinds=("b",)),
-    _row("dcl", PS2UP | VS, "d", "setup", "declare an input, output or sampler", slots=0, lowers=NO_CODE),
-    _row("phase", PS14, "", "setup", "ends phase 1 of a ps_1_4 shader", slots=0, lowers=NO_CODE),
+    _row("defb", 47, PS2X | PS3 | VS2UP, "dB", "setup", "b# = value", slots=0, lowers=NO_CODE, dst_kinds=("b",)),
+    _row("dcl", 31, PS2UP | VS, "d", "setup", "declare an input, output or sampler", slots=0, lowers=NO_CODE),
+    _row("phase", 0xFFFD, PS14, "", "setup", "ends phase 1 of a ps_1_4 shader", slots=0, lowers=NO_CODE),
 ]
 
 TABLE: tuple[InstrInfo, ...] = tuple(_ARITH + _TEXTURE + _FLOW + _SETUP)
@@ -378,6 +388,22 @@ _BY_VERSION: dict[tuple[str, str], InstrInfo] = {}
 for _info in TABLE:
     for _version in _info.versions.names:
         _BY_VERSION.setdefault((_info.name, _version), _info)
+
+
+# (opcode number, control bits, version) -> the row: what a bytecode reader asks per instruction
+_BY_CODE: dict[tuple[int, int, str], InstrInfo] = {}
+for _info in TABLE:
+    for _code in (_info.code, _info.compare_code):
+        if _code is None:
+            continue
+        for _version in _info.versions.names:
+            _BY_CODE.setdefault((_code, _info.control, _version), _info)
+
+
+def by_code(code: int, control: int, version: str) -> InstrInfo | None:
+    """The row of D3DSIO opcode `code` with opcode-specific `control` bits (texldp's 1; 0 for
+    most) in `version`; None when the version has no such instruction."""
+    return _BY_CODE.get((code, control, version))
 
 
 def rows_named(name: str) -> list[InstrInfo]:

@@ -1,0 +1,178 @@
+"""Bytecode that fxc wrote (tests/data/d3dbc/MANIFEST.md: SDL's Direct3D 9 pixel shaders,
+fxc 10.1): it reads, writes back byte for byte, passes the assembly checks, validates per
+card and renders on both back ends; our compile of the HLSL source beside it draws the same
+picture as fxc's bytecode on both back ends."""
+from __future__ import annotations
+
+import hashlib
+import re
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import effects
+from effects.host.runtime import render_frame
+from effects.shaders.asm import check
+from effects.shaders.asm.text import program_text
+from effects.shaders.d3dbc import load_shader, read_header, read_shader, write_program
+from tests.paths import ROOT, TESTS
+from tests.shaders.d3dbc import mojoshader
+
+DATA = TESTS / "data" / "d3dbc"
+SDL = DATA / "sdl"
+HEADERS = sorted(SDL.glob("*.h")) + [SDL / "SDL2_shaders_d3d_excerpt.c"]
+SIZE = (48, 48)
+
+
+def _manifest_sha(name: str) -> str:
+    row = next(line for line in (DATA / "MANIFEST.md").read_text().splitlines()
+               if line.startswith(f"| `sdl/{name}`"))
+    return re.findall(r"`([0-9a-f]{64})`", row)[0]
+
+
+def test_every_file_is_in_the_manifest_with_its_hash():
+    for path in sorted(SDL.iterdir()):
+        assert f"`sdl/{path.name}`" in (DATA / "MANIFEST.md").read_text(), path.name
+    for path in HEADERS:
+        data = read_header(path.read_text())[0][1]
+        assert hashlib.sha256(data).hexdigest() == _manifest_sha(path.name)
+    hlsl = SDL / "D3D9_PixelShader_Palette.hlsl"
+    assert hashlib.sha256(hlsl.read_bytes()).hexdigest() == _manifest_sha(hlsl.name)
+
+
+@pytest.mark.parametrize("path", HEADERS, ids=[p.name for p in HEADERS])
+def test_fxc_bytecode_reads_checks_and_writes_back_byte_for_byte(path):
+    data = read_header(path.read_text())[0][1]
+    binary = read_shader(data, str(path))
+    assert binary.table.creator.startswith("Microsoft (R) HLSL Shader Compiler ")
+    assert binary.table.target == binary.program.name == "ps_2_0"
+    assert check(binary.program) == []
+    assert write_program(binary.program, binary.table) == data
+    # fxc's listing in the header's `#if 0` is our disassembly, line for line
+    if path.suffix == ".h":
+        listed = [line.strip() for line in path.read_text().split("#endif")[0].splitlines()
+                  if line.startswith("    ") and line.strip()]
+        assert listed == program_text(binary.program).strip().splitlines()
+    lib = mojoshader.load()
+    if lib is not None:
+        assert mojoshader.parse(lib, data, "glsl")[0] == []
+
+
+VS = """asm {
+    vs_1_1
+    dcl_position v0
+    dcl_texcoord v1
+    m4x4 oPos, v0, c0
+    mov oT0, v1
+    mov oD0, c4
+}"""
+
+
+def _pass(pixel_shader: str, extra: str = "") -> str:
+    return f"""pass P0 {{
+        VertexShaderConstantF[0] = <WorldViewProjection>;
+        VertexShaderConstantF[4] = {{1, 0.75, 0.5, 1}};
+        VertexShader = {VS};
+        Texture[0] = <ImageTexture>; Texture[1] = <SecondTexture>; Texture[2] = <ImageTexture>;
+        {extra}
+        PixelShader = {pixel_shader};
+    }}"""
+
+
+def _effect(tmp_path, body: str, include: str = ""):
+    ramp = np.zeros((1, 256, 4), np.uint8)       # a 1D palette, one texel high, as SDL binds
+    ramp[0, :, 0] = np.arange(256)
+    ramp[0, :, 1] = 255 - np.arange(256)
+    ramp[0, :, 3] = 255
+    Image.fromarray(ramp).save(tmp_path / "palette.png")
+    text = f"""{include}
+float4x4 WorldViewProjection : WORLDVIEWPROJECTION;
+texture ImageTexture < string ResourceName = "{ROOT / 'fxfiles' / 'textures' / 'stones_base.png'}"; >;
+texture SecondTexture < string ResourceName = "{tmp_path / 'palette.png'}"; >;
+{body}
+"""
+    return effects.load_effect(text, include_dirs=[str(SDL)])
+
+
+def _fxc(name: str) -> str:
+    data = read_header((SDL / name).read_text())[0][1]
+    return "asm { " + program_text(read_shader(data, name).program) + " }"
+
+
+@pytest.fixture(scope="module")
+def palette_effect(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("palette")
+    return _effect(tmp, f"""
+technique Fxc {{ {_pass(_fxc("D3D9_PixelShader_Palette.h"))} }}
+technique Ours {{ {_pass("compile ps_2_0 main()")} }}
+technique Index {{ {_pass("asm { ps_2_0 dcl t0.xy dcl_2d s0 texld r0, t0, s0 mov oC0, r0 }")} }}
+""", include='#include "D3D9_PixelShader_Palette.hlsl"')
+
+
+def test_fxc_bytecode_validates_per_card(palette_effect):
+    assert palette_effect.validate("Fxc", effects.load_profile("radeon9700")).ok
+    refused = palette_effect.validate("Fxc", effects.load_profile("geforce3"))
+    assert not refused.ok
+    assert any("ps_2_0" in str(r) for p in refused.pass_reports for r in p.reasons)
+
+
+@pytest.mark.parametrize("backend", ["numpy", "gl"])
+def test_our_compile_and_fxcs_draw_the_same_palette_picture(palette_effect, backend):
+    frames = {t: render_frame(palette_effect, "radeon9700", technique=t, size=SIZE,
+                              backend=backend) for t in ("Fxc", "Ours", "Index")}
+    fxc, ours, index = (frames[t].image.astype(int) for t in ("Fxc", "Ours", "Index"))
+    drawn = fxc[..., 3] > 0
+    assert drawn.mean() > 0.4 and not frames["Fxc"].warnings
+    assert np.abs(fxc - ours).max() <= 1
+    # by hand: the palette's red is the index (255/256 scaled, half a texel on), its green
+    # 255 minus that, times the vertex colour (1, 0.75, 0.5)
+    i = index[..., 0][drawn] / 255.0
+    u = i * 255 / 256 + 0.5 / 256
+    texel = np.clip(u * 256 - 0.5, 0, 255)                    # linear filtering between texels
+    assert np.abs(fxc[..., 0][drawn] - texel).max() <= 2
+    assert np.abs(fxc[..., 1][drawn] - (255 - texel) * 0.75).max() <= 2
+
+
+@pytest.mark.parametrize("backend", ["numpy", "gl"])
+def test_fxcs_yuv_shader_draws_bt601_by_hand(tmp_path, backend):
+    # SDL's BT.601 constants: Yoffset, Rcoeff, Gcoeff, Bcoeff (c0-c3)
+    constants = """PixelShaderConstantF[0] = {-0.0627451017, -0.501960814, -0.501960814, 0};
+        PixelShaderConstantF[1] = {1.1644, 0.0, 1.5960, 0};
+        PixelShaderConstantF[2] = {1.1644, -0.3918, -0.8130, 0};
+        PixelShaderConstantF[3] = {1.1644, 2.0172, 0.0, 0};"""
+    effect = _effect(tmp_path, f"""
+technique Fxc {{ {_pass(_fxc("D3D9_PixelShader_YUV.h"), constants)} }}
+technique Planes {{ {_pass("asm { ps_2_0 dcl t0.xy dcl_2d s0 dcl_2d s1 texld r0, t0, s0 "
+                           "texld r1, t0, s1 mov r0.y, r1.x mov oC0, r0 }")} }}
+""")
+    yuv = render_frame(effect, "radeon9700", technique="Fxc", size=SIZE, backend=backend)
+    planes = render_frame(effect, "radeon9700", technique="Planes", size=SIZE, backend=backend)
+    drawn = planes.image[..., 3] > 0
+    y = planes.image[..., 0][drawn] / 255.0               # Y and V: the stone image's red
+    u = planes.image[..., 1][drawn] / 255.0               # U: the palette's red
+    y0, u0, v0 = y - 0.0627451017, u - 0.501960814, y - 0.501960814
+    want = np.stack([1.1644 * y0 + 1.5960 * v0,
+                     (1.1644 * y0 - 0.3918 * u0 - 0.8130 * v0) * 0.75,
+                     (1.1644 * y0 + 2.0172 * u0) * 0.5], -1)
+    got = yuv.image[..., :3][drawn] / 255.0
+    assert np.abs(got - np.clip(want, 0, 1)).max() <= 3 / 255
+
+
+@pytest.mark.parametrize("backend", ["numpy", "gl"])
+def test_fxc63s_jpeg_shader_draws_the_formula_by_hand(tmp_path, backend):
+    effect = _effect(tmp_path, f"""
+technique Fxc {{ {_pass(_fxc("SDL2_shaders_d3d_excerpt.c"))} }}
+technique Planes {{ {_pass("asm { ps_2_0 dcl t0.xy dcl_2d s0 dcl_2d s1 texld r0, t0, s0 "
+                           "texld r1, t0, s1 mov r0.y, r1.x mov oC0, r0 }")} }}
+""")
+    out = render_frame(effect, "radeon9700", technique="Fxc", size=SIZE, backend=backend)
+    planes = render_frame(effect, "radeon9700", technique="Planes", size=SIZE, backend=backend)
+    drawn = planes.image[..., 3] > 0
+    y = planes.image[..., 0][drawn] / 255.0
+    u = planes.image[..., 1][drawn] / 255.0
+    u0, v0 = u - 0.501960814, y - 0.501960814          # the HLSL's JPEG constants
+    want = np.stack([y + 1.402 * v0, (y - 0.3441 * u0 - 0.7141 * v0) * 0.75,
+                     (y + 1.772 * u0) * 0.5], -1)
+    got = out.image[..., :3][drawn] / 255.0
+    assert np.abs(got - np.clip(want, 0, 1)).max() <= 3 / 255
