@@ -8,68 +8,12 @@ script commands are not run, so a user knows why a picture looks as it does.
 """
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-
 from effects.base.errors import EffectError, NoValidTechnique
+from effects.host.diagnostics import parameters_read
 from effects.model import Effect, Technique
-
-
-_NAME = re.compile(r"[A-Za-z_]\w*")
-
-
-def parameters_read(effect: Effect, technique: Technique) -> set[str]:
-    """The parameters the technique's passes read: the uniforms of each compiled shader (its
-    register table, int and bool registers), a shader picked from an array by an expression
-    (the element the values pick, and what the index reads), and the parameters its states
-    name (`<Light>`, `VertexShaderConstant[4] = Bias * 2`), sampler states included."""
-    from effects.model import CompileShader, Expression, ParamRef, SamplerState
-    names = {p.name for p in effect.parameters}
-    read: set[str] = set()
-
-    def value(v: Any) -> None:
-        if isinstance(v, CompileShader):
-            from effects.shaders.shader_value import shader_of
-            try:
-                shader = shader_of(effect, v).compiled
-            except EffectError:
-                return                       # validation says why; nothing is read
-            read.update(n for n in (*shader.constants, *shader.int_registers,
-                                    *shader.bool_registers)
-                        if not n.startswith("$") and n not in shader.preshaders)
-            for preshader in shader.preshaders.values():   # what the host computes from
-                read.update(n for n in preshader.uniforms() if not n.startswith("$"))
-            for arg in v.args:
-                read.update(n for n in _NAME.findall(arg) if n in names)
-        elif isinstance(v, ParamRef):
-            read.add(v.name)
-            param = effect.parameter(v.name)
-            inner = None if param is None else param.value
-            if isinstance(inner, (list, tuple)) and v.index is not None \
-                    and 0 <= v.index < len(inner):
-                value(inner[v.index])
-            elif not isinstance(inner, (list, tuple, np.ndarray)) and inner is not None:
-                value(inner)                 # `VertexShader = <vs>`, `Sampler = <S>`
-        elif isinstance(v, Expression):
-            read.update(n for n in _NAME.findall(v.text) if n in names)
-            from effects.shaders.hlsl.preshader import shader_element
-            try:
-                element = shader_element(effect, v.text, v.location)
-            except EffectError:
-                element = None
-            if element is not None:
-                value(element)
-        elif isinstance(v, SamplerState):
-            for a in v.states:
-                value(a.value)
-
-    for p in technique.passes:
-        for a in p.states:
-            value(a.value)
-    return read
 
 
 @dataclass

@@ -170,6 +170,8 @@ class Frame:
     backend: str
     profile: "CapsProfile"
     warnings: list[EffectWarning] = dataclasses.field(default_factory=list)
+    # what the picture shows and why (`effects.host.diagnostics`), when asked for
+    diagnostics: list[EffectWarning] = dataclasses.field(default_factory=list)
 
 
 class Runtime:
@@ -488,12 +490,17 @@ class Runtime:
 def render_frame(effect: Effect | str, profile: Any, *, technique: Technique | str | None = None,
                  backend: Any = "numpy", scene: Any = None, size: tuple[int, int] | None = None,
                  params: Mapping[str, Any] | None = None, policy: Any = "first",
-                 strict: bool = False) -> Frame:
+                 strict: bool = False, diagnose: bool = False) -> Frame:
     """`render`, returning the Frame (image, technique, pass count, warnings) the command
-    line reports."""
+    line reports; with `diagnose`, its `diagnostics` too (`effects.host.diagnostics`: what
+    nothing sets, states that hide the mesh, a frame of one colour)."""
     runtime = Runtime(effect, profile, scene=scene, size=size, params=params, backend=backend,
                       strict=strict)
-    return runtime.render(technique, policy)
+    frame = runtime.render(technique, policy)
+    if diagnose:
+        from effects.host.diagnostics import diagnose_frame
+        frame.diagnostics = diagnose_frame(runtime, frame.technique, frame.image)
+    return frame
 
 
 def render(effect: Effect | str, profile: Any, *, technique: Technique | str | None = None,
