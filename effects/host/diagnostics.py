@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any, Iterable
 import numpy as np
 
 from effects.base.errors import EffectError, EffectWarning, Location
+from effects.host.semantics import host_would_set
 from effects.model import (CompileShader, Effect, Expression, NullValue, Parameter, ParamRef,
                            SamplerState, ShaderBlock, StateAssignment, Technique)
 
@@ -186,11 +187,13 @@ def unset_parameter_warnings(runtime: "Runtime", technique: Technique
                     reg = compiled.constants.get(name)
                     register = f" (c{reg[0]})" if reg else ""
                     meaning = zero_meaning(param, compiled.stage)
+                    whose = host_would_set(param)
                     out.append(EffectWarning(
                         f"parameter {name} is set by nothing (no initialiser, no semantic or "
                         f"name a host binds, no scene params or --set): the {compiled.target} "
                         f"{compiled.stage} shader of {where} reads it{register} as 0"
-                        f"{': ' + meaning if meaning else ''}", param.location))
+                        f"{': ' + meaning if meaning else ''}{'; ' + whose if whose else ''}",
+                        param.location))
     return out, states
 
 
