@@ -34,8 +34,8 @@ from typing import TYPE_CHECKING, Any, Mapping
 import numpy as np
 
 from effects.host.resources import (DEFAULT_TEXTURE_CACHE, Geometry, MissingTexture, TextureCache,
-                                 TextureSource, check_texture_budget, declared_kind, geometry,
-                                 resolve_texture, stand_in_texture)
+                                 TextureSource, check_texture_budget, declared_kind,
+                                 feeds_a_normal, geometry, resolve_texture, stand_in_texture)
 from effects.base import caches, limits
 from effects.base.errors import EffectError, EffectWarning, Location, NoValidTechnique, SceneError
 from effects.model import Effect, ParamRef, Parameter, SamplerState, Technique
@@ -320,7 +320,7 @@ class Runtime:
     def _stand_in(self, param: Parameter, why: str, at: Location,
                   sampled_as: str | None = None) -> Texture:
         kind = declared_kind(param) or sampled_as or "2d"
-        texture = stand_in_texture(kind)
+        texture = stand_in_texture(kind, normal=feeds_a_normal(self.source_effect, param))
         what = f"texture parameter {param.name}" if param.type.base == "texture" else \
             f"sampler {param.name} (no texture in its sampler_state: the host sets one on its stage)"
         message = f"{what}: {why}; drawn with a stand-in ({texture.name}, {kind})"
