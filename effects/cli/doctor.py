@@ -23,6 +23,7 @@ class Diagnosis:
     bound: list[tuple[str, str]] = field(default_factory=list)      # (parameter, by what)
     unbound: list[tuple[str, str]] = field(default_factory=list)    # (parameter, where)
     unread: list[str] = field(default_factory=list)    # set by nothing, and not read either
+    defaults: list[tuple[str, str]] = field(default_factory=list)   # (parameter, file's value)
     textures: list[tuple[str, str]] = field(default_factory=list)   # (parameter, source)
     stand_ins: list[str] = field(default_factory=list)              # warnings
     unsupported: list[str] = field(default_factory=list)            # script commands
@@ -37,7 +38,7 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
              technique: str | None = None) -> Diagnosis:
     from effects.host.runtime import Runtime
     from effects.host.scripts import is_render_target, unsupported_commands
-    from effects.host.semantics import bind_scene, binding_source, ui_defaults
+    from effects.host.semantics import bind_scene, binding_source, host_would_set, ui_defaults
     runtime = Runtime(effect, profile, scene=scene, params=params or {}, backend=None)
     try:
         chosen = runtime.select(technique)
@@ -59,14 +60,18 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
             convention = {"XNA name": "XNA", "DX8 name": "DirectX 8 SDK"}.get(how) or \
                 (how[:-len(" name")] if how.endswith(" name") else None)
             d.bound.append((p.name, f"bound by name ({convention} convention) as {semantic}"
-                            if convention else f"semantic {semantic}"))
+                            if convention else f"semantic {semantic}" if how == "semantic"
+                            else f"{how} ({semantic})"))
         elif p.name in ui:
             d.bound.append((p.name, "the middle of its UIMin..UIMax range"))
         elif p.type.is_numeric and p.value is None:
             if p.name in read:       # arrays too: Weights[4] that nothing sets reads 0
-                d.unbound.append((p.name, str(p.location)))
+                whose = host_would_set(p)
+                d.unbound.append((p.name, str(p.location) + (f"; {whose}" if whose else "")))
             else:
                 d.unread.append(p.name)
+        elif p.type.is_numeric and p.name in read:
+            d.defaults.append((p.name, _shown(p.value)))
     if chosen is None:
         return d
     for index in range(len(chosen.passes)):
@@ -93,6 +98,17 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
     return d
 
 
+def _shown(value: Any) -> str:
+    """A parameter's value as the file would write it: '0.3, 0.12, 0.03' (float32 shown to
+    its own precision, not as the double it widens to)."""
+    import numpy as np
+    flat = np.asarray(value).reshape(-1)
+    if flat.dtype.kind not in "biuf":
+        return str(value)
+    shown = [f"{float(np.float32(x)):.7g}" if flat.dtype.kind == "f" else str(x) for x in flat[:16]]
+    return ", ".join(shown) + (", ..." if flat.size > 16 else "")
+
+
 def print_diagnosis(d: Diagnosis, path: str, card: str, out) -> None:
     def line(text: str = "") -> None:
         out.print(text, markup=False, highlight=False, soft_wrap=True)
@@ -117,6 +133,10 @@ def print_diagnosis(d: Diagnosis, path: str, card: str, out) -> None:
         line(f"    {param} (declared at {where})")
     if d.unread:
         line(f"  set by nothing, but {name} does not read them: {', '.join(d.unread)}")
+    if d.defaults:
+        line("  keep the file's default (nothing binds them):")
+        for param, value in d.defaults:
+            line(f"    {param} = {value}")
     if d.textures:
         line("  textures the passes sample:")
         for param, source in d.textures:
