@@ -211,6 +211,9 @@ def _at(technique: Technique, index: int, state: str) -> Location:
     return a.location if a is not None else technique.passes[index].location
 
 
+_CULL_COUNTS: dict[tuple, tuple[Any, tuple[int, int]]] = {}   # the viewer redraws often
+
+
 def _culled_front(runtime: "Runtime", mode: str) -> tuple[int, int] | None:
     """(faces toward the camera the cull mode culls, faces toward the camera) of the scene's
     mesh seen by the scene camera, or None for a mesh written in the scene."""
@@ -220,6 +223,19 @@ def _culled_front(runtime: "Runtime", mode: str) -> tuple[int, int] | None:
     if isinstance(mesh, InlineMesh) or len(mesh.indices) == 0:
         return None
     m = runtime.scene.matrices(runtime.size)
+    key = (id(mesh), mode, tuple(runtime.scene.camera.eye),
+           *(np.asarray(m[k], np.float64).tobytes() for k in ("world", "view", "projection")))
+    hit = _CULL_COUNTS.get(key)
+    if hit is not None and hit[0] is mesh:        # the mesh kept: its id is not reused
+        return hit[1]
+    counts = _count_culled(mesh, m, runtime.scene.camera.eye, mode)
+    if len(_CULL_COUNTS) >= 64:
+        _CULL_COUNTS.clear()
+    _CULL_COUNTS[key] = (mesh, counts)
+    return counts
+
+
+def _count_culled(mesh: Any, m: dict[str, np.ndarray], eye_at: Any, mode: str) -> tuple[int, int]:
     tri = np.asarray(mesh.indices, np.int64)
     pos = np.asarray(mesh.positions, np.float64)
     if mesh.space == "clip":
@@ -232,7 +248,7 @@ def _culled_front(runtime: "Runtime", mode: str) -> tuple[int, int] | None:
         a, b, c = (pos[tri[:, k]] for k in range(3))
         normal = np.cross(b - a, c - a) @ np.linalg.inv(m["world"][:3, :3]).T
         centre = world[tri].mean(axis=1)[:, :3] / world[tri].mean(axis=1)[:, 3:4]
-        eye = np.asarray(runtime.scene.camera.eye, np.float64)
+        eye = np.asarray(eye_at, np.float64)
         facing = np.einsum("ij,ij->i", normal, eye - centre) > 0
     w = clip[:, 3]
     ok = (w[tri] > 1e-9).all(axis=1)
@@ -345,11 +361,19 @@ def _truthy(value: Any) -> bool:
 
 
 def uniform_colour(image: np.ndarray) -> tuple[int, int, int] | None:
-    """The frame's one colour (r, g, b), or None when it has more than one."""
-    rgb = image[..., :3].reshape(-1, 3)
-    if len(rgb) == 0 or not (rgb == rgb[0]).all():
+    """The frame's one colour (r, g, b), or None when it has more than one. The viewer asks
+    after every redraw: a sparse look first (a picture rarely agrees there), then every
+    pixel as one 32-bit word each, alpha masked off."""
+    if image.size == 0:
         return None
-    return tuple(int(c) for c in rgb[0])  # type: ignore[return-value]
+    first = image[0, 0, :3]
+    if not (image[::17, ::13, :3] == first).all():
+        return None
+    words = np.ascontiguousarray(image).view(np.uint32) & np.uint32(
+        0xFFFFFF if np.little_endian else 0xFFFFFF00)
+    if not (words == words.flat[0]).all():
+        return None
+    return tuple(int(c) for c in first)  # type: ignore[return-value]
 
 
 def diagnose_frame(runtime: "Runtime", technique: Technique, image: np.ndarray) -> list[EffectWarning]:

@@ -96,4 +96,4 @@ def test_without_its_scene_wood_says_why_it_looks_wrong(tmp_path, capsys):
     assert main(["render", str(FXFILES / "wood.fx"), "-p", "radeon9700", "--size", "32x32",
                  "--no-scene", "-o", str(out)]) == 0
     err = capsys.readouterr().err
-    assert "set by nothing" in err
+    assert "set by nothing" in err and "the frame is one colour (0, 0, 0)" in err
