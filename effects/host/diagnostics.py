@@ -329,7 +329,7 @@ def _likely_causes(runtime: "Runtime", technique: Technique) -> list[str]:
             causes.append("the fixed-function lighting is on (Lighting defaults to TRUE) and "
                           "no light is enabled: vertex colours are the material's ambient times "
                           "Ambient, black unless the effect sets them")
-    if runtime.warnings:
+    if runtime.warnings and technique.passes:
         causes.append("textures drawn with stand-ins (warned above): "
                       + ", ".join(sorted({w.message.split(":")[0] for w in runtime.warnings})))
     return list(dict.fromkeys(causes))
@@ -381,12 +381,24 @@ def diagnose_frame(runtime: "Runtime", technique: Technique, image: np.ndarray) 
     docstring). The viewer calls it after each redraw; `render_frame(diagnose=True)` too."""
     unset, unset_states = unset_parameter_warnings(runtime, technique)
     out = unset + state_warnings(runtime, technique, unset_states)
+    if not technique.passes:
+        out.append(EffectWarning(f"technique {technique.name or '<anonymous>'} has no passes: it "
+                                 "draws nothing (a host's placeholder, such as MikuMikuEffect's "
+                                 "empty shadow and edge techniques)", technique.location))
     colour = uniform_colour(image)
     if colour is not None:
-        clear = tuple(int(round(min(max(c, 0.0), 1.0) * 255)) for c in runtime.scene.clear_color[:3])
+        clear_rgba = np.array([int(round(min(max(c, 0.0), 1.0) * 255))
+                               for c in runtime.scene.clear_color[:4]], np.uint8)
+        clear = tuple(int(c) for c in clear_rgba[:3])
         drawn = "the clear colour: nothing was drawn, or drawn in that colour" \
             if colour == clear else "what was drawn is that colour everywhere"
         causes = [w.message.split(" (")[0] for w in out] + _likely_causes(runtime, technique)
+        if technique.passes and (image.reshape(-1, image.shape[-1]) == clear_rgba).all():
+            # not even the alpha changed: no pixel was written at all
+            causes.append("no pixel was written: the mesh may lie outside the view (past the "
+                          f"near or far plane, {runtime.scene.camera.near:g} and "
+                          f"{runtime.scene.camera.far:g} here, or behind the camera) as the "
+                          "vertex shader places it, or every pixel was discarded")
         said = "; ".join(dict.fromkeys(causes)) if causes else (
             "no cause found by these checks: the shaders compute this colour from the values "
             "bound (`effects doctor` lists them)")

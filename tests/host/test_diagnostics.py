@@ -174,3 +174,22 @@ def test_every_blank_render_of_the_real_effect_corpus_names_a_cause():
             assert "no cause found" not in one[0].message, blank[-1]
             assert one[0].location.path == str(path)
     assert len(blank) >= 2, blank
+
+
+def test_a_technique_without_passes_and_a_mesh_past_the_far_plane_are_said(tmp_path):
+    path = tmp_path / "mme.fx"
+    path.write_text(ALPHA.replace("AlphaTestEnable = TRUE;", "").replace(
+        "AlphaFunc = %s; AlphaRef = %d;", "") + 'technique ShadowTec < string MMDPass = "shadow"; > { }\n')
+    effect = effects.load_effect(path)
+    empty = render_frame(effect, "refrast", technique="ShadowTec", size=SIZE, diagnose=True)
+    said = [w.message for w in empty.diagnostics]
+    assert said[0] == ("technique ShadowTec has no passes: it draws nothing (a host's "
+                       "placeholder, such as MikuMikuEffect's empty shadow and edge techniques)")
+    assert "likely causes: technique ShadowTec has no passes" in said[1]
+    # the sphere 2 to 4 units away, the far plane at 1: nothing is written, not even alpha
+    far = render_frame(effect, "refrast", technique="T", size=SIZE, diagnose=True,
+                       scene={"camera": {"far": 1.0}})
+    one = [w.message for w in far.diagnostics if w.message.startswith("the frame is one colour")]
+    assert len(one) == 1 and "no pixel was written" in one[0] and "0.1 and 1 here" in one[0]
+    near = render_frame(effect, "refrast", technique="T", size=SIZE, diagnose=True)
+    assert near.diagnostics == []
