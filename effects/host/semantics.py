@@ -424,8 +424,30 @@ def bind_scene(effect: Effect, scene: Scene, size: tuple[int, int] | None = None
         if matrix_semantic(semantic) is None and semantic in values and param.type.is_numeric:
             if semantic in _LIGHT_SEMANTICS and not scene.light_given and param.value is not None:
                 continue
-            bound[param.name] = values[semantic](param)
+            bound[param.name] = _in_space(values[semantic](param), param, semantic, m)
     return bound
+
+
+# DXSAS / FX Composer: a light's or the camera's position or direction with `string Space =
+# "View"` (or "Object") is given in that space (`float3 L : DIRECTION < string Object =
+# "DirectionalLight"; string Space = "VIEW"; >`); "World", or no annotation, is world space.
+_SPACE_POINTS = {"LIGHTPOSITION", "LIGHT0POSITION", "CAMERAPOSITION", "VIEWPOSITION",
+                 "EYEPOSITION"}
+_SPACE_VECTORS = {"LIGHTDIRECTION", "LIGHT0DIRECTION", TOWARD_LIGHT, "VIEWDIRECTION"}
+
+
+def _in_space(value: np.ndarray, param: Parameter, semantic: str,
+              m: dict[str, np.ndarray]) -> np.ndarray:
+    space = (_annotation_text(param, "Space") or "world").lower()
+    if space not in ("view", "object") or semantic not in _SPACE_POINTS | _SPACE_VECTORS:
+        return value
+    to = m["view"] if space == "view" else np.linalg.inv(m["world"])
+    v = np.zeros(4)
+    flat = np.asarray(value, np.float64).reshape(-1)
+    v[:min(3, flat.size)] = flat[:3]
+    v[3] = 1.0 if semantic in _SPACE_POINTS else 0.0
+    return _fit((v @ to)[:flat.size] if flat.size < 4 else np.append((v @ to)[:3], flat[3:]),
+                param)
 
 
 def ui_defaults(effect: Effect) -> dict[str, np.ndarray]:
@@ -479,6 +501,9 @@ def binding_table() -> list[tuple[str, str]]:
     rows.extend((f"{s} with `string Object = \"Camera\"`",
                  f"{VALUE_SEMANTICS[t]} (MikuMikuEffect)")
                 for s, t in OBJECT_CAMERA_SEMANTICS.items())
+    rows.append(("a light's or the camera's position or direction with `string Space = "
+                 "\"View\"` or `\"Object\"`", "that value in view (object) space, as DXSAS "
+                 "and FX Composer give it; `\"World\"` or none: world space"))
     rows.append(("CONTROLOBJECT with `string name = \"(self)\"`", "the world matrix (a "
                  "float4x4) or the model's position (a vector) (MikuMikuEffect)"))
     rows.append(("CONTROLOBJECT naming another object", "0 (false): MikuMikuEffect's value "

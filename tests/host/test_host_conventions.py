@@ -124,3 +124,24 @@ def test_an_sdk_style_effect_is_lit_from_the_scene_light_with_no_warning(tmp_pat
     assert frame.diagnostics == []
     # N·L = 1 at the sphere's centre (its normal (0, 0, 1) points at the light)
     assert tuple(frame.image[16, 16, :3]) == (255, 255, 255)
+
+
+SPACES = """
+float3 LWorld : DIRECTION < string Object = "DirectionalLight0"; string Space = "World"; >;
+float3 LView : DIRECTION < string Object = "DirectionalLight0"; string Space = "VIEW"; >;
+float4 PView : POSITION < string Object = "PointLight0"; string Space = "View"; >;
+technique T { pass P { } }
+"""
+
+
+def test_a_dxsas_space_annotation_gives_the_light_in_that_space(tmp_path):
+    path = tmp_path / "space.fx"
+    path.write_text(SPACES)
+    effect = effects.load_effect(path)
+    values = bind_scene(effect, Scene(), (32, 32))
+    third = 1 / math.sqrt(3)
+    assert values["LWorld"] == pytest.approx([-third] * 3)
+    # the default camera at (0, 0, 3) looking at the origin (D3DXMatrixLookAtLH): view x is
+    # world -x, view z is world -z, y stays; the light at (2, 2, 2) is at (-2, 2, 1) in view
+    assert values["LView"] == pytest.approx([third, -third, third])
+    assert values["PView"] == pytest.approx([-2.0, 2.0, 1.0, 1.0])
