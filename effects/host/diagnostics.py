@@ -329,10 +329,16 @@ def _likely_causes(runtime: "Runtime", technique: Technique) -> list[str]:
             causes.append("the fixed-function lighting is on (Lighting defaults to TRUE) and "
                           "no light is enabled: vertex colours are the material's ambient times "
                           "Ambient, black unless the effect sets them")
-    if runtime.warnings and technique.passes:
-        causes.append("textures drawn with stand-ins (warned above): "
-                      + ", ".join(sorted({w.message.split(":")[0] for w in runtime.warnings})))
     return list(dict.fromkeys(causes))
+
+
+def _stand_in_cause(runtime: "Runtime", technique: Technique) -> list[str]:
+    """The textures drawn with stand-ins, as a (weak) cause: a checker rarely makes a frame
+    one colour, but a stand-in where a mask or a look-up table was meant can."""
+    if not runtime.warnings or not technique.passes:
+        return []
+    return ["textures drawn with stand-ins (warned above): "
+            + ", ".join(sorted({w.message.split(":")[0] for w in runtime.warnings}))]
 
 
 def _unlit_fixed_function(technique: Technique, index: int) -> bool:
@@ -393,12 +399,16 @@ def diagnose_frame(runtime: "Runtime", technique: Technique, image: np.ndarray) 
         drawn = "the clear colour: nothing was drawn, or drawn in that colour" \
             if colour == clear else "what was drawn is that colour everywhere"
         causes = [w.message.split(" (")[0] for w in out] + _likely_causes(runtime, technique)
-        if technique.passes and (image.reshape(-1, image.shape[-1]) == clear_rgba).all():
-            # not even the alpha changed: no pixel was written at all
+        weak = _stand_in_cause(runtime, technique)
+        if not causes and technique.passes and \
+                (image.reshape(-1, image.shape[-1]) == clear_rgba).all():
+            # not even the alpha changed, and nothing else explains it: likely no pixel was
+            # written at all (a pixel drawn in the clear colour, alpha too, looks the same)
             causes.append("no pixel was written: the mesh may lie outside the view (past the "
                           f"near or far plane, {runtime.scene.camera.near:g} and "
                           f"{runtime.scene.camera.far:g} here, or behind the camera) as the "
                           "vertex shader places it, or every pixel was discarded")
+        causes += weak
         said = "; ".join(dict.fromkeys(causes)) if causes else (
             "no cause found by these checks: the shaders compute this colour from the values "
             "bound (`effects doctor` lists them)")

@@ -37,6 +37,9 @@ def test_toon_shader_names_the_light_direction_nothing_sets():
     assert "every lit term (N·L) is 0" in light[0].message
     one_colour = [w for w in found if w.message.startswith("the frame is one colour (0, 0, 0)")]
     assert len(one_colour) == 1 and "vLightDirection" in one_colour[0].message
+    # drawn black with alpha 0, as the clear: the unset light explains it, so the frame is not
+    # said to be unwritten
+    assert "no pixel was written" not in one_colour[0].message
     # set, the picture is the toon's bands and nothing is said
     lit, found = diagnostics("toon_unset_light.fx", params={"vLightDirection": "0,0,-1"})
     assert found == [] and uniform_colour(lit.image) is None
