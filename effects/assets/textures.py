@@ -555,6 +555,10 @@ PROCEDURAL: dict[str, Procedural] = {
                           doc="tileable value-noise volume, L8", arg_is_size=True, kind="3d"),
     "checker": Procedural(lambda a, s, h: make_texture(checker(s, int(a)), "X8R8G8B8"), 64, "8",
                           "checkerboard with N squares a side, X8R8G8B8"),
+    # a normal map's "no bump": (0.5, 0.5, 1) decodes (x 2 - 1) to the unperturbed normal
+    "flat_normal": Procedural(lambda a, s, h: make_texture(
+        np.broadcast_to(np.array([0.5, 0.5, 1.0, 1.0], np.float32), (s, s, 4)), "X8R8G8B8"), 4,
+        doc="flat normal map, every texel (0.5, 0.5, 1), X8R8G8B8", arg_is_size=True),
 }
 # The names the bundled effect files use (fxfiles/README.md).
 PROCEDURAL["power_table"] = PROCEDURAL["power"]

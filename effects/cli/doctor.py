@@ -8,68 +8,12 @@ script commands are not run, so a user knows why a picture looks as it does.
 """
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-
 from effects.base.errors import EffectError, NoValidTechnique
+from effects.host.diagnostics import parameters_read
 from effects.model import Effect, Technique
-
-
-_NAME = re.compile(r"[A-Za-z_]\w*")
-
-
-def parameters_read(effect: Effect, technique: Technique) -> set[str]:
-    """The parameters the technique's passes read: the uniforms of each compiled shader (its
-    register table, int and bool registers), a shader picked from an array by an expression
-    (the element the values pick, and what the index reads), and the parameters its states
-    name (`<Light>`, `VertexShaderConstant[4] = Bias * 2`), sampler states included."""
-    from effects.model import CompileShader, Expression, ParamRef, SamplerState
-    names = {p.name for p in effect.parameters}
-    read: set[str] = set()
-
-    def value(v: Any) -> None:
-        if isinstance(v, CompileShader):
-            from effects.shaders.shader_value import shader_of
-            try:
-                shader = shader_of(effect, v).compiled
-            except EffectError:
-                return                       # validation says why; nothing is read
-            read.update(n for n in (*shader.constants, *shader.int_registers,
-                                    *shader.bool_registers)
-                        if not n.startswith("$") and n not in shader.preshaders)
-            for preshader in shader.preshaders.values():   # what the host computes from
-                read.update(n for n in preshader.uniforms() if not n.startswith("$"))
-            for arg in v.args:
-                read.update(n for n in _NAME.findall(arg) if n in names)
-        elif isinstance(v, ParamRef):
-            read.add(v.name)
-            param = effect.parameter(v.name)
-            inner = None if param is None else param.value
-            if isinstance(inner, (list, tuple)) and v.index is not None \
-                    and 0 <= v.index < len(inner):
-                value(inner[v.index])
-            elif not isinstance(inner, (list, tuple, np.ndarray)) and inner is not None:
-                value(inner)                 # `VertexShader = <vs>`, `Sampler = <S>`
-        elif isinstance(v, Expression):
-            read.update(n for n in _NAME.findall(v.text) if n in names)
-            from effects.shaders.hlsl.preshader import shader_element
-            try:
-                element = shader_element(effect, v.text, v.location)
-            except EffectError:
-                element = None
-            if element is not None:
-                value(element)
-        elif isinstance(v, SamplerState):
-            for a in v.states:
-                value(a.value)
-
-    for p in technique.passes:
-        for a in p.states:
-            value(a.value)
-    return read
 
 
 @dataclass
@@ -79,6 +23,7 @@ class Diagnosis:
     bound: list[tuple[str, str]] = field(default_factory=list)      # (parameter, by what)
     unbound: list[tuple[str, str]] = field(default_factory=list)    # (parameter, where)
     unread: list[str] = field(default_factory=list)    # set by nothing, and not read either
+    defaults: list[tuple[str, str]] = field(default_factory=list)   # (parameter, file's value)
     textures: list[tuple[str, str]] = field(default_factory=list)   # (parameter, source)
     stand_ins: list[str] = field(default_factory=list)              # warnings
     unsupported: list[str] = field(default_factory=list)            # script commands
@@ -93,7 +38,7 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
              technique: str | None = None) -> Diagnosis:
     from effects.host.runtime import Runtime
     from effects.host.scripts import is_render_target, unsupported_commands
-    from effects.host.semantics import bind_scene, binding_source, ui_defaults
+    from effects.host.semantics import bind_scene, binding_source, host_would_set, ui_defaults
     runtime = Runtime(effect, profile, scene=scene, params=params or {}, backend=None)
     try:
         chosen = runtime.select(technique)
@@ -115,14 +60,18 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
             convention = {"XNA name": "XNA", "DX8 name": "DirectX 8 SDK"}.get(how) or \
                 (how[:-len(" name")] if how.endswith(" name") else None)
             d.bound.append((p.name, f"bound by name ({convention} convention) as {semantic}"
-                            if convention else f"semantic {semantic}"))
+                            if convention else f"semantic {semantic}" if how == "semantic"
+                            else f"{how} ({semantic})"))
         elif p.name in ui:
             d.bound.append((p.name, "the middle of its UIMin..UIMax range"))
         elif p.type.is_numeric and p.value is None:
             if p.name in read:       # arrays too: Weights[4] that nothing sets reads 0
-                d.unbound.append((p.name, str(p.location)))
+                whose = host_would_set(p)
+                d.unbound.append((p.name, str(p.location) + (f"; {whose}" if whose else "")))
             else:
                 d.unread.append(p.name)
+        elif p.type.is_numeric and p.name in read:
+            d.defaults.append((p.name, _shown(p.value)))
     if chosen is None:
         return d
     for index in range(len(chosen.passes)):
@@ -149,6 +98,17 @@ def diagnose(effect: Effect, profile: Any, *, scene: Any = None, params: dict | 
     return d
 
 
+def _shown(value: Any) -> str:
+    """A parameter's value as the file would write it: '0.3, 0.12, 0.03' (float32 shown to
+    its own precision, not as the double it widens to)."""
+    import numpy as np
+    flat = np.asarray(value).reshape(-1)
+    if flat.dtype.kind not in "biuf":
+        return str(value)
+    shown = [f"{float(np.float32(x)):.7g}" if flat.dtype.kind == "f" else str(x) for x in flat[:16]]
+    return ", ".join(shown) + (", ..." if flat.size > 16 else "")
+
+
 def print_diagnosis(d: Diagnosis, path: str, card: str, out) -> None:
     def line(text: str = "") -> None:
         out.print(text, markup=False, highlight=False, soft_wrap=True)
@@ -173,6 +133,10 @@ def print_diagnosis(d: Diagnosis, path: str, card: str, out) -> None:
         line(f"    {param} (declared at {where})")
     if d.unread:
         line(f"  set by nothing, but {name} does not read them: {', '.join(d.unread)}")
+    if d.defaults:
+        line("  keep the file's default (nothing binds them):")
+        for param, value in d.defaults:
+            line(f"    {param} = {value}")
     if d.textures:
         line("  textures the passes sample:")
         for param, source in d.textures:

@@ -227,13 +227,17 @@ def _cmd_matrix(args, console: Console) -> int:
         if min(size) < 1 or max(size) > 1024:
             raise UsageError(f"effects matrix: error: --size {args.size!r}: cells are 1 to 1024 pixels a side")
         names = list(args.profile) or cards   # as given: workers load them
-        render_sheet(list(args.files), names, args.render, size=size, scene=args.scene,
-                     scene_beside=args.scene_beside, backend=args.backend, policy=args.policy, jobs=args.jobs,
-                     scheduler=args.scheduler, progress=not args.json,
-                     figures=_figures(result, list(args.files), cards, names))
+        cells = render_sheet(list(args.files), names, args.render, size=size, scene=args.scene,
+                             scene_beside=args.scene_beside, backend=args.backend,
+                             policy=args.policy, jobs=args.jobs, scheduler=args.scheduler,
+                             progress=not args.json,
+                             figures=_figures(result, list(args.files), cards, names))
         if not args.json:
             console.print(f"contact sheet: {len(args.files)} effects x {len(cards)} cards "
                           f"-> {args.render}", markup=False, highlight=False, soft_wrap=True)
+        said = _cell_diagnostics(cells, args.strict)
+        if said and args.strict:
+            return EXIT_INVALID
     # a card's selection that fell past a language error: the error, once, and exit 1
     errors = list(dict.fromkeys(cell["error"] for row in result.values() for cell in row.values()
                                 if "error" in cell))
@@ -249,6 +253,23 @@ def _figures(result: dict, files: list[str], cards: list[str],
         return None
     return {(path, name): result[path][card].get("fidelity")
             for path in files for card, name in zip(cards, names)}
+
+
+def _cell_diagnostics(cells: list, strict: bool) -> int:
+    """Each drawn cell's diagnostics on stderr, led by its card (errors with --strict); a
+    warning two cards share is said once. Returns how many were said."""
+    err = _stderr()
+    seen: set[str] = set()
+    for cell in cells:
+        for text in cell.diagnostics:
+            if text in seen:
+                continue
+            seen.add(text)
+            if strict:
+                text = text.replace(": warning: ", ": error: ", 1)
+            err.print(f"[{os.path.basename(cell.profile)}] {text}", markup=False, soft_wrap=True,
+                      style="red" if strict else "yellow")
+    return len(seen)
 
 
 def _matrix(args, root: str | None, console: Console) -> tuple[dict, list[str]]:
@@ -344,6 +365,9 @@ def _add_render(sub) -> None:
     p.add_argument("--backend", "-b", default="numpy", metavar="NAME",
                    help="numpy (the reference rasteriser, default) or gl")
     _add_scene(p, "mesh, camera, light, params ...")
+    p.add_argument("--mesh", metavar="MESH",
+                   help="sphere, torus, cube, teapot, quad or a mesh file such as FILE.obj "
+                        "(wins over the scene's)")
     p.add_argument("--size", metavar="WxH", help="frame size, e.g. 320x240 (wins over the scene's)")
     p.add_argument("--set", dest="assignments", action="append", default=[], metavar="NAME=VALUE",
                    help="a parameter value: number, vector '1,0.5,0.25,1', true/false, "
@@ -354,7 +378,9 @@ def _add_render(sub) -> None:
                    help="keep the render target's alpha in the PNG (default: opaque; the "
                         "target's alpha is not a picture's transparency)")
     p.add_argument("--strict", action="store_true",
-                   help="unknown state names, and textures nothing supplies, are errors")
+                   help="unknown state names, textures nothing supplies, and what the picture "
+                        "shows nothing of (a parameter nothing sets, culled front faces, a "
+                        "frame of one colour) are errors (exit 1)")
     _add_preprocessor_options(p)
     _add_confinement(p, strict=False)
     p.set_defaults(run=_cmd_render)
@@ -403,13 +429,17 @@ def _cmd_render(args, console: Console) -> int:
     effect = _load(args)
     profile = _profiles([args.profile])[0]
     start = time.perf_counter()
+    scene = _scene(args, args.file)
+    if args.mesh is not None:
+        from effects.base.errors import Location
+        from effects.host.scene import load_scene, set_mesh
+        scene = set_mesh(load_scene(scene), args.mesh, Location("--mesh", 1, 1))
     try:
         from effects.host.fidelity import policy_for   # pictures for the fidelity order only
-        scene = _scene(args, args.file)
         frame = render_frame(effect, profile, technique=args.technique, backend=args.backend,
                              scene=scene, size=size, params=params,
                              policy=policy_for(effect, args.policy, scene=scene, params=params),
-                             strict=args.strict)
+                             strict=args.strict, diagnose=True)
     except NoValidTechnique as exc:
         # the load warnings first: they may say why (a Direct3D 10/11 shader file, ...)
         for warning in effect.warnings:
@@ -426,6 +456,14 @@ def _cmd_render(args, console: Console) -> int:
     ms = (time.perf_counter() - start) * 1000.0
     err = _stderr()
     for warning in [*effect.warnings, *frame.warnings]:
+        err.print(warning.report(), markup=False, soft_wrap=True, style="yellow")
+    if args.strict and frame.diagnostics:
+        # what the picture shows nothing of, as errors: no PNG that would look finished
+        for warning in frame.diagnostics:
+            err.print(warning.report().replace(": warning: ", ": error: ", 1), markup=False,
+                      soft_wrap=True, style="red")
+        return EXIT_INVALID
+    for warning in frame.diagnostics:
         err.print(warning.report(), markup=False, soft_wrap=True, style="yellow")
     image = frame.image if args.alpha else opaque(frame.image)
     try:

@@ -136,6 +136,8 @@ class Cell:
     technique: str | None
     image: Any = None
     reason: str | None = None
+    # what the picture shows nothing of, reported (`effects.host.diagnostics`)
+    diagnostics: tuple[str, ...] = ()
 
 
 def render_row(cells: Sequence[CellJob]) -> list[Cell]:
@@ -189,11 +191,13 @@ def render_cell(job: CellJob) -> Cell:
         profile = load_profile(job.profile)
         from effects.host.fidelity import policy_for   # pictures for the fidelity order only
         frame = render_frame(effect, profile, backend=_backend(job.backend), scene=job.scene,
-                             size=job.size, policy=policy_for(effect, job.policy, scene=job.scene))
+                             size=job.size, policy=policy_for(effect, job.policy, scene=job.scene),
+                             diagnose=True)
     except NoValidTechnique as exc:
         reasons = [r for rs in exc.reasons.values() for r in rs]
         why = str(reasons[0]) if reasons else str(exc).splitlines()[0]
         return Cell(job.effect, job.profile, None, reason=why)   # the first reason, as cells are small
     except (EffectError, OSError) as exc:
         return Cell(job.effect, job.profile, None, reason=str(exc).splitlines()[0])
-    return Cell(job.effect, job.profile, frame.technique.name or "<anonymous>", image=frame.image)
+    return Cell(job.effect, job.profile, frame.technique.name or "<anonymous>", image=frame.image,
+                diagnostics=tuple(w.report() for w in frame.diagnostics))

@@ -88,13 +88,59 @@ class MissingTexture(SceneError):
 STAND_INS = {"2d": "checker", "1d": "checker", "cube": "sky_cube", "3d": "noise_volume"}
 
 
-def stand_in_texture(kind: str) -> Texture:
-    """A checker for 2D (and 1D), a sky for CUBE, noise for 3D."""
+def stand_in_texture(kind: str, normal: bool = False) -> Texture:
+    """A checker for 2D (and 1D), a sky for CUBE, noise for 3D; for a 2D texture that feeds a
+    normal (`feeds_a_normal`) a flat normal map, (0.5, 0.5, 1) everywhere: a checker there
+    lit the surface in blocks."""
+    if normal and kind == "2d":
+        return procedural("flat_normal")
     texture = procedural(STAND_INS.get(kind, "checker"))
     if kind == "1d":  # one row of the checker
         texture = Texture("1d", texture.format, [level[:1] for level in texture.levels],
                           texture.name)
     return texture
+
+
+# A texture feeds a normal when its parameter or a sampler of it is named so (normalMap,
+# BumpSampler, g_MeshNormalMap, NrmTex) or a shader expands what it samples from [0, 1] to
+# [-1, 1]: `tex2D(S, uv) * 2 - 1`, `2 * tex2D(S, uv) - 1`, `expand(tex2D(S, uv))` in HLSL,
+# `tN_bx2` of the stage it is bound to in ps.1.x assembly.
+_NORMAL_NAME = re.compile(r"normal|bump|nrm|nmap", re.IGNORECASE)
+_SAMPLE = r"tex\w*\s*\(\s*{s}\b[^;]*?\)"
+_EXPANDS = (r"{sample}(?:\.\w+)?\s*\*\s*2(?:\.0*)?f?\s*-\s*1",
+            r"2(?:\.0*)?f?\s*\*\s*{sample}(?:\.\w+)?\s*-\s*1",
+            r"expand\s*\(\s*{sample}")
+
+
+def feeds_a_normal(effect: Effect, param: Parameter) -> bool:
+    """Whether texture (or sampler) parameter `param` is a normal map, by its name, its
+    samplers' names, or the way the shaders use what they sample (see `_NORMAL_NAME`)."""
+    samplers = [param.name] + [p.name for p in effect.parameters if _samples(p, param.name)]
+    if any(_NORMAL_NAME.search(name) for name in samplers):
+        return True
+    sources = "\n".join(f.source for f in effect.functions)
+    for name in samplers:
+        sample = _SAMPLE.format(s=re.escape(name))
+        if any(re.search(form.format(sample=sample), sources) for form in _EXPANDS):
+            return True
+    for technique in effect.techniques:
+        for pass_ in technique.passes:
+            stages = [a.index or 0 for a in pass_.states if a.name.lower() == "texture"
+                      and getattr(a.value, "name", None) in samplers]
+            shaders = [a.value.source for a in pass_.states if a.name.lower() == "pixelshader"
+                       and hasattr(a.value, "source") and isinstance(a.value.source, str)]
+            if any(re.search(rf"\bt{i}_bx2\b", text) for i in stages for text in shaders):
+                return True
+    return False
+
+
+def _samples(sampler: Parameter, texture: str) -> bool:
+    """`sampler` is a sampler_state whose Texture is `texture`."""
+    from effects.model import SamplerState
+    if not isinstance(sampler.value, SamplerState):
+        return False
+    named = sampler.value.get("Texture")
+    return named is not None and getattr(named.value, "name", None) == texture
 
 
 class TextureCache:

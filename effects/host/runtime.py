@@ -34,8 +34,9 @@ from typing import TYPE_CHECKING, Any, Mapping
 import numpy as np
 
 from effects.host.resources import (DEFAULT_TEXTURE_CACHE, Geometry, MissingTexture, TextureCache,
-                                   TextureSource, check_texture_budget, declared_kind, geometry,
-                                   procedural_parameters, resolve_texture, stand_in_texture)
+                                   TextureSource, check_texture_budget, declared_kind,
+                                   feeds_a_normal, geometry, procedural_parameters,
+                                   resolve_texture, stand_in_texture)
 from effects.base import caches, limits
 from effects.base.errors import EffectError, EffectWarning, Location, NoValidTechnique, SceneError
 from effects.model import Effect, ParamRef, Parameter, SamplerState, Technique
@@ -175,6 +176,8 @@ class Frame:
     backend: str
     profile: "CapsProfile"
     warnings: list[EffectWarning] = dataclasses.field(default_factory=list)
+    # what the picture shows and why (`effects.host.diagnostics`), when asked for
+    diagnostics: list[EffectWarning] = dataclasses.field(default_factory=list)
 
 
 class Runtime:
@@ -327,7 +330,7 @@ class Runtime:
     def _stand_in(self, param: Parameter, why: str, at: Location,
                   sampled_as: str | None = None) -> Texture:
         kind = declared_kind(param) or sampled_as or "2d"
-        texture = stand_in_texture(kind)
+        texture = stand_in_texture(kind, normal=feeds_a_normal(self.source_effect, param))
         what = f"texture parameter {param.name}" if param.type.base == "texture" else \
             f"sampler {param.name} (no texture in its sampler_state: the host sets one on its stage)"
         message = f"{what}: {why}; drawn with a stand-in ({texture.name}, {kind})"
@@ -497,12 +500,17 @@ class Runtime:
 def render_frame(effect: Effect | str, profile: Any, *, technique: Technique | str | None = None,
                  backend: Any = "numpy", scene: Any = None, size: tuple[int, int] | None = None,
                  params: Mapping[str, Any] | None = None, policy: Any = "first",
-                 strict: bool = False) -> Frame:
+                 strict: bool = False, diagnose: bool = False) -> Frame:
     """`render`, returning the Frame (image, technique, pass count, warnings) the command
-    line reports."""
+    line reports; with `diagnose`, its `diagnostics` too (`effects.host.diagnostics`: what
+    nothing sets, states that hide the mesh, a frame of one colour)."""
     runtime = Runtime(effect, profile, scene=scene, size=size, params=params, backend=backend,
                       strict=strict)
-    return runtime.render(technique, policy)
+    frame = runtime.render(technique, policy)
+    if diagnose:
+        from effects.host.diagnostics import diagnose_frame
+        frame.diagnostics = diagnose_frame(runtime, frame.technique, frame.image)
+    return frame
 
 
 def render(effect: Effect | str, profile: Any, *, technique: Technique | str | None = None,

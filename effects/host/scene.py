@@ -481,3 +481,19 @@ def _parse_mesh(value: Any, at: Location) -> str | InlineMesh:
                 columns.setdefault(key, []).append(v)
     attributes = {k: np.asarray(v, np.float32) for k, v in columns.items()}
     return InlineMesh(primitive, attributes, at)
+
+
+def set_mesh(scene: Scene, value: str, at: Location) -> Scene:
+    """`scene` drawing the mesh `value` (a built-in name or a mesh file, relative to the
+    current folder) instead of its own: `effects render --mesh`. Checked as the scene's
+    `mesh` key is, the error at `at`."""
+    if value not in _builtin_meshes():
+        value = os.path.abspath(value)
+    scene.mesh = _parse_mesh(value, at)
+    scene.locations["mesh"] = at
+    return scene
+
+
+def _builtin_meshes() -> tuple[str, ...]:
+    from effects.assets.meshes import MESHES
+    return tuple(MESHES)

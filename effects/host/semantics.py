@@ -63,7 +63,36 @@ VALUE_SEMANTICS = {
     "TIME": "the scene's time in seconds (`time:` key; 0 by default)",
     "VIEWPORTPIXELSIZE": "the frame's (width, height) in pixels",
     "VIEWPORTSIZE": "the frame's (width, height) in pixels",
+    # RenderMonkey's predefined variables: its FX exporter writes the variable's name as the
+    # semantic (`float fTime0_X : Time0_X;`, `float4 vViewPosition : ViewPosition;`); values as
+    # the RenderMonkey documentation's "Predefined Variables" section gives them, with its
+    # default cycle time of 120 seconds
+    "TIME0_X": "the scene's time in seconds, cycling every 120 s (RenderMonkey's default cycle)",
+    "COSTIME0_X": "cos of TIME0_X (RenderMonkey)",
+    "SINTIME0_X": "sin of TIME0_X (RenderMonkey)",
+    "TANTIME0_X": "tan of TIME0_X (RenderMonkey)",
+    "TIME0_X_PACKED": "(TIME0_X, COSTIME0_X, SINTIME0_X, TANTIME0_X) (RenderMonkey)",
+    "TIME0_1": "the scene's time as a fraction of the 120 s cycle, 0..1 (RenderMonkey)",
+    "COSTIME0_1": "cos of TIME0_1 (RenderMonkey)",
+    "SINTIME0_1": "sin of TIME0_1 (RenderMonkey)",
+    "TANTIME0_1": "tan of TIME0_1 (RenderMonkey)",
+    "TIME0_1_PACKED": "(TIME0_1, COSTIME0_1, SINTIME0_1, TANTIME0_1) (RenderMonkey)",
+    "VIEWDIRECTION": "the camera's unit view direction, eye to target (w = 0) (RenderMonkey; "
+                     "MikuMikuEffect's DIRECTION with `string Object = \"Camera\"`)",
+    "VIEWPORTWIDTH": "the frame's width in pixels (RenderMonkey)",
+    "VIEWPORTHEIGHT": "the frame's height in pixels (RenderMonkey)",
+    "VIEWPORTDIMENSIONS": "the frame's (width, height) in pixels (RenderMonkey)",
+    "VIEWPORTWIDTHINVERSE": "1 / the frame's width (RenderMonkey)",
+    "VIEWPORTHEIGHTINVERSE": "1 / the frame's height (RenderMonkey)",
+    "INVERSEVIEWPORTDIMENSIONS": "(1 / width, 1 / height) of the frame (RenderMonkey)",
 }
+# The direction toward the scene light: the DirectX SDK samples' g_LightDir / g_vLightDir
+# ("Light's direction in world space", lit as max(0, dot(N, g_LightDir)) in BasicHLSL.fx: the
+# application's vector points at the light, minus the D3DLIGHT9 direction). Not a semantic a
+# file can write: bound only by those names (`SDK_NAME_SEMANTICS`).
+TOWARD_LIGHT = "-LIGHTDIRECTION"
+# RenderMonkey's cycle time: "by default this Cycle time is set to 120 seconds"
+RENDERMONKEY_CYCLE = 120.0
 # FX Composer's light binding: a parameter whose `string Object` annotation names a light
 # ("PointLight0", "DirectionalLight0", "SpotLight0", "TargetLight", "Light0") takes the scene
 # light's value of the kind its semantic says.
@@ -71,6 +100,10 @@ OBJECT_LIGHT_SEMANTICS = {
     "POSITION": "LIGHTPOSITION", "DIRECTION": "LIGHTDIRECTION", "DIFFUSE": "LIGHTCOLOR",
     "COLOR": "LIGHTCOLOR", "COLOUR": "LIGHTCOLOR", "SPECULAR": "LIGHTCOLOR",
 }
+# MikuMikuEffect (and DXSAS hosts) with `string Object = "Camera"`: the camera's position and
+# view direction (`float3 CameraPosition : POSITION < string Object = "Camera"; >;`, as
+# MME's sample full.fx declares it).
+OBJECT_CAMERA_SEMANTICS = {"POSITION": "CAMERAPOSITION", "DIRECTION": "VIEWDIRECTION"}
 # Names, not semantics, that DirectX 8-era effects (the SDK samples, the chapter's BRDF effect,
 # fxfiles/sdk8_style.fx) used for what the application set every frame.
 DX8_NAME_SEMANTICS = {
@@ -80,6 +113,27 @@ DX8_NAME_SEMANTICS = {
     "lhtr": "LIGHTDIRECTION", "vlightdir": "LIGHTDIRECTION", "vlgt": "LIGHTDIRECTION",
     "veye": "CAMERAPOSITION",
 }
+# The DirectX 9 SDK samples' globals (BasicHLSL.fx, quoted by the "Effect Example" page of
+# the Direct3D 9 documentation: g_MaterialAmbientColor, g_LightDir[3] "Light's direction in
+# world space", g_LightDiffuse[3], g_fTime "App's time in seconds", g_mWorld,
+# g_mWorldViewProjection): `g_` and a type letter (v vector, f float, m matrix), matched in any
+# letter case. The matrices go by `name_semantic` (g_m prefix); these are the rest. Arrays
+# (g_LightDir[3]) are not bound: the sample set as many lights as its technique drew.
+SDK_NAME_SEMANTICS = {
+    "lightdir": TOWARD_LIGHT, "lightdirection": TOWARD_LIGHT,
+    "lightdiffuse": "LIGHTCOLOR", "lightcolor": "LIGHTCOLOR", "lightcolour": "LIGHTCOLOR",
+    "time": "TIME", "eyept": "CAMERAPOSITION", "eyepos": "CAMERAPOSITION",
+    "eyeposition": "CAMERAPOSITION", "camerapos": "CAMERAPOSITION",
+}
+# Parameters a host would have set from what it had (a model's material, the game's
+# colours) where no convention says which value: left unset (they read 0) and named as such
+# by `host_would_set`, so the warning says whose value is missing. No invented colours.
+_MATERIAL_WORDS = ("diffuse", "ambient", "specular", "emissive", "emmisive", "power")
+_GEOMETRY_SEMANTICS = {"DIFFUSE", "AMBIENT", "SPECULAR", "EMISSIVE", "SPECULARPOWER"}
+_MME_MODEL_SEMANTICS = {"TOONCOLOR", "EDGECOLOR", "ADDINGTEXTURE", "MULTIPLYINGTEXTURE",
+                        "ADDINGSPHERETEXTURE", "MULTIPLYINGSPHERETEXTURE"}
+_XNA_MATERIAL_NAMES = {"diffusecolor", "emissivecolor", "specularcolor", "specularpower",
+                       "ambientlightcolor", "alpha"}
 # Names engines' shader APIs set, documented by them: Allegro 5's al_set_shader_* host sets
 # `al_projview_matrix` (the transform times the projection, multiplied as mul(pos, M)).
 ENGINE_NAME_SEMANTICS = {"al_projview_matrix": ("WORLDVIEWPROJECTION", "Allegro 5")}
@@ -92,6 +146,7 @@ ENGINE_NAME_SEMANTICS = {"al_projview_matrix": ("WORLDVIEWPROJECTION", "Allegro 
 # WorldIT ...), one with its inverse/transpose in front (InvWorld, TransWorld, as Irrlicht
 # names them), or one of the vector names below.
 _NAME_PREFIXES = ("g_mat", "g_m", "g_", "m_", "mat", "g", "m", "x")
+_SDK_TYPE_LETTERS = ("v", "f", "")
 # ... or a transform name with `Matrix` (or `Mtx`) after it: Kodu Game Lab's WorldMatrix and
 # WorldViewProjMatrix, `worldMatrix` of many XNA samples
 _NAME_MATRIX_SUFFIXES = ("matrix", "mtx")
@@ -111,9 +166,13 @@ NAME_VALUES = {
     "lightlocation": "LIGHTPOSITION", "lightposition0": "LIGHT0POSITION",
     "lightpos0": "LIGHT0POSITION", "lightdirection0": "LIGHT0DIRECTION",
     "lightdir0": "LIGHT0DIRECTION", "lightcolor0": "LIGHT0COLOR", "lightcolour0": "LIGHT0COLOR",
+    # XNA's BasicEffect: its first directional light (DirectionalLight0.Direction, the way the
+    # light travels, as D3DLIGHT9's) and that light's diffuse and specular colours
+    "dirlight0direction": "LIGHT0DIRECTION", "dirlight0diffusecolor": "LIGHT0COLOR",
+    "dirlight0specularcolor": "LIGHT0COLOR",
 }
 _LIGHT_SEMANTICS = {"LIGHTPOSITION", "LIGHT0POSITION", "LIGHTDIRECTION", "LIGHT0DIRECTION",
-                    "LIGHTCOLOR", "LIGHTDIFFUSE", "LIGHT0COLOR"}
+                    "LIGHTCOLOR", "LIGHTDIFFUSE", "LIGHT0COLOR", TOWARD_LIGHT}
 
 
 _MATRIX_BASES_LONGEST_FIRST = sorted([*MATRIX_SEMANTICS, *_MATRIX_ALIASES], key=len, reverse=True)
@@ -172,15 +231,38 @@ def scene_values(scene: Scene, size: tuple[int, int] | None = None, *,
     direction = np.array([*scene.light_direction(), 0.0])
     color = np.array(scene.light.color)
     frame = np.array(size or scene.size, np.float32)
+    view_dir = np.asarray(scene.camera.target, np.float64) - np.asarray(scene.camera.eye)
+    view_dir = view_dir / (np.linalg.norm(view_dir) or 1.0)
+    cycle = scene.time % RENDERMONKEY_CYCLE
+    unit = cycle / RENDERMONKEY_CYCLE
+
+    def packed(t: float) -> np.ndarray:
+        return np.array([t, math.cos(t), math.sin(t), math.tan(t)])
+
     by_kind = {"eye": eye, "light": light, "direction": direction, "color": color,
-               "time": np.float32(scene.time), "frame": frame}
+               "time": np.float32(scene.time), "frame": frame, "toward": -direction,
+               "view_dir": np.array([*view_dir, 0.0]),
+               "t0x": packed(cycle), "t01": packed(unit)}
     kinds = {"CAMERAPOSITION": "eye", "VIEWPOSITION": "eye", "EYEPOSITION": "eye",
              "LIGHTPOSITION": "light", "LIGHT0POSITION": "light", "LIGHTDIRECTION": "direction",
              "LIGHT0DIRECTION": "direction", "LIGHTCOLOR": "color", "LIGHT0COLOR": "color",
              "LIGHTDIFFUSE": "color", "TIME": "time", "VIEWPORTPIXELSIZE": "frame",
-             "VIEWPORTSIZE": "frame"}
+             "VIEWPORTSIZE": "frame", TOWARD_LIGHT: "toward", "VIEWDIRECTION": "view_dir",
+             "TIME0_X_PACKED": "t0x", "TIME0_1_PACKED": "t01", "VIEWPORTDIMENSIONS": "frame"}
     values: dict[str, Callable[[Parameter], Any]] = {
         semantic: (lambda p, v=by_kind[kind]: _fit(v, p)) for semantic, kind in kinds.items()}
+    # one component of a packed value, and the frame's sides and their inverses
+    for semantic, (kind, k) in {"TIME0_X": ("t0x", 0), "COSTIME0_X": ("t0x", 1),
+                                "SINTIME0_X": ("t0x", 2), "TANTIME0_X": ("t0x", 3),
+                                "TIME0_1": ("t01", 0), "COSTIME0_1": ("t01", 1),
+                                "SINTIME0_1": ("t01", 2), "TANTIME0_1": ("t01", 3),
+                                "VIEWPORTWIDTH": ("frame", 0), "VIEWPORTHEIGHT": ("frame", 1)
+                                }.items():
+        values[semantic] = lambda p, v=by_kind[kind][k]: _fit(v, p)
+    inverse = 1.0 / np.maximum(frame, 1.0)
+    values["VIEWPORTWIDTHINVERSE"] = lambda p: _fit(inverse[0], p)
+    values["VIEWPORTHEIGHTINVERSE"] = lambda p: _fit(inverse[1], p)
+    values["INVERSEVIEWPORTDIMENSIONS"] = lambda p: _fit(inverse, p)
     return values, m
 
 
@@ -221,6 +303,15 @@ def binding_source(param: Parameter) -> tuple[str, str]:
         semantic = ""
     if semantic in OBJECT_LIGHT_SEMANTICS and _light_object(param):
         return OBJECT_LIGHT_SEMANTICS[semantic], "light object"
+    if semantic in OBJECT_CAMERA_SEMANTICS and _object(param) == "camera":
+        return OBJECT_CAMERA_SEMANTICS[semantic], "camera object"
+    if semantic == "CONTROLOBJECT":
+        # MikuMikuEffect: "(self)" as a matrix is the model's world matrix; another object's
+        # value is 0 (false) when that object is not loaded, and the scene loads none
+        self_ = _annotation_text(param, "name") == "(self)"
+        if self_ and param.type.rows == 4 and param.type.cols == 4:
+            return "WORLD", "MikuMikuEffect CONTROLOBJECT"
+        return ("CONTROLOBJECT", "MikuMikuEffect CONTROLOBJECT")
     if semantic:
         return semantic, "semantic"
     if param.name.lower() in DX8_NAME_SEMANTICS:
@@ -228,8 +319,55 @@ def binding_source(param: Parameter) -> tuple[str, str]:
     if param.name in ENGINE_NAME_SEMANTICS:
         semantic, engine = ENGINE_NAME_SEMANTICS[param.name]
         return semantic, f"{engine} name"
+    sdk = sdk_name_semantic(param.name)
+    if sdk:
+        return sdk, "DirectX SDK name"
     by_name = name_semantic(param.name)
     return (by_name, "XNA name") if by_name else ("", "")
+
+
+def sdk_name_semantic(name: str) -> str | None:
+    """The semantic a DirectX SDK sample's global stands for (`SDK_NAME_SEMANTICS`):
+    'g_vLightDir' -> the direction toward the light, 'g_fTime' -> TIME; or None."""
+    key = name.lower()
+    if not key.startswith("g_"):
+        return None
+    for letter in _SDK_TYPE_LETTERS:
+        rest = key[2:]
+        if rest.startswith(letter) and rest[len(letter):] in SDK_NAME_SEMANTICS:
+            return SDK_NAME_SEMANTICS[rest[len(letter):]]
+    return None
+
+
+def _object(param: Parameter) -> str:
+    return (_annotation_text(param, "Object") or "").lower()
+
+
+def _annotation_text(param: Parameter, name: str) -> str | None:
+    a = param.annotation(name)
+    return a.value if a is not None and isinstance(a.value, str) else None
+
+
+def host_would_set(param: Parameter) -> str | None:
+    """Whose value a parameter nothing sets was: the tool or game that would have set it
+    where no convention says which value (a model's material, a game's colour), or None."""
+    semantic = (param.semantic or "").upper()
+    name = param.name.lower()
+    if semantic in _GEOMETRY_SEMANTICS and _object(param) == "geometry":
+        return ("MikuMikuEffect sets it from the model's material (Object = \"Geometry\"); "
+                "the scene has no material")
+    if semantic in _MME_MODEL_SEMANTICS:
+        return f"MikuMikuEffect sets {semantic} from the model; the scene has none"
+    if semantic.startswith("MATERIAL") or (semantic in _GEOMETRY_SEMANTICS and not _object(param)):
+        return f"a host sets {semantic} from the object's material; the scene has none"
+    if name.startswith("g_material") or (name.startswith("g_") and "material" in name):
+        return "the DirectX SDK sample set its material colours in code; no convention says which"
+    if name in _XNA_MATERIAL_NAMES:
+        return "XNA's BasicEffect took the game's material colours; no convention says which"
+    if "light" in name and any(w in name for w in ("dir", "pos", "color", "colour", "diffuse")):
+        return ("a light the application placed: the scene's light is bound only where a "
+                "convention names it (docs/guide/host.md)")
+    return None
 
 
 def parameter_semantic(param: Parameter) -> str:
@@ -275,11 +413,41 @@ def bind_scene(effect: Effect, scene: Scene, size: tuple[int, int] | None = None
         semantic = parameter_semantic(param)
         if not semantic or param.array or param.name in bound:
             continue
+        if semantic == "CONTROLOBJECT" and param.type.is_numeric:
+            self_ = _annotation_text(param, "name") == "(self)"
+            # "(self)" as a vector: the model's position (the world matrix's translation)
+            bound[param.name] = _fit(m["world"][3, :3] if self_ else 0.0, param) \
+                if param.type.base in ("float", "half") else \
+                np.zeros(param.type.components, bool if param.type.base == "bool" else np.int32
+                         ).reshape(_fit(0.0, param).shape)
+            continue
         if matrix_semantic(semantic) is None and semantic in values and param.type.is_numeric:
             if semantic in _LIGHT_SEMANTICS and not scene.light_given and param.value is not None:
                 continue
-            bound[param.name] = values[semantic](param)
+            bound[param.name] = _in_space(values[semantic](param), param, semantic, m)
     return bound
+
+
+# DXSAS / FX Composer: a light's or the camera's position or direction with `string Space =
+# "View"` (or "Object") is given in that space (`float3 L : DIRECTION < string Object =
+# "DirectionalLight"; string Space = "VIEW"; >`); "World", or no annotation, is world space.
+_SPACE_POINTS = {"LIGHTPOSITION", "LIGHT0POSITION", "CAMERAPOSITION", "VIEWPOSITION",
+                 "EYEPOSITION"}
+_SPACE_VECTORS = {"LIGHTDIRECTION", "LIGHT0DIRECTION", TOWARD_LIGHT, "VIEWDIRECTION"}
+
+
+def _in_space(value: np.ndarray, param: Parameter, semantic: str,
+              m: dict[str, np.ndarray]) -> np.ndarray:
+    space = (_annotation_text(param, "Space") or "world").lower()
+    if space not in ("view", "object") or semantic not in _SPACE_POINTS | _SPACE_VECTORS:
+        return value
+    to = m["view"] if space == "view" else np.linalg.inv(m["world"])
+    v = np.zeros(4)
+    flat = np.asarray(value, np.float64).reshape(-1)
+    v[:min(3, flat.size)] = flat[:3]
+    v[3] = 1.0 if semantic in _SPACE_POINTS else 0.0
+    return _fit((v @ to)[:flat.size] if flat.size < 4 else np.append((v @ to)[:3], flat[3:]),
+                param)
 
 
 def ui_defaults(effect: Effect) -> dict[str, np.ndarray]:
@@ -320,6 +488,30 @@ def binding_table() -> list[tuple[str, str]]:
     rows.append(("no semantic, named CameraPosition, EyePosition, LightPosition, LightDirection, "
                  "LightColor (or …Pos, …Dir)", "bound by name (XNA convention): the camera's "
                  "eye, the scene light's position / direction / colour"))
+    rows.append(("no semantic, named DirLight0Direction, DirLight0DiffuseColor, "
+                 "DirLight0SpecularColor", "bound by name (XNA BasicEffect's first directional "
+                 "light, Microsoft.Xna.Framework.Graphics.BasicEffect): the scene light's "
+                 "direction (the way it travels) and colour"))
+    rows.append(("no semantic, named g_LightDir, g_vLightDir, g_LightDirection (any case)",
+                 "bound by name (DirectX SDK samples, BasicHLSL.fx): the direction toward the "
+                 "scene light, minus LIGHTDIRECTION, as the samples' N·L reads it"))
+    rows.append(("no semantic, named g_LightDiffuse, g_vLightColor, g_fTime, g_vEyePt …",
+                 "bound by name (DirectX SDK samples): the scene light's colour, the time, "
+                 "the camera's eye"))
+    rows.extend((f"{s} with `string Object = \"Camera\"`",
+                 f"{VALUE_SEMANTICS[t]} (MikuMikuEffect)")
+                for s, t in OBJECT_CAMERA_SEMANTICS.items())
+    rows.append(("a light's or the camera's position or direction with `string Space = "
+                 "\"View\"` or `\"Object\"`", "that value in view (object) space, as DXSAS "
+                 "and FX Composer give it; `\"World\"` or none: world space"))
+    rows.append(("CONTROLOBJECT with `string name = \"(self)\"`", "the world matrix (a "
+                 "float4x4) or the model's position (a vector) (MikuMikuEffect)"))
+    rows.append(("CONTROLOBJECT naming another object", "0 (false): MikuMikuEffect's value "
+                 "for an object that is not loaded, and the scene loads none"))
+    rows.append(("DIFFUSE, AMBIENT, SPECULAR, EMISSIVE, SPECULARPOWER with `string Object = "
+                 "\"Geometry\"`, TOONCOLOR, EDGECOLOR; MATERIAL… semantics; g_Material… and "
+                 "XNA's DiffuseColor … names", "nothing: the model's or game's material, which "
+                 "no convention gives; the render warns where one is read (it reads 0)"))
     return rows
 
 

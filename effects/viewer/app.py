@@ -23,7 +23,7 @@ import os
 import sys
 import time
 from dataclasses import dataclass, field
-from typing import Callable, Sequence
+from typing import Any, Callable, Sequence
 
 import numpy as np
 
@@ -375,6 +375,11 @@ class Viewer:
             self.backend.reset_shared_state()
         self.status.gl_ms = self._rendered_ms = (time.perf_counter() - start) * 1000.0
         self._image = image
+        self.status.diagnostics = frame_diagnostics(runtime, loaded.technique, image)
+        for text in self.status.diagnostics:     # on the console too, each once
+            if text not in self._warned:
+                self._warned.add(text)
+                self.say(text)
         if self.state.view == "gl":
             self.blitter.upload(image)
 
@@ -540,3 +545,13 @@ def run_viewer(options: ViewerOptions) -> int:
 
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(run_viewer(ViewerOptions(sys.argv[1])))
+
+
+def frame_diagnostics(runtime: Any, technique: Any, image: np.ndarray) -> list[str]:
+    """What the picture drawn shows nothing of (`effects.host.diagnostics`), for the panel;
+    a diagnosis that fails says so instead of failing the frame."""
+    from effects.host.diagnostics import diagnose_frame
+    try:
+        return [str(w) for w in diagnose_frame(runtime, technique, image)]
+    except Exception as exc:  # noqa: BLE001 - a view of the frame must not fail it
+        return [f"the picture could not be diagnosed: {error_text(exc)}"]

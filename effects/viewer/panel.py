@@ -55,6 +55,8 @@ class Status:
     reference_error: str | None = None
     difference: "DifferenceStats | None" = None
     messages: list[str] = field(default_factory=list)
+    # what the picture shows nothing of and why (`effects.host.diagnostics`), located
+    diagnostics: list[str] = field(default_factory=list)
 
 
 @dataclass
@@ -136,6 +138,11 @@ def _techniques(state: ViewerState, status: Status) -> None:
         for warning in warnings:
             imgui.bullet()
             imgui.text_wrapped(str(warning))
+    if status.diagnostics:
+        imgui.text_colored(YELLOW, "What the picture shows nothing of:")
+        for text in status.diagnostics:
+            imgui.bullet()
+            imgui.text_wrapped(text)
     if loaded.forced_rejected is not None:
         v = loaded.forced_rejected
         imgui.text_colored(YELLOW, f"Forced {v.technique.name} is not valid on this card:")

@@ -1,6 +1,8 @@
 """`effects doctor`: what an effect needs from a host that it does not get."""
 from __future__ import annotations
 
+from tests.paths import ROOT
+
 from effects.cli.main import main
 
 NEEDY = """float4x4 Wvp : WorldViewProjection;
@@ -46,3 +48,19 @@ def test_doctor_on_bad_input_exits_2(tmp_path, capsys):
     path = tmp_path / "bad.fx"
     path.write_text("technique {")
     assert main(["doctor", str(path)]) == 2
+
+
+def test_doctor_lists_the_file_defaults_kept_and_whose_value_is_missing(capsys):
+    wood = ROOT / "fxfiles" / "wood.fx"
+    assert main(["doctor", str(wood), "-p", "radeon9700"]) == 0
+    out = capsys.readouterr().out
+    # wood.yaml beside it binds the colours and the light; the file's own values stand for
+    # the rest, shown as the file writes them
+    assert "    L <- --set / scene params" in out
+    assert "keep the file's default (nothing binds them):" in out
+    assert "    ringscale = 10\n" in out and "    lightwood = 0.3, 0.12, 0.03\n" in out
+    toon = ROOT / "tests" / "data" / "blank" / "toon_unset_light.fx"
+    assert main(["doctor", str(toon)]) == 0
+    out = capsys.readouterr().out
+    assert "vLightDirection (declared at" in out and "a light the application placed" in out
+    assert "    cBase = 1, 0.5, 0.2, 1\n" in out

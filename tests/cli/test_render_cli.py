@@ -161,3 +161,22 @@ def test_the_scene_beside_the_effect_is_its_scene(tmp_path, capsys):
     assert "diffuse_color <- --set / scene params" in beside_report
     assert "nothing missing" in beside_report
     assert "set by nothing (they read 0):\n    ambient_color" in alone_report
+
+
+def test_render_mesh_draws_a_mesh_file_or_a_built_in_one(tmp_path, capsys):
+    """`render --mesh` (issue 32): a mesh file through the mesh loader, or a built-in name,
+    wins over the scene's mesh; a missing file is a located input error."""
+    phong = str(ROOT / "fxfiles" / "phong.fx")
+    pictures = {}
+    for mesh in ("sphere", "cube", str(ROOT / "fxfiles" / "coarse_sphere.obj")):
+        out = tmp_path / f"{os.path.basename(mesh)}.png"
+        assert main(["render", phong, "-p", "refrast", "--size", "32x32", "--mesh", mesh,
+                     "-o", str(out)]) == 0
+        pictures[mesh] = np.asarray(Image.open(out))[..., :3].astype(int)
+    sphere, cube, coarse = pictures.values()
+    assert np.abs(sphere - cube).max() > 100            # another silhouette
+    assert 0 < np.abs(sphere - coarse).mean() < np.abs(sphere - cube).mean()   # a coarser sphere
+    capsys.readouterr()
+    assert main(["render", phong, "-p", "refrast", "--mesh", str(tmp_path / "none.obj"),
+                 "-o", str(tmp_path / "x.png")]) == 2
+    assert "--mesh:1:1: error: mesh file not found" in capsys.readouterr().err

@@ -322,3 +322,26 @@ def test_a_files_own_lights_stay_its_own_in_the_viewers_scene(fx, shader, fixed)
             .astype(int) for t in (shader, fixed))
     assert np.abs(a - b)[..., :3].mean() < 2.0           # per pixel against per vertex
     assert a[..., :3].mean() > 20                         # and lit: not two black pictures
+
+
+def test_the_viewer_says_what_its_picture_shows_nothing_of(tmp_path):
+    """No silent blank (issue 32): the toon shader whose light direction nothing sets draws
+    black; the viewer lists why in its panel and says it once on the console."""
+    toon = os.path.join(ROOT, "tests", "data", "blank", "toon_unset_light.fx")
+    shot = tmp_path / "toon.png"
+    viewer = ViewerProcess(str(toon), "--profile", "radeon9700", "--size", SIZE,
+                           "--exit-after", "1.5", "--screenshot", str(shot))
+    line = viewer.expect(lambda l: "vLightDirection is set by nothing" in l, "the diagnosis")
+    assert line.startswith(f"{toon}:3:8: warning: parameter vLightDirection")
+    assert viewer.finish() == 0
+    assert sum("vLightDirection is set by nothing" in l and "warning: parameter" in l
+               for l in viewer.lines) == 1
+    # the sphere is black on the viewer's backdrop: the cause is said though the frame has
+    # two colours
+    # the panel's list is what the console said: the runtime's frame, diagnosed
+    from effects.viewer.app import frame_diagnostics
+    from effects.host.runtime import Runtime
+    runtime = Runtime(effects.load_effect(toon), "radeon9700", size=(64, 64))
+    frame = runtime.render()
+    said = frame_diagnostics(runtime, frame.technique, frame.image)
+    assert said[0].startswith(f"{toon}:3:8: warning: parameter vLightDirection is set by nothing")
