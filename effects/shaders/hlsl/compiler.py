@@ -124,11 +124,7 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
         binder.outputs(ev.scopes[0][name].value if name in ev.scopes[0] else ev.lookup(name).value,
                        str(sem_text) if sem_text is not None else None,
                        fdef.origin.at(sem if sem is not None else fdef.tree), outputs)
-    if ctx.target.kind == "ps" and not any(o.register.startswith("oC") for o in outputs):
-        raise fdef.origin.error(f"X4507: '{entry}': a pixel shader must write a COLOR output", fdef.tree)
-    if ctx.target.kind == "vs" and not any(o.register in ("oPos", "o0") and o.register == "oPos"
-                                           or o.register.startswith("o") for o in outputs):
-        raise fdef.origin.error(f"X4502: '{entry}': a vertex shader must write POSITION", fdef.tree)
+    _check_required_outputs(ctx, entry, binder.bound, fdef)
     preshaders = {}
     if ctx.target.rules.is_ps1:
         # fxc's preshader: what reads only uniforms is computed on the host (see preshader.py)
@@ -163,6 +159,24 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
                           generated.int_registers if not ctx.target.rules.is_ps1 else {},
                           generated.bool_registers if not ctx.target.rules.is_ps1 else {},
                           {n: p for n, p in preshaders.items() if n in generated.constants})
+
+
+def _check_required_outputs(ctx: Context, entry: str, bound: set[tuple[str, int]],
+                            fdef: Any) -> None:
+    """The outputs fxc requires of an entry point, by semantic (usage, index) as bound:
+    a vertex shader writes POSITION0 (X4541) and a pixel shader COLOR0 (X4530), whatever else
+    it writes. Codes and wording: fxc's HLSL error list (XShaderCompiler's HLSLErr.h mirrors
+    it: ERR_WRITE_ALL_POS = 4541, ERR_WRITE_TO_COLOR0 = 4530) and d3dcompiler's own check,
+    which counts the components of the output with usage POSITION, index 0 (its disassembly
+    prints "vertex shader must minimally write all four components of POSITION" with
+    0x11bd = 4541). dcl_usage's reference page: a vs_3_0 output "must be declared as
+    position", so the rule holds for every vertex shader version."""
+    if ctx.target.kind == "vs" and ("POSITION", 0) not in bound:
+        raise fdef.origin.error(f"X4541: '{entry}': vertex shader must minimally write all "
+                                "four components of POSITION", fdef.tree)
+    if ctx.target.kind == "ps" and ("COLOR", 0) not in bound:
+        raise fdef.origin.error(f"X4530: '{entry}': pixel shader must minimally write all "
+                                "four components of COLOR0", fdef.tree)
 
 
 def _sampler_registers(ctx: Context) -> dict[str, int]:
@@ -270,6 +284,7 @@ class _Binder:
         self.next_v = 0
         self.next_o = 0
         self.input_keys: dict[str, tuple] = {}   # v# -> (usage, index) of a vertex input
+        self.bound: set[tuple[str, int]] = set()  # the (usage, index) of every output bound
 
     def uniform_param(self, name: str, t: HType) -> Value:
         from effects.shaders.hlsl.expressions import uniform_value
@@ -332,6 +347,7 @@ class _Binder:
             raise HlslError("X4503: output of the entry point has no semantic", loc)
         usage, index = split_semantic(semantic)
         usage = _SV_AS_D3D9.get(usage, usage)
+        self.bound.add((usage, index))
         target = self.ctx.target
         if target.kind == "ps":
             if usage == "COLOR":
