@@ -25,7 +25,9 @@ from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg, Src
 from effects.shaders.hlsl.dag import SHAPED, Node, Operand
 from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_kill, emit_loop, needed, place
+from effects.shaders.hlsl.fusion import fuse_lrp, fuse_mad
 from effects.shaders.hlsl.legalize import finish
+from effects.shaders.hlsl.peephole import optimise
 
 COMPONENTS = "xyzw"
 # ops whose result lanes can be placed anywhere (component-wise or one scalar result)
@@ -139,21 +141,13 @@ class CodeGen:
                 c.node.uses += 1
 
     def combine(self, nodes: list[Node]) -> None:
-        """mul + add -> mad where the mul has no other use."""
+        """The DAG's fusions (fusion.py): lerp written out -> lrp where the target has it,
+        then mul + add -> mad where the mul has no other use."""
         self.count_uses(nodes)
-        for n in nodes:
-            if n.op != "add":
-                continue
-            for k in (0, 1):
-                m = n.args[k]
-                if m.node.op == "mul" and m.node.uses == 1 and m.node.width >= m.width:
-                    a, b = m.node.args
-                    a2, b2 = a.pick(m.swizzle), b.pick(m.swizzle)
-                    if m.negate:
-                        a2 = a2.neg()
-                    n.op, n.args = "mad", (a2, b2, n.args[1 - k])
-                    m.node.uses = 0
-                    break
+        uses = {n.id: n.uses for n in nodes}
+        if self.target.has("lrp"):
+            fuse_lrp(nodes, uses)
+        fuse_mad(nodes, uses)
 
     # -- emission ---------------------------------------------------------------------------
     def place(self, op: Operand, lanes: list[int], reduce: bool = False) -> Src:
@@ -192,6 +186,7 @@ class CodeGen:
                 emit_kill(self, k.node)
         for o in self.outputs:
             self.output(o)
+        optimise(self)
         return finish(self)
 
     def _move(self, reg: Reg, value: Operand, loc: Location) -> None:
@@ -199,22 +194,28 @@ class CodeGen:
         self.emit("mov", reg, tuple(range(value.width)), [self._lanewise(value, lanes)], loc)
 
     def coalesce(self, nodes: list[Node]) -> None:
-        for n in nodes:
-            if n.op == "input" or n.op == "uniform" or n.op == "const":
-                continue
+        self._gathers: list[tuple[tuple[Operand, ...], object]] = []
         for p in nodes:
             if p.op != "pack":
                 continue
             reg = self.home_of(p)[0]
-            self._coalesce_into(p.args, reg, p.location, lambda lane: lane)
+            self._coalesce_into(p.args, reg, p.location, lambda lane: lane, shared=True)
         self.out_regs: dict[str, Reg] = {}
         for o in self.outputs:
             # vertex shaders compute straight into the output; oC# and oDepth take a mov
             reg = Reg(*_split_reg(o.register)) if self.target.kind == "vs" else self.temp()
             self.out_regs[o.register] = reg
-            self._coalesce_into(tuple(o.comps), reg, o.location, lambda lane: lane)
+            self._coalesce_into(tuple(o.comps), reg, o.location, lambda lane: lane,
+                                shared=reg.kind == "vr")
+        self._gather_loose()
 
-    def _coalesce_into(self, comps: tuple[Operand, ...], reg: Reg, loc: Location, lane_of) -> None:
+    def _coalesce_into(self, comps: tuple[Operand, ...], reg: Reg, loc: Location, lane_of,
+                       shared: bool = False) -> None:
+        """Give the nodes that make `comps` their lanes of `reg` as home, so they compute in
+        place. `shared`: `reg` is a temporary, which other instructions can read too, so a
+        one-lane result (dp4, rcp ...) read elsewhere as well goes there all the same: the
+        three dp4 of a position land in r0.xyz and every reader reads r0 (fxc's packing);
+        an output register is written only."""
         by_node: dict[int, list[tuple[int, int]]] = {}
         for lane, c in enumerate(comps):
             if c.negate:
@@ -228,10 +229,31 @@ class CodeGen:
             uses_here = sum(1 for x in comps if x.node is node)
             movable = (node.op in _LANEWISE and not (node.op == "frc" and self.target.name == "vs_1_1")) or (node.width == 1 and (node.op in _SCALAR or node.op in _REDUCE))
             comps_used = [p[0] for p in pairs]
-            if movable and node.uses == uses_here and len(set(comps_used)) == len(comps_used) \
+            alone = node.uses == uses_here or (
+                shared and node.width == 1 and uses_here == 1 and node.op not in _LANEWISE)
+            if movable and alone and len(set(comps_used)) == len(comps_used) \
                     and len(pairs) == uses_here:
                 self.home[node.id] = (reg, {comp: lane_of(lane) for comp, lane in pairs})
                 node.coalesced = True
+        self._gathers.append((comps, lane_of))
+
+    def _gather_loose(self) -> None:
+        """What is left of the one-lane results a vector is made of (read negated, or read
+        elsewhere too where the vector is an output) is gathered in a temporary of its own,
+        lane for lane, so one mov (`mov oT2.xyz, -r0`), or none once the copy is read in
+        place, makes the vector. After every vector had its turn at homing them itself."""
+        for comps, lane_of in self._gathers:
+            self._gather_into_temp(comps, lane_of)
+
+    def _gather_into_temp(self, comps: tuple[Operand, ...], lane_of) -> None:
+        loose = [(lane, c.node) for lane, c in enumerate(comps)
+                 if c.node.id not in self.home and c.node.width == 1
+                 and (c.node.op in _SCALAR or c.node.op in _REDUCE)
+                 and sum(1 for x in comps if x.node is c.node) == 1]
+        if len(loose) > 1:
+            gather = self.temp()
+            for lane, node in loose:
+                self.home[node.id] = (gather, {0: lane_of(lane)})
 
     def node(self, n: Node) -> None:
         op = n.op
@@ -272,8 +294,7 @@ class CodeGen:
             for lane, c in enumerate(n.args):
                 if self.home.get(c.node.id, (None,))[0] is reg and c.node.coalesced:
                     continue
-                key = (c.node.id, c.negate) if c.node.op != "const" else ("const",)
-                groups.setdefault(key, []).append((lane, c))
+                groups.setdefault(self._source_key(c), []).append((lane, c))
             for items in groups.values():
                 lanes = [lane for lane, _ in items]
                 src = self._gather(items)
@@ -360,12 +381,24 @@ class CodeGen:
         src.lanes, src.fixed = {l: l for l in vals}, None
         return src
 
+    def _source_key(self, c: Operand) -> tuple:
+        """Lanes of a vector built from pieces that one mov can gather: the constants, and
+        the pieces whose homes are one register (several one-lane results coalesced into it),
+        with the same sign."""
+        if c.node.op == "const":
+            return ("const",)
+        home = self.home.get(c.node.id)
+        if home is None:
+            return (c.node.id, c.negate)
+        return (home[0].kind, home[0].index, c.negate)
+
     def _gather(self, items: list[tuple[int, Operand]]) -> Src:
         first = items[0][1]
         if first.node.op == "const":
             return self._const_lanes({lane: c.const_values()[0] for lane, c in items})  # type: ignore[index]
-        reg, where = self.home[first.node.id]
-        return Src(reg, {lane: where[c.swizzle[0]] for lane, c in items}, first.negate)
+        reg = self.home[first.node.id][0]
+        return Src(reg, {lane: self.home[c.node.id][1][c.swizzle[0]] for lane, c in items},
+                   first.negate)
 
     def output(self, o: Output) -> None:
         final = Reg(*_split_reg(o.register))
@@ -386,8 +419,7 @@ class CodeGen:
                 return
         groups: dict[tuple, list[tuple[int, Operand]]] = {}
         for lane, c in pending:
-            key = (c.node.id, c.negate) if c.node.op != "const" else ("const",)
-            groups.setdefault(key, []).append((lane, c))
+            groups.setdefault(self._source_key(c), []).append((lane, c))
         for items in groups.values():
             self.emit("mov", reg, tuple(l for l, _ in items), [self._gather(items)], o.location)
         if self.target.kind == "ps":

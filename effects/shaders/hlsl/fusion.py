@@ -1,0 +1,117 @@
+"""Rewrites of the DAG before code generation: several nodes that one instruction computes.
+
+- `fuse_mad`: `add(mul(a, b), c)`, the mul read nowhere else, is `mad(a, b, c)`;
+- `fuse_lrp`: `x*(1 - a) + y*a` and `x + (y - x)*a`, written out by hand, are `lrp(a, y, x)`
+  where the target has lrp (ps_2_0 and up, vs_2_0 and up: fxc's listings show it; one
+  instruction for the three, issue 31).
+
+Each takes the nodes the outputs reach (creation order, so arguments first) and `uses`
+(node id -> readers, outputs and discards counted), rewrites nodes in place and returns how
+many it rewrote.
+"""
+from __future__ import annotations
+
+from effects.shaders.hlsl.dag import Node, Operand
+
+
+def fuse_mad(nodes: list[Node], uses: dict[int, int]) -> int:
+    done = 0
+    for n in nodes:
+        if n.op != "add":
+            continue
+        for k in (0, 1):
+            m = n.args[k]
+            if m.node.op == "mul" and uses.get(m.node.id) == 1 and m.node.width >= m.width:
+                a, b = m.node.args
+                a2, b2 = a.pick(m.swizzle), b.pick(m.swizzle)
+                if m.negate:
+                    a2 = a2.neg()
+                n.op, n.args = "mad", (a2, b2, n.args[1 - k])
+                uses[m.node.id] = 0
+                done += 1
+                break
+    return done
+
+
+def _lanes(o: Operand) -> tuple[Operand, ...] | None:
+    """The arguments of the lanewise node `o` reads, seen through o's swizzle (None where an
+    argument is narrower than its node: a broadcast)."""
+    if any(a.width != o.node.width for a in o.node.args):
+        return None
+    return tuple(a.pick(o.swizzle) for a in o.node.args)
+
+
+def _one_minus(o: Operand) -> Operand | None:
+    """`a` where `o` reads `1 - a` (an add of a constant 1 and a negated operand)."""
+    if o.node.op != "add" or o.negate:
+        return None
+    args = _lanes(o)
+    if args is None:
+        return None
+    for k in (0, 1):
+        c = args[k].const_values()
+        if c is not None and all(v == 1.0 for v in c) and args[1 - k].node.op != "const":
+            return args[1 - k].neg()
+    return None
+
+
+def _factors(o: Operand, uses: dict[int, int]) -> tuple[Operand, Operand] | None:
+    """The two factors of a mul read only here, through o's swizzle and sign."""
+    if o.node.op != "mul" or uses.get(o.node.id) != 1:
+        return None
+    args = _lanes(o)
+    if args is None:
+        return None
+    a, b = args
+    return (a.neg(), b) if o.negate else (a, b)
+
+
+def _difference(o: Operand, uses: dict[int, int]) -> tuple[Operand, Operand] | None:
+    """(y, x) where `o` reads `y - x`, an add read only here."""
+    if o.node.op != "add" or uses.get(o.node.id) != 1 or o.negate:
+        return None
+    args = _lanes(o)
+    if args is None:
+        return None
+    p, q = args
+    return (p, q.neg())
+
+
+def _match(n: Node, uses: dict[int, int]) -> tuple[Operand, Operand, Operand] | None:
+    """(a, y, x) where the add `n` computes lerp(x, y, a) written out."""
+    for first, second in ((n.args[0], n.args[1]), (n.args[1], n.args[0])):
+        if first.width != n.width or second.width != n.width:
+            return None
+        # x*(1 - a) + y*a
+        fx, fy = _factors(first, uses), _factors(second, uses)
+        if fx is not None and fy is not None:
+            for x, w in (fx, fx[::-1]):
+                a = _one_minus(w)
+                if a is None:
+                    continue
+                for y, a2 in (fy, fy[::-1]):
+                    if a2.sig() == a.sig():
+                        return a, y, x
+        # x + (y - x)*a
+        fd = _factors(second, uses)
+        if fd is not None:
+            for d, a in (fd, fd[::-1]):
+                yx = _difference(d, uses)
+                if yx is not None and yx[1].sig() == first.sig():
+                    return a, yx[0], first
+    return None
+
+
+def fuse_lrp(nodes: list[Node], uses: dict[int, int]) -> int:
+    done = 0
+    for n in nodes:
+        if n.op != "add":
+            continue
+        found = _match(n, uses)
+        if found is None:
+            continue
+        for arg in n.args:               # the muls (and a difference) now read by nobody
+            uses[arg.node.id] = uses.get(arg.node.id, 1) - 1
+        n.op, n.args = "lrp", found
+        done += 1
+    return done
