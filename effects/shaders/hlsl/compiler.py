@@ -63,7 +63,16 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
     fdefs = [f for f in effect.functions if f.name == entry]
     at = fdefs[0].location if fdefs else where
     try:
-        return _compile_shader(effect, entry, target, args, where)
+        shader, literal_loops = _compile_shader(effect, entry, target, args, where)
+        if literal_loops and not _fits(shader):
+            # fxc unrolled a for over literal bounds when it could and the code fitted the
+            # target; when it did not, the loop stayed a loop (rep / loop aL): the XNA toon
+            # shader's `for (i = 0; i < 30; ++i)` over lightPositions[i], 858 ps_3_0 slots
+            # unrolled, which fxc compiled. [unroll] and [loop] decide where written.
+            looped, _ = _compile_shader(effect, entry, target, args, where, loops_for_size=True)
+            if looped.program.stats.total_slots < shader.program.stats.total_slots:
+                return looped
+        return shader
     except RecursionError:
         raise out_of_stack(at) from None
     except EffectError as err:
@@ -73,9 +82,23 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
         raise type(err)(err.message, at) from None
 
 
+def _fits(shader: CompiledShader) -> bool:
+    """Whether the code fits what fxc allowed the target: the version's slots (vs_2_0 256,
+    ps_2_a 512), and for shader model 3 the 512 every card has (its X5608 limit)."""
+    rules = shader.program.rules
+    stats = shader.program.stats
+    limit = rules.total_slots_min if rules.major >= 3 else rules.total_slots
+    return stats.total_slots <= limit and \
+        (rules.arith_slots is None or stats.arithmetic_slots <= rules.arith_slots) and \
+        (rules.tex_slots is None or stats.texture_slots <= rules.tex_slots)
+
+
 def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...],
-                    where: Location) -> CompiledShader:
+                    where: Location, loops_for_size: bool = False) -> tuple[CompiledShader, int]:
+    """The shader, and how many loops over literal bounds it unrolled that could have been
+    real loops."""
     ctx = load_context(effect, target.lower())
+    ctx.loops_for_size = loops_for_size
     fdefs = ctx.functions.get(entry)
     if not fdefs:
         raise HlslError(f"X3501: '{entry}': entrypoint not found", where)
@@ -158,7 +181,8 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
                           dict(ctx.uniforms_used),
                           generated.int_registers if not ctx.target.rules.is_ps1 else {},
                           generated.bool_registers if not ctx.target.rules.is_ps1 else {},
-                          {n: p for n, p in preshaders.items() if n in generated.constants})
+                          {n: p for n, p in preshaders.items() if n in generated.constants}), \
+        ctx.literal_loops
 
 
 def _check_required_outputs(ctx: Context, entry: str, bound: set[tuple[str, int]],

@@ -97,7 +97,8 @@ def bound_of(ev: Any, tree: lark.Tree, cond: Any, step: Any, attrs: Any = None) 
                 param.type.base in ("int", "uint", "dword") and param.type.rows == 1 and \
                 param.type.cols == 1 and not param.array:
             return Bound(counter, bound) if first == (0.0,) else None
-    if not has_attribute(attrs, "loop"):
+    asked = has_attribute(attrs, "loop") or ev.ctx.loops_for_size
+    if not asked and not TargetFlow.of(ev.ctx.target).static:
         return None
     last = ev.expr(right).const_values()
     if last is None or len(last) != 1 or not all(math.isfinite(x) for x in (first[0], last[0])) \
@@ -105,6 +106,9 @@ def bound_of(ev: Any, tree: lark.Tree, cond: Any, step: Any, attrs: Any = None) 
         return None
     start, count = int(first[0]), int(last[0]) - int(first[0])
     if not (0 <= start <= 255 and 0 <= count <= 255):
+        return None
+    if not asked:                 # unrolled first; a real loop if that does not fit
+        ev.ctx.literal_loops += 1
         return None
     return Bound(counter, None, start, count)
 
