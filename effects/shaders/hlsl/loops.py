@@ -32,8 +32,10 @@ flow control (see _run_body). Loops nest (a uniform loop inside another is a reg
 the outer one's), up to the 4 levels of rep / loop nesting of 2_x / 3_0 code (flowrules.py).
 What the region cannot hold yet is refused with its reason, and the loop is then unrolled as
 before (which succeeds when a `break` on a constant ends it): return / discard in the body,
-a break where the target has no break_comp, arrays or structs the body changes, nesting past
-the limit. `[unroll]` always unrolls.
+a break where the target has no break_comp, a sampler the body changes, nesting past the
+limit. Arrays and structs of numbers the body changes are carried like numbers (`carried`).
+A `for` over literal bounds with no attribute is unrolled, and a real loop only where the
+unrolled code does not fit (compiler.compile_shader asks again). `[unroll]` always unrolls.
 """
 from __future__ import annotations
 
