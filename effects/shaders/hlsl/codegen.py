@@ -27,15 +27,12 @@ from effects.shaders.hlsl.dag import SHAPED, Node, Operand
 from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_kill, emit_loop, needed, place
 from effects.shaders.hlsl.fusion import fuse_lrp, fuse_mad
 from effects.shaders.hlsl.legalize import finish
+from effects.shaders.hlsl.ops import LANEWISE, OPS, REDUCE, SCALAR, TEXTURE, shaped
 from effects.shaders.hlsl.peephole import optimise
 
 COMPONENTS = "xyzw"
-# ops whose result lanes can be placed anywhere (component-wise or one scalar result)
-_LANEWISE = {"add", "mul", "mad", "min", "max", "frc", "abs", "cmp", "lrp", "slt", "sge", "mov",
-             "sat", "dsx", "dsy"}
-_SCALAR = {"rcp", "rsq", "exp", "log", "pow"}
-_REDUCE = {"dp3": 3, "dp4": 4, "dp2add": 2}
-_TEX = {"tex": "texld", "texldp": "texldp", "texldb": "texldb", "texldl": "texldl", "texldd": "texldd"}
+# how each op is emitted: the op table's rows (ops.py)
+_LANEWISE, _SCALAR, _REDUCE, _TEX = LANEWISE, SCALAR, REDUCE, TEXTURE
 
 
 class CodeGen:
@@ -306,7 +303,7 @@ class CodeGen:
             srcs = [self.place(a, list(range(a.width))) for a in n.args]
             self.emit(_TEX[op], reg, (0, 1, 2, 3), srcs, n.location, sampler=n.key[0])
             return
-        if op in SHAPED and op not in _REDUCE:
+        if shaped(op):
             widths = SHAPED[op][0]
             srcs = [self.place(a, list(range(w))) for a, w in zip(n.args, widths)]
             for s in srcs:
@@ -343,8 +340,7 @@ class CodeGen:
         for a in n.args:
             s = self._lanewise(a, lanes_out)
             srcs.append(s)
-        opcode = "mov" if op == "sat" else op
-        self.emit(opcode, reg, mask, srcs, n.location, saturate=op == "sat")
+        self.emit(OPS[op].mnemonic, reg, mask, srcs, n.location, saturate=op == "sat")  # type: ignore[arg-type]
 
     def relative_read(self, n: Node) -> None:
         """c[a0.x + n] copied to a temporary, a0.x loaded first unless it holds this address
