@@ -25,7 +25,7 @@ from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg, Src
 from effects.shaders.hlsl.dag import SHAPED, Node, Operand
 from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_kill, emit_loop, needed, place
-from effects.shaders.hlsl.fusion import fuse_lrp, fuse_mad
+from effects.shaders.hlsl.fusion import fuse_lrp, fuse_mad, share_lit_diffuse
 from effects.shaders.hlsl.legalize import finish
 from effects.shaders.hlsl.ops import LANEWISE, OPS, REDUCE, SCALAR, TEXTURE, shaped
 from effects.shaders.hlsl.peephole import optimise
@@ -140,6 +140,8 @@ class CodeGen:
     def combine(self, nodes: list[Node]) -> None:
         """The DAG's fusions (fusion.py): lerp written out -> lrp where the target has it,
         then mul + add -> mad where the mul has no other use."""
+        if share_lit_diffuse(nodes, [o.comps for o in self.outputs] + [self.ctx.kills]):
+            nodes = self.reachable()
         self.count_uses(nodes)
         uses = {n.id: n.uses for n in nodes}
         if self.target.has("lrp"):

@@ -3,7 +3,9 @@
 - `fuse_mad`: `add(mul(a, b), c)`, the mul read nowhere else, is `mad(a, b, c)`;
 - `fuse_lrp`: `x*(1 - a) + y*a` and `x + (y - x)*a`, written out by hand, are `lrp(a, y, x)`
   where the target has lrp (ps_2_0 and up, vs_2_0 and up: fxc's listings show it; one
-  instruction for the three, issue 31).
+  instruction for the three, issue 31);
+- `share_lit_diffuse`: `max(n.l, 0)` beside a `lit` of the same n.l is the lit's .y (lit()
+  builds both, so the diffuse term alone costs one max).
 
 Each takes the nodes the outputs reach (creation order, so arguments first) and `uses`
 (node id -> readers, outputs and discards counted), rewrites nodes in place and returns how
@@ -115,3 +117,43 @@ def fuse_lrp(nodes: list[Node], uses: dict[int, int]) -> int:
         n.op, n.args = "lrp", found
         done += 1
     return done
+
+
+def _lane(o: Operand, i: int) -> Operand:
+    """Lane i of `o` as a one-lane operand of the node that makes it (through a pack)."""
+    if o.node.op == "pack":
+        c = o.node.args[o.swizzle[i]]
+        return c.neg() if o.negate else c
+    return Operand(o.node, (o.swizzle[i],), o.negate)
+
+
+def share_lit_diffuse(nodes: list[Node], roots: list[list[Operand]]) -> int:
+    """Readers of `max(x, 0)` read `lit(x, ...).y` instead where both are reached: the lit's
+    .y is that max (the lit page: dest.y = src.x > 0 ? src.x : 0). `roots`: the outputs' and
+    discards' operand lists, rewritten in place like the nodes' arguments."""
+    lits = {_lane(n.args[0], 0).sig(): n for n in nodes if n.op == "lit"}
+    if not lits:
+        return 0
+    swap: dict[int, Node] = {}
+    for n in nodes:
+        if n.op != "max" or n.width != 1:
+            continue
+        for k in (0, 1):
+            c = n.args[1 - k].const_values()
+            lit = lits.get(n.args[k].sig())
+            if lit is not None and c is not None and all(v == 0.0 for v in c):
+                swap[n.id] = lit
+                break
+    if not swap:
+        return 0
+
+    def read(o: Operand) -> Operand:
+        lit = swap.get(o.node.id)
+        return o if lit is None else Operand(lit, (1,) * o.width, o.negate)
+
+    for n in nodes:
+        if any(a.node.id in swap for a in n.args):
+            n.args = tuple(read(a) for a in n.args)
+    for comps in roots:
+        comps[:] = [read(c) for c in comps]
+    return len(swap)

@@ -501,7 +501,13 @@ def _lit(ev: Any, args: list[Value], loc: Location) -> Value:
         # uses it: `lit r2, r1.xxww` in Unity's compiled vs_2_0 standard shader), where the
         # spelled-out form takes a log and an exp of 10 slots each in vs_1_1. It differs only
         # in clamping the power to +-127.9961
-        return Value(vector("float", 4), split(ev.a.op("lit", [operand(ev.g, [ndl, ndh, m, m])], loc)))
+        # in the power clamp to +-127.9961. The diffuse term stays max(n.l, 0): where the
+        # specular term is not read the lit goes unused (one max, not a lit and its operand's
+        # movs); where it is, codegen reads the lit's .y for it (fusion.share_lit_diffuse)
+        lit = split(ev.a.op("lit", [operand(ev.g, [ndl, ndh, m, m])], loc))
+        one = ev.a.const(1.0)
+        return Value(vector("float", 4), [one, ev.a.op("max", [ndl, ev.a.const(0.0)], loc),
+                                          lit[2], one])
     zero = ev.a.const(0.0)
     diffuse = ev.a.op("max", [ndl, zero], loc)
     both = ev.a.lanes("mul", [ev.a.compare(">", [ndl], [zero], loc), ev.a.compare(">", [ndh], [zero], loc)], loc)

@@ -94,3 +94,23 @@ def test_lit_is_the_vertex_lit_instruction_and_computes_hlsl_lit(backend):
     # lit(0.5, 0.8, 2) = (1, 0.5, 0.8^2, 1); lit(0.5, -0.3, 2) = (1, 0.5, 0, 1)
     assert np.allclose(a[4, 4] / 255.0, (1, 0.5, 0.64, 1), atol=1.5 / 255)
     assert np.allclose(b[4, 4] / 255.0, (1, 0.5, 0.0, 1), atol=1.5 / 255)
+
+
+DIFFUSE_ONLY = """
+float4 K = { 0.5, 0.8, 0.0, 2.0 };
+float4 VS(float4 p : POSITION, out float4 c : COLOR0) : POSITION
+{
+    float4 l = lit(dot(p.xyz, K.xyz), K.y, K.w);
+    c = float4(l.%s, 0, 1);
+    return p;
+}
+"""
+
+
+@pytest.mark.parametrize("lanes, ops", [("yy", ["max"]), ("yz", ["lit"]), ("zz", ["lit"])])
+def test_lit_costs_a_lit_only_where_its_specular_term_is_read(lanes, ops):
+    fx = effects.load_effect(DIFFUSE_ONLY % lanes + "technique T { pass P { } }")
+    from effects.shaders.hlsl import compile_shader
+    text = compile_shader(fx, "VS", "vs_1_1").text
+    used = [op for op in ("max", "lit") if f"\n{op} " in text]
+    assert used == ops, text
