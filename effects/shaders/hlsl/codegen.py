@@ -60,7 +60,7 @@ class CodeGen:
         self._low = 0                  # every register below it is taken (taken only grows)
         self.loop_regs: dict[int, list[Reg]] = {}       # loop id -> carried registers
         self.if_regs: dict[int, list[Reg]] = {}         # if id -> result registers
-        self.a0: tuple | None = None                    # the address a0.x holds
+        self.a0: dict[int, tuple] | None = None         # a0 lane -> the address it holds
 
     # -- registers --------------------------------------------------------------------------
     def temp(self) -> Reg:
@@ -345,20 +345,30 @@ class CodeGen:
         self.emit(OPS[op].mnemonic, reg, mask, srcs, n.location, saturate=op == "sat")  # type: ignore[arg-type]
 
     def relative_read(self, n: Node) -> None:
-        """c[a0.x + n] copied to a temporary, a0.x loaded first unless it holds this address
-        already (vs_1_1 loads it with mov, which floors; vs_2_0 and up with mova, which
-        rounds: the address is a whole number either way, so both read the same element)."""
+        """c[a0.? + n] copied to a temporary (read in place where nothing reloads that lane
+        of a0 in between: peephole.py), a0 loaded first unless a lane holds this address
+        already. vs_1_1 has a0.x alone, loaded with mov (which floors); vs_2_0 and up load
+        any lane with mova (which rounds: the address is a whole number either way), so two
+        bones' addresses sit in a0.x and a0.y and the first bone's rows stay readable (fxc's
+        `mova a0.xy`); a fifth address takes the lane loaded longest ago."""
         address = n.args[0]
-        if getattr(self, "a0", None) != address.sig():
+        lanes: dict[int, tuple] = self.a0 or {}
+        lane = next((k for k, sig in lanes.items() if sig == address.sig()), None)
+        if lane is None:
+            count = 1 if self.rules.major == 1 else 4
+            free = [k for k in range(count) if k not in lanes]
+            lane = free[0] if free else next(iter(lanes))
+            lanes.pop(lane, None)
             src = self.place(address, [0])
             if src.fixed is None:
                 src.fixed = (src.lanes[0],) * 4
-            self.emit("mov" if self.rules.major == 1 else "mova", Reg("a", 0), (0,), [src],
+            self.emit("mov" if self.rules.major == 1 else "mova", Reg("a", 0), (lane,), [src],
                       n.location)
-            self.a0 = address.sig()
+            lanes[lane] = address.sig()         # insertion order: the oldest first
+            self.a0 = lanes
         base = self.uniform_reg(n.key[0], n.key[1]).index
         reg, _ = self.home_of(n)
-        self.emit("mov", reg, (0, 1, 2, 3), [Src(Reg("c_rel", base), {i: i for i in range(4)})],
+        self.emit("mov", reg, (0, 1, 2, 3), [Src(Reg("c_rel", base, lane), {i: i for i in range(4)})],
                   n.location)
 
     def _lanewise(self, a: Operand, lanes_out: list[tuple[int, int]]) -> Src:

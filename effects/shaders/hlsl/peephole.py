@@ -160,8 +160,8 @@ def _same_written(ins: Instr, source: Reg) -> bool:
     d = _writes(ins)
     if d is None:
         return False
-    if source.kind == "c_rel":          # c[a0.x + n] reads another register once a0 changes
-        return d.kind == "a"
+    if source.kind == "c_rel":          # c[a0.y + n] reads another register once a0.y changes
+        return d.kind == "a" and source.lane in ins.mask
     return _same(d, source)
 
 
