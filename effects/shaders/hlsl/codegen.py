@@ -25,8 +25,8 @@ from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg, Src
 from effects.shaders.hlsl.dag import SHAPED, Node, Operand
 from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_kill, emit_loop, needed, place
-from effects.shaders.hlsl.fusion import fuse_lrp, fuse_mad, share_lit_diffuse
-from effects.shaders.hlsl.legalize import finish
+from effects.shaders.hlsl.fusion import fuse_lrp, fuse_mad, pack_scalars, share_lit_diffuse
+from effects.shaders.hlsl.legalize import _choose, finish
 from effects.shaders.hlsl.ops import LANEWISE, OPS, REDUCE, SCALAR, TEXTURE, shaped
 from effects.shaders.hlsl.peephole import optimise
 
@@ -61,6 +61,8 @@ class CodeGen:
         self.loop_regs: dict[int, list[Reg]] = {}       # loop id -> carried registers
         self.if_regs: dict[int, list[Reg]] = {}         # if id -> result registers
         self.a0: dict[int, tuple] | None = None         # a0 lane -> the address it holds
+        self.addresses: list[tuple] = []                # relative reads' addresses (generate)
+        self._address_of: dict[tuple, Operand] = {}
 
     # -- registers --------------------------------------------------------------------------
     def temp(self) -> Reg:
@@ -147,6 +149,11 @@ class CodeGen:
         if self.target.has("lrp"):
             fuse_lrp(nodes, uses)
         fuse_mad(nodes, uses)
+        if not any(n.op in ("loop", "if") for n in nodes):
+            rule = "ps20" if self.rules.swizzles == "ps20" else "any"
+            pack_scalars([n for n in nodes if uses.get(n.id, 1)],
+                         [o.comps for o in self.outputs] + [self.ctx.kills],
+                         lambda lanes: _choose(lanes, rule) is not None)
 
     # -- emission ---------------------------------------------------------------------------
     def place(self, op: Operand, lanes: list[int], reduce: bool = False) -> Src:
@@ -178,6 +185,11 @@ class CodeGen:
         nodes = self.reachable()
         self.count_uses(nodes)
         self.coalesce(nodes)
+        # the addresses relative reads use, in code without flow control: lanes of one node
+        # are loaded into a0 together (relative_read)
+        self.addresses = [] if any(n.op in ("loop", "if") for n in nodes) else \
+            list(dict.fromkeys(n.args[0].sig() for n in nodes if n.op == "uniform_rel"))
+        self._address_of = {n.args[0].sig(): n.args[0] for n in nodes if n.op == "uniform_rel"}
         self.blocks = place(self, nodes)
         emit_block(self, None)
         for k in self.ctx.kills:       # the program's own discards, at its end (a branch's
@@ -359,12 +371,26 @@ class CodeGen:
             free = [k for k in range(count) if k not in lanes]
             lane = free[0] if free else next(iter(lanes))
             lanes.pop(lane, None)
-            src = self.place(address, [0])
-            if src.fixed is None:
-                src.fixed = (src.lanes[0],) * 4
-            self.emit("mov" if self.rules.major == 1 else "mova", Reg("a", 0), (lane,), [src],
-                      n.location)
-            lanes[lane] = address.sig()         # insertion order: the oldest first
+            # the other addresses still to load that are lanes of the same node come along
+            # in the free lanes: one `mova a0.xy, r0` for two bones (fxc's code)
+            group = [address] + [
+                self._address_of[sig] for sig in self.addresses
+                if sig != address.sig() and sig not in lanes.values()
+                and sig[0] == address.node.id and sig[2] == address.negate
+                and address.node.op != "const"][:len(free) - 1]
+            targets = [lane] + [k for k in free if k != lane][:len(group) - 1]
+            if len(group) > 1:
+                src = self._lanewise(Operand(address.node, tuple(a.swizzle[0] for a in group),
+                                             address.negate),
+                                     [(i, t) for i, t in enumerate(targets)])
+            else:
+                src = self.place(address, [0])
+                if src.fixed is None:
+                    src.fixed = (src.lanes[0],) * 4
+            self.emit("mov" if self.rules.major == 1 else "mova", Reg("a", 0),
+                      tuple(sorted(targets)), [src], n.location)
+            for a, t in zip(group, targets):
+                lanes[t] = a.sig()              # insertion order: the oldest first
             self.a0 = lanes
         base = self.uniform_reg(n.key[0], n.key[1]).index
         reg, _ = self.home_of(n)

@@ -5,7 +5,9 @@
   where the target has lrp (ps_2_0 and up, vs_2_0 and up: fxc's listings show it; one
   instruction for the three, issue 31);
 - `share_lit_diffuse`: `max(n.l, 0)` beside a `lit` of the same n.l is the lit's .y (lit()
-  builds both, so the diffuse term alone costs one max).
+  builds both, so the diffuse term alone costs one max);
+- `pack_scalars`: one-lane nodes of one op over lanes of the same nodes become one vector
+  node (`mul r0.xy`).
 
 Each takes the nodes the outputs reach (creation order, so arguments first) and `uses`
 (node id -> readers, outputs and discards counted), rewrites nodes in place and returns how
@@ -13,7 +15,10 @@ many it rewrote.
 """
 from __future__ import annotations
 
+from typing import Callable
+
 from effects.shaders.hlsl.dag import Node, Operand
+from effects.shaders.hlsl.ops import LANEWISE, OPAQUE
 
 
 def fuse_mad(nodes: list[Node], uses: dict[int, int]) -> int:
@@ -150,6 +155,65 @@ def share_lit_diffuse(nodes: list[Node], roots: list[list[Operand]]) -> int:
     def read(o: Operand) -> Operand:
         lit = swap.get(o.node.id)
         return o if lit is None else Operand(lit, (1,) * o.width, o.negate)
+
+    for n in nodes:
+        if any(a.node.id in swap for a in n.args):
+            n.args = tuple(read(a) for a in n.args)
+    for comps in roots:
+        comps[:] = [read(c) for c in comps]
+    return len(swap)
+
+
+def pack_scalars(nodes: list[Node], roots: list[list[Operand]],
+                 swizzle_ok: Callable[[dict[int, int]], bool]) -> int:
+    """One-lane component-wise nodes of one op whose arguments are lanes of the same nodes
+    (or one constant), `mul(a.x, 3)` and `mul(a.y, 3)`, become one vector node, `mul(a.xy,
+    3)`, whose lanes their readers read (fxc's `mul r0.xy` before `mova a0.xy`; issue 31's
+    swizzle-aware packing). Up to four a node; the node made first takes the others' place,
+    so every reader still comes after it. Code without flow control only (a node's block
+    follows its readers there: flowcode.place). `swizzle_ok`: whether the target reads a
+    source with that lane map (ps_2_0's fixed swizzles). `roots` as in share_lit_diffuse."""
+    groups: dict[tuple, list[Node]] = {}
+    for n in nodes:
+        if n.width != 1 or n.op not in LANEWISE or n.op in OPAQUE or n.coalesced:
+            continue
+        key: list[Any] = [n.op]
+        for a in n.args:
+            if a.width != 1:
+                break
+            # a constant argument: the same value in every member (read replicated; a new
+            # constant node would come after the nodes that read it)
+            key.append(("const", a.const_values()) if a.node.op == "const" else
+                       (a.node.id, a.negate))
+        else:
+            groups.setdefault(tuple(key), []).append(n)
+    swap: dict[int, tuple[Node, int]] = {}
+    for members in groups.values():
+        while len(members) > 1:
+            chunk, members = members[:4], members[4:]
+            if len(chunk) < 2:
+                break
+            first = chunk[0]
+            args: list[Operand] = []
+            for p, a in enumerate(first.args):
+                if a.node.op == "const":
+                    args.append(Operand(a.node, (a.swizzle[0],) * len(chunk), a.negate))
+                    continue
+                lanes = {i: m.args[p].swizzle[0] for i, m in enumerate(chunk)}
+                if not swizzle_ok(lanes):
+                    break
+                args.append(Operand(a.node, tuple(lanes[i] for i in range(len(chunk))),
+                                    a.negate))
+            else:
+                first.args, first.width = tuple(args), len(chunk)
+                for i, m in enumerate(chunk[1:], 1):
+                    swap[m.id] = (first, i)
+    if not swap:
+        return 0
+
+    def read(o: Operand) -> Operand:
+        hit = swap.get(o.node.id)
+        return o if hit is None else Operand(hit[0], (hit[1],) * o.width, o.negate)
 
     for n in nodes:
         if any(a.node.id in swap for a in n.args):

@@ -187,3 +187,21 @@ technique T { pass P { PixelShader = compile ps_2_0 PS(); } }
         want = (min(max(lx * 2 - 0.5, 0), 1), min(max(ly * 2 - 0.5, 0), 1),
                 min(u * u * 2, 1), v ** 3)
         assert np.allclose(img[y, x], want, atol=1.5 / 255), (x, y, img[y, x], want)
+
+
+def test_one_lane_ops_over_lanes_of_one_register_are_one_vector_op(monkeypatch):
+    src = ("float K; float4 PS(float4 a : COLOR0) : COLOR\n"
+           "{ float s = a.x * K; float t = a.z * K; return float4(s, t, s + t, 1); }")
+    ops = [line.split()[0] for line in body(compiled(src, "PS", "ps_3_0"))]
+    assert ops.count("mul") == 1                    # mul r0.xy, v0.xz, c0.x
+    monkeypatch.setattr(codegen, "pack_scalars", lambda *a: 0)
+    ops = [line.split()[0] for line in body(compiled(src, "PS", "ps_3_0"))]
+    assert ops.count("mul") == 2
+
+
+def test_packing_keeps_to_ps_2_0_swizzles():
+    # .xz is no ps_2_0 swizzle: the two muls stay apart rather than need a copy
+    src = ("float K; float4 PS(float4 a : COLOR0) : COLOR\n"
+           "{ float s = a.x * K; float t = a.z * K; return float4(s, t, s + t, 1); }")
+    ops = [line.split()[0] for line in body(compiled(src, "PS", "ps_2_0"))]
+    assert ops.count("mul") == 2
