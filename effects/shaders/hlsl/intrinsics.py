@@ -75,7 +75,7 @@ def _pow(ev: Any, a: list[Operand], b: list[Operand], loc: Location) -> list[Ope
         alternative = 3 if len(a) == 1 else 2 * len(a) + 1
         n = {c.const_values() for c in b}
         k = next(iter(n))[0] if len(n) == 1 and None not in n else None  # type: ignore[index]
-        if k is not None and k == int(k) and 1 <= k <= 16 and _multiplies(int(k)) <= alternative:
+        if k is not None and 1 <= k <= 16 and k == int(k) and _multiplies(int(k)) <= alternative:
             return _power_lanes(ev, a, int(k), loc)
         if len(a) > 1:
             return _exp2(ev, ev.a.lanes("mul", [b, _log2(ev, a, loc)], loc), loc)

@@ -205,3 +205,13 @@ def test_packing_keeps_to_ps_2_0_swizzles():
            "{ float s = a.x * K; float t = a.z * K; return float4(s, t, s + t, 1); }")
     ops = [line.split()[0] for line in body(compiled(src, "PS", "ps_2_0"))]
     assert ops.count("mul") == 2
+
+
+@pytest.mark.parametrize("exponent", ["(0.0 / 0)", "1e39 * 1e39"])
+def test_pow_by_a_constant_that_is_no_number_is_the_located_constant_error(exponent):
+    # the whole-exponent test once took int() of NaN (the fuzzed state expressions found it)
+    fx = effects.load_effect(f"float4 A; float4 PS() : COLOR {{ return pow(A, {exponent}); }}\n"
+                             "technique T { pass P { } }\n")
+    with pytest.raises(effects.EffectError) as err:
+        compile_shader(fx, "PS", "ps_2_0")
+    assert "which a ps_2_0 constant register cannot hold" in err.value.message
