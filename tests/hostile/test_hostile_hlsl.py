@@ -31,7 +31,7 @@ NEVER = "X3511: unable to unroll loop, loop does not appear to terminate in a ti
 # case -> (outcome, words the text must contain); the values are worked by hand
 EXPECTED: dict[str, tuple[str, str]] = {
     # 1. deep but legal: 1 + 2 + ... + 5000 = 5000 * 5001 / 2
-    "flat_sum_of_5000_literals": ("value", "def c0, 12502500, 0, 0, 0 | mov r0, c0.x"),
+    "flat_sum_of_5000_literals": ("value", "def c0, 12502500, 0, 0, 0 | mov oC0, c0.x"),
     "flat_sum_of_5000_terms_that_fold": ("value", "def c0, 0.5, 0, 0, 0"),
     "nested_expression_1000_deep": ("value", "def c0, 500, 0, 0, 0"),    # 500 additions of 1
     "negation_1000_deep": ("value", "'dcl t0 | mov oC0, t0.x'"),         # an even count

@@ -19,12 +19,14 @@ class Reg:
     'c_rel' (c[a0.x + index]), 'c_al' (c[aL + index])."""
     kind: str
     index: int | None
+    lane: int = 0                  # c_rel: the component of a0 that indexes (c[a0.y + n])
 
     def text(self, alloc: dict[int, int]) -> str:
         if self.kind == "vr":
             return f"r{alloc[self.index]}"  # type: ignore[index]
         if self.kind == "c_rel":
-            return f"c[a0.x + {self.index}]" if self.index else "c[a0.x]"
+            a0 = f"a0.{'xyzw'[self.lane]}"
+            return f"c[{a0} + {self.index}]" if self.index else f"c[{a0}]"
         if self.kind == "c_al":
             return f"c{self.index}[aL]"
         return f"{self.kind}{'' if self.index is None else self.index}"

@@ -25,15 +25,14 @@ from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg, Src
 from effects.shaders.hlsl.dag import SHAPED, Node, Operand
 from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_kill, emit_loop, needed, place
-from effects.shaders.hlsl.legalize import finish
+from effects.shaders.hlsl.fusion import fuse_lrp, fuse_mad, pack_scalars, share_lit_diffuse
+from effects.shaders.hlsl.legalize import _choose, finish
+from effects.shaders.hlsl.ops import LANEWISE, OPS, REDUCE, SCALAR, TEXTURE, shaped
+from effects.shaders.hlsl.peephole import optimise
 
 COMPONENTS = "xyzw"
-# ops whose result lanes can be placed anywhere (component-wise or one scalar result)
-_LANEWISE = {"add", "mul", "mad", "min", "max", "frc", "abs", "cmp", "lrp", "slt", "sge", "mov",
-             "sat", "dsx", "dsy"}
-_SCALAR = {"rcp", "rsq", "exp", "log", "pow"}
-_REDUCE = {"dp3": 3, "dp4": 4, "dp2add": 2}
-_TEX = {"tex": "texld", "texldp": "texldp", "texldb": "texldb", "texldl": "texldl", "texldd": "texldd"}
+# how each op is emitted: the op table's rows (ops.py)
+_LANEWISE, _SCALAR, _REDUCE, _TEX = LANEWISE, SCALAR, REDUCE, TEXTURE
 
 
 class CodeGen:
@@ -61,7 +60,9 @@ class CodeGen:
         self._low = 0                  # every register below it is taken (taken only grows)
         self.loop_regs: dict[int, list[Reg]] = {}       # loop id -> carried registers
         self.if_regs: dict[int, list[Reg]] = {}         # if id -> result registers
-        self.a0: tuple | None = None                    # the address a0.x holds
+        self.a0: dict[int, tuple] | None = None         # a0 lane -> the address it holds
+        self.addresses: list[tuple] = []                # relative reads' addresses (generate)
+        self._address_of: dict[tuple, Operand] = {}
 
     # -- registers --------------------------------------------------------------------------
     def temp(self) -> Reg:
@@ -139,21 +140,20 @@ class CodeGen:
                 c.node.uses += 1
 
     def combine(self, nodes: list[Node]) -> None:
-        """mul + add -> mad where the mul has no other use."""
+        """The DAG's fusions (fusion.py): lerp written out -> lrp where the target has it,
+        then mul + add -> mad where the mul has no other use."""
+        if share_lit_diffuse(nodes, [o.comps for o in self.outputs] + [self.ctx.kills]):
+            nodes = self.reachable()
         self.count_uses(nodes)
-        for n in nodes:
-            if n.op != "add":
-                continue
-            for k in (0, 1):
-                m = n.args[k]
-                if m.node.op == "mul" and m.node.uses == 1 and m.node.width >= m.width:
-                    a, b = m.node.args
-                    a2, b2 = a.pick(m.swizzle), b.pick(m.swizzle)
-                    if m.negate:
-                        a2 = a2.neg()
-                    n.op, n.args = "mad", (a2, b2, n.args[1 - k])
-                    m.node.uses = 0
-                    break
+        uses = {n.id: n.uses for n in nodes}
+        if self.target.has("lrp"):
+            fuse_lrp(nodes, uses)
+        fuse_mad(nodes, uses)
+        if not any(n.op in ("loop", "if") for n in nodes):
+            rule = "ps20" if self.rules.swizzles == "ps20" else "any"
+            pack_scalars([n for n in nodes if uses.get(n.id, 1)],
+                         [o.comps for o in self.outputs] + [self.ctx.kills],
+                         lambda lanes: _choose(lanes, rule) is not None)
 
     # -- emission ---------------------------------------------------------------------------
     def place(self, op: Operand, lanes: list[int], reduce: bool = False) -> Src:
@@ -185,6 +185,11 @@ class CodeGen:
         nodes = self.reachable()
         self.count_uses(nodes)
         self.coalesce(nodes)
+        # the addresses relative reads use, in code without flow control: lanes of one node
+        # are loaded into a0 together (relative_read)
+        self.addresses = [] if any(n.op in ("loop", "if") for n in nodes) else \
+            list(dict.fromkeys(n.args[0].sig() for n in nodes if n.op == "uniform_rel"))
+        self._address_of = {n.args[0].sig(): n.args[0] for n in nodes if n.op == "uniform_rel"}
         self.blocks = place(self, nodes)
         emit_block(self, None)
         for k in self.ctx.kills:       # the program's own discards, at its end (a branch's
@@ -192,6 +197,7 @@ class CodeGen:
                 emit_kill(self, k.node)
         for o in self.outputs:
             self.output(o)
+        optimise(self)
         return finish(self)
 
     def _move(self, reg: Reg, value: Operand, loc: Location) -> None:
@@ -199,22 +205,28 @@ class CodeGen:
         self.emit("mov", reg, tuple(range(value.width)), [self._lanewise(value, lanes)], loc)
 
     def coalesce(self, nodes: list[Node]) -> None:
-        for n in nodes:
-            if n.op == "input" or n.op == "uniform" or n.op == "const":
-                continue
+        self._gathers: list[tuple[tuple[Operand, ...], object]] = []
         for p in nodes:
             if p.op != "pack":
                 continue
             reg = self.home_of(p)[0]
-            self._coalesce_into(p.args, reg, p.location, lambda lane: lane)
+            self._coalesce_into(p.args, reg, p.location, lambda lane: lane, shared=True)
         self.out_regs: dict[str, Reg] = {}
         for o in self.outputs:
             # vertex shaders compute straight into the output; oC# and oDepth take a mov
             reg = Reg(*_split_reg(o.register)) if self.target.kind == "vs" else self.temp()
             self.out_regs[o.register] = reg
-            self._coalesce_into(tuple(o.comps), reg, o.location, lambda lane: lane)
+            self._coalesce_into(tuple(o.comps), reg, o.location, lambda lane: lane,
+                                shared=reg.kind == "vr")
+        self._gather_loose()
 
-    def _coalesce_into(self, comps: tuple[Operand, ...], reg: Reg, loc: Location, lane_of) -> None:
+    def _coalesce_into(self, comps: tuple[Operand, ...], reg: Reg, loc: Location, lane_of,
+                       shared: bool = False) -> None:
+        """Give the nodes that make `comps` their lanes of `reg` as home, so they compute in
+        place. `shared`: `reg` is a temporary, which other instructions can read too, so a
+        one-lane result (dp4, rcp ...) read elsewhere as well goes there all the same: the
+        three dp4 of a position land in r0.xyz and every reader reads r0 (fxc's packing);
+        an output register is written only."""
         by_node: dict[int, list[tuple[int, int]]] = {}
         for lane, c in enumerate(comps):
             if c.negate:
@@ -228,10 +240,31 @@ class CodeGen:
             uses_here = sum(1 for x in comps if x.node is node)
             movable = (node.op in _LANEWISE and not (node.op == "frc" and self.target.name == "vs_1_1")) or (node.width == 1 and (node.op in _SCALAR or node.op in _REDUCE))
             comps_used = [p[0] for p in pairs]
-            if movable and node.uses == uses_here and len(set(comps_used)) == len(comps_used) \
+            alone = node.uses == uses_here or (
+                shared and node.width == 1 and uses_here == 1 and node.op not in _LANEWISE)
+            if movable and alone and len(set(comps_used)) == len(comps_used) \
                     and len(pairs) == uses_here:
                 self.home[node.id] = (reg, {comp: lane_of(lane) for comp, lane in pairs})
                 node.coalesced = True
+        self._gathers.append((comps, lane_of))
+
+    def _gather_loose(self) -> None:
+        """What is left of the one-lane results a vector is made of (read negated, or read
+        elsewhere too where the vector is an output) is gathered in a temporary of its own,
+        lane for lane, so one mov (`mov oT2.xyz, -r0`), or none once the copy is read in
+        place, makes the vector. After every vector had its turn at homing them itself."""
+        for comps, lane_of in self._gathers:
+            self._gather_into_temp(comps, lane_of)
+
+    def _gather_into_temp(self, comps: tuple[Operand, ...], lane_of) -> None:
+        loose = [(lane, c.node) for lane, c in enumerate(comps)
+                 if c.node.id not in self.home and c.node.width == 1
+                 and (c.node.op in _SCALAR or c.node.op in _REDUCE)
+                 and sum(1 for x in comps if x.node is c.node) == 1]
+        if len(loose) > 1:
+            gather = self.temp()
+            for lane, node in loose:
+                self.home[node.id] = (gather, {0: lane_of(lane)})
 
     def node(self, n: Node) -> None:
         op = n.op
@@ -272,8 +305,7 @@ class CodeGen:
             for lane, c in enumerate(n.args):
                 if self.home.get(c.node.id, (None,))[0] is reg and c.node.coalesced:
                     continue
-                key = (c.node.id, c.negate) if c.node.op != "const" else ("const",)
-                groups.setdefault(key, []).append((lane, c))
+                groups.setdefault(self._source_key(c), []).append((lane, c))
             for items in groups.values():
                 lanes = [lane for lane, _ in items]
                 src = self._gather(items)
@@ -285,7 +317,7 @@ class CodeGen:
             srcs = [self.place(a, list(range(a.width))) for a in n.args]
             self.emit(_TEX[op], reg, (0, 1, 2, 3), srcs, n.location, sampler=n.key[0])
             return
-        if op in SHAPED and op not in _REDUCE:
+        if shaped(op):
             widths = SHAPED[op][0]
             srcs = [self.place(a, list(range(w))) for a, w in zip(n.args, widths)]
             for s in srcs:
@@ -322,24 +354,47 @@ class CodeGen:
         for a in n.args:
             s = self._lanewise(a, lanes_out)
             srcs.append(s)
-        opcode = "mov" if op == "sat" else op
-        self.emit(opcode, reg, mask, srcs, n.location, saturate=op == "sat")
+        self.emit(OPS[op].mnemonic, reg, mask, srcs, n.location, saturate=op == "sat")  # type: ignore[arg-type]
 
     def relative_read(self, n: Node) -> None:
-        """c[a0.x + n] copied to a temporary, a0.x loaded first unless it holds this address
-        already (vs_1_1 loads it with mov, which floors; vs_2_0 and up with mova, which
-        rounds: the address is a whole number either way, so both read the same element)."""
+        """c[a0.? + n] copied to a temporary (read in place where nothing reloads that lane
+        of a0 in between: peephole.py), a0 loaded first unless a lane holds this address
+        already. vs_1_1 has a0.x alone, loaded with mov (which floors); vs_2_0 and up load
+        any lane with mova (which rounds: the address is a whole number either way), so two
+        bones' addresses sit in a0.x and a0.y and the first bone's rows stay readable (fxc's
+        `mova a0.xy`); a fifth address takes the lane loaded longest ago."""
         address = n.args[0]
-        if getattr(self, "a0", None) != address.sig():
-            src = self.place(address, [0])
-            if src.fixed is None:
-                src.fixed = (src.lanes[0],) * 4
-            self.emit("mov" if self.rules.major == 1 else "mova", Reg("a", 0), (0,), [src],
-                      n.location)
-            self.a0 = address.sig()
+        lanes: dict[int, tuple] = self.a0 or {}
+        lane = next((k for k, sig in lanes.items() if sig == address.sig()), None)
+        if lane is None:
+            count = 1 if self.rules.major == 1 else 4
+            free = [k for k in range(count) if k not in lanes]
+            lane = free[0] if free else next(iter(lanes))
+            lanes.pop(lane, None)
+            # the other addresses still to load that are lanes of the same node come along
+            # in the free lanes: one `mova a0.xy, r0` for two bones (fxc's code)
+            group = [address] + [
+                self._address_of[sig] for sig in self.addresses
+                if sig != address.sig() and sig not in lanes.values()
+                and sig[0] == address.node.id and sig[2] == address.negate
+                and address.node.op != "const"][:len(free) - 1]
+            targets = [lane] + [k for k in free if k != lane][:len(group) - 1]
+            if len(group) > 1:
+                src = self._lanewise(Operand(address.node, tuple(a.swizzle[0] for a in group),
+                                             address.negate),
+                                     [(i, t) for i, t in enumerate(targets)])
+            else:
+                src = self.place(address, [0])
+                if src.fixed is None:
+                    src.fixed = (src.lanes[0],) * 4
+            self.emit("mov" if self.rules.major == 1 else "mova", Reg("a", 0),
+                      tuple(sorted(targets)), [src], n.location)
+            for a, t in zip(group, targets):
+                lanes[t] = a.sig()              # insertion order: the oldest first
+            self.a0 = lanes
         base = self.uniform_reg(n.key[0], n.key[1]).index
         reg, _ = self.home_of(n)
-        self.emit("mov", reg, (0, 1, 2, 3), [Src(Reg("c_rel", base), {i: i for i in range(4)})],
+        self.emit("mov", reg, (0, 1, 2, 3), [Src(Reg("c_rel", base, lane), {i: i for i in range(4)})],
                   n.location)
 
     def _lanewise(self, a: Operand, lanes_out: list[tuple[int, int]]) -> Src:
@@ -360,12 +415,24 @@ class CodeGen:
         src.lanes, src.fixed = {l: l for l in vals}, None
         return src
 
+    def _source_key(self, c: Operand) -> tuple:
+        """Lanes of a vector built from pieces that one mov can gather: the constants, and
+        the pieces whose homes are one register (several one-lane results coalesced into it),
+        with the same sign."""
+        if c.node.op == "const":
+            return ("const",)
+        home = self.home.get(c.node.id)
+        if home is None:
+            return (c.node.id, c.negate)
+        return (home[0].kind, home[0].index, c.negate)
+
     def _gather(self, items: list[tuple[int, Operand]]) -> Src:
         first = items[0][1]
         if first.node.op == "const":
             return self._const_lanes({lane: c.const_values()[0] for lane, c in items})  # type: ignore[index]
-        reg, where = self.home[first.node.id]
-        return Src(reg, {lane: where[c.swizzle[0]] for lane, c in items}, first.negate)
+        reg = self.home[first.node.id][0]
+        return Src(reg, {lane: self.home[c.node.id][1][c.swizzle[0]] for lane, c in items},
+                   first.negate)
 
     def output(self, o: Output) -> None:
         final = Reg(*_split_reg(o.register))
@@ -386,8 +453,7 @@ class CodeGen:
                 return
         groups: dict[tuple, list[tuple[int, Operand]]] = {}
         for lane, c in pending:
-            key = (c.node.id, c.negate) if c.node.op != "const" else ("const",)
-            groups.setdefault(key, []).append((lane, c))
+            groups.setdefault(self._source_key(c), []).append((lane, c))
         for items in groups.values():
             self.emit("mov", reg, tuple(l for l, _ in items), [self._gather(items)], o.location)
         if self.target.kind == "ps":

@@ -64,7 +64,16 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
     fdefs = [f for f in effect.functions if f.name == entry]
     at = fdefs[0].location if fdefs else where
     try:
-        return _compile_shader(effect, entry, target, args, where)
+        shader, literal_loops = _compile_shader(effect, entry, target, args, where)
+        if literal_loops and not _fits(shader):
+            # fxc unrolled a for over literal bounds when it could and the code fitted the
+            # target; when it did not, the loop stayed a loop (rep / loop aL): the XNA toon
+            # shader's `for (i = 0; i < 30; ++i)` over lightPositions[i], 858 ps_3_0 slots
+            # unrolled, which fxc compiled. [unroll] and [loop] decide where written.
+            looped, _ = _compile_shader(effect, entry, target, args, where, loops_for_size=True)
+            if looped.program.stats.total_slots < shader.program.stats.total_slots:
+                return looped
+        return shader
     except RecursionError:
         raise out_of_stack(at) from None
     except EffectError as err:
@@ -74,9 +83,23 @@ def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...
         raise type(err)(err.message, at) from None
 
 
+def _fits(shader: CompiledShader) -> bool:
+    """Whether the code fits what fxc allowed the target: the version's slots (vs_2_0 256,
+    ps_2_a 512), and for shader model 3 the 512 every card has (its X5608 limit)."""
+    rules = shader.program.rules
+    stats = shader.program.stats
+    limit = rules.total_slots_min if rules.major >= 3 else rules.total_slots
+    return stats.total_slots <= limit and \
+        (rules.arith_slots is None or stats.arithmetic_slots <= rules.arith_slots) and \
+        (rules.tex_slots is None or stats.texture_slots <= rules.tex_slots)
+
+
 def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...],
-                    where: Location) -> CompiledShader:
+                    where: Location, loops_for_size: bool = False) -> tuple[CompiledShader, int]:
+    """The shader, and how many loops over literal bounds it unrolled that could have been
+    real loops."""
     ctx = load_context(effect, target.lower())
+    ctx.loops_for_size = loops_for_size
     fdefs = ctx.functions.get(entry)
     if not fdefs:
         raise HlslError(f"X3501: '{entry}': entrypoint not found", where)
@@ -126,11 +149,7 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
         binder.outputs(ev.scopes[0][name].value if name in ev.scopes[0] else ev.lookup(name).value,
                        str(sem_text) if sem_text is not None else None,
                        fdef.origin.at(sem if sem is not None else fdef.tree), outputs)
-    if ctx.target.kind == "ps" and not any(o.register.startswith("oC") for o in outputs):
-        raise fdef.origin.error(f"X4507: '{entry}': a pixel shader must write a COLOR output", fdef.tree)
-    if ctx.target.kind == "vs" and not any(o.register in ("oPos", "o0") and o.register == "oPos"
-                                           or o.register.startswith("o") for o in outputs):
-        raise fdef.origin.error(f"X4502: '{entry}': a vertex shader must write POSITION", fdef.tree)
+    _check_required_outputs(ctx, entry, binder.bound, fdef)
     preshaders = {}
     if ctx.target.rules.is_ps1:
         # fxc's preshader: what reads only uniforms is computed on the host (see preshader.py)
@@ -164,7 +183,26 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
                           dict(ctx.uniforms_used),
                           generated.int_registers if not ctx.target.rules.is_ps1 else {},
                           generated.bool_registers if not ctx.target.rules.is_ps1 else {},
-                          {n: p for n, p in preshaders.items() if n in generated.constants})
+                          {n: p for n, p in preshaders.items() if n in generated.constants}), \
+        ctx.literal_loops
+
+
+def _check_required_outputs(ctx: Context, entry: str, bound: set[tuple[str, int]],
+                            fdef: Any) -> None:
+    """The outputs fxc requires of an entry point, by semantic (usage, index) as bound:
+    a vertex shader writes POSITION0 (X4541) and a pixel shader COLOR0 (X4530), whatever else
+    it writes. Codes and wording: fxc's HLSL error list (XShaderCompiler's HLSLErr.h mirrors
+    it: ERR_WRITE_ALL_POS = 4541, ERR_WRITE_TO_COLOR0 = 4530) and d3dcompiler's own check,
+    which counts the components of the output with usage POSITION, index 0 (its disassembly
+    prints "vertex shader must minimally write all four components of POSITION" with
+    0x11bd = 4541). dcl_usage's reference page: a vs_3_0 output "must be declared as
+    position", so the rule holds for every vertex shader version."""
+    if ctx.target.kind == "vs" and ("POSITION", 0) not in bound:
+        raise fdef.origin.error(f"X4541: '{entry}': vertex shader must minimally write all "
+                                "four components of POSITION", fdef.tree)
+    if ctx.target.kind == "ps" and ("COLOR", 0) not in bound:
+        raise fdef.origin.error(f"X4530: '{entry}': pixel shader must minimally write all "
+                                "four components of COLOR0", fdef.tree)
 
 
 def _sampler_registers(ctx: Context) -> dict[str, int]:
@@ -301,7 +339,7 @@ class _Binder:
         self.next_v = 0
         self.next_o = 0
         self.input_keys: dict[str, tuple] = {}   # v# -> (usage, index) of a vertex input
-        self.written: set[tuple[str, int]] = set()   # the output semantics bound so far
+        self.bound: set[tuple[str, int]] = set()  # the (usage, index) of every output bound
 
     def _error(self, message: str, loc: Location) -> HlslError:
         """A located error of the entry's semantics, shown with its line of the file."""
@@ -375,10 +413,10 @@ class _Binder:
         usage, index = split_semantic(semantic)
         usage = _SV_AS_D3D9.get(usage, usage)
         target = self.ctx.target
-        if (usage, index) in self.written:     # d3dx's message table: X4504 (0x1198)
+        if (usage, index) in self.bound:     # d3dx's message table: X4504 (0x1198)
             raise self._error(f"X4504: overlapping output semantics ('{semantic}' is written "
-                            "twice)", loc)
-        self.written.add((usage, index))
+                              "twice)", loc)
+        self.bound.add((usage, index))
         if target.kind == "ps":
             if usage == "COLOR":
                 if index >= target.rules.registers.get("oC", 1):    # ps_1_x: r0 only

@@ -75,6 +75,12 @@ class Context:
     # the functions being inlined (calls.inline_call: one again is recursion, X3500), and what
     # unroll.never_ends learnt of each loop (by the tree's id) and of each start it was asked
     calling: list[Any] = field(default_factory=list, init=False, repr=False)
+    # fxc's rule for a `for` over literal bounds with no attribute: unrolled, unless the
+    # unrolled code does not fit the target; then a real loop (compiler.compile_shader
+    # compiles again with `loops_for_size`). `literal_loops` counts the loops that could be
+    # real ones, so a compile without any is not repeated
+    loops_for_size: bool = field(default=False, init=False, repr=False)
+    literal_loops: int = field(default=0, init=False, repr=False)
     loop_facts: dict[int, tuple] = field(default_factory=dict, init=False, repr=False)
     loop_verdicts: dict[tuple, Any] = field(default_factory=dict, init=False, repr=False)
     flow_depth: dict[str, int] = field(init=False, repr=False, default_factory=lambda: {

@@ -15,6 +15,7 @@ from typing import Any, Iterable
 
 from effects.base.errors import Location, UNKNOWN_LOCATION
 from effects.shaders.hlsl.folding import FOLDS, fold as _fold
+from effects.shaders.hlsl.ops import OPAQUE as _OPAQUE
 
 
 @dataclass(eq=False)
@@ -82,9 +83,8 @@ class Operand:
 # Folding: folding.py, the IR's kernels (IEEE results, as the renderer computes them).
 # op -> (argument widths or None, result width or None, fold function)
 SHAPED = {op: spec for op, spec in FOLDS.items() if spec[1] is not None}
-# Leaves and side effects that never fold.
-OPAQUE = {"input", "uniform", "uniform_rel", "uniform_al", "tex", "texldp", "texldb", "texldl", "texldd", "dsx", "dsy",
-          "kill", "pack"}
+# Leaves, reads and side effects that never fold: the op table's (ops.py)
+OPAQUE = _OPAQUE
 
 
 _RANGES = [tuple(range(n)) for n in range(5)]

@@ -410,7 +410,8 @@ class Evaluator:
                         why = f"{match.why()}, and it cannot be a rep: {err}"
                 if match.param is None:
                     # literal bounds unroll (fxc's default for them); [loop] is only a request
-                    self.warn(f"[loop] not kept: {why}; the loop is unrolled", self.at(tree))
+                    if has_attribute(attrs, "loop"):
+                        self.warn(f"[loop] not kept: {why}; the loop is unrolled", self.at(tree))
                     why = None
             self._loop(tree, cond, body, step, test_first=True, why=why,
                        own=frozenset(id(v) for v in self.scopes[-1].values()))

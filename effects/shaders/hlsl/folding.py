@@ -77,6 +77,15 @@ def _sincos(consts: list[Any], width: int) -> list[float]:
     return [float(_kernel("cos")(a)[0]), float(_kernel("sin")(a)[0])]
 
 
+def _lit(consts: list[Any], width: int) -> list[float]:
+    """The vertex shader's lit (its reference page): (1, x > 0 ? x : 0, x > 0 and y > 0 ?
+    y^w : 0, 1), the power clamped to +-127.9961 (8.8 fixed point)."""
+    x, y, _, w = (float(v) for v in consts[0])
+    power = min(max(w, -127.9961), 127.9961)
+    spec = float(np.power(_F64(y), _F64(power))) if x > 0 and y > 0 else 0.0
+    return [1.0, x if x > 0 else 0.0, spec, 1.0]
+
+
 # op -> (argument widths or None for per-component, result width or None, fold function)
 FOLDS: dict[str, tuple[tuple[int, ...] | None, int | None, Callable[[list[Any], int], list[float]]]] = {
     **{op: (None, None, _lanes(ir)) for op, ir in IR_OP.items()
@@ -89,6 +98,7 @@ FOLDS: dict[str, tuple[tuple[int, ...] | None, int | None, Callable[[list[Any], 
     "nrm": ((3,), 3, _shaped("nrm", (3,), 3)),
     "dp2add": ((2, 2, 1), 1, _dp2add),
     "sincos": ((1,), 2, _sincos),
+    "lit": ((4,), 4, _lit),
 }
 
 

@@ -68,6 +68,17 @@ def _scale(ev: Any, c: list[Operand], k: float, loc: Location) -> list[Operand]:
 
 def _pow(ev: Any, a: list[Operand], b: list[Operand], loc: Location) -> list[Operand]:
     if ev.ctx.target.has("pow"):
+        # fxc's code (issue 31, from its listings): a whole exponent as multiplications
+        # (pow(x, 4): two muls) where they take no more slots than the alternative; a vector
+        # as log per lane, one mul, exp per lane (2n + 1 slots against 3n for n pow macros,
+        # pow being 3 slots: instructions.py); a scalar by the pow macro
+        alternative = 3 if len(a) == 1 else 2 * len(a) + 1
+        n = {c.const_values() for c in b}
+        k = next(iter(n))[0] if len(n) == 1 and None not in n else None  # type: ignore[index]
+        if k is not None and 1 <= k <= 16 and k == int(k) and _multiplies(int(k)) <= alternative:
+            return _power_lanes(ev, a, int(k), loc)
+        if len(a) > 1:
+            return _exp2(ev, ev.a.lanes("mul", [b, _log2(ev, a, loc)], loc), loc)
         return ev.a.scalar_lanes("pow", [a, b], loc)
     if ev.ctx.target.rules.is_ps1:
         # fxc expanded a small whole exponent into multiplications (x^8 = three muls); ps_1_x
@@ -77,6 +88,24 @@ def _pow(ev: Any, a: list[Operand], b: list[Operand], loc: Location) -> list[Ope
             return [_power(ev, x, int(v[0]), loc) for x, v in zip(a, n)]  # type: ignore[index]
         raise ev.error(f"{ev.ctx.target.name} cannot compute pow of a non-constant exponent", loc)
     return _exp2(ev, ev.a.lanes("mul", [b, _log2(ev, a, loc)], loc), loc)
+
+
+def _multiplies(n: int) -> int:
+    """How many muls x^n takes by squaring."""
+    return n.bit_length() - 1 + bin(n).count("1") - 1
+
+
+def _power_lanes(ev: Any, xs: list[Operand], n: int, loc: Location) -> list[Operand]:
+    """x^n by squaring, every lane at once (one mul a step for a vector)."""
+    result: list[Operand] | None = None
+    square = xs
+    while n:
+        if n & 1:
+            result = square if result is None else ev.a.lanes("mul", [result, square], loc)
+        n >>= 1
+        if n:
+            square = ev.a.lanes("mul", [square, square], loc)
+    return result  # type: ignore[return-value]
 
 
 def _power(ev: Any, x: Operand, n: int, loc: Location) -> Operand:
@@ -467,6 +496,18 @@ def _out(ev: Any, trees: list[Any], k: int, value: Value) -> None:
 
 def _lit(ev: Any, args: list[Value], loc: Location) -> Value:
     ndl, ndh, m = (a.comps[0] for a in args)
+    if ev.ctx.target.has("lit"):
+        # vertex shaders have the instruction (1 slot in vs_1_1, 3 after; fxc's vertex code
+        # uses it: `lit r2, r1.xxww` in Unity's compiled vs_2_0 standard shader), where the
+        # spelled-out form takes a log and an exp of 10 slots each in vs_1_1. It differs only
+        # in clamping the power to +-127.9961
+        # in the power clamp to +-127.9961. The diffuse term stays max(n.l, 0): where the
+        # specular term is not read the lit goes unused (one max, not a lit and its operand's
+        # movs); where it is, codegen reads the lit's .y for it (fusion.share_lit_diffuse)
+        lit = split(ev.a.op("lit", [operand(ev.g, [ndl, ndh, m, m])], loc))
+        one = ev.a.const(1.0)
+        return Value(vector("float", 4), [one, ev.a.op("max", [ndl, ev.a.const(0.0)], loc),
+                                          lit[2], one])
     zero = ev.a.const(0.0)
     diffuse = ev.a.op("max", [ndl, zero], loc)
     both = ev.a.lanes("mul", [ev.a.compare(">", [ndl], [zero], loc), ev.a.compare(">", [ndh], [zero], loc)], loc)

@@ -162,9 +162,19 @@ def _loops(instrs: list[Instr]) -> list[tuple[int, int]]:
     return out
 
 
+# single-slot instructions that read every source before writing: a register whose last
+# read is one of these may be its destination (`add r0, r0, c0`, as fxc reuses temporaries).
+# Not the macros (pow, nrm, crs, lrp, sincos, m#x#), whose pages forbid or do not promise it,
+# nor vs_1_1's frc, a macro there.
+_ALIASES = frozenset({"mov", "add", "mul", "mad", "min", "max", "slt", "sge", "cmp", "dp3",
+                      "dp4", "dp2add", "rcp", "rsq", "exp", "log", "abs", "texld", "texldp",
+                      "texldb", "texldl", "texldd", "dsx", "dsy"})
+
+
 def _dies_before_write(ins: Instr, vr: int) -> bool:
     # a register whose last read is this instruction may be this instruction's destination
-    return False
+    return ins.opcode in _ALIASES and ins.dst is not None and ins.dst.kind == "vr" \
+        and ins.dst.index == vr
 
 
 def _swizzle_text(sw: tuple[int, ...]) -> str:
@@ -222,6 +232,8 @@ def _text(cg: Any) -> Generated:
             lines.append(f"dcl_{_SAMPLER_DCL.get(kinds.get(name, '2d'), '2d')} s{k}")
             locs.append(UNKNOWN_LOCATION)
     for ins in cg.instrs:
+        if _no_op(ins, alloc):
+            continue
         op = ins.opcode + ("_sat" if ins.saturate else "")
         if ins.dst is None:                     # rep i#, if_lt a, b, endrep ...
             srcs = [_src_text(s, alloc, rule, ins) for s in ins.srcs]
@@ -250,6 +262,17 @@ def _text(cg: Any) -> Generated:
                                            if any(i.sampler == n for i in cg.instrs)},
                      {r: tuple(0.0 if v is None else v for v in vals) for r, vals in cg.defs.items()},
                      ints, bools)
+
+
+def _no_op(ins: Instr, alloc: dict[int, int]) -> bool:
+    """`mov r0.xyz, r0`: a copy the register allocation made into the register it reads."""
+    if ins.opcode != "mov" or ins.saturate or ins.dst is None or ins.dst.kind != "vr":
+        return False
+    s = ins.srcs[0]
+    if s.reg.kind != "vr" or s.negate or alloc[s.reg.index] != alloc[ins.dst.index]:  # type: ignore[index]
+        return False
+    need = _lanes_needed(ins, s)
+    return all(need.get(l) == l for l in ins.mask)
 
 
 def _num(v: float) -> str:

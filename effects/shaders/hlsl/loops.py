@@ -32,8 +32,10 @@ flow control (see _run_body). Loops nest (a uniform loop inside another is a reg
 the outer one's), up to the 4 levels of rep / loop nesting of 2_x / 3_0 code (flowrules.py).
 What the region cannot hold yet is refused with its reason, and the loop is then unrolled as
 before (which succeeds when a `break` on a constant ends it): return / discard in the body,
-a break where the target has no break_comp, arrays or structs the body changes, nesting past
-the limit. `[unroll]` always unrolls.
+a break where the target has no break_comp, a sampler the body changes, nesting past the
+limit. Arrays and structs of numbers the body changes are carried like numbers (`carried`).
+A `for` over literal bounds with no attribute is unrolled, and a real loop only where the
+unrolled code does not fit (compiler.compile_shader asks again). `[unroll]` always unrolls.
 """
 from __future__ import annotations
 
@@ -48,7 +50,8 @@ from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.flowrules import (DYNAMIC_TARGETS, Effects, NotReal, TargetFlow, enter,
                                             flow_vars, leave, refusal)
 from effects.shaders.hlsl.types import HType
-from effects.shaders.hlsl.values import Loop, Value, Var, build_value, operand
+from effects.shaders.hlsl.values import (Loop, Value, Var, build_value, count_components,
+                                        operand)
 
 _ids = itertools.count()
 
@@ -97,7 +100,8 @@ def bound_of(ev: Any, tree: lark.Tree, cond: Any, step: Any, attrs: Any = None) 
                 param.type.base in ("int", "uint", "dword") and param.type.rows == 1 and \
                 param.type.cols == 1 and not param.array:
             return Bound(counter, bound) if first == (0.0,) else None
-    if not has_attribute(attrs, "loop"):
+    asked = has_attribute(attrs, "loop") or ev.ctx.loops_for_size
+    if not asked and not TargetFlow.of(ev.ctx.target).static:
         return None
     last = ev.expr(right).const_values()
     if last is None or len(last) != 1 or not all(math.isfinite(x) for x in (first[0], last[0])) \
@@ -105,6 +109,9 @@ def bound_of(ev: Any, tree: lark.Tree, cond: Any, step: Any, attrs: Any = None) 
         return None
     start, count = int(first[0]), int(last[0]) - int(first[0])
     if not (0 <= start <= 255 and 0 <= count <= 255):
+        return None
+    if not asked:                 # unrolled first; a real loop if that does not fit
+        ev.ctx.literal_loops += 1
         return None
     return Bound(counter, None, start, count)
 
@@ -136,11 +143,36 @@ def numeric_vars(ev: Any) -> list[Var]:
     return list(seen.values())
 
 
+def carried(t: HType) -> bool:
+    """Whether a variable of type `t` can be carried round a real loop in registers: numbers,
+    and arrays and structs made of them (the body writes `acc[1].y += d`; issue 31: fxc
+    emitted `rep i0` for such loops). Samplers and the like stay what they were."""
+    if t.numeric:
+        return True
+    if t.kind == "array" and t.element is not None:
+        return carried(t.element)
+    return t.kind == "struct" and all(carried(ft) for _, ft, _ in t.fields)
+
+
+def components(v: Value) -> list[Operand]:
+    """Every number of a carried value, in declaration order (build_value's order)."""
+    if v.type.numeric:
+        return list(v.comps)
+    out: list[Operand] = []
+    if v.type.kind == "struct":
+        for name, _, _ in v.type.fields:
+            out.extend(components(v.fields[name]))
+    else:
+        for e in v.elements:
+            out.extend(components(e))
+    return out
+
+
 def _phis(ev: Any, loop_id: int, var: Var, start: int) -> tuple[Value, list[Operand]]:
     """`var`'s value as phi leaves (groups of up to 4 components), and the group operands."""
     comps: list[Operand] = []
     groups: list[Operand] = []
-    n = var.type.size
+    n = count_components(var.type)
     for k in range(0, n, 4):
         width = min(4, n - k)
         phi = ev.g.leaf("phi", (loop_id, start + len(groups)), width)
@@ -251,7 +283,7 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
     ctx = ev.ctx
     variables = numeric_vars(ev) + flow_vars(ev)
     initial = {id(v): v.value for v in variables}
-    others = [v for v in variables if not v.type.numeric]
+    others = [v for v in variables if not carried(v.type)]
     before = {id(v): flat(v.value) for v in others}
     # pass 1: every numeric variable over phis, to see which the body changes
     trial = next(_ids)
@@ -259,16 +291,16 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
     phi_values: dict[int, Value] = {}
     k = 0
     for v in variables:
-        if v.type.numeric:
+        if carried(v.type):
             phi_values[id(v)], groups = _phis(ev, trial, v, k)
             k += len(groups)
             v.value = phi_values[id(v)]
     try:
         _run_body(ev, tree, body, step, bound)   # raises NotReal (nothing to restore but values)
         for v in variables:
-            if v.type.numeric and flat(v.value) != flat(phi_values[id(v)]):
+            if carried(v.type) and flat(v.value) != flat(phi_values[id(v)]):
                 changed.append(v)
-            elif not v.type.numeric and flat(v.value) != before[id(v)]:
+            elif not carried(v.type) and flat(v.value) != before[id(v)]:
                 raise NotReal(refusal(v, "in the body", "rep"))
     finally:
         for v in variables:
@@ -277,12 +309,12 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
     loop_id = next(_ids)
     inits: list[Operand] = []
     phis: list[Operand] = []
-    carried: list[tuple[Var, list[Operand]]] = []
+    moving: list[tuple[Var, list[Operand]]] = []
     for v in changed:
         value, groups = _phis(ev, loop_id, v, len(phis))
         inits.extend(_groups(ev, v.value, len(groups)))
         phis.extend(groups)
-        carried.append((v, groups))
+        moving.append((v, groups))
         v.value = value
     try:
         broken, al, kills = _run_body(ev, tree, body, step, bound)
@@ -290,7 +322,8 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
         for v in variables:
             if id(v) not in moved and flat(v.value) != flat(initial[id(v)]):
                 raise NotReal("the variables the body changes are not the same on a second look")
-        results = [g for v, _ in carried for g in _groups(ev, v.value, -(-v.type.size // 4))]
+        results = [g for v, _ in moving for g in
+                   _groups(ev, v.value, -(-count_components(v.type) // 4))]
     except BaseException:
         for v in variables:
             v.value = initial[id(v)]
@@ -312,7 +345,7 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
         ctx.kills.append(loop)                # it discards: reached whatever reads it
         loop.node.effect = True
     k = 0
-    for v, groups in carried:
+    for v, groups in moving:
         comps: list[Operand] = []
         for group in groups:
             out = ev.g.leaf("loop_out", (loop_id, k), group.width, ev.at(tree), (loop,))
@@ -322,7 +355,8 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
 
 
 def _groups(ev: Any, value: Value, count: int) -> list[Operand]:
-    return [operand(ev.g, value.comps[k * 4:k * 4 + 4]) for k in range(count)]
+    comps = components(value)
+    return [operand(ev.g, comps[k * 4:k * 4 + 4]) for k in range(count)]
 
 
 def _run_body(ev: Any, tree: Any, body: Any, step: Any, bound: Bound

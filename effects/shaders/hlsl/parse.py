@@ -20,7 +20,7 @@ from effects.base.errors import EffectError, EffectWarning, Location, through_ex
 # l-values, calls, flow statements). One row per code; a code not here (X3507 an unknown or
 # too old target, X3511 a loop this target must unroll, X3512 a run-time index this target
 # cannot make, X3535 integer hardware, X3536 a pixel-only statement in a vertex shader, X4014
-# gradients in flow, X4502/X4503/X4507 the target's semantics, X4532 what ps_1_x cannot
+# gradients in flow, X4502/X4503/X4530/X4541 the target's semantics, X4532 what ps_1_x cannot
 # express, an internal error) is a refusal for the target, which a card's reason reports.
 # The codes and texts are fxc's as recorded by DXC's verify tests (`fxc-error {{...}}` notes in
 # tools/clang/test/HLSL*), the d3dx9 HLSL compiler's message table, and ReShade's FX parser,

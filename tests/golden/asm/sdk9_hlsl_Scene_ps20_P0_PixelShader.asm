@@ -5,17 +5,15 @@ dcl t1
 dcl t2
 dcl_2d s0
 nrm r0.xyz, t1
-dp3 r1.x, r0, c0
-mov_sat r2.x, r1
-texld r1, t0, s0
-mad r3, c2, r2.x, c1
-nrm r2.xyz, t2
-add r4.xyz, c0, r2
-nrm r2.xyz, r4
-dp3 r4.x, r0, r2
-mov_sat r0.x, r4
-pow r2.x, r0.x, c3.x
-mul r0.x, r2, c4.x
-mad r2.xyz, r1, r3, r0.x
-mov r2.w, c4.y
-mov oC0, r2
+dp3_sat r1.x, r0, c0
+texld r2, t0, s0
+mad r1, c2, r1.x, c1
+nrm r3.xyz, t2
+add r3.xyz, c0, r3
+nrm r4.xyz, r3
+dp3_sat r0.x, r0, r4
+pow r3.x, r0.x, c3.x
+mul r0.x, r3, c4.x
+mad r0.xyz, r2, r1, r0.x
+mov r0.w, c4.y
+mov oC0, r0

@@ -8,56 +8,56 @@ dcl v0
 dcl_volume s0
 mul r0.xyz, t0, c0.x
 texld r1, r0, s0
-mad r2.xyz, r1, c1.x, r0
-mul r0.x, r2.z, r2.z
-mad r1.x, r2.y, r2.y, r0
-rsq r0.x, r1.x
-rcp r1.x, r0.x
-mul r0.x, r1, c2
+mad r0.xyz, r1, c1.x, r0
+mul r1.x, r0.z, r0.z
+mad r0.x, r0.y, r0.y, r1
+rsq r0.x, r0.x
+rcp r0.x, r0.x
+mul r0.x, r0, c2
 mov r1.x, r0
 mov r1.yz, c14.x
-texld r2, r1, s0
-mul r1.x, r2, c1
-abs r2.x, r1
-add r1.x, r0, r2
-frc r0.x, r1
-mul r1.x, r0, r0
-mul r2.x, r0, r1
-mul r3.x, c14.y, r1
+texld r1, r1, s0
+mul r1.x, r1, c1
+abs r1.x, r1
+add r0.x, r0, r1
+frc r1.x, r0
+mul r0.x, r1, r1
+mul r2.x, r1, r0
+mul r3.x, c14.y, r0
 mad r4.x, c14.z, r2, -r3
-add r5.x, r4, c14.w
-mad r4.x, c15.x, r1, r2
-add r6.x, r4, r0
-mad r4.x, c15.x, r2, r3
-add r3.x, r2, -r1
-add r1.x, c14.w, -r0
-mad r2.x, r4, c15.y, r6
-add r7.x, r2, r3
-cmp r2.x, r1, r7, c15.y
-cmp r7.x, r0, r2, c14.x
-mad r2.x, r5, c15.z, r6
-add r5.x, r2, r4
-add r2.x, r5, r3
-cmp r3.x, r1, r2, c14.w
-cmp r1.x, r0, r3, c15.z
-add r0.x, r7, -r1
+add r4.x, r4, c14.w
+mad r5.x, c15.x, r0, r2
+add r5.x, r5, r1
+mad r3.x, c15.x, r2, r3
+add r0.x, r2, -r0
+add r2.x, c14.w, -r1
+mad r6.x, r3, c15.y, r5
+add r6.x, r6, r0
+cmp r6.x, r2, r6, c15.y
+cmp r6.x, r1, r6, c14.x
+mad r4.x, r4, c15.z, r5
+add r3.x, r4, r3
+add r0.x, r3, r0
+cmp r0.x, r2, r0, c14.w
+cmp r0.x, r1, r0, c15.z
+add r0.x, r6, -r0
 dp3 r1.x, t1, c6
-mul r2.xyz, c5, r1.x
-mul r1.xyz, r2, c7.x
-mad r2.xyz, c3, c4.x, r1
-lrp r1.xyz, r0.x, c9, c8
-mul r3.xyz, r2, r1
-add r1.xyz, c6, -c10
-dp3 r2.x, r1, r1
-rsq r4.x, r2.x
-mul r2.xyz, r1, r4.x
-dp3 r1.x, r2, t1
-rcp r2.x, c11.x
-pow r4.x, r1.x, r2.x
-mul r1.xyz, c12, r4.x
-mad r2.x, c15.w, r0, c16.x
-mul r0.x, c13, r2
-mul r2.xyz, r1, r0.x
-mad r0.xyz, r3, v0.w, r2
+mul r1.xyz, c5, r1.x
+mul r1.xyz, r1, c7.x
+mad r1.xyz, c3, c4.x, r1
+lrp r2.xyz, r0.x, c9, c8
+mul r1.xyz, r1, r2
+add r2.xyz, c6, -c10
+dp3 r3.x, r2, r2
+rsq r3.x, r3.x
+mul r2.xyz, r2, r3.x
+dp3 r2.x, r2, t1
+rcp r3.x, c11.x
+pow r4.x, r2.x, r3.x
+mul r2.xyz, c12, r4.x
+mad r0.x, c15.w, r0, c16.x
+mul r0.x, c13, r0
+mul r0.xyz, r2, r0.x
+mad r0.xyz, r1, v0.w, r0
 mov r0.w, v0
 mov oC0, r0

@@ -1,0 +1,73 @@
+"""The DAG's operations, one row each: how the code generator emits the op and whether the
+compiler may fold it. dag.py (what folds, what never does) and codegen.py (how a node becomes
+an instruction) read these rows instead of keeping sets of op names of their own; the fold
+kernels (argument and result widths) are folding.FOLDS's rows, built on the IR's kernels.
+
+Shapes:
+- `lanes`: component-wise, one instruction whose lane L reads lane L of each source (add,
+  mul, mad, cmp, lrp, mov ...); its result lanes can be placed anywhere;
+- `scalar`: one replicated result from one component of each source (rcp, rsq, exp, log,
+  pow), a lane of any register;
+- `reduce`: one result from the first `reads` lanes of two sources (dp3, dp4, dp2add);
+- `shaped`: whole-register operands and results (crs, nrm, sincos, lit);
+- `texture`: a sampler read, emitted as `mnemonic` with the sampler;
+- `leaf` / `flow`: registers the code generator places (inputs, uniforms, constants, packs,
+  loop and branch values) and the flow control it emits (flowcode.py).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from effects.shaders.hlsl.folding import FOLDS
+
+
+@dataclass(frozen=True)
+class OpRow:
+    name: str
+    shape: str
+    mnemonic: str | None = None      # the instruction it is emitted as ('sat': mov_sat)
+    reads: int = 0                    # reduce: lanes read of each of its two vector sources
+    opaque: bool = False              # never folded, even over constants (reads, side effects)
+
+    @property
+    def folds(self) -> bool:
+        """Whether the compiler computes it over constants (folding.fold)."""
+        return not self.opaque and self.name in FOLDS
+
+
+def _rows(shape: str, names: str, **kw) -> list[OpRow]:
+    return [OpRow(n, shape, kw.pop("mnemonic", None) or (n if shape != "leaf" else None),
+                  **kw) for n in names.split()]
+
+
+OPS: dict[str, OpRow] = {row.name: row for row in [
+    *_rows("lanes", "add mul mad min max frc abs cmp cnd lrp slt sge mov"),
+    OpRow("sat", "lanes", "mov"),                            # mov_sat
+    *_rows("lanes", "dsx dsy", opaque=True),                 # gradients: never constant
+    *_rows("scalar", "rcp rsq exp log pow"),
+    OpRow("dp3", "reduce", "dp3", reads=3),
+    OpRow("dp4", "reduce", "dp4", reads=4),
+    OpRow("dp2add", "reduce", "dp2add", reads=2),
+    *_rows("shaped", "crs nrm sincos lit"),
+    OpRow("tex", "texture", "texld", opaque=True),
+    *[OpRow(n, "texture", n, opaque=True) for n in ("texldp", "texldb", "texldl", "texldd")],
+    OpRow("const", "leaf"),
+    *[OpRow(n, "leaf", opaque=True) for n in
+      ("input", "uniform", "uniform_rel", "uniform_al", "pack", "phi")],
+    *[OpRow(n, "flow", opaque=True) for n in ("kill", "loop", "loop_out", "if", "if_out")],
+]}
+
+
+def shaped(op: str) -> bool:
+    return op in OPS and OPS[op].shape == "shaped"
+
+
+def ops_of(shape: str) -> frozenset[str]:
+    return frozenset(n for n, row in OPS.items() if row.shape == shape)
+
+
+LANEWISE = ops_of("lanes")
+SCALAR = ops_of("scalar")
+REDUCE = {n: row.reads for n, row in OPS.items() if row.shape == "reduce"}
+TEXTURE = {n: row.mnemonic for n, row in OPS.items() if row.shape == "texture"}
+OPAQUE = frozenset(n for n, row in OPS.items() if row.opaque)

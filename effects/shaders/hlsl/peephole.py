@@ -1,0 +1,307 @@
+"""Rewrites of the emitted instructions (virtual registers, before legalize.finish): what fxc
+made of the same code. Each pass takes the code generator (its `instrs`, `rules`, `defs`) and
+returns how many instructions it removed, so a test can show the count drop pass by pass.
+
+- `propagate_copies`: `mov vrX, src` whose every reader can read `src` in its place (the
+  version's read ports and swizzles allow it, nothing rewrites `src` or a0 in between) is
+  left out: `mov r0, c0; mov oC0, r0` is `mov oC0, c0`, a bone row is read as `c[a0.x + n]`
+  where it is used (issue 31, from fxc's listings);
+- `clamp_to_saturate`: `max x, 0` then `min 1` (clamp(x, 0, 1) where `saturate` was not
+  written) is `mov_sat`, where the version has the modifier;
+- `fold_into_producer`: `op vrA ...; mov[_sat] D, vrA`, vrA read nowhere else, is `op[_sat] D`
+  (the `_sat` on the producing instruction; a result written straight to its destination,
+  where the version lets `op` write it: ps_2_x writes oC#/oDepth with mov only).
+
+Straight-line code only: a flow instruction (rep, loop, if, else, break ...) ends what a pass
+looks at, so a value carried round a loop or chosen by an if is never moved across one.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from effects.shaders.hlsl.asmcode import Instr, Reg, Src
+from effects.shaders.hlsl.legalize import _ALIASES, _choose, _lanes_needed
+
+_TEXLD = frozenset({"texld", "texldp", "texldb", "texldl", "texldd"})
+# instructions whose sources a copy may be folded into: one slot, ordinary sources (texld's
+# coordinate register, texkill's operand, sincos's constants have rules of their own)
+_READERS = frozenset({"mov", "add", "mul", "mad", "min", "max", "slt", "sge", "cmp", "lrp",
+                      "dp3", "dp4", "dp2add", "rcp", "rsq", "exp", "log", "pow", "frc", "abs",
+                      "mova", "nrm", "crs", "dsx", "dsy"})
+# instructions that may take `_sat` and write another destination than the temporary their
+# result went to (every arithmetic instruction the code generator emits but sincos, whose
+# destination rules differ)
+_PRODUCERS = _READERS - {"mova"} | _TEXLD
+# registers read in place of a copy (ps_3_0's vPos and vFace are left where they are: vFace
+# is read by comparisons only)
+_SOURCES = frozenset({"vr", "c", "v", "t", "c_rel", "c_al"})
+
+
+def is_flow(ins: Instr) -> bool:
+    """rep, loop, if, else, break ...: the code generator emits these without a destination
+    (texkill names its operand as the destination)."""
+    return ins.dst is None
+
+
+def _read_regs(ins: Instr) -> list[Reg]:
+    regs = [s.reg for s in ins.srcs if isinstance(s, Src)]
+    if ins.opcode == "texkill" and ins.dst is not None:
+        regs.append(ins.dst)
+    return regs
+
+
+def _writes(ins: Instr) -> Reg | None:
+    return None if ins.opcode == "texkill" else ins.dst
+
+
+def _same(a: Reg, b: Reg) -> bool:
+    return a.kind == b.kind and a.index == b.index
+
+
+def _census(instrs: list[Instr]) -> tuple[dict[int, list[int]], dict[int, int]]:
+    """Each temporary's writing instructions (by position) and how many sources read it, in
+    one pass over the code (asked once per pass: it is most of what the passes cost)."""
+    defs: dict[int, list[int]] = {}
+    uses: dict[int, int] = {}
+    for i, ins in enumerate(instrs):
+        for src in ins.srcs:
+            r = src.reg
+            if r.kind == "vr":
+                uses[r.index] = uses.get(r.index, 0) + 1
+        d = ins.dst
+        if d is not None and d.kind == "vr":
+            if ins.opcode == "texkill":
+                uses[d.index] = uses.get(d.index, 0) + 1     # type: ignore[index]
+            else:
+                defs.setdefault(d.index, []).append(i)        # type: ignore[arg-type]
+    return defs, uses
+
+
+def _port_kind(reg: Reg) -> str:
+    # c[a0.x + n] and c[aL + n] read the constant file through its port
+    return "c" if reg.kind in ("c_rel", "c_al") else reg.kind
+
+
+def _ports_ok(srcs: list[Src], rules: Any) -> bool:
+    seen: dict[str, set[tuple]] = {}
+    for s in srcs:
+        kind = _port_kind(s.reg)
+        if kind in rules.read_ports:
+            seen.setdefault(kind, set()).add((s.reg.kind, s.reg.index))
+    return all(len(v) <= rules.read_ports[k] for k, v in seen.items())
+
+
+def _rule(rules: Any) -> str:
+    return "ps20" if rules.swizzles == "ps20" else "any"
+
+
+def _compose(use: Src, mov: Instr) -> Src | None:
+    """`use` (reading mov's destination) as a read of mov's source, or None where it reads a
+    lane the mov did not write."""
+    src = mov.srcs[0]
+    through = _lanes_needed(mov, src)            # mov lane -> source lane
+    if use.fixed is not None:
+        if any(l not in mov.mask for l in use.fixed):
+            return None
+        return Src(src.reg, {}, use.negate != src.negate, fixed=tuple(through[l] for l in use.fixed))
+    if any(l not in mov.mask for l in use.lanes.values()):
+        return None
+    return Src(src.reg, {i: through[l] for i, l in use.lanes.items()}, use.negate != src.negate)
+
+
+def propagate_copies(cg: Any) -> int:
+    instrs: list[Instr] = cg.instrs
+    rules = cg.rules
+    defs, uses = _census(instrs)
+    drop: set[int] = set()
+    for i, mov in enumerate(instrs):
+        if mov.opcode != "mov" or mov.saturate or mov.dst is None or mov.dst.kind != "vr" \
+                or len(defs.get(mov.dst.index, ())) != 1 or len(mov.srcs) != 1:  # type: ignore[arg-type]
+            continue
+        x = mov.dst
+        source = mov.srcs[0].reg
+        if source.kind not in _SOURCES:
+            continue
+        left = uses.get(x.index, 0)  # type: ignore[arg-type]
+        for j in range(i + 1, len(instrs)):
+            if left == 0:
+                break
+            ins = instrs[j]
+            if is_flow(ins):
+                break
+            reads = [k for k, s in enumerate(ins.srcs) if _same(s.reg, x)]
+            if reads or (ins.opcode == "texkill" and _same(ins.dst, x)):  # type: ignore[arg-type]
+                if ins.opcode in _READERS and reads and not (ins.dst is not None and ins.dst.kind == "a"
+                                                             and source.kind == "c_rel"):
+                    new = list(ins.srcs)
+                    for k in reads:
+                        c = _compose(ins.srcs[k], mov)
+                        if c is None:
+                            break
+                        new[k] = c
+                    else:
+                        if _ports_ok(new, rules) and all(
+                                _choose(_lanes_needed(ins, s), _rule(rules)) is not None
+                                for s in new):
+                            ins.srcs = new
+                            left -= len(reads)
+                if _same_written(ins, source):
+                    break
+                continue
+            if _same_written(ins, source):
+                break
+        if left == 0:
+            drop.add(i)
+    cg.instrs = [ins for k, ins in enumerate(instrs) if k not in drop]
+    return len(drop)
+
+
+def _same_written(ins: Instr, source: Reg) -> bool:
+    d = _writes(ins)
+    if d is None:
+        return False
+    if source.kind == "c_rel":          # c[a0.y + n] reads another register once a0.y changes
+        return d.kind == "a" and source.lane in ins.mask
+    return _same(d, source)
+
+
+def _const_lane_values(cg: Any, s: Src, lanes: tuple[int, ...]) -> list[float] | None:
+    if s.reg.kind != "c" or s.reg.index not in cg.defs:
+        return None
+    row = cg.defs[s.reg.index]
+    need = _lanes_needed(Instr("mov", None, lanes, []), s)
+    vals = [row[need[l]] for l in lanes]
+    if any(v is None for v in vals):
+        return None
+    return [-v if s.negate else v for v in vals]  # type: ignore[operator]
+
+
+def _bound(cg: Any, ins: Instr, value: float) -> Src | None:
+    """The other source of `ins` (max/min of two) when one is the constant `value` in every
+    lane the instruction writes."""
+    if len(ins.srcs) != 2:
+        return None
+    for k in (0, 1):
+        vals = _const_lane_values(cg, ins.srcs[k], ins.mask)
+        if vals is not None and all(v == value for v in vals):
+            return ins.srcs[1 - k]
+    return None
+
+
+def clamp_to_saturate(cg: Any) -> int:
+    """`max vrA, x, 0; min D, vrA, 1` (or min then max), vrA read once: `mov_sat D, x`.
+    Saturate is the same clamp for every number but NaN (the assembly reference's _sat
+    page: "clamps to the range [0, 1]"), which shader constants never hold."""
+    rules = cg.rules
+    if not (rules.saturate and (rules.kind == "ps" or rules.major >= 3)):
+        return 0
+    instrs: list[Instr] = cg.instrs
+    defs, uses = _census(instrs)
+    where = {i: ins for i, ins in enumerate(instrs)}
+    drop: set[int] = set()
+    for j, outer in enumerate(instrs):
+        for first, second, lo_hi in (("max", "min", (0.0, 1.0)), ("min", "max", (1.0, 0.0))):
+            if outer.opcode != second or outer.saturate:
+                continue
+            inner_src = _bound(cg, outer, lo_hi[1])
+            if inner_src is None or inner_src.reg.kind != "vr" or inner_src.negate:
+                continue
+            vr = inner_src.reg.index
+            d = defs.get(vr, [])  # type: ignore[arg-type]
+            if len(d) != 1 or uses.get(vr) != 1 or d[0] >= j:  # type: ignore[arg-type]
+                continue
+            inner = where[d[0]]
+            if inner.opcode != first or inner.saturate or any(is_flow(x) for x in instrs[d[0]:j]):
+                continue
+            x = _bound(cg, inner, lo_hi[0])
+            if x is None:
+                continue
+            composed = _compose(inner_src, Instr("mov", inner.dst, inner.mask, [x]))
+            if composed is None:
+                continue
+            outer.opcode, outer.srcs, outer.saturate = "mov", [composed], True
+            drop.add(d[0])
+            break
+    cg.instrs = [ins for k, ins in enumerate(instrs) if k not in drop]
+    return len(drop)
+
+
+def _writable(rules: Any, op: str, dst: Reg) -> bool:
+    if dst.kind == "vr":
+        return True
+    if op in _TEXLD or dst.kind in ("a", "c_rel", "c_al"):
+        return False
+    if rules.kind == "ps" and rules.major == 2 and dst.kind in ("oC", "oDepth"):
+        return op == "mov"          # ps_2_0 / ps_2_x: "oC# and oDepth are written by mov"
+    return True
+
+
+def fold_into_producer(cg: Any) -> int:
+    rules = cg.rules
+    instrs: list[Instr] = cg.instrs
+    defs, uses = _census(instrs)
+    drop: set[int] = set()
+    for j, mov in enumerate(instrs):
+        if mov.opcode != "mov" or mov.dst is None or len(mov.srcs) != 1:
+            continue
+        s = mov.srcs[0]
+        if s.reg.kind != "vr" or s.negate or uses.get(s.reg.index) != 1:  # type: ignore[arg-type]
+            continue
+        d = defs.get(s.reg.index, [])  # type: ignore[arg-type]
+        if len(d) != 1 or d[0] >= j or d[0] in drop:
+            continue
+        i = d[0]
+        prod = instrs[i]
+        if prod.opcode not in _PRODUCERS or tuple(prod.mask) != tuple(mov.mask):
+            continue
+        if mov.saturate and (prod.opcode in _TEXLD or not rules.saturate):
+            continue
+        need = _lanes_needed(mov, s)
+        if set(need) != set(mov.mask) or any(need[l] != l for l in mov.mask):
+            continue
+        target = mov.dst
+        if not _writable(rules, prod.opcode, target):
+            continue
+        if prod.opcode not in _ALIASES and any(_same(r, target) for r in _read_regs(prod)):
+            continue            # a macro may write its destination before its last read
+        between = instrs[i + 1:j]
+        if any(is_flow(x) or any(_same(r, target) for r in _read_regs(x))
+               or (_writes(x) is not None and _same(_writes(x), target)) for x in between):  # type: ignore[arg-type]
+            continue
+        prod.dst = target
+        prod.saturate = prod.saturate or mov.saturate
+        prod.location = prod.location
+        drop.add(j)
+    cg.instrs = [ins for k, ins in enumerate(instrs) if k not in drop]
+    return len(drop)
+
+
+# The passes in the order run, each to a fixed point with the others (a copy left out can
+# let a clamp become _sat, whose mov then folds into its producer).
+PASSES = (("propagate copies", propagate_copies), ("clamp to saturate", clamp_to_saturate),
+          ("fold into producer", fold_into_producer))
+
+
+ROUNDS = 2
+
+
+def optimise(cg: Any) -> dict[str, int]:
+    """Run the passes in order, a second round where the first removed something (what one
+    pass leaves can open a rewrite for an earlier one: a mov left out makes a clamp's input
+    a temporary read once); how many each removed. Two rounds: a third removed nothing on
+    the bundled effects and tests/data/realfx, and each round costs a few census scans."""
+    removed = {name: 0 for name, _ in PASSES}
+    for _ in range(ROUNDS):
+        total = 0
+        for name, fn in PASSES:
+            n = fn(cg)
+            removed[name] += n
+            total += n
+        if not total:
+            break
+    # a `def` only the removed instructions read (clamp's 0 and 1) is left out
+    read = {s.reg.index for ins in cg.instrs for s in ins.srcs
+            if isinstance(s, Src) and s.reg.kind == "c"}
+    for reg in [r for r in cg.defs if r not in read]:
+        del cg.defs[reg]
+    return removed
