@@ -542,17 +542,26 @@ def _is_float(token: str) -> bool:
 # By name
 
 MESHES = {"quad": quad, "sphere": sphere, "cube": cube, "torus": torus, "teapot": teapot}
+MESH_FILES = (".obj", ".x")     # the mesh files read: Wavefront .obj, DirectX .x (effects.assets.xfile)
+
+
+def load_mesh_file(path: str) -> Mesh:
+    """An .obj or .x file by its extension."""
+    if path.lower().endswith(".x"):
+        from effects.assets.xfile import load_x
+        return load_x(path)
+    return load_obj(path)
 
 
 def by_name(name: str, *, base_dir: str | None = None, location: Location | None = None) -> Mesh:
-    """A built-in mesh ('quad', 'sphere', 'cube', 'torus', 'teapot') or an .obj path (relative
-    to `base_dir`). An unknown name is a `SceneError` at `location`."""
+    """A built-in mesh ('quad', 'sphere', 'cube', 'torus', 'teapot') or an .obj or .x path
+    (relative to `base_dir`). An unknown name is a `SceneError` at `location`."""
     if name in MESHES:
         return MESHES[name]()
-    if name.lower().endswith(".obj"):
+    if name.lower().endswith(MESH_FILES):
         path = name if base_dir is None or os.path.isabs(name) else os.path.join(base_dir, name)
         if not os.path.isfile(path):
             raise SceneError(f"mesh file not found: {path}", location or Location(path, 1, 1))
-        return load_obj(path)
-    raise SceneError(f"unknown mesh {name!r} (known: {', '.join(MESHES)}, or a .obj file)",
+        return load_mesh_file(path)
+    raise SceneError(f"unknown mesh {name!r} (known: {', '.join(MESHES)}, or a .obj or .x file)",
                      location or Location("<scene>", 1, 1))
