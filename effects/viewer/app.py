@@ -507,6 +507,11 @@ class Viewer:
         from PIL import Image
         bw, bh = self.window.buffer_size
         data = self.window.fbo.read(viewport=(0, 0, bw, bh), components=3)
+        # moderngl's read of the window's framebuffer leaves GL_INVALID_OPERATION queued
+        # (it selects a colour attachment the default framebuffer does not have; the pixels
+        # come back right): read it off here, or the GL back end's next check -- the next
+        # frame drawn after an S key -- reports it as its own failure
+        _ = self.ctx.error
         image = np.frombuffer(data, np.uint8).reshape(bh, bw, 3)[::-1]
         try:
             Image.fromarray(image).save(path)

@@ -84,12 +84,12 @@ def draw_panel(state: ViewerState, status: Status, actions: Actions,
     _card(state)
     _techniques(state, status)
     imgui.separator()
+    _parameters(state, status)
+    imgui.separator()
     _view(state, status)
     changed, shown = imgui.checkbox("listing (C)", state.show_listing)
     if changed and shown != state.show_listing:
         state.toggle_listing()
-    imgui.separator()
-    _parameters(state, status)
     imgui.separator()
     _reload(status, actions)
     if imgui.collapsing_header("Keys"):
@@ -191,7 +191,7 @@ def _view(state: ViewerState, status: Status) -> None:
     imgui.set_next_item_width(140)
     options = list(MESHES)
     if state.mesh not in MESHES:     # the scene's or --mesh's file, or the effect's own
-        options.append(os.path.basename(state.mesh) if state.mesh else "(the scene's)")
+        options.append(os.path.basename(state.mesh) if state.mesh else "(default)")
     mesh_index = options.index(state.mesh) if state.mesh in MESHES else len(options) - 1
     changed, index = imgui.combo("mesh", mesh_index, options)
     if changed and index < len(MESHES):
