@@ -227,3 +227,36 @@ def test_time_runs_between_two_screenshots_and_stands_while_paused(wave_effect, 
     # space pauses: the clock and the picture stand
     assert seconds["still_paused"] == seconds["paused"]
     assert np.array_equal(shots["still_paused"], shots["paused"])
+
+
+def view_square(*args: str, cwd: str) -> np.ndarray:
+    """`effects view ARGS --exit-after 1.5 --screenshot`: the effect's 360 x 360 square."""
+    shot = os.path.join(cwd, "view.png")
+    out = subprocess.run([xvfb_run(), "-a", "-s", "-screen 0 1280x800x24", sys.executable, "-m",
+                          "effects", "view", *args, "--size", "800x360", "--exit-after", "1.5",
+                          "--screenshot", shot], capture_output=True, text=True, cwd=cwd,
+                         timeout=180)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "warning" not in out.stdout and "failed" not in out.stdout, out.stdout
+    return effect_square(shot)
+
+
+@pytest.mark.slow
+def test_view_reads_the_scene_beside_the_effect_and_takes_set_and_x_meshes(wave_effect):
+    folder = str(wave_effect.parent)
+    common = ["--profile", "radeon9700", "--time", "0.125"]
+    # wave.yaml beside wave.fx: the quad, and Speed 0 -> the wave at phase 0
+    (wave_effect.parent / "wave.yaml").write_text("mesh: quad\nparams: {Speed: 0.0}\n")
+    beside = view_square("wave.fx", *common, cwd=folder)
+    assert np.abs(beside[180] - wave_row(0.0)).max() <= 3
+    # --no-scene: the file's Speed 1 on the --mesh quad; --set wins over the file
+    plain = view_square("wave.fx", *common, "--no-scene", "--mesh", "quad", cwd=folder)
+    assert np.abs(plain[180] - wave_row(0.125)).max() <= 3
+    (wave_effect.parent / "other.yaml").write_text("mesh: quad\n")
+    half = view_square("wave.fx", *common, "--scene", "other.yaml", "--set", "Speed=2", cwd=folder)
+    assert np.abs(half[180] - wave_row(0.25)).max() <= 3
+    # an SDK .x mesh by --mesh: the cube's silhouette, not the quad's full square
+    cube = view_square("wave.fx", *common, "--no-scene", "--mesh",
+                       str(ROOT / "tests" / "data" / "xmeshes" / "Cube.x"), cwd=folder)
+    background = (cube.max(axis=-1) < 30)
+    assert 0.3 < background.mean() < 0.95
