@@ -18,7 +18,7 @@ from effects.base import limits
 from effects.base.errors import SceneError
 
 XMESHES = ROOT / "tests" / "data" / "xmeshes"
-CUBE = XMESHES / "Cube.x"          # DirectX SDK Media/misc/Cube.x (MANIFEST.md)
+CUBE = XMESHES / "Cube.x"          # DirectX SDK Media/misc/Cube.x (tests/data/xmeshes/MANIFEST.md)
 QUAD = XMESHES / "quadlow.x"       # DirectX SDK AntiAlias sample's quadlow.x
 
 
@@ -255,3 +255,13 @@ def test_an_effect_with_shaders_on_an_sdk_mesh_agrees_across_back_ends():
     d = np.abs(a - b).max(axis=-1)
     assert d.mean() < 1.0 and (d > 2).mean() < 0.01
     assert a[covered].std() > 10          # the stones texture, lit: not a flat colour
+
+
+def test_the_kept_sample_files_are_the_ones_the_manifest_names():
+    import hashlib
+    import re
+    manifest = (XMESHES / "MANIFEST.md").read_text()
+    rows = re.findall(r"^\| `([^`]+\.x)` \|.*\| `([0-9a-f]{64})` \|$", manifest, re.M)
+    assert sorted(name for name, _ in rows) == sorted(p.name for p in XMESHES.glob("*.x"))
+    for name, digest in rows:
+        assert hashlib.sha256((XMESHES / name).read_bytes()).hexdigest() == digest, name
