@@ -29,7 +29,7 @@ KEYS = (
     ("M", "next mesh"),
     ("C", "show / hide the shader listing of the technique drawn (as `effects compile`)"),
     ("L", "animate the light; right-drag moves it"),
-    ("space", "pause / run the clock TIME reads"),
+    ("space", "pause / run the clock TIME reads (a --time clock runs from there)"),
     (". / ,", "step the clock a frame forward / back (pauses it)"),
     ("left-drag, wheel", "orbit, zoom"),
     ("R", "reload now"),
@@ -63,6 +63,7 @@ class Status:
     # tests and benchmarks click and drag them as a user would
     widget_rects: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     texture_text: dict[str, str] = field(default_factory=dict)   # the path fields' text
+    tweakables: "tuple[Any, list[Tweakable]] | None" = None     # (effect, its widgets)
 
 
 @dataclass
@@ -225,7 +226,7 @@ def _parameters(state: ViewerState, status: Status) -> None:
         what = "held (--time)" if clock.fixed else "running" if clock.running else "paused"
         imgui.text(f"TIME {clock.seconds:8.3f} s, {what}")
         imgui.same_line()
-        if imgui.button("Run" if not clock.running else "Pause"):
+        if imgui.button("Run" if clock.fixed or not clock.running else "Pause"):
             state.toggle_clock()
         imgui.same_line()
         if imgui.button("Step"):
@@ -233,7 +234,9 @@ def _parameters(state: ViewerState, status: Status) -> None:
     loaded = status.loaded
     if loaded is None:
         return
-    items = tweakables(loaded.effect)
+    if status.tweakables is None or status.tweakables[0] is not loaded.effect:
+        status.tweakables = (loaded.effect, tweakables(loaded.effect))   # once per build
+    items = status.tweakables[1]
     if not items or not imgui.collapsing_header("Parameters", imgui.TreeNodeFlags_.default_open):
         return
     effect = getattr(status.runtime, "effect", None) or loaded.effect
@@ -255,7 +258,10 @@ def _parameter(state: ViewerState, status: Status, item: Tweakable, param: Any) 
     label = f"##{item.name}"
     if item.widget == "texture":
         text = status.texture_text.get(item.name, edited if isinstance(edited, str) else "")
-        entered, text = imgui.input_text(label, text, imgui.InputTextFlags_.enter_returns_true)
+        own = param.annotation("ResourceName") if param is not None else None
+        hint = own.value if own is not None and isinstance(own.value, str) else "(a stand-in)"
+        entered, text = imgui.input_text_with_hint(label, hint, text,
+                                                   imgui.InputTextFlags_.enter_returns_true)
         status.texture_text[item.name] = text
         if entered:
             if text.strip():

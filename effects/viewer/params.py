@@ -194,7 +194,11 @@ class Clock:
         return False
 
     def toggle(self) -> None:
-        self.running = not self.running
+        """Pause or run; a held clock (--time) starts running from where it was held."""
+        if self.fixed:
+            self.fixed, self.running = False, True
+        else:
+            self.running = not self.running
 
     def step(self, frames: int = 1) -> None:
         """Step (pausing first): a frame forward, or back with a negative count (not below 0)."""

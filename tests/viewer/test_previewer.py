@@ -129,6 +129,8 @@ def test_the_clock_runs_pauses_steps_and_holds():
     assert clock.seconds == 0.0
     held = Clock(seconds=2.0, fixed=True)
     assert not held.advance(1.0) and held.seconds == 2.0
+    held.toggle()                                  # space on a held clock: it runs from there
+    assert held.advance(1.0) and held.seconds == 3.0
 
 
 def test_time_bound_parameters_follow_set_time_and_a_set_value_stays(wave_effect):
