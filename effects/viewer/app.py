@@ -314,7 +314,7 @@ class Viewer:
             self._swapped_selection = self.state.selection_generation
 
     def _swap(self, loaded: LoadedEffect) -> None:
-        for warning in loaded_warnings(loaded):
+        for warning in [*loaded_warnings(loaded), *self._unknown_assignments(loaded)]:
             if str(warning) not in self._warned:  # each once, not at every reselect
                 self._warned.add(str(warning))
                 self.say(str(warning))
@@ -323,6 +323,19 @@ class Viewer:
         self.status.error = None
         self.effect_generation += 1
         self._swapped_selection = self.state.selection_generation
+
+    def _unknown_assignments(self, loaded: LoadedEffect) -> list:
+        """A --set name the effect does not have: `render` refuses it; the viewer, whose file
+        may gain the parameter in the next edit, says so (once) and draws on."""
+        from effects.base.errors import EffectWarning
+        from effects.host.semantics import lookup_parameter
+        out = []
+        for name in self.state.assignments:
+            try:
+                lookup_parameter(loaded.effect, name, None, "--set")
+            except EffectError as exc:
+                out.append(EffectWarning(exc.message, exc.location))
+        return out
 
     def _selection_text(self) -> str:
         loaded = self.loaded

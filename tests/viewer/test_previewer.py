@@ -262,3 +262,16 @@ def test_view_reads_the_scene_beside_the_effect_and_takes_set_and_x_meshes(wave_
                        str(ROOT / "tests" / "data" / "xmeshes" / "Cube.x"), cwd=folder)
     background = (cube.max(axis=-1) < 30)
     assert 0.3 < background.mean() < 0.95
+
+
+def test_a_set_name_the_effect_lacks_is_said_once_and_the_rest_apply(wave_effect):
+    from effects.viewer.app import Viewer, ViewerOptions
+    said: list[str] = []
+    viewer = Viewer(ViewerOptions(str(wave_effect), profile="radeon9700", mesh="quad",
+                                  assignments={"Sped": "0", "Speed": "0.5"}), output=said.append)
+    loaded = viewer._initial_build()
+    assert loaded is not None and float(loaded.runtime.effect.parameter("Speed").value) == 0.5
+    assert said == [f"{wave_effect}:1:1: warning: --set 'Sped': {wave_effect} has no parameter "
+                    "of that name (settable: Time, Speed, Tint, Pattern)"]
+    viewer._swap(loaded)
+    assert len(said) == 1
