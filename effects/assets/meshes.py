@@ -28,6 +28,7 @@ import numpy as np
 from effects.base import limits, untrusted
 from effects.base.errors import Location, SceneError
 from effects.assets import obj_fast
+from effects.assets.xfile import read_x
 from effects.assets.tangents import tangent_frames
 
 
@@ -545,12 +546,15 @@ MESHES = {"quad": quad, "sphere": sphere, "cube": cube, "torus": torus, "teapot"
 MESH_FILES = (".obj", ".x")     # the mesh files read: Wavefront .obj, DirectX .x (effects.assets.xfile)
 
 
+def load_x(path: str | os.PathLike[str]) -> Mesh:
+    """A DirectX .x file (text or binary; `effects.assets.xfile`) as one Mesh."""
+    x = read_x(path)
+    return make_mesh(x.positions, x.uv, x.triangles, x.normals, name=x.name, colors=x.colors)
+
+
 def load_mesh_file(path: str) -> Mesh:
     """An .obj or .x file by its extension."""
-    if path.lower().endswith(".x"):
-        from effects.assets.xfile import load_x
-        return load_x(path)
-    return load_obj(path)
+    return load_x(path) if path.lower().endswith(".x") else load_obj(path)
 
 
 def by_name(name: str, *, base_dir: str | None = None, location: Location | None = None) -> Mesh:

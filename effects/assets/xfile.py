@@ -41,15 +41,11 @@ import os
 import re
 import struct
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from effects.base import limits, untrusted
 from effects.base.errors import Location, SceneError
-
-if TYPE_CHECKING:  # pragma: no cover
-    from effects.assets.meshes import Mesh
 
 HEADER = re.compile(rb"xof (\d{4})(txt |bin |tzip|bzip)(0032|0064)")
 
@@ -326,6 +322,18 @@ class _Numbers:
 
 
 @dataclass
+class XMesh:
+    """A file's meshes as arrays: what `effects.assets.meshes.make_mesh` takes."""
+
+    positions: np.ndarray          # (N, 3), placed by the frames
+    uv: np.ndarray                 # (N, 2)
+    triangles: np.ndarray          # (M, 3)
+    normals: np.ndarray            # (N, 3) unit
+    colors: np.ndarray | None      # (N, 4) or None
+    name: str
+
+
+@dataclass
 class _Part:
     positions: np.ndarray
     normals: np.ndarray | None
@@ -445,9 +453,9 @@ def _index_normals(positions: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     return np.where(length > 0, normals / np.where(length > 0, length, 1.0), fallback)
 
 
-def load_x(path: str | os.PathLike[str]) -> "Mesh":
-    """Read a DirectX .x file (text or binary) into one Mesh (see the module docstring)."""
-    from effects.assets.meshes import make_mesh
+def read_x(path: str | os.PathLike[str]) -> XMesh:
+    """Read a DirectX .x file (text or binary): every mesh of it, merged, placed by its frames
+    (see the module docstring). `effects.assets.meshes.load_x` makes the Mesh of it."""
     path = os.fspath(path)
     raw = untrusted.read_file(path, ".x file", SceneError, "mesh_file_bytes")
     reader = _Reader(path, raw, raw[8:12] == b"txt ")
@@ -476,6 +484,4 @@ def load_x(path: str | os.PathLike[str]) -> "Mesh":
         if not np.all(np.isfinite(values)):
             raise SceneError(f".x file has a {what} that is not a finite number",
                              Location(path, 1, 1))
-    return make_mesh(positions, uv, triangles, normals, name=os.path.basename(path),
-                     colors=colors)
-
+    return XMesh(positions, uv, triangles, normals, colors, os.path.basename(path))

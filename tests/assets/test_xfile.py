@@ -13,7 +13,7 @@ import pytest
 
 import effects
 from effects.assets.meshes import by_name
-from effects.assets.xfile import load_x
+from effects.assets.meshes import load_x
 from effects.base import limits
 from effects.base.errors import SceneError
 
