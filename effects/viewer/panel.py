@@ -258,8 +258,16 @@ def _parameter(state: ViewerState, status: Status, item: Tweakable, param: Any) 
     label = f"##{item.name}"
     if item.widget == "texture":
         text = status.texture_text.get(item.name, edited if isinstance(edited, str) else "")
-        own = param.annotation("ResourceName") if param is not None else None
-        hint = own.value if own is not None and isinstance(own.value, str) else "(a stand-in)"
+        hint = "(a stand-in)"
+        scene_value = state.base_scene.params.get(item.name)
+        if isinstance(scene_value, str):
+            hint = f"{scene_value} (the scene's)"
+        for name in ("ResourceName", "Procedural"):     # the file's own image, or generator
+            own = param.annotation(name) if param is not None else None
+            if scene_value is None and own is not None and isinstance(own.value, str) \
+                    and own.value.strip():
+                hint = own.value
+                break
         entered, text = imgui.input_text_with_hint(label, hint, text,
                                                    imgui.InputTextFlags_.enter_returns_true)
         status.texture_text[item.name] = text
@@ -306,6 +314,8 @@ def _numeric_widget(label: str, item: Tweakable, value: Any) -> tuple[bool, Any]
     back = (lambda v: [v]) if n == 1 else (lambda v: list(v))
     if item.integral:
         ints = [int(round(v)) for v in value]
+        if any(not -2**31 <= v < 2**31 for v in ints):
+            return _hex_field(label, ints)   # a DWORD past imgui's int (EffectEdit's BCLR colour)
         if item.widget == "slider":
             changed, new = _INT_SLIDERS[n](label, one(ints), int(item.lo), int(item.hi))
         else:
@@ -321,6 +331,21 @@ def _numeric_widget(label: str, item: Tweakable, value: Any) -> tuple[bool, Any]
                                  float(item.lo) if bounded else 0.0,
                                  float(item.hi) if bounded else 0.0)
     return changed, back(new)
+
+
+def _hex_field(label: str, ints: list[int]) -> tuple[bool, Any]:
+    """Whole numbers as hexadecimal text, applied on Enter (0x... or decimal, 32 bits each)."""
+    text = " ".join(f"0x{v & 0xFFFFFFFF:08X}" for v in ints)
+    entered, text = imgui.input_text(label, text, imgui.InputTextFlags_.enter_returns_true)
+    if not entered:
+        return False, ints
+    try:
+        values = [int(part, 0) for part in text.replace(",", " ").split()]
+    except ValueError:
+        return False, ints
+    if len(values) != len(ints) or any(not 0 <= v <= 0xFFFFFFFF for v in values):
+        return False, ints
+    return True, values
 
 
 def _reload(status: Status, actions: Actions) -> None:
