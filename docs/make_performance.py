@@ -189,6 +189,7 @@ def page(results: list[tuple[str, list[list[str]], list[str], float]], started: 
         "| `.venv/bin/python benchmarks/bench_flow.py` | Shader Model 3 flow control: `multilight.fx`'s ps_3_0 loop against its unrolled ps_2_0 technique, on both back ends |",
         "| `.venv/bin/python benchmarks/bench_fast_phong.py --errors` | the Taylor form's error against exact Phong as a triangle's normals spread |",
         "| `xvfb-run -a -s \"-screen 0 1280x800x24\" .venv/bin/python benchmarks/bench_reload.py` | viewer hot reload, from the write to the first frame drawn with the new effect (`--hlsl-edit --breakdown` for an HLSL edit, by part) |",
+        "| `xvfb-run -a -s \"-screen 0 1280x800x24\" .venv/bin/python benchmarks/bench_viewer.py` | the viewer as a previewer at 512²: frames per second while a slider is dragged on phong.fx's ps_2_0 technique (each frame a new value), and while `TIME` runs a ps_2_0 wave (goal: 30) |",
         "",
     ]
     return "\n".join(out)

@@ -28,6 +28,7 @@ import numpy as np
 from effects.base import limits, untrusted
 from effects.base.errors import Location, SceneError
 from effects.assets import obj_fast
+from effects.assets.xfile import read_x
 from effects.assets.tangents import tangent_frames
 
 
@@ -542,17 +543,29 @@ def _is_float(token: str) -> bool:
 # By name
 
 MESHES = {"quad": quad, "sphere": sphere, "cube": cube, "torus": torus, "teapot": teapot}
+MESH_FILES = (".obj", ".x")     # the mesh files read: Wavefront .obj, DirectX .x (effects.assets.xfile)
+
+
+def load_x(path: str | os.PathLike[str]) -> Mesh:
+    """A DirectX .x file (text or binary; `effects.assets.xfile`) as one Mesh."""
+    x = read_x(path)
+    return make_mesh(x.positions, x.uv, x.triangles, x.normals, name=x.name, colors=x.colors)
+
+
+def load_mesh_file(path: str) -> Mesh:
+    """An .obj or .x file by its extension."""
+    return load_x(path) if path.lower().endswith(".x") else load_obj(path)
 
 
 def by_name(name: str, *, base_dir: str | None = None, location: Location | None = None) -> Mesh:
-    """A built-in mesh ('quad', 'sphere', 'cube', 'torus', 'teapot') or an .obj path (relative
-    to `base_dir`). An unknown name is a `SceneError` at `location`."""
+    """A built-in mesh ('quad', 'sphere', 'cube', 'torus', 'teapot') or an .obj or .x path
+    (relative to `base_dir`). An unknown name is a `SceneError` at `location`."""
     if name in MESHES:
         return MESHES[name]()
-    if name.lower().endswith(".obj"):
+    if name.lower().endswith(MESH_FILES):
         path = name if base_dir is None or os.path.isabs(name) else os.path.join(base_dir, name)
         if not os.path.isfile(path):
             raise SceneError(f"mesh file not found: {path}", location or Location(path, 1, 1))
-        return load_obj(path)
-    raise SceneError(f"unknown mesh {name!r} (known: {', '.join(MESHES)}, or a .obj file)",
+        return load_mesh_file(path)
+    raise SceneError(f"unknown mesh {name!r} (known: {', '.join(MESHES)}, or a .obj or .x file)",
                      location or Location("<scene>", 1, 1))

@@ -53,7 +53,8 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
     # a generator evaluates noise or lighting per texel: about ten times a decoded file's cost
     Limit("procedural_texels", 128 * 1024, "texels", "texels of one procedural texture's top level"),
     # meshes
-    Limit("mesh_file_bytes", 32 * _MIB, "bytes", "size of one .obj file"),
+    Limit("mesh_file_bytes", 32 * _MIB, "bytes", "size of one .obj or .x file"),
+    Limit("mesh_nesting", 64, "levels", "frames and data objects inside one another in a .x file"),
     Limit("mesh_vertices", 500_000, "vertices", "vertices of one mesh"),
     Limit("mesh_indices", 3_000_000, "indices", "indices of one mesh (3 per triangle)"),
     # compiled shaders (effects/shaders/d3dbc): a ps_3_0 of 32,768 slots is ~1 MiB of tokens

@@ -7,6 +7,7 @@ No Python traceback reaches a user: every `EffectError` is printed located, with
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import sys
 
@@ -497,10 +498,18 @@ def _add_view(sub) -> None:
                    help="caps profile to start on (default: radeon9700)")
     p.add_argument("--technique", "-t", metavar="NAME", default=None,
                    help="force a technique (drawn if the card can run it; else its reasons are shown)")
-    p.add_argument("--mesh", default="sphere",
-                   help="sphere, torus, cube, teapot, quad or FILE.obj (default: sphere)")
+    p.add_argument("--mesh", default=None,
+                   help="sphere, torus, cube, teapot, quad, FILE.obj or FILE.x (default: the "
+                        "scene's mesh, else the effect's `string XFile`, else sphere)")
     p.add_argument("--view", default="gl", choices=("gl", "reference", "difference"),
                    help="what the window shows first (default: gl)")
+    _add_scene(p, "mesh, camera, light, params, time")
+    p.add_argument("--set", dest="assignments", action="append", default=[], metavar="NAME=VALUE",
+                   help="a parameter value, as render takes it (repeatable); the panel's "
+                        "widgets start from it")
+    p.add_argument("--time", type=float, metavar="SECONDS", default=None,
+                   help="hold the clock TIME reads at SECONDS (screenshots, tests); without "
+                        "it the clock runs from the scene's time")
     p.add_argument("--exit-after", type=float, metavar="SECONDS", default=None,
                    help="close after this many seconds of running")
     p.add_argument("--screenshot", metavar="OUT.png", default=None,
@@ -528,9 +537,14 @@ def _cmd_view(args, console: Console) -> int:
         size = (int(w), int(h))
     if args.exit_after is not None and args.exit_after < 0:
         raise UsageError("effects view: error: --exit-after must not be negative")
+    if args.time is not None and not (math.isfinite(args.time) and args.time >= 0):
+        raise UsageError(f"effects view: error: --time {args.time}: a number of seconds, 0 or more")
+    from effects.host.semantics import parse_assignments
+    assignments = parse_assignments(args.assignments)
     try:
         return run_viewer(ViewerOptions(
             args.file, profile=args.profile, technique=args.technique, mesh=args.mesh,
+            scene=_scene(args, args.file), assignments=assignments, time=args.time,
             view=args.view, exit_after=args.exit_after, screenshot=args.screenshot, size=size,
             tour=args.tour, listing=args.listing, polling=args.poll,
             defines=_defines(args.defines), include_dirs=args.include_dirs,

@@ -43,7 +43,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from effects.base.errors import Location, SceneError
-from effects.assets.meshes import Mesh, by_name
+from effects.assets.meshes import MESH_FILES, Mesh, by_name
 from effects.assets.occlusion import vertex_occlusion
 from effects.assets import brdf as _brdf  # noqa: F401  (registers the brdf_factor procedural)
 from effects.model import Effect, Parameter
@@ -326,14 +326,14 @@ _MESHES = caches.declare("host.meshes", keys="a built-in mesh's name; an .obj fi
 
 
 def scene_mesh(scene: Scene) -> Mesh | InlineMesh:
-    """The scene's mesh, built or loaded (built-in meshes and .obj files are cached; a file
-    by its modification time)."""
+    """The scene's mesh, built or loaded (built-in meshes and .obj and .x files are cached; a
+    file by its modification time)."""
     if isinstance(scene.mesh, InlineMesh):
         return scene.mesh
     name = scene.mesh
     at = scene.location("mesh")
     key: tuple = (name,)
-    if name.lower().endswith(".obj"):
+    if name.lower().endswith(MESH_FILES):
         path = name if os.path.isabs(name) else os.path.join(scene.base_dir, name)
         untrusted.note(path)   # also when the cache holds it (untrusted.recording)
         try:
@@ -375,6 +375,24 @@ def stream_map(effect: Effect, scene: Scene) -> dict[str, str]:
             raise SceneError(f"unknown vertex attribute {source!r} for stream {target} "
                              f"(attributes: {', '.join(ATTRIBUTES)})", at)
     return {target: source for target, (source, _) in merged.items()}
+
+
+def effect_mesh_file(effect: Effect) -> tuple[str, Location] | None:
+    """The mesh file the effect names for its preview: the DirectX SDK's EffectEdit drew the
+    model a global `string XFile = "tiger.x";` names (its samples' "Constants for
+    EffectEdit"). The path, resolved against the effect's folder and kept inside its include
+    root, and where it was written; None when it names none."""
+    param = effect.parameter("XFile")
+    if param is None or param.type.base != "string" or not isinstance(param.value, str) \
+            or not param.value.strip():
+        return None
+    name = param.value.strip()
+    if not name.lower().endswith(MESH_FILES):
+        raise SceneError(f"XFile {name!r}: the mesh files read are {', '.join(MESH_FILES)}",
+                         param.location)
+    path = confine(name, effect_dir(effect), effect.include_root, "XFile", SceneError,
+                   param.location)
+    return path, param.location
 
 
 def geometry(scene: Scene, effect: Effect, mesh: Mesh | InlineMesh | None = None) -> Geometry:

@@ -35,12 +35,13 @@ import numpy as np
 
 from effects.host.resources import (DEFAULT_TEXTURE_CACHE, Geometry, MissingTexture, TextureCache,
                                    TextureSource, check_texture_budget, declared_kind,
-                                   feeds_a_normal, geometry, procedural_parameters,
-                                   resolve_texture, stand_in_texture)
+                                   effect_mesh_file, feeds_a_normal, geometry,
+                                   procedural_parameters, resolve_texture, scene_mesh,
+                                   stand_in_texture)
 from effects.base import caches, limits
 from effects.base.errors import EffectError, EffectWarning, Location, NoValidTechnique, SceneError
 from effects.model import Effect, ParamRef, Parameter, SamplerState, Technique
-from effects.host.scene import MAX_SIZE, Scene, load_scene
+from effects.host.scene import MAX_SIZE, InlineMesh, Scene, load_scene
 from effects.host.semantics import bind_scene, coerce_value, lookup_parameter, ui_defaults
 from effects.host.scripts import is_cube_target, is_render_target, target_extent, target_format
 from effects.assets.textures import make_texture
@@ -216,6 +217,8 @@ class Runtime:
         self._geometry: Geometry | None = None
         self._scene_runtime: Runtime | None = None
         self._copy_runtime: Runtime | None = None
+        self._user_set: set[str] = set()         # names the scene's params or params= set
+        self._timed: list[str] | None = None     # names bound to the scene's time (set_time)
         self._bind(params or {})
         self.technique: Technique | None = None
         self._programs: list["PassProgram"] = []
@@ -253,6 +256,7 @@ class Runtime:
     def _set(self, param: Parameter, value: Any, at: Location, base_dir: str,
              source: str = "") -> None:
         coerced = coerce_value(param, value, at, source)
+        self._user_set.add(param.name)
         if param.type.base == "sampler":
             named = param.value.get("Texture") if isinstance(param.value, SamplerState) else None
             if named is not None:
@@ -279,6 +283,29 @@ class Runtime:
             raise SceneError(f"texture parameter {name} has no declared kind; set it before "
                              "the runtime is made (params=)", param.location)
         self._set(param, value, param.location, os.getcwd(), "set_value")
+
+    def time_parameters(self) -> list[str]:
+        """The parameters the scene's time feeds (TIME and whatever else the binding table
+        derives from it), found by binding the scene at two times; a value the scene's
+        params or params= gave is the user's and stays."""
+        if self._timed is None:
+            now = bind_scene(self.effect, self.scene, self.size, matrices=self._matrices)
+            later = bind_scene(self.effect, dataclasses.replace(self.scene, time=self.scene.time + 1.25),
+                               self.size, matrices=self._matrices)
+            self._timed = [name for name, value in later.items() if name not in self._user_set
+                           and not np.array_equal(value, now.get(name))]
+        return self._timed
+
+    def set_time(self, seconds: float) -> bool:
+        """Move the scene's clock (a viewer's running TIME): the parameters it feeds take the
+        new time at the next begin_pass. True when the effect reads the time at all."""
+        timed = self.time_parameters()
+        if timed and float(seconds) != self.scene.time:
+            self.scene = dataclasses.replace(self.scene, time=float(seconds))
+            values = bind_scene(self.effect, self.scene, self.size, matrices=self._matrices)
+            for name in timed:
+                self._param(name).value = values[name]
+        return bool(timed)
 
     def texture(self, name: str) -> Texture | None:
         """The texture bound to texture parameter `name` (loaded on first use), or None."""
@@ -437,10 +464,35 @@ class Runtime:
                            f"which rejects it: {reason.message}", reason.location)
 
     def geometry(self) -> Geometry:
-        """The scene's vertex streams for this effect (built once)."""
+        """The scene's vertex streams for this effect (built once). A scene that names no
+        mesh draws the one the effect names (EffectEdit's `string XFile`), if it loads."""
         if self._geometry is None:
-            self._geometry = geometry(self.scene, self.effect)
+            scene = self.scene
+            if "mesh" not in scene.locations and not isinstance(scene.mesh, InlineMesh):
+                scene = self._effect_mesh_scene(scene)
+            self._geometry = geometry(scene, self.effect)
         return self._geometry
+
+    def _effect_mesh_scene(self, scene: Scene) -> Scene:
+        """`scene` with the effect's XFile as its mesh; a file that does not load leaves the
+        scene's mesh, with a located warning (an error when strict): the effect still draws."""
+        try:
+            named = effect_mesh_file(self.effect)
+            if named is None:
+                return scene
+            path, at = named
+            with_file = dataclasses.replace(scene, mesh=path, base_dir=os.path.dirname(path) or ".",
+                                            locations={**scene.locations, "mesh": at})
+            scene_mesh(with_file)           # loads (and caches) it now, to fall back if it fails
+            return with_file
+        except SceneError as exc:
+            if self.strict:
+                raise
+            warning = EffectWarning(f"{exc.message}; drawn on the scene's {scene.mesh} instead",
+                                    exc.location)
+            if warning not in self.warnings:
+                self.warnings.append(warning)
+            return scene
 
     def draw(self, geo: Geometry | None = None) -> None:
         """Draw the scene's mesh (or `geo`) with the current pass."""

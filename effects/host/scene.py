@@ -440,10 +440,10 @@ def _parse_light(scene: Scene, value: Any, at: Location, given: bool) -> None:
 
 def _parse_mesh(value: Any, at: Location) -> str | InlineMesh:
     if isinstance(value, str):
-        from effects.assets.meshes import MESHES
-        if value not in MESHES and not value.lower().endswith(".obj"):
-            raise SceneError(f"unknown mesh {yaml_input.brief(value)} (known: {', '.join(MESHES)}, a .obj file, "
-                             "or {primitive, vertices})", at)
+        from effects.assets.meshes import MESH_FILES, MESHES
+        if value not in MESHES and not value.lower().endswith(MESH_FILES):
+            raise SceneError(f"unknown mesh {yaml_input.brief(value)} (known: {', '.join(MESHES)}, a .obj "
+                             "or .x file, or {primitive, vertices})", at)
         return value
     mesh = _mapping(value, "mesh", ("primitive", "vertices"), at)
     primitive = mesh.get("primitive", "list")

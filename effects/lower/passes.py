@@ -70,6 +70,30 @@ _LOWERED = caches.declare(
     entry_bytes=32 << 10, max_bytes=256 * (32 << 10))
 
 
+# A shader's IR depends on its program and the ShaderContext, not on the float constants the
+# pass sets (uniforms, read apart by `_shader_constants` / `_compiled_constants`): a pass
+# lowered again because a parameter feeding only a constant changed (a viewer's slider,
+# TIME each frame) takes the IR it had, and the GL back end the program it built from it.
+# Asm lowering was ~80 % of such a frame's lowering (phong.fx's ps_2_0, benchmarks/bench_viewer.py).
+_SHADER_IR = caches.declare(
+    "lower.shader_ir", keys="the assembled program object, vertex or pixel, and the shader "
+    "context (precision, sampler kinds, projection, declaration, integer and bool registers)",
+    entry_bytes=16 << 10, max_bytes=256 * (16 << 10))
+
+
+def _shader_ir(program: "AsmProgram", ctx: "asm_lower.ShaderContext", stage: str) -> Any:
+    key = (id(program), stage, ctx.options, tuple(sorted(ctx.sampler_kinds.items())),
+           tuple(sorted(ctx.projected.items())), ctx.decl, ctx.constant_prefix,
+           tuple(sorted(ctx.int_constants.items())), tuple(sorted(ctx.bool_constants.items())))
+    hit = _SHADER_IR.get(key)
+    if hit is not None and hit[0] is program:        # the program kept: a recycled id misses
+        return hit[1]
+    lower = asm_lower.lower_pixel_shader if stage == "pixel" else asm_lower.lower_vertex_shader
+    ir = lower(program, ctx)
+    _SHADER_IR.put(key, (program, ir))
+    return ir
+
+
 # --------------------------------------------------------------------------------------------
 # Public API
 
@@ -136,6 +160,7 @@ def _pass_state(effect: Effect, technique: Technique, pass_index: int,
 
 def clear_cache() -> None:
     _LOWERED.clear()
+    _SHADER_IR.clear()
 
 
 def _cache_key(technique: Technique, pass_index: int, profile: "CapsProfile",
@@ -195,7 +220,7 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
             constant_prefix=PIXEL_CONSTANT_PREFIX,
             int_constants=_int_constants(state, "Pixel", compiled),
             bool_constants=state.bool_constants("Pixel"))
-        fragment = asm_lower.lower_pixel_shader(program, ctx)
+        fragment = _shader_ir(program, ctx, "pixel")
         uniforms.update(_shader_constants(state, "PixelShaderConstant",
                                           asm_lower.constant_registers(program),
                                           PIXEL_CONSTANT_PREFIX))
@@ -221,7 +246,7 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
                                       constant_prefix=VERTEX_CONSTANT_PREFIX,
                                       int_constants=_int_constants(state, "Vertex", compiled),
                                       bool_constants=state.bool_constants("Vertex"))
-        vertex = asm_lower.lower_vertex_shader(program, ctx)
+        vertex = _shader_ir(program, ctx, "vertex")
         uniforms.update(_shader_constants(state, "VertexShaderConstant",
                                           asm_lower.constant_registers(program),
                                           VERTEX_CONSTANT_PREFIX))

@@ -15,7 +15,11 @@ Console lines (stdout, one per event, flushed at once so scripts can follow):
     select: CARD: technique NAME (N passes)               another card or forced technique
     screenshot: OUT.png
 Scriptable: --exit-after SECONDS, --screenshot OUT.png (taken at exit), --profile, --technique,
---mesh, --view, --tour (draw every card once, then exit).
+--mesh, --view, --tour (draw every card once, then exit), --time SECONDS (TIME held there).
+
+The effect is drawn in its scene (--scene, or NAME.yaml beside NAME.fx: mesh, camera, light,
+params, time), with --set values over it and the panel's edits over those
+(`effects.viewer.params`). TIME runs while the effect reads it: space pauses, . and , step.
 """
 from __future__ import annotations
 
@@ -45,8 +49,11 @@ class ViewerOptions:
     path: str
     profile: str | None = None
     technique: str | None = None
-    mesh: str = "sphere"
+    mesh: str | None = None          # None: the scene's, else the effect's XFile, else the sphere
     view: str = "gl"
+    scene: str | None = None         # the scene file (the CLI resolves NAME.yaml beside NAME.fx)
+    assignments: dict[str, str] = field(default_factory=dict)   # --set NAME=VALUE
+    time: float | None = None        # --time: TIME held at this many seconds
     exit_after: float | None = None
     screenshot: str | None = None
     size: tuple[int, int] = WINDOW_SIZE
@@ -68,6 +75,7 @@ class FrameEvent:
     effect_generation: int           # increments each time a new build is swapped in
     result: ReloadResult | None      # the build first drawn in this frame, if any
     render_ms: float | None = None   # the effect's GL render in this frame (None: not redrawn)
+    seconds: float = 0.0             # the clock TIME read in this frame
 
 
 class NoDisplay(Exception):
@@ -95,6 +103,11 @@ class Viewer:
             cards.append(card)
         self.state = ViewerState(cards, cards.index(card), options.technique, options.view,
                                  options.mesh, show_listing=options.listing)
+        self.state.assignments = dict(options.assignments)
+        if options.time is not None:
+            self.state.clock.seconds, self.state.clock.fixed = float(options.time), True
+        from effects.host.scene import load_scene
+        self.state.start_from_scene(load_scene(options.scene))   # a bad scene: said, located
         self.status = Status(options.path)
         self.loaded: LoadedEffect | None = None
         self.effect_generation = 0
@@ -102,7 +115,9 @@ class Viewer:
         self._image: np.ndarray | None = None
         self._reference: tuple[object, np.ndarray] | None = None
         self._fresh_result: ReloadResult | None = None
-        self._runtime: tuple | None = None     # (LoadedEffect, scene key, Runtime) last drawn
+        # (LoadedEffect, scene key, Runtime, the parameter values applied to it) last drawn
+        self._runtime: tuple | None = None
+        self._reads_time = False               # the effect drawn reads the clock (TIME)
         self._screenshot_requested = False
         self._shots = 0
         self._selection_seen = self.state.selection_generation
@@ -120,6 +135,7 @@ class Viewer:
                                   technique=self.state.technique,
                                   scene=self.state.scene(self.effect_size()),
                                   scene_key=self.state.scene_key(self.effect_size()),
+                                  params=self.state.param_values,
                                   keep_prepare_error=True, **self._load_options)
         except EffectError as exc:
             self.status.error = exc.report()
@@ -202,6 +218,8 @@ class Viewer:
                     result = self.reloader.poll()
                 if self.state.light.advance(now - last):
                     self.state.changed()
+                if self._reads_time and self.state.clock.advance(now - last):
+                    self.state.changed()
                 last = now
                 if self.state.selection_generation != self._selection_seen:
                     self._selection_seen = self.state.selection_generation
@@ -220,7 +238,7 @@ class Viewer:
                     self.reloader.drawn()     # now the build's pending validations may run
                 if self.on_frame is not None:
                     self.on_frame(FrameEvent(frame, time.perf_counter(), self.effect_generation, fresh,
-                                             self._rendered_ms))
+                                             self._rendered_ms, self.state.clock.seconds))
                 if tour is not None and self._tour_step(tour):
                     break
             # at exit: anything already rebuilt is drawn, so the screenshot shows the last effect
@@ -260,7 +278,8 @@ class Viewer:
                 return result
 
     def _idle(self) -> bool:
-        return (not self.state.light.animate and self._image is not None
+        animating = self._reads_time and self.state.clock.running and not self.state.clock.fixed
+        return (not self.state.light.animate and not animating and self._image is not None
                 and self._drawn_generation == (self.effect_generation, self.state.generation)
                 and not self.reference.busy and not self.options.tour)
 
@@ -295,7 +314,7 @@ class Viewer:
             self._swapped_selection = self.state.selection_generation
 
     def _swap(self, loaded: LoadedEffect) -> None:
-        for warning in loaded_warnings(loaded):
+        for warning in [*loaded_warnings(loaded), *self._unknown_assignments(loaded)]:
             if str(warning) not in self._warned:  # each once, not at every reselect
                 self._warned.add(str(warning))
                 self.say(str(warning))
@@ -304,6 +323,19 @@ class Viewer:
         self.status.error = None
         self.effect_generation += 1
         self._swapped_selection = self.state.selection_generation
+
+    def _unknown_assignments(self, loaded: LoadedEffect) -> list:
+        """A --set name the effect does not have: `render` refuses it; the viewer, whose file
+        may gain the parameter in the next edit, says so (once) and draws on."""
+        from effects.base.errors import EffectWarning
+        from effects.host.semantics import lookup_parameter
+        out = []
+        for name in self.state.assignments:
+            try:
+                lookup_parameter(loaded.effect, name, None, "--set")
+            except EffectError as exc:
+                out.append(EffectWarning(exc.message, exc.location))
+        return out
 
     def _selection_text(self) -> str:
         loaded = self.loaded
@@ -354,18 +386,31 @@ class Viewer:
             return
         scene = self.state.scene(size)
         scene_key = self.state.scene_key(size)
-        runtime = None
+        wanted = self.state.param_values(loaded.effect)
+        runtime, applied = None, {}
         if (self._runtime is not None and self._runtime[0] is loaded
                 and self._runtime[1] == scene_key):
-            runtime = self._runtime[2]
+            runtime, applied = self._runtime[2], self._runtime[3]
         elif loaded.runtime is not None and loaded.scene_key == scene_key:
-            runtime = loaded.runtime       # prepared by the reload worker for this very scene
+            # prepared by the reload worker for this very scene, with these values
+            runtime, applied = loaded.runtime, dict(loaded.params)
+        if runtime is not None and any(name not in wanted for name in applied):
+            runtime = None     # an edit was reset: the file's value again, in a fresh runtime
         start = time.perf_counter()
         try:
             from effects.host.runtime import Runtime
-            if runtime is None:
-                runtime = Runtime(loaded.effect, loaded.profile, scene=scene, backend=self.backend)
-            self._runtime = (loaded, scene_key, runtime)
+            for _ in range(len(wanted) + 1):     # each pass refuses one edit, or is done
+                if runtime is None:
+                    assigned = {k: v for k, v in wanted.items() if k in self.state.assignments}
+                    runtime = Runtime(loaded.effect, loaded.profile, scene=scene,
+                                      backend=self.backend, params=assigned)
+                    applied = dict(assigned)
+                if self._apply_edits(loaded, runtime, applied, wanted):
+                    break
+                runtime, wanted = None, self.state.param_values(loaded.effect)
+            self._reads_time = runtime.set_time(self.state.clock.seconds)
+            self._runtime = (loaded, scene_key, runtime, applied)
+            self.status.runtime, self.status.reads_time = runtime, self._reads_time
             image = render_effect(loaded, scene, self.backend, runtime)
         except Exception as exc:  # noqa: BLE001 - shown; the previous picture stays
             self.status.render_error = error_text(exc)
@@ -383,6 +428,28 @@ class Viewer:
         if self.state.view == "gl":
             self.blitter.upload(image)
 
+    def _apply_edits(self, loaded: LoadedEffect, runtime, applied: dict, wanted: dict) -> bool:
+        """Set on `runtime` the values in `wanted` it does not have yet (`applied` records
+        them). A texture loads now, so a path that does not load is said beside its field
+        and the edit dropped: False, and the caller starts again from a fresh runtime."""
+        from effects.viewer.params import tweakables
+        for name, value in wanted.items():
+            if name in applied and applied[name] == value:
+                continue
+            try:
+                runtime.set_value(name, value)
+                if runtime.effect.parameter(name).type.takes_image:
+                    runtime.texture(name)
+            except EffectError as exc:
+                item = next((t for t in tweakables(loaded.effect) if t.name == name), None)
+                if item is None:           # a --set value: it fails the render, as in render
+                    raise
+                self.state.tweaks.refuse(name, item.key, str(exc))
+                self.say(f"set: {exc}")
+                return False
+            applied[name] = value
+        return True
+
     def _update_reference(self) -> None:
         if (self.state.view == "gl" or self.loaded is None or self.loaded.technique is None
                 or self.loaded.prepare_error is not None):
@@ -397,7 +464,8 @@ class Viewer:
             if image is not None:
                 self._reference = (rkey, image)
         if self._reference is None or self._reference[0] != key:
-            self.reference.request(key, self.loaded, self.state.scene(self.effect_size()))
+            self.reference.request(key, self.loaded, self.state.scene(self.effect_size()),
+                                   self.state.param_values(self.loaded.effect))
         self.status.reference_busy = self.reference.busy
         if self._reference is not None and self._image is not None:
             ref = self._reference[1]
@@ -457,6 +525,11 @@ class Viewer:
         from PIL import Image
         bw, bh = self.window.buffer_size
         data = self.window.fbo.read(viewport=(0, 0, bw, bh), components=3)
+        # moderngl's read of the window's framebuffer leaves GL_INVALID_OPERATION queued
+        # (it selects a colour attachment the default framebuffer does not have; the pixels
+        # come back right): read it off here, or the GL back end's next check -- the next
+        # frame drawn after an S key -- reports it as its own failure
+        _ = self.ctx.error
         image = np.frombuffer(data, np.uint8).reshape(bh, bw, 3)[::-1]
         try:
             Image.fromarray(image).save(path)
@@ -484,6 +557,9 @@ class Viewer:
             keys.NUMBER_3: lambda: self.state.set_view(VIEWS[2]),
             keys.C: self.state.toggle_listing,
             keys.L: self._toggle_light, keys.R: self.request_reload, keys.S: self.request_screenshot,
+            keys.SPACE: self.state.toggle_clock,
+            keys.PERIOD: lambda: self.state.step_clock(1),
+            keys.COMMA: lambda: self.state.step_clock(-1),
         }
         action_fn = actions.get(key)
         if action_fn is not None:
@@ -523,10 +599,16 @@ class Viewer:
 
 def run_viewer(options: ViewerOptions) -> int:
     """Open the viewer; returns the process exit code."""
-    if options.mesh not in MESHES and not options.mesh.lower().endswith(".obj"):
+    from effects.assets.meshes import MESH_FILES
+    if options.mesh is not None and options.mesh not in MESHES:
         from effects.base.errors import Location, SceneError
-        raise SceneError(f"unknown mesh {options.mesh!r} (meshes: {', '.join(MESHES)}, or a "
-                         ".obj file)", Location("<--mesh>", 1, 1))
+        if not options.mesh.lower().endswith(MESH_FILES):
+            raise SceneError(f"unknown mesh {options.mesh!r} (meshes: {', '.join(MESHES)}, or a "
+                             f"{' or '.join(MESH_FILES)} file)", Location("<--mesh>", 1, 1))
+        if not os.path.isfile(options.mesh):
+            raise SceneError(f"mesh file not found: {options.mesh}", Location(options.mesh, 1, 1))
+        # the scene's base folder must not move it: a --mesh path is the command line's
+        options.mesh = os.path.abspath(options.mesh)
     if options.view not in VIEWS:
         from effects.base.errors import Location, SceneError
         raise SceneError(f"unknown view {options.view!r} (views: {', '.join(VIEWS)})",

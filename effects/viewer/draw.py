@@ -41,13 +41,15 @@ void main() { color = vec4(texture(image, uv).rgb, 1.0); }
 
 
 def render_effect(loaded: "LoadedEffect", scene: "Scene", backend: Any,
-                  runtime: Any = None) -> np.ndarray:
+                  runtime: Any = None, params: dict[str, Any] | None = None) -> np.ndarray:
     """One frame of the loaded effect's technique in `scene`: H x W x 4 uint8 RGBA, top row
     first. `runtime`: a Runtime already bound to this effect and scene (its lowered passes,
-    textures and streams are reused), else a new one is made."""
+    textures and streams are reused), else a new one is made with `params` (the viewer's
+    --set values and edits)."""
     from effects.host.runtime import Runtime
     if runtime is None:
-        runtime = Runtime(loaded.effect, loaded.profile, scene=scene, backend=backend)
+        runtime = Runtime(loaded.effect, loaded.profile, scene=scene, backend=backend,
+                          params=params)
     runtime.backend = backend
     return runtime.render(loaded.technique).image
 
@@ -110,7 +112,7 @@ class ReferenceRenderer:
 
     def __init__(self) -> None:
         self._lock = threading.Condition()
-        self._request: tuple[Any, "LoadedEffect", "Scene"] | None = None
+        self._request: tuple[Any, "LoadedEffect", "Scene", dict[str, Any]] | None = None
         self._running_key: Any = None
         self._result: tuple[Any, np.ndarray | None, float, BaseException | None] | None = None
         self._stopping = False
@@ -118,11 +120,12 @@ class ReferenceRenderer:
         self._thread.start()
         self._backend = None
 
-    def request(self, key: Any, loaded: "LoadedEffect", scene: "Scene") -> None:
+    def request(self, key: Any, loaded: "LoadedEffect", scene: "Scene",
+                params: dict[str, Any] | None = None) -> None:
         with self._lock:
             if key == self._running_key or (self._request is not None and self._request[0] == key):
                 return
-            self._request = (key, loaded, scene)
+            self._request = (key, loaded, scene, dict(params or {}))
             self._lock.notify_all()
 
     @property
@@ -147,7 +150,7 @@ class ReferenceRenderer:
                     self._lock.wait()
                 if self._stopping:
                     return
-                key, loaded, scene = self._request  # type: ignore[misc]
+                key, loaded, scene, params = self._request  # type: ignore[misc]
                 self._request = None
                 self._running_key = key
             start = time.perf_counter()
@@ -155,7 +158,7 @@ class ReferenceRenderer:
                 if self._backend is None:
                     from effects.program.backend import create_backend
                     self._backend = create_backend("numpy")
-                image, error = render_effect(loaded, scene, self._backend), None
+                image, error = render_effect(loaded, scene, self._backend, params=params), None
             except BaseException as exc:  # noqa: BLE001 - shown in the panel
                 image, error = None, exc
             ms = (time.perf_counter() - start) * 1000.0

@@ -1,7 +1,8 @@
 """The viewer's on-screen panel, drawn with imgui (imgui-bundle 1.6 through moderngl-window's
 integration): card, technique and pass count, every other technique with its first reason
 (expand for all), each valid technique's fidelity (its picture on the card against the best
-technique's: effects.host.fidelity), render times, the last reload and its error, and the
+technique's: effects.host.fidelity), the effect's parameters as widgets
+(`effects.viewer.params`), the clock, render times, the last reload and its error, and the
 controls.
 
 The panel only reads `Status` and calls `ViewerState` methods; the keys do the same things
@@ -9,11 +10,13 @@ The panel only reads `Status` and calls `ViewerState` methods; the keys do the s
 """
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 from imgui_bundle import imgui
 
+from effects.viewer.params import Tweakable, current_value, tweakables
 from effects.viewer.reload import error_text, loaded_warnings
 from effects.viewer.state import DIFFERENCE_SCALE, MESHES, VIEW_TITLES, VIEWS, ViewerState
 
@@ -29,6 +32,8 @@ KEYS = (
     ("M", "next mesh"),
     ("C", "show / hide the shader listing of the technique drawn (as `effects compile`)"),
     ("L", "animate the light; right-drag moves it"),
+    ("space", "pause / run the clock TIME reads (a --time clock runs from there)"),
+    (". / ,", "step the clock a frame forward / back (pauses it)"),
     ("left-drag, wheel", "orbit, zoom"),
     ("R", "reload now"),
     ("S", "screenshot"),
@@ -57,6 +62,13 @@ class Status:
     messages: list[str] = field(default_factory=list)
     # what the picture shows nothing of and why (`effects.host.diagnostics`), located
     diagnostics: list[str] = field(default_factory=list)
+    runtime: Any = None                   # the Runtime last drawn: the values the widgets show
+    reads_time: bool = False              # the effect drawn reads the clock (TIME)
+    # each parameter widget's rectangle (x0, y0, x1, y1), window coordinates, as last drawn:
+    # tests and benchmarks click and drag them as a user would
+    widget_rects: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
+    texture_text: dict[str, str] = field(default_factory=dict)   # the path fields' text
+    tweakables: "tuple[Any, list[Tweakable]] | None" = None     # (effect, its widgets)
 
 
 @dataclass
@@ -77,6 +89,8 @@ def draw_panel(state: ViewerState, status: Status, actions: Actions,
     imgui.text_wrapped(status.path)
     _card(state)
     _techniques(state, status)
+    imgui.separator()
+    _parameters(state, status)
     imgui.separator()
     _view(state, status)
     changed, shown = imgui.checkbox("listing (C)", state.show_listing)
@@ -205,9 +219,12 @@ def _view(state: ViewerState, status: Status) -> None:
     imgui.new_line()
     imgui.text(VIEW_TITLES[state.view].format(scale=DIFFERENCE_SCALE))
     imgui.set_next_item_width(140)
-    mesh_index = MESHES.index(state.mesh) if state.mesh in MESHES else 0
-    changed, index = imgui.combo("mesh", mesh_index, list(MESHES))
-    if changed:
+    options = list(MESHES)
+    if state.mesh not in MESHES:     # the scene's or --mesh's file, or the effect's own
+        options.append(os.path.basename(state.mesh) if state.mesh else "(default)")
+    mesh_index = options.index(state.mesh) if state.mesh in MESHES else len(options) - 1
+    changed, index = imgui.combo("mesh", mesh_index, options)
+    if changed and index < len(MESHES):
         state.set_mesh(MESHES[index])
     imgui.same_line()
     changed, animate = imgui.checkbox("move light", state.light.animate)
@@ -229,6 +246,135 @@ def _view(state: ViewerState, status: Status) -> None:
     if status.render_error:
         imgui.text_colored(RED, "render failed:")
         imgui.text_wrapped(status.render_error)
+
+
+def _parameters(state: ViewerState, status: Status) -> None:
+    """The clock, when the effect reads it, and a widget for each tweakable parameter."""
+    clock = state.clock
+    if status.reads_time:
+        what = "held (--time)" if clock.fixed else "running" if clock.running else "paused"
+        imgui.text(f"TIME {clock.seconds:8.3f} s, {what}")
+        imgui.same_line()
+        if imgui.button("Run" if clock.fixed or not clock.running else "Pause"):
+            state.toggle_clock()
+        imgui.same_line()
+        if imgui.button("Step"):
+            state.step_clock(1)
+    loaded = status.loaded
+    if loaded is None:
+        return
+    if status.tweakables is None or status.tweakables[0] is not loaded.effect:
+        status.tweakables = (loaded.effect, tweakables(loaded.effect))   # once per build
+    items = status.tweakables[1]
+    if not items or not imgui.collapsing_header("Parameters", imgui.TreeNodeFlags_.default_open):
+        return
+    effect = getattr(status.runtime, "effect", None) or loaded.effect
+    status.widget_rects.clear()
+    for item in items:
+        imgui.push_id(item.name)
+        _parameter(state, status, item, effect.parameter(item.name))
+        imgui.pop_id()
+
+
+def _parameter(state: ViewerState, status: Status, item: Tweakable, param: Any) -> None:
+    edited = state.tweaks.get(item)
+    imgui.text(item.label)
+    if edited is not None:
+        imgui.same_line()
+        if imgui.small_button("reset"):
+            state.reset_param(item)
+    imgui.set_next_item_width(-1)
+    label = f"##{item.name}"
+    if item.widget == "texture":
+        text = status.texture_text.get(item.name, edited if isinstance(edited, str) else "")
+        hint = "(a stand-in)"
+        scene_value = state.base_scene.params.get(item.name)
+        if isinstance(scene_value, str):
+            hint = f"{scene_value} (the scene's)"
+        for name in ("ResourceName", "Procedural"):     # the file's own image, or generator
+            own = param.annotation(name) if param is not None else None
+            if scene_value is None and own is not None and isinstance(own.value, str) \
+                    and own.value.strip():
+                hint = own.value
+                break
+        entered, text = imgui.input_text_with_hint(label, hint, text,
+                                                   imgui.InputTextFlags_.enter_returns_true)
+        status.texture_text[item.name] = text
+        if entered:
+            if text.strip():
+                state.set_param(item, text.strip())
+            else:
+                state.reset_param(item)
+        if imgui.is_item_hovered():
+            imgui.set_tooltip("an image file (Enter applies it); empty: the effect's own")
+    else:
+        value = current_value(param, item)
+        if value is None:
+            imgui.text_colored(GREY, "(no value)")
+            return
+        changed, new = _numeric_widget(label, item, value)
+        if changed:
+            state.set_param(item, new)
+    lo, hi = imgui.get_item_rect_min(), imgui.get_item_rect_max()
+    status.widget_rects[item.name] = (lo.x, lo.y, hi.x, hi.y)
+    error = state.tweaks.errors.get(item.name)
+    if error:
+        imgui.text_colored(RED, "not applied:")
+        imgui.text_wrapped(error)
+
+
+_SLIDERS = {1: imgui.slider_float, 2: imgui.slider_float2, 3: imgui.slider_float3,
+            4: imgui.slider_float4}
+_DRAGS = {1: imgui.drag_float, 2: imgui.drag_float2, 3: imgui.drag_float3, 4: imgui.drag_float4}
+_INT_SLIDERS = {1: imgui.slider_int, 2: imgui.slider_int2, 3: imgui.slider_int3,
+                4: imgui.slider_int4}
+_INT_DRAGS = {1: imgui.drag_int, 2: imgui.drag_int2, 3: imgui.drag_int3, 4: imgui.drag_int4}
+
+
+def _numeric_widget(label: str, item: Tweakable, value: Any) -> tuple[bool, Any]:
+    """One imgui widget for a number, a vector, a colour or a bool: (changed, new value)."""
+    if item.widget == "checkbox":
+        return imgui.checkbox(label, bool(value))
+    n = item.components
+    if item.widget == "color":
+        edit = imgui.color_edit4 if n == 4 else imgui.color_edit3
+        return edit(label, value)
+    one = (lambda v: v[0]) if n == 1 else (lambda v: v)
+    back = (lambda v: [v]) if n == 1 else (lambda v: list(v))
+    if item.integral:
+        ints = [int(round(v)) for v in value]
+        if any(not -2**31 <= v < 2**31 for v in ints):
+            return _hex_field(label, ints)   # a DWORD past imgui's int (EffectEdit's BCLR colour)
+        if item.widget == "slider":
+            changed, new = _INT_SLIDERS[n](label, one(ints), int(item.lo), int(item.hi))
+        else:
+            changed, new = _INT_DRAGS[n](label, one(ints), float(item.step or 1.0),
+                                         int(item.lo or 0), int(item.hi or 0))
+        return changed, back(new)
+    if item.widget == "slider":
+        changed, new = _SLIDERS[n](label, one(value), float(item.lo), float(item.hi))
+    else:
+        # a spinner: dragged by UIStep per pixel; bounded when the file gives both ends
+        bounded = item.lo is not None and item.hi is not None
+        changed, new = _DRAGS[n](label, one(value), float(item.step or 0.01),
+                                 float(item.lo) if bounded else 0.0,
+                                 float(item.hi) if bounded else 0.0)
+    return changed, back(new)
+
+
+def _hex_field(label: str, ints: list[int]) -> tuple[bool, Any]:
+    """Whole numbers as hexadecimal text, applied on Enter (0x... or decimal, 32 bits each)."""
+    text = " ".join(f"0x{v & 0xFFFFFFFF:08X}" for v in ints)
+    entered, text = imgui.input_text(label, text, imgui.InputTextFlags_.enter_returns_true)
+    if not entered:
+        return False, ints
+    try:
+        values = [int(part, 0) for part in text.replace(",", " ").split()]
+    except ValueError:
+        return False, ints
+    if len(values) != len(ints) or any(not 0 <= v <= 0xFFFFFFFF for v in values):
+        return False, ints
+    return True, values
 
 
 def _reload(status: Status, actions: Actions) -> None:

@@ -118,6 +118,7 @@ class LoadedEffect:
     fidelity: dict[int, Any] = field(default_factory=dict)   # position -> Likeness | None
     fidelity_best: str | None = None     # the technique measured against, once known
     fidelity_done: bool = False
+    params: dict[str, Any] = field(default_factory=dict)   # the values `runtime` was made with
 
     def unfinished(self) -> bool:
         """Whether the worker has validations or fidelity measures left to make."""
@@ -197,7 +198,9 @@ def error_text(error: BaseException | None) -> str:
 def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = None,
                  policy: Any = "first", scene: Any = None, lower: bool = True,
                  previous: "Effect | None" = None, keep_prepare_error: bool = False,
-                 scene_key: Any = None, defer: bool = False, **load_options: Any) -> LoadedEffect:
+                 scene_key: Any = None, defer: bool = False,
+                 params: "dict[str, Any] | Callable[[Effect], dict[str, Any]] | None" = None,
+                 **load_options: Any) -> LoadedEffect:
     """Load (unless `previous` is given), validate every technique, select, and prepare the
     chosen one for drawing in `scene` (a Scene, mapping, YAML path or None for the defaults):
     lower its passes with the scene's parameter values, load the textures they sample (into
@@ -212,7 +215,10 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     cannot draw it). `defer`: under the default policy, stop
     validating once the technique to draw is known (the first valid one in file order, or a
     valid forced one) and leave the rest `pending` (see LoadedEffect): a reload draws sooner
-    when the fallbacks compile the edited function again for their own targets."""
+    when the fallbacks compile the edited function again for their own targets. `params`:
+    parameter values over the scene's (the viewer's --set and panel edits), as `Runtime`
+    takes them, or a function of the loaded effect giving them; those naming no parameter of
+    this effect are left out."""
     from effects.validate.select import language_error, select
     from effects.validate.verdicts import load_effect   # strict: as D3DXCreateEffect
     effect = previous if previous is not None else load_effect(path, **load_options)
@@ -239,10 +245,13 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     programs = None
     prepare_error = None
     runtime = None
+    names = {p.name for p in effect.parameters}
+    params = params(effect) if callable(params) else params
+    params = {k: v for k, v in (params or {}).items() if k in names}
     if chosen is not None and lower:
         try:
             runtime, programs = prepare(effect, chosen, profile, scene, chosen_validation,
-                                        strict=bool(load_options.get("strict")))
+                                        strict=bool(load_options.get("strict")), params=params)
         except Exception as exc:  # noqa: BLE001 - a bug of ours must not close the viewer either
             if not keep_prepare_error:
                 raise
@@ -250,7 +259,7 @@ def build_effect(path: str, profile: "CapsProfile", *, technique: str | None = N
     listing = technique_listing(effect, chosen) if chosen is not None else None
     return LoadedEffect(path, effect, profile, selection.validations, chosen, programs, technique,
                         selection.forced_rejected, watched_files(effect), prepare_error, runtime,
-                        scene_key, listing, selection.pending, scene)
+                        scene_key, listing, selection.pending, scene=scene, params=params)
 
 
 def technique_listing(effect: "Effect", technique: "Technique") -> list[list[str]]:
@@ -275,8 +284,8 @@ def loaded_warnings(loaded: LoadedEffect) -> list:
 
 
 def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
-            scene: Any = None, validation: "Validation | None" = None, *, strict: bool = False
-            ) -> tuple[Any, list["PassProgram"]]:
+            scene: Any = None, validation: "Validation | None" = None, *, strict: bool = False,
+            params: dict[str, Any] | None = None) -> tuple[Any, list["PassProgram"]]:
     """Everything that can fail before a technique draws, done now (off the render thread):
     bind the scene, lower every pass (from `validation`'s device states when given), load the
     textures the passes sample, build the streams. Returns the Runtime that did it (its
@@ -284,7 +293,7 @@ def prepare(effect: "Effect", technique: "Technique", profile: "CapsProfile",
     back end) and the lowered passes. `strict`: a texture nothing supplies is an error (kept
     as the prepare error: the panel shows it) instead of a stand-in with a warning."""
     from effects.host.runtime import Runtime
-    runtime = Runtime(effect, profile, scene=scene, backend=None, strict=strict)
+    runtime = Runtime(effect, profile, scene=scene, backend=None, strict=strict, params=params)
     runtime.validation = validation
     programs = [runtime.lower(technique, i) for i in range(len(technique.passes))]
     for program in programs:
@@ -480,6 +489,8 @@ class BuildSettings:
     policy: Any = "first"
     scene: Any = None
     scene_key: Any = None      # equal keys: the same scene (lets the viewer reuse the Runtime)
+    # --set values and the panel's edits, or a function of the loaded effect giving them
+    params: Any = None
 
 
 def effect_builder(path: str, settings: Callable[[], BuildSettings], **load_options: Any) -> Build:
@@ -490,5 +501,6 @@ def effect_builder(path: str, settings: Callable[[], BuildSettings], **load_opti
         s = settings()
         return build_effect(path, s.profile, technique=s.technique, policy=s.policy,
                             scene=s.scene, previous=previous, scene_key=s.scene_key,
+                            params=s.params,
                             keep_prepare_error=previous is not None, defer=True, **load_options)
     return build

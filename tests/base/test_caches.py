@@ -24,7 +24,7 @@ DECLARED = [
     "host.batch_effects", "host.fidelity_meters", "host.matrix_semantics", "host.meshes",
     "host.name_semantics",
     "host.projection_matrices", "host.selections", "host.texture_files", "host.view_matrices",
-    "lower.passes",
+    "lower.passes", "lower.shader_ir",
     "reference.clip_planes", "reference.demand", "reference.flow", "reference.levels",
     "reference.pyramids", "reference.split", "reference.steps", "reference.varyings_read",
     "shaders.asm.programs", "shaders.asm.registers", "shaders.asm.swizzles",
