@@ -52,11 +52,19 @@ def test_position_in_an_output_struct_satisfies_the_vertex_check():
     assert "dcl_position o1" in shader.text
 
 
-@pytest.mark.parametrize("target", ["ps_1_1", "ps_1_4", "ps_2_0", "ps_3_0"])
+@pytest.mark.parametrize("target", ["ps_2_0", "ps_3_0"])
 def test_a_pixel_shader_without_color0_is_refused_x4530(target):
     err = refusal("float4 PS() : COLOR1 { return 1; }", "PS", target)
     assert err.message == ("X4530: 'PS': pixel shader must minimally write all four "
                            "components of COLOR0")
+
+
+@pytest.mark.parametrize("target", ["ps_1_1", "ps_1_4"])
+def test_color1_is_no_ps_1_x_output_x4503(target):
+    # ps_1_x writes its colour in r0 alone: COLOR1 is refused as it is bound, before the
+    # COLOR0 check could run
+    err = refusal("float4 PS() : COLOR1 { return 1; }", "PS", target)
+    assert err.message == "X4503: invalid pixel shader output semantic 'COLOR1'"
 
 
 def test_depth_alone_is_not_a_pixel_shader_x4530():
