@@ -126,10 +126,11 @@ class Evaluator:
             return None
         return self.g.op("add", [self.g.const((1.0,)), p.neg()], 1)
 
-    def active(self) -> Operand | None:
-        """The predicate under which a statement runs now (None: always)."""
+    def active(self, past_return: bool = True) -> Operand | None:
+        """The predicate under which a statement runs now (None: always); without the
+        function's 'returned' part when `past_return` is False (lvalues.store: a local)."""
         p = self.mask
-        if self.frames and self.frames[-1].returned is not None:
+        if past_return and self.frames and self.frames[-1].returned is not None:
             p = self._and(p, self._not(self.frames[-1].returned))
         if self.loops:
             loop = self.loops[-1]
