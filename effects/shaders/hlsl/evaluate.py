@@ -53,6 +53,7 @@ class Evaluator:
         self.frames: list[Frame] = []
         self.loops: list[Loop] = []
         self.mask: Operand | None = None       # path predicate (None: always)
+        self.outer: Operand | None = None      # an inlined call's: the caller's, at the call
         self.depth = 0
         self.in_expression = 0                 # expression evaluations under way (budget.py)
         # the for-init variables of an unrolled loop while its step runs (lvalues.store):
@@ -126,11 +127,14 @@ class Evaluator:
             return None
         return self.g.op("add", [self.g.const((1.0,)), p.neg()], 1)
 
-    def active(self, past_return: bool = True) -> Operand | None:
-        """The predicate under which a statement runs now (None: always); without the
-        function's 'returned' part when `past_return` is False (lvalues.store: a local)."""
-        p = self.mask
-        if past_return and self.frames and self.frames[-1].returned is not None:
+    def active(self, local: bool = False) -> Operand | None:
+        """The predicate under which a statement runs now (None: always). For a write to a
+        local of this function (`local`, lvalues.store) without the caller's predicate and
+        the function's 'returned': no one reads the local where those are false (the value
+        returned and the out parameters are taken under them), and a while loop's counter
+        stays a constant in a call under a run-time condition or after a return in it."""
+        p = self.mask if local else self._and(self.outer, self.mask)
+        if not local and self.frames and self.frames[-1].returned is not None:
             p = self._and(p, self._not(self.frames[-1].returned))
         if self.loops:
             loop = self.loops[-1]
@@ -450,6 +454,11 @@ class Evaluator:
                 if self.dead():
                     break
                 self.run_step(step, own)
+        except OverBudget:
+            if why is None:
+                raise
+            # unrolled until the budget ran out in its condition or step (the body's above)
+            raise self.error(f"X3511: unable to unroll loop: {why}", tree) from None
         finally:
             self.loops.pop()
             self.mask = saved

@@ -274,26 +274,40 @@ def _incdec(ev: Any, tree: lark.Tree, post: bool) -> Value:
     one = Value(INT, [ev.g.const((1.0,))])
     seen: list[Value] = []
 
+    masks: list[Any] = []
+
     def step(old: Value) -> Value:
         new = ev.a.binary("+" if str(op) == "++" else "-", old, one, ev.at(op))
-        seen.extend((old, new))
+        seen.append(old if post else new)
+        masks.append(ev.mask)
         return ev.a.convert(new, old.type, ev.at(op))
     store(ev, target, step)         # the target (its indices) evaluated once
-    old, new = seen
-    return old if post else new
+    return _written(ev, seen, masks, ev.at(op))
+
+
+def _written(ev: Any, values: list[Value], masks: list[Any], loc: Any) -> Value:
+    """The value of an assignment expression: the one written, or where a run-time index
+    wrote each element under its own predicate (lvalues._store_each), the one the index
+    chose (each under the predicate it was written with)."""
+    out = values[0]
+    for v, p in zip(values[1:], masks[1:]):
+        out = ev.merge(out, v, p, loc)
+    return out
 
 
 def _assign(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     target, op, rhs = tree.children
     value = yield rhs
     written: list[Value] = []
+    masks: list[Any] = []
 
     def assigned(current: Value) -> Value:
         v = value if str(op) == "=" else ev.a.binary(str(op)[:-1], current, value, ev.at(op))
         written.append(ev.a.convert(v, current.type, ev.at(rhs)))
-        return written[0]
+        masks.append(ev.mask)
+        return written[-1]
     store(ev, target, assigned)     # the target (its indices) evaluated once, after the value
-    return written[0]
+    return _written(ev, written, masks, ev.at(op))
 
 
 def _member(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
@@ -312,9 +326,9 @@ def _index(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
             got = _relative_element(ev, base_tree, base.type, index, index_tree)
             if got is not None:
                 return got
-            if not _numbers_only(base.type):
-                raise ev.error(f"X3512: array index must be a literal expression on "
-                               f"{ev.ctx.target.name} (an array of samplers or objects)", index_tree)
+            if not _numbers_only(base.type):      # fxc's wording for a sampler array
+                raise ev.error(f"X3512: sampler array index must be a literal expression "
+                               f"({ev.ctx.target.name} picks samplers by number only)", index_tree)
         return pick_element(ev, base, index, index_tree)
     if base.type.kind not in ("array", "matrix", "vector"):
         raise ev.error(f"X3121: array, matrix, vector, or indexable object type expected in "

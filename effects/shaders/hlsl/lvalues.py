@@ -97,10 +97,9 @@ def store(ev: Any, target: Any, value: Value | Callable[[Value], Value],
             out.comps[key] = value.comps[0]
         value = out
     # an unrolled loop's counter is written whatever the predicate; a local of this
-    # function (not a parameter: an out one is copied back) after the function returned
-    # too: nothing reads it there, and a while loop's counter stays a constant
+    # function (not a parameter: an out one is copied back) under its own only (active)
     local = all(v is not var for v in ev.scopes[0].values())
-    p = None if id(var) in ev.stepping else ev.active(past_return=not local)
+    p = None if id(var) in ev.stepping else ev.active(local=local)
     var.value = ev.merge(var.value, value, p, ev.at(target))
 
 
@@ -120,8 +119,6 @@ def _store_each(ev: Any, target: Any, value: Any, node: Any, t: HType, index: Va
         for j in range(n):
             hit = ev.a.compare("==", [i], [ev.a.const(float(j))], loc)[0]
             ev.mask = ev._and(saved, hit)
-            if ev.dead():
-                continue
             store(ev, target, value, {**fixed, id(node): j})
     finally:
         ev.mask = saved
