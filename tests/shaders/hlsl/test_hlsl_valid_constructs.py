@@ -107,10 +107,10 @@ technique Fallback { pass P { PixelShader = compile ps_2_0 Plain(); } }""", para
     assert any("64 arithmetic instruction slots" in r.message for r in radeon.reasons), radeon.reasons
     assert fx.find_valid_technique(effects.load_profile("radeon9700")).name == "Fallback"
     # the same function compiled for ps_3_0 (512 slots) runs
-    fx3 = effect_for(fx_text := "float4 PS(float2 uv : TEXCOORD0) : COLOR "
+    fx3 = effect_for("float4 PS(float2 uv : TEXCOORD0) : COLOR "
                      "{ return Big[uv.x * 20] * Big[uv.y * 20]; }", ps="compile ps_3_0 PS()",
                      params="float4 Big[20];")
-    assert fx_text and "cmp" in fx_asm(fx3, "PS", "ps_3_0")
+    assert "cmp" in fx_asm(fx3, "PS", "ps_3_0")
 
 
 # -- casts on the left ---------------------------------------------------------------------------------
