@@ -281,9 +281,10 @@ class Evaluator:
         return build_value(t, comps)
 
     def s_typedef_decl(self, tree: lark.Tree) -> None:
-        _, mods, spec, name, dims = tree.children
-        t = self.array_of(resolve_type(self.ctx, spec, self.origin, mods), dims, f"'{name}'")
-        self.ctx.typedefs[str(name)] = t
+        _, mods, spec, *declared = tree.children
+        base = resolve_type(self.ctx, spec, self.origin, mods)
+        for name, dims in zip(declared[::2], declared[1::2]):     # `typedef T a, b[2];`
+            self.ctx.typedefs[str(name)] = self.array_of(base, dims, f"'{name}'")
 
     def s_if_stmt(self, tree: lark.Tree) -> None:
         self._if(tree, tree.children[2], tree.children[3], None)

@@ -281,3 +281,27 @@ def test_lowercase_storage_classes_are_still_keywords():
                              "technique T { pass P { PixelShader = compile ps_2_0 PS(); } }\n")
     assert fx.parameter("A").storage == ("shared",)
     assert "static" in fx.parameter("B").storage
+
+
+# -- typedefs naming several types ---------------------------------------------------------------
+
+def test_a_typedef_names_several_types_globally_and_locally(backend):
+    fx = effect_for("""
+typedef float4 C4, Colour;
+typedef float F2[2], One;
+C4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    typedef float2 P, Q[2];
+    Q q = { uv, uv.yx };                   // q[1] = (v, u)
+    F2 f = { 0.25, 0.5 };
+    One o = f[1];
+    Colour c = float4(q[1], f[0], 1);
+    return c * o * 2;                      // (v, u, 0.25, 1)
+}""")
+    assert [s.name for s in fx.structs] == ["C4", "Colour", "F2", "One"]
+    again = effects.load_effect(fx.to_source())           # printed once, read back the same
+    assert fx.to_source().count("typedef float4 C4, Colour;") == 1
+    assert [s.name for s in again.structs] == ["C4", "Colour", "F2", "One"]
+    img = render(fx, backend)
+    u, v = pixel_uv(2, 5)
+    assert np.allclose(img[5, 2], (v, u, 0.25, 1), atol=TOL)
