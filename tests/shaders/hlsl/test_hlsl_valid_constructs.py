@@ -305,3 +305,37 @@ C4 PS(float2 uv : TEXCOORD0) : COLOR
     img = render(fx, backend)
     u, v = pixel_uv(2, 5)
     assert np.allclose(img[5, 2], (v, u, 0.25, 1), atol=TOL)
+
+
+# -- from an XNA game's effects (DungeonQuest's NormalMapping.fx, 2007) ------------------------------
+
+def test_an_array_with_a_semantic_takes_the_next_indices_out_and_in(backend):
+    # `float4 lightVecs[3] : TEXCOORD2` in a vertex-output struct: TEXCOORD2, 3, 4
+    fx = effect_for("""
+struct V2P { float4 pos : POSITION; float4 vecs[2] : TEXCOORD1; float2 uv : TEXCOORD0; };
+V2P VS(float4 p : POSITION, float2 uv : TEXCOORD0)
+{
+    V2P o = (V2P)0;
+    o.pos = p;
+    o.uv = uv;
+    o.vecs[0] = float4(0.25, 0, 0, 0);
+    o.vecs[1] = float4(0, 0.5, 0, 0);
+    return o;
+}
+float4 PS(float4 vecs[2] : TEXCOORD1, float2 uv : TEXCOORD0) : COLOR
+{
+    return float4(vecs[0].x, vecs[1].y, uv.x, 1);
+}""", vs="compile vs_2_0 VS()")
+    vs_text, ps_text = fx_asm(fx, "VS", "vs_2_0"), fx_asm(fx, "PS", "ps_2_0")
+    assert "oT1" in vs_text and "oT2" in vs_text and "dcl t2" in ps_text, (vs_text, ps_text)
+    img = render(fx, backend)
+    u, _ = pixel_uv(5, 2)
+    assert np.allclose(img[2, 5], (0.25, 0.5, u, 1), atol=TOL), img[2, 5]
+
+
+def test_a_unary_plus_in_a_parameter_initializer():
+    fx = effects.load_effect("float3 L[2] = { {-1.0f, +1.0f, -1.0f}, {+2, 0, +0.5} };\n"
+                             "float K = +0.25;\n")
+    assert np.allclose(np.asarray(fx.parameter("L").value, np.float64).reshape(-1),
+                       (-1, 1, -1, 2, 0, 0.5))
+    assert fx.parameter("K").value == pytest.approx(0.25)
