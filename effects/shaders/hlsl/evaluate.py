@@ -30,6 +30,7 @@ from effects.shaders.hlsl.loops import bound_of, has_attribute, real_loop
 from effects.shaders.hlsl.parse import Origin
 from effects.shaders.hlsl.switch import NO_CODE, switch_statement
 from effects.shaders.hlsl.types import HType, scalar
+from effects.shaders.hlsl.livefold import fold_assuming_zero
 from effects.shaders.hlsl.unroll import never_ends
 from effects.shaders.hlsl.values import (Frame, Loop, Value, Var, build_value, count_components,
                                           operand)
@@ -433,9 +434,12 @@ class Evaluator:
                     v = c.const_values()
                     if v is not None and not v[0]:
                         break
+                    if v is None and self._ends_where_running(c, loop):
+                        break       # every lane still in the loop fails the condition
                     if v is None:
                         # a condition known only at run time: the rest runs under it
                         loop.broken = self._or(loop.broken, self._and(self.active(), self._not(c)))
+                        loop.left.append(loop.broken)
                 if self.dead():
                     break
                 if i == MAX_ITERATIONS:       # the body would run a 1,025th time
@@ -464,11 +468,24 @@ class Evaluator:
             self.loops.pop()
             self.mask = saved
 
+    def _ends_where_running(self, c: Operand, loop: Loop) -> bool:
+        """Whether condition `c` is a constant false in the lanes that neither broke out of
+        the loop nor returned (livefold.py): the loop ends for every lane still in it."""
+        if not loop.left:
+            return False
+        zero: dict[int, set[int]] = {}
+        for p in loop.left:
+            for lane in p.swizzle:
+                zero.setdefault(p.node.id, set()).add(lane)
+        v = fold_assuming_zero(c, zero)
+        return v is not None and not v[0]
+
     def s_break_stmt(self, tree: lark.Tree) -> None:
         if not self.loops:
             raise self.error("X3518: break must be inside a loop", tree)
         loop = self.loops[-1]
         loop.broken = self._or(loop.broken, self.active() or self.g.const((1.0,)))
+        loop.left.append(loop.broken)
 
     def s_switch_stmt(self, tree: lark.Tree) -> None:
         switch_statement(self, tree)
@@ -493,6 +510,8 @@ class Evaluator:
         elif frame.return_type.kind != "void":
             raise self.error("X3080: function must return a value", tree)
         frame.returned = self._or(frame.returned, p or self.g.const((1.0,)))
+        for loop in self.loops:
+            loop.left.append(frame.returned)
 
     def s_discard_stmt(self, tree: lark.Tree) -> None:
         self.kill([self.g.const((-1.0,))], self.at(tree))

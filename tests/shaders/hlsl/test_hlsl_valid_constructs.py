@@ -339,3 +339,44 @@ def test_a_unary_plus_in_a_parameter_initializer():
     assert np.allclose(np.asarray(fx.parameter("L").value, np.float64).reshape(-1),
                        (-1, 1, -1, 2, 0, 0.5))
     assert fx.parameter("K").value == pytest.approx(0.25)
+
+
+# -- loops that count on in the lanes that did not break ------------------------------------------------
+
+def _count_until(u: float, limit: int = 4) -> int:
+    i = 0
+    while i < limit:
+        if u < i * 0.25 + 0.0625:
+            break
+        i += 1
+    return i
+
+
+@pytest.mark.parametrize("target", ["ps_2_0", "ps_3_0"])
+def test_a_while_loop_with_a_run_time_break_unrolls_to_its_count(backend, target):
+    # the counter is a select after the break (the lanes that broke keep theirs) but 0, 1, 2,
+    # 3, 4 where none did: the loop ends there for every lane still in it (livefold.py)
+    fx = effect_for("""
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    int i = 0;
+    while (i < 4) { if (uv.x < i * 0.25 + 0.0625) break; i++; }
+    float s = 0;
+    for (int j = 0; j < 8; j++) { if (j >= i + 1) break; s += 0.125; }   // counts i + 1
+    return float4(i * 0.25, s, 0, 1);
+}""", ps=f"compile {target} PS()")
+    card = "radeon9700" if target == "ps_2_0" else "geforce6800"
+    img = effects.render(fx, card, technique="T", backend=backend,
+                         scene={"mesh": "quad", "size": [8, 8]}).astype(np.float64) / 255
+    for x in range(8):
+        i = _count_until(x / 8)
+        assert np.allclose(img[1, x], (i * 0.25, (i + 1) * 0.125, 0, 1), atol=TOL), (x, img[1, x])
+
+
+def test_a_loop_whose_count_depends_on_the_pixel_is_still_x3511():
+    from effects.base.errors import EffectError
+    fx = effect_for("float4 PS(float2 uv : TEXCOORD0) : COLOR\n{\n    float t = 0;\n"
+                    "    while (t < uv.x) t += 0.125;\n    return t;\n}")
+    with pytest.raises(EffectError) as info:
+        fx_asm(fx, "PS", "ps_2_0")
+    assert info.value.message.startswith("X3511:")
