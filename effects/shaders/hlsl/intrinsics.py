@@ -508,6 +508,11 @@ def _texture(dim: str, variant: str):
     kind, n = _TEX_KINDS[dim]
 
     def f(ev: Any, args: list[Value], loc: Location) -> Value:
+        # tex2D(s, t, ddx, ddy): the DirectX 9 reference's second overload, a texldd
+        variant_ = "grad" if variant == "" and len(args) == 4 else variant
+        return read(ev, args, loc, variant_)
+
+    def read(ev: Any, args: list[Value], loc: Location, variant: str) -> Value:
         s = args[0]
         if s.type.kind != "sampler" or s.sampler is None:
             raise ev.error(f"X3013: tex{dim}{variant}: the first argument must be a sampler", loc)
@@ -544,6 +549,20 @@ def _ubyte4(ev: Any, args: list[Value], loc: Location) -> Value:
     c = args[0].comps
     swz = [c[2], c[1], c[0], c[3]]
     return Value(vector("int", 4), ev.a.trunc(_scale(ev, swz, 255.001953, loc), loc))
+
+
+def _frexp(ev: Any, args: list[Value], loc: Location, trees: list[Any]) -> Value:
+    """frexp(x, out e): x = m * 2^e with |m| in [0.5, 1), e = floor(log2|x|) + 1 (log and
+    exp as the target has them); 0 gives m = e = 0 (the DirectX 9 reference's frexp)."""
+    c = args[0].comps
+    e = ev.a.lanes("add", [ev.a.floor(_log2(ev, _abs(ev, c, loc), loc), loc),
+                           [ev.a.const(1.0)] * len(c)], loc)
+    m = ev.a.lanes("mul", [c, _exp2(ev, [x.neg() for x in e], loc)], loc)
+    zero = ev.a.compare("==", c, [ev.a.const(0.0)] * len(c), loc)
+    nothing = [ev.a.const(0.0)] * len(c)
+    t = _float(args[0])
+    _out(ev, trees, 1, Value(t, ev.a.select(zero, nothing, e, loc)))
+    return Value(t, ev.a.select(zero, nothing, m, loc))
 
 
 def _modf(ev: Any, args: list[Value], loc: Location, trees: list[Any]) -> Value:
@@ -686,6 +705,7 @@ INTRINSICS: dict[str, tuple[tuple[int, ...], Callable[..., Value], bool]] = {
     "refract": ((3,), _refract, False),
     "sincos": ((3,), _sincos, True),
     "modf": ((2,), _modf, True),
+    "frexp": ((2,), _frexp, True),
     "lit": ((3,), _lit, False),
     "any": ((1,), _any_all("any"), False),
     "all": ((1,), _any_all("all"), False),
@@ -694,7 +714,8 @@ INTRINSICS: dict[str, tuple[tuple[int, ...], Callable[..., Value], bool]] = {
     "fwidth": ((1,), _fwidth, False),
     "clip": ((1,), _clip, False),
     "D3DCOLORtoUBYTE4": ((1,), _ubyte4, False),
-    **{f"tex{dim}{variant}": ((4,) if variant == "grad" else (2,), _texture(dim, variant), False)
+    **{f"tex{dim}{variant}": ((4,) if variant == "grad" else (2, 4) if variant == "" else (2,),
+                              _texture(dim, variant), False)
        for dim in _TEX_KINDS for variant in ("", "proj", "bias", "lod", "grad")},
 }
 

@@ -380,3 +380,27 @@ def test_a_loop_whose_count_depends_on_the_pixel_is_still_x3511():
     with pytest.raises(EffectError) as info:
         fx_asm(fx, "PS", "ps_2_0")
     assert info.value.message.startswith("X3511:")
+
+
+def test_frexp_splits_a_number_into_mantissa_and_exponent(backend):
+    fx = effect_for("""
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float e, z;
+    float m = frexp(uv.x + 1, e);          // 1 + u = m * 2^e, m in [0.5, 1): e = 1
+    float2 e2;
+    float2 m2 = frexp(float2(uv.y * 4 + 4, 0), e2);   // 4 + 4v in [4, 8): e = 3; 0: 0, 0
+    float n = frexp(0, z);
+    return float4(m, e * 0.25, m2.x, e2.x * 0.125 + e2.y + m2.y + n + z);
+}""")
+    img = render(fx, backend)
+    for x, y in ((3, 1), (5, 6)):
+        u, v = pixel_uv(x, y)
+        assert np.allclose(img[y, x], ((1 + u) / 2, 0.25, (4 + 4 * v) / 8, 0.375), atol=TOL), \
+            (x, y, img[y, x])
+
+
+def test_tex2d_with_gradients_is_a_texldd():
+    fx = effect_for("float4 PS(float2 uv : TEXCOORD0) : COLOR { return tex2D(S, uv, ddx(uv), ddy(uv)); }",
+                    ps="compile ps_3_0 PS()", params="sampler2D S;")
+    assert "texldd" in fx_asm(fx, "PS", "ps_3_0")
