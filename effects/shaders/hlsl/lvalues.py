@@ -139,6 +139,9 @@ def pick_element(ev: Any, base: Value, index: Value, where: Any) -> Value:
         ev.warn("X3206: implicit truncation of vector type", loc)
     i = ev.a.convert_base(index.comps[:1], index.type.base, "int", loc)[0]
     n = t.length if t.kind == "array" else t.rows if t.kind == "matrix" else t.size
+    # a compare and a select per element, each its components: the work budget's (a chain
+    # over a huge array is refused before it is built, not after)
+    spend(ev, n * (t.element.components if t.kind == "array" else t.cols) * 2, where)  # type: ignore[union-attr]
     picked = element_of(ev, base, 0, where)
     for j in range(1, n):
         hit = ev.a.compare(">=", [i], [ev.a.const(float(j))], loc)[0]

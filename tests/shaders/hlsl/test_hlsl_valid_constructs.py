@@ -404,3 +404,13 @@ def test_tex2d_with_gradients_is_a_texldd():
     fx = effect_for("float4 PS(float2 uv : TEXCOORD0) : COLOR { return tex2D(S, uv, ddx(uv), ddy(uv)); }",
                     ps="compile ps_3_0 PS()", params="sampler2D S;")
     assert "texldd" in fx_asm(fx, "PS", "ps_3_0")
+
+
+def test_a_select_chain_over_a_huge_array_is_refused_by_the_work_budget():
+    from effects.base.errors import EffectError
+    fx = effect_for("float4 PS(float2 uv : TEXCOORD0) : COLOR { return Big[uv.x * 16000]; }",
+                    ps="compile ps_3_0 PS()", params="float4 Big[16000];")
+    with pytest.raises(EffectError) as info:
+        fx_asm(fx, "PS", "ps_3_0")
+    assert "limit hlsl_work" in info.value.message
+    assert (info.value.line, info.value.column) == (2, 55)        # at the index
