@@ -473,11 +473,11 @@ class Evaluator:
         the loop nor returned (livefold.py): the loop ends for every lane still in it."""
         if not loop.left:
             return False
-        zero: dict[int, set[int]] = {}
-        for p in loop.left:
+        for p in loop.left[loop.zeroed:]:
             for lane in p.swizzle:
-                zero.setdefault(p.node.id, set()).add(lane)
-        v = fold_assuming_zero(c, zero)
+                loop.zero.setdefault(p.node.id, set()).add(lane)
+        loop.zeroed = len(loop.left)
+        v = fold_assuming_zero(c, loop.zero, loop.known)
         return v is not None and not v[0]
 
     def s_break_stmt(self, tree: lark.Tree) -> None:

@@ -13,13 +13,24 @@ from typing import Any
 from effects.shaders.hlsl.folding import FOLDS, fold
 
 
-def fold_assuming_zero(root: Any, zero: dict[int, set[int]]) -> tuple[float, ...] | None:
+# nodes one question may walk that earlier ones did not: an unrolled loop asks once an
+# iteration, so a condition over a large DAG is given up on (the loop runs on as before)
+# instead of walking it a thousand times
+MAX_NEW_NODES = 512
+
+
+def fold_assuming_zero(root: Any, zero: dict[int, set[int]],
+                       known: dict[int, tuple[float, ...]] | None = None) -> tuple[float, ...] | None:
     """The lanes of Operand `root` when the node lanes in `zero` (node id -> lanes) are 0,
     folded through the ops folding.py knows (a `pack` gathers its arguments); None when a
     lane depends on anything else (an input, a uniform, a texture read). The DAG is walked
-    with an explicit stack, each node once."""
-    memo: dict[int, tuple[float | None, ...]] = {}
+    with an explicit stack, each node once; `known` keeps the nodes found constant for the
+    next question about the same loop (more zeros later change no constant: a constant
+    depends on no unknown lane), and a question walking over MAX_NEW_NODES others is None."""
+    known = {} if known is None else known
+    memo: dict[int, tuple[float | None, ...]] = dict(known)
     stack = [root.node]
+    walked = 0
     while stack:
         n = stack[-1]
         if n.id in memo:
@@ -31,7 +42,13 @@ def fold_assuming_zero(root: Any, zero: dict[int, set[int]]) -> tuple[float, ...
                 stack.extend(waiting)
                 continue
         stack.pop()
-        memo[n.id] = _lanes(n, memo, zero.get(n.id, ()))
+        walked += 1
+        if walked > MAX_NEW_NODES:
+            return None
+        lanes = _lanes(n, memo, zero.get(n.id, ()))
+        memo[n.id] = lanes
+        if None not in lanes:
+            known[n.id] = lanes       # type: ignore[assignment]
     return _pick(root, memo[root.node.id])
 
 

@@ -109,6 +109,9 @@ class Loop:
     # every 'broken' and 'returned' predicate made while it ran: the lanes that left it
     # (livefold.py: its condition where they are 0)
     left: list[Operand] = field(default_factory=list)
+    known: dict = field(default_factory=dict)      # livefold's constants, kept between asks
+    zero: dict = field(default_factory=dict)       # `left` as node id -> lanes, so far
+    zeroed: int = 0                                # how many of `left` are in `zero`
 
 
 @dataclass
