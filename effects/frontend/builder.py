@@ -105,10 +105,13 @@ class Builder:
                 effect.techniques.append(self.technique(item))
             elif item[0] == "typedef":
                 self.typedef(item[1], structs)
-                # kept with the structs, in order, for the HLSL functions that name it
+                # kept with the structs, in order, for the HLSL functions that name it: each
+                # name with the whole statement (context.load_context picks its own name)
                 c = item[1]
-                effect.structs.append(Struct(c[3].value, self.text[c[0].start_pos:c[5].end_pos],
-                                             self.loc(c[0]), self.row_major_at(c[0].line)))
+                for name_tok, _dims in _typedef_names(c):
+                    effect.structs.append(Struct(name_tok.value,
+                                                 self.text[c[0].start_pos:c[-1].end_pos],
+                                                 self.loc(c[0]), self.row_major_at(c[0].line)))
             elif item[0] == "struct":
                 c = item[1]
                 structs.add(c[1].value)
@@ -163,11 +166,12 @@ class Builder:
     def typedef(self, c: list, structs: set[str]) -> None:
         """`typedef float4 COLOR;`. An array typedef (`typedef float2 Pair[2];`) is for the
         HLSL functions, which read it from the struct list; a parameter may not use one."""
-        _, _, type_tok, name_tok, dims, _ = c
-        if dims:
-            self.array_typedefs.add(name_tok.value)
-            return
-        self.typedefs[name_tok.value] = self.type_of(type_tok, structs)
+        type_tok = c[2]
+        for name_tok, dims in _typedef_names(c):
+            if dims:
+                self.array_typedefs.add(name_tok.value)
+                continue
+            self.typedefs[name_tok.value] = self.type_of(type_tok, structs)
 
     def parameter(self, raw: RawParam, structs: set[str]) -> Parameter:
         spec = self.type_of(raw.type, structs)
@@ -653,3 +657,9 @@ def _semantic(semantics: list[str]) -> str | None:
         return None
     named = [s for s in semantics if not s.lower().startswith("register(")]
     return named[0] if named else semantics[0]
+
+
+def _typedef_names(c: list) -> list[tuple[Token, list]]:
+    """The (name, array sizes) pairs of a `typedef` item: TYPEDEF storage type name dims
+    (COMMA name dims)* SEMI."""
+    return [(c[k], c[k + 1]) for k in range(3, len(c) - 1, 3)]

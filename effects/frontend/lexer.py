@@ -64,6 +64,10 @@ _KEYWORDS = {
 STORAGE_CLASSES = ("shared", "static", "uniform", "const", "extern", "volatile",
                    "row_major", "column_major", "inline")
 _KEYWORDS.update({s: "STORAGE" for s in STORAGE_CLASSES})
+# ... but HLSL's own keywords are case-sensitive: `Shared`, `Static` or `Struct` is a name
+# (naga's back/hlsl/keywords.rs lists the only case-insensitive ones, with fxc's X3086 for
+# them in strict mode: asm, decl, pass, technique and the Direct3D 10 texture types)
+_EXACT_CASE = frozenset(STORAGE_CLASSES) | {"struct", "typedef"}
 
 # What a brace-scan skips so that a brace inside a comment or string does not count.
 _BRACE_SCAN_RE = re.compile(r'[{}]|//[^\n]*|/\*.*?(?:\*/|\Z)|"(?:[^"\\\n]|\\.)*"', re.S)
@@ -178,6 +182,8 @@ class EffectLexer:
             if kind == "NAME":
                 low = value.lower()
                 kw = keywords.get(low)
+                if kw is not None and value != low and low in _EXACT_CASE:
+                    kw = None
                 if kw is not None:
                     kind = kw
                 elif (low == "matrix" or low == "vector") and \

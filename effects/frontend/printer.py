@@ -35,7 +35,11 @@ def print_effect(effect: Effect) -> str:
         if row_major != packing[0]:
             out.append(f"#pragma pack_matrix({'row_major' if row_major else 'column_major'})")
             packing[0] = row_major
+    printed = None
     for struct in effect.structs:
+        if (struct.source, struct.location) == printed:
+            continue       # `typedef float4 A, B;`: one statement, an entry per name
+        printed = (struct.source, struct.location)
         pack(struct.row_major)
         out.append(struct.source.rstrip() + "\n")
     if effect.structs:

@@ -140,6 +140,13 @@ class Shapes(Transformer):
             return _span_v(v.kind, -v.data, c[0], v)
         return _span_v("expr", None, c[0], v)
 
+    def pos(self, c):
+        """`+1.0f` (an XNA game's light positions `{-1.0f, +1.0f, -1.0f}`): the value itself."""
+        v = c[1]
+        if v.kind in ("int", "float"):
+            return _span_v(v.kind, v.data, c[0], v)
+        return _span_v("expr", None, c[0], v)
+
     def unary(self, c): return _span_v("expr", None, c[0], c[1])
 
     def chain(self, c):

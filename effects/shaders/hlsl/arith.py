@@ -96,6 +96,11 @@ class Arith:
                 comps = comps[:t.size]
             elif len(comps) > t.size and t.size == 1:
                 comps = comps[:1]
+            elif len(comps) > t.size and 1 in (v.type.rows, v.type.cols) and \
+                    (t.kind != "matrix" or 1 in (t.rows, t.cols)):
+                # a 1xN or Nx1 matrix is a vector here: its first numbers (vkd3d's
+                # implicit_compatible_data_types, checked against native d3dcompiler)
+                comps = comps[:t.size]
             else:
                 raise self.error(f"X3017: cannot {'convert' if explicit else 'implicitly convert'}"
                                  f" from '{v.type}' to '{t}'", loc)

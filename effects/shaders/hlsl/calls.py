@@ -117,7 +117,7 @@ def _inline(ev: Any, fdef: FunctionDef, args: list[Value], arg_trees: list[Any],
     spend(ev, 1 + sum(t.components for _, t, *_ in params), where)
     callee = ev.spawn(fdef.origin)
     callee.depth = ev.depth + 1
-    callee.mask = ev.active()
+    callee.outer = ev.active()
     ret_type = return_type(ev.ctx, fdef)
     callee.frames.append(Frame(ret_type))
     fixed = constant_parameters(fdef)

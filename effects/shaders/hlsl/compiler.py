@@ -205,6 +205,14 @@ def _check_required_outputs(ctx: Context, entry: str, bound: set[tuple[str, int]
                                 "four components of COLOR0", fdef.tree)
 
 
+def _array_semantics(semantic: str, t: HType) -> list[str]:
+    """An array's elements take the semantic's next indices: `float4 v[3] : TEXCOORD2` is
+    TEXCOORD2, TEXCOORD3, TEXCOORD4 (as fxc bound it: DungeonQuest's, an XNA game's, light
+    vectors)."""
+    usage, index = split_semantic(semantic)
+    return [f"{usage}{index + k}" for k in range(t.length)]
+
+
 def _sampler_registers(ctx: Context) -> dict[str, int]:
     """The s# fixed before code generation: explicit register(s#) bindings, and the elements
     of a sampler array read by constant indices (`SA[1]`), which take the array's registers
@@ -359,6 +367,9 @@ class _Binder:
             return out
         if semantic is None:
             raise self._error(f"X4502: input '{name}' of the entry point has no semantic", loc)
+        if t.kind == "array":
+            return Value(t, elements=[self.input(t.element, element, loc, f"{name}[{k}]")  # type: ignore[arg-type]
+                                      for k, element in enumerate(_array_semantics(semantic, t))])
         usage, index = split_semantic(semantic)
         target = self.ctx.target
         if target.kind == "ps" and usage == "SV_POSITION":
@@ -410,6 +421,10 @@ class _Binder:
             return
         if semantic is None:
             raise self._error("X4503: output of the entry point has no semantic", loc)
+        if value.type.kind == "array":
+            for element, sem in zip(value.elements, _array_semantics(semantic, value.type)):
+                self.outputs(element, sem, loc, out)
+            return
         usage, index = split_semantic(semantic)
         usage = _SV_AS_D3D9.get(usage, usage)
         target = self.ctx.target

@@ -109,7 +109,10 @@ def load_context(effect: Effect, target_name: str) -> Context:
         origin = Origin(s.location, s.source, row_major=s.row_major)
         if s.source.lstrip().startswith("typedef"):      # a global `typedef float4 COLOR;`
             tree = parse(s.source, "typedef_decl", origin, names)
-            _, mods, spec, name, dims = tree.children
+            _, mods, spec, *declared = tree.children
+            # `typedef float4 C4, Colour;`: each name is an entry with the whole statement
+            name, dims = next((n, d) for n, d in zip(declared[::2], declared[1::2])
+                              if str(n) == s.name)
             ctx.typedefs[s.name] = array_of(resolve_type(ctx, spec, origin, mods),
                                             literal_sizes(dims, origin),
                                             lambda m: origin.error(m, tree), f"'{name}'")

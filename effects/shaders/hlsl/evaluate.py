@@ -31,6 +31,7 @@ from effects.shaders.hlsl.loops import bound_of, has_attribute, real_loop
 from effects.shaders.hlsl.parse import Origin
 from effects.shaders.hlsl.switch import NO_CODE, switch_statement
 from effects.shaders.hlsl.types import HType, scalar
+from effects.shaders.hlsl.livefold import fold_assuming_zero
 from effects.shaders.hlsl.unroll import never_ends
 from effects.shaders.hlsl.values import (Frame, Loop, Value, Var, build_value, count_components,
                                           operand)
@@ -56,6 +57,7 @@ class Evaluator:
         self.frames: list[Frame] = []
         self.loops: list[Loop] = []
         self.mask: Operand | None = None       # path predicate (None: always)
+        self.outer: Operand | None = None      # an inlined call's: the caller's, at the call
         self.depth = 0
         self.in_expression = 0                 # expression evaluations under way (budget.py)
         # the for-init variables of an unrolled loop while its step runs (lvalues.store):
@@ -137,10 +139,14 @@ class Evaluator:
             return None
         return self.g.op("add", [self.g.const((1.0,)), p.neg()], 1)
 
-    def active(self) -> Operand | None:
-        """The predicate under which a statement runs now (None: always)."""
-        p = self.mask
-        if self.frames and self.frames[-1].returned is not None:
+    def active(self, local: bool = False) -> Operand | None:
+        """The predicate under which a statement runs now (None: always). For a write to a
+        local of this function (`local`, lvalues.store) without the caller's predicate and
+        the function's 'returned': no one reads the local where those are false (the value
+        returned and the out parameters are taken under them), and a while loop's counter
+        stays a constant in a call under a run-time condition or after a return in it."""
+        p = self.mask if local else self._and(self.outer, self.mask)
+        if not local and self.frames and self.frames[-1].returned is not None:
             p = self._and(p, self._not(self.frames[-1].returned))
         if self.loops:
             loop = self.loops[-1]
@@ -305,9 +311,10 @@ class Evaluator:
         return build_value(t, comps)
 
     def s_typedef_decl(self, tree: lark.Tree) -> None:
-        _, mods, spec, name, dims = tree.children
-        t = self.array_of(resolve_type(self.ctx, spec, self.origin, mods), dims, f"'{name}'")
-        self.ctx.typedefs[str(name)] = t
+        _, mods, spec, *declared = tree.children
+        base = resolve_type(self.ctx, spec, self.origin, mods)
+        for name, dims in zip(declared[::2], declared[1::2]):     # `typedef T a, b[2];`
+            self.ctx.typedefs[str(name)] = self.array_of(base, dims, f"'{name}'")
 
     def s_if_stmt(self, tree: lark.Tree) -> None:
         self._if(tree, tree.children[2], tree.children[3], None)
@@ -455,9 +462,12 @@ class Evaluator:
                     v = c.const_values()
                     if v is not None and not v[0]:
                         break
+                    if v is None and self._ends_where_running(c, loop):
+                        break       # every lane still in the loop fails the condition
                     if v is None:
                         # a condition known only at run time: the rest runs under it
                         loop.broken = self._or(loop.broken, self._and(self.active(), self._not(c)))
+                        loop.left.append(loop.broken)
                 if self.dead():
                     break
                 if i == MAX_ITERATIONS:       # the body would run a 1,025th time
@@ -477,15 +487,33 @@ class Evaluator:
                 if self.dead():
                     break
                 self.run_step(step, own)
+        except OverBudget:
+            if why is None:
+                raise
+            # unrolled until the budget ran out in its condition or step (the body's above)
+            raise self.error(f"X3511: unable to unroll loop: {why}", tree) from None
         finally:
             self.loops.pop()
             self.mask = saved
+
+    def _ends_where_running(self, c: Operand, loop: Loop) -> bool:
+        """Whether condition `c` is a constant false in the lanes that neither broke out of
+        the loop nor returned (livefold.py): the loop ends for every lane still in it."""
+        if not loop.left:
+            return False
+        for p in loop.left[loop.zeroed:]:
+            for lane in p.swizzle:
+                loop.zero.setdefault(p.node.id, set()).add(lane)
+        loop.zeroed = len(loop.left)
+        v = fold_assuming_zero(c, loop.zero, loop.known)
+        return v is not None and not v[0]
 
     def s_break_stmt(self, tree: lark.Tree) -> None:
         if not self.loops:
             raise self.error("X3518: break must be inside a loop", tree)
         loop = self.loops[-1]
         loop.broken = self._or(loop.broken, self.active() or self.g.const((1.0,)))
+        loop.left.append(loop.broken)
 
     def s_switch_stmt(self, tree: lark.Tree) -> None:
         switch_statement(self, tree)
@@ -510,6 +538,8 @@ class Evaluator:
         elif frame.return_type.kind != "void":
             raise self.error("X3080: function must return a value", tree)
         frame.returned = self._or(frame.returned, p or self.g.const((1.0,)))
+        for loop in self.loops:
+            loop.left.append(frame.returned)
 
     def s_discard_stmt(self, tree: lark.Tree) -> None:
         self.kill([self.g.const((-1.0,))], self.at(tree))

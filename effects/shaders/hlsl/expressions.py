@@ -20,7 +20,7 @@ from effects.shaders.hlsl.arith import INTEGRAL
 from effects.shaders.hlsl.calls import resolve_overload
 from effects.shaders.hlsl.intrinsics import INTRINSICS, call_intrinsic
 from effects.shaders.hlsl.loops import al_element
-from effects.shaders.hlsl.lvalues import const_index, element_of, member_of, store
+from effects.shaders.hlsl.lvalues import const_index, element_of, member_of, pick_element, store
 from effects.shaders.hlsl.values import Value, build_value
 
 
@@ -280,28 +280,42 @@ def _incdec(ev: Any, tree: lark.Tree, post: bool) -> Value:
     one = Value(INT, [ev.g.const((1.0,))])
     seen: list[Value] = []
 
+    masks: list[Any] = []
+
     def step(old: Value) -> Value:
         if old.type.numeric and old.type.base == "bool":   # fxc's text (DXC's tests)
             raise ev.error("X3020: operator cannot be used with a bool lvalue", op)
         new = ev.a.binary("+" if str(op) == "++" else "-", old, one, ev.at(op))
-        seen.extend((old, new))
+        seen.append(old if post else new)
+        masks.append(ev.mask)
         return ev.a.convert(new, old.type, ev.at(op))
     store(ev, target, step)         # the target (its indices) evaluated once
-    old, new = seen
-    return old if post else new
+    return _written(ev, seen, masks, ev.at(op))
+
+
+def _written(ev: Any, values: list[Value], masks: list[Any], loc: Any) -> Value:
+    """The value of an assignment expression: the one written, or where a run-time index
+    wrote each element under its own predicate (lvalues._store_each), the one the index
+    chose (each under the predicate it was written with)."""
+    out = values[0]
+    for v, p in zip(values[1:], masks[1:]):
+        out = ev.merge(out, v, p, loc)
+    return out
 
 
 def _assign(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     target, op, rhs = tree.children
     value = yield rhs
     written: list[Value] = []
+    masks: list[Any] = []
 
     def assigned(current: Value) -> Value:
         v = value if str(op) == "=" else ev.a.binary(str(op)[:-1], current, value, ev.at(op))
         written.append(ev.a.convert(v, current.type, ev.at(rhs)))
-        return written[0]
+        masks.append(ev.mask)
+        return written[-1]
     store(ev, target, assigned)     # the target (its indices) evaluated once, after the value
-    return written[0]
+    return _written(ev, written, masks, ev.at(op))
 
 
 def _member(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
@@ -314,15 +328,28 @@ def _index(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     base_tree, index_tree = tree.children
     base = yield base_tree
     index = yield index_tree
-    if base.type.kind == "array" and index.const_values() is None:
-        return _relative_element(ev, base_tree, base.type, index, index_tree)
+    if base.type.kind in ("array", "matrix", "vector") and index.type.numeric and \
+            index.const_values() is None:
+        if base.type.kind == "array":
+            got = _relative_element(ev, base_tree, base.type, index, index_tree)
+            if got is not None:
+                return got
+            if not _numbers_only(base.type):      # fxc's wording for a sampler array
+                raise ev.error(f"X3512: sampler array index must be a literal expression "
+                               f"({ev.ctx.target.name} picks samplers by number only)", index_tree)
+        return pick_element(ev, base, index, index_tree)
     if base.type.kind not in ("array", "matrix", "vector"):
         raise ev.error(f"X3121: array, matrix, vector, or indexable object type expected in "
                        f"index expression, not '{base.type}'", tree)
     return element_of(ev, base, const_index(ev, index, index_tree, base.type), tree)
 
 
-def _relative_element(ev: Any, base_tree: Any, t: HType, index: Value, where: Any) -> Value:
+def _numbers_only(t: HType) -> bool:
+    """Whether every leaf of `t` is a number (a select chain can pick its elements)."""
+    return bool(_leaf_bases(t)) and len(_leaf_bases(t)) == t.components
+
+
+def _relative_element(ev: Any, base_tree: Any, t: HType, index: Value, where: Any) -> Value | None:
     """`Bones[i]` with i known only at run time: in a vertex shader, an element of a uniform
     array read through the address register (c[a0.x + n]; a0.x = i times the registers an
     element takes, i converted to int first as HLSL does). An address outside the constant
@@ -343,13 +370,7 @@ def _relative_element(ev: Any, base_tree: Any, t: HType, index: Value, where: An
             global_value(ev, name, base_tree)            # registers the array as used
             return uniform_value(ev, name, t.element, al[0], al=al[1])  # type: ignore[arg-type]
     if target.kind != "vs" or not uniform:
-        where_text = ("pixel shaders have no relative addressing" if target.name != "ps_3_0"
-                      else "ps_3_0 indexes constants only by the counter of the innermost "
-                      "loop (aL), an element of one register when the count is a uniform")
-        if target.kind == "vs":
-            where_text = "only uniform (global, non-static) arrays are indexed through a0"
-        raise ev.error(f"X3512: array index must be a literal expression on {target.name} "
-                       f"({where_text})", where)
+        return None         # no register addressed by it: a select chain (pick_element)
     if not index.type.numeric:
         raise ev.error(f"X3120: invalid type for index - index must be a scalar, not '{index.type}'", where)
     if index.type.size > 1:

@@ -549,6 +549,11 @@ def _texture(dim: str, variant: str):
     kind, n = _TEX_KINDS[dim]
 
     def f(ev: Any, args: list[Value], loc: Location) -> Value:
+        # tex2D(s, t, ddx, ddy): the DirectX 9 reference's second overload, a texldd
+        variant_ = "grad" if variant == "" and len(args) == 4 else variant
+        return read(ev, args, loc, variant_)
+
+    def read(ev: Any, args: list[Value], loc: Location, variant: str) -> Value:
         s = args[0]
         if s.type.kind != "sampler" or s.sampler is None:
             raise ev.error(f"X3013: tex{dim}{variant}: the first argument must be a sampler", loc)
@@ -587,6 +592,20 @@ def _ubyte4(ev: Any, args: list[Value], loc: Location) -> Value:
     return Value(vector("int", 4), ev.a.trunc(_scale(ev, swz, 255.001953, loc), loc))
 
 
+def _frexp(ev: Any, args: list[Value], loc: Location, trees: list[Any]) -> Value:
+    """frexp(x, out e): x = m * 2^e with |m| in [0.5, 1), e = floor(log2|x|) + 1 (log and
+    exp as the target has them); 0 gives m = e = 0 (the DirectX 9 reference's frexp)."""
+    c = args[0].comps
+    e = ev.a.lanes("add", [ev.a.floor(_log2(ev, _abs(ev, c, loc), loc), loc),
+                           [ev.a.const(1.0)] * len(c)], loc)
+    m = ev.a.lanes("mul", [c, _exp2(ev, [x.neg() for x in e], loc)], loc)
+    zero = ev.a.compare("==", c, [ev.a.const(0.0)] * len(c), loc)
+    nothing = [ev.a.const(0.0)] * len(c)
+    t = _float(args[0])
+    _out(ev, trees, 1, Value(t, ev.a.select(zero, nothing, e, loc)))
+    return Value(t, ev.a.select(zero, nothing, m, loc))
+
+
 def _modf(ev: Any, args: list[Value], loc: Location, trees: list[Any]) -> Value:
     c = args[0].comps
     ip = ev.a.trunc(c, loc)
@@ -601,6 +620,66 @@ def _sincos(ev: Any, args: list[Value], loc: Location, trees: list[Any]) -> Valu
     return Value(HType("void"))
 
 
+def _mad(ev: Any, args: list[Value], loc: Location) -> Value:
+    """mad(m, a, b) = m * a + b per component, at the shape _shaped_args gave the three."""
+    m, a, b = args
+    t = m.type if m.type.size >= a.type.size else a.type
+    n = t.size
+    ext = lambda v: v.comps * n if len(v.comps) == 1 else v.comps[:n]
+    return Value(t, ev.a.lanes("mad", [ext(m), ext(a), ext(b)], loc))
+
+
+def _dst(ev: Any, args: list[Value], loc: Location) -> Value:
+    """dst(a, b) = (1, a.y * b.y, a.z, b.w): the distance vector of the DirectX 9 `dst`
+    instruction (vs has it; elsewhere its three moves and one multiply)."""
+    a, b = args[0].comps, args[1].comps
+    if ev.ctx.target.has("dst"):
+        return Value(vector("float", 4),
+                     split(ev.a.op("dst", [operand(ev.g, a), operand(ev.g, b)], loc)))
+    yy = ev.a.op("mul", [a[1], b[1]], loc, 1)
+    return Value(vector("float", 4), [ev.a.const(1.0), yy, a[2], b[3]])
+
+
+# The largest float32: a number past it is an infinity. isnan/isinf/isfinite compare with it
+# and with 0 by cmp (or sge), whose test fails for a NaN (`NaN >= 0` is false), so a NaN
+# takes each comparison's "false" side; x - x or x * 0 would fold to 0 in the DAG.
+_FLT_MAX = 3.4028234663852886e38
+
+
+def _finite_test(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    """1 where |x| <= FLT_MAX (a NaN fails the test: 0)."""
+    room = ev.a.lanes("add", [[ev.a.const(_FLT_MAX)] * len(c), [x.neg() for x in _abs(ev, c, loc)]], loc)
+    return _ge_zero(ev, room, loc)
+
+
+def _ge_zero(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    """1 where x >= 0, 0 where not (a NaN included)."""
+    one, zero = [ev.a.const(1.0)] * len(c), [ev.a.const(0.0)] * len(c)
+    if ev.ctx.target.has("cmp"):
+        return ev.a.lanes("cmp", [c, one, zero], loc)
+    return ev.a.lanes("sge", [c, zero], loc)
+
+
+def _is_nan(ev: Any, c: list[Operand], loc: Location) -> list[Operand]:
+    """1 - max(x >= 0, -x >= 0): every number passes one of the two tests, a NaN neither."""
+    some = ev.a.lanes("max", [_ge_zero(ev, c, loc), _ge_zero(ev, [x.neg() for x in c], loc)], loc)
+    return ev.a.logical_not(some, loc)
+
+
+def _classify(kind: str):
+    def f(ev: Any, args: list[Value], loc: Location) -> Value:
+        c = args[0].comps
+        if kind == "isnan":
+            out = _is_nan(ev, c, loc)
+        elif kind == "isfinite":
+            out = _finite_test(ev, c, loc)
+        else:   # isinf: neither finite nor a NaN
+            out = ev.a.lanes("add", [ev.a.logical_not(_finite_test(ev, c, loc), loc),
+                                     [x.neg() for x in _is_nan(ev, c, loc)]], loc)
+        return Value(args[0].type.with_base("bool"), out)
+    return f
+
+
 def _saturate(ev: Any, args: list[Value], loc: Location) -> Value:
     return Value(_float(args[0]), ev.a.saturate(args[0].comps, loc))
 
@@ -613,6 +692,14 @@ INTRINSICS: dict[str, tuple[tuple[int, ...], Callable[..., Value], bool]] = {
     "abs": ((1,), _unary(_abs), False),
     "sqrt": ((1,), _unary(_sqrt), False),
     "rsqrt": ((1,), _unary(_rsq), False),
+    # rcp and mad: the DirectX HLSL reference lists them from shader model 5 (their own
+    # instructions there); issue 30's fxc-checked set compiles them for SM2/3 as rcp and mad
+    "rcp": ((1,), _unary(lambda ev, c, loc: ev.a.scalar_lanes("rcp", [c], loc)), False),
+    "mad": ((3,), _mad, False),
+    "dst": ((2,), _dst, False),
+    "isnan": ((1,), _classify("isnan"), False),
+    "isinf": ((1,), _classify("isinf"), False),
+    "isfinite": ((1,), _classify("isfinite"), False),
     "exp2": ((1,), _unary(_exp2), False),
     "exp": ((1,), _unary(lambda ev, c, loc: _exp2(ev, _scale(ev, c, LOG2E, loc), loc)), False),
     "log2": ((1,), _unary(_log2), False),
@@ -659,6 +746,7 @@ INTRINSICS: dict[str, tuple[tuple[int, ...], Callable[..., Value], bool]] = {
     "refract": ((3,), _refract, False),
     "sincos": ((3,), _sincos, True),
     "modf": ((2,), _modf, True),
+    "frexp": ((2,), _frexp, True),
     "lit": ((3,), _lit, False),
     "any": ((1,), _any_all("any"), False),
     "all": ((1,), _any_all("all"), False),
@@ -667,7 +755,8 @@ INTRINSICS: dict[str, tuple[tuple[int, ...], Callable[..., Value], bool]] = {
     "fwidth": ((1,), _fwidth, False),
     "clip": ((1,), _clip, False),
     "D3DCOLORtoUBYTE4": ((1,), _ubyte4, False),
-    **{f"tex{dim}{variant}": ((4,) if variant == "grad" else (2,), _texture(dim, variant), False)
+    **{f"tex{dim}{variant}": ((4,) if variant == "grad" else (2, 4) if variant == "" else (2,),
+                              _texture(dim, variant), False)
        for dim in _TEX_KINDS for variant in ("", "proj", "bias", "lod", "grad")},
 }
 
@@ -675,9 +764,9 @@ INTRINSICS: dict[str, tuple[tuple[int, ...], Callable[..., Value], bool]] = {
 # Arguments brought to one shape before the builder sees them (fxc's rule for intrinsics
 # taking "the same type": a scalar spreads, a longer vector truncates with X3206): how many
 # of the leading arguments share it. And the vector size an intrinsic takes.
-_SAME_SHAPE = {"lerp": 3, "clamp": 3, "smoothstep": 3, "faceforward": 3, "reflect": 2,
+_SAME_SHAPE = {"mad": 3, "lerp": 3, "clamp": 3, "smoothstep": 3, "faceforward": 3, "reflect": 2,
                "refract": 2, "distance": 2, "dot": 2, "step": 2}
-_SIZE = {"cross": 3, "D3DCOLORtoUBYTE4": 4}
+_SIZE = {"cross": 3, "D3DCOLORtoUBYTE4": 4, "dst": 4}
 
 
 def _shaped_args(ev: Any, name: str, args: list[Value], loc: Location) -> list[Value]:

@@ -16,18 +16,25 @@ _LETTERS = {c: i for i, c in enumerate("xyzw")} | {c: i for i, c in enumerate("r
 _MATRIX_SWIZZLE = re.compile(r"^(?:_m([0-3])([0-3]))+$|^(?:_([1-4])([1-4]))+$")
 
 
-def store(ev: Any, target: Any, value: Value | Callable[[Value], Value]) -> None:
+def store(ev: Any, target: Any, value: Value | Callable[[Value], Value],
+          fixed: dict[int, int] | None = None) -> None:
     """Write `value` to the l-value `target` (a name, member, swizzle or constant index),
     walked without recursion: `a.b[2].xy` is the variable `a`, then member `b`, element 2,
     lanes xy. The values down that path are read once (an index expression is evaluated
     once: `a[i++] += 1` steps i once); the written one is rebuilt back up, each level a
     shallow copy (the rest is shared: values are never changed in place). `value` may be a
-    function of the l-value's current value (`+=`, `++`, an `out` argument's conversion)."""
+    function of the l-value's current value (`+=`, `++`, an `out` argument's conversion).
+
+    An index known only at run time (`a[k] = v`, fxc's pixel-shader arrays) writes every
+    element, each under the predicate "k is its index" (`fixed`: the indices already chosen
+    so, by the index node's id). A cast on the left (`(float3)v = ...`, `((float2)v).x = ...`,
+    as fxc allowed) writes the components the cast reads (cast_lanes)."""
     path: list[lark.Tree] = []
     root = target
-    while isinstance(root, lark.Tree) and root.data in ("member", "index"):
-        path.append(root)
-        root = root.children[0]
+    while isinstance(root, lark.Tree) and root.data in ("member", "index", "cast", "paren"):
+        if root.data != "paren":
+            path.append(root)
+        root = root.children[-1] if root.data == "cast" else root.children[0]
     path.reverse()                                   # from the variable out
     if not (isinstance(root, lark.Tree) and root.data == "var"):
         raise ev.error("X3025: l-value expected (a variable, member, swizzle or element)", root)
@@ -47,12 +54,23 @@ def store(ev: Any, target: Any, value: Value | Callable[[Value], Value]) -> None
             if base.type.kind != "struct" and base.type.numeric:
                 key = swizzle_lanes(ev, base.type, str(key), key, write=True)
             sub = member_of(ev, base, node.children[1])
+        elif node.data == "cast":
+            t = resolve_cast_type(ev, node)
+            key = cast_lanes(ev, base.type, t, node)
+            sub = ev.a.convert(base, t, ev.at(node), explicit=True)
         else:
             index_tree = node.children[1]
             if base.type.kind not in ("array", "matrix", "vector"):
                 raise ev.error(f"X3121: array, matrix, vector, or indexable object type expected "
                                f"in index expression, not '{base.type}'", node)
-            key = const_index(ev, ev.expr(index_tree), index_tree, base.type)
+            if fixed is not None and id(node) in fixed:
+                key = fixed[id(node)]
+            else:
+                index = ev.expr(index_tree)
+                if index.type.numeric and index.const_values() is None:
+                    _store_each(ev, target, value, node, base.type, index, fixed or {})
+                    return
+                key = const_index(ev, index, index_tree, base.type)
             sub = element_of(ev, base, key, node)
         keys.append(key)
         bases.append(sub)
@@ -61,11 +79,12 @@ def store(ev: Any, target: Any, value: Value | Callable[[Value], Value]) -> None
     for node, base, key in zip(reversed(path), reversed(bases[:-1]), reversed(keys)):
         out = base.shallow()
         spend(ev, len(out.comps) + len(out.fields) + len(out.elements), node)
-        if node.data == "member":
+        if node.data == "member" or node.data == "cast":
             if base.type.kind == "struct":
                 out.fields[str(node.children[1])] = value
             else:
-                v = ev.a.convert(value, vector(base.type.base, len(key)), ev.at(node.children[1]))
+                where = node.children[1] if node.data == "member" else node
+                v = ev.a.convert(value, vector(base.type.base, len(key)), ev.at(where))
                 for lane, comp in zip(key, v.comps):
                     out.comps[lane] = comp
         elif base.type.kind == "array":
@@ -75,7 +94,10 @@ def store(ev: Any, target: Any, value: Value | Callable[[Value], Value]) -> None
         else:
             out.comps[key] = value.comps[0]
         value = out
-    p = None if id(var) in ev.stepping else ev.active()     # an unrolled loop's counter
+    # an unrolled loop's counter is written whatever the predicate; a local of this
+    # function (not a parameter: an out one is copied back) under its own only (active)
+    local = all(v is not var for v in ev.scopes[0].values())
+    p = None if id(var) in ev.stepping else ev.active(local=local)
     var.value = ev.merge(var.value, value, p, ev.at(target))
     if written_global:         # every later read of the global, in any function, sees it
         ev.ctx.global_values[name] = var.value
@@ -120,6 +142,69 @@ def _global_copy(ev: Any, name: str, root: Any) -> Any:
     if "static" not in param.storage:
         ev.warn(f"{GLOBAL_WRITE}: '{name}' {_AS_GEC}", ev.at(root))
     return Var(t, ev.expr(root))       # its value now: the uniform's, or a written copy's
+
+
+def _store_each(ev: Any, target: Any, value: Any, node: Any, t: HType, index: Value,
+                fixed: dict[int, int]) -> None:
+    """`a[k] = value` with k known only at run time: element j written under "k == j" for
+    each j (k truncated to an integer, as HLSL converts an index), the predicate of the
+    statement kept. fxc wrote a pixel shader's arrays so, one compare and select each."""
+    loc = ev.at(node.children[1])
+    if index.type.size > 1:
+        ev.warn("X3206: implicit truncation of vector type", loc)
+    i = ev.a.convert_base(index.comps[:1], index.type.base, "int", loc)[0]
+    n = t.length if t.kind == "array" else t.rows if t.kind == "matrix" else t.size
+    spend(ev, n * max(t.element.components if t.kind == "array" else 4, 1), node)  # type: ignore[union-attr]
+    saved = ev.mask
+    try:
+        for j in range(n):
+            hit = ev.a.compare("==", [i], [ev.a.const(float(j))], loc)[0]
+            ev.mask = ev._and(saved, hit)
+            store(ev, target, value, {**fixed, id(node): j})
+    finally:
+        ev.mask = saved
+
+
+def pick_element(ev: Any, base: Value, index: Value, where: Any) -> Value:
+    """`base[k]` with k known only at run time, where no register is addressed by it (a pixel
+    shader's arrays, a local array, a matrix's rows, a vector's lanes): a select chain over
+    the elements, as fxc compiled it for ps_2_0 -- element 0, then for each j > 0 "k >= j ?
+    element j : so far" (one compare and select each; an index past the end reads the last
+    element, a negative one the first). k is truncated to an integer as HLSL converts it."""
+    t = base.type
+    loc = ev.at(where)
+    if not index.type.numeric:
+        raise ev.error(f"X3120: invalid type for index - index must be a scalar, not "
+                       f"'{index.type}'", where)
+    if index.type.size > 1:
+        ev.warn("X3206: implicit truncation of vector type", loc)
+    i = ev.a.convert_base(index.comps[:1], index.type.base, "int", loc)[0]
+    n = t.length if t.kind == "array" else t.rows if t.kind == "matrix" else t.size
+    # a compare and a select per element, each its components: the work budget's (a chain
+    # over a huge array is refused before it is built, not after)
+    spend(ev, n * (t.element.components if t.kind == "array" else t.cols) * 2, where)  # type: ignore[union-attr]
+    picked = element_of(ev, base, 0, where)
+    for j in range(1, n):
+        hit = ev.a.compare(">=", [i], [ev.a.const(float(j))], loc)[0]
+        picked = ev.merge(picked, element_of(ev, base, j, where), hit, loc)
+    return picked
+
+
+def cast_lanes(ev: Any, src: HType, t: HType, where: Any) -> list[int]:
+    """The components of a `src` value that a cast to `t` on the left of an assignment
+    names, in t's order: the first t.size numbers (a matrix cast keeps the upper-left
+    rows and columns). Only numeric casts that drop or keep components are l-values."""
+    if not (src.numeric and t.numeric) or t.size > src.size:
+        raise ev.error(f"X3025: l-value expected: a cast from '{src}' to '{t}' cannot be "
+                       "written", where)
+    if src.kind == "matrix" and t.kind == "matrix":
+        return [r * src.cols + c for r in range(t.rows) for c in range(t.cols)]
+    return list(range(t.size))
+
+
+def resolve_cast_type(ev: Any, node: Any) -> HType:
+    from effects.shaders.hlsl.context import resolve_type
+    return resolve_type(ev.ctx, node.children[0], ev.origin)
 
 
 def member_of(ev: Any, base: Value, name: Any) -> Value:

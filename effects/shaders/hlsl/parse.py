@@ -100,17 +100,20 @@ class _TypeNames:
     def process(self, stream):
         names = set(getattr(_LOCAL, "names", ()))
         after_typedef = False
+        naming = False                         # past a typedef's first name: `, W` names one
         for tok in stream:
             if tok.type == "NAME":
                 if tok.value in names:
                     tok = lark.Token.new_borrow_pos("TYPENAME", tok.value, tok)
                 elif after_typedef:            # `typedef float3 V;`: V names a type from here
                     names.add(tok.value)
-                    after_typedef = False
+                    after_typedef, naming = False, True
             elif tok.type == "TYPEDEF":
                 after_typedef = True
             elif tok.type == "SEMICOLON":
-                after_typedef = False
+                after_typedef = naming = False
+            elif tok.type == "COMMA" and naming:   # `typedef float4 C4, Colour;`
+                after_typedef = True
             yield tok
 
 

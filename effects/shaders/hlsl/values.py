@@ -106,6 +106,12 @@ class Loop:
     continued: Operand | None = None
     al: Any = None          # a real loop whose counter may index constants by aL (loops.AL)
     switch: bool = False    # a `switch` (switch.py): `break` leaves it, `continue` may not
+    # every 'broken' and 'returned' predicate made while it ran: the lanes that left it
+    # (livefold.py: its condition where they are 0)
+    left: list[Operand] = field(default_factory=list)
+    known: dict = field(default_factory=dict)      # livefold's constants, kept between asks
+    zero: dict = field(default_factory=dict)       # `left` as node id -> lanes, so far
+    zeroed: int = 0                                # how many of `left` are in `zero`
 
 
 @dataclass

@@ -438,21 +438,20 @@ def test_ps_3_0_indexes_constants_by_al_in_a_loop(backend, count):
         assert np.allclose(img[y, x], want, atol=TOL), (x, img[y, x], want)
 
 
-def test_ps_3_0_cannot_index_an_element_of_two_registers_in_a_uniform_loop():
-    # aL steps by 1 in a loop the effect counts, and ps_3_0 has no a0: X3512 at the index
+@pytest.mark.parametrize("count, want", [(0, (0, 0, 0, 1)), (1, (0.0625, 0, 0, 1)),
+                                         (3, (0.0625, 0, 0.25, 1))])
+def test_ps_3_0_picks_an_element_of_two_registers_in_a_uniform_loop_by_selects(backend, count,
+                                                                               want):
+    # aL steps by 1 and an element takes two registers, and ps_3_0 has no a0: fxc's select
+    # chain over the counter instead (issue 30: a run-time index where no aL applies). The
+    # list fills Color, Spare of each element in turn: Colors (1/8, 0, 0), (0, 0, 1/2), 0, 0
     text = LIGHTS_PS.replace("struct Light { float4 Color; };",
                              "struct Light { float4 Color; float4 Spare; };")
-    text = text.replace("Light Lights[4] = {0.125,0,0,0, 0,0.25,0,0, 0,0,0.5,0, 0.25,0.25,0.25,0};",
-                        "Light Lights[4];")
     fx = load(text, "compile vs_3_0 VS()", "compile ps_3_0 PS()")
-    with pytest.raises(EffectError) as err:
-        compile_shader(fx, "PS", "ps_3_0")
-    assert err.value.message == (
-        "X3512: array index must be a literal expression on ps_3_0 (ps_3_0 indexes constants "
-        "only by the counter of the innermost loop (aL), an element of one register when the "
-        "count is a uniform)")
-    loc = err.value.location
-    assert (loc.line, loc.column) == located(text, "i].Color")
+    asm = compile_shader(fx, "PS", "ps_3_0").text
+    assert "rep i0" in asm and "cmp" in asm and "aL" not in asm, asm
+    img = draw(fx, "geforce6800", backend, {"NumLights": count})
+    assert np.allclose(img[4, 4], want, atol=TOL), img[4, 4]     # u = 1/2 scales the sum
 
 
 PAIRS_LOOP = """struct Pair { float4 a; float4 b; };

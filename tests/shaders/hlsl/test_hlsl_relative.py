@@ -7,7 +7,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from effects.base.errors import EffectError
 from tests.shaders.hlsl.test_hlsl_render import backend, effect_for, fx_asm, pixel_uv, render  # noqa: F401
 
 TOL = 1.5 / 255
@@ -87,26 +86,33 @@ float4 PS(float4 c : COLOR0, float4 d : COLOR1) : COLOR {{ return c * 0.5 + d * 
             assert np.allclose(img[y, x], want, atol=TOL), (i, x, y, img[y, x], want)
 
 
-def _error(functions: str, vs: str | None = None, params: str = "") -> EffectError:
-    fx = effect_for(functions, vs=vs, params=params)
-    with pytest.raises(EffectError) as info:
-        fx_asm(fx, "VS" if vs else "PS", (vs or "compile ps_2_0").split()[1])
-    return info.value
+def test_a_run_time_index_in_a_pixel_shader_is_a_select_chain(backend):
+    # no address register in pixel shaders: fxc compared the index with each element's
+    # (issue 30; test_hlsl_valid_constructs.py has the rest of it)
+    fx = effect_for("float4 PS(float2 uv : TEXCOORD0) : COLOR\n{\n"
+                    "    return Palette[uv.x * 4 + 0.25];\n}", params=PALETTE)
+    text = fx_asm(fx, "PS", "ps_2_0")
+    assert "cmp" in text and "a0" not in text, text
+    img = render(fx, backend)
+    for x in range(8):
+        assert np.allclose(img[2, x], COLOURS[x // 2], atol=TOL), (x, img[2, x])
 
 
-def test_a_run_time_index_in_a_pixel_shader_is_x3512_at_the_index():
-    err = _error("float4 PS(float2 uv : TEXCOORD0) : COLOR\n{\n    return Palette[uv.x * 4];\n}",
-                 params=PALETTE)
-    assert err.message == ("X3512: array index must be a literal expression on ps_2_0 "
-                           "(pixel shaders have no relative addressing)")
-    assert (err.line, err.column) == (5, 20)
-
-
-def test_a_run_time_index_of_a_local_array_is_x3512():
-    err = _error("float4 VS(float4 p : POSITION) : POSITION\n{\n    float4 a[2] = { p, p * 2 };\n"
-                 "    return a[p.x];\n}\n" + PS, vs="compile vs_2_0 VS()")
-    assert err.message.startswith("X3512: array index must be a literal expression on vs_2_0")
-    assert (err.line, err.column) == (5, 14)
+@pytest.mark.parametrize("k", [0, 1, 2])
+def test_a_run_time_index_of_a_local_array_in_a_vertex_shader_is_a_select_chain(backend, k):
+    # a0 reaches constants only: a local array's element is chosen by compares
+    fx = effect_for("""
+float4 VS(float4 p : POSITION, out float4 c : COLOR0) : POSITION
+{
+    float4 a[3] = { float4(1, 0, 0, 1), float4(0, 1, 0, 1), float4(0.5, 0.5, p.z * 0 + 0.25, 1) };
+    c = a[Sel.x];
+    return p;
+}
+""" + PS, vs="compile vs_2_0 VS()", params=PALETTE)
+    assert "a0" not in fx_asm(fx, "VS", "vs_2_0")
+    img = render(fx, backend, params={"Sel": np.array([k, 0, 0, 0], np.float32)})
+    want = [(1, 0, 0, 1), (0, 1, 0, 1), (0.5, 0.5, 0.25, 1)][k]
+    assert np.allclose(img[4, 4], want, atol=TOL), img[4, 4]
 
 
 SKIN = """float4x3 Bones[8];
