@@ -125,6 +125,8 @@ def load_context(effect: Effect, target_name: str) -> Context:
     for f in effect.functions:
         origin = Origin(f.location, f.source, row_major=f.row_major, expanded=f.expanded)
         tree = parse(f.source, "function_def", origin, names)
+        if isinstance(tree.children[3], lark.Tree) and tree.children[3].data == "no_params":
+            tree.children[3] = None              # `f(void)` is `f()`
         fdef = FunctionDef(f.name, tree, origin, f)
         _check_declaration(ctx, fdef, ctx.functions.get(f.name, ()))
         ctx.functions.setdefault(f.name, []).append(fdef)

@@ -86,6 +86,12 @@ def _lit(consts: list[Any], width: int) -> list[float]:
     return [1.0, x if x > 0 else 0.0, spec, 1.0]
 
 
+def _dst(consts: list[Any], width: int) -> list[float]:
+    """The vertex shader's dst (its reference page): (1, a.y * b.y, a.z, b.w)."""
+    a, b = consts
+    return [1.0, float(np.float32(a[1]) * np.float32(b[1])), float(a[2]), float(b[3])]
+
+
 # op -> (argument widths or None for per-component, result width or None, fold function)
 FOLDS: dict[str, tuple[tuple[int, ...] | None, int | None, Callable[[list[Any], int], list[float]]]] = {
     **{op: (None, None, _lanes(ir)) for op, ir in IR_OP.items()
@@ -99,6 +105,7 @@ FOLDS: dict[str, tuple[tuple[int, ...] | None, int | None, Callable[[list[Any], 
     "dp2add": ((2, 2, 1), 1, _dp2add),
     "sincos": ((1,), 2, _sincos),
     "lit": ((4,), 4, _lit),
+    "dst": ((4, 4), 4, _dst),
 }
 
 

@@ -95,8 +95,9 @@ def store(ev: Any, target: Any, value: Value | Callable[[Value], Value],
             out.comps[key] = value.comps[0]
         value = out
     # an unrolled loop's counter is written whatever the predicate; a local of this
-    # function (not a parameter: an out one is copied back) under its own only (active)
-    local = all(v is not var for v in ev.scopes[0].values())
+    # function (not a parameter: an out one is copied back) under its own only (active); a
+    # global's copy is read by every function after this one, so its write keeps every predicate
+    local = not written_global and all(v is not var for v in ev.scopes[0].values())
     p = None if id(var) in ev.stepping else ev.active(local=local)
     var.value = ev.merge(var.value, value, p, ev.at(target))
     if written_global:         # every later read of the global, in any function, sees it

@@ -48,7 +48,7 @@ OPS: dict[str, OpRow] = {row.name: row for row in [
     OpRow("dp3", "reduce", "dp3", reads=3),
     OpRow("dp4", "reduce", "dp4", reads=4),
     OpRow("dp2add", "reduce", "dp2add", reads=2),
-    *_rows("shaped", "crs nrm sincos lit"),
+    *_rows("shaped", "crs nrm sincos lit dst"),
     OpRow("tex", "texture", "texld", opaque=True),
     *[OpRow(n, "texture", n, opaque=True) for n in ("texldp", "texldb", "texldl", "texldd")],
     OpRow("const", "leaf"),

@@ -151,3 +151,11 @@ def test_implicit_sizes_fxc_refuses(body, message):
         compile_shader(fx, "PS", "ps_2_0")
     assert info.value.message == message and info.value.language
     assert info.value.line == 3
+
+
+def test_a_void_parameter_list_is_no_parameters(backend):
+    # C's `f(void)`, as fxc accepted it (DirectX SDK samples write `float4 PS(void)`); a void
+    # *named* parameter stays X3038 (test_hlsl_invalid_corpus)
+    fx = effect_for("float Half(void) { return 0.5; }\n"
+                    "float4 PS(void) : COLOR { return float4(Half(), 0.25, 0, 1); }")
+    assert pixel(fx, backend)[:2] == pytest.approx([0.5, 0.25], abs=TOL)
