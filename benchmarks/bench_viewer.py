@@ -10,7 +10,8 @@ own mouse callbacks, so imgui's slider changes the value and the viewer draws th
 again (the pass lowered again with the new constant, then drawn). Counted: frames that drew
 a new picture per second of wall time, and the median and 95th-percentile time of one such
 frame (from the frame before it swapped to its own swap), with the median GL render inside.
-Every frame of the drag must draw anew (a frame that did not is counted and printed). Also
+Every frame whose value is new must draw anew (one that did not is counted and printed;
+at the slider's end the value holds at UIMax for a frame, with nothing new to draw). Also
 the process's CPU time per frame (all its threads: llvmpipe's rasteriser threads included):
 on a machine shared with other work the wall-clock rate is what is left over, and
 1000 / (CPU ms) is the rate the same work gives one otherwise idle core.
@@ -46,8 +47,12 @@ class Run:
         self.render_ms: list[float] = []
         self.cpu_ms: list[float] = []       # process CPU time of each such frame
         self.cpu_last = time.process_time()
-        self.stale = 0                      # frames of the run that drew nothing new
+        self.stale = 0                      # frames that drew nothing though their value was new
         self.x = 0.0
+        # the panel's values after the last two frames: a frame draws with what the panel set
+        # in the frame before it, so it has something new to draw only where those differ
+        # (at the slider's end the value holds at UIMax for a frame: nothing new to draw)
+        self.values: list[dict] = [{}, {}]
 
     def __call__(self, event) -> None:
         v = self.viewer
@@ -67,11 +72,14 @@ class Run:
             self.cpu_last = time.process_time()
             return
         cpu = time.process_time()
+        values = dict(v.state.tweaks.values)
+        new_value = self.param is None or self.values[-1] != self.values[-2]
+        self.values = [self.values[-1], values]
         if event.render_ms is not None:
             self.frames.append(event.time - self.last)
             self.render_ms.append(event.render_ms)
             self.cpu_ms.append(1000 * (cpu - self.cpu_last))
-        elif self.frame > 12:
+        elif self.frame > 12 and new_value:
             self.stale += 1
         self.cpu_last = cpu
         self.last = event.time
