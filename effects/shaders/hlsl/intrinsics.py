@@ -85,7 +85,7 @@ def _pow(ev: Any, a: list[Operand], b: list[Operand], loc: Location) -> list[Ope
         # has no exp/log for the rest
         n = [c.const_values() for c in b]
         if all(v is not None and 1 <= v[0] <= 16 and v[0] == int(v[0]) for v in n):
-            return [_power(ev, x, int(v[0]), loc) for x, v in zip(a, n)]  # type: ignore[index]
+            return [_power_lanes(ev, [x], int(v[0]), loc)[0] for x, v in zip(a, n)]  # type: ignore[index]
         raise ev.error(f"{ev.ctx.target.name} cannot compute pow of a non-constant exponent", loc)
     return _exp2(ev, ev.a.lanes("mul", [b, _log2(ev, a, loc)], loc), loc)
 
@@ -105,18 +105,6 @@ def _power_lanes(ev: Any, xs: list[Operand], n: int, loc: Location) -> list[Oper
         n >>= 1
         if n:
             square = ev.a.lanes("mul", [square, square], loc)
-    return result  # type: ignore[return-value]
-
-
-def _power(ev: Any, x: Operand, n: int, loc: Location) -> Operand:
-    """x^n by squaring."""
-    result, square = None, x
-    while n:
-        if n & 1:
-            result = square if result is None else ev.a.op("mul", [result, square], loc)
-        n >>= 1
-        if n:
-            square = ev.a.op("mul", [square, square], loc)
     return result  # type: ignore[return-value]
 
 
