@@ -139,7 +139,7 @@ def share_lit_diffuse(nodes: list[Node], roots: list[list[Operand]]) -> int:
     lits = {_lane(n.args[0], 0).sig(): n for n in nodes if n.op == "lit"}
     if not lits:
         return 0
-    swap: dict[int, Node] = {}
+    swap: dict[int, tuple[Node, int]] = {}
     for n in nodes:
         if n.op != "max" or n.width != 1:
             continue
@@ -147,14 +147,21 @@ def share_lit_diffuse(nodes: list[Node], roots: list[list[Operand]]) -> int:
             c = n.args[1 - k].const_values()
             lit = lits.get(n.args[k].sig())
             if lit is not None and c is not None and all(v == 0.0 for v in c):
-                swap[n.id] = lit
+                swap[n.id] = (lit, 1)
                 break
+    return _redirect(nodes, roots, swap)
+
+
+def _redirect(nodes: list[Node], roots: list[list[Operand]],
+              swap: dict[int, tuple[Node, int]]) -> int:
+    """Readers of each node in `swap` read lane `i` of its `(node, i)` instead, in the nodes'
+    arguments and the `roots`; returns how many nodes were replaced."""
     if not swap:
         return 0
 
     def read(o: Operand) -> Operand:
-        lit = swap.get(o.node.id)
-        return o if lit is None else Operand(lit, (1,) * o.width, o.negate)
+        hit = swap.get(o.node.id)
+        return o if hit is None else Operand(hit[0], (hit[1],) * o.width, o.negate)
 
     for n in nodes:
         if any(a.node.id in swap for a in n.args):
@@ -208,16 +215,4 @@ def pack_scalars(nodes: list[Node], roots: list[list[Operand]],
                 first.args, first.width = tuple(args), len(chunk)
                 for i, m in enumerate(chunk[1:], 1):
                     swap[m.id] = (first, i)
-    if not swap:
-        return 0
-
-    def read(o: Operand) -> Operand:
-        hit = swap.get(o.node.id)
-        return o if hit is None else Operand(hit[0], (hit[1],) * o.width, o.negate)
-
-    for n in nodes:
-        if any(a.node.id in swap for a in n.args):
-            n.args = tuple(read(a) for a in n.args)
-    for comps in roots:
-        comps[:] = [read(c) for c in comps]
-    return len(swap)
+    return _redirect(nodes, roots, swap)
