@@ -12,8 +12,9 @@ A policy is written as comma-separated parts, each at most once:
     quality          the highest Quality first, file order breaking ties
     cost             the lowest Cost first, file order breaking ties
     fidelity         the technique whose picture on this card is most like the effect's best
-                     technique's (SSIM, measured by the host: effects.host.fidelity), the
-                     least per-pixel work (`technique_work`) breaking ties, then file order
+                     technique's (SSIM, measured by the host: effects.host.fidelity); those
+                     within FIDELITY_TIE of the highest SSIM are alike, and among them the
+                     least per-pixel work (`technique_work`) is drawn, then file order
     max-passes=N     techniques with more than N passes are not chosen
     max-cost=X       techniques whose Cost is above X (or unknown) are not chosen
 
@@ -50,9 +51,14 @@ _POLICY_LOCATION = Location("<policy>", 1, 1)
 # on its card (SSIM, 1 alike) by position; None or absent where it could not be measured.
 Likeness = Callable[[Sequence["Validation | None"]], Mapping[int, "float | None"]]
 ORDERS = ("first", "quality", "cost", "fidelity")
-# fidelity scores are compared as shown (SSIM to three places): two techniques whose pictures
-# differ from the best's by less than a shown figure look alike, and the cheaper one is drawn
-FIDELITY_PLACES = 3
+# How far below the highest SSIM on a card a technique's SSIM may lie and still count as alike:
+# among the alike, the least work (`technique_work`) is drawn, then file order. SSIM moves in
+# its third place with a picture's noise (specular_bump.fx on a Radeon 8500: the ps.1.1 table
+# and multiply techniques score 0.9773 and 0.9775, pictures a person cannot tell apart), so a
+# difference under 0.01 is no choice; rounding to a shown figure was not a tie rule (0.9773 and
+# 0.9775 round apart, and the 10-slot technique won). Differences that decide a choice among
+# the bundled effects are 0.026 and up (tests/host/test_fidelity.py).
+FIDELITY_TIE = 0.01
 _POLICY_NAMES = "first, quality, cost, fidelity, max-passes=N, max-cost=X, comma-separated"
 
 
@@ -208,9 +214,18 @@ class Selection:
     def technique(self) -> Technique | None:
         return self.chosen.technique if self.chosen is not None else None
 
+    def _top_likeness(self) -> float | None:
+        """The highest fidelity score among the techniques the policy accepts (None: none
+        measured): the top of the band of alike techniques (FIDELITY_TIE)."""
+        scores = [s for i, s in self.likeness.items() if s is not None
+                  and i < len(self.validations) and self.policy.accepts(self.validations[i])]
+        return max(scores) if scores else None
+
     def _preference(self, v: Validation, position: int) -> tuple[float, float, int]:
         """Where the policy places a technique among those it accepts: its score (quality,
-        cost, fidelity then work, or none for file order), then its `position` in file order."""
+        cost, fidelity then work, or none for file order), then its `position` in file order.
+        Under the fidelity order every technique within FIDELITY_TIE of the highest score
+        takes that score, so work and then file order decide among them."""
         if self.policy.order == "quality":
             return (-technique_quality(v.technique), 0.0, position)
         if self.policy.order == "cost":
@@ -220,8 +235,12 @@ class Selection:
             if not v.ok:   # never drawn, so never measured: had it compiled, it might have won
                 return (-math.inf, 0.0, position)
             score = self.likeness.get(position)
-            shown = math.inf if score is None else -round(score, FIDELITY_PLACES)
-            return (shown, float(technique_work(v)), position)
+            if score is None:
+                return (math.inf, float(technique_work(v)), position)
+            top = self._top_likeness()
+            if top is not None and score >= top - FIDELITY_TIE:
+                score = top
+            return (-score, float(technique_work(v)), position)
         return (0.0, 0.0, position)
 
     @property

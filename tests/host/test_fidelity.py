@@ -14,7 +14,7 @@ from effects.d3d9.caps import load_profile
 from effects.host.fidelity import Likeness, Meter, likeness, meter_for, policy_for
 from effects.host.runtime import Runtime
 from effects.host.scene import scene_for
-from effects.validate.select import Policy, select, technique_work
+from effects.validate.select import FIDELITY_TIE, Policy, select, technique_work
 from tests.paths import ROOT
 
 FX_FILES = sorted((ROOT / "fxfiles").glob("*.fx"))
@@ -156,6 +156,45 @@ def test_equal_pictures_go_to_the_cheaper_technique():
     assert chosen.technique is tps1
     works = {v.technique.name: technique_work(v) for v in chosen.validations if v.ok}
     assert works["TPS1"] < works["TPS4"]
+
+
+def test_scores_within_the_tie_band_go_to_the_cheaper_technique_not_the_higher_figure():
+    """specular_bump.fx on a Radeon 8500: the ps.1.1 table technique and the ps.1.1 multiply
+    technique score 0.9773 and 0.9775 (pictures a person cannot tell apart: the same PSNR to a
+    tenth of a dB). Rounded to three places they fell either side of 0.9775 and the multiply
+    technique, with more slots, was drawn; within FIDELITY_TIE they are alike, and the
+    cheaper table technique -- file order's choice too -- is drawn."""
+    path = str(ROOT / "fxfiles" / "specular_bump.fx")
+    effect = effects.load_effect(path)
+    card = load_profile("radeon8500")
+    chosen = select(effect, card, policy_for(effect, scene=scene_for(path, None)))
+    by_name = {effect.techniques[i].name: s for i, s in chosen.likeness.items()}
+    table, multiply = by_name["SpecularTable_ps11"], by_name["SpecularMultiply_ps11"]
+    assert table == pytest.approx(0.9773, abs=5e-4) and multiply == pytest.approx(0.9775, abs=5e-4)
+    assert 0 < multiply - table < FIDELITY_TIE and round(table, 3) != round(multiply, 3)
+    works = {v.technique.name: technique_work(v) for v in chosen.validations if v.ok}
+    assert works["SpecularTable_ps11"] < works["SpecularMultiply_ps11"]
+    assert chosen.technique.name == "SpecularTable_ps11" == select(effect, card).technique.name
+
+
+def test_the_tie_band_is_measured_from_the_highest_score_not_chained():
+    """Three techniques scoring 0.95, 0.945 and 0.938: the first two are alike (within 0.01 of
+    0.95), the third is not, however cheap; among the alike the cheaper is drawn."""
+    effect = effects.load_effect(_FLAT.format(name="A", v=0.5) + _FLAT.format(name="B", v=0.4)
+                                 + _FLAT.format(name="C", v=0.3))
+    card = load_profile("geforce3")
+    made = select(effect, card, "first", lazy=False).validations
+    scores = {0: 0.95, 1: 0.945, 2: 0.938}
+    selection = select(effect, card, Policy("fidelity").with_likeness(lambda vs: scores),
+                       validations=made)
+    # the same shader slots each: work ties too, file order decides among the alike
+    assert [v.technique.name for v in selection.ranked] == ["A", "B", "C"]
+    selection.likeness = {0: 0.95, 1: 0.9415, 2: 0.938}    # B out of the band: by score
+    assert [v.technique.name for v in selection.ranked] == ["A", "B", "C"]
+    selection.likeness = {0: 0.945, 1: 0.95, 2: 0.941}     # A and C alike with B, file order
+    assert [v.technique.name for v in selection.ranked] == ["A", "B", "C"]
+    selection.likeness = {0: 0.93, 1: 0.95, 2: 0.941}      # A below the band
+    assert [v.technique.name for v in selection.ranked] == ["B", "C", "A"]
 
 
 def test_technique_work_counts_shader_slots_stages_and_a_fill_per_pass():
