@@ -517,6 +517,8 @@ technique Lit_ff
 <
     int Quality = 1;
     float Cost = 1;
+    // the same background as the shadowed techniques (without it the scene's clear, black)
+    string Script = "ClearSetColor=Background; Clear=Color; Clear=Depth; Pass=P0;";
 >
 {
     pass P0

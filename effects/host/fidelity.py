@@ -30,8 +30,9 @@ three channels.
 The size is fixed, `SIZE` (128 x 128), whatever the window or cell drawn: a choice must not
 change when a window is resized. At 128 px the 11 px window spans about a tenth of the
 bundled objects, so a highlight or a shadow edge counts as structure, and a bundled
-technique is drawn and measured in 56-206 ms (the mean of each effect; brdf.fx's first pictures pay
-its compiles, ~1.2 s) on the shared 2-core VM (`benchmarks/bench_fidelity.py`).
+technique is drawn and measured in 50-235 ms (the mean of each effect, two runs: 56-206 and
+51-233 ms; brdf.fx's pictures pay its compiles, 0.9-1.2 s) on the shared 2-core VM
+(`benchmarks/bench_fidelity.py`).
 """
 from __future__ import annotations
 
