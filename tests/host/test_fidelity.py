@@ -120,6 +120,37 @@ def test_bundled_fallbacks_measure_below_the_best_and_above_nothing():
     assert ps11.psnr > 30 > single.psnr > dot3.psnr > 15
 
 
+def test_ssim_gives_no_credit_for_a_texture_that_is_not_where_the_best_ones_is():
+    """What SSIM misjudges (docs/guide/cli.md), pinned so that a change of measure says so.
+    sdk9_style.fx on a GeForce3: Marble_ps11 draws marble veins (texreg2gb reads the ramp at
+    the noise, without ps_2_0's turbulence: fewer, blobbier veins) and the reflection;
+    Marble_dx7 draws no veins, a darker plain ball (mean 55 against the best's 80 levels).
+    Looked at side by side at 256 px a person takes the veined ball for the closer one, and
+    PSNR agrees; SSIM ranks the plain ball higher: veins that do not lie on the best's veins
+    add variance its structure term counts against, where a smooth surface loses less. Not a
+    colour difference: each of the three channels ranks them the same way (the measure is
+    already per channel). Multi-scale SSIM (Wang 2003) reverses this pair but also phong.fx's
+    DX7 pair, where SSIM agrees with the eye (see the test above), so the measure stays."""
+    path = str(ROOT / "fxfiles" / "sdk9_style.fx")
+    effect = effects.load_effect(path)
+    meter = meter_for(effect, scene=scene_for(path, None))
+    card = load_profile("geforce3")
+    veins = meter.measure(effect.technique("Marble_ps11"), card)
+    plain = meter.measure(effect.technique("Marble_dx7"), card)
+    assert veins.ssim == pytest.approx(0.503, abs=0.005)
+    assert plain.ssim == pytest.approx(0.529, abs=0.005)
+    assert veins.psnr == pytest.approx(17.1, abs=0.2) and plain.psnr == pytest.approx(14.7, abs=0.2)
+    best = meter.picture(effect.technique("Marble_ps20"), load_profile("refrast"))[..., :3]
+    ps11 = meter.picture(effect.technique("Marble_ps11"), card)[..., :3]
+    dx7 = meter.picture(effect.technique("Marble_dx7"), card)[..., :3]
+
+    def grey(picture, c):                   # one channel as a grey picture: SSIM of that channel
+        return np.repeat(picture[..., c:c + 1], 3, -1)
+    for c in range(3):
+        assert likeness(grey(ps11, c), grey(best, c)).ssim < likeness(grey(dx7, c), grey(best, c)).ssim
+    assert abs(ps11.mean() - best.mean()) < 2 < best.mean() - dx7.mean()
+
+
 def test_the_fidelity_policy_needs_the_hosts_measures():
     effect = effects.load_effect(FLAT)
     with pytest.raises(EffectError, match="policy 'fidelity'.*policy_for"):
