@@ -1,11 +1,13 @@
-"""Bytecode that fxc wrote (tests/data/d3dbc/MANIFEST.md: SDL's Direct3D 9 pixel shaders,
-fxc 10.1): it reads, writes back byte for byte, passes the assembly checks, validates per
-card and renders on both back ends; our compile of the HLSL source beside it draws the same
-picture as fxc's bytecode on both back ends."""
+"""Bytecode that fxc wrote (tests/data/d3dbc/MANIFEST.md: SDL's Direct3D 9 pixel shaders, fxc
+10.1 and 6.3, and mpv's YUV shaders, fxc 9.29): it reads, writes back byte for byte (fxc 9.x's
+constant infos aside, below), passes the assembly checks, validates per card and renders on
+both back ends; our compile of the HLSL source beside it draws the same picture as fxc's
+bytecode on both back ends."""
 from __future__ import annotations
 
 import hashlib
 import re
+import struct
 
 import numpy as np
 import pytest
@@ -21,24 +23,40 @@ from tests.shaders.d3dbc import mojoshader
 
 DATA = TESTS / "data" / "d3dbc"
 SDL = DATA / "sdl"
-HEADERS = sorted(SDL.glob("*.h")) + [SDL / "SDL2_shaders_d3d_excerpt.c"]
+MPV = DATA / "mpv"
+HEADERS = sorted(SDL.glob("*.h")) + [SDL / "SDL2_shaders_d3d_excerpt.c"] + sorted(MPV.glob("*.h"))
+SOURCES = [SDL / "D3D9_PixelShader_Palette.hlsl", MPV / "d3d_shader_yuv.hlsl"]
 SIZE = (48, 48)
 
 
-def _manifest_sha(name: str) -> str:
+def _manifest_sha(path) -> str:
+    name = path.relative_to(DATA).as_posix()
     row = next(line for line in (DATA / "MANIFEST.md").read_text().splitlines()
-               if line.startswith(f"| `sdl/{name}`"))
+               if line.startswith(f"| `{name}`"))
     return re.findall(r"`([0-9a-f]{64})`", row)[0]
 
 
 def test_every_file_is_in_the_manifest_with_its_hash():
-    for path in sorted(SDL.iterdir()):
-        assert f"`sdl/{path.name}`" in (DATA / "MANIFEST.md").read_text(), path.name
+    for path in sorted(SDL.iterdir()) + sorted(MPV.iterdir()):
+        assert f"`{path.relative_to(DATA).as_posix()}`" in (DATA / "MANIFEST.md").read_text()
     for path in HEADERS:
         data = read_header(path.read_text())[0][1]
-        assert hashlib.sha256(data).hexdigest() == _manifest_sha(path.name)
-    hlsl = SDL / "D3D9_PixelShader_Palette.hlsl"
-    assert hashlib.sha256(hlsl.read_bytes()).hexdigest() == _manifest_sha(hlsl.name)
+        assert hashlib.sha256(data).hexdigest() == _manifest_sha(path)
+    for path in SOURCES:
+        assert hashlib.sha256(path.read_bytes()).hexdigest() == _manifest_sha(path)
+
+
+def _without_reserved(data: bytes, binary) -> bytes:
+    """`data` with the Reserved halfword of each D3DXSHADER_CONSTANTINFO zeroed. fxc 9.x fills
+    it (mpv's headers: 2, 6, 10 = 4 * RegisterIndex + 2), 6.3 and 10.1 write 0; the format
+    gives it no meaning, so the reader keeps none and writes 0."""
+    out = bytearray(data)
+    # the CTAB comment's body starts after the comment token and the 'CTAB' fourcc (byte 12)
+    start = 12
+    count, infos = struct.unpack_from("<II", data, start + 12)
+    for k in range(count):
+        struct.pack_into("<H", out, start + infos + 20 * k + 10, 0)
+    return bytes(out)
 
 
 @pytest.mark.parametrize("path", HEADERS, ids=[p.name for p in HEADERS])
@@ -48,7 +66,11 @@ def test_fxc_bytecode_reads_checks_and_writes_back_byte_for_byte(path):
     assert binary.table.creator.startswith("Microsoft (R) HLSL Shader Compiler ")
     assert binary.table.target == binary.program.name == "ps_2_0"
     assert check(binary.program) == []
-    assert write_program(binary.program, binary.table) == data
+    written = write_program(binary.program, binary.table)
+    if binary.table.creator.endswith(" 9.29.952.3111"):
+        assert written != data and written == _without_reserved(data, binary)
+    else:
+        assert written == data
     # fxc's listing in the header's `#if 0` is our disassembly, line for line
     if path.suffix == ".h":
         listed = [line.strip() for line in path.read_text().split("#endif")[0].splitlines()
@@ -67,20 +89,22 @@ VS = """asm {
     mov oT0, v1
     mov oD0, c4
 }"""
+# mpv's shaders read t0-t2: the same coordinates in each
+VS3 = VS.replace("mov oT0, v1", "mov oT0, v1 mov oT1, v1 mov oT2, v1")
 
 
-def _pass(pixel_shader: str, extra: str = "") -> str:
+def _pass(pixel_shader: str, extra: str = "", vs: str = VS) -> str:
     return f"""pass P0 {{
         VertexShaderConstantF[0] = <WorldViewProjection>;
         VertexShaderConstantF[4] = {{1, 0.75, 0.5, 1}};
-        VertexShader = {VS};
+        VertexShader = {vs};
         Texture[0] = <ImageTexture>; Texture[1] = <SecondTexture>; Texture[2] = <ImageTexture>;
         {extra}
         PixelShader = {pixel_shader};
     }}"""
 
 
-def _effect(tmp_path, body: str, include: str = ""):
+def _effect(tmp_path, body: str, include: str = "", folder=SDL):
     ramp = np.zeros((1, 256, 4), np.uint8)       # a 1D palette, one texel high, as SDL binds
     ramp[0, :, 0] = np.arange(256)
     ramp[0, :, 1] = 255 - np.arange(256)
@@ -92,11 +116,11 @@ texture ImageTexture < string ResourceName = "{ROOT / 'fxfiles' / 'textures' / '
 texture SecondTexture < string ResourceName = "{tmp_path / 'palette.png'}"; >;
 {body}
 """
-    return effects.load_effect(text, include_dirs=[str(SDL)])
+    return effects.load_effect(text, include_dirs=[str(folder)])
 
 
-def _fxc(name: str) -> str:
-    data = read_header((SDL / name).read_text())[0][1]
+def _fxc(name: str, folder=SDL) -> str:
+    data = read_header((folder / name).read_text())[0][1]
     return "asm { " + program_text(read_shader(data, name).program) + " }"
 
 
@@ -176,3 +200,50 @@ technique Planes {{ {_pass("asm { ps_2_0 dcl t0.xy dcl_2d s0 dcl_2d s1 texld r0,
                      (y + 1.772 * u0) * 0.5], -1)
     got = out.image[..., :3][drawn] / 255.0
     assert np.abs(got - np.clip(want, 0, 1)).max() <= 3 / 255
+
+
+# mpv's colour matrix (c0-c3), row vectors times it as the HLSL's mul(c, colormatrix): BT.601
+# limited range, the last row the offsets (c.w = 1).
+COLORMATRIX = [[1.164, 1.164, 1.164, 0], [0, -0.392, 2.017, 0], [1.596, -0.813, 0, 0],
+               [-0.871, 0.529, -1.082, 1]]
+
+
+@pytest.fixture(scope="module", params=["420P", "NV12"])
+def mpv_effect(request, tmp_path_factory):
+    variant = request.param
+    header = f"d3d_shader_{variant.lower()}.h"
+    tmp = tmp_path_factory.mktemp(variant)
+    effect = _effect(tmp, f"""
+technique Fxc {{ {_pass(_fxc(header, MPV), "PixelShaderConstantF[0] = <colormatrix>;", VS3)} }}
+technique Ours {{ {_pass("compile ps_2_0 main()", vs=VS3)} }}
+technique Planes {{ {_pass("asm { ps_2_0 dcl t0.xy dcl_2d s0 dcl_2d s1 texld r0, t0, s0 "
+                           "texld r1, t0, s1 mov r0.y, r1.x mov r0.z, r1.z mov oC0, r0 }")} }}
+""", include=f'#define USE_{variant} 1\n#include "d3d_shader_yuv.hlsl"', folder=MPV)
+    return variant, effect
+
+
+def test_mpvs_fxc_bytecode_validates_per_card(mpv_effect):
+    _, effect = mpv_effect
+    assert effect.validate("Fxc", effects.load_profile("radeon9700")).ok
+    assert not effect.validate("Fxc", effects.load_profile("geforce3")).ok
+
+
+@pytest.mark.parametrize("backend", ["numpy", "gl"])
+def test_our_compile_and_fxcs_draw_the_same_mpv_yuv_picture(mpv_effect, backend):
+    variant, effect = mpv_effect
+    frames = {t: render_frame(effect, "radeon9700", technique=t, size=SIZE, backend=backend,
+                              params={"colormatrix": COLORMATRIX})
+              for t in ("Fxc", "Ours", "Planes")}
+    fxc, ours, planes = (frames[t].image.astype(int) for t in ("Fxc", "Ours", "Planes"))
+    drawn = planes[..., 3] > 0
+    assert drawn.mean() > 0.4 and not frames["Fxc"].warnings
+    assert np.abs(fxc - ours).max() <= 1
+    # by hand: (Y, U, V, 1) times the matrix; 420P reads V from tex2 (the stone image's red,
+    # as Y), NV12 from tex1's blue (the palette's, 0)
+    y = planes[..., 0][drawn] / 255.0
+    u = planes[..., 1][drawn] / 255.0
+    v = y if variant == "420P" else planes[..., 2][drawn] / 255.0
+    m = np.array(COLORMATRIX)
+    want = np.stack([y, u, v, np.ones_like(y)], -1) @ m
+    got = fxc[..., :3][drawn] / 255.0
+    assert np.abs(got - np.clip(want[:, :3], 0, 1)).max() <= 3 / 255
