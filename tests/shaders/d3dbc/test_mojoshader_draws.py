@@ -20,6 +20,8 @@ What does not draw the same, and why (each case asserted, so a change on either 
   (mojoshader_profile_glsl.c) builds the dot products from the registers' names ("this code
   counts on the register not having swizzles, etc."), so the source modifier is lost; the same
   effect with `_bx2` taken off those sources draws, on our GL back end, MojoShader's picture.
+- On the GeForce3 (not the card above) ps_1_x differs by design: MojoShader computes it in
+  float, we model the card's 8-bit fixed point (`test_on_the_geforce3_...`).
 """
 from __future__ import annotations
 
@@ -143,3 +145,28 @@ def test_mojoshaders_translation_draws_what_we_draw(backend, tmp_path, name, tec
 def test_every_bundled_technique_with_shaders_is_drawn_or_explained():
     assert len(TECHNIQUES) >= 20
     assert set(NOT_TRANSLATED) | MODIFIER_DROPPED <= set(TECHNIQUES)
+
+
+PS1X = [("hemisphere.fx", "HemisphereOcclusion_ps11"), ("hemisphere.fx", "HemispherePerPixel_ps11"),
+        ("sdk8_style.fx", "TPS1"), ("specular_bump.fx", "SpecularMultiply_ps11")]
+
+
+@pytest.mark.parametrize("name,technique", PS1X, ids=[f"{f}:{t}" for f, t in PS1X])
+def test_on_the_geforce3_mojoshader_draws_ps1x_in_float(backend, name, technique):
+    """MojoShader's GLSL computes ps_1_x in float; on the GeForce3 we model its 8-bit signed
+    fixed point (effects/d3d9/precision.py). So its GeForce3 picture is our picture where
+    ps_1_x is not quantised (the Radeon 9700's lowering), and SpecularMultiply's ^16 by
+    repeated 8-bit products bands in ours and not in MojoShader's."""
+    from tests.shaders.d3dbc.mojo_gl import MojoRuntime
+    effect = effects.load_effect(ROOT / "fxfiles" / name)
+    params = params_for(name)
+    backend.own_draws = 0
+    mojo = MojoRuntime(effect, "geforce3", size=SIZE, params=params,
+                       backend=backend).render(technique).image.astype(int)
+    assert not backend.own_draws
+    unquantised = _ours(effect, technique, params, "gl")                    # radeon9700
+    quantised = render_frame(effect, "geforce3", technique=technique, size=SIZE, params=params,
+                             backend="gl").image.astype(int)
+    assert np.abs(mojo - unquantised).max() <= 2
+    if technique == "SpecularMultiply_ps11":
+        assert np.abs(mojo - quantised).max() >= 5
