@@ -1,0 +1,81 @@
+"""fxc's code size against ours (issue 31's ours/fxc ratio) on the shaders fxc compiled whose
+HLSL is beside them (tests/data/d3dbc/MANIFEST.md): for each pair, the instruction slots
+(texture + arithmetic), counted the same way for both (`compute_stats`, what the card checks),
+the slot count fxc's own listing prints (-1: the file has no listing), and the temporaries.
+
+    .venv/bin/python benchmarks/bench_fxc_slots.py
+
+A pair whose HLSL this framework refuses (SDL 2's Direct3D 10 syntax) is not listed; the
+bytecode-only shaders (SDL's YUV) have no pair.
+"""
+from __future__ import annotations
+
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+import effects  # noqa: E402
+from effects.shaders.asm.stats import compute_stats  # noqa: E402
+from effects.shaders.d3dbc import read_header, read_shader  # noqa: E402
+from effects.shaders.hlsl import compile_state  # noqa: E402
+
+DATA = ROOT / "tests" / "data" / "d3dbc"
+WINE = "wine/d3d10core_test_create_shader.c"
+# (fxc's file, its array, the HLSL file, the defines fxc was given, entry, target)
+PAIRS = [
+    ("sdl/D3D9_PixelShader_Palette.h", 0, "sdl/D3D9_PixelShader_Palette.hlsl", {}, "main",
+     "ps_2_0"),
+    ("mpv/d3d_shader_420p.h", 0, "mpv/d3d_shader_yuv.hlsl", {"USE_420P": "1"}, "main", "ps_2_0"),
+    ("mpv/d3d_shader_nv12.h", 0, "mpv/d3d_shader_yuv.hlsl", {"USE_NV12": "1"}, "main", "ps_2_0"),
+    (WINE, 0, WINE, {}, "main", "vs_2_0"),
+    (WINE, 1, WINE, {}, "main", "vs_3_0"),
+]
+
+
+def _hlsl(source: Path) -> str:
+    """The HLSL of `source`: the file, or the `#if 0` block of a C file that carries it."""
+    text = source.read_text()
+    if source.suffix == ".c":
+        return text[text.index("#if 0") + len("#if 0"):text.index("#endif")]
+    return text
+
+
+def ours(source: Path, defines: dict[str, str], entry: str, target: str):
+    """Our compile of `entry` in `source` (in an effect, after the defines)."""
+    state = "PixelShader" if target.startswith("ps") else "VertexShader"
+    lines = [f"#define {k} {v}" for k, v in defines.items()]
+    lines += [_hlsl(source), f"technique T {{ pass P {{ {state} = compile {target} {entry}(); }} }}"]
+    effect = effects.load_effect("\n".join(lines), include_dirs=[str(source.parent)])
+    value = effect.techniques[0].passes[0].state(state).value
+    return compile_state(effect, value).program
+
+
+def measure() -> list[tuple[str, int, int, int, int, int]]:
+    rows = []
+    for header, array, source, defines, entry, target in PAIRS:
+        text = (DATA / header).read_text()
+        name, data = read_header(text)[array]
+        fxc = read_shader(data, header).program
+        listed = re.search(r"approximately (\d+) instruction slots? used", text)
+        header = header if header != WINE else f"{header}:{name}"
+        mine = ours(DATA / source, defines, entry, target)
+        a, b = compute_stats(fxc), compute_stats(mine)
+        rows.append((header, a.total_slots, int(listed.group(1)) if listed else -1,
+                     b.total_slots, a.temps_used, b.temps_used))
+    return rows
+
+
+def main() -> None:
+    rows = measure()
+    print(f"{'fxc header':46} {'fxc':>4} {'listed':>6} {'ours':>4} {'ours/fxc':>8} "
+          f"{'temps fxc':>9} {'ours':>4}")
+    for name, fxc, listed, mine, t_fxc, t_mine in rows:
+        print(f"{name:46} {fxc:4d} {listed:6d} {mine:4d} {mine / fxc:8.2f} {t_fxc:9d} "
+              f"{t_mine:4d}")
+
+
+if __name__ == "__main__":
+    main()
