@@ -356,9 +356,10 @@ class _Reader:
         t, value, flags, annotations, where = raw
         spec = self.spec(t)
         dims = (t.elements,) if t.elements else ()
+        # (the class says nothing of row_major / column_major: fxc writes MATRIX_ROWS for
+        # every matrix parameter, as Wine's test blobs show; the shaders' constant tables
+        # carry the packing)
         storage = ("shared",) if flags & FLAG_SHARED else ()
-        if t.cls == PC_MATRIX_ROWS:
-            storage += ("row_major",)
         loc = Location(self.path, 1, where + 1)
         if t.cls == PC_STRUCT:
             model_value: Any = self.struct_value(t, value, where)

@@ -72,9 +72,11 @@ class _Writer:
             self.names[text] = self.put(struct.pack("<I", len(raw)) + raw)
         return self.names[text]
 
-    def typedef_bytes(self, t: TypeDef) -> bytes:
-        out = struct.pack("<5I", t.type, t.cls, self.name(t.name), self.name(t.semantic),
-                          t.elements)
+    def typedef_bytes(self, t: TypeDef, names: list[tuple[int, str]], at: int = 0) -> bytes:
+        """A typedef with its name and semantic offsets left 0; `names` gets (position in the
+        bytes, text) for each to patch once the names are written."""
+        names += [(at + 8, t.name), (at + 12, t.semantic)]
+        out = struct.pack("<5I", t.type, t.cls, 0, 0, t.elements)
         if t.cls == fmt.PC_VECTOR:
             out += struct.pack("<2I", t.columns, t.rows)
         elif t.cls in (fmt.PC_SCALAR, fmt.PC_MATRIX_ROWS, fmt.PC_MATRIX_COLUMNS):
@@ -82,11 +84,18 @@ class _Writer:
         elif t.cls == fmt.PC_STRUCT:
             out += struct.pack("<I", len(t.members))
             for m in t.members:
-                out += self.typedef_bytes(m)
+                out += self.typedef_bytes(m, names, at + len(out))
         return out
 
-    def typedef(self, t: TypeDef) -> int:
-        return self.put(self.typedef_bytes(t))
+    def typed(self, t: TypeDef, value: bytes) -> tuple[int, int]:
+        """Put a typedef, then its value, then its names (fxc's order, as its binaries in
+        Wine's tests show): the typedef's and the value's offsets."""
+        names: list[tuple[int, str]] = []
+        type_at = self.put(self.typedef_bytes(t, names))
+        value_at = self.put(value)
+        for pos, text in names:
+            struct.pack_into("<I", self.data, type_at + pos, self.name(text))
+        return type_at, value_at
 
     def new_object(self) -> int:
         ident = self.next_id
@@ -116,7 +125,7 @@ class _Writer:
                             p.value)
         value = self.value(t, p.value, p.location, (index, p))
         flags = fmt.FLAG_SHARED if "shared" in p.storage else 0
-        out = struct.pack("<4I", self.typedef(t), self.put(value), flags, len(p.annotations))
+        out = struct.pack("<4I", *self.typed(t, value), flags, len(p.annotations))
         return out + b"".join(self.annotation(a) for a in p.annotations)
 
     def param_type(self, name: str, spec: Any, dims: tuple[int, ...], semantic: str | None,
@@ -131,13 +140,16 @@ class _Writer:
                            members=members)
         if spec.is_numeric:
             kind = fmt.NUMERIC_TYPES[spec.base]
-            if spec.rows == 1 and spec.cols == 1:
-                cls, rows, cols = fmt.PC_SCALAR, 1, 1
-            elif spec.rows == 1:
+            # float1 is a vector and float1x1 a matrix, as written (the spelling tells them
+            # from a scalar); fxc writes every matrix parameter as MATRIX_ROWS (Wine's
+            # test_effect_parameter_value blobs)
+            spelled = (spec.spelling or "").lower()
+            if spec.rows > 1 or re.search(r"[1-4]x[1-4]$", spelled) or spelled == "matrix":
+                cls, rows, cols = fmt.PC_MATRIX_ROWS, spec.rows, spec.cols
+            elif spec.cols > 1 or re.search(r"[1-4]$", spelled) or spelled == "vector":
                 cls, rows, cols = fmt.PC_VECTOR, 1, spec.cols
             else:
-                cls = fmt.PC_MATRIX_ROWS if "row_major" in storage else fmt.PC_MATRIX_COLUMNS
-                rows, cols = spec.rows, spec.cols
+                cls, rows, cols = fmt.PC_SCALAR, 1, 1
             return TypeDef(kind, cls, name, semantic or "", elements, rows, cols)
         key = (spec.base, spec.dim.upper() if spec.dim else "")
         if key not in fmt.OBJECT_TYPES:
@@ -267,18 +279,21 @@ class _Writer:
             value = struct.pack("<I", ident)
         else:
             value = self.value(t, a.value, a.location, None)
-        return struct.pack("<2I", self.typedef(t), self.put(value))
+        return struct.pack("<2I", *self.typed(t, value))
 
     # -- techniques, passes, states -----------------------------------------------------------
     def technique(self, index: int, t: Any) -> bytes:
-        out = struct.pack("<3I", self.name(t.name), len(t.annotations), len(t.passes))
-        out += b"".join(self.annotation(a) for a in t.annotations)
+        # a pass's name follows its annotations and states, the technique's its passes
+        annotations = b"".join(self.annotation(a) for a in t.annotations)
+        passes = b""
         for k, p in enumerate(t.passes):
-            out += struct.pack("<3I", self.name(p.name), len(p.annotations), len(p.states))
-            out += b"".join(self.annotation(a) for a in p.annotations)
-            out += b"".join(self.state(s, (index, k, fmt.NONE, n))
-                            for n, s in enumerate(p.states))
-        return out
+            body = b"".join(self.annotation(a) for a in p.annotations)
+            body += b"".join(self.state(s, (index, k, fmt.NONE, n))
+                             for n, s in enumerate(p.states))
+            passes += struct.pack("<3I", self.name(p.name), len(p.annotations),
+                                  len(p.states)) + body
+        return struct.pack("<3I", self.name(t.name), len(t.annotations),
+                           len(t.passes)) + annotations + passes
 
     def state(self, s: StateAssignment, where: tuple[int, int, int, int]) -> bytes:
         from effects.d3d9.states import lookup_state
@@ -315,11 +330,11 @@ class _Writer:
                 else:
                     raise self.fail(f"{s.name}: a {type(value).__name__} value is not written",
                                     s.location)
-            return struct.pack("<4I", info.fx2, index, self.typedef(t), self.put(raw))
+            return struct.pack("<4I", info.fx2, index, *self.typed(t, raw))
         t, raw = self.state_number(info, value, s.location)
         if isinstance(value, ParamRef):
             resource(fmt.USAGE_PARAMETER, _reference(value))
-        return struct.pack("<4I", info.fx2, index, self.typedef(t), self.put(raw))
+        return struct.pack("<4I", info.fx2, index, *self.typed(t, raw))
 
     def state_number(self, info: Any, value: Any, location: Location) -> tuple[TypeDef, bytes]:
         """The typedef and value bytes of a numeric state (a ParamRef's placeholder zeros)."""
