@@ -244,7 +244,9 @@ class _Reader:
             a, b = self.u32(pos, "a size"), self.u32(pos + 4, "a size")
             t.columns, t.rows = (a, b) if cls == PC_VECTOR else (b, a)
             pos += 8
-            if kind not in NUMERIC_BY_TYPE or not (1 <= t.rows <= 4 and 1 <= t.columns <= 4):
+            if kind not in NUMERIC_BY_TYPE or not (1 <= t.rows <= 4 and 1 <= t.columns <= 4) \
+                    or (cls == PC_SCALAR and t.rows * t.columns != 1) \
+                    or (cls == PC_VECTOR and t.rows != 1):
                 raise self.fail(f"type {kind} class {cls} of {t.rows}x{t.columns} is no "
                                 "numeric type D3DX has", where)
         elif cls == PC_STRUCT:
