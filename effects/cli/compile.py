@@ -27,8 +27,8 @@ _COMMAND_LINE = Location("<command line>", 1, 1)
 def add_compile(sub: Any, load: Any) -> None:
     p = sub.add_parser("compile", help="the assembly each shader of a pass runs (fxc /Fc "
                        "listing); one shader's bytecode (fxc /Fo, /Fh); a bytecode's listing")
-    p.add_argument("file", help="effect file (.fx); with --disassemble a shader's bytecode "
-                   "(.pso, .vso, .cso) or an fxc /Fh header (.h)")
+    p.add_argument("file", help="effect file (.fx or .fxo); with --disassemble a shader's bytecode "
+                   "(.pso, .vso, .cso), an fxc /Fh header (.h) or an effect binary (.fxo)")
     p.add_argument("--technique", "-t", metavar="T", help="technique (default: the first)")
     p.add_argument("--pass", dest="pass_index", type=int, default=None, metavar="N",
                    help="pass number from 0 (default: every pass)")

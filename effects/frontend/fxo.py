@@ -171,7 +171,7 @@ class _Reader:
 
     # -- the effect -------------------------------------------------------------------------
     def read(self, effect_type: type[Effect]) -> Effect:
-        if len(self.data) < 8 or not is_effect_binary(self.data):
+        if not is_effect_binary(self.data):
             raise self.fail("not an fx_2_0 effect binary (its first 4 bytes are not the tag "
                             "01 09 FF FE)", 0)
         start = self.at(self.u32(4, "the offset of the effect description"),
