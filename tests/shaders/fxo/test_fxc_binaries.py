@@ -1,4 +1,4 @@
-"""fx_2_0 binaries fxc wrote for others (tests/data/fxo, MANIFEST.md there): each reads with
+"""fx_2_0 binaries fxc wrote for others (tests/data/fxo/MANIFEST.md): each reads with
 the parameters, types and defaults its source declares; source and binary give the same matrix
 and pixels on both back ends; and our writer, given the source, writes fxc's bytes."""
 from __future__ import annotations
