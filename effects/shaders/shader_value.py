@@ -107,7 +107,7 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
     into their registers and its samplers bind as a compiled HLSL shader's do. Errors are
     located in the file the bytecode came from (its byte offset there)."""
     from effects.base.errors import EffectError
-    from effects.shaders.d3dbc import read_shader
+    from effects.shaders.d3dbc import BytecodeError, read_shader
     from effects.shaders.hlsl.shader import CompiledShader
     from effects.shaders.asm.text import program_text
     start = value.location.column - 1 if value.location.line == 1 else 0
@@ -119,6 +119,16 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
                                             f"(at byte {column - 1})"),
                         Location(value.location.path, 1, column)) from None
     program, table = binary.program, binary.table
+    for at, code, _ in binary.comments:
+        if code == "PRES":
+            # fxc's preshader (a PRES comment: FXLC code, CLIT literals, its own CTAB) fills
+            # constant registers on the host before each draw; drawing without it would read
+            # zeros there, a wrong picture: refused until FXLC is evaluated
+            column = start + at + 1
+            raise BytecodeError(f"the shader carries a preshader (PRES comment: FXLC code that "
+                                f"fills constant registers on the host), which is not "
+                                f"evaluated yet (at byte {column - 1})",
+                                Location(value.location.path, 1, column))
     if table is None or not table.constants:
         return program, None
     constants: dict[str, tuple[int, int]] = {}
