@@ -154,6 +154,26 @@ class ShaderBlock:
     __hash__ = None  # type: ignore[assignment]
 
 
+@dataclass(eq=False)
+class BytecodeShader(ShaderBlock):
+    """A shader given as Direct3D 9 bytecode (a shader object of an fx_2_0 effect binary):
+    `data` is the token stream, `version` read from its version token, `source` empty. It is
+    a ShaderBlock to everything that asks which version a shader is; its program is read from
+    the bytecode (effects.shaders.shader_value.shader_of), never assembled from text.
+    `location` is where the bytecode starts in the binary (line 1, the byte offset + 1 as the
+    column), so an error in it is located in the file."""
+
+    data: bytes = b""
+    # the program and bindings read from `data`, as effects.shaders.shader_value keeps them
+    # (derived: no init, repr or compare)
+    _read: Any = field(default=None, init=False, repr=False, compare=False)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, BytecodeShader) and self.data == other.data
+
+    __hash__ = None  # type: ignore[assignment]
+
+
 @dataclass(frozen=True, slots=True)
 class CompileShader:
     """`compile vs_1_1 func(args)`: an HLSL function compiled for a profile (args as source text)."""

@@ -59,6 +59,7 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
     Limit("mesh_indices", 3_000_000, "indices", "indices of one mesh (3 per triangle)"),
     # compiled shaders (effects/shaders/d3dbc): a ps_3_0 of 32,768 slots is ~1 MiB of tokens
     Limit("bytecode_bytes", 4 * _MIB, "bytes", "size of one shader's bytecode"),
+    Limit("effect_binary_bytes", 16 * _MIB, "bytes", "size of one fx_2_0 effect binary (.fxo)"),
     # shaders: nested rep / loop counts multiply (four nested 255s are 4e9 iterations)
     Limit("shader_loop_iterations", 65_536, "iterations",
           "body runs of the innermost of nested rep / loop blocks (the counts' product)"),

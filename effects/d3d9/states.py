@@ -307,6 +307,10 @@ class StateInfo:
     registers: int | None = None
     legacy: bool = False
     limit: CapsLimit | None = None
+    # the state's number in an fx_2_0 effect binary (D3DX's state table, as Wine's
+    # dlls/d3dx9_36/effect.c `state_table` lists it); None for a state the format cannot hold
+    # (the DX8 render states Direct3D 9 dropped)
+    fx2: int | None = None
 
 
 def _identity() -> np.ndarray:
@@ -328,125 +332,126 @@ def _rs(name: str, code: int, type_: str, default: object, enum: EnumTable | Non
 
 _RENDER_STATES = (
     # ZEnable: TRUE when the device has an automatic depth buffer, which every render here has.
-    _rs("ZEnable", 7, "enum", _ev(D3DZBUFFERTYPE, "True"), D3DZBUFFERTYPE),
-    _rs("FillMode", 8, "enum", _ev(D3DFILLMODE, "Solid"), D3DFILLMODE),
+    _rs("ZEnable", 7, "enum", _ev(D3DZBUFFERTYPE, "True"), D3DZBUFFERTYPE, fx2=0),
+    _rs("FillMode", 8, "enum", _ev(D3DFILLMODE, "Solid"), D3DFILLMODE, fx2=1),
     _rs("ShadeMode", 9, "enum", _ev(D3DSHADEMODE, "Gouraud"), D3DSHADEMODE, limit=CapsLimit(
-        "ShadeCaps", "COLORPHONGRGB", lambda v: v == "PHONG", what="lights per pixel")),
+        "ShadeCaps", "COLORPHONGRGB", lambda v: v == "PHONG", what="lights per pixel"), fx2=2),
     _rs("ZWriteEnable", 14, "bool", True, limit=CapsLimit(
-        "PrimitiveMiscCaps", "MASKZ", lambda v: not v, what="turns depth writes off")),
-    _rs("AlphaTestEnable", 15, "bool", False),
-    _rs("LastPixel", 16, "bool", True),
-    _rs("SrcBlend", 19, "enum", _ev(D3DBLEND, "One"), D3DBLEND, limit=_SRC_BLEND),
-    _rs("DestBlend", 20, "enum", _ev(D3DBLEND, "Zero"), D3DBLEND, limit=_DEST_BLEND),
+        "PrimitiveMiscCaps", "MASKZ", lambda v: not v, what="turns depth writes off"), fx2=3),
+    _rs("AlphaTestEnable", 15, "bool", False, fx2=4),
+    _rs("LastPixel", 16, "bool", True, fx2=5),
+    _rs("SrcBlend", 19, "enum", _ev(D3DBLEND, "One"), D3DBLEND, limit=_SRC_BLEND, fx2=6),
+    _rs("DestBlend", 20, "enum", _ev(D3DBLEND, "Zero"), D3DBLEND, limit=_DEST_BLEND, fx2=7),
     _rs("CullMode", 22, "enum", _ev(D3DCULL, "CCW"), D3DCULL, limit=CapsLimit(
         "PrimitiveMiscCaps", renamed={"NONE": "CULLNONE", "CW": "CULLCW", "CCW": "CULLCCW"},
         what={"NONE": "draws both faces", "CW": "culls clockwise faces",
-              "CCW": "culls counter-clockwise faces"})),
+              "CCW": "culls counter-clockwise faces"}), fx2=8),
     _rs("ZFunc", 23, "enum", _ev(D3DCMPFUNC, "LessEqual"), D3DCMPFUNC,
-        limit=CapsLimit("ZCmpCaps")),
-    _rs("AlphaRef", 24, "int", 0),
+        limit=CapsLimit("ZCmpCaps"), fx2=9),
+    _rs("AlphaRef", 24, "int", 0, fx2=10),
     _rs("AlphaFunc", 25, "enum", _ev(D3DCMPFUNC, "Always"), D3DCMPFUNC,
-        limit=CapsLimit("AlphaCmpCaps", gate=("AlphaTestEnable",))),
-    _rs("DitherEnable", 26, "bool", False),
-    _rs("AlphaBlendEnable", 27, "bool", False),
-    _rs("FogEnable", 28, "bool", False),
-    _rs("SpecularEnable", 29, "bool", False),
-    _rs("FogColor", 34, "color", 0),
+        limit=CapsLimit("AlphaCmpCaps", gate=("AlphaTestEnable",)), fx2=11),
+    _rs("DitherEnable", 26, "bool", False, fx2=12),
+    _rs("AlphaBlendEnable", 27, "bool", False, fx2=13),
+    _rs("FogEnable", 28, "bool", False, fx2=14),
+    _rs("SpecularEnable", 29, "bool", False, fx2=15),
+    _rs("FogColor", 34, "color", 0, fx2=16),
     _rs("FogTableMode", 35, "enum", _ev(D3DFOGMODE, "None"), D3DFOGMODE, limit=CapsLimit(
         "RasterCaps", "FOGTABLE", lambda v: v not in (None, "NONE"), gate=("FogEnable",),
-        what="computes fog per pixel")),
-    _rs("FogStart", 36, "float", 0.0),
-    _rs("FogEnd", 37, "float", 1.0),
-    _rs("FogDensity", 38, "float", 1.0),
-    _rs("RangeFogEnable", 48, "bool", False),
-    _rs("StencilEnable", 52, "bool", False),
-    _rs("StencilFail", 53, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP, limit=_STENCIL_OP),
-    _rs("StencilZFail", 54, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP, limit=_STENCIL_OP),
-    _rs("StencilPass", 55, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP, limit=_STENCIL_OP),
-    _rs("StencilFunc", 56, "enum", _ev(D3DCMPFUNC, "Always"), D3DCMPFUNC),
-    _rs("StencilRef", 57, "int", 0),
-    _rs("StencilMask", 58, "dword", DWORD_MASK),
-    _rs("StencilWriteMask", 59, "dword", DWORD_MASK),
-    _rs("TextureFactor", 60, "color", DWORD_MASK),
-    *(_rs(f"Wrap{n}", 128 + n, "enum", _ev(D3DWRAP, 0), D3DWRAP) for n in range(8)),
-    _rs("Clipping", 136, "bool", True),
-    _rs("Lighting", 137, "bool", True),
-    _rs("Ambient", 139, "color", 0),
-    _rs("FogVertexMode", 140, "enum", _ev(D3DFOGMODE, "None"), D3DFOGMODE),
-    _rs("ColorVertex", 141, "bool", True),
-    _rs("LocalViewer", 142, "bool", True),
-    _rs("NormalizeNormals", 143, "bool", False),
+        what="computes fog per pixel"), fx2=17),
+    _rs("FogStart", 36, "float", 0.0, fx2=18),
+    _rs("FogEnd", 37, "float", 1.0, fx2=19),
+    _rs("FogDensity", 38, "float", 1.0, fx2=20),
+    _rs("RangeFogEnable", 48, "bool", False, fx2=21),
+    _rs("StencilEnable", 52, "bool", False, fx2=22),
+    _rs("StencilFail", 53, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP, limit=_STENCIL_OP, fx2=23),
+    _rs("StencilZFail", 54, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP, limit=_STENCIL_OP, fx2=24),
+    _rs("StencilPass", 55, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP, limit=_STENCIL_OP, fx2=25),
+    _rs("StencilFunc", 56, "enum", _ev(D3DCMPFUNC, "Always"), D3DCMPFUNC, fx2=26),
+    _rs("StencilRef", 57, "int", 0, fx2=27),
+    _rs("StencilMask", 58, "dword", DWORD_MASK, fx2=28),
+    _rs("StencilWriteMask", 59, "dword", DWORD_MASK, fx2=29),
+    _rs("TextureFactor", 60, "color", DWORD_MASK, fx2=30),
+    *(_rs(f"Wrap{n}", 128 + n, "enum", _ev(D3DWRAP, 0), D3DWRAP, fx2=31 + n) for n in range(8)),
+    _rs("Clipping", 136, "bool", True, fx2=47),
+    _rs("Lighting", 137, "bool", True, fx2=48),
+    _rs("Ambient", 139, "color", 0, fx2=49),
+    _rs("FogVertexMode", 140, "enum", _ev(D3DFOGMODE, "None"), D3DFOGMODE, fx2=50),
+    _rs("ColorVertex", 141, "bool", True, fx2=51),
+    _rs("LocalViewer", 142, "bool", True, fx2=52),
+    _rs("NormalizeNormals", 143, "bool", False, fx2=53),
     _rs("DiffuseMaterialSource", 145, "enum", _ev(D3DMATERIALCOLORSOURCE, "Color1"),
-        D3DMATERIALCOLORSOURCE),
+        D3DMATERIALCOLORSOURCE, fx2=54),
     _rs("SpecularMaterialSource", 146, "enum", _ev(D3DMATERIALCOLORSOURCE, "Color2"),
-        D3DMATERIALCOLORSOURCE),
+        D3DMATERIALCOLORSOURCE, fx2=55),
     _rs("AmbientMaterialSource", 147, "enum", _ev(D3DMATERIALCOLORSOURCE, "Material"),
-        D3DMATERIALCOLORSOURCE),
+        D3DMATERIALCOLORSOURCE, fx2=56),
     _rs("EmissiveMaterialSource", 148, "enum", _ev(D3DMATERIALCOLORSOURCE, "Material"),
-        D3DMATERIALCOLORSOURCE),
-    _rs("VertexBlend", 151, "enum", _ev(D3DVERTEXBLENDFLAGS, "Disable"), D3DVERTEXBLENDFLAGS),
-    _rs("ClipPlaneEnable", 152, "enum", _ev(D3DCLIPPLANE, 0), D3DCLIPPLANE),
+        D3DMATERIALCOLORSOURCE, fx2=57),
+    _rs("VertexBlend", 151, "enum", _ev(D3DVERTEXBLENDFLAGS, "Disable"), D3DVERTEXBLENDFLAGS, fx2=58),
+    _rs("ClipPlaneEnable", 152, "enum", _ev(D3DCLIPPLANE, 0), D3DCLIPPLANE, fx2=59),
     # PointSize: the docs say "the driver's value"; Wine and the DX7-style default use 1.0.
-    _rs("PointSize", 154, "float", 1.0),
-    _rs("PointSize_Min", 155, "float", 1.0),
-    _rs("PointSpriteEnable", 156, "bool", False),
-    _rs("PointScaleEnable", 157, "bool", False),
-    _rs("PointScale_A", 158, "float", 1.0),
-    _rs("PointScale_B", 159, "float", 0.0),
-    _rs("PointScale_C", 160, "float", 0.0),
-    _rs("MultiSampleAntialias", 161, "bool", True),
-    _rs("MultiSampleMask", 162, "dword", DWORD_MASK),
-    _rs("PatchEdgeStyle", 163, "enum", _ev(D3DPATCHEDGESTYLE, "Discrete"), D3DPATCHEDGESTYLE),
+    _rs("PointSize", 154, "float", 1.0, fx2=60),
+    _rs("PointSize_Min", 155, "float", 1.0, fx2=61),
+    _rs("PointSpriteEnable", 156, "bool", False, fx2=63),
+    _rs("PointScaleEnable", 157, "bool", False, fx2=64),
+    _rs("PointScale_A", 158, "float", 1.0, fx2=65),
+    _rs("PointScale_B", 159, "float", 0.0, fx2=66),
+    _rs("PointScale_C", 160, "float", 0.0, fx2=67),
+    _rs("MultiSampleAntialias", 161, "bool", True, fx2=68),
+    _rs("MultiSampleMask", 162, "dword", DWORD_MASK, fx2=69),
+    _rs("PatchEdgeStyle", 163, "enum", _ev(D3DPATCHEDGESTYLE, "Discrete"), D3DPATCHEDGESTYLE, fx2=70),
     _rs("DebugMonitorToken", 165, "enum", _ev(D3DDEBUGMONITORTOKENS, "Enable"),
-        D3DDEBUGMONITORTOKENS),
-    _rs("PointSize_Max", 166, "float", 64.0),
-    _rs("IndexedVertexBlendEnable", 167, "bool", False),
+        D3DDEBUGMONITORTOKENS, fx2=71),
+    _rs("PointSize_Max", 166, "float", 64.0, fx2=62),
+    _rs("IndexedVertexBlendEnable", 167, "bool", False, fx2=72),
     _rs("ColorWriteEnable", 168, "enum", _ev(D3DCOLORWRITEENABLE, "Red", "Green", "Blue", "Alpha"),
-        D3DCOLORWRITEENABLE),
-    _rs("TweenFactor", 170, "float", 0.0),
-    _rs("BlendOp", 171, "enum", _ev(D3DBLENDOP, "Add"), D3DBLENDOP, limit=_BLEND_OP),
+        D3DCOLORWRITEENABLE, fx2=73),
+    _rs("TweenFactor", 170, "float", 0.0, fx2=74),
+    _rs("BlendOp", 171, "enum", _ev(D3DBLENDOP, "Add"), D3DBLENDOP, limit=_BLEND_OP, fx2=75),
     # DX8 named these two D3DRS_POSITIONORDER / D3DRS_NORMALORDER.
     _rs("PositionDegree", 172, "enum", _ev(D3DDEGREETYPE, "Cubic"), D3DDEGREETYPE,
-        aliases=("PositionOrder",)),
+        aliases=("PositionOrder",), fx2=76),
     _rs("NormalDegree", 173, "enum", _ev(D3DDEGREETYPE, "Linear"), D3DDEGREETYPE,
-        aliases=("NormalOrder",)),
+        aliases=("NormalOrder",), fx2=77),
     _rs("ScissorTestEnable", 174, "bool", False, limit=CapsLimit(
-        "RasterCaps", "SCISSORTEST", what="clips to a scissor rectangle")),
+        "RasterCaps", "SCISSORTEST", what="clips to a scissor rectangle"), fx2=78),
     _rs("SlopeScaleDepthBias", 175, "float", 0.0, limit=CapsLimit(
-        "RasterCaps", "SLOPESCALEDEPTHBIAS", what="offsets depth by slope")),
-    _rs("AntialiasedLineEnable", 176, "bool", False),
-    _rs("MinTessellationLevel", 178, "float", 1.0),
-    _rs("MaxTessellationLevel", 179, "float", 1.0),
-    _rs("AdaptiveTess_X", 180, "float", 0.0),
-    _rs("AdaptiveTess_Y", 181, "float", 0.0),
-    _rs("AdaptiveTess_Z", 182, "float", 1.0),
-    _rs("AdaptiveTess_W", 183, "float", 0.0),
-    _rs("EnableAdaptiveTessellation", 184, "bool", False),
+        "RasterCaps", "SLOPESCALEDEPTHBIAS", what="offsets depth by slope"), fx2=79),
+    _rs("AntialiasedLineEnable", 176, "bool", False, fx2=80),
+    _rs("MinTessellationLevel", 178, "float", 1.0, fx2=81),
+    _rs("MaxTessellationLevel", 179, "float", 1.0, fx2=82),
+    _rs("AdaptiveTess_X", 180, "float", 0.0, fx2=83),
+    _rs("AdaptiveTess_Y", 181, "float", 0.0, fx2=84),
+    _rs("AdaptiveTess_Z", 182, "float", 1.0, fx2=85),
+    _rs("AdaptiveTess_W", 183, "float", 0.0, fx2=86),
+    _rs("EnableAdaptiveTessellation", 184, "bool", False, fx2=87),
     _rs("TwoSidedStencilMode", 185, "bool", False,
-        limit=CapsLimit("StencilCaps", "TWOSIDED", gate=_STENCIL)),
+        limit=CapsLimit("StencilCaps", "TWOSIDED", gate=_STENCIL), fx2=88),
     _rs("CCW_StencilFail", 186, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP,
-        limit=_CCW_STENCIL_OP),
+        limit=_CCW_STENCIL_OP, fx2=89),
     _rs("CCW_StencilZFail", 187, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP,
-        limit=_CCW_STENCIL_OP),
+        limit=_CCW_STENCIL_OP, fx2=90),
     _rs("CCW_StencilPass", 188, "enum", _ev(D3DSTENCILOP, "Keep"), D3DSTENCILOP,
-        limit=_CCW_STENCIL_OP),
-    _rs("CCW_StencilFunc", 189, "enum", _ev(D3DCMPFUNC, "Always"), D3DCMPFUNC),
+        limit=_CCW_STENCIL_OP, fx2=91),
+    _rs("CCW_StencilFunc", 189, "enum", _ev(D3DCMPFUNC, "Always"), D3DCMPFUNC, fx2=92),
     *(_rs(f"ColorWriteEnable{n}", 189 + n, "enum",
-          _ev(D3DCOLORWRITEENABLE, "Red", "Green", "Blue", "Alpha"), D3DCOLORWRITEENABLE)
+          _ev(D3DCOLORWRITEENABLE, "Red", "Green", "Blue", "Alpha"), D3DCOLORWRITEENABLE, fx2=92 + n)
       for n in (1, 2, 3)),
-    _rs("BlendFactor", 193, "color", DWORD_MASK),
-    _rs("SRGBWriteEnable", 194, "bool", False),
+    _rs("BlendFactor", 193, "color", DWORD_MASK, fx2=96),
+    _rs("SRGBWriteEnable", 194, "bool", False, fx2=97),
     _rs("DepthBias", 195, "float", 0.0,
-        limit=CapsLimit("RasterCaps", "DEPTHBIAS", what="offsets depth")),
-    *(_rs(f"Wrap{n}", 190 + n, "enum", _ev(D3DWRAP, 0), D3DWRAP) for n in range(8, 16)),
+        limit=CapsLimit("RasterCaps", "DEPTHBIAS", what="offsets depth"), fx2=98),
+    *(_rs(f"Wrap{n}", 190 + n, "enum", _ev(D3DWRAP, 0), D3DWRAP, fx2=31 + n)
+      for n in range(8, 16)),
     _rs("SeparateAlphaBlendEnable", 206, "bool", False,
-        limit=CapsLimit("PrimitiveMiscCaps", "SEPARATEALPHABLEND", gate=_BLEND)),
+        limit=CapsLimit("PrimitiveMiscCaps", "SEPARATEALPHABLEND", gate=_BLEND), fx2=99),
     _rs("SrcBlendAlpha", 207, "enum", _ev(D3DBLEND, "One"), D3DBLEND,
-        limit=_alpha_blend(_SRC_BLEND)),
+        limit=_alpha_blend(_SRC_BLEND), fx2=100),
     _rs("DestBlendAlpha", 208, "enum", _ev(D3DBLEND, "Zero"), D3DBLEND,
-        limit=_alpha_blend(_DEST_BLEND)),
+        limit=_alpha_blend(_DEST_BLEND), fx2=101),
     _rs("BlendOpAlpha", 209, "enum", _ev(D3DBLENDOP, "Add"), D3DBLENDOP,
-        limit=_alpha_blend(_BLEND_OP)),
+        limit=_alpha_blend(_BLEND_OP), fx2=102),
     # DX8 render states with no D3D9 equivalent (codes from d3d8types.h): accepted, flagged.
     _rs("LinePattern", 10, "dword", 0, legacy=True),
     _rs("ZVisible", 30, "bool", False, legacy=True),
@@ -456,8 +461,10 @@ _RENDER_STATES = (
 )
 
 
-def _ts(name: str, code: int, type_: str, default: object, enum: EnumTable | None = None) -> StateInfo:
-    return StateInfo(name, "stage", type_, enum, "optional", MAX_STAGES - 1, code, default)
+def _ts(name: str, code: int, type_: str, default: object, enum: EnumTable | None = None,
+        fx2: int | None = None) -> StateInfo:
+    return StateInfo(name, "stage", type_, enum, "optional", MAX_STAGES - 1, code, default,
+                     fx2=fx2)
 
 
 def _stage0_else(stage0: EnumValue, others: EnumValue) -> Callable[[int], EnumValue]:
@@ -466,37 +473,37 @@ def _stage0_else(stage0: EnumValue, others: EnumValue) -> Callable[[int], EnumVa
 
 _STAGE_STATES = (
     _ts("ColorOp", 1, "enum",
-        _stage0_else(_ev(D3DTEXTUREOP, "Modulate"), _ev(D3DTEXTUREOP, "Disable")), D3DTEXTUREOP),
-    _ts("ColorArg1", 2, "enum", _ev(D3DTA, "Texture"), D3DTA),
-    _ts("ColorArg2", 3, "enum", _ev(D3DTA, "Current"), D3DTA),
+        _stage0_else(_ev(D3DTEXTUREOP, "Modulate"), _ev(D3DTEXTUREOP, "Disable")), D3DTEXTUREOP, fx2=103),
+    _ts("ColorArg1", 2, "enum", _ev(D3DTA, "Texture"), D3DTA, fx2=105),
+    _ts("ColorArg2", 3, "enum", _ev(D3DTA, "Current"), D3DTA, fx2=106),
     _ts("AlphaOp", 4, "enum",
-        _stage0_else(_ev(D3DTEXTUREOP, "SelectArg1"), _ev(D3DTEXTUREOP, "Disable")), D3DTEXTUREOP),
-    _ts("AlphaArg1", 5, "enum", _ev(D3DTA, "Texture"), D3DTA),
-    _ts("AlphaArg2", 6, "enum", _ev(D3DTA, "Current"), D3DTA),
-    _ts("BumpEnvMat00", 7, "float", 0.0),
-    _ts("BumpEnvMat01", 8, "float", 0.0),
-    _ts("BumpEnvMat10", 9, "float", 0.0),
-    _ts("BumpEnvMat11", 10, "float", 0.0),
+        _stage0_else(_ev(D3DTEXTUREOP, "SelectArg1"), _ev(D3DTEXTUREOP, "Disable")), D3DTEXTUREOP, fx2=107),
+    _ts("AlphaArg1", 5, "enum", _ev(D3DTA, "Texture"), D3DTA, fx2=109),
+    _ts("AlphaArg2", 6, "enum", _ev(D3DTA, "Current"), D3DTA, fx2=110),
+    _ts("BumpEnvMat00", 7, "float", 0.0, fx2=112),
+    _ts("BumpEnvMat01", 8, "float", 0.0, fx2=113),
+    _ts("BumpEnvMat10", 9, "float", 0.0, fx2=114),
+    _ts("BumpEnvMat11", 10, "float", 0.0, fx2=115),
     # TexCoordIndex: coordinate set = stage number by default; D3DTSS_TCI_* may be OR-ed in.
-    _ts("TexCoordIndex", 11, "enum", lambda stage: EnumValue((str(stage),), stage), D3DTSS_TCI),
-    _ts("BumpEnvLScale", 22, "float", 0.0),
-    _ts("BumpEnvLOffset", 23, "float", 0.0),
+    _ts("TexCoordIndex", 11, "enum", lambda stage: EnumValue((str(stage),), stage), D3DTSS_TCI, fx2=116),
+    _ts("BumpEnvLScale", 22, "float", 0.0, fx2=117),
+    _ts("BumpEnvLOffset", 23, "float", 0.0, fx2=118),
     _ts("TextureTransformFlags", 24, "enum", _ev(D3DTEXTURETRANSFORMFLAGS, "Disable"),
-        D3DTEXTURETRANSFORMFLAGS),
-    _ts("ColorArg0", 26, "enum", _ev(D3DTA, "Current"), D3DTA),
-    _ts("AlphaArg0", 27, "enum", _ev(D3DTA, "Current"), D3DTA),
-    _ts("ResultArg", 28, "enum", _ev(D3DTA, "Current"), D3DTA),
+        D3DTEXTURETRANSFORMFLAGS, fx2=119),
+    _ts("ColorArg0", 26, "enum", _ev(D3DTA, "Current"), D3DTA, fx2=104),
+    _ts("AlphaArg0", 27, "enum", _ev(D3DTA, "Current"), D3DTA, fx2=108),
+    _ts("ResultArg", 28, "enum", _ev(D3DTA, "Current"), D3DTA, fx2=111),
     # Constant: Wine leaves it 0 (docs/reference/semantics.md 1.1); the D3DTA page claims
     # 0xffffffff.
-    _ts("Constant", 32, "color", 0),
+    _ts("Constant", 32, "color", 0, fx2=120),
 )
 
 
 def _ss(name: str, code: int, type_: str, default: object, enum: EnumTable | None = None,
-        limit: CapsLimit | None = None) -> StateInfo:
+        limit: CapsLimit | None = None, fx2: int | None = None) -> StateInfo:
     # In a pass `MinFilter[n]` (the DX8 texture-stage spelling); inside sampler_state no index.
     return StateInfo(name, "sampler", type_, enum, "optional", MAX_SAMPLERS - 1, code, default,
-                     limit=limit)
+                     limit=limit, fx2=fx2)
 
 
 def _filter_limit(prefix: str, filters: Iterable[str]) -> CapsLimit:
@@ -511,77 +518,78 @@ _ADDRESS = CapsLimit("TextureAddressCaps")
 
 
 _SAMPLER_STATES = (
-    _ss("AddressU", 1, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS, _ADDRESS),
-    _ss("AddressV", 2, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS, _ADDRESS),
-    _ss("AddressW", 3, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS, _ADDRESS),
-    _ss("BorderColor", 4, "color", 0),
+    _ss("AddressU", 1, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS, _ADDRESS, fx2=165),
+    _ss("AddressV", 2, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS, _ADDRESS, fx2=166),
+    _ss("AddressW", 3, "enum", _ev(D3DTEXTUREADDRESS, "Wrap"), D3DTEXTUREADDRESS, _ADDRESS, fx2=167),
+    _ss("BorderColor", 4, "color", 0, fx2=168),
     _ss("MagFilter", 5, "enum", _ev(D3DTEXTUREFILTERTYPE, "Point"), D3DTEXTUREFILTERTYPE,
-        _filter_limit("MAGF", _MINMAG_FILTERS)),
+        _filter_limit("MAGF", _MINMAG_FILTERS), fx2=169),
     _ss("MinFilter", 6, "enum", _ev(D3DTEXTUREFILTERTYPE, "Point"), D3DTEXTUREFILTERTYPE,
-        _filter_limit("MINF", _MINMAG_FILTERS)),
+        _filter_limit("MINF", _MINMAG_FILTERS), fx2=170),
     _ss("MipFilter", 7, "enum", _ev(D3DTEXTUREFILTERTYPE, "None"), D3DTEXTUREFILTERTYPE,
-        _filter_limit("MIPF", ("POINT", "LINEAR"))),
-    _ss("MipMapLodBias", 8, "float", 0.0),
-    _ss("MaxMipLevel", 9, "int", 0),
-    _ss("MaxAnisotropy", 10, "int", 1),
-    _ss("SRGBTexture", 11, "bool", False),
-    _ss("ElementIndex", 12, "int", 0),
+        _filter_limit("MIPF", ("POINT", "LINEAR")), fx2=171),
+    _ss("MipMapLodBias", 8, "float", 0.0, fx2=172),
+    _ss("MaxMipLevel", 9, "int", 0, fx2=173),
+    _ss("MaxAnisotropy", 10, "int", 1, fx2=174),
+    _ss("SRGBTexture", 11, "bool", False, fx2=175),
+    _ss("ElementIndex", 12, "int", 0, fx2=176),
     # DMAPOffset: the docs say 0; the debug runtime reports 256 (docs/reference/effect_format.md 2).
-    _ss("DMAPOffset", 13, "int", 0),
+    _ss("DMAPOffset", 13, "int", 0, fx2=177),
 )
 
 _OBJECT_STATES = (
     StateInfo("Texture", "texture", "texture", None, "optional", MAX_SAMPLERS - 1, None,
-              NullValue()),
+              NullValue(), fx2=164),
     StateInfo("Sampler", "sampler_object", "sampler", None, "optional", MAX_SAMPLERS - 1, None,
-              NullValue()),
-    StateInfo("VertexShader", "shader", "vertexshader", None, "none", None, None, NullValue()),
-    StateInfo("PixelShader", "shader", "pixelshader", None, "none", None, None, NullValue()),
+              NullValue(), fx2=178),
+    StateInfo("VertexShader", "shader", "vertexshader", None, "none", None, None, NullValue(), fx2=146),
+    StateInfo("PixelShader", "shader", "pixelshader", None, "none", None, None, NullValue(), fx2=147),
 )
 
 # D3DTRANSFORMSTATETYPE: VIEW 2, PROJECTION 3, TEXTURE0 16, WORLDMATRIX(n) 256 + n.
 _TRANSFORM_STATES = (
     StateInfo("WorldTransform", "transform", "matrix", None, "optional", 255, 256,
-              lambda _i: _identity()),
+              lambda _i: _identity(), fx2=125),
     StateInfo("ViewTransform", "transform", "matrix", None, "none", None, 2,
-              lambda _i: _identity()),
+              lambda _i: _identity(), fx2=124),
     StateInfo("ProjectionTransform", "transform", "matrix", None, "none", None, 3,
-              lambda _i: _identity()),
+              lambda _i: _identity(), fx2=123),
     StateInfo("TextureTransform", "transform", "matrix", None, "optional", MAX_STAGES - 1, 16,
-              lambda _i: _identity()),
+              lambda _i: _identity(), fx2=126),
 )
 
 # The device starts with an all-zero material (Wine: zero-initialised state).
 _MATERIAL_STATES = (
-    StateInfo("MaterialDiffuse", "material", "float4", default=_vec(0, 0, 0, 0)),
-    StateInfo("MaterialAmbient", "material", "float4", default=_vec(0, 0, 0, 0)),
-    StateInfo("MaterialSpecular", "material", "float4", default=_vec(0, 0, 0, 0)),
-    StateInfo("MaterialEmissive", "material", "float4", default=_vec(0, 0, 0, 0)),
-    StateInfo("MaterialPower", "material", "float", default=0.0),
+    StateInfo("MaterialDiffuse", "material", "float4", default=_vec(0, 0, 0, 0), fx2=127),
+    StateInfo("MaterialAmbient", "material", "float4", default=_vec(0, 0, 0, 0), fx2=128),
+    StateInfo("MaterialSpecular", "material", "float4", default=_vec(0, 0, 0, 0), fx2=129),
+    StateInfo("MaterialEmissive", "material", "float4", default=_vec(0, 0, 0, 0), fx2=130),
+    StateInfo("MaterialPower", "material", "float", default=0.0, fx2=131),
 )
 
 
-def _ls(name: str, type_: str, default: object, enum: EnumTable | None = None) -> StateInfo:
-    return StateInfo(name, "light", type_, enum, "optional", None, None, default)
+def _ls(name: str, type_: str, default: object, enum: EnumTable | None = None,
+        fx2: int | None = None) -> StateInfo:
+    return StateInfo(name, "light", type_, enum, "optional", None, None, default, fx2=fx2)
 
 
 # Members an effect leaves out take the values of the light LightEnable creates
 # (a white directional light shining down +z: D3D docs, Wine WINED3D_default_light).
 _LIGHT_STATES = (
-    _ls("LightType", "enum", _ev(D3DLIGHTTYPE, "Directional"), D3DLIGHTTYPE),
-    _ls("LightDiffuse", "float4", _vec(1, 1, 1, 0)),
-    _ls("LightSpecular", "float4", _vec(0, 0, 0, 0)),
-    _ls("LightAmbient", "float4", _vec(0, 0, 0, 0)),
-    _ls("LightPosition", "float3", _vec(0, 0, 0)),
-    _ls("LightDirection", "float3", _vec(0, 0, 1)),
-    _ls("LightRange", "float", 0.0),
-    _ls("LightFalloff", "float", 0.0),
-    _ls("LightAttenuation0", "float", 0.0),
-    _ls("LightAttenuation1", "float", 0.0),
-    _ls("LightAttenuation2", "float", 0.0),
-    _ls("LightTheta", "float", 0.0),
-    _ls("LightPhi", "float", 0.0),
-    _ls("LightEnable", "bool", False),
+    _ls("LightType", "enum", _ev(D3DLIGHTTYPE, "Directional"), D3DLIGHTTYPE, fx2=132),
+    _ls("LightDiffuse", "float4", _vec(1, 1, 1, 0), fx2=133),
+    _ls("LightSpecular", "float4", _vec(0, 0, 0, 0), fx2=134),
+    _ls("LightAmbient", "float4", _vec(0, 0, 0, 0), fx2=135),
+    _ls("LightPosition", "float3", _vec(0, 0, 0), fx2=136),
+    _ls("LightDirection", "float3", _vec(0, 0, 1), fx2=137),
+    _ls("LightRange", "float", 0.0, fx2=138),
+    _ls("LightFalloff", "float", 0.0, fx2=139),
+    _ls("LightAttenuation0", "float", 0.0, fx2=140),
+    _ls("LightAttenuation1", "float", 0.0, fx2=141),
+    _ls("LightAttenuation2", "float", 0.0, fx2=142),
+    _ls("LightTheta", "float", 0.0, fx2=143),
+    _ls("LightPhi", "float", 0.0, fx2=144),
+    _ls("LightEnable", "bool", False, fx2=145),
 )
 
 
@@ -596,16 +604,17 @@ INT_BOOL_CONSTANT_REGISTERS = 16
 FLOAT_CONSTANT_REGISTERS_MAX = {"Vertex": 8192, "Pixel": 224}
 
 
-def _constant_states(stage: str) -> tuple[StateInfo, ...]:
+def _constant_states(stage: str, fx2: int) -> tuple[StateInfo, ...]:
     # The bare, F and 1-4 forms all set float registers (Wine); B and I set bool/int registers.
     # Shader constants have no defined initial value: default None.
     floats = FLOAT_CONSTANT_REGISTERS_MAX[stage]
+    # `fx2`: the first one's number in the fx_2_0 state table, the others following in order
     rows = [StateInfo(f"{stage}ShaderConstant{suffix}", "shader_const", "constants",
-                      index="required", max_index=file - 1, registers=registers)
-            for suffix, registers, file in (
+                      index="required", max_index=file - 1, registers=registers, fx2=fx2 + k)
+            for k, (suffix, registers, file) in enumerate((
                 ("F", None, floats), ("B", None, INT_BOOL_CONSTANT_REGISTERS),
                 ("I", None, INT_BOOL_CONSTANT_REGISTERS), ("", None, floats), ("1", 1, floats),
-                ("2", 2, floats), ("3", 3, floats), ("4", 4, floats))]
+                ("2", 2, floats), ("3", 3, floats), ("4", 4, floats)))]
     return tuple(rows)
 
 
@@ -622,13 +631,13 @@ def constant_register_count(info: StateInfo, numbers: int) -> int:
 _MISC_STATES = (
     # NPatchMode = SetNPatchMode(nSegments); below 1.0 N-patches are off. The D3D9 effect docs
     # list the same state as PatchSegments (the DX8 render-state name).
-    StateInfo("NPatchMode", "misc", "float", default=0.0, aliases=("PatchSegments",)),
-    StateInfo("FVF", "misc", "enum", D3DFVF, default=EnumValue(("0",), 0)),
+    StateInfo("NPatchMode", "misc", "float", default=0.0, aliases=("PatchSegments",), fx2=121),
+    StateInfo("FVF", "misc", "enum", D3DFVF, default=EnumValue(("0",), 0), fx2=122),
 )
 
 STATES: tuple[StateInfo, ...] = (
     _RENDER_STATES + _STAGE_STATES + _SAMPLER_STATES + _OBJECT_STATES + _TRANSFORM_STATES
-    + _MATERIAL_STATES + _LIGHT_STATES + _constant_states("Vertex") + _constant_states("Pixel")
+    + _MATERIAL_STATES + _LIGHT_STATES + _constant_states("Vertex", 148) + _constant_states("Pixel", 156)
     + _MISC_STATES)
 
 
@@ -638,6 +647,9 @@ def _key(name: str) -> str:
 
 
 _BY_KEY: dict[str, StateInfo] = {}
+# the fx_2_0 column read back: state number -> row
+BY_FX2: dict[int, StateInfo] = {_row.fx2: _row for _row in STATES if _row.fx2 is not None}
+assert sorted(BY_FX2) == list(range(0xB3)), "the fx2 column: 0..0xb2, each once"
 for _row in STATES:
     for _spelling in (_row.name, *_row.aliases):
         assert _key(_spelling) not in _BY_KEY, f"duplicate state name {_spelling}"

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+import stat
 from typing import Callable, Mapping
 
 from effects.base import limits, untrusted
@@ -22,6 +23,20 @@ def _names_a_file(source: str) -> bool:
     except (ValueError, OSError):  # a NUL byte, a name too long for the file system
         return False
     return not any(c in source for c in "{;")
+
+
+def _starts_binary(path: str) -> bool:
+    """Whether regular file `path` starts with the fx_2_0 effect-binary tag (the magic, not
+    the name, tells a binary from source). Anything unreadable is left to the text path,
+    which reports it."""
+    from effects.frontend.fxo import is_effect_binary
+    try:
+        # O_NONBLOCK: a FIFO must not block the peek (untrusted.read_file's care)
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with os.fdopen(fd, "rb") as f:
+            return stat.S_ISREG(os.fstat(f.fileno()).st_mode) and is_effect_binary(f.read(4))
+    except (OSError, ValueError):
+        return False
 
 
 def read_source_file(path: str) -> str:
@@ -46,6 +61,10 @@ def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str,
     source = os.fspath(path_or_text)
     if _names_a_file(source):
         path = source
+        if _starts_binary(path):    # an fx_2_0 binary (.fxo), whatever its name says
+            from effects.frontend import fxo
+            raw = untrusted.read_file(path, "effect binary", fxo.FxoError, "effect_binary_bytes")
+            return fxo.read_effect_binary(raw, path, effect_type)
         text = read_source_file(path)
     else:
         path, text = "<string>", source

@@ -51,7 +51,7 @@ from effects.lower.stages import (FogSetup, FragmentInputs, StageSetup, active_s
                                   lower_cascade)
 from effects.lower.vertex import (PHONG_SLOTS, LightSetup, TexCoordSetup, VertexSetup,
                                    lower_pixel_lighting, lower_vertex, pixel_lighting)
-from effects.model import (CompileShader, Effect, NullValue, Parameter, ParamRef,
+from effects.model import (BytecodeShader, CompileShader, Effect, NullValue, Parameter, ParamRef,
                     RecordedReads, StateAssignment, Technique, still_holds)
 from effects.program.passprogram import PassProgram, RenderState, TextureBinding
 from effects.d3d9.precision import lowering_options
@@ -187,7 +187,8 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
     fog = read_fog(state)
     pixel_shader = _shader(state, "PixelShader")
     vertex_shader = _shader(state, "VertexShader")
-    if isinstance(pixel_shader, CompileShader) or isinstance(vertex_shader, CompileShader):
+    if isinstance(pixel_shader, (CompileShader, BytecodeShader)) \
+            or isinstance(vertex_shader, (CompileShader, BytecodeShader)):
         state = state.copy()   # the compiled shader binds its samplers (may be the validation's state)
     judged = judged or {}
 

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Mapping
 
 from effects.base.errors import Location
-from effects.model import CompileShader, ShaderBlock
+from effects.model import BytecodeShader, CompileShader, ShaderBlock
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.model import Effect
@@ -58,6 +58,11 @@ def shader_of(effect: "Effect", value: Any) -> Shader | None:
     any other value (NULL, a parameter reference). Raises the located EffectError of a block
     that does not assemble or a function that does not compile. The assembler's and the
     compiler's caches keep the programs, so asking again costs a lookup."""
+    if isinstance(value, BytecodeShader):
+        if value._read is None:
+            program, compiled = read_bytecode(value)
+            value._read = _bound(value, program, compiled)
+        return value._read
     if isinstance(value, ShaderBlock):
         from effects.shaders.asm import assemble_cached
         return _bound(value, assemble_cached(value), None)
@@ -94,3 +99,82 @@ def _bound(value: Any, program: "AsmProgram", compiled: "CompiledShader | None")
         return Shader(value, program, None, samplers)
     return Shader(value, program, compiled, samplers, dict(compiled.int_registers),
                   dict(compiled.bool_registers))
+
+
+def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader | None"]:
+    """A bytecode shader's program, and (where its constant table names parameters, as fxc's
+    and our compiler's do) a CompiledShader carrying those bindings, so its parameters load
+    into their registers and its samplers bind as a compiled HLSL shader's do. Errors are
+    located in the file the bytecode came from (its byte offset there)."""
+    from effects.base.errors import EffectError
+    from effects.shaders.d3dbc import BytecodeError, read_shader
+    from effects.shaders.hlsl.shader import CompiledShader
+    from effects.shaders.asm.text import program_text
+    start = value.location.column - 1 if value.location.line == 1 else 0
+    try:
+        binary = read_shader(value.data, value.location.path)
+    except EffectError as err:
+        column = err.location.column + start
+        raise type(err)(err.message.replace(f"(at byte {err.location.column - 1})",
+                                            f"(at byte {column - 1})"),
+                        Location(value.location.path, 1, column)) from None
+    program, table = binary.program, binary.table
+    for at, code, _ in binary.comments:
+        if code == "PRES":
+            # fxc's preshader (a PRES comment: FXLC code, CLIT literals, its own CTAB) fills
+            # constant registers on the host before each draw; drawing without it would read
+            # zeros there, a wrong picture: refused until FXLC is evaluated
+            column = start + at + 1
+            raise BytecodeError(f"the shader carries a preshader (PRES comment: FXLC code that "
+                                f"fills constant registers on the host), which is not "
+                                f"evaluated yet (at byte {column - 1})",
+                                Location(value.location.path, 1, column))
+    if table is None or not table.constants:
+        return program, None
+    constants: dict[str, tuple[int, int]] = {}
+    samplers: dict[str, int] = {}
+    ints: dict[str, int] = {}
+    bools: dict[str, int] = {}
+    types: dict = {}
+    for c in table.constants:
+        if c.register_set == "sampler":
+            samplers[c.name] = c.register_index
+            continue
+        htype = _htype(c.type)
+        if htype is not None:
+            types[c.name] = htype
+        if c.register_set == "float4":
+            constants[c.name] = (c.register_index, c.register_count)
+        elif c.register_set == "int4":
+            ints[c.name] = c.register_index
+        elif c.register_set == "bool":
+            bools[c.name] = c.register_index
+    text = program_text(program)
+    return program, CompiledShader("<bytecode>", program.name, text, program, constants,
+                                   samplers, [value.location] * (text.count("\n") + 1),
+                                   types=types, int_registers=ints, bool_registers=bools)
+
+
+def _htype(t: Any) -> Any:
+    """The HLSL type (effects/shaders/hlsl/types.py) of a constant table's type info."""
+    from effects.shaders.d3dbc.ctab import (MATRIX_COLUMNS, MATRIX_ROWS, PARAMETER_TYPES,
+                                            SCALAR, STRUCT, VECTOR)
+    from effects.shaders.hlsl.types import HType
+    if t.cls == STRUCT:
+        fields = []
+        for name, member in t.members:
+            inner = _htype(member)
+            if inner is None:
+                return None
+            fields.append((name, inner, None))
+        one = HType("struct", name="struct", fields=tuple(fields))
+    elif t.cls in (SCALAR, VECTOR, MATRIX_ROWS, MATRIX_COLUMNS):
+        base = PARAMETER_TYPES[t.type] if t.type < len(PARAMETER_TYPES) else "float"
+        base = base if base in ("float", "int", "bool") else "float"
+        kind = "scalar" if t.cls == SCALAR else "vector" if t.cls == VECTOR else "matrix"
+        one = HType(kind, base, t.rows, t.columns, row_major=t.cls == MATRIX_ROWS)
+    else:
+        return None
+    if t.elements > 1:
+        return HType("array", one.base, element=one, length=t.elements)
+    return one

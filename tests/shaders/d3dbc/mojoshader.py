@@ -159,3 +159,130 @@ def assemble(lib: ctypes.CDLL, source: str) -> tuple[list[str], bytes]:
                                    None, None, None, None)
     errors, output, _ = _result(lib, data)
     return errors, output
+
+
+# -- effects: MOJOSHADER_compileEffect (the fx_2_0 reader FNA and MonoGame load .fxo with) -------
+# The layouts of hg revision 1314 (Debian's libmojoshader0), from mojoshader_effects.h of that
+# era: the shader context has no context pointer (the GL/Vulkan back ends keep theirs current
+# with *MakeContextCurrent), and MOJOSHADER_effect starts with error_count, errors,
+# param_count, params, technique_count, techniques. Only those leading fields are read.
+
+class SymbolTypeInfo(ctypes.Structure):
+    _fields_ = [("parameter_class", ctypes.c_int), ("parameter_type", ctypes.c_int),
+                ("rows", ctypes.c_uint), ("columns", ctypes.c_uint),
+                ("elements", ctypes.c_uint), ("member_count", ctypes.c_uint),
+                ("members", ctypes.c_void_p)]
+
+
+class EffectValue(ctypes.Structure):
+    _fields_ = [("name", ctypes.c_char_p), ("semantic", ctypes.c_char_p),
+                ("type", SymbolTypeInfo), ("value_count", ctypes.c_uint),
+                ("values", ctypes.c_void_p)]
+
+
+class EffectParam(ctypes.Structure):
+    _fields_ = [("value", EffectValue), ("annotation_count", ctypes.c_uint),
+                ("annotations", ctypes.POINTER(EffectValue))]
+
+
+class EffectState(ctypes.Structure):
+    _fields_ = [("type", ctypes.c_int), ("value", EffectValue)]
+
+
+class EffectPass(ctypes.Structure):
+    _fields_ = [("name", ctypes.c_char_p), ("state_count", ctypes.c_uint),
+                ("states", ctypes.POINTER(EffectState)), ("annotation_count", ctypes.c_uint),
+                ("annotations", ctypes.POINTER(EffectValue))]
+
+
+class EffectTechnique(ctypes.Structure):
+    _fields_ = [("name", ctypes.c_char_p), ("pass_count", ctypes.c_uint),
+                ("passes", ctypes.POINTER(EffectPass)), ("annotation_count", ctypes.c_uint),
+                ("annotations", ctypes.POINTER(EffectValue))]
+
+
+class Effect(ctypes.Structure):
+    _fields_ = [("error_count", ctypes.c_int), ("errors", ctypes.POINTER(Error)),
+                ("param_count", ctypes.c_int), ("params", ctypes.POINTER(EffectParam)),
+                ("technique_count", ctypes.c_int),
+                ("techniques", ctypes.POINTER(EffectTechnique))]
+
+
+_COMPILE = ctypes.CFUNCTYPE(ctypes.c_void_p, ctypes.c_char_p, ctypes.c_void_p, ctypes.c_uint,
+                            ctypes.c_void_p, ctypes.c_uint, ctypes.c_void_p, ctypes.c_uint)
+_ONE = ctypes.CFUNCTYPE(None, ctypes.c_void_p)
+_GET = ctypes.CFUNCTYPE(ctypes.c_void_p, ctypes.c_void_p)
+_BIND = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_void_p)
+_BOUND = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_void_p)
+_MAP = ctypes.CFUNCTYPE(None, *[ctypes.c_void_p] * 6)
+_UNMAP = ctypes.CFUNCTYPE(None)
+_ERROR = ctypes.CFUNCTYPE(ctypes.c_char_p)
+
+
+class ShaderContext(ctypes.Structure):
+    _fields_ = [("compileShader", _COMPILE), ("shaderAddRef", _ONE), ("deleteShader", _ONE),
+                ("getParseData", _GET), ("bindShaders", _BIND), ("getBoundShaders", _BOUND),
+                ("mapUniformBufferMemory", _MAP), ("unmapUniformBufferMemory", _UNMAP),
+                ("getError", _ERROR), ("m", ctypes.c_void_p), ("f", ctypes.c_void_p),
+                ("malloc_data", ctypes.c_void_p)]
+
+
+# the profile the effect's shaders are parsed with: "bytecode" passes them through (the GLSL
+# profile lacks some ps_1_4 instructions; which shaders MojoShader translates is the d3dbc tests')
+PROFILE = b"bytecode"
+
+
+def compile_effect(lib: ctypes.CDLL, data: bytes) -> dict:
+    """MOJOSHADER_compileEffect over an fx_2_0 binary, each shader parsed with MOJOSHADER_parse
+    (profile PROFILE): {'errors', 'shader_errors', 'parameters': [(name, semantic, class,
+    type, rows, columns, elements)], 'techniques': [(name, [pass names])]}. The effect is
+    not deleted (its shaders are the parse results this context made; the process ends)."""
+    shader_errors: list[str] = []
+    keep: list = []
+
+    def compile_shader(mainfn, tokens, size, swiz, swizcount, smap, smapcount):
+        blob = ctypes.string_at(tokens, size)
+        parsed = lib.MOJOSHADER_parse(PROFILE, mainfn or b"main", blob, len(blob), None, 0,
+                                      None, 0, None, None, None)
+        keep.append((blob, parsed))
+        d = parsed.contents
+        shader_errors.extend((d.errors[k].error or b"").decode(errors="replace")
+                             for k in range(d.error_count))
+        return ctypes.cast(parsed, ctypes.c_void_p).value
+
+    callbacks = ShaderContext(
+        _COMPILE(compile_shader), _ONE(lambda s: None), _ONE(lambda s: None),
+        _GET(lambda s: s), _BIND(lambda v, p: None), _BOUND(lambda v, p: None),
+        _MAP(lambda *a: None), _UNMAP(lambda: None), _ERROR(lambda: b""), None, None, None)
+    lib.MOJOSHADER_compileEffect.restype = ctypes.POINTER(Effect)
+    lib.MOJOSHADER_compileEffect.argtypes = [ctypes.c_char_p, ctypes.c_uint, ctypes.c_void_p,
+                                             ctypes.c_uint, ctypes.c_void_p, ctypes.c_uint,
+                                             ctypes.POINTER(ShaderContext)]
+    result = lib.MOJOSHADER_compileEffect(data, len(data), None, 0, None, 0,
+                                          ctypes.byref(callbacks))
+    if not result:
+        return {"errors": ["MOJOSHADER_compileEffect returned NULL"], "shader_errors": [],
+                "parameters": [], "techniques": []}
+    e = result.contents
+    errors = [(e.errors[k].error or b"").decode(errors="replace") for k in range(e.error_count)]
+    params = []
+    for k in range(e.param_count if not errors else 0):
+        v = e.params[k].value
+        params.append(((v.name or b"").decode(), (v.semantic or b"").decode(),
+                       v.type.parameter_class, v.type.parameter_type, v.type.rows,
+                       v.type.columns, v.type.elements))
+    techniques = []
+    for k in range(e.technique_count if not errors else 0):
+        t = e.techniques[k]
+        techniques.append(((t.name or b"").decode(),
+                           [(t.passes[j].name or b"").decode() for j in range(t.pass_count)]))
+    return {"errors": errors, "shader_errors": shader_errors, "parameters": params,
+            "techniques": techniques}
+
+
+if __name__ == "__main__":   # python mojoshader.py FILE.fxo: the result as JSON (a crash stays here)
+    import json
+    import sys
+    library = load()
+    with open(sys.argv[1], "rb") as fh:
+        print(json.dumps(compile_effect(library, fh.read())))
