@@ -308,6 +308,8 @@ class Viewer:
     # -- builds -----------------------------------------------------------------------------
     def _take(self, result: ReloadResult) -> None:
         """A finished build, on the render thread: swap it in, or keep the last good one."""
+        if self._scene_trial is not None and self._take_scene_build(result):
+            return
         if result.kind == "reload":
             self.say(result.log_line())
             self.status.last_reload = result.log_line()
@@ -324,20 +326,43 @@ class Viewer:
             self._swapped_selection = self.state.selection_generation
 
     scenes: "SceneReloader | None" = None
+    # while the build for an edited scene file is on its way: the scene it replaced (state's
+    # `reload_scene`), taken back if the effect cannot be drawn in the new one
+    _scene_trial: tuple | None = None
 
     def _take_scenes(self) -> None:
-        """Readings of the edited scene file, on the render thread: the last good one is drawn
-        (a build with it follows); a broken one is said and shown, the last good scene stays."""
+        """Readings of the edited scene file, on the render thread: a good one is taken and the
+        effect prepared in it (off this thread); a broken one is said and shown, and the last
+        good scene stays."""
         result = self.scenes.poll() if self.scenes is not None else None
         while result is not None:
             self.say(result.log_line())
             if result.ok:
-                self.state.reload_scene(result.scene)
+                before = self.state.reload_scene(result.scene)
+                self._scene_trial = self._scene_trial or before
                 self.status.scene_error = None
             else:
-                err = result.error
-                self.status.scene_error = err.report() if isinstance(err, EffectError) else error_text(err)
+                self._scene_failed(result.error)
             result = self.scenes.poll()  # type: ignore[union-attr]
+
+    def _scene_failed(self, err: BaseException | None) -> None:
+        self.status.scene_error = err.report() if isinstance(err, EffectError) else error_text(err)
+
+    def _take_scene_build(self, result: ReloadResult) -> bool:
+        """The first build after a scene file was taken: True when it was taken here. Where it
+        failed at the scene file (a mesh file that does not load, a param the effect does not
+        have or of the wrong type: located there), the scene file is broken: the last good
+        scene and effect stay, and the error is the scene's."""
+        before, self._scene_trial = self._scene_trial, None
+        failed = result.error if not result.ok else result.loaded.prepare_error  # type: ignore[union-attr]
+        if not (isinstance(failed, EffectError) and self.options.scene is not None
+                and os.path.abspath(failed.path) == os.path.abspath(self.options.scene)):
+            return False
+        self.state.restore_scene(before)  # type: ignore[arg-type]
+        self._scene_failed(failed)
+        self.say(f"scene: {self.options.scene} failed: {error_text(failed)}")
+        self._swapped_selection = self.state.selection_generation
+        return True
 
     def _swap(self, loaded: LoadedEffect) -> None:
         for warning in [*loaded_warnings(loaded), *self._unknown_assignments(loaded)]:
@@ -402,8 +427,9 @@ class Viewer:
         self.status.render_error = None
         loaded = self.loaded
         size = self.effect_size()
-        if loaded is not None and loaded.profile is not self.state.profile:
-            self._drawn_generation = (-1, -1)          # the new card's build is on its way
+        if loaded is not None and (loaded.profile is not self.state.profile
+                                   or self._scene_trial is not None):
+            self._drawn_generation = (-1, -1)   # the new card's or scene's build is on its way
             return
         if loaded is None or loaded.technique is None or loaded.prepare_error is not None:
             self._image = np.zeros((size[1], size[0], 4), np.uint8)

@@ -137,12 +137,15 @@ class ViewerState:
         if not self.clock.fixed:
             self.clock.seconds = scene.time
 
-    def reload_scene(self, scene: Scene) -> None:
+    def reload_scene(self, scene: Scene) -> tuple:
         """Take an edited scene file: what it says now is drawn. Its mesh unless the user chose
         one; its camera, light and time where the file changed them (the orbit the user
         dragged to stays while the file's camera is as it was); everything else (params,
         clear colour, ...) is read from `base_scene` by `scene()`. A new build follows: the
-        mesh's streams and the parameters are prepared off the render thread."""
+        mesh's streams and the parameters are prepared off the render thread. Returns what it
+        replaced, for `restore_scene` (a scene the effect cannot be drawn in)."""
+        before = (self.base_scene, self.mesh, self.mesh_from_scene, self.orbit, self.light,
+                  self.clock.seconds, self.scene_generation)
         old, self.base_scene = self.base_scene, scene
         if self.mesh is None or self.mesh_from_scene:
             given = "mesh" in scene.locations and isinstance(scene.mesh, str)
@@ -158,6 +161,14 @@ class ViewerState:
             self.clock.seconds = scene.time
         self.scene_generation += 1
         self._selection_changed()
+        return before
+
+    def restore_scene(self, before: tuple) -> None:
+        """Back to the scene `reload_scene` replaced (its scene key too: what was prepared for
+        it is drawn again as it was)."""
+        (self.base_scene, self.mesh, self.mesh_from_scene, self.orbit, self.light,
+         self.clock.seconds, self.scene_generation) = before
+        self.changed()
 
     # -- card
     @property

@@ -69,9 +69,13 @@ def test_the_viewer_state_takes_what_the_edited_scene_changed(tmp_path):
     state.reload_scene(load_scene(str(path)))
     assert state.orbit == Orbit.looking(load_scene(str(path)).camera) and state.orbit.distance == 7
     state.set_mesh("cube")                     # the user's mesh is not the file's to change
-    path.write_text("mesh: torus\n")
-    state.reload_scene(load_scene(str(path)))
-    assert state.mesh == "cube"
+    path.write_text("mesh: torus\ncamera: {eye: [0, 0, 9]}\n")
+    before = state.reload_scene(load_scene(str(path)))
+    assert state.mesh == "cube" and state.orbit.distance == 9
+    key = state.scene_key((64, 64))
+    state.restore_scene(before)                # a scene the effect cannot be drawn in: undone
+    assert state.orbit.distance == 7 and state.base_scene.camera.eye == (0, 0, 7)
+    assert state.scene_key((64, 64)) != key
 
 
 def test_editing_the_scene_file_redraws_and_a_broken_one_keeps_the_last_good_scene(tinted_effect):
@@ -79,21 +83,30 @@ def test_editing_the_scene_file_redraws_and_a_broken_one_keeps_the_last_good_sce
     path, scene = flat / "flat.fx", flat / "flat.yaml"     # NAME.yaml beside NAME.fx
     scene.write_text("mesh: quad\n")
     shot = flat / "last.png"
-    viewer = ViewerProcess(str(path), "--profile", "tnt2", "--size", SIZE, "--exit-after", "6",
+    viewer = ViewerProcess(str(path), "--profile", "tnt2", "--size", SIZE, "--exit-after", "15",
                            "--screenshot", str(shot))
     viewer.expect(lambda l: l == f"view: {path} on tnt2: technique Flat (1 pass)", "view: ...")
     # 1. a good edit: the sphere on blue
     save(scene, "mesh: sphere\nclear: {color: [0, 0, 1, 1]}\n")
     line = viewer.expect(lambda l: l.startswith("scene:"), "after a good edit of the scene")
     assert line.startswith(f"scene: {scene} ok in "), line
-    # 2. a broken edit: said, located; the last good scene stays
+    line = viewer.expect(lambda l: l.startswith("select:"), "the effect prepared in the new scene")
+    assert line == "select: tnt2: technique Flat (1 pass)", line
+    # 2. a scene that reads but names a mesh file that is not there: the effect cannot be
+    # prepared in it; said, located in the scene file, and the last good scene stays
+    save(scene, "mesh: nope.obj\nclear: {color: [0, 1, 0, 1]}\n")
+    line = viewer.expect(lambda l: l.startswith("scene:"), "the scene read")
+    assert line.startswith(f"scene: {scene} ok in "), line
+    line = viewer.expect(lambda l: l.startswith("scene:"), "the scene that cannot be drawn")
+    assert line == f"scene: {scene} failed: {scene}:1:7: error: mesh file not found: {flat / 'nope.obj'}"
+    # 3. a broken edit: said, located; the last good scene stays
     save(scene, "mesh: sphere\nclear: {color: [0, 0, 1\n")
     line = viewer.expect(lambda l: l.startswith("scene:"), "after a broken edit of the scene")
     assert line.startswith(f"scene: {scene} failed: {scene}:3:1: error: scene file is not valid "
                            "YAML"), line
     # a broken scene at exit is a file that does not load: 2, as a broken effect's
     assert viewer.finish() == 2, "\n".join(viewer.lines)
-    assert not any(l.startswith("reload:") for l in viewer.lines), viewer.lines
+    assert not any(l.startswith(("reload:", "render:")) for l in viewer.lines), viewer.lines
     pixels = effect_pixels(str(shot))
     # the last good scene on screen: blue corners (the clear colour), the red sphere between
     assert (pixels[:20, :20] == (0, 0, 255)).all(), np.unique(pixels[:20, :20].reshape(-1, 3), axis=0)
