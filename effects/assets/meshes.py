@@ -512,6 +512,7 @@ def check_obj_counts(raw: bytes, where: Location) -> None:
                          (counts.normals, "normal list")):
         limits.check("mesh_vertices", amount, where, f"the .obj file's {what}", SceneError)
     total = int(counts.indices[-1]) if len(counts.indices) else 0
+    limits.measure("mesh_indices", total)   # the meter (limits.py) sees an allowed count too
     if total > limits.get("mesh_indices"):
         line = int(counts.face_lines[np.searchsorted(counts.indices, limits.get("mesh_indices"),
                                                      side="right")])

@@ -10,6 +10,11 @@ effects, profiles and scenes use.
 A host raises a limit with the environment (`EFFECTS_LIMIT_TEXTURE_TEXELS=67108864`, read
 when a limit is looked up) or in code, `effects.base.limits.set_limit("texture_texels", N)`, or for
 a block, `with effects.base.limits.raised(texture_texels=N): ...`.
+
+Every limit bounds an amount of work or storage, never a time: the machine's load changes
+how long a bounded input takes, not whether it is refused. The meter (`meter()`) keeps,
+per limit, the largest amount measured against it in this process and the largest refused,
+so a host or a test can see how much of each budget an input used.
 """
 from __future__ import annotations
 
@@ -90,6 +95,36 @@ LIMITS: dict[str, Limit] = {limit.name: limit for limit in [
 _overrides: dict[str, int] = {}
 
 
+@dataclass(frozen=True)
+class Meter:
+    """What the limits measured since `reset_meter()`: per limit, the largest amount one
+    check measured (a texture's texels, a compile's hlsl_work steps so far, a frame's script
+    commands), allowed or not, and the largest amount refused (over the limit in force)."""
+
+    largest: dict[str, int]
+    refused: dict[str, int]
+
+
+_largest: dict[str, int] = {}
+_refused: dict[str, int] = {}
+
+
+def measure(name: str, amount: int) -> None:
+    """Note `amount` of limit `name`, spent or asked for (the meter keeps the largest)."""
+    if amount > _largest.get(name, -1):
+        _largest[name] = amount
+
+
+def meter() -> Meter:
+    """A copy of the meter now."""
+    return Meter(dict(_largest), dict(_refused))
+
+
+def reset_meter() -> None:
+    _largest.clear()
+    _refused.clear()
+
+
 def env_name(name: str) -> str:
     """The environment variable that raises limit `name`."""
     return f"EFFECTS_LIMIT_{name.upper()}"
@@ -143,6 +178,9 @@ def raised(**values: int) -> Iterator[None]:
 def message(name: str, amount: int, subject: str) -> str:
     """'SUBJECT has AMOUNT UNIT; the limit is N (limit NAME: raise it with ...)'."""
     limit = LIMITS[name]
+    measure(name, amount)
+    if amount > _refused.get(name, -1):   # every refusal is worded here
+        _refused[name] = amount
     return (f"{subject} has {amount:,} {limit.unit}; the limit is {get(name):,} "
             f"(limit {name}: raise it with {env_name(name)}=N or "
             f"effects.base.limits.set_limit({name!r}, N))")
@@ -151,6 +189,7 @@ def message(name: str, amount: int, subject: str) -> str:
 def check(name: str, amount: int, location: Location, subject: str,
           error: type[EffectError] = EffectError) -> None:
     """Raise `error` at `location` when `amount` is over limit `name`."""
+    measure(name, amount)
     if amount > get(name):
         raise error(message(name, amount, subject), location)
 
@@ -166,6 +205,7 @@ def check_texture(width: int, height: int, layers: int, location: Location, subj
     """A texture's top level (`layers` = 6 cube faces or the volume depth) against
     `texture_edge` and `texture_texels`, before anything is allocated for it."""
     edge = max(width, height, layers)
+    measure("texture_edge", edge)
     if edge > get("texture_edge"):
         raise error(message("texture_edge", edge, f"{subject} ({width} x {height} x {layers})"), location)
     check("texture_texels", width * height * layers, location, f"{subject} ({width} x {height} x {layers})",

@@ -478,6 +478,9 @@ class ScriptRunner:
         except BaseException:
             self._abandon()
             raise
+        finally:   # what the frame spent of its budgets, on the meter (limits.py)
+            limits.measure("script_commands", self.commands_run)
+            limits.measure("script_draws", self.draws)
         return self.back_buffer  # type: ignore[return-value]
 
     def execute(self, commands: list[Command], pass_index: int | None) -> None:

@@ -12,13 +12,15 @@ Console lines (stdout, one per event, flushed at once so scripts can follow):
     view: PATH on CARD: technique NAME (N passes)         the first frame is drawn
     reload: PATH ok in 12.3 ms (technique NAME)           a reload was swapped in
     reload: PATH failed: PATH:LINE:COL: error: MESSAGE    a reload failed; the last good stays
+    scene: SCENE ok in 1.2 ms                             the scene file was edited: drawn again
+    scene: SCENE failed: SCENE:LINE:COL: error: MESSAGE   a broken scene file; the last good stays
     select: CARD: technique NAME (N passes)               another card or forced technique
     screenshot: OUT.png
 Scriptable: --exit-after SECONDS, --screenshot OUT.png (taken at exit), --profile, --technique,
 --mesh, --view, --tour (draw every card once, then exit), --time SECONDS (TIME held there).
 
 The effect is drawn in its scene (--scene, or NAME.yaml beside NAME.fx: mesh, camera, light,
-params, time), with --set values over it and the panel's edits over those
+params, time; watched and reloaded as the effect is, `effects.viewer.scene_reload`), with --set values over it and the panel's edits over those
 (`effects.viewer.params`). TIME runs while the effect reads it: space pauses, . and , step.
 """
 from __future__ import annotations
@@ -33,6 +35,7 @@ import numpy as np
 
 from effects.base.errors import EffectError
 from effects.viewer.reload import LoadedEffect, Reloader, ReloadResult, build_effect, effect_builder, error_text, loaded_warnings
+from effects.viewer.scene_reload import SceneReloader
 from effects.viewer.state import DIFFERENCE_SCALE, MESHES, VIEWS, ViewerState
 
 DEFAULT_CARD = "radeon9700"
@@ -200,6 +203,9 @@ class Viewer:
                                  **self._load_options)
         self.reloader = Reloader(self.options.path, builder, use_watchdog=not self.options.polling)
         self.reloader.start(initial, build_now=False)
+        # the scene file is watched too: an edit is drawn, a broken one said (the last good stays)
+        self.scenes = SceneReloader(self.options.scene, use_watchdog=not self.options.polling).start() \
+            if self.options.scene else None
         start = time.perf_counter()
         last = start
         frame = 0
@@ -216,6 +222,7 @@ class Viewer:
                 while result is not None:
                     self._take(result)
                     result = self.reloader.poll()
+                self._take_scenes()
                 if self.state.light.advance(now - last):
                     self.state.changed()
                 if self._reads_time and self.state.clock.advance(now - last):
@@ -251,6 +258,8 @@ class Viewer:
                 self._save_screenshot(self.options.screenshot)
         finally:
             self.reloader.stop()
+            if self.scenes is not None:
+                self.scenes.stop()
             self.reference.stop()
             self.window.destroy()
         return self.exit_code()
@@ -258,9 +267,10 @@ class Viewer:
     _screenshot_failed = False
 
     def exit_code(self) -> int:
-        """As the other commands: 2 when the file (as it is at exit) does not load or the
-        screenshot could not be written, 1 when nothing could be drawn, else 0."""
-        if self.status.error is not None or self.loaded is None or self._screenshot_failed:
+        """As the other commands: 2 when the file or its scene file (as they are at exit) does
+        not load or the screenshot could not be written, 1 when nothing could be drawn, else 0."""
+        if self.status.error is not None or self.loaded is None or self._screenshot_failed \
+                or self.status.scene_error is not None:
             return 2
         if self.loaded.technique is None or self.loaded.prepare_error is not None \
                 or self.status.render_error is not None:
@@ -298,6 +308,8 @@ class Viewer:
     # -- builds -----------------------------------------------------------------------------
     def _take(self, result: ReloadResult) -> None:
         """A finished build, on the render thread: swap it in, or keep the last good one."""
+        if self._scene_trial is not None and self._take_scene_build(result):
+            return
         if result.kind == "reload":
             self.say(result.log_line())
             self.status.last_reload = result.log_line()
@@ -312,6 +324,45 @@ class Viewer:
             if result.kind == "select":
                 self.say(f"select: {self.state.card} failed: {error_text(err)}")
             self._swapped_selection = self.state.selection_generation
+
+    scenes: "SceneReloader | None" = None
+    # while the build for an edited scene file is on its way: the scene it replaced (state's
+    # `reload_scene`), taken back if the effect cannot be drawn in the new one
+    _scene_trial: tuple | None = None
+
+    def _take_scenes(self) -> None:
+        """Readings of the edited scene file, on the render thread: a good one is taken and the
+        effect prepared in it (off this thread); a broken one is said and shown, and the last
+        good scene stays."""
+        result = self.scenes.poll() if self.scenes is not None else None
+        while result is not None:
+            self.say(result.log_line())
+            if result.ok:
+                before = self.state.reload_scene(result.scene)
+                self._scene_trial = self._scene_trial or before
+                self.status.scene_error = None
+            else:
+                self._scene_failed(result.error)
+            result = self.scenes.poll()  # type: ignore[union-attr]
+
+    def _scene_failed(self, err: BaseException | None) -> None:
+        self.status.scene_error = err.report() if isinstance(err, EffectError) else error_text(err)
+
+    def _take_scene_build(self, result: ReloadResult) -> bool:
+        """The first build after a scene file was taken: True when it was taken here. Where it
+        failed at the scene file (a mesh file that does not load, a param the effect does not
+        have or of the wrong type: located there), the scene file is broken: the last good
+        scene and effect stay, and the error is the scene's."""
+        before, self._scene_trial = self._scene_trial, None
+        failed = result.error if not result.ok else result.loaded.prepare_error  # type: ignore[union-attr]
+        if not (isinstance(failed, EffectError) and self.options.scene is not None
+                and os.path.abspath(failed.path) == os.path.abspath(self.options.scene)):
+            return False
+        self.state.restore_scene(before)  # type: ignore[arg-type]
+        self._scene_failed(failed)
+        self.say(f"scene: {self.options.scene} failed: {error_text(failed)}")
+        self._swapped_selection = self.state.selection_generation
+        return True
 
     def _swap(self, loaded: LoadedEffect) -> None:
         for warning in [*loaded_warnings(loaded), *self._unknown_assignments(loaded)]:
@@ -376,8 +427,9 @@ class Viewer:
         self.status.render_error = None
         loaded = self.loaded
         size = self.effect_size()
-        if loaded is not None and loaded.profile is not self.state.profile:
-            self._drawn_generation = (-1, -1)          # the new card's build is on its way
+        if loaded is not None and (loaded.profile is not self.state.profile
+                                   or self._scene_trial is not None):
+            self._drawn_generation = (-1, -1)   # the new card's or scene's build is on its way
             return
         if loaded is None or loaded.technique is None or loaded.prepare_error is not None:
             self._image = np.zeros((size[1], size[0], 4), np.uint8)

@@ -52,6 +52,7 @@ class Status:
     path: str
     loaded: "LoadedEffect | None" = None
     error: str | None = None              # the located error report of the last failed build
+    scene_error: str | None = None        # ... and of the scene file's last failed reading
     render_error: str | None = None
     last_reload: str = ""
     gl_ms: float | None = None
@@ -390,6 +391,12 @@ def _reload(status: Status, actions: Actions) -> None:
         first, *rest = status.error.splitlines()
         imgui.text_wrapped(first)
         for line in rest:          # the source line and its caret: unwrapped, so they align
+            imgui.text(line)
+    if status.scene_error:
+        imgui.text_colored(RED, "The scene file failed; still drawing the last good scene:")
+        first, *rest = status.scene_error.splitlines()
+        imgui.text_wrapped(first)
+        for line in rest:
             imgui.text(line)
     for message in status.messages[-3:]:
         imgui.text_colored(GREY, message)

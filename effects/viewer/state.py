@@ -120,17 +120,55 @@ class ViewerState:
     clock: Clock = field(default_factory=Clock)
     _profiles: dict[str, "CapsProfile"] = field(default_factory=dict)
 
+    # the mesh is the scene file's (not --mesh nor the M key): a scene reload may change it
+    mesh_from_scene: bool = False
+    scene_generation: int = 0             # counts scene files taken (reloads included)
+
     def start_from_scene(self, scene: Scene) -> None:
         """Take the effect's scene: its mesh (unless one was chosen), camera, light, time."""
         self.base_scene = scene
         if self.mesh is None and "mesh" in scene.locations:
             self.mesh = scene.mesh if isinstance(scene.mesh, str) else None
+            self.mesh_from_scene = True
         if "camera" in scene.locations:
             self.orbit = Orbit.looking(scene.camera)
         if scene.light_given:
             self.light = LightPath.through(scene.light.position)
         if not self.clock.fixed:
             self.clock.seconds = scene.time
+
+    def reload_scene(self, scene: Scene) -> tuple:
+        """Take an edited scene file: what it says now is drawn. Its mesh unless the user chose
+        one; its camera, light and time where the file changed them (the orbit the user
+        dragged to stays while the file's camera is as it was); everything else (params,
+        clear colour, ...) is read from `base_scene` by `scene()`. A new build follows: the
+        mesh's streams and the parameters are prepared off the render thread. Returns what it
+        replaced, for `restore_scene` (a scene the effect cannot be drawn in)."""
+        before = (self.base_scene, self.mesh, self.mesh_from_scene, self.orbit, self.light,
+                  self.clock.seconds, self.scene_generation)
+        old, self.base_scene = self.base_scene, scene
+        if self.mesh is None or self.mesh_from_scene:
+            given = "mesh" in scene.locations and isinstance(scene.mesh, str)
+            self.mesh = scene.mesh if given else None     # type: ignore[assignment]
+            self.mesh_from_scene = given
+        if (scene.camera, "camera" in scene.locations) != (old.camera, "camera" in old.locations):
+            self.orbit = Orbit.looking(scene.camera)
+        if (scene.light.position, scene.light_given) != (old.light.position, old.light_given):
+            animate = self.light.animate
+            self.light = LightPath.through(scene.light.position) if scene.light_given else LightPath()
+            self.light.animate = animate
+        if scene.time != old.time and not self.clock.fixed:
+            self.clock.seconds = scene.time
+        self.scene_generation += 1
+        self._selection_changed()
+        return before
+
+    def restore_scene(self, before: tuple) -> None:
+        """Back to the scene `reload_scene` replaced (its scene key too: what was prepared for
+        it is drawn again as it was)."""
+        (self.base_scene, self.mesh, self.mesh_from_scene, self.orbit, self.light,
+         self.clock.seconds, self.scene_generation) = before
+        self.changed()
 
     # -- card
     @property
@@ -179,6 +217,7 @@ class ViewerState:
     def set_mesh(self, mesh: str | None) -> None:
         if mesh != self.mesh:
             self.mesh = mesh
+            self.mesh_from_scene = False
             self._selection_changed()   # streams are checked (and built) off the render thread
 
     def cycle_mesh(self) -> None:
@@ -257,10 +296,10 @@ class ViewerState:
         """Equal keys, equal scenes: what a prepared Runtime may be reused for (the clock is
         not in it: a runtime follows the time by `Runtime.set_time`)."""
         return (str(self.mesh), tuple(size), round(self.orbit.yaw, 9), round(self.orbit.pitch, 9),
-                round(self.orbit.distance, 9), round(self.light.angle, 9))
+                round(self.orbit.distance, 9), round(self.light.angle, 9), self.scene_generation)
 
     def camera_key(self) -> tuple:
         """Everything a picture depends on besides the effect (for the reference view's cache)."""
         return (self.card, self.technique, str(self.mesh), round(self.orbit.yaw, 6),
                 round(self.orbit.pitch, 6), round(self.orbit.distance, 6), round(self.light.angle, 6),
-                self.tweaks.generation, round(self.clock.seconds, 6))
+                self.tweaks.generation, round(self.clock.seconds, 6), self.scene_generation)

@@ -1,17 +1,16 @@
 """Hostile HLSL (issue 33, the compiler's side): one function per case, run by
-tests/hostile/test_hostile_hlsl.py in child processes holding at most 1 GiB with 5 s a case, as
+tests/hostile/test_hostile_hlsl.py in child processes holding at most 1 GiB, their work metered, as
 hostile_cases.py's are (this module reuses its runner: run as a script, it adds its cases to
 hostile_cases.CASES and runs them the same way).
 
 Each case compiles a function (`compiled`: the assembly, or the located error), evaluates an
 effect-level expression, or validates; most build their input as text first and return a
-function, so only what the framework does with it is timed.
+function, so only what the framework does with it is metered.
 """
 from __future__ import annotations
 
 import json
 import os
-import signal
 import sys
 from pathlib import Path
 from typing import Callable
@@ -455,7 +454,7 @@ if __name__ == "__main__":
     base.CASES.update(CASES)
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     base._limit_memory()
-    signal.signal(signal.SIGALRM, base._alarm)
+    base.install_alarms()
     import effects  # noqa: F401 - imported before the clock starts
     from effects.shaders.hlsl.parse import parser
     parser()                    # the compiler and its grammar too

@@ -225,7 +225,11 @@ def test_time_runs_between_two_screenshots_and_stands_while_paused(wave_effect, 
     assert seconds["later"] > seconds["first"] + 0.2       # 20 frames later
     for name in ("first", "later"):                          # each the wave at its own time
         assert np.abs(shots[name][180] - wave_row(seconds[name])).max() <= 3, name
-    assert np.abs(shots["later"] - shots["first"]).max() > 20
+    # ... so they differ, unless the frames between took a whole period of the wave (1 s at
+    # Speed 1): on a loaded machine 20 frames can, and both pictures are then rightly the same
+    apart = (seconds["later"] - seconds["first"]) % 1.0
+    if 0.05 < apart < 0.95:
+        assert np.abs(shots["later"] - shots["first"]).max() > 20, seconds
     # space pauses: the clock and the picture stand
     assert seconds["still_paused"] == seconds["paused"]
     assert np.array_equal(shots["still_paused"], shots["paused"])

@@ -11,7 +11,9 @@
 - `hlsl_work`: the DAG nodes asked for (dag.Graph.work counts them) plus the components the
   evaluator copies or merges: unrolled iterations x inlined calls x components. Checked after
   every expression node and statement, so a runaway loop nest or call fan-out stops within
-  one statement of the limit rather than after minutes or gigabytes.
+  one statement of the limit rather than after minutes or gigabytes. Each check also
+  notes the count on limits.py's meter, so what a compile spent can be read (tests/hostile
+  asserts work, not seconds).
 """
 from __future__ import annotations
 
@@ -41,11 +43,13 @@ def spend(ev: Any, amount: int, where: Any) -> None:
     """Count `amount` steps of work (components copied or merged) and check the budget."""
     g = ev.ctx.graph
     g.work += amount
+    limits.measure("hlsl_work", g.work)
     if g.work > ev.ctx.work_cap:
         raise over_budget(ev, where)
 
 
 def check(ev: Any, where: Any) -> None:
+    limits.measure("hlsl_work", ev.ctx.graph.work)
     if ev.ctx.graph.work > ev.ctx.work_cap:
         raise over_budget(ev, where)
 
