@@ -221,7 +221,7 @@ def _sampler_registers(ctx: Context, read: set[str]) -> dict[str, int]:
     A sampler paired with a texture (`Tex.Sample(S, uv)`: `S+Tex`) takes the sampler's
     register(s#) where it has one, else the first free register before the samplers read
     alone, as native d3dcompiler placed the combined samplers it made for shader models 1-3
-    (vkd3d's tests/hlsl/combined-samplers.shader_test). Other samplers get theirs in the code
+    (vkd3d's combined-samplers shader test). Other samplers get theirs in the code
     generator, by first use. `read`: the samplers the code reads (a sampler passed to
     `Tex.Sample` is named without being read alone)."""
     regs = {name: b for name in ctx.samplers_used if (b := _explicit(ctx, name, "s")) is not None}

@@ -573,7 +573,7 @@ def _texture(dim: str, variant: str):
 # vs_3_0): each the DX9 read it stands for, by name -> (the tex* variant, arguments besides
 # the sampler and the coordinate). The texture and the sampler become one sampler register,
 # named `Sampler+Texture` as vkd3d-shader names the combined sampler it makes for shader model
-# 1-3 (`lower_separate_samples`, vkd3d's tests/hlsl/combined-samplers.shader_test records
+# 1-3 (`lower_separate_samples`, vkd3d's combined-samplers shader test records
 # native d3dcompiler's placement); compiler._sampler_registers places it.
 _METHODS = {"Sample": ("", 0), "SampleBias": ("bias", 1), "SampleLevel": ("lod", 1),
             "SampleGrad": ("grad", 2)}
