@@ -590,10 +590,21 @@ def texture_method(ev: Any, obj: Value, method: str, args: list[Value], where: A
     `SampleGrad(S, uv, dx, dy)` as the DX9 reads they are: `texld`, `texldb` and `texldl` with
     the bias or level in .w, `texldd`, through the sampler register of the pair (S, Tex)."""
     loc = ev.at(where)
-    if obj.type.kind != "texture" or obj.sampler is None:
+    if obj.type.kind != "texture":
         raise ev.error(f"X3018: invalid subscript '{method}': only a texture object "
                        f"(Texture2D ...) has methods, not '{obj.type}'", where)
+    if obj.sampler is None:
+        # an element of a texture array has no register of its own to pair with a sampler
+        # on shader models 1-3 (vkd3d leaves it unimplemented for them too)
+        raise ev.error(f"'{method}' of an element of a texture array: shader models 1-3 pair "
+                       f"a sampler with a texture declared on its own (Texture2D T;)", where)
     target = ev.ctx.target.name
+    if method in ("Sample", "SampleBias") and ev.ctx.target.kind == "vs":
+        # implicit derivatives exist only between pixels (shader model 4 allows Sample in
+        # pixel shaders only); a vertex shader names its level
+        raise ev.error(f"'{obj.sampler}.{method}' in a vertex shader: it needs a pixel "
+                       f"shader's derivatives; a {target} reads a level with SampleLevel "
+                       f"(texldl)", where)
     if method in _SM4_METHODS:
         raise ev.error(f"'{obj.sampler}.{method}' needs shader model 4 (vs_4_0/ps_4_0): "
                        f"{target} has no instruction for it (the texture methods shader "

@@ -208,9 +208,10 @@ technique T { pass P { PixelShader = compile ps_2_0 PS(); } }
     ("Tex.Fetch(Samp, uv)", "X3018: invalid subscript 'Fetch'"),
     ("Samp.Sample(Samp, uv)", "X3018: invalid subscript 'Sample': only a texture object"),
     ("Tex.Sample(uv, uv)", "X3013: 'Sample': the first argument must be a sampler"),
+    ("Texs[1].Sample(Samp, uv)", "'Sample' of an element of a texture array"),
 ])
 def test_what_shader_model_3_cannot_do_is_refused_where_it_is_written(call, message):
-    fx = effects.load_effect(f"""Texture2D Tex;
+    fx = effects.load_effect(f"""Texture2D Tex; Texture2D Texs[2];
 SamplerState Samp;
 float4 PS(float2 uv : TEXCOORD0) : COLOR
 {{
@@ -233,3 +234,20 @@ technique T { pass P { PixelShader = compile ps_2_0 PS(); } }
     with pytest.raises(EffectError) as err:
         compile_shader(fx, "PS", "ps_2_0")
     assert "ps_2_0 has no texldl" in str(err.value) and ":3:" in str(err.value)
+
+
+def test_a_vertex_shader_reads_a_level_and_not_an_implicit_one():
+    fx = effects.load_effect("""Texture2D Height;
+SamplerState Samp;
+float4 VS(float4 p : POSITION) : POSITION { return p + Height.SampleLevel(Samp, p.xy, 0).x; }
+float4 Bad(float4 p : POSITION) : POSITION { return p + Height.Sample(Samp, p.xy); }
+technique T { pass P { VertexShader = compile vs_3_0 VS(); } }
+""")
+    compiled = compile_shader(fx, "VS", "vs_3_0")
+    assert compiled.samplers == {"Samp+Height": 0}
+    assert any(line.strip().startswith("texldl ") and line.strip().endswith(", s0")
+               for line in compiled.text.splitlines()), compiled.text
+    with pytest.raises(EffectError) as err:
+        compile_shader(fx, "Bad", "vs_3_0")
+    assert str(err.value).startswith("<string>:4:64: error: 'Height.Sample' in a vertex "
+                                     "shader: it needs a pixel shader's derivatives"), str(err.value)
