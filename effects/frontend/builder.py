@@ -182,18 +182,21 @@ class Builder:
         if spec.rows > 1 and "column_major" not in storage and "row_major" not in storage \
                 and self.row_major_at(raw.name.line):
             storage += ("row_major",)     # the pragma's default, made explicit
-        self.packoffset(raw)
+        semantics = self.packoffset(raw)
         return Parameter(name, spec, storage, dims,
-                         _semantic(raw.semantic), self.annotations(raw.annotations), value,
-                         self.loc(raw.name), _registers(raw.semantic))
+                         _semantic(semantics), self.annotations(raw.annotations), value,
+                         self.loc(raw.name), _registers(semantics))
 
-    def packoffset(self, raw: RawParam) -> None:
-        """A cbuffer member's `packoffset(c#)` / `packoffset(c#.x)` is its first register.
-        Shader models 1-3 give every uniform whole registers, so a member packed into a later
-        lane (`packoffset(c1.y)`, which only a constant buffer can hold) has no register here:
-        refused at the parameter, as is a binding of another kind than c#."""
+    def packoffset(self, raw: RawParam) -> list[str]:
+        """The semantics of a declaration, a cbuffer member's `packoffset(c#)` (or
+        `packoffset(c#.x)`) read as the `register(c#)` it binds. Shader models 1-3 give every
+        uniform whole registers, so a member packed into a later lane (`packoffset(c1.y)`,
+        which only a constant buffer can hold) has no register here: refused at the
+        parameter, as is a binding of another kind than c#."""
+        out = []
         for s in raw.semantic or ():
             if not s.lower().startswith("packoffset("):
+                out.append(s)
                 continue
             inner = s[len("packoffset("):-1].strip()
             reg, _, lane = inner.partition(".")
@@ -201,6 +204,8 @@ class Builder:
                 raise self.error(ParseError, f"'{raw.name.value}': packoffset({inner}) has no "
                                  f"register in shader models 1-3, which give each uniform whole "
                                  f"constant registers: write packoffset(c#) (or c#.x)", raw.name)
+            out.append(f"register({reg})")
+        return out
 
     def dims(self, raws: list, spec: TypeSpec, value: V | None, name: str) -> tuple[int, ...]:
         """Array sizes: `[4]`; `[N]` with N a constant parameter declared before (a macro is
@@ -663,28 +668,15 @@ class Builder:
 def _registers(semantics: list[str]) -> tuple[tuple[str, str], ...]:
     """Every `register(...)` binding, as (profile, register): `register(c4)` is ('', 'c4'),
     `register(ps, c1)` ('ps', 'c1'); lower-case, in the order written (HLSL allows several:
-    `: register(vs, c0) : register(ps, c1)`). A cbuffer member's `packoffset(c4)` (or
-    `packoffset(c4.x)`) is its register too, for every shader (`_packoffset` checks the lane)."""
-    out = []
-    for s in semantics or ():
-        low = s.lower()
-        if low.startswith("register("):
-            out.append(register_binding(s))
-        elif low.startswith("packoffset("):
-            out.append(("", low[len("packoffset("):-1].split(".")[0].strip()))
-    return tuple(out)
-
-
-def _is_binding(semantic: str) -> bool:
-    """Whether a semantic is a binding (`register(...)`, `packoffset(...)`), not a name."""
-    return semantic.lower().startswith(("register(", "packoffset("))
+    `: register(vs, c0) : register(ps, c1)`)."""
+    return tuple(register_binding(s) for s in semantics or () if s.lower().startswith("register("))
 
 
 def _semantic(semantics: list[str]) -> str | None:
     """The semantic of `: WORLD : register(c0)` (the register only when there is nothing else)."""
     if not semantics:
         return None
-    named = [s for s in semantics if not _is_binding(s)]
+    named = [s for s in semantics if not s.lower().startswith("register(")]
     return named[0] if named else semantics[0]
 
 

@@ -65,6 +65,9 @@ def test_cbuffer_members_are_uniforms_and_packoffset_is_their_register(backend):
     assert [p.name for p in fx.parameters] == ["Tint", "Gain", "Unused"]
     assert fx.parameter("Gain").register_for("ps_2_0", "c") == "c3"
     assert fx.parameter("Unused").annotation("UIName").value == "not read"
+    # printed as the Direct3D 9 declarations they are, and read back the same
+    assert "float Gain : register(c3);" in fx.to_source()
+    assert effects.load_effect(fx.to_source()).parameters == fx.parameters
     lines = asm(fx, "PS", "ps_2_0")
     assert "mul r0, c0, c3.x" in lines, lines          # Tint by first use, Gain in c3
     img = draw(fx, backend, {"Tint": [1.0, 0.5, 0.25, 1.0], "Gain": 0.5})
