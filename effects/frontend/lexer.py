@@ -169,11 +169,16 @@ class EffectLexer:
         # initialisers), so its '{' and '}' are not counted as open (0: none, 1: its header
         # read, 2: inside it)
         cbuffer = 0
+        cbuffer_at = 0                  # where the open cbuffer's '{' is (for an unclosed one)
         prefix_run = 0
         while True:
             m = match(text, pos)
             kind = m.lastgroup
             if kind == "END":
+                if cbuffer == 2:
+                    line, _ = self.position(cbuffer_at)
+                    raise Located(f"unexpected end of file: missing '}}' to close the cbuffer "
+                                  f"opened at line {line}", *self.end_position())
                 return
             if kind == "BAD":
                 raise self._bad_character(m.start(kind))
@@ -219,6 +224,7 @@ class EffectLexer:
             if cbuffer and not opened and self.annotation is None and (
                     (cbuffer == 1 and kind == "LBRACE") or (cbuffer == 2 and kind == "RBRACE")):
                 cbuffer = 2 if kind == "LBRACE" else 0
+                cbuffer_at = start
                 stmt_eq = stmt_params = False
                 self.decl_name = None
             elif kind in special:

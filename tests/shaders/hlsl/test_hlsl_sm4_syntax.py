@@ -82,6 +82,13 @@ def test_a_member_packed_into_a_later_lane_is_refused_where_it_is_declared():
                                      "register in shader models 1-3"), str(err.value)
 
 
+def test_an_unclosed_cbuffer_is_named_at_the_end_of_the_file():
+    with pytest.raises(ParseError) as err:
+        effects.load_effect("cbuffer B\n{\n    float4 A;\n")
+    assert str(err.value).startswith("<string>:3:14: error: unexpected end of file: missing "
+                                     "'}' to close the cbuffer opened at line 2"), str(err.value)
+
+
 def test_tbuffer_and_state_objects_are_still_direct3d10_effect_syntax():
     for text, where, word in [
             ("tbuffer T { float4 A; };\n", "1:1", "tbuffer"),
