@@ -404,7 +404,8 @@ class CodeGen:
             self.a0 = lanes
         base = self.uniform_reg(n.key[0], n.key[1]).index
         reg, _ = self.home_of(n)
-        self.emit("mov", reg, (0, 1, 2, 3), [Src(Reg("c_rel", base, lane), {i: i for i in range(4)})],
+        read = tuple(sorted(self.live.of(n))) if self.live is not None else (0, 1, 2, 3)
+        self.emit("mov", reg, read, [Src(Reg("c_rel", base, lane), {i: i for i in read})],
                   n.location)
 
     def _lanewise(self, a: Operand, lanes_out: list[tuple[int, int]]) -> Src:
