@@ -182,9 +182,30 @@ class Builder:
         if spec.rows > 1 and "column_major" not in storage and "row_major" not in storage \
                 and self.row_major_at(raw.name.line):
             storage += ("row_major",)     # the pragma's default, made explicit
+        semantics = self.packoffset(raw)
         return Parameter(name, spec, storage, dims,
-                         _semantic(raw.semantic), self.annotations(raw.annotations), value,
-                         self.loc(raw.name), _registers(raw.semantic))
+                         _semantic(semantics), self.annotations(raw.annotations), value,
+                         self.loc(raw.name), _registers(semantics))
+
+    def packoffset(self, raw: RawParam) -> list[str]:
+        """The semantics of a declaration, a cbuffer member's `packoffset(c#)` (or
+        `packoffset(c#.x)`) read as the `register(c#)` it binds. Shader models 1-3 give every
+        uniform whole registers, so a member packed into a later lane (`packoffset(c1.y)`,
+        which only a constant buffer can hold) has no register here: refused at the
+        parameter, as is a binding of another kind than c#."""
+        out = []
+        for s in raw.semantic or ():
+            if not s.lower().startswith("packoffset("):
+                out.append(s)
+                continue
+            inner = s[len("packoffset("):-1].strip()
+            reg, _, lane = inner.partition(".")
+            if not (reg[:1].lower() == "c" and reg[1:].isdigit()) or lane.lower() not in ("", "x"):
+                raise self.error(ParseError, f"'{raw.name.value}': packoffset({inner}) has no "
+                                 f"register in shader models 1-3, which give each uniform whole "
+                                 f"constant registers: write packoffset(c#) (or c#.x)", raw.name)
+            out.append(f"register({reg})")
+        return out
 
     def dims(self, raws: list, spec: TypeSpec, value: V | None, name: str) -> tuple[int, ...]:
         """Array sizes: `[4]`; `[N]` with N a constant parameter declared before (a macro is

@@ -4,7 +4,7 @@ framework loads.
 Engines that moved to Direct3D 11 kept the `.fx` extension (Kodi's `system/shaders/*_d3d.fx`,
 the SDK's Direct3D 11 tutorials), so a user opens one expecting a picture. Their syntax is not
 D3DX9's: `technique11 { pass { SetPixelShader(CompileShader(ps_4_0, PS())); } }`,
-`SamplerState S { Filter = MIN_MAG_MIP_LINEAR; };`, `cbuffer`, state objects. Parsed as a
+`SamplerState S { Filter = MIN_MAG_MIP_LINEAR; };`, state objects. Parsed as a
 D3DX9 effect, the first of these is a syntax error that names a brace, which says nothing
 useful. `d3d10_error` turns such a failure into an error at the Direct3D 10/11 construct that
 caused it; `d3d10_shader_warning` flags a file with no techniques whose shaders use Direct3D 10
@@ -26,14 +26,22 @@ from dataclasses import replace
 from effects.base.errors import EffectError, EffectWarning, ParseError
 from effects.frontend.source import Preprocessed
 
-# Words only Direct3D 10/11 effects use: technique keywords, constant/texture buffers, state
-# objects, and the pass-state functions. Case-sensitive, as HLSL keywords are. (The lower-case
-# `texture2D` is a D3D9 type too, so texture object names are not in the list.)
-D3D10_WORDS = ("technique10", "technique11", "fxgroup", "cbuffer", "tbuffer", "SamplerState",
+# Words only Direct3D 10/11 effects use: technique keywords, texture buffers, state objects,
+# and the pass-state functions. Case-sensitive, as HLSL keywords are. (The lower-case
+# `texture2D` is a D3D9 type too, so texture object names are not in the list.) Not in it:
+# `cbuffer`, `SamplerState` and `Texture2D.Sample`, which the later fxc (d3dcompiler_43/47)
+# compiled in plain HLSL for vs_2_0-ps_3_0 as well (docs/guide/hlsl.md): a D3D10/11 *effect* is
+# told by its effect syntax. A `SamplerState S { Filter = ...; }` with a state block is a
+# Direct3D 10 state object (`_STATE_OBJECT`); `SamplerState S;` alone is a sampler.
+D3D10_WORDS = ("technique10", "technique11", "fxgroup", "tbuffer",
                "SamplerComparisonState", "BlendState", "DepthStencilState", "RasterizerState",
                "SetVertexShader", "SetPixelShader", "SetGeometryShader", "SetHullShader",
                "SetDomainShader", "SetComputeShader", "CompileShader", "ConstructGSWithSO")
-_WORD = re.compile(r"\b(" + "|".join(D3D10_WORDS) + r")\b")
+# `SamplerState Name [N] : SEMANTIC {`: a state object's block (Kodi's `SamplerState
+# KernelSampler : IMMUTABLE { Filter = MIN_MAG_MIP_LINEAR; }`)
+_STATE_OBJECT = (r"SamplerState(?=\s+[A-Za-z_]\w*\s*(?:\[[^\]]*\]\s*)?"
+                 r"(?::\s*\w+(?:\s*\([^)]*\))?\s*)*\{)")
+_WORD = re.compile(r"\b(" + "|".join(D3D10_WORDS) + "|" + _STATE_OBJECT + r")\b")
 # A system-value semantic after a colon: `: SV_POSITION`, `: SV_Target0`.
 _SV_SEMANTIC = re.compile(r":\s*(SV_[A-Za-z]+\d*)\b")
 # Strings hold no syntax; blank them (keeping offsets) before looking.

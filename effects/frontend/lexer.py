@@ -59,7 +59,7 @@ _KEYWORDS = {
     "technique": "TECHNIQUE", "pass": "PASS", "compile": "COMPILE",
     "sampler_state": "SAMPLER_STATE", "stateblock_state": "STATEBLOCK_STATE",
     "struct": "STRUCT", "null": "NULL", "true": "TRUE", "false": "FALSE",
-    "typedef": "TYPEDEF",
+    "typedef": "TYPEDEF", "cbuffer": "CBUFFER",
 }
 STORAGE_CLASSES = ("shared", "static", "uniform", "const", "extern", "volatile",
                    "row_major", "column_major", "inline")
@@ -67,7 +67,7 @@ _KEYWORDS.update({s: "STORAGE" for s in STORAGE_CLASSES})
 # ... but HLSL's own keywords are case-sensitive: `Shared`, `Static` or `Struct` is a name
 # (naga's back/hlsl/keywords.rs lists the only case-insensitive ones, with fxc's X3086 for
 # them in strict mode: asm, decl, pass, technique and the Direct3D 10 texture types)
-_EXACT_CASE = frozenset(STORAGE_CLASSES) | {"struct", "typedef"}
+_EXACT_CASE = frozenset(STORAGE_CLASSES) | {"struct", "typedef", "cbuffer"}
 
 # What a brace-scan skips so that a brace inside a comment or string does not count.
 _BRACE_SCAN_RE = re.compile(r'[{}]|//[^\n]*|/\*.*?(?:\*/|\Z)|"(?:[^"\\\n]|\\.)*"', re.S)
@@ -165,11 +165,20 @@ class EffectLexer:
         prev = prev2 = ""               # types of the two previous tokens
         pending: _Open | None = None    # technique/pass/sampler_state header awaiting its '{'
         stmt_eq = stmt_params = False   # top-level statement state: saw '=', saw '(...)'
+        # a `cbuffer`'s braces: its members are read as top-level declarations (annotations,
+        # initialisers), so its '{' and '}' are not counted as open (0: none, 1: its header
+        # read, 2: inside it)
+        cbuffer = 0
+        cbuffer_at = 0                  # where the open cbuffer's '{' is (for an unclosed one)
         prefix_run = 0
         while True:
             m = match(text, pos)
             kind = m.lastgroup
             if kind == "END":
+                if cbuffer == 2:
+                    line, _ = self.position(cbuffer_at)
+                    raise Located(f"unexpected end of file: missing '}}' to close the cbuffer "
+                                  f"opened at line {line}", *self.end_position())
                 return
             if kind == "BAD":
                 raise self._bad_character(m.start(kind))
@@ -186,6 +195,8 @@ class EffectLexer:
                     kw = None
                 if kw is not None:
                     kind = kw
+                    if kind == "CBUFFER" and not opened:
+                        cbuffer = 1
                 elif (low == "matrix" or low == "vector") and \
                         (t := _TEMPLATE_RE.match(text, _GAP_RE.match(text, end).end())):
                     end = t.end()
@@ -210,7 +221,13 @@ class EffectLexer:
             elif kind != "STRING" and len(value) > MAX_LITERAL_LENGTH:  # INDEX too: `[999...]`
                 raise Located(f"number literal is too long ({len(value)} characters)", line, col)
 
-            if kind in special:
+            if cbuffer and not opened and self.annotation is None and (
+                    (cbuffer == 1 and kind == "LBRACE") or (cbuffer == 2 and kind == "RBRACE")):
+                cbuffer = 2 if kind == "LBRACE" else 0
+                cbuffer_at = start
+                stmt_eq = stmt_params = False
+                self.decl_name = None
+            elif kind in special:
                 # -- nesting, error context and the opaque-part decisions --
                 top = not opened
                 in_ann = self.annotation is not None

@@ -108,7 +108,7 @@ TERMINAL_WORDS = {
     "TRUE": "'true'", "FALSE": "'false'", "ASM": "an asm block", "DECL": "a decl block",
     "FUNC_BODY": "a function body", "STRUCT_BODY": "a struct body",
     "PARAMS": "a parameter list", "$END": "end of file", "INDEX": "an index such as [0]",
-    "TYPEDEF": "'typedef'", "CAST": "a cast such as (float4)",
+    "TYPEDEF": "'typedef'", "CBUFFER": "'cbuffer'", "CAST": "a cast such as (float4)",
     **{v: f"'{k}'" for k, v in PUNCT.items()}, "OP2": "an operator",
 }
 # Preferred order when several terminals are listed.

@@ -86,7 +86,7 @@ class Shapes(Transformer):
             c[0].append(c[1])
         return c[0]
 
-    passes = states = items
+    passes = states = cbuffer_items = items
 
     # -- literals -------------------------------------------------------------------------
     def int(self, c): return _tok_v("int", int_value(c[0].value), c[0])
@@ -177,6 +177,8 @@ class Shapes(Transformer):
     def register_semantic(self, c): return f"{c[1].value}({c[3].value})"
     # `: register(vs, c0)`: a binding for one profile (a target such as ps_2_0, or vs / ps)
     def register_profile_semantic(self, c): return f"{c[1].value}({c[3].value}, {c[5].value})"
+    # `: packoffset(c1.y)`: a register and a lane (builder._registers reads it)
+    def component_semantic(self, c): return f"{c[1].value}({c[3].value}.{c[5].value})"
     def semantics(self, c): return c
     def storage(self, c): return c
     def dims(self, c): return c
@@ -195,6 +197,7 @@ class Shapes(Transformer):
     def func_def(self, c): return ("function", c)
     def func_decl(self, c): return c[-1]   # the ';': `items` keeps nothing for it
     def struct_def(self, c): return ("struct", c)
+    def cbuffer(self, c): return c[4]     # its members' declarators, as `items` takes a list
 
 
 _ESCAPES = {"n": "\n", "t": "\t", "r": "\r", "\\": "\\", '"': '"', "'": "'", "0": "\0"}

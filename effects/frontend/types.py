@@ -18,6 +18,8 @@ _OBJECT_TYPES = {
     "texturecube": ("texture", "CUBE"), "sampler": ("sampler", ""),
     "sampler1d": ("sampler", "1D"), "sampler2d": ("sampler", "2D"),
     "sampler3d": ("sampler", "3D"), "samplercube": ("sampler", "CUBE"),
+    # the later fxc's separate sampler (`SamplerState S;`, with `Texture2D T; T.Sample(S, uv)`)
+    "samplerstate": ("sampler", ""),
     "vertexshader": ("vertexshader", ""), "pixelshader": ("pixelshader", ""),
     "stateblock": ("stateblock", ""),
 }

@@ -294,7 +294,11 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any, stage: str,
             continue
         state.apply(StateAssignment("Sampler", _sampler_ref(binding.parameter),
                                     index=binding.unit, location=location))
-        if state.assignment("Texture", binding.unit) is None:
+        if binding.texture is not None:
+            # `Tex.Sample(S, uv)`: S's states with Tex's picture, whatever S's block names
+            state.apply(StateAssignment("Texture", ParamRef(binding.texture),
+                                        index=binding.unit, location=location))
+        elif state.assignment("Texture", binding.unit) is None:
             # its sampler_state names no texture: the host sets one on the stage
             # (SetTexture), named after the sampler (`--set S=image`; else a stand-in)
             state.apply(StateAssignment("Texture", _sampler_ref(binding.parameter),

@@ -33,6 +33,8 @@ class SamplerBinding:
                                # assembly (the pass's Sampler[n] / Texture[n] states bind it)
     read_at: Location | None   # the first instruction that samples s# (texld, texldl ...);
                                # None where none names it (ps_1_x reads stages by t#)
+    texture: str | None = None  # the texture parameter read through it (`Tex.Sample(S, uv)`
+                                # makes the pair `S+Tex` one register): bound on its unit
 
 
 @dataclass(frozen=True)
@@ -94,7 +96,7 @@ def _bound(value: Any, program: "AsmProgram", compiled: "CompiledShader | None")
             reads.setdefault(ins.srcs[1].index, ins.location)
     named = {register: name for name, register in (compiled.samplers if compiled else {}).items()}
     registers = sorted(set(program.stats.samplers_used) | set(reads) | set(named))
-    samplers = tuple(SamplerBinding(r, base + r, named.get(r), reads.get(r)) for r in registers)
+    samplers = tuple(_binding(r, base + r, named.get(r), reads.get(r)) for r in registers)
     if compiled is None:
         return Shader(value, program, None, samplers)
     return Shader(value, program, compiled, samplers, dict(compiled.int_registers),
@@ -178,3 +180,13 @@ def _htype(t: Any) -> Any:
     if t.elements > 1:
         return HType("array", one.base, element=one, length=t.elements)
     return one
+
+
+def _binding(register: int, unit: int, name: str | None, read_at: Location | None
+             ) -> SamplerBinding:
+    """The binding of s#, whose compiled name is a sampler parameter's or a pair's
+    (`S+Tex`: sampler S's states, texture Tex's picture)."""
+    if name is not None and "+" in name:
+        sampler, texture = name.split("+", 1)
+        return SamplerBinding(register, unit, sampler, read_at, texture)
+    return SamplerBinding(register, unit, name, read_at)

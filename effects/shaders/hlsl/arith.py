@@ -81,7 +81,7 @@ class Arith:
         if v.type == t and v.type.row_major == t.row_major:
             return v
         if not t.numeric or not v.type.numeric:
-            if t.kind == v.type.kind and t.name == v.type.name and t.kind in ("struct", "sampler", "array"):
+            if t.kind == v.type.kind and t.name == v.type.name and t.kind in ("struct", "sampler", "texture", "array"):
                 return v
             raise self.error(f"X3017: cannot {'convert' if explicit else 'implicitly convert'} "
                              f"from '{v.type}' to '{t}'", loc)

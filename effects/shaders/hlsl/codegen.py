@@ -27,6 +27,7 @@ from effects.shaders.hlsl.dag import SHAPED, Node, Operand
 from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_kill, emit_loop, needed, place
 from effects.shaders.hlsl.fusion import fuse_lrp, fuse_mad, pack_scalars, share_lit_diffuse
 from effects.shaders.hlsl.legalize import _choose, finish
+from effects.shaders.hlsl.liveness import LiveLanes, analyse
 from effects.shaders.hlsl.ops import LANEWISE, OPS, REDUCE, SCALAR, TEXTURE, shaped
 from effects.shaders.hlsl.peephole import optimise
 
@@ -63,6 +64,7 @@ class CodeGen:
         self.a0: dict[int, tuple] | None = None         # a0 lane -> the address it holds
         self.addresses: list[tuple] = []                # relative reads' addresses (generate)
         self._address_of: dict[tuple, Operand] = {}
+        self.live: LiveLanes | None = None              # write-mask liveness (liveness.py)
 
     # -- registers --------------------------------------------------------------------------
     def temp(self) -> Reg:
@@ -184,6 +186,7 @@ class CodeGen:
         self.combine(nodes)
         nodes = self.reachable()
         self.count_uses(nodes)
+        self.live = analyse(nodes, [c for o in self.outputs for c in o.comps] + list(self.ctx.kills))
         self.coalesce(nodes)
         # the addresses relative reads use, in code without flow control: lanes of one node
         # are loaded into a0 together (relative_read)
@@ -299,12 +302,16 @@ class CodeGen:
             reg = (self.loop_regs if op == "loop_out" else self.if_regs)[block_id][k]
             self.home[n.id] = (reg, {c: c for c in range(n.width)})
             return
+        if self.live is not None and not self.live.of(n):
+            return                     # nothing reads any of its lanes (liveness.py)
         if op == "pack":
             reg, _ = self.home_of(n)
             groups: dict[tuple, list[tuple[int, Operand]]] = {}
             for lane, c in enumerate(n.args):
                 if self.home.get(c.node.id, (None,))[0] is reg and c.node.coalesced:
                     continue
+                if self.live is not None and not self.live.keeps(n, lane):
+                    continue           # a lane of the vector nobody reads
                 groups.setdefault(self._source_key(c), []).append((lane, c))
             for items in groups.values():
                 lanes = [lane for lane, _ in items]
@@ -348,7 +355,10 @@ class CodeGen:
             mask = tuple(sorted(lane for _, lane in lanes_out))
             self.emit(op, reg, mask, srcs, n.location)
             return
-        # component-wise: instruction lane L computes node comp c where where[c] = L
+        # component-wise: instruction lane L computes node comp c where where[c] = L, for the
+        # comps some reader reads (liveness.py: the write mask holds only those)
+        if self.live is not None:
+            lanes_out = [(c, lane) for c, lane in lanes_out if self.live.keeps(n, c)]
         mask = tuple(lane for _, lane in lanes_out)
         srcs = []
         for a in n.args:
@@ -394,7 +404,8 @@ class CodeGen:
             self.a0 = lanes
         base = self.uniform_reg(n.key[0], n.key[1]).index
         reg, _ = self.home_of(n)
-        self.emit("mov", reg, (0, 1, 2, 3), [Src(Reg("c_rel", base, lane), {i: i for i in range(4)})],
+        read = tuple(sorted(self.live.of(n))) if self.live is not None else (0, 1, 2, 3)
+        self.emit("mov", reg, read, [Src(Reg("c_rel", base, lane), {i: i for i in read})],
                   n.location)
 
     def _lanewise(self, a: Operand, lanes_out: list[tuple[int, int]]) -> Src:

@@ -32,6 +32,7 @@ from effects.shaders.hlsl.context import Context, explicit_register as _explicit
 from effects.shaders.hlsl.dag import Node, Operand
 from effects.shaders.hlsl.flowcode import needed
 from effects.shaders.hlsl.folding import finite32
+from effects.shaders.hlsl.ops import TEXTURE
 from effects.shaders.hlsl.evaluate import Evaluator, Frame
 from effects.shaders.hlsl.parse import HlslError, Origin, parse
 from effects.shaders.hlsl.types import HType, register_count
@@ -168,7 +169,7 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
             raise HlslError(f"X4502: invalid {ctx.target.name} input semantic '{n.key[1]}'",
                             n.location)
     constants, sizes = _constant_registers(ctx, nodes)
-    samplers = _sampler_registers(ctx)
+    samplers = _sampler_registers(ctx, {n.key[0] for n in nodes if n.op in TEXTURE})
     if ctx.target.rules.is_ps1:
         # no dcl, no oC#, one texture read per stage, modifiers: a generator of its own
         generated = generate_ps1(ctx, outputs, constants, samplers, sizes)
@@ -213,15 +214,34 @@ def _array_semantics(semantic: str, t: HType) -> list[str]:
     return [f"{usage}{index + k}" for k in range(t.length)]
 
 
-def _sampler_registers(ctx: Context) -> dict[str, int]:
+def _sampler_registers(ctx: Context, read: set[str]) -> dict[str, int]:
     """The s# fixed before code generation: explicit register(s#) bindings, and the elements
     of a sampler array read by constant indices (`SA[1]`), which take the array's registers
     in order, as fxc lays an array out (its first free block, by first use, when unbound).
-    Other samplers get theirs in the code generator, by first use."""
+    A sampler paired with a texture (`Tex.Sample(S, uv)`: `S+Tex`) takes the sampler's
+    register(s#) where it has one, else the first free register before the samplers read
+    alone, as native d3dcompiler placed the combined samplers it made for shader models 1-3
+    (vkd3d's combined-samplers shader test). Other samplers get theirs in the code
+    generator, by first use. `read`: the samplers the code reads (a sampler passed to
+    `Tex.Sample` is named without being read alone)."""
     regs = {name: b for name in ctx.samplers_used if (b := _explicit(ctx, name, "s")) is not None}
     for name, b in regs.items():
         _within(ctx, name, b, 1, "s")
+    for name, b in regs.items():
+        other = next((o for o, c in regs.items() if c == b and o != name and o in read), None)
+        other = other if name in read else None
+        if other is not None and "+" in name + other:
+            where = ctx.effect.parameter(name.split("+")[0].split("[")[0])
+            first, second = sorted((name, other))
+            raise HlslError(f"X4500: overlapping register semantics: '{first}' and '{second}' "
+                            f"are both bound to s{b} (a sampler read with two textures, or "
+                            f"alone and with a texture, is two samplers on shader models 1-3)",
+                            where.location if where is not None else UNKNOWN_LOCATION)
     taken = set(regs.values())
+    for name in ctx.samplers_used:
+        if "+" in name and name not in regs:
+            regs[name] = min(set(range(len(taken) + 1)) - taken)
+            taken.add(regs[name])
     blocks: dict[str, int] = {}
     for name in ctx.samplers_used:
         if name in regs or not name.endswith("]"):

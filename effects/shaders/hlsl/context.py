@@ -395,7 +395,7 @@ def parameter_type(ctx: Context, p: Parameter) -> HType:
     elif spec.base in ("sampler",):
         t = HType("sampler", {"1D": "1d", "2D": "2d", "3D": "3d", "CUBE": "cube"}.get(spec.dim, "2d"))
     elif spec.base == "texture":
-        t = HType("texture")
+        t = HType("texture", {"1D": "1d", "2D": "2d", "3D": "3d", "CUBE": "cube"}.get(spec.dim, ""))
     elif spec.base == "string":
         t = HType("string")
     elif spec.is_numeric:
@@ -427,6 +427,7 @@ def explicit_register(ctx: Context, name: str, kind: str) -> int | None:
     """The number of a parameter's `: register(c4)` binding of that kind for the target (4),
     else None; `S[k]`, an element of a sampler array, is the array's register + k. The number's
     digits are under literal_digits."""
+    name = name.split("+", 1)[0]      # `S+Tex`, a sampler paired with a texture: S's binding
     base, k = name, 0
     if name.endswith("]") and "[" in name:
         base, index = name[:-1].split("[", 1)

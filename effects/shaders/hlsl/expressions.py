@@ -18,7 +18,7 @@ from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.types import BOOL, INT, HType, builtin, scalar
 from effects.shaders.hlsl.arith import INTEGRAL
 from effects.shaders.hlsl.calls import resolve_overload
-from effects.shaders.hlsl.intrinsics import INTRINSICS, call_intrinsic
+from effects.shaders.hlsl.intrinsics import INTRINSICS, call_intrinsic, texture_method
 from effects.shaders.hlsl.loops import al_element
 from effects.shaders.hlsl.lvalues import const_index, element_of, member_of, pick_element, store
 from effects.shaders.hlsl.values import Value, build_value
@@ -118,8 +118,9 @@ def global_value(ev: Any, name: str, where: Any) -> Value:
     elif t.kind in ("texture", "string"):
         # a value no operator or conversion takes: `return Tex;` is fxc's X3017 "cannot
         # implicitly convert from 'string' to 'float4'" (DXC's tests record the text), an
-        # operator on it X3022, tex2D(Tex, uv) X3013 (the first argument must be a sampler)
-        value = Value(t)
+        # operator on it X3022, tex2D(Tex, uv) X3013 (the first argument must be a sampler);
+        # a texture keeps its name for `Tex.Sample(S, uv)` (intrinsics.texture_method)
+        value = Value(t, sampler=name if t.kind == "texture" else None)
     elif "static" in param.storage or ctx.host_values:
         # A static's initialiser; in a preshader (host_values) any global's current value
         numbers = static_value(param)
@@ -517,10 +518,21 @@ def _call(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
     raise ev.error(f"X3004: undeclared identifier '{name}'", name_tok)
 
 
+def _method(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
+    """`Tex.Sample(S, uv)` and the other texture methods (intrinsics.texture_method)."""
+    base_tree, name_tok, args = tree.children
+    base = yield base_tree
+    values = []
+    for a in (args.children if args is not None else []):
+        values.append((yield a))
+    return texture_method(ev, base, str(name_tok), values, name_tok)
+
+
 _HANDLERS = {
     "float_lit": _float, "int_lit": _int, "bool_lit": _bool, "var": _var, "binary": _binary,
     "prefix": _prefix, "pre_incdec": lambda ev, t: _incdec(ev, t, False),
     "post_incdec": lambda ev, t: _incdec(ev, t, True), "assign": _assign, "member": _member,
     "index": _index, "construct": _construct, "construct_user": _construct_user, "construct_matrix": _construct_matrix,
     "construct_vector": _construct_vector, "cast": _cast, "ternary": _ternary, "call": _call,
+    "method": _method,
 }

@@ -569,6 +569,77 @@ def _texture(dim: str, variant: str):
     return f
 
 
+# The later fxc's texture methods on shader models 2-3 (d3dcompiler_43/47 for ps_2_0-ps_3_0,
+# vs_3_0): each the DX9 read it stands for, by name -> (the tex* variant, arguments besides
+# the sampler and the coordinate). The texture and the sampler become one sampler register,
+# named `Sampler+Texture` as vkd3d-shader names the combined sampler it makes for shader model
+# 1-3 (`lower_separate_samples`, vkd3d's combined-samplers shader test records
+# native d3dcompiler's placement); compiler._sampler_registers places it.
+_METHODS = {"Sample": ("", 0), "SampleBias": ("bias", 1), "SampleLevel": ("lod", 1),
+            "SampleGrad": ("grad", 2)}
+# The methods only shader model 4 has (the "Texture2D" object's method list): no read of a
+# shader model 1-3 register does what they do
+_SM4_METHODS = frozenset({"Load", "Gather", "GatherRed", "GatherGreen", "GatherBlue",
+                          "GatherAlpha", "SampleCmp", "SampleCmpLevelZero", "GetDimensions",
+                          "CalculateLevelOfDetail", "CalculateLevelOfDetailUnclamped"})
+_KIND_DIMS = {"1d": "1D", "2d": "2D", "3d": "3D", "cube": "CUBE"}
+
+
+def texture_method(ev: Any, obj: Value, method: str, args: list[Value], where: Any) -> Value:
+    """`Tex.Sample(S, uv)`, `SampleBias(S, uv, b)`, `SampleLevel(S, uv, lod)`,
+    `SampleGrad(S, uv, dx, dy)` as the DX9 reads they are: `texld`, `texldb` and `texldl` with
+    the bias or level in .w, `texldd`, through the sampler register of the pair (S, Tex)."""
+    loc = ev.at(where)
+    if obj.type.kind != "texture":
+        raise ev.error(f"X3018: invalid subscript '{method}': only a texture object "
+                       f"(Texture2D ...) has methods, not '{obj.type}'", where)
+    if obj.sampler is None:
+        # an element of a texture array has no register of its own to pair with a sampler
+        # on shader models 1-3 (vkd3d leaves it unimplemented for them too)
+        raise ev.error(f"'{method}' of an element of a texture array: shader models 1-3 pair "
+                       f"a sampler with a texture declared on its own (Texture2D T;)", where)
+    target = ev.ctx.target.name
+    if method in ("Sample", "SampleBias") and ev.ctx.target.kind == "vs":
+        # implicit derivatives exist only between pixels (shader model 4 allows Sample in
+        # pixel shaders only); a vertex shader names its level
+        raise ev.error(f"'{obj.sampler}.{method}' in a vertex shader: it needs a pixel "
+                       f"shader's derivatives; a {target} reads a level with SampleLevel "
+                       f"(texldl)", where)
+    if method in _SM4_METHODS:
+        raise ev.error(f"'{obj.sampler}.{method}' needs shader model 4 (vs_4_0/ps_4_0): "
+                       f"{target} has no instruction for it (the texture methods shader "
+                       f"models 2-3 have are {', '.join(_METHODS)})", where)
+    row = _METHODS.get(method)
+    if row is None:
+        raise ev.error(f"X3018: invalid subscript '{method}' (a texture's methods are "
+                       f"{', '.join(_METHODS)})", where)
+    variant, extra = row
+    if len(args) == 3 + extra and variant != "grad" or len(args) > 3 + extra:
+        raise ev.error(f"'{obj.sampler}.{method}' with a texel offset needs shader model 4 "
+                       f"(vs_4_0/ps_4_0): {target} samples without offsets", where)
+    if len(args) != 2 + extra:
+        raise ev.error(f"X3013: '{method}': no matching {len(args)} parameter method", where)
+    s = args[0]
+    if s.type.kind != "sampler" or s.sampler is None:
+        raise ev.error(f"X3013: '{method}': the first argument must be a sampler "
+                       f"(SamplerState or sampler)", where)
+    kind = obj.type.base or s.type.base or "2d"
+    dim = _KIND_DIMS[kind]
+    pair = Value(HType("sampler", kind), sampler=f"{s.sampler}+{obj.sampler}")
+    coord = args[1]
+    if variant in ("bias", "lod"):
+        # the bias or level rides in the coordinate's .w (texldb, texldl)
+        n = _TEX_KINDS[dim][1]
+        lanes = list(coord.comps[:n])
+        if len(lanes) < n:
+            raise ev.error(f"X3013: '{method}' needs a float{n} coordinate", where)
+        amount = args[2].comps[:1]
+        lanes += [ev.a.const(0.0)] * (3 - n) + amount
+        coord = Value(vector("float", 4), lanes)
+        return _texture(dim, variant)(ev, [pair, coord], loc)
+    return _texture(dim, variant)(ev, [pair, coord, *args[2:]], loc)
+
+
 def _clip(ev: Any, args: list[Value], loc: Location) -> Value:
     ev.kill(list(args[0].comps), loc)
     return Value(HType("void"))

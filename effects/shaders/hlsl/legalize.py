@@ -75,7 +75,12 @@ def finish(cg: Any) -> Generated:
                     continue
                 if len(names) >= rules.read_ports[kind]:
                     tmp = cg.temp()
-                    out.append(Instr("mov", tmp, (0, 1, 2, 3), [Src(s.reg, {i: i for i in range(4)})],
+                    # the copy's lanes: the register's components this instruction reads
+                    # (write-mask liveness: `mov r0.x, c5` for a `mad r.x, v1, c4, c5.x`)
+                    read = sorted({lane for other in ins.srcs if other.reg.kind == kind
+                                   and other.reg.index == s.reg.index
+                                   for lane in _lanes_needed(ins, other).values()})
+                    out.append(Instr("mov", tmp, tuple(read), [Src(s.reg, {i: i for i in read})],
                                      ins.location))
                     for other in ins.srcs:
                         if other.reg is s.reg or (other.reg.kind == kind and other.reg.index == s.reg.index):

@@ -11,8 +11,11 @@ from dataclasses import dataclass, field
 # Conversion rank: an operation between two bases takes the higher one (fxc's rule).
 RANKS = {"bool": 0, "int": 1, "uint": 2, "dword": 2, "half": 3, "float": 4, "double": 5}
 SAMPLER_KINDS = {"sampler": "2d", "sampler1d": "1d", "sampler2d": "2d", "sampler3d": "3d",
-                 "samplercube": "cube", "sampler_state": "2d"}
-TEXTURE_NAMES = {"texture", "texture1d", "texture2d", "texture3d", "texturecube"}
+                 "samplercube": "cube", "sampler_state": "2d", "samplerstate": "2d"}
+# a texture's kind is its `base` ('' for an untyped `texture`): `Texture2D T; T.Sample(S, uv)`
+# reads it as the texture says (intrinsics.texture_method)
+TEXTURE_KINDS = {"texture": "", "texture1d": "1d", "texture2d": "2d", "texture3d": "3d",
+                 "texturecube": "cube"}
 _NUMERIC = re.compile(r"^(bool|int|uint|half|float|double|dword)([1-4])?(?:x([1-4]))?$")
 
 
@@ -94,8 +97,8 @@ def builtin(name: str) -> HType | None:
     low = name.lower()
     if low in SAMPLER_KINDS:
         return HType("sampler", SAMPLER_KINDS[low])
-    if low in TEXTURE_NAMES:
-        return HType("texture")
+    if low in TEXTURE_KINDS:
+        return HType("texture", TEXTURE_KINDS[low])
     if low == "string":
         return HType("string")
     if low == "void":

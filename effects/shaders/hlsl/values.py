@@ -18,7 +18,7 @@ class Value:
     comps: list[Operand] = field(default_factory=list)        # numeric: rows*cols, row-major
     fields: dict[str, "Value"] = field(default_factory=dict)   # structs
     elements: list["Value"] = field(default_factory=list)      # arrays
-    sampler: str | None = None                                 # samplers: the parameter name
+    sampler: str | None = None                                 # samplers, textures: the parameter name
 
     def copy(self) -> "Value":
         return Value(self.type, list(self.comps), {k: v.copy() for k, v in self.fields.items()},

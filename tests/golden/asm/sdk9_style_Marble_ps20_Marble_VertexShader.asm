@@ -24,7 +24,7 @@ dp4 oPos.w, r0, c8
 dp3 r0.x, r1, -c9
 max r0.x, r0, c15.y
 min r0.x, r0, c15.x
-mul r0, r0.x, c10
+mul r0.xyz, r0.x, c10
 mul oD0.xyz, r0, c11
 mul oT0.xyz, v0, c14.x
 dp3 r0.x, r1, -r2

@@ -3,7 +3,7 @@ def c15, 0.0399999991, 1, 0, 0
 dcl_position v0
 dcl_normal v1
 dcl_texcoord v2
-mov r0, v0
+mov r0.xyz, v0
 mad r0.xyz, v1, c15.x, r0
 mov r0.w, v0
 dp4 r1.x, r0, c0
@@ -27,7 +27,7 @@ dp4 oPos.w, r1, c8
 dp3 r1.x, r0, -c9
 max r1.x, r1, c15.z
 min r1.x, r1, c15.y
-mul r1, r1.x, c10
+mul r1.xyz, r1.x, c10
 mul oD0.xyz, r1, c11
 mul oT0.xyz, v0, c14.x
 dp3 r1.x, r0, -r2

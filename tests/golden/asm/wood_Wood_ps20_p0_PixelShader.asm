@@ -8,7 +8,7 @@ dcl v0
 dcl_volume s0
 mul r0.xyz, t0, c0.x
 texld r1, r0, s0
-mad r0.xyz, r1, c1.x, r0
+mad r0.yz, r1, c1.x, r0
 mul r1.x, r0.z, r0.z
 mad r0.x, r0.y, r0.y, r1
 rsq r0.x, r0.x
