@@ -1,15 +1,17 @@
 """compile_shader: an effect's HLSL function compiled for a target, as fxc did.
 
     shader = compile_shader(effect, "Wood", "ps_2_0")          # or cache.compile_state(effect, cs)
-    shader.text        # the assembly (vs_1_1 ... ps_3_0)
-    shader.program     # that text assembled (effects.shaders.asm), located in the HLSL
+    shader.text        # the assembly listing (vs_1_1 ... ps_3_0), printed from `program`
+    shader.program     # the assembler's records (effects.shaders.asm), located in the HLSL
     shader.constants   # parameter -> (first c#, count): what the pass must load
     shader.samplers    # sampler parameter -> s#
     shader.int_registers   # int parameter -> i# (a `rep` count the pass sets)
     shader.bool_registers  # bool parameter -> b# (an `if b#` the pass sets)
 
-The assembly then goes through the assembler's own checks and the card's limits like any
-hand-written shader; each instruction of `program` is located at the HLSL line it comes from.
+The passes (PASSES, below) run in order over one Compilation; the writer (writer.py) makes
+the assembler's own records, which go through the assembler's checks and the card's limits like
+any hand-written shader; each instruction of `program` is located at the HLSL line it comes
+from. No text is parsed back.
 """
 from __future__ import annotations
 
