@@ -11,7 +11,7 @@ from __future__ import annotations
 from effects.base.errors import AsmError, Location
 from effects.shaders.asm.instructions import versions_having
 from effects.shaders.asm.program import AsmProgram, Instruction, Operand
-from effects.shaders.asm.ps1_rules import PS1Rules
+from effects.shaders.asm.ps1_rules import PS1Rules, coissue_split
 from effects.shaders.asm.stats import instruction_slots
 from effects.shaders.asm.versions import IDENTITY, KIND_NAMES, PS20_SWIZZLES
 
@@ -191,8 +191,8 @@ class _Checker(PS1Rules):
             self.err("a co-issued (+) instruction must pair with the arithmetic instruction "
                      "just before it", ins.location)
             return
-        masks = {prev.dst.components if prev.dst else (), ins.dst.components if ins.dst else ()}
-        if (3,) not in masks or any(3 in m for m in masks if m != (3,)) or len(masks) != 2:
+        if not coissue_split(prev.dst.components if prev.dst else (),
+                             ins.dst.components if ins.dst else ()):
             self.err("co-issued instructions must split the work: one writes .rgb (colour), "
                      "the other .a (alpha)", ins.location)
 

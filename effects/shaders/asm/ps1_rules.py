@@ -19,6 +19,14 @@ if TYPE_CHECKING:  # pragma: no cover
 _PS1_TEXM_FINAL3 = ("texm3x3tex", "texm3x3spec", "texm3x3vspec", "texm3x3")
 
 
+def coissue_split(first: tuple[int, ...], second: tuple[int, ...]) -> bool:
+    """Whether two write masks split the work as a co-issued (+) pair must: one writes .a
+    alone, the other colour lanes only (the ps_1_x instruction-pairing rule; the checker and
+    the HLSL compiler's pairing both ask it)."""
+    masks = {tuple(first), tuple(second)}
+    return len(masks) == 2 and (3,) in masks and not any(3 in m for m in masks if m != (3,))
+
+
 class PS1Rules:
     p: "AsmProgram"
     v: str

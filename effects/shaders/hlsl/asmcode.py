@@ -1,10 +1,11 @@
-"""The code generators' instruction records: codegen.py and legalize.py (vs_1_1-ps_3_0), and
-the ps_1_x generator (codegen_ps1.py, ps1_asm.py, ps1_textures.py), whose sources are
-ps1_asm.Src (one replicated lane and a source modifier) and whose instructions use the ps_1_x
-fields at the end of `Instr`."""
+"""The code generators' instructions on virtual temporaries, before allocation: codegen.py and
+legalize.py (vs_1_1-ps_3_0), and the ps_1_x generator (codegen_ps1.py, ps1_asm.py,
+ps1_textures.py), whose sources are ps1_asm.Src (one replicated lane and a source modifier) and
+whose instructions use the ps_1_x fields at the end of `Instr`. The writer (writer.py) makes
+the assembler's records (effects/shaders/asm/program.py) of them once they are allocated."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from typing import Any
 
@@ -61,16 +62,3 @@ class Output:
     register: str                   # 'oPos' 'oC0' 'oT1' ...
     comps: list[Any]             # dag Operands
     location: Location = UNKNOWN_LOCATION
-
-
-@dataclass
-class Generated:
-    lines: list[str]
-    locations: list[Location]       # per line (UNKNOWN for headers)
-    constants: dict[str, tuple[int, int]] = field(default_factory=dict)   # param -> (c#, count)
-    samplers: dict[str, int] = field(default_factory=dict)                # param -> s#
-    defs: dict[int, tuple[float, ...]] = field(default_factory=dict)
-    int_registers: dict[str, int] = field(default_factory=dict)          # int param -> i#
-    bool_registers: dict[str, int] = field(default_factory=dict)         # bool param -> b#
-
-

@@ -22,16 +22,16 @@ from __future__ import annotations
 from effects.base.errors import Location
 from effects.shaders.asm.versions import IDENTITY
 from effects.shaders.hlsl.context import Context
-from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg, Src
+from effects.shaders.hlsl.asmcode import Instr, Output, Reg, Src
 from effects.shaders.hlsl.dag import SHAPED, Node, Operand
 from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_kill, emit_loop, needed, place
 from effects.shaders.hlsl.fusion import fuse_lrp, fuse_mad, pack_scalars, share_lit_diffuse
-from effects.shaders.hlsl.legalize import _choose, finish
+from effects.shaders.hlsl.legalize import _choose, code_of, legalize
 from effects.shaders.hlsl.liveness import LiveLanes, analyse
 from effects.shaders.hlsl.ops import LANEWISE, OPS, REDUCE, SCALAR, TEXTURE, shaped
 from effects.shaders.hlsl.peephole import optimise
+from effects.shaders.hlsl.writer import Code
 
-COMPONENTS = "xyzw"
 # how each op is emitted: the op table's rows (ops.py)
 _LANEWISE, _SCALAR, _REDUCE, _TEX = LANEWISE, SCALAR, REDUCE, TEXTURE
 
@@ -181,9 +181,21 @@ class CodeGen:
              loc: Location, sampler: str | None = None, saturate: bool = False) -> None:
         self.instrs.append(Instr(opcode, dst, mask, srcs, loc, saturate, sampler))
 
-    def generate(self) -> Generated:
-        nodes = self.reachable()
-        self.combine(nodes)
+    def generate(self) -> Code:
+        """The generator's passes in order (compiler.py runs them one by one)."""
+        self.fuse()
+        self.select()
+        self.optimise()
+        legalize(self)
+        return code_of(self)
+
+    def fuse(self) -> None:
+        """Optimise the DAG the outputs reach: fusion.py's rewrites (combine)."""
+        self.combine(self.reachable())
+
+    def select(self) -> None:
+        """Instruction selection: each node the outputs reach as instructions on virtual
+        temporaries, in place where coalesced, in the order of its block (flowcode.py)."""
         nodes = self.reachable()
         self.count_uses(nodes)
         self.live = analyse(nodes, [c for o in self.outputs for c in o.comps] + list(self.ctx.kills))
@@ -200,8 +212,10 @@ class CodeGen:
                 emit_kill(self, k.node)
         for o in self.outputs:
             self.output(o)
-        optimise(self)
-        return finish(self)
+
+    def optimise(self) -> dict:
+        """peephole.py's rewrites of the emitted instructions: what each removed."""
+        return optimise(self)
 
     def _move(self, reg: Reg, value: Operand, loc: Location) -> None:
         lanes = [(c, c) for c in range(value.width)]

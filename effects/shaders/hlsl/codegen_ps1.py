@@ -22,17 +22,19 @@ at the HLSL expression; slot counts are left to the assembler's checks like hand
 """
 from __future__ import annotations
 
-from effects.base.errors import Location
-from effects.shaders.hlsl.asmcode import Generated, Instr, Output, Reg
+from effects.base.errors import Location, UNKNOWN_LOCATION
+from effects.shaders.hlsl.allocate import RegisterConflict
+from effects.shaders.hlsl.asmcode import Instr, Output, Reg
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.dag import Node, Operand, reachable
+from effects.shaders.hlsl.ops import PS1_LACKS, PS1_LANEWISE
 from effects.shaders.hlsl.parse import HlslError
-from effects.shaders.hlsl.ps1_analysis import REFUSED, Ps1Analysis, State, combine, readers_of
-from effects.shaders.hlsl.ps1_asm import FULL, Home, Ps1Emit, RegisterConflict, Src
+from effects.shaders.hlsl.ps1_analysis import Ps1Analysis, State, combine, readers_of
+from effects.shaders.hlsl.ps1_asm import FULL, Home, Ps1Emit, Src
 from effects.shaders.hlsl.ps1_idioms import power_of_two
 from effects.shaders.hlsl.ps1_textures import Ps1Textures
+from effects.shaders.hlsl.writer import Code
 
-_LANEWISE = {"add", "mul", "mad", "lrp", "cmp"}
 
 
 class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
@@ -48,7 +50,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         self.explicit_samplers = sampler_registers
 
     # -- driver ---------------------------------------------------------------------------------
-    def generate(self) -> Generated:
+    def generate(self) -> Code:
         try:
             return self._generate(out_direct=True)
         except RegisterConflict:
@@ -58,10 +60,10 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         except RegisterConflict as clash:
             # only cnd conditions are pinned then: two of them live at once
             self.refuse(f"{self.v}'s cnd reads its condition from r0.a only, and two conditions "
-                        "are needed there at once", clash.location)
+                        "are needed there at once", self.vr_loc.get(clash.vr, UNKNOWN_LOCATION))
             raise AssertionError from clash  # pragma: no cover
 
-    def _generate(self, out_direct: bool) -> Generated:
+    def _generate(self, out_direct: bool) -> Code:
         self.instrs: list[Instr] = []
         self.home: dict[int, Home] = {}
         self.defs: dict[int, list[float | None]] = {}
@@ -115,7 +117,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         if not out_direct:
             self.instrs.append(Instr("mov", Reg("vr", self.temp(out.location, pin=0)), FULL,
                                    [Src(self.out_home.reg)], out.location))
-        return self._text()
+        return self._code()
 
     def temp(self, loc: Location, pin: int | None = None) -> int:
         self.next_vr += 1
@@ -135,8 +137,8 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
     # -- arithmetic -----------------------------------------------------------------------------
     def compute(self, n: Node) -> None:
         op = n.op
-        if op in REFUSED:
-            self.fail(REFUSED[op], n.location)
+        if op in PS1_LACKS:
+            self.fail(PS1_LACKS[op], n.location)
         home = self.home.get(n.id)
         if home is None:
             if n.id in self.cnd_pins:     # a cnd condition: r0.a only (so .b may be read)
@@ -170,7 +172,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
                 self.fail("dp4 (a 4-component dot product needs ps_1_2)", n.location)
             width = int(op[2])
             srcs = [self.read(a, {i: i for i in range(width)}, n.location) for a in args]
-        elif op in _LANEWISE or op == "mov":
+        elif op in PS1_LANEWISE:         # add mul mad lrp cmp mov (cnd and sat: above)
             if op == "cmp" and not self.ctx.target.has("cmp"):
                 self.fail("cmp (a select or comparison needs ps_1_2)", n.location)
             need = {lane: (0 if n.width == 1 else lane) for lane in mask if n.width == 1 or lane < n.width}
@@ -425,6 +427,6 @@ def _sub_for_negated_constant(op: str, srcs: list[Src]) -> tuple[str, list[Src]]
 
 
 def generate_ps1(ctx: Context, outputs: list[Output], constant_registers: dict[str, int],
-                 register_sizes: dict[str, int], sampler_registers: dict[str, int]) -> Generated:
+                 register_sizes: dict[str, int], sampler_registers: dict[str, int]) -> Code:
     """The ps_1_x assembly of a compiled pixel function (see the module docstring)."""
     return Ps1CodeGen(ctx, outputs, constant_registers, register_sizes, sampler_registers).generate()

@@ -1,32 +1,36 @@
 """compile_shader: an effect's HLSL function compiled for a target, as fxc did.
 
     shader = compile_shader(effect, "Wood", "ps_2_0")          # or cache.compile_state(effect, cs)
-    shader.text        # the assembly (vs_1_1 ... ps_3_0)
-    shader.program     # that text assembled (effects.shaders.asm), located in the HLSL
+    shader.text        # the assembly listing (vs_1_1 ... ps_3_0), printed from `program`
+    shader.program     # the assembler's records (effects.shaders.asm), located in the HLSL
     shader.constants   # parameter -> (first c#, count): what the pass must load
     shader.samplers    # sampler parameter -> s#
     shader.int_registers   # int parameter -> i# (a `rep` count the pass sets)
     shader.bool_registers  # bool parameter -> b# (an `if b#` the pass sets)
 
-The assembly then goes through the assembler's own checks and the card's limits like any
-hand-written shader; each instruction of `program` is located at the HLSL line it comes from.
+The passes (PASSES, below) run in order over one Compilation; the writer (writer.py) makes
+the assembler's own records, which go through the assembler's checks and the card's limits like
+any hand-written shader; each instruction of `program` is located at the HLSL line it comes
+from. No text is parsed back.
 """
 from __future__ import annotations
 
 import re
-from typing import Any
+from dataclasses import dataclass, field
+from typing import Any, Callable
 
 from effects.base.errors import EffectError, Location, UNKNOWN_LOCATION
 from effects.model import Effect
-from effects.shaders.asm import AsmProgram
+from effects.shaders.asm.program import AsmProgram, Declaration
 from effects.shaders.asm.parser import USAGES
 # CompiledShader lives in shader.py and compile_state in cache.py: a cached shader needs no
 # compiler (CompiledShader is importable from here as before)
-from effects.shaders.hlsl.shader import CompiledShader, assemble_generated
+from effects.shaders.hlsl.shader import CompiledShader
 from effects.shaders.hlsl.calls import constant_parameters, parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.budget import out_of_stack, spend
 from effects.shaders.hlsl.codegen import CodeGen
+from effects.shaders.hlsl.legalize import code_of, legalize
 from effects.shaders.hlsl.codegen_ps1 import generate_ps1
 from effects.shaders.hlsl.context import Context, explicit_register as _explicit, load_context
 from effects.shaders.hlsl.dag import Node, Operand
@@ -37,6 +41,7 @@ from effects.shaders.hlsl.evaluate import Evaluator, Frame
 from effects.shaders.hlsl.parse import HlslError, Origin, parse
 from effects.shaders.hlsl.types import HType, register_count
 from effects.shaders.hlsl.values import Value
+from effects.shaders.hlsl.writer import Code, declaration, listing, write
 
 EMIT_COST = 4
 _SEMANTIC = re.compile(r"^([A-Za-z_]+?)(\d*)$")
@@ -56,7 +61,7 @@ def split_semantic(text: str) -> tuple[str, int]:
 # pull request 71). Files written for both APIs use them (foo_wave_seekbar's Direct3D 9 effect).
 _SV_AS_D3D9 = {"SV_POSITION": "POSITION", "SV_TARGET": "COLOR", "SV_DEPTH": "DEPTH"}
 # ps_3_0's two misc inputs: (register, its declaration)
-_PS3_MISC = {"VPOS": ("vPos", "dcl vPos.xy"), "VFACE": ("vFace", "dcl vFace")}
+_PS3_MISC = {"VPOS": ("vPos", (0, 1)), "VFACE": ("vFace", None)}
 
 
 def compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...] = (),
@@ -95,32 +100,59 @@ def _fits(shader: CompiledShader) -> bool:
         (rules.tex_slots is None or stats.texture_slots <= rules.tex_slots)
 
 
-def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...],
-                    where: Location, loops_for_size: bool = False) -> tuple[CompiledShader, int]:
-    """The shader, and how many loops over literal bounds it unrolled that could have been
-    real loops."""
-    ctx = load_context(effect, target.lower())
-    ctx.loops_for_size = loops_for_size
-    fdefs = ctx.functions.get(entry)
+@dataclass
+class Compilation:
+    """What the passes hand on (PASSES): each reads what earlier ones set and sets its own."""
+
+    effect: Effect
+    entry: str
+    target: str
+    args: tuple[str, ...]
+    where: Location
+    loops_for_size: bool = False
+    ctx: Context = field(init=False)
+    fdef: Any = field(init=False)
+    ev: Evaluator = field(init=False)
+    binder: "_Binder" = field(init=False)
+    outs: list[tuple[str, HType, Any, Any]] = field(default_factory=list)  # out/inout params
+    outputs: list[Output] = field(default_factory=list)
+    preshaders: dict[str, Any] = field(default_factory=dict)
+    nodes: list[Node] = field(default_factory=list)
+    constants: dict[str, int] = field(default_factory=dict)    # uniform -> first c#
+    sizes: dict[str, int] = field(default_factory=dict)        # uniform -> registers
+    samplers: dict[str, int] = field(default_factory=dict)     # fixed before generation
+    gen: Any = None                        # the code generator (codegen.CodeGen)
+    code: Code | None = None
+    program: AsmProgram | None = None
+    generated_at: dict[int, Location] = field(default_factory=dict)
+    shader: CompiledShader | None = None
+
+    @property
+    def ps1(self) -> bool:
+        return self.ctx.target.rules.is_ps1
+
+
+def bind(c: Compilation) -> None:
+    """The entry point and its parameters: inputs by semantic (_Binder), uniforms, compile
+    arguments; out parameters declared for `outputs`."""
+    ctx = c.ctx = load_context(c.effect, c.target.lower())
+    ctx.loops_for_size = c.loops_for_size
+    fdefs = ctx.functions.get(c.entry)
     if not fdefs:
-        raise HlslError(f"X3501: '{entry}': entrypoint not found", where)
-    fdef = fdefs[0]
+        raise HlslError(f"X3501: '{c.entry}': entrypoint not found", c.where)
+    fdef = c.fdef = fdefs[0]
     if ctx.target.name == "ps_1_0":
-        raise HlslError("X3507: fxc compiles HLSL for ps_1_1 and later, not ps_1_0", where)
-    ev = Evaluator(ctx, fdef.origin)
-    rtype = return_type(ctx, fdef)
-    ev.frames.append(Frame(rtype))
-    params = parameters(ev, fdef)
-    compile_args = list(args)
-    binder = _Binder(ctx, ev)
+        raise HlslError("X3507: fxc compiles HLSL for ps_1_1 and later, not ps_1_0", c.where)
+    ev = c.ev = Evaluator(ctx, fdef.origin)
+    ev.frames.append(Frame(return_type(ctx, fdef)))
+    compile_args = list(c.args)
+    binder = c.binder = _Binder(ctx, ev)
     fixed = constant_parameters(fdef)
-    outs: list[tuple[str, HType, Any, Any]] = []
-    for name, t, direction, default, sem in params:
+    for name, t, direction, default, sem in parameters(ev, fdef):
         sem_text = sem.children[0] if sem is not None and sem.data != "register" else None
         if direction == "uniform":
             if compile_args:
-                text = compile_args.pop(0)
-                value = _compile_argument(ctx, ev, text, t, where)
+                value = _compile_argument(ctx, ev, compile_args.pop(0), t, c.where)
             elif default is not None:
                 value = ev.a.convert(ev.expr(default), t, ev.at(default))
             else:
@@ -128,64 +160,153 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
             ev.declare(name, t, value, const=True)
         elif direction == "out":
             ev.declare(name, t, ev.zero(t))
-            outs.append((name, t, sem_text, sem))
+            c.outs.append((name, t, sem_text, sem))
         else:
             value = binder.input(t, str(sem_text) if sem_text is not None else None,
                                  fdef.origin.at(sem if sem is not None else fdef.tree), name)
             ev.declare(name, t, value, const=name in fixed)
             if direction == "inout":
-                outs.append((name, t, sem_text, sem))
+                c.outs.append((name, t, sem_text, sem))
     if compile_args:
-        raise HlslError(f"X3013: '{entry}': too many compile arguments ({len(args)})", where)
-    ev.block(fdef.tree.children[-1])
-    frame = ev.frames[-1]
-    outputs: list[Output] = []
+        raise HlslError(f"X3013: '{c.entry}': too many compile arguments ({len(c.args)})",
+                        c.where)
+
+
+def evaluate(c: Compilation) -> None:
+    """The body, evaluated into the DAG (evaluate.py)."""
+    c.ev.block(c.fdef.tree.children[-1])
+
+
+def bind_outputs(c: Compilation) -> None:
+    """The return value and out parameters onto output registers by semantic, and the
+    outputs fxc requires (X4541, X4530)."""
+    ev, fdef, frame = c.ev, c.fdef, c.ev.frames[-1]
     fsem = fdef.tree.children[4]
-    if rtype.kind != "void":
+    if frame.return_type.kind != "void":
         if frame.retval is None:
-            raise fdef.origin.error(f"X3080: '{entry}': function must return a value", fdef.tree)
-        binder.outputs(frame.retval, str(fsem.children[0]) if fsem is not None else None,
-                       fdef.origin.at(fdef.tree), outputs)
-    for name, t, sem_text, sem in outs:
-        binder.outputs(ev.scopes[0][name].value if name in ev.scopes[0] else ev.lookup(name).value,
-                       str(sem_text) if sem_text is not None else None,
-                       fdef.origin.at(sem if sem is not None else fdef.tree), outputs)
-    _check_required_outputs(ctx, entry, binder.bound, fdef)
-    preshaders = {}
-    if ctx.target.rules.is_ps1:
-        # fxc's preshader: what reads only uniforms is computed on the host (see preshader.py)
-        from effects.shaders.hlsl.preshader import preshade_ps1
-        roots = [c for o in outputs for c in o.comps] + list(ctx.kills)
-        preshaders = preshade_ps1(ev.g, roots, not ctx.target.rules.is_ps14, ctx.uniforms_used)
-        for o in outputs:
-            o.comps, roots = roots[:len(o.comps)], roots[len(o.comps):]
-        ctx.kills[:] = roots
-    nodes = needed([c.node for o in outputs for c in o.comps] + [k.node for k in ctx.kills])
-    # generating and assembling the code costs about four evaluation steps a node
-    spend(ev, EMIT_COST * len(nodes), fdef.tree)
-    _finite_constants(ctx, nodes, outputs, fdef)
-    for n in nodes:
+            raise fdef.origin.error(f"X3080: '{c.entry}': function must return a value",
+                                    fdef.tree)
+        c.binder.outputs(frame.retval, str(fsem.children[0]) if fsem is not None else None,
+                         fdef.origin.at(fdef.tree), c.outputs)
+    for name, t, sem_text, sem in c.outs:
+        c.binder.outputs(ev.scopes[0][name].value if name in ev.scopes[0] else
+                         ev.lookup(name).value,
+                         str(sem_text) if sem_text is not None else None,
+                         fdef.origin.at(sem if sem is not None else fdef.tree), c.outputs)
+    _check_required_outputs(c.ctx, c.entry, c.binder.bound, fdef)
+
+
+def preshade(c: Compilation) -> None:
+    """ps_1_x: fxc's preshader, what reads only uniforms computed on the host (preshader.py)."""
+    if not c.ps1:
+        return
+    from effects.shaders.hlsl.preshader import preshade_ps1
+    ctx = c.ctx
+    roots = [x for o in c.outputs for x in o.comps] + list(ctx.kills)
+    c.preshaders = preshade_ps1(c.ev.g, roots, not ctx.target.rules.is_ps14, ctx.uniforms_used)
+    for o in c.outputs:
+        o.comps, roots = roots[:len(o.comps)], roots[len(o.comps):]
+    ctx.kills[:] = roots
+
+
+def reach(c: Compilation) -> None:
+    """The nodes the outputs and discards reach, with what no code can hold refused: a
+    constant that is not a finite float32, an input the target cannot map."""
+    ctx = c.ctx
+    c.nodes = needed([x.node for o in c.outputs for x in o.comps] + [k.node for k in ctx.kills])
+    # generating the code costs about four evaluation steps a node
+    spend(c.ev, EMIT_COST * len(c.nodes), c.fdef.tree)
+    _finite_constants(ctx, c.nodes, c.outputs, c.fdef)
+    for n in c.nodes:
         if n.op == "input" and n.key[0] == "unmapped":
             raise HlslError(f"X4502: invalid {ctx.target.name} input semantic '{n.key[1]}'",
                             n.location)
-    constants, sizes = _constant_registers(ctx, nodes)
-    samplers = _sampler_registers(ctx, {n.key[0] for n in nodes if n.op in TEXTURE})
-    if ctx.target.rules.is_ps1:
-        # no dcl, no oC#, one texture read per stage, modifiers: a generator of its own
-        generated = generate_ps1(ctx, outputs, constants, samplers, sizes)
+
+
+def layout_constants(c: Compilation) -> None:
+    """Constant registers in fxc's order and the samplers fixed before generation."""
+    c.constants, c.sizes = _constant_registers(c.ctx, c.nodes)
+    c.samplers = _sampler_registers(c.ctx, {n.key[0] for n in c.nodes if n.op in TEXTURE})
+    if not c.ps1:
+        c.gen = CodeGen(c.ctx, c.binder.dcls, c.outputs, c.constants, c.samplers, c.sizes)
+        c.gen.output_dcls = c.binder.output_dcls
+
+
+def fuse(c: Compilation) -> None:
+    """The DAG's fusions (fusion.py: lrp, mad, lit sharing, scalar packing)."""
+    if not c.ps1:
+        c.gen.fuse()
+
+
+def select(c: Compilation) -> None:
+    """Instruction selection onto virtual temporaries (codegen.py). ps_1_x has a generator of
+    its own (no dcl, no oC#, one texture read per stage, modifiers: codegen_ps1.py), which
+    fuses, selects and allocates in one: its allocation decides where the result is made."""
+    if c.ps1:
+        c.code = generate_ps1(c.ctx, c.outputs, c.constants, c.samplers, c.sizes)
     else:
-        cg = CodeGen(ctx, binder.dcls, outputs, constants, samplers, sizes)
-        cg.output_dcls = binder.output_dcls  # type: ignore[attr-defined]
-        generated = cg.generate()
-    text = "\n".join(generated.lines) + "\n"
-    program = _assemble(text, ctx, generated.lines, generated.locations, fdef, where)
-    return CompiledShader(entry, ctx.target.name, text, program, generated.constants,
-                          generated.samplers, generated.locations, list(ctx.warnings),
-                          dict(ctx.uniforms_used),
-                          generated.int_registers if not ctx.target.rules.is_ps1 else {},
-                          generated.bool_registers if not ctx.target.rules.is_ps1 else {},
-                          {n: p for n, p in preshaders.items() if n in generated.constants}), \
-        ctx.literal_loops
+        c.gen.select()
+
+
+def optimise(c: Compilation) -> None:
+    """The rewrites of the selected instructions (peephole.py)."""
+    if not c.ps1:
+        c.gen.optimise()
+
+
+def legalize_code(c: Compilation) -> None:
+    """The version's read ports, texture coordinates and swizzles (legalize.py)."""
+    if not c.ps1:
+        legalize(c.gen)
+
+
+def allocate_registers(c: Compilation) -> None:
+    """Temporaries onto r# (allocate.py), with the tables of registers the pass loads."""
+    if not c.ps1:
+        c.code = code_of(c.gen)
+
+
+def write_program(c: Compilation) -> None:
+    """The assembler's records (writer.py), located in the HLSL."""
+    c.program, c.generated_at = write(c.code, c.ctx.target.rules,  # type: ignore[arg-type]
+                                      c.fdef.origin.at(c.fdef.tree))
+
+
+def list_program(c: Compilation) -> None:
+    """The listing (text only for reading and the on-disk store) and the compiled shader."""
+    code, ctx = c.code, c.ctx
+    text, lines = listing(c.program, c.generated_at)  # type: ignore[arg-type]
+    c.shader = CompiledShader(c.entry, ctx.target.name, text, c.program, code.constants,  # type: ignore[union-attr, arg-type]
+                              code.samplers, lines, list(ctx.warnings),  # type: ignore[union-attr]
+                              dict(ctx.uniforms_used), code.int_registers,  # type: ignore[union-attr]
+                              code.bool_registers,  # type: ignore[union-attr]
+                              {n: p for n, p in c.preshaders.items() if n in code.constants})  # type: ignore[union-attr]
+
+
+# bind -> evaluate -> outputs -> (ps_1_x preshader) -> reach -> layout constants -> fuse ->
+# select -> optimise -> legalize -> allocate -> write -> listing, as vkd3d-shader's
+# hlsl_emit_bytecode runs its passes in order; each is a function of the Compilation, so a
+# test can run the list up to one and look at what that one does
+PASSES: tuple[Callable[[Compilation], None], ...] = (
+    bind, evaluate, bind_outputs, preshade, reach, layout_constants, fuse, select, optimise,
+    legalize_code, allocate_registers, write_program, list_program)
+
+
+def run_passes(c: Compilation, until: Callable[[Compilation], None] | None = None) -> Compilation:
+    """Run PASSES in order on `c`, up to and including `until` (all of them without)."""
+    for p in PASSES:
+        p(c)
+        if p is until:
+            break
+    return c
+
+
+def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ...],
+                    where: Location, loops_for_size: bool = False) -> tuple[CompiledShader, int]:
+    """The shader, and how many loops over literal bounds it unrolled that could have been
+    real loops."""
+    c = run_passes(Compilation(effect, entry, target, args, where, loops_for_size))
+    return c.shader, c.ctx.literal_loops  # type: ignore[return-value]
 
 
 def _check_required_outputs(ctx: Context, entry: str, bound: set[tuple[str, int]],
@@ -350,20 +471,14 @@ def _compile_argument(ctx: Context, ev: Evaluator, text: str, t: HType, where: L
     return sub.a.convert(sub.expr(tree), t, where)
 
 
-def _assemble(text: str, ctx: Context, lines: list[str], locations: list[Location],
-              fdef: Any, where: Location) -> AsmProgram:
-    return assemble_generated(text, ctx.target.name, fdef.name, lines, locations,
-                              fdef.origin.at(fdef.tree))
-
-
 class _Binder:
     """Entry-point inputs and outputs by semantic, per target."""
 
     def __init__(self, ctx: Context, ev: Evaluator) -> None:
         self.ctx = ctx
         self.ev = ev
-        self.dcls: dict[str, str] = {}
-        self.output_dcls: list[str] = []
+        self.dcls: dict[str, Declaration] = {}     # input register -> its dcl
+        self.output_dcls: list[Declaration] = []
         self.next_v = 0
         self.next_o = 0
         self.input_keys: dict[str, tuple] = {}   # v# -> (usage, index) of a vertex input
@@ -395,8 +510,8 @@ class _Binder:
         if target.kind == "ps" and usage == "SV_POSITION":
             usage = "VPOS"
         if target.kind == "ps" and target.rules.major >= 3 and usage in _PS3_MISC:
-            reg, dcl = _PS3_MISC[usage]
-            self.dcls[reg] = dcl
+            reg, mask = _PS3_MISC[usage]
+            self.dcls[reg] = declaration(reg, None, mask=mask)
         elif target.kind == "ps" and target.rules.major < 3:
             if usage in ("COLOR", "TEXCOORD"):
                 kind = "v" if usage == "COLOR" else "t"
@@ -410,12 +525,12 @@ class _Binder:
                 # reused as the pixel input, as most XNA effects do) as long as nothing reads it
                 node = self.ctx.graph.leaf("input", ("unmapped", semantic), 4, loc)
                 return Value(t, [Operand(node.node, (min(i, 3),)) for i in range(t.size)])
-            self.dcls[reg] = f"dcl {reg}"
+            self.dcls[reg] = declaration(reg[0], int(reg[1:]))
         else:
             key = (usage, index)
             reg = None
-            for r, d in self.dcls.items():
-                if d.endswith(f" {r}") and self.input_keys.get(r) == key:
+            for r in self.dcls:
+                if self.input_keys.get(r) == key:
                     reg = r
             if reg is None:
                 if usage.lower().removeprefix("sv_") not in USAGES:   # no dcl_ usage
@@ -424,10 +539,8 @@ class _Binder:
                 reg = f"v{self.next_v}"
                 self.next_v += 1
                 self.input_keys[reg] = key
-                usage_text = usage.lower() + (str(index) if index else "")
-                if usage_text.startswith("sv_"):
-                    usage_text = usage_text[3:]
-                self.dcls[reg] = f"dcl_{usage_text} {reg}"
+                self.dcls[reg] = declaration("v", self.next_v - 1,
+                                             usage.lower().removeprefix("sv_"), index)
         if not t.numeric:
             raise self._error(f"X4502: input '{name}' must be numeric, not '{t}'", loc)
         node = self.ctx.graph.leaf("input", ("input", reg), 4, loc)
@@ -473,7 +586,7 @@ class _Binder:
                 raise self._error(f"X4503: invalid vertex shader output semantic '{semantic}'", loc)
             reg = f"o{self.next_o}"
             self.next_o += 1
-            self.output_dcls.append(f"dcl_{usage.lower()}{index if index else ''} {reg}")
+            self.output_dcls.append(declaration("o", self.next_o - 1, usage.lower(), index))
         comps = list(value.comps)
         if usage == "POSITION" and len(comps) < 4:
             comps = comps + [self.ctx.graph.const((1.0,))] * (4 - len(comps))

@@ -13,10 +13,13 @@ Shapes:
 - `texture`: a sampler read, emitted as `mnemonic` with the sampler;
 - `leaf` / `flow`: registers the code generator places (inputs, uniforms, constants, packs,
   loop and branch values) and the flow control it emits (flowcode.py).
+
+`ps1_lacks`: what ps_1_1-1_4 have no instruction for, as the X4532 refusal names it
+(codegen_ps1.py, ps1_analysis.py); ps_1_x emits the other `lanes` rows component-wise.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from effects.shaders.hlsl.folding import FOLDS
 
@@ -28,6 +31,7 @@ class OpRow:
     mnemonic: str | None = None      # the instruction it is emitted as ('sat': mov_sat)
     reads: int = 0                    # reduce: lanes read of each of its two vector sources
     opaque: bool = False              # never folded, even over constants (reads, side effects)
+    ps1_lacks: str | None = None      # ps_1_x has no instruction for it: what X4532 names
 
     @property
     def folds(self) -> bool:
@@ -57,6 +61,19 @@ OPS: dict[str, OpRow] = {row.name: row for row in [
     *[OpRow(n, "flow", opaque=True) for n in ("kill", "loop", "loop_out", "if", "if_out")],
 ]}
 
+_EQUALITY = "equality test (cnd orders values only; == and != need cmp, ps_1_2)"
+for _name, _lacks in {
+    "rcp": "per-pixel division or sqrt (rcp)", "rsq": "normalize, length or rsqrt (rsq)",
+    "nrm": "normalize (nrm)", "exp": "exp/exp2 (exp)", "log": "log/log2 (log)",
+    "pow": "pow of a non-constant exponent", "frc": "frac/floor/fmod (frc)",
+    "min": "min (or a clamp/comparison built on it)",
+    "max": "max (or a clamp/comparison built on it)", "abs": "abs",
+    "slt": _EQUALITY, "sge": _EQUALITY, "dsx": "ddx", "dsy": "ddy", "crs": "cross (crs)",
+    "sincos": "sin/cos", "dp2add": "dp2add", "texldp": "tex2Dproj", "texldb": "tex2Dbias",
+    "texldl": "tex2Dlod", "texldd": "tex2Dgrad",
+}.items():
+    OPS[_name] = replace(OPS[_name], ps1_lacks=_lacks)
+
 
 def shaped(op: str) -> bool:
     return op in OPS and OPS[op].shape == "shaped"
@@ -71,3 +88,5 @@ SCALAR = ops_of("scalar")
 REDUCE = {n: row.reads for n, row in OPS.items() if row.shape == "reduce"}
 TEXTURE = {n: row.mnemonic for n, row in OPS.items() if row.shape == "texture"}
 OPAQUE = frozenset(n for n, row in OPS.items() if row.opaque)
+PS1_LACKS = {n: row.ps1_lacks for n, row in OPS.items() if row.ps1_lacks}
+PS1_LANEWISE = frozenset(n for n in LANEWISE if n not in PS1_LACKS)

@@ -20,7 +20,8 @@ from __future__ import annotations
 from typing import Any
 
 from effects.shaders.hlsl.asmcode import Instr, Reg, Src
-from effects.shaders.hlsl.legalize import _ALIASES, _choose, _lanes_needed
+from effects.shaders.hlsl.allocate import ALIASES as _ALIASES
+from effects.shaders.hlsl.legalize import _choose, _lanes_needed
 
 _TEXLD = frozenset({"texld", "texldp", "texldb", "texldl", "texldd"})
 # instructions whose sources a copy may be folded into: one slot, ordinary sources (texld's

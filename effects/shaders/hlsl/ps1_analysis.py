@@ -12,21 +12,9 @@ from typing import Any
 from effects.base.errors import Location
 from effects.shaders.hlsl.dag import Node, Operand
 from effects.shaders.hlsl.parse import HlslError
+from effects.shaders.hlsl.ops import PS1_LACKS
 from effects.shaders.hlsl.ps1_asm import FULL, Home
 from effects.shaders.hlsl.ps1_idioms import power_of_two, source_idiom
-
-# DAG ops ps_1_x has no instruction for: what the message names
-REFUSED = {
-    "rcp": "per-pixel division or sqrt (rcp)", "rsq": "normalize, length or rsqrt (rsq)",
-    "nrm": "normalize (nrm)", "exp": "exp/exp2 (exp)", "log": "log/log2 (log)",
-    "pow": "pow of a non-constant exponent", "frc": "frac/floor/fmod (frc)",
-    "min": "min (or a clamp/comparison built on it)", "max": "max (or a clamp/comparison built on it)",
-    "abs": "abs", "slt": "equality test (cnd orders values only; == and != need cmp, ps_1_2)",
-    "sge": "equality test (cnd orders values only; == and != need cmp, ps_1_2)",
-    "dsx": "ddx", "dsy": "ddy", "crs": "cross (crs)", "sincos": "sin/cos", "dp2add": "dp2add",
-    "texldp": "tex2Dproj", "texldb": "tex2Dbias", "texldl": "tex2Dlod", "texldd": "tex2Dgrad",
-}
-
 
 @dataclass
 class State:
@@ -121,7 +109,7 @@ class Ps1Analysis:
         if self.ps14 and base.node.op == "uniform":
             return False             # ps_1_4 takes no source modifier on a constant
         for reader, op in self.readers.get(n.id, []):
-            if reader is not None and reader.op in ("tex",) + tuple(REFUSED):
+            if reader is not None and reader.op in ("tex",) + tuple(PS1_LACKS):
                 return False
             if mod == "invert" and op.negate:
                 return False
@@ -132,7 +120,7 @@ class Ps1Analysis:
         base, mod = self.resolve(y)
         p = base.node
         if mod or base.negate or p.op in ("const", "input", "uniform", "tex", "pack") \
-                or p.op in REFUSED or base.swizzle != tuple(range(p.width)) or y.width != p.width:
+                or p.op in PS1_LACKS or base.swizzle != tuple(range(p.width)) or y.width != p.width:
             return False
         users = self._readers_through_aliases(p)
         return len(users) == 1 and users[0] is n and free(p)
@@ -165,14 +153,14 @@ class Ps1Analysis:
 
     def _emitted(self, n: Node) -> bool:
         return n.op not in ("const", "input", "uniform", "tex") and n.id not in self.s.folded \
-            and n.id not in self.s.alias and not (n.op in REFUSED and n.op.startswith("tex"))
+            and n.id not in self.s.alias and not (n.op in PS1_LACKS and n.op.startswith("tex"))
 
     def _phase_one(self, nodes: list[Node]) -> set[int]:
         """ps_1_4: the nodes a dependent read's coordinates need (phase 1)."""
         p1: set[int] = set()
         for n in nodes:
-            if n.op in REFUSED and n.op.startswith("tex"):
-                self.fail(REFUSED[n.op], n.location)
+            if n.op in PS1_LACKS and n.op.startswith("tex"):
+                self.fail(PS1_LACKS[n.op], n.location)
             if n.op != "tex":
                 continue
             coord, _ = self.resolve(n.args[0])

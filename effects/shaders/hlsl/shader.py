@@ -2,9 +2,8 @@
 compile cache holds (in memory, or on disk for the command line: store.py) is handed out by
 cache.compile_state without importing the HLSL front end, its grammar or lark.
 
-`assemble_generated` turns the generated assembly into the located program; the compiler and
-the on-disk store both call it, so a stored shader's program is made by the same code as a
-fresh compile's.
+`assemble_generated` turns a compiled shader's listing, as the on-disk store keeps it, back into
+the located program the compiler's writer (writer.py) made.
 """
 from __future__ import annotations
 
@@ -106,16 +105,23 @@ def assemble_generated(text: str, target: str, entry: str, lines: list[str],
         k = loc.line - 1
         found = locations[k] if 0 <= k < len(locations) else None
         return found if found is not None and found.line else entry_loc
+    # what only text has (the words as written, the generated line) is left as the writer
+    # (writer.py) leaves it, so the program read back is the program compiled
     for ins in program.instructions:
         ins.location = relocate(ins.location)
+        ins.opcode_text, ins.source_line = "", None
         for op in ins.operands:
             op.location = ins.location
+            op.text = op.name
     for d in program.dcls:
         d.location = entry_loc
         d.register.location = entry_loc
+        d.register.text = d.register.name
     for cd in program.def_statements:
         cd.location = entry_loc
         cd.register.location = entry_loc
+        cd.register.text = cd.register.name
+    program.phase_locations = [entry_loc] * len(program.phase_locations)
     program.location = entry_loc
     program.origin = Location(entry_loc.path, 0, 1)
     program.source_lines = ()

@@ -15,8 +15,9 @@ disk.
 
 What an entry holds is data, not code: JSON with the generated assembly, its per-line HLSL
 locations, constant/sampler/int/bool register tables, warnings and types, or the error. The
-program is made again from the assembly by `shader.assemble_generated`, the code a compile
-runs, so it is checked by the assembler as any text is. An entry that does not decode is a
+program is made again from the assembly listing by `shader.assemble_generated`, which gives
+the records the compiler's writer made (tests/shaders/hlsl/test_hlsl_store.py compares them
+field by field), so it is checked by the assembler as any text is. An entry that does not decode is a
 miss (and removed). An untrusted effect can only add entries for its own text.
 """
 from __future__ import annotations

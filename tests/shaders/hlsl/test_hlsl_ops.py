@@ -46,3 +46,23 @@ def test_every_op_the_compiler_builds_has_a_row():
         text = path.read_text()
         built |= set(re.findall(r'\.(?:op|leaf|lanes|scalar_lanes)\(\s*"([a-z_0-9]+)"', text))
     assert built and built <= set(OPS), built - set(OPS)
+
+
+def test_what_ps_1_x_lacks_is_a_column_of_the_table():
+    from effects.shaders.hlsl.ops import PS1_LACKS, PS1_LANEWISE
+    # ps_1_x's component-wise instructions: the lanes rows it has (cnd and sat as mov_sat too)
+    assert PS1_LANEWISE == {"add", "mul", "mad", "cmp", "cnd", "lrp", "mov", "sat"}
+    assert set(PS1_LACKS) <= set(OPS) and PS1_LACKS["frc"] == "frac/floor/fmod (frc)"
+    assert not {"add", "mul", "mad", "dp3", "dp4", "tex"} & set(PS1_LACKS)
+
+
+def test_the_ps_1_x_refusal_names_the_row():
+    import pytest
+
+    import effects
+    from effects.base.errors import EffectError
+    from effects.shaders.hlsl import compile_shader
+    fx = effects.load_effect("float4 PS(float4 c : COLOR0) : COLOR { return frac(c); }\n"
+                             "technique T { pass P { } }\n")
+    with pytest.raises(EffectError, match=re.escape(OPS["frc"].ps1_lacks)):
+        compile_shader(fx, "PS", "ps_1_1")

@@ -9,7 +9,7 @@ import pytest
 
 import effects
 from effects.program.backend import create_backend
-from effects.shaders.hlsl import codegen, compile_shader, legalize
+from effects.shaders.hlsl import allocate, codegen, compile_shader
 
 SHADERS = {
     "ps_3_0 loop and branch": ("""
@@ -98,7 +98,7 @@ def test_rewritten_and_plain_code_draw_the_same(name, backend, monkeypatch):
     assert tight[..., :3].max() > 40
     monkeypatch.setattr(codegen, "optimise", lambda cg: {})
     monkeypatch.setattr(codegen, "fuse_lrp", lambda nodes, uses: 0)
-    monkeypatch.setattr(legalize, "_dies_before_write", lambda ins, vr: False)
+    monkeypatch.setattr(allocate, "dies_into_destination", lambda ins, vr: False)
     plain, plain_slots = draw(name, backend), slots(name)
     effects.clear_caches()
     assert plain_slots > tight_slots                # the rewrites did something here
