@@ -12,9 +12,11 @@ never misses a dependency, and an edit elsewhere in the file (another function, 
 global, a technique) keeps the entry. Uniform values are not in the key (the shader reads them
 from constant registers at draw time); static globals' values are (they fold into the code).
 
-One thing reaches further: as fxc compiles the whole file, a function or struct that does not
-parse or resolve fails every compile of the effect, reached or not. So the key also says
-whether all of them load, and when they do not, holds all of them.
+One thing reaches further: as fxc type-checked the whole file, a function or struct that does
+not parse or resolve, or a language error anywhere in a function body or a global's
+initialiser (check.py), fails every compile of the effect, reached or not. So the key also
+says whether all of them load and check, and when they do not, holds all of them (and every
+global's declaration).
 
 Errors are cached too, keyed with the `compile` state's location besides (an unknown entry
 point or a bad argument is reported there). Bounded by bytes: the least recently used entry
@@ -28,7 +30,7 @@ from typing import Any, Callable
 
 from effects.base import caches, limits
 from effects.base.errors import EffectError
-from effects.model import CompileShader, Effect, RecordedReads
+from effects.model import CompileShader, Effect, Expression, ParamRef, RecordedReads
 
 CACHE_BYTES = 64 << 20
 _COMPILER_LIMITS = ("hlsl_nesting", "hlsl_components", "hlsl_work", "literal_digits")
@@ -206,18 +208,26 @@ def declarations(effect: Any) -> tuple:
     return tuple(_declaration(obj, value=False) for obj in [*effect.structs, *effect.functions])
 
 
+def unit_declarations(effect: Any) -> tuple:
+    """Every declaration the whole-file check (check.py) reads: the structs, typedefs and
+    functions, and every global's declaration (with its initialiser where it is kept as an
+    expression: the check evaluates those; a value set at run time is not in it)."""
+    base = effect.effect if isinstance(effect, RecordedReads) else effect   # records nothing
+    return declarations(effect) + tuple(
+        _declaration(p, value=isinstance(p.value, (Expression, ParamRef)))
+        for p in base.parameters)
+
+
 def _all_load(effect: Any) -> tuple:
-    """() when every struct, typedef and function of `effect` parses and resolves (a load of
-    the declarations, kept by their texts); else all of them, since the error comes from one."""
-    every = declarations(effect)
+    """() when every struct, typedef and function of `effect` parses and resolves and the
+    whole file passes the check fxc made of it (check.check_unit: every function body and
+    global initialiser, called or not; kept by their texts); else all of them, since the
+    error comes from one."""
+    every = unit_declarations(effect)
     ok = _LOADS.get(every)
     if ok is None:
-        from effects.shaders.hlsl.context import load_context   # the HLSL front end: here only
-        try:
-            load_context(effect, "ps_2_0")
-            ok = True
-        except EffectError:
-            ok = False
+        from effects.shaders.hlsl.check import check_unit   # the HLSL front end: here only
+        ok = check_unit(effect, every) is None
         _LOADS.put(every, ok)
     return () if ok else every
 
@@ -230,7 +240,7 @@ def cached_compile(effect: Any, value: CompileShader, compile: Callable[[], Any]
     a key that needs no parse of the effect's declarations."""
     from effects.base import disk_store
     from effects.shaders.hlsl import store
-    stored = store.key(key_parts(effect, value, []), declarations(effect), value.location) \
+    stored = store.key(key_parts(effect, value, []), unit_declarations(effect), value.location) \
         if disk_store.enabled() else None
     if stored is not None:
         hit = _STORED.get(stored)

@@ -26,6 +26,7 @@ from effects.shaders.hlsl.shader import CompiledShader, assemble_generated
 from effects.shaders.hlsl.calls import constant_parameters, parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.budget import out_of_stack, spend
+from effects.shaders.hlsl.check import check_unit
 from effects.shaders.hlsl.codegen import CodeGen
 from effects.shaders.hlsl.codegen_ps1 import generate_ps1
 from effects.shaders.hlsl.context import Context, explicit_register as _explicit, load_context
@@ -99,6 +100,11 @@ def _compile_shader(effect: Effect, entry: str, target: str, args: tuple[str, ..
     """The shader, and how many loops over literal bounds it unrolled that could have been
     real loops."""
     ctx = load_context(effect, target.lower())
+    # fxc type-checked the whole file before it compiled the entry: a language error in any
+    # function or initialiser, called or not, fails every compile (check.py)
+    unit_error = check_unit(effect)
+    if unit_error is not None:
+        raise unit_error
     ctx.loops_for_size = loops_for_size
     fdefs = ctx.functions.get(entry)
     if not fdefs:
