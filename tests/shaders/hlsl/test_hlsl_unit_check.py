@@ -106,3 +106,14 @@ def test_render_of_an_effect_with_a_typo_in_an_unused_function_prints_it_and_exi
     assert out.returncode == 1
     assert f"{path}:4:19: error: X3004: undeclared identifier 'brightnes'" in out.stderr
     assert not (tmp_path / "out.png").exists()
+
+
+def test_a_strict_load_fails_on_an_unused_function_though_no_technique_compiles_hlsl():
+    # D3DXCreateEffect compiled the file's HLSL whatever its techniques used
+    text = ("float4 Helper(float2 uv) { return uv.x * nope; }\n"
+            "technique T { pass P { ColorOp[0] = SelectArg1; ColorArg1[0] = TFactor; } }\n")
+    assert effects.load_effect(text).techniques[0].name == "T"
+    with pytest.raises(EffectError) as info:
+        effects.load_effect(text, strict=True)
+    assert info.value.message == "X3004: undeclared identifier 'nope'"
+    assert (info.value.location.line, info.value.location.column) == (1, 42)
