@@ -24,13 +24,14 @@ goes first.
 """
 from __future__ import annotations
 
-import dataclasses
 import re
 from typing import Any, Callable
 
 from effects.base import caches, limits
 from effects.base.errors import EffectError
-from effects.model import CompileShader, Effect, Expression, ParamRef, RecordedReads
+from effects.model import CompileShader, Effect, RecordedReads
+from effects.shaders.hlsl.declared import declaration as _declaration, declarations, \
+    unit_declarations
 
 CACHE_BYTES = 64 << 20
 _COMPILER_LIMITS = ("hlsl_nesting", "hlsl_components", "hlsl_work", "literal_digits")
@@ -50,9 +51,10 @@ CACHE = caches.declare(
     "shaders.hlsl.compiles", keys="compile_key: target, entry, arguments, every declaration "
     "reached (and whether all load); an error with its compile state's location besides",
     max_bytes=CACHE_BYTES, size_of=entry_bytes)
-# every struct, typedef and function of an effect -> whether they all parse and resolve (the
-# key's tuples share the model's texts: an entry is the tuple and a bool)
-_LOADS = caches.declare("shaders.hlsl.declaration_loads", keys="every struct, typedef and "
+# every struct, typedef, function and global of an effect -> whether they all parse, resolve
+# and pass the whole-file check (the key's tuples share the model's texts: an entry is the
+# tuple and a bool)
+_LOADS = caches.declare("shaders.hlsl.declaration_loads", keys="every struct, typedef, global and "
                         "function of an effect as the key holds them", entry_bytes=1024,
                         max_bytes=1024 * 1024)
 
@@ -63,32 +65,6 @@ _LOADS = caches.declare("shaders.hlsl.declaration_loads", keys="every struct, ty
 def _names(text: str) -> frozenset[str]:
     """Every identifier in `text` (kept per text: the same function is keyed once per card)."""
     return frozenset(_IDENTIFIER.findall(text))
-
-
-@caches.memo("shaders.hlsl.field_names", keys="a model class", entry_bytes=256,
-             max_bytes=64 * 256)    # unbounded before; the model has a dozen classes
-def _field_names(cls: type) -> tuple[str, ...]:
-    return tuple(f.name for f in dataclasses.fields(cls))
-
-
-def _declaration(obj: Any, value: bool) -> tuple:
-    """A model object (Function, Struct, Parameter) as the compiler reads it: every field,
-    so a field added to the model later is in the key too; a parameter's annotations never
-    matter and its value only when `value` (a static global's initialiser)."""
-    out: list[Any] = [type(obj).__name__]
-    for name in _field_names(type(obj)):
-        if name == "annotations" or (name == "value" and not value):
-            continue
-        v = getattr(obj, name)
-        if hasattr(v, "tobytes") and hasattr(v, "dtype"):
-            v = ("array", v.dtype.str, v.shape, v.tobytes())
-        else:
-            try:
-                hash(v)
-            except TypeError:       # a list, a sampler_state: by what they print
-                v = ("repr", repr(v))
-        out.append(v)
-    return tuple(out)
 
 
 def compile_key(effect: Any, value: CompileShader) -> tuple:
@@ -201,21 +177,6 @@ def key_parts(effect: Any, value: CompileShader, seen: list) -> tuple:
                 todo.extend(_names(text))
     where = value.location if value.args else None   # arguments are located at the state
     return (effect.path, value.profile.lower(), value.function, value.args, where, tuple(parts))
-
-
-def declarations(effect: Any) -> tuple:
-    """Every struct, typedef and function of `effect` as the key holds them."""
-    return tuple(_declaration(obj, value=False) for obj in [*effect.structs, *effect.functions])
-
-
-def unit_declarations(effect: Any) -> tuple:
-    """Every declaration the whole-file check (check.py) reads: the structs, typedefs and
-    functions, and every global's declaration (with its initialiser where it is kept as an
-    expression: the check evaluates those; a value set at run time is not in it)."""
-    base = effect.effect if isinstance(effect, RecordedReads) else effect   # records nothing
-    return declarations(effect) + tuple(
-        _declaration(p, value=isinstance(p.value, (Expression, ParamRef)))
-        for p in base.parameters)
 
 
 def _all_load(effect: Any) -> tuple:

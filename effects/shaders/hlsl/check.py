@@ -40,7 +40,8 @@ import lark
 from effects.base import caches, limits
 from effects.base.errors import EffectError
 from effects.model import Effect
-from effects.shaders.hlsl.calls import constant_parameters, parameters, resolve_overload, return_type
+from effects.shaders.hlsl.calls import constant_parameters, parameters, return_type
+from effects.shaders.hlsl.declared import unit_declarations
 from effects.shaders.hlsl.context import Context, FunctionDef, load_context, parameter_type
 from effects.shaders.hlsl.evaluate import Evaluator
 from effects.shaders.hlsl.expressions import initializer_text, uniform_value
@@ -56,6 +57,11 @@ _OPAQUE = "<{}>"            # an opaque value's register name: never a parameter
 
 class Checker(Evaluator):
     """The evaluator walking every statement once, its values never deciding what is walked."""
+
+    # an index out of bounds is an error only where written as a number (lvalues.const_index):
+    # one the walk folds (a counter's first value, a constant in a dropped branch) is fxc's
+    # optimiser's to judge, in the code it compiled
+    literal_bounds_only = True
 
     def dead(self) -> bool:
         return False         # the statements after a return or a break are checked too
@@ -199,8 +205,7 @@ _CHECKED = caches.declare("shaders.hlsl.unit_checks", keys="every struct, typede
 def check_unit(effect: Effect, unit: tuple | None = None) -> EffectError | None:
     """The first language error of `effect`'s HLSL (its declarations' own, load_context's,
     or one the walk finds), or None. `unit`: the effect's declarations as the compile cache
-    keys them (cache.unit_declarations), when the caller has them."""
-    from effects.shaders.hlsl.cache import unit_declarations
+    keys them (declared.unit_declarations), when the caller has them."""
     key = (unit if unit is not None else unit_declarations(effect)) + \
         tuple(limits.get(name) for name in ("hlsl_nesting", "hlsl_work", "literal_digits"))
     hit = _CHECKED.get(key)
