@@ -399,6 +399,7 @@ UNIT: list[Row] = [
         ps("    return uv.x;", "texture Tex;\ntexture f() { return Tex; }\n")),
     # -- void (ReShade's and d3dx's texts as above) ------------------------------------------------
     Row("void: an array of void", "X3038", unused("    void a[2];\n    return c;")),
+    Row("void: a global of void", "X3038", ps("    return uv.x;", "void G;\n")),
     Row("void: a void value in arithmetic", "X3022",
         unused("    return f() + 1;", "void f() { }\n")),
     Row("void: a void value as an intrinsic's argument", "X3013",
