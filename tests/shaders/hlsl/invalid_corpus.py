@@ -10,6 +10,10 @@ annotations record what fxc said), the DirectX 9 d3dx HLSL compiler's own messag
 `refusal(row)` compiles a row as a user would (load, compile the entry for its target) and
 returns the code of the error it is refused with, or "accepted": the measure of the issue
 (`tests/shaders/hlsl/test_hlsl_invalid_corpus.py` asserts every row; the report counts).
+`UNIT` holds the errors written where a compile of the entry never evaluates them (fxc
+type-checked the whole file: effects/shaders/hlsl/check.py), asserted by
+test_hlsl_unit_check.py. `python -m tests.shaders.hlsl.invalid_corpus` prints both counts
+(run it with another checkout first on PYTHONPATH for a before figure).
 """
 from __future__ import annotations
 
