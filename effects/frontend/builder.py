@@ -174,6 +174,9 @@ class Builder:
             self.typedefs[name_tok.value] = self.type_of(type_tok, structs)
 
     def parameter(self, raw: RawParam, structs: set[str]) -> Parameter:
+        if raw.type.value == "void":   # fxc's code; the text as ReShade gives it for a local
+            raise self.error(ParseError, f"X3038: '{raw.name.value}': variables cannot be void",
+                             raw.name)
         spec = self.type_of(raw.type, structs)
         name = raw.name.value
         dims = self.dims(raw.dims, spec, raw.value, name)

@@ -44,6 +44,13 @@ def language_errors(effect: Effect) -> list[EffectError]:
     from effects.shaders.hlsl.lvalues import is_compatibility_warning, strict_message
     from effects.shaders.hlsl.parse import HlslError
     errors: dict[tuple, EffectError] = {}
+    if effect.functions:
+        # fxc type-checked every function of the file, compiled or not (check.py): an effect
+        # whose techniques compile none of them fails on one all the same
+        from effects.shaders.hlsl.check import check_unit
+        unit_error = check_unit(effect)
+        if unit_error is not None:
+            errors[(unit_error.location, unit_error.message)] = unit_error
     for value in sorted(set(values), key=lambda v: v.location):
         try:
             shader = compile_state(effect, value)

@@ -30,6 +30,7 @@ DECLARED = [
     "shaders.asm.programs", "shaders.asm.registers", "shaders.asm.swizzles",
     "shaders.hlsl.compiles", "shaders.hlsl.declaration_loads", "shaders.hlsl.field_names",
     "shaders.hlsl.identifiers", "shaders.hlsl.lanes", "shaders.hlsl.stored", "shaders.hlsl.trees",
+    "shaders.hlsl.unit_checks",
     "validate.enum_spellings",
 ]
 

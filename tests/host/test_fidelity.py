@@ -316,11 +316,13 @@ def test_under_the_fidelity_policy_any_language_error_is_said():
     """A technique whose HLSL compiles for no target is never drawn, so never measured: had
     it compiled it might have looked most like the best, so the selection says its error
     (Selection.passed_over) wherever it stands in the file."""
+    # the error is the technique's own (its compile argument): one in a function body fails
+    # every compile of the file, as fxc type-checked the whole file (shaders/hlsl/check.py)
     functions = ("float4 Tint = {1, 0.5, 0.25, 1};\n"
-                 "float4 Broken(float2 uv : TEXCOORD0) : COLOR { return Tint * fooo; }\n"
+                 "float4 Tinted(float2 uv : TEXCOORD0, uniform float4 k) : COLOR { return k; }\n"
                  "float4 Fine(float2 uv : TEXCOORD0) : COLOR { return Tint; }\n")
     good = "technique Good { pass P0 { PixelShader = compile ps_2_0 Fine(); } }\n"
-    broken = "technique Broken { pass P0 { PixelShader = compile ps_2_0 Broken(); } }\n"
+    broken = "technique Broken { pass P0 { PixelShader = compile ps_2_0 Tinted(fooo); } }\n"
     card = load_profile("radeon9700")
     for order in ((good, broken), (broken, good)):
         effect = effects.load_effect(functions + "".join(order))

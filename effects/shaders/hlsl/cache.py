@@ -12,9 +12,11 @@ never misses a dependency, and an edit elsewhere in the file (another function, 
 global, a technique) keeps the entry. Uniform values are not in the key (the shader reads them
 from constant registers at draw time); static globals' values are (they fold into the code).
 
-One thing reaches further: as fxc compiles the whole file, a function or struct that does not
-parse or resolve fails every compile of the effect, reached or not. So the key also says
-whether all of them load, and when they do not, holds all of them.
+One thing reaches further: as fxc type-checked the whole file, a function or struct that does
+not parse or resolve, or a language error anywhere in a function body or a global's
+initialiser (check.py), fails every compile of the effect, reached or not. So the key also
+says whether all of them load and check, and when they do not, holds all of them (and every
+global's declaration).
 
 Errors are cached too, keyed with the `compile` state's location besides (an unknown entry
 point or a bad argument is reported there). Bounded by bytes: the least recently used entry
@@ -22,13 +24,14 @@ goes first.
 """
 from __future__ import annotations
 
-import dataclasses
 import re
 from typing import Any, Callable
 
 from effects.base import caches, limits
 from effects.base.errors import EffectError
 from effects.model import CompileShader, Effect, RecordedReads
+from effects.shaders.hlsl.declared import declaration as _declaration, declarations, \
+    unit_declarations
 
 CACHE_BYTES = 64 << 20
 _COMPILER_LIMITS = ("hlsl_nesting", "hlsl_components", "hlsl_work", "literal_digits")
@@ -48,9 +51,10 @@ CACHE = caches.declare(
     "shaders.hlsl.compiles", keys="compile_key: target, entry, arguments, every declaration "
     "reached (and whether all load); an error with its compile state's location besides",
     max_bytes=CACHE_BYTES, size_of=entry_bytes)
-# every struct, typedef and function of an effect -> whether they all parse and resolve (the
-# key's tuples share the model's texts: an entry is the tuple and a bool)
-_LOADS = caches.declare("shaders.hlsl.declaration_loads", keys="every struct, typedef and "
+# every struct, typedef, function and global of an effect -> whether they all parse, resolve
+# and pass the whole-file check (the key's tuples share the model's texts: an entry is the
+# tuple and a bool)
+_LOADS = caches.declare("shaders.hlsl.declaration_loads", keys="every struct, typedef, global and "
                         "function of an effect as the key holds them", entry_bytes=1024,
                         max_bytes=1024 * 1024)
 
@@ -61,32 +65,6 @@ _LOADS = caches.declare("shaders.hlsl.declaration_loads", keys="every struct, ty
 def _names(text: str) -> frozenset[str]:
     """Every identifier in `text` (kept per text: the same function is keyed once per card)."""
     return frozenset(_IDENTIFIER.findall(text))
-
-
-@caches.memo("shaders.hlsl.field_names", keys="a model class", entry_bytes=256,
-             max_bytes=64 * 256)    # unbounded before; the model has a dozen classes
-def _field_names(cls: type) -> tuple[str, ...]:
-    return tuple(f.name for f in dataclasses.fields(cls))
-
-
-def _declaration(obj: Any, value: bool) -> tuple:
-    """A model object (Function, Struct, Parameter) as the compiler reads it: every field,
-    so a field added to the model later is in the key too; a parameter's annotations never
-    matter and its value only when `value` (a static global's initialiser)."""
-    out: list[Any] = [type(obj).__name__]
-    for name in _field_names(type(obj)):
-        if name == "annotations" or (name == "value" and not value):
-            continue
-        v = getattr(obj, name)
-        if hasattr(v, "tobytes") and hasattr(v, "dtype"):
-            v = ("array", v.dtype.str, v.shape, v.tobytes())
-        else:
-            try:
-                hash(v)
-            except TypeError:       # a list, a sampler_state: by what they print
-                v = ("repr", repr(v))
-        out.append(v)
-    return tuple(out)
 
 
 def compile_key(effect: Any, value: CompileShader) -> tuple:
@@ -201,23 +179,16 @@ def key_parts(effect: Any, value: CompileShader, seen: list) -> tuple:
     return (effect.path, value.profile.lower(), value.function, value.args, where, tuple(parts))
 
 
-def declarations(effect: Any) -> tuple:
-    """Every struct, typedef and function of `effect` as the key holds them."""
-    return tuple(_declaration(obj, value=False) for obj in [*effect.structs, *effect.functions])
-
-
 def _all_load(effect: Any) -> tuple:
-    """() when every struct, typedef and function of `effect` parses and resolves (a load of
-    the declarations, kept by their texts); else all of them, since the error comes from one."""
-    every = declarations(effect)
+    """() when every struct, typedef and function of `effect` parses and resolves and the
+    whole file passes the check fxc made of it (check.check_unit: every function body and
+    global initialiser, called or not; kept by their texts); else all of them, since the
+    error comes from one."""
+    every = unit_declarations(effect)
     ok = _LOADS.get(every)
     if ok is None:
-        from effects.shaders.hlsl.context import load_context   # the HLSL front end: here only
-        try:
-            load_context(effect, "ps_2_0")
-            ok = True
-        except EffectError:
-            ok = False
+        from effects.shaders.hlsl.check import check_unit   # the HLSL front end: here only
+        ok = check_unit(effect, every) is None
         _LOADS.put(every, ok)
     return () if ok else every
 
@@ -230,7 +201,7 @@ def cached_compile(effect: Any, value: CompileShader, compile: Callable[[], Any]
     a key that needs no parse of the effect's declarations."""
     from effects.base import disk_store
     from effects.shaders.hlsl import store
-    stored = store.key(key_parts(effect, value, []), declarations(effect), value.location) \
+    stored = store.key(key_parts(effect, value, []), unit_declarations(effect), value.location) \
         if disk_store.enabled() else None
     if stored is not None:
         hit = _STORED.get(stored)

@@ -29,6 +29,7 @@ from effects.shaders.hlsl.shader import CompiledShader
 from effects.shaders.hlsl.calls import constant_parameters, parameters, return_type
 from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.budget import out_of_stack, spend
+from effects.shaders.hlsl.check import check_unit
 from effects.shaders.hlsl.codegen import CodeGen
 from effects.shaders.hlsl.legalize import code_of, legalize
 from effects.shaders.hlsl.codegen_ps1 import generate_ps1
@@ -136,6 +137,11 @@ def bind(c: Compilation) -> None:
     """The entry point and its parameters: inputs by semantic (_Binder), uniforms, compile
     arguments; out parameters declared for `outputs`."""
     ctx = c.ctx = load_context(c.effect, c.target.lower())
+    # fxc type-checked the whole file before it compiled the entry: a language error in any
+    # function or initialiser, called or not, fails every compile (check.py)
+    unit_error = check_unit(c.effect)
+    if unit_error is not None:
+        raise unit_error
     ctx.loops_for_size = c.loops_for_size
     fdefs = ctx.functions.get(c.entry)
     if not fdefs:

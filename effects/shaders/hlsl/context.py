@@ -145,6 +145,11 @@ def _check_declaration(ctx: Context, fdef: FunctionDef, earlier: Any) -> None:
     if semantic is not None and _spells_void(tree.children[1]):
         raise origin.error(f"X3076: '{fdef.name}': void function cannot have a semantic",
                            semantic)
+    ret = tree.children[1].children[0]
+    if isinstance(ret, lark.Tree) and resolve_type(ctx, ret, origin).kind in _OBJECTS:
+        # fxc's text, as DXC's tests record it (tools/clang/test/HLSL/string.hlsl)
+        raise origin.error(f"X3038: '{fdef.name}': function return value cannot contain "
+                           "Effects objects", name_tok)
     params = tree.children[3]
     seen: set[str] = set()
     defaulted = None
@@ -183,6 +188,11 @@ def _check_declaration(ctx: Context, fdef: FunctionDef, earlier: Any) -> None:
     for other in earlier:
         if _has_body(other.tree) and _signature(ctx, other) == mine:
             raise origin.error(f"X3003: redefinition of '{fdef.name}'", name_tok)
+
+
+# the types a function may not return: "Effects objects" (fxc's X3038 names them so; DXC's
+# tests record it for a string, and a texture is one as much)
+_OBJECTS = frozenset(("string", "texture"))
 
 
 # statement -> its parts that must all return for it to (fxc: "not all control paths return
@@ -344,6 +354,10 @@ def sized_type(tree: lark.Tree, origin: Origin) -> HType:
     kids = [c for c in tree.children if isinstance(c, lark.Token)]
     base_tok = next(c for c in kids if c.type == "TYPE")
     base = builtin(str(base_tok))
+    if base is None or base.kind != "scalar":
+        # fxc's texts, as DXC's tests record them (tools/clang/test/HLSL/string.hlsl)
+        code, what = ("X3123", "matrix") if "matrix" in tree.data else ("X3122", "vector")
+        raise origin.error(f"{code}: {what} element type must be a scalar type", base_tok)
     sizes = [c for c in kids if c.type == "INT"]
     values = [int_literal(str(c), lambda m, c=c: origin.error(m, c)) for c in sizes]
     numeric = base.base if base is not None and base.numeric else "float"

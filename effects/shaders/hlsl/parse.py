@@ -60,6 +60,8 @@ LANGUAGE_CODES = frozenset({
     "X3082",    # a bitwise operator on a float (int or unsigned int type required)
     "X3120",    # invalid type for an index
     "X3121",    # an index on a type that has no elements
+    "X3122",    # a vector<T, n> whose T is not a scalar type
+    "X3123",    # a matrix<T, r, c> whose T is not a scalar type
     "X3500",    # recursive call
     "X3501",    # the entry point is not in the file
     "X3504",    # a literal array index out of bounds

@@ -10,6 +10,10 @@ annotations record what fxc said), the DirectX 9 d3dx HLSL compiler's own messag
 `refusal(row)` compiles a row as a user would (load, compile the entry for its target) and
 returns the code of the error it is refused with, or "accepted": the measure of the issue
 (`tests/shaders/hlsl/test_hlsl_invalid_corpus.py` asserts every row; the report counts).
+`UNIT` holds the errors written where a compile of the entry never evaluates them (fxc
+type-checked the whole file: effects/shaders/hlsl/check.py), asserted by
+test_hlsl_unit_check.py. `python -m tests.shaders.hlsl.invalid_corpus` prints both counts
+(run it with another checkout first on PYTHONPATH for a before figure).
 """
 from __future__ import annotations
 
@@ -251,6 +255,179 @@ CORPUS: list[Row] = [
 ]
 
 
+def unused(body: str, before: str = "") -> str:
+    """A valid entry and, before it, a function `Unused(float2 uv, float4 c)` that nothing
+    calls, whose body is `body`."""
+    return ps("    return uv.x;", before + "float4 Unused(float2 uv, float4 c)\n{\n" + body + "\n}\n")
+
+
+def dead(body: str, before: str = "") -> str:
+    """The entry with `body` inside `if (false) { ... }`, a branch a constant drops."""
+    return ps("    if (false)\n    {\n" + body + "\n    }\n    return uv.x;", before)
+
+
+# Where fxc reported an error (issue 30): fxc type-checked every function body, statement and
+# global initialiser as it parsed the file, before it optimised anything, so the rows below
+# are errors of the rows above (their codes sourced there) written where a compile of the
+# entry never evaluates them: in a function nothing calls, in a second entry point no
+# technique compiles, in a branch a constant drops, in a loop body that runs no times, after
+# a return, in a global initialiser nothing reads. The evidence for the split: DXC's verify
+# tests annotate `fxc-error` in functions their entry never calls (tools/clang/test/HLSL/
+# string.hlsl's get_message: X3038), and vkd3d's tests/hlsl/function.shader_test (native
+# d3dcompiler's verdicts) accepts, in unused code, only what is legal there: a call to a
+# function that is declared and never defined. "vkd3d <file>" names a `[pixel shader fail]`
+# case of vkd3d's tests/hlsl that the row is written after.
+UNIT: list[Row] = [
+    # -- in a function nothing calls (each code as sourced above for a called one) ------------
+    Row("unused: undeclared identifier", "X3004", unused("    return c * gain;")),
+    Row("unused: undeclared function", "X3004", unused("    return shade(uv);")),
+    Row("unused: a local after its block", "X3004",
+        unused("    {\n        float t = 1;\n    }\n    return t;")),
+    Row("unused: lerp with two arguments", "X3013", unused("    return lerp(c, c);")),
+    Row("unused: user function, too many arguments", "X3013",
+        unused("    return f(uv.x, uv.y);", "float f(float x) { return x; }\n")),
+    Row("unused: tex2D without a sampler", "X3013", unused("    return tex2D(uv, uv);")),
+    Row("unused: float4 of three", "X3014", unused("    return float4(uv, 1);")),
+    Row("unused: float2 to float3", "X3017", unused("    float3 v = uv;\n    return v.x;")),
+    Row("unused: return a float2 for a float4", "X3017", unused("    return uv;")),
+    Row("unused: cast to a larger vector", "X3017", unused("    return (float4)uv;")),
+    Row("unused: value of a void function", "X3017",
+        unused("    float x = f();\n    return x;", "void f() { }\n")),
+    Row("unused: member that is not there", "X3018",
+        unused("    S s = (S)0;\n    return s.b;", "struct S { float a; };\n")),
+    Row("unused: swizzle past the vector", "X3018", unused("    return uv.xyzw;")),
+    Row("unused: if on a float3", "X3019",
+        unused("    if (c.xyz)\n        return 1;\n    return 0;")),
+    Row("unused: while on a float2", "X3019",
+        unused("    while (uv)\n        break;\n    return 0;")),
+    Row("unused: ternary struct and float", "X3020",
+        unused("    S s = (S)0;\n    return uv.x > 0 ? s : 1;", "struct S { float a; };\n")),
+    Row("unused: bool decremented", "X3020", unused("    bool b = true;\n    b--;\n    return b;")),
+    Row("unused: struct plus a number", "X3022",
+        unused("    S s = (S)0;\n    return s + 1;", "struct S { float a; };\n")),
+    Row("unused: const local written", "X3025",
+        unused("    const float k = 1;\n    k = 2;\n    return k;")),
+    Row("unused: literal as an out argument", "X3025",
+        unused("    float s;\n    sincos(uv.x, s, 1);\n    return s;")),
+    Row("unused: out argument an expression", "X3025",
+        unused("    f(uv.x + 1);\n    return c;", "void f(out float o) { o = 1; }\n")),
+    Row("unused: static const global written", "X3025",
+        unused("    K = 2;\n    return K;", "static const float K = 1;\n")),
+    Row("unused: local twice", "X3003", unused("    float a = 1;\n    float a = 2;\n    return a;")),
+    Row("unused: a local named as a parameter", "X3036", unused("    float c = 1;\n    return c;")),
+    Row("unused: void local", "X3038", unused("    void v;\n    return c;")),
+    Row("unused: const local without a value", "X3012", unused("    const float k;\n    return k;")),
+    Row("unused: uniform local", "X3047", unused("    uniform float k = 1;\n    return k;")),
+    Row("unused: constructor of a struct", "X3037",
+        unused("    S s = S(1);\n    return s.a;", "struct S { float a; };\n")),
+    Row("unused: index on a scalar", "X3121", unused("    float f = 1;\n    return f[0];")),
+    Row("unused: literal index out of bounds", "X3504",
+        unused("    float a[2] = { 1, 2 };\n    return a[2];")),
+    Row("unused: bitwise not of a float", "X3082", unused("    return ~uv.x;")),
+    Row("unused: array size not a constant", "X3058",
+        unused("    int n = (int)(uv.x * 4);\n    float a[n];\n    return c;")),
+    Row("unused: break outside a loop", "X3518", unused("    break;\n    return c;")),
+    Row("unused: continue outside a loop", "X3519", unused("    continue;\n    return c;")),
+    Row("unused: void function returns a value", "X3079",
+        ps("    return uv.x;", "void Unused() { return 1; }\n")),
+    Row("unused: return with no value", "X3080", unused("    return;")),
+    Row("unused: a case without break", "X3533",
+        unused("    int k = (int)uv.x;\n    switch (k)\n    {\n    case 0:\n        c = 1;\n"
+               "    case 1:\n        break;\n    }\n    return c;")),
+    Row("unused: switch on a float", "X3020",
+        unused("    switch (uv.x)\n    {\n    case 0:\n        break;\n    }\n    return c;")),
+    Row("unused: a parameter's default of a texture", "X3017",
+        ps("    return uv.x;", "texture Tex;\nfloat Unused(float x = Tex) { return x; }\n")),
+    Row("unused: an overload of its own called with a struct", "X3013",
+        unused("    S s = (S)0;\n    return f(s);",
+               "struct S { float a; float b; };\nfloat f(float2 x) { return x.x; }\n")),
+    # -- a second entry point no technique compiles ----------------------------------------------
+    Row("second entry: undeclared identifier", "X3004",
+        ps("    return uv.x;", "float4 PS2(float2 uv : TEXCOORD0) : COLOR { return uv.x * nope; }\n")),
+    Row("second entry: tex2D of a texture", "X3013",
+        ps("    return uv.x;", "texture Tex;\n"
+           "float4 PS2(float2 uv : TEXCOORD0) : COLOR { return tex2D(Tex, uv); }\n")),
+    Row("second vertex entry: matrix to vector", "X3017",
+        ps("    return uv.x;", "float4x4 World;\n"
+           "float4 VS2(float4 p : POSITION) : POSITION { float3 v = World; return p; }\n")),
+    # -- in a branch a constant drops, a loop that runs no times, after a return ------------------
+    Row("if (false): undeclared identifier", "X3004", dead("        return nope;")),
+    Row("if (false): float4 of three", "X3014", dead("        return float4(uv, 1);")),
+    Row("if (false): implicit float2 to float3", "X3017", dead("        float3 v = uv;\n        return v.x;")),
+    Row("if (false): lerp with one argument", "X3013", dead("        return lerp(uv.x);")),
+    Row("if (false): swizzle of mixed sets", "X3018", dead("        return uv.xg;")),
+    Row("if (false): const local written", "X3025",
+        dead("        const float k = 1;\n        k = 2;")),
+    Row("else of if (true): undeclared identifier", "X3004",
+        ps("    if (true)\n        return uv.x;\n    else\n        return missing;")),
+    Row("if (0) in a called function", "X3004",
+        ps("    return f(uv.x);", "float f(float x)\n{\n    if (0)\n        x = y;\n    return x;\n}\n")),
+    Row("a loop that runs no times", "X3004",
+        ps("    float r = 0;\n    for (int i = 0; i < 0; i++)\n        r += nope;\n    return r;")),
+    Row("while (false)", "X3013",
+        ps("    float r = 0;\n    while (false)\n        r = dot(uv);\n    return r;")),
+    Row("after a return", "X3004", ps("    return uv.x;\n    nope = 1;")),
+    Row("after a return in a block", "X3017",
+        ps("    {\n        return uv.x;\n        float3 v = uv;\n    }")),
+    Row("a case a constant selector skips", "X3004",
+        ps("    switch (1)\n    {\n    case 0:\n        return nope;\n    default:\n"
+           "        return uv.x;\n    }")),
+    Row("static const bool false branch", "X3022",
+        ps("    if (Off)\n    {\n        S s = (S)0;\n        return -s;\n    }\n    return uv.x;",
+           "struct S { float a; };\nstatic const bool Off = false;\n")),
+    # -- global initialisers nothing reads ---------------------------------------------------------
+    Row("static initialiser: undeclared identifier", "X3004",
+        ps("    return uv.x;", "static float K = nope;\n")),
+    Row("static initialiser: sin of two", "X3013",
+        ps("    return uv.x;", "static float K = sin(1, 2);\n")),
+    Row("uniform initialiser: undeclared identifier", "X3004",
+        ps("    return uv.x;", "float K = nope * 2;\n")),
+    Row("static initialiser: lerp of two", "X3013",
+        ps("    return uv.x;", "static float4 K = lerp(1, 2);\n")),
+    # -- strings (DXC tools/clang/test/HLSL/string.hlsl, its fxc-error notes) ---------------------
+    Row("string: a function returning one", "X3038",
+        ps("    return uv.x;", "string Name = \"a\";\nstring f() { return Name; }\n")),
+    Row("string: a bool initialised from one", "X3017",
+        ps("    return uv.x;", "string Name = \"a\";\nstatic const bool B = Name;\n")),
+    Row("string: an int initialised from one", "X3017",
+        ps("    return uv.x;", "string Name = \"a\";\nstatic const int I = Name;\n")),
+    Row("string: a float initialised from one", "X3017",
+        ps("    return uv.x;", "string Name = \"a\";\nstatic const float F = Name;\n")),
+    Row("string: a vector of strings", "X3122", ps("    vector<string, 4> v;\n    return uv.x;")),
+    Row("string: a matrix of strings", "X3123", ps("    matrix<string, 4, 4> m;\n    return uv.x;")),
+    Row("string: a local assigned a number", "X3017",
+        unused("    string s;\n    s = 1;\n    return c;")),
+    Row("string: a local in arithmetic", "X3022",
+        unused("    string s = Name;\n    return c * s;", "string Name = \"a\";\n")),
+    Row("texture: a function returning one", "X3038",
+        ps("    return uv.x;", "texture Tex;\ntexture f() { return Tex; }\n")),
+    # -- void (ReShade's and d3dx's texts as above) ------------------------------------------------
+    Row("void: an array of void", "X3038", unused("    void a[2];\n    return c;")),
+    Row("void: a global of void", "X3038", ps("    return uv.x;", "void G;\n")),
+    Row("void: a void value in arithmetic", "X3022",
+        unused("    return f() + 1;", "void f() { }\n")),
+    Row("void: a void value as an intrinsic's argument", "X3013",
+        unused("    return sin(f());", "void f() { }\n")),
+    # -- vkd3d's fail cases, in the entry ---------------------------------------------------------
+    Row("vkd3d initializer-invalid-arg-count: an array list one short", "X3017",
+        ps("    float4 a[2] = { 1, 2, 3, 4, 5, 6, 7 };\n    return a[1];")),
+    Row("vkd3d initializer-invalid-arg-count: an array list one long", "X3017",
+        ps("    float4 a[2] = { 1, 2, 3, 4, 5, 6, 7, 8, 9 };\n    return a[1];")),
+    Row("vkd3d initializer-invalid-arg-count: a struct list one short", "X3017",
+        ps("    S s = { 1, 2, 3, 4 };\n    return s.b;", "struct S { int a; float4 b; };\n")),
+    Row("vkd3d cf-cond-types: if on an array", "X3019",
+        ps("    if (F)\n        return 1;\n    return 0;", "static const float F[1] = { 1 };\n")),
+    Row("vkd3d cf-cond-types: while on a texture", "X3019",
+        ps("    while (Tex)\n        break;\n    return 0;", "texture Tex;\n")),
+    Row("vkd3d function: an inout argument of a repeated swizzle", "X3025",
+        ps("    float2 x = 0;\n    f(x.yy);\n    return x.x;", "void f(inout float2 o) { o += 0.1; }\n")),
+    Row("vkd3d function: a const local as an out argument", "X3025",
+        ps("    const float x = 0;\n    f(x);\n    return x;", "void f(out float o) { o = 0.1; }\n")),
+    Row("vkd3d invalid: a member of a const uniform struct written", "X3025",
+        ps("    A.a = 1;\n    return A.a;", "struct S { float a; };\nuniform const S A;\n")),
+]
+
+
 def refusal(row: Row) -> str:
     """The fxc code `row` is refused with here, or 'accepted'."""
     import effects
@@ -265,3 +442,23 @@ def refusal(row: Row) -> str:
         message = err.message
         return message[:5] if message[:1] == "X" and message[5:6] == ":" else "uncoded: " + message
     return "accepted"
+
+
+def report(rows: list[Row]) -> tuple[int, list[str]]:
+    """How many of `rows` are refused with their code, and a line for each that is not."""
+    right, wrong = 0, []
+    for row in rows:
+        got = refusal(row)
+        if got == row.code:
+            right += 1
+        else:
+            wrong.append(f"{row.name}: {got}, fxc {row.code}")
+    return right, wrong
+
+
+if __name__ == "__main__":    # the issue's measure: python -m tests.shaders.hlsl.invalid_corpus
+    for label, rows in (("corpus", CORPUS), ("unit (where fxc reported)", UNIT)):
+        right, wrong = report(rows)
+        print(f"{label}: {right} of {len(rows)} refused with fxc's code")
+        for line in wrong:
+            print("   ", line)

@@ -445,8 +445,10 @@ def test_ps_3_0_picks_an_element_of_two_registers_in_a_uniform_loop_by_selects(b
     # aL steps by 1 and an element takes two registers, and ps_3_0 has no a0: fxc's select
     # chain over the counter instead (issue 30: a run-time index where no aL applies). The
     # list fills Color, Spare of each element in turn: Colors (1/8, 0, 0), (0, 0, 1/2), 0, 0
+    # (the list padded to the 32 numbers the array holds: fxc refused a short one, X3017)
     text = LIGHTS_PS.replace("struct Light { float4 Color; };",
-                             "struct Light { float4 Color; float4 Spare; };")
+                             "struct Light { float4 Color; float4 Spare; };").replace(
+        "0.25,0.25,0.25,0};", "0.25,0.25,0.25,0" + ", 0" * 16 + "};")
     fx = load(text, "compile vs_3_0 VS()", "compile ps_3_0 PS()")
     asm = compile_shader(fx, "PS", "ps_3_0").text
     assert "rep i0" in asm and "cmp" in asm and "aL" not in asm, asm
