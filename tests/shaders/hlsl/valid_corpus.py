@@ -172,8 +172,8 @@ def outcome(row: Row, backend) -> str:
 
 
 def all_rows() -> list[Row]:
-    from tests.shaders.hlsl import valid_rows_intrinsics, valid_rows_language
-    return valid_rows_intrinsics.ROWS + valid_rows_language.ROWS
+    from tests.shaders.hlsl import valid_rows_forms, valid_rows_intrinsics, valid_rows_language
+    return valid_rows_intrinsics.ROWS + valid_rows_language.ROWS + valid_rows_forms.ROWS
 
 
 def main(names: Sequence[str] = ()) -> int:
