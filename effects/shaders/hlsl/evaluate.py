@@ -22,7 +22,8 @@ from effects.shaders.hlsl.arith import Arith
 from effects.shaders.hlsl.budget import OverBudget, check, enter_level, leave_level, spend
 from effects.shaders.hlsl.calls import inline_call
 from effects.shaders.hlsl.expressions import _leaves as leaves, evaluate_expr
-from effects.shaders.hlsl.context import Context, FunctionDef, array_of, resolve_type
+from effects.shaders.hlsl.context import (Context, FunctionDef, array_of, resolve_type,
+                                          struct_type)
 from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.branches import (bool_register, bool_uniform, comparison,
                                             condition_error, real_if)
@@ -240,7 +241,21 @@ class Evaluator:
         pass
 
     def s_expr_stmt(self, tree: lark.Tree) -> None:
-        self.expr(tree.children[0])
+        for e in tree.children:              # `a = 1, b = 2;`: C's comma, left to right
+            self.expr(e)
+
+    def s_struct_stmt(self, tree: lark.Tree) -> None:
+        """`struct L { ... } a, b = { ... };` in a function: its type for the rest of the
+        text (as a local typedef is), then its variables declared as `L a, b = ...;` are."""
+        name_tok, *members, decls = tree.children
+        if name_tok is None:                 # `struct { ... } s;`: a type only s has
+            line, column = self.at(tree).line, self.at(tree).column
+            name_tok = lark.Token("NAME", f"(anonymous struct at {line}:{column})")
+        t = struct_type(self.ctx, lark.Tree("struct_def", [name_tok, *members]), self.origin)
+        self.ctx.typedefs[str(name_tok)] = t
+        if decls.children:
+            self.s_var_decl(lark.Tree("var_decl", [None, lark.Tree("user_type", [name_tok]),
+                                                   *decls.children]))
 
     def s_var_decl(self, tree: lark.Tree) -> None:
         mods, spec, *decls = tree.children

@@ -175,6 +175,17 @@ ROWS: list[Row] = [
         lambda u, v: (0.5, 0.5, 1.0 if u < 0.5 else 0.0, 1)),
     Row("lit", ps("    float4 l = lit(uv.x - 0.5, uv.y, 2);\n    return l * float4(0.5, 1, 1, 0.25);"),
         lambda u, v: (0.5, max(u - 0.5, 0), 0 if u < 0.5 else v * v, 0.25)),
+    Row("rcp and mad of scalars and vectors", ps(
+        "    float2 r = rcp(uv + 1);\n    return float4(r, mad(uv.x, 0.5, 0.25), mad(uv, float2(0.5, 2), 0.125).x);"),
+        lambda u, v: (1 / (u + 1), 1 / (v + 1), u / 2 + 0.25, u / 2 + 0.125)),
+    Row("isnan isinf isfinite of a vector", ps(
+        "    float2 x = float2(uv.x, 1 / Zero);\n"
+        "    return float4(isinf(x), isfinite(x).x * 0.5 + isnan(x * Zero).y * 0.25, isnan(uv.y));",
+        "float Zero = 0;\n"),
+        lambda u, v: (0, 1, 0.75, 0)),
+    Row("frexp of a vector", ps(
+        "    float2 e;\n    float2 m = frexp(float2(uv.x + 1, 6), e);\n    return float4(m, e * 0.25);"),
+        lambda u, v: ((u + 1) / 2, 0.75, 0.25, 0.75)),
     Row("dst", ps("    float4 d = dst(float4(0, uv.x, uv.x, 0), float4(0, 1, 0, uv.y));\n    return d;"),
         lambda u, v: (1, u, u, v)),
     Row("all and any of scalars, vectors and a matrix", ps(

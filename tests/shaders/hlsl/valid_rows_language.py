@@ -242,6 +242,9 @@ ROWS: list[Row] = [
     Row("the comma operator", ps(
         "    float a, b;\n    a = (b = 0.25, b + 0.5);\n    return float4(a, b, 0, 1);"),
         lambda u, v: (0.75, 0.25, 0, 1)),
+    Row("the comma operator as a statement", ps(
+        "    float a, b;\n    a = uv.x, b = 0.5;\n    return float4(a, b, 0, 1);"),
+        lambda u, v: (u, 0.5, 0, 1)),
     Row("chained assignments", ps(
         "    float a, b;\n    a = b = uv.x;\n    float4 c = 0;\n    c.x = c.y = 0.5;\n    return float4(a, b, c.xy);"),
         lambda u, v: (u, u, 0.5, 0.5)),
