@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-from tests.shaders.hlsl.valid_corpus import Row, ps, t2
+from tests.shaders.hlsl.valid_corpus import Row, line, ps, t2
 
 
 def k4(u: float) -> int:
@@ -244,4 +244,104 @@ ROWS: list[Row] = [
     Row("#pragma once and an unknown pragma", "#pragma once\n#pragma message(\"hello\")\n"
         + ps("    return float4(uv, 0, 1);"),
         lambda u, v: (u, v, 0, 1)),
+]
+
+ROWS += [
+    # -- more forms: typedefs, uniforms of the entry, truncations real shaders warn on --------
+    Row("a typedef of a vector template", ps(
+        "    vec4 c = vec4(uv, 0.25, 1);\n    return c;", "typedef vector<half, 4> vec4;\n"),
+        lambda u, v: (u, v, 0.25, 1)),
+    Row("a C-style typedef of an anonymous struct", ps(
+        "    Pair p;\n    p.a = uv.x;\n    p.b = 0.5;\n    return float4(p.a, p.b, 0, 1);",
+        "typedef struct { float a; float b; } Pair;\n"),
+        lambda u, v: (u, 0.5, 0, 1),
+        known="the effect front end reads a global typedef of a type name only, not of a struct body"),
+    Row("a global struct declared with its variable", ps(
+        "    return float4(G.a, G.b, 0, 1);", "struct GS { float a; float b; } G = { 0.25, 0.5 };\n"),
+        lambda u, v: (0.25, 0.5, 0, 1),
+        known="the effect front end reads a global struct without declarators only"),
+    Row("a uniform parameter of the entry with no compile argument",
+        "float4 PS(float2 uv : TEXCOORD0, uniform float4 tint) : COLOR\n{\n    return float4(uv, 0, 1) + tint;\n}\n",
+        lambda u, v: (u, v, 0, 1)),
+    Row("a texture read into a float3 warns X3206", ps(
+        "    float3 c = tex2D(sT2, uv);\n    return float4(c, 1);"),
+        lambda u, v: (t2(u, v)[0], t2(u, v)[1], 0.5, 1), warns=("X3206",)),
+    Row("a compound assignment from a longer vector warns X3206", ps(
+        "    float3 a = 0.25;\n    a += float4(uv, 0.5, 1);\n    return float4(a, 1);"),
+        lambda u, v: (u + 0.25, v + 0.25, 0.75, 1), warns=("X3206",)),
+    Row("a ternary with a vector condition and scalar results", ps(
+        "    float2 r = (uv > 0.5) ? 1 : 0.25;\n    return float4(r, 0, 1);"),
+        lambda u, v: (1 if u > 0.5 else 0.25, 1 if v > 0.5 else 0.25, 0, 1)),
+    Row("if on all() and any() of a comparison", ps(
+        "    float c = 0.1;\n    if (all(uv > 0.3)) c = 0.5;\n    if (any(uv > 0.8)) c += 0.25;\n    return float4(c, 0, 0, 1);"),
+        lambda u, v: ((0.5 if u > 0.3 and v > 0.3 else 0.1) + (0.25 if u > 0.8 or v > 0.8 else 0), 0, 0, 1)),
+    Row("a while with a compound condition", ps(
+        "    int i = 0;\n    float s = 0;\n    while (i < 8 && s < 0.5) { s += 0.125; i++; }\n    return float4(s, i * 0.125, 0, 1);"),
+        lambda u, v: (0.5, 0.5, 0, 1)),
+    Row("not of a bool vector", ps(
+        "    bool2 b = uv > 0.5;\n    return float4(!b, 0, 1);"),
+        lambda u, v: (float(u <= 0.5), float(v <= 0.5), 0, 1)),
+    Row("lerp by a bool", ps(
+        "    return float4(lerp(0.25, 0.75, uv.x > 0.5), 0, 0, 1);"),
+        lambda u, v: (0.75 if u > 0.5 else 0.25, 0, 0, 1)),
+    Row("sincos into the lanes of a vector", ps(
+        "    float2 sc;\n    sincos(uv.x, sc.x, sc.y);\n    return float4(sc, 0, 1);"),
+        lambda u, v: (math.sin(u), math.cos(u), 0, 1)),
+    Row("a matrix row written through a swizzle", ps(
+        "    float3x3 m = 0;\n    m[1].yz = uv;\n    m[2].x = 0.5;\n    return float4(m[1], m[2].x);"),
+        lambda u, v: (0, u, v, 0.5)),
+    Row("vector<int, 2> and matrix<half, 2, 2>", ps(
+        "    vector<int, 2> i = int2(1, 3);\n    matrix<half, 2, 2> m = { 0.5, 0, 0, 0.25 };\n"
+        "    return float4(i * 0.25, m._m00, m._m11);"),
+        lambda u, v: (0.25, 0.75, 0.5, 0.25)),
+    Row("a redundant constructor around a vector", ps(
+        "    return float4(float4(float2(uv), float2(0.25, 0.5)));"),
+        lambda u, v: (u, v, 0.25, 0.5)),
+    Row("a macro argument with a comma inside parentheses", "#define FIRST(v) (v).x\n"
+        + ps("    return float4(FIRST(float2(uv.y, 0.5)), 0, 0, 1);"),
+        lambda u, v: (v, 0, 0, 1)),
+    Row("a struct with an array of structs from a flat list", ps(
+        "    Outer o = { 0.1, 0.2, 0.3, 0.4, 0.5 };\n    return float4(o.items[1].a, o.items[0].b, o.k, 1);",
+        "struct Item { float a; float b; };\nstruct Outer { Item items[2]; float k; };\n"),
+        lambda u, v: (0.3, 0.2, 0.5, 1)),
+    Row("return (T)0 of a struct", ps(
+        "    return Zero().c + float4(uv, 0, 1);", "struct Z { float4 c; };\nZ Zero() { return (Z)0; }\n"),
+        lambda u, v: (u, v, 0, 1)),
+    Row("a void entry with an out struct", "struct PO { float4 c : COLOR0; };\n"
+        "void PS(float2 uv : TEXCOORD0, out PO o) { o.c = float4(uv, 0.5, 1); }\n",
+        lambda u, v: (u, v, 0.5, 1)),
+    Row("a uniform array summed in a [loop] on ps_3_0", ps(
+        "    float s = 0;\n    [loop] for (int i = 0; i < 4; i++) s += W[i].x * uv.x;\n    return float4(s, 0, 0, 1);",
+        "float4 W[4] = { 0.1, 0, 0, 0,  0.2, 0, 0, 0,  0.3, 0, 0, 0,  0.4, 0, 0, 0 };\n"),
+        lambda u, v: (u, 0, 0, 1), target="ps_3_0"),
+    Row("a [loop] with a run-time break on ps_3_0", ps(
+        "    float s = 0;\n    [loop] for (int i = 0; i < 8; i++) { if (s > uv.x + 0.0625) break; s += 0.125; }\n"
+        "    return float4(s, 0, 0, 1);"),
+        lambda u, v: (math.floor((u + 0.0625) / 0.125) * 0.125 + 0.125, 0, 0, 1), target="ps_3_0"),
+    Row("a [branch] with a texture read by tex2Dlod inside on ps_3_0", ps(
+        "    float4 c = 0;\n    [branch] if (uv.x > 0.5) c = tex2Dlod(sT2, float4(uv, 0, 0));\n    return c;"),
+        lambda u, v: tuple(t2(u, v)) if u > 0.5 else (0, 0, 0, 0), target="ps_3_0"),
+    Row("a const global array read at a run-time index", ps(
+        "    return float4(K[(int)(uv.y * 4 + 0.25)], 0, 0, 1);", "const float K[4] = { 0.2, 0.4, 0.6, 0.8 };\n"),
+        lambda u, v: ((k4(v) + 1) * 0.2, 0, 0, 1)),
+    Row("sign of an int vector", ps(
+        "    int4 s = sign(int4(-3, 0, 2, (int)(uv.x * 8 + 0.5) - 4));\n    return s * 0.25 + 0.5;"),
+        lambda u, v: (0.25, 0.5, 0.75, 0.5 + 0.25 * (1 if round(u * 8) > 4 else -1 if round(u * 8) < 4 else 0))),
+    Row("pow with a zero base and a constant exponent", ps(
+        "    return float4(pow(uv.x, 0.5), pow(0, 2) + 0.25, pow(uv.y, 1), pow(2, 0) * 0.5);"),
+        lambda u, v: (math.sqrt(u), 0.25, v, 0.5)),
+    Row("a struct parameter passed and returned", ps(
+        "    S s = { uv, 0.5 };\n    S t = twice(s);\n    return float4(t.a, t.b, 1);",
+        "struct S { float2 a; float b; };\nS twice(S s) { s.a *= 0.5; s.b *= 0.5; return s; }\n"),
+        lambda u, v: (u / 2, v / 2, 0.25, 1)),
+    Row("nested calls with out arguments in a loop", ps(
+        "    float a = 0;\n    for (int i = 0; i < 3; i++) { float b; half_of(0.5, b); a += b; }\n"
+        "    return float4(a, 0, 0, 1);",
+        "void half_of(float x, out float y) { y = x * 0.5; }\n"),
+        lambda u, v: (0.75, 0, 0, 1)),
+    Row("a sampler array read at constant indices",
+        "texture TA;\nsampler2D SA[2] = { sampler_state { Texture = <T2tex>; MinFilter = Point; MagFilter = Point;"
+        " MipFilter = None; }, sampler_state { Texture = <Linetex>; MinFilter = Point; MagFilter = Point;"
+        " MipFilter = None; } };\n" + ps("    return tex2D(SA[0], uv) * 0.5 + tex2D(SA[1], uv + 0.0625) * 0.5; // sT2"),
+        lambda u, v: (t2(u, v) + line(u + 0.0625)) / 2),
 ]
