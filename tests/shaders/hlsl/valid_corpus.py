@@ -113,7 +113,9 @@ def textures() -> dict:
 
 def card_for(row: Row) -> str:
     three = row.target.endswith("_3_0") or row.vs.endswith("_3_0")
-    return "geforce6800" if three else "radeon9700"
+    if three:
+        return "geforce6800"
+    return "geforcefx5900" if row.target == "ps_2_a" else "radeon9700"
 
 
 PASS_VS = """

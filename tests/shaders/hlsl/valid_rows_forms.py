@@ -345,3 +345,84 @@ ROWS += [
         " MipFilter = None; } };\n" + ps("    return tex2D(SA[0], uv) * 0.5 + tex2D(SA[1], uv + 0.0625) * 0.5; // sT2"),
         lambda u, v: (t2(u, v) + line(u + 0.0625)) / 2),
 ]
+
+ROWS += [
+    # -- from vkd3d-shader's tests (tests/hlsl/*.shader_test, their fxc probes): our programs --
+    Row("a user function named like an intrinsic is called in its place", ps(
+        "    return float4(max(0.1, 0.2), max(float2(0.1, 0.2), float2(0.3, 0.4)));",
+        "float2 max(float2 a, float2 b) { return a + b; }\n"),
+        lambda u, v: (0.3, 0.3, 0.4, 0.6)),
+    Row("indexing an expression, a swizzle and a call's result", ps(
+        "    float4 a = float4(uv, 0.25, 0.5);\n    float4 b = 0.25;\n    int k = (int)(uv.x * 4 + 0.25);\n"
+        "    return float4((a + b)[1], a.wyxz[3], f(a)[0], a.wyxz[k]);",
+        "float4 f(float4 x) { return x; }\n"),
+        lambda u, v: (v + 0.25, 0.25, u, (0.5, v, u, 0.25)[k4(u)])),
+    Row("an out argument converted to an int vector", ps(
+        "    int4 x;\n    fill(x);\n    return x * 0.25;", "float4 F = { 0.25, 1.5, 2.75, 1 };\n"
+        "void fill(out float4 o) { o = F; }\n"),
+        lambda u, v: (0, 0.25, 0.5, 0.25)),
+    Row("an out argument through a cast", ps(
+        "    int4 x;\n    fill((float4)x);\n    float4 y;\n    fill((int4)y);\n    return x * 0.125 + y * 0.125;",
+        "float4 F = { 0.25, 1.5, 2.75, 1 };\nvoid fill(out float4 o) { o = F; }\n"),
+        lambda u, v: (0, 0.25, 0.5, 0.25)),
+]
+
+ROWS += [
+    # -- ps_2_a (GeForce FX: gradients, 512 slots) and vertex-shader addressing -----------------
+    Row("ddx and ddy on ps_2_a", ps(
+        "    return float4(ddx(uv.x) * 4, ddy(uv.y) * 4, abs(ddx(uv.y)), 1);"),
+        lambda u, v: (0.5, 0.5, 0, 1), target="ps_2_a"),
+    Row("a shader past ps_2_0's 64 slots on ps_2_a", ps(
+        "    float s = 0;\n    float x = uv.x;\n    [unroll] for (int i = 0; i < 40; i++) { s += x * 0.0125; x = x * 0.99 + 0.01; }\n"
+        "    return float4(s, 0, 0, 1);"),
+        lambda u, v: (sum((u * 0.99 ** i + (1 - 0.99 ** i)) * 0.0125 for i in range(40)), 0, 0, 1),
+        target="ps_2_a"),
+    Row("vs_2_0: a constant array indexed per vertex (a0)",
+        "float4 Pal[4] = { 0.1, 0.2, 0.3, 1,  0.2, 0.4, 0.6, 1,  0.3, 0.6, 0.9, 1,  0.9, 0.5, 0.25, 1 };\n"
+        "struct VO { float4 p : POSITION; float4 c : COLOR0; };\n"
+        "VO VS(float4 p : POSITION, float2 t : TEXCOORD0) { VO o; o.p = p; o.c = Pal[(int)(t.x * 3 + 0.5)]; return o; }\n"
+        "float4 PS(float4 c : COLOR0) : COLOR { return c; }\n",
+        lambda u, v: tuple(a + (b - a) * u for a, b in zip((0.1, 0.2, 0.3, 1), (0.9, 0.5, 0.25, 1))),
+        vs="vs_2_0"),
+    Row("vs_2_0: a loop over a uniform count reading a constant array",
+        "int N = 3;\nfloat4 L[4] = { 0.125, 0, 0, 0,  0, 0.25, 0, 0,  0, 0, 0.5, 0,  1, 1, 1, 1 };\n"
+        "struct VO { float4 p : POSITION; float4 c : COLOR0; };\n"
+        "VO VS(float4 p : POSITION) { VO o; o.p = p; float4 c = float4(0, 0, 0, 1);\n"
+        "  for (int i = 0; i < N; i++) c += L[i];\n  o.c = c; return o; }\n"
+        "float4 PS(float4 c : COLOR0) : COLOR { return c; }\n",
+        lambda u, v: (0.125, 0.25, 0.5, 1), vs="vs_2_0"),
+    Row("vs_1_1: an array of matrices indexed per vertex",
+        "float4x4 Bones[2] = { 1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1,\n"
+        "                      0.5, 0, 0, 0,  0, 0.5, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1 };\n"
+        "struct VO { float4 p : POSITION; float4 c : COLOR0; };\n"
+        "VO VS(float4 p : POSITION, float2 t : TEXCOORD0) { VO o; o.p = p;\n"
+        "  float4x4 m = Bones[(int)(t.y + 0.5)]; o.c = float4(m._m00, m._m11, 0, 1); return o; }\n"
+        "float4 PS(float4 c : COLOR0) : COLOR { return c; }\n",
+        lambda u, v: (1 - v / 2, 1 - v / 2, 0, 1), vs="vs_1_1"),
+]
+
+ROWS += [
+    # -- integer and rounding semantics on run-time values (uniforms, not folded) ----------------
+    Row("int division and modulo of negative run-time ints", ps(
+        "    return float4(X / Y, -X / Y, X % Y, -X % Y) / 16 + 0.5;", "int X = 42;\nint Y = 5;\n"),
+        lambda u, v: (1.0, 0.0, 0.625, 0.375)),
+    Row("int division by a negative run-time int", ps(
+        "    return float4(X / -Y, -X / -Y, X % -Y, -X % -Y) / 16 + 0.5;", "int X = 42;\nint Y = 5;\n"),
+        lambda u, v: (0.0, 1.0, 0.625, 0.375)),
+    Row("int vectors divided and reduced", ps(
+        "    return float4(A / B, C % B) / 8;", "int2 A = { 5, 15 };\nint2 B = { 2, 5 };\nint2 C = { 3, 8 };\n"),
+        lambda u, v: (0.25, 0.375, 0.125, 0.375)),
+    Row("round of negative run-time values", ps(
+        "    return round(U) / 16 + 0.5;", "float4 U = { -0.4, -6.6, 7.6, 3.4 };\n"),
+        lambda u, v: (0.5, 0.0625, 1.0, 0.6875)),
+    Row("float to int of negative run-time values", ps(
+        "    int4 i = U;\n    return i / 16.0 + 0.5;", "float4 U = { -0.4, -6.6, 7.6, 3.4 };\n"),
+        lambda u, v: (0.5, 0.125, 0.9375, 0.6875)),
+    Row("floor ceil frac of negative run-time values", ps(
+        "    return float4(floor(U.y) / 16 + 0.5, ceil(U.y) / 16 + 0.5, frac(U.y), frac(U.x));",
+        "float4 U = { -0.4, -6.6, 7.6, 3.4 };\n"),
+        lambda u, v: (0.0625, 0.125, 0.4, 0.6)),
+    Row("a bool from a negative float and from a uniform int", ps(
+        "    bool a = U.x;\n    bool b = Z;\n    return float4(a, b, (bool)U.y * 0.5, !Z);", "float4 U = { -0.4, 0, 0, 0 };\nint Z = 0;\n"),
+        lambda u, v: (1, 0, 0, 1)),
+]
