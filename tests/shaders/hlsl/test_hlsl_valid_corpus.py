@@ -43,3 +43,17 @@ def test_outcome_reports_a_refusal_and_a_missing_warning(backend):
     quiet = Row("y", "float4 PS() : COLOR { return 0.5; }\n", lambda u, v: (0.5,) * 4,
                 warns=("X3206",))
     assert outcome(quiet, backend).startswith("warning ['X3206'] not given")
+
+
+def test_global_struct_forms_print_and_read_back():
+    # `struct S { ... } a, b;` and C's `typedef struct [S] { ... } T;`: each struct is a
+    # declaration of its own in the printed effect, which reads back the same
+    import effects
+    fx = effects.load_effect("struct GS { float a; float b; } G = { 0.25, 0.5 }, H;\n"
+                             "typedef struct { float a; } Pair;\n"
+                             "typedef struct Named { float2 q; } Alias;\n")
+    assert [s.name for s in fx.structs] == ["GS", "Pair", "Named", "Alias"]
+    assert [(p.name, p.type.base) for p in fx.parameters] == [("G", "GS"), ("H", "GS")]
+    again = effects.load_effect(fx.to_source())
+    assert [s.name for s in again.structs] == ["GS", "Pair", "Named", "Alias"]
+    assert [p.name for p in again.parameters] == ["G", "H"]

@@ -254,12 +254,10 @@ ROWS += [
     Row("a C-style typedef of an anonymous struct", ps(
         "    Pair p;\n    p.a = uv.x;\n    p.b = 0.5;\n    return float4(p.a, p.b, 0, 1);",
         "typedef struct { float a; float b; } Pair;\n"),
-        lambda u, v: (u, 0.5, 0, 1),
-        known="the effect front end reads a global typedef of a type name only, not of a struct body"),
+        lambda u, v: (u, 0.5, 0, 1)),
     Row("a global struct declared with its variable", ps(
         "    return float4(G.a, G.b, 0, 1);", "struct GS { float a; float b; } G = { 0.25, 0.5 };\n"),
-        lambda u, v: (0.25, 0.5, 0, 1),
-        known="the effect front end reads a global struct without declarators only"),
+        lambda u, v: (0.25, 0.5, 0, 1)),
     Row("a uniform parameter of the entry with no compile argument",
         "float4 PS(float2 uv : TEXCOORD0, uniform float4 tint) : COLOR\n{\n    return float4(uv, 0, 1) + tint;\n}\n",
         lambda u, v: (u, v, 0, 1)),
