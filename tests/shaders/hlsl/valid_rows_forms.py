@@ -424,3 +424,33 @@ ROWS += [
         "    bool a = U.x;\n    bool b = Z;\n    return float4(a, b, (bool)U.y * 0.5, !Z);", "float4 U = { -0.4, 0, 0, 0 };\nint Z = 0;\n"),
         lambda u, v: (1, 0, 0, 1)),
 ]
+
+ROWS += [
+    # -- "HLSL expressions never short-circuit ... all sides of the expression are always
+    # evaluated" (the reference's Operators page) ------------------------------------------
+    Row("&& and || evaluate both sides", ps(
+        "    int a = 0, b = 0, c = 0;\n    bool t = (a++ > 0) && (b++ > 0);\n    bool f = (c++ == 0) || (a++ > 5);\n"
+        "    return float4(a * 0.25, b * 0.25, c * 0.25, t * 0.5 + f * 0.25);"),
+        lambda u, v: (0.5, 0.25, 0.25, 0.25)),
+    Row("a ternary evaluates both results", ps(
+        "    float a = 0, b = 0;\n    float c = (uv.x > 2) ? (a += 0.25) : (b += 0.5);\n    return float4(a, b, c, 1);"),
+        lambda u, v: (0.25, 0.5, 0.5, 1)),
+    Row("an assignment's value in an expression", ps(
+        "    float a;\n    float b = (a = uv.x) * 0.5 + 0.25;\n    return float4(a, b, 0, 1);"),
+        lambda u, v: (u, u / 2 + 0.25, 0, 1)),
+    Row("__LINE__ in the text", "\n" + ps("    return float4(__LINE__ / 8.0, 0, 0, 1);"),
+        lambda u, v: (5 / 8, 0, 0, 1)),
+    Row("bool vectors cast to int and float vectors", ps(
+        "    bool3 b = bool3(true, uv.x > 0.5, false);\n    int3 i = (int3)b;\n    float3 f = b;\n"
+        "    return float4(i.x * 0.5, f.y, f.z + 0.25, 1);"),
+        lambda u, v: (0.5, float(u > 0.5), 0.25, 1)),
+    Row("transpose of a uniform row_major matrix", ps(
+        "    float2x2 t = transpose(M);\n    return float4(t[0], t[1]);", "row_major float2x2 M = { 0.25, 0.5, 0.75, 1 };\n"),
+        lambda u, v: (0.25, 0.75, 0.5, 1)),
+    Row("an int compared with a float", ps(
+        "    int i = 2;\n    return float4(i > 1.5, i < 2.5, i == 2.0, (float)(i != 2));"),
+        lambda u, v: (1, 1, 1, 0)),
+    Row("#undef and a macro defined again", "#define K 0.25\n#undef K\n#define K 0.75\n"
+        + ps("    return float4(K, 0, 0, 1);"),
+        lambda u, v: (0.75, 0, 0, 1)),
+]
