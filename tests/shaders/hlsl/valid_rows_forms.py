@@ -454,3 +454,41 @@ ROWS += [
         + ps("    return float4(K, 0, 0, 1);"),
         lambda u, v: (0.75, 0, 0, 1)),
 ]
+
+ROWS += [
+    # -- compile arguments and sizes ----------------------------------------------------------
+    Row("compile arguments that are expressions and globals",
+        "float4 Tint = { 0.25, 0.5, 0.75, 1 };\n"
+        "float4 PS(float2 uv : TEXCOORD0, uniform float4 t, uniform float k) : COLOR\n"
+        "{\n    return float4(t.xy, uv.x * k, t.w);\n}\n",
+        lambda u, v: (0.25, 0.5, u / 2, 1), args="Tint, 2 * 0.25"),
+    Row("local array sizes from constant expressions", ps(
+        "    float a[N * 2];\n    float b[2u];\n    a[3] = 0.5;\n    b[1] = 0.25;\n    return float4(a[3], b[1], N * 0.25, 1);",
+        "static const int N = 2;\n"),
+        lambda u, v: (0.5, 0.25, 0.5, 1)),
+    Row("a static const struct global", ps(
+        "    return float4(M.colour, M.k);", "struct Mat { float3 colour; float k; };\n"
+        "static const Mat M = { 0.25, 0.5, 0.75, 1 };\n"),
+        lambda u, v: (0.25, 0.5, 0.75, 1)),
+    Row("an untyped sampler parameter", ps(
+        "    return Read(sT2, uv);", "float4 Read(sampler s, float2 t) { return tex2D(s, t); }\n"),
+        lambda u, v: t2(u, v)),
+]
+
+ROWS += [
+    # -- accuracy away from the unit range -------------------------------------------------------
+    Row("sin and cos of large arguments", ps(
+        "    return float4(sin(uv.x * 50) * 0.5 + 0.5, cos(uv.y * 80 + 3) * 0.5 + 0.5, sin(-uv.x * 30) * 0.5 + 0.5, 1);"),
+        lambda u, v: (math.sin(50 * u) / 2 + 0.5, math.cos(80 * v + 3) / 2 + 0.5, math.sin(-30 * u) / 2 + 0.5, 1)),
+    Row("sin and cos on vs_1_1 of a large uniform", 
+        "float A = 37.5;\nstruct VO { float4 p : POSITION; float4 c : COLOR0; };\n"
+        "VO VS(float4 p : POSITION) { VO o; o.p = p; o.c = float4(sin(A) * 0.5 + 0.5, cos(A) * 0.5 + 0.5, 0, 1); return o; }\n"
+        "float4 PS(float4 c : COLOR0) : COLOR { return c; }\n",
+        lambda u, v: (math.sin(37.5) / 2 + 0.5, math.cos(37.5) / 2 + 0.5, 0, 1), vs="vs_1_1"),
+    Row("pow exp log over a wide range", ps(
+        "    return float4(pow(uv.x, 7.5), exp(-uv.y * 6), log(uv.x * 100 + 1) / 5, pow(uv.y + 1, 2.7) / 6);"),
+        lambda u, v: (u ** 7.5, math.exp(-6 * v), math.log(100 * u + 1) / 5, (v + 1) ** 2.7 / 6)),
+    Row("tan near its poles and atan of large values", ps(
+        "    return float4(tan(uv.x * 1.4) / 8, atan(uv.y * 50) / 1.6, atan2(-uv.x, -0.001) / 6.3 + 0.5, 1);"),
+        lambda u, v: (math.tan(1.4 * u) / 8, math.atan(50 * v) / 1.6, math.atan2(-u, -0.001) / 6.3 + 0.5, 1)),
+]
