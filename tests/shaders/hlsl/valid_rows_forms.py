@@ -492,3 +492,20 @@ ROWS += [
         "    return float4(tan(uv.x * 1.4) / 8, atan(uv.y * 50) / 1.6, atan2(-uv.x, -0.001) / 6.3 + 0.5, 1);"),
         lambda u, v: (math.tan(1.4 * u) / 8, math.atan(50 * v) / 1.6, math.atan2(-u, -0.001) / 6.3 + 0.5, 1)),
 ]
+
+ROWS += [
+    # -- indices that are uniform floats; copies of a value a branch changed ---------------------
+    Row("an array indexed by a sum of uniform floats", ps(
+        "    return F[J.x + J.y];", "float4 F[3] = { 0.1, 0.2, 0.3, 0.4,  0.5, 0.6, 0.7, 0.8,  0.9, 1, 0.25, 0.5 };\n"
+        "float2 J = { 1, 1 };\n"),
+        lambda u, v: (0.9, 1, 0.25, 0.5)),
+    Row("int and bool vectors indexed by a uniform float", ps(
+        "    int4 ai = int4(21, 22, 23, 24);\n    bool4 ab = bool4(true, false, true, false);\n"
+        "    return float4(ai[I] / 32.0, ab[I], ai[3 - I] / 32.0, ab[3 - I]);", "float I = 2;\n"),
+        lambda u, v: (23 / 32, 1, 22 / 32, 0)),
+    Row("a copy taken after a branch changed the value", ps(
+        "    float4 a = { 0.1, 0.2, 0.3, 0.4 };\n    float4 b;\n    if (C) a = float4(0.5, 0.6, 0.7, 0.8);\n"
+        "    b = a;\n    a.y = 0.9;\n    float2 r = { 0.3, 0.4 };\n    if (uv.x > 0.5) r = float2(0.25, 0.75);\n"
+        "    r = r;\n    r = float2(1, r.y);\n    return float4(b.y, a.y, r);", "float C = 1;\n"),
+        lambda u, v: (0.6, 0.9, 1, 0.75 if u > 0.5 else 0.4)),
+]
