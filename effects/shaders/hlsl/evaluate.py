@@ -474,7 +474,10 @@ class Evaluator:
         # outlive it): a lane that left the loop keeps the value it left with, though the
         # step went on writing the counter unpredicated
         counters = [var for var, _ in start if id(var) in own]
-        seen = [var.value for var in counters]
+        # per iteration where lanes had left: (lanes in the loop at its start, the counters
+        # before the step, lanes still in it, after the step); made into selects only when
+        # the loop ends (not for one that runs into X3511 or the work limit)
+        steps: list[tuple[Any, list[Value], Any, list[Value]]] = []
         loop = Loop()
         saved = self.mask
         self.loops.append(loop)
@@ -519,11 +522,10 @@ class Evaluator:
                 if self.dead():
                     break
                 p = self.active()
-                seen = [self.merge(old, var.value, in_loop, self.at(tree))
-                        for old, var in zip(seen, counters)]
+                before = [var.value for var in counters]
                 self.run_step(step, own)
-                seen = [self.merge(old, var.value, p, self.at(tree))
-                        for old, var in zip(seen, counters)]
+                if counters and (in_loop is not None or p is not None):
+                    steps.append((in_loop, before, p, [var.value for var in counters]))
         except OverBudget:
             if why is None:
                 raise
@@ -532,8 +534,21 @@ class Evaluator:
         finally:
             self.loops.pop()
             self.mask = saved
-            for var, value in zip(counters, seen):
-                var.value = value
+        if steps:
+            self._counters_as_left(counters, start, steps, tree)
+
+    def _counters_as_left(self, counters: list[Var], start: list[tuple[Var, Value]],
+                          steps: list, tree: Any) -> None:
+        """Each counter of a finished loop as each lane left it: a lane that broke out keeps
+        the value it had then, though the step went on writing the counter unpredicated."""
+        initial = {id(var): value for var, value in start}
+        loc = self.at(tree)
+        seen = [initial[id(var)] for var in counters]
+        for in_loop, before, p, after in steps:
+            seen = [self.merge(old, value, in_loop, loc) for old, value in zip(seen, before)]
+            seen = [self.merge(old, value, p, loc) for old, value in zip(seen, after)]
+        for var, value in zip(counters, seen):
+            var.value = value
 
     def _ends_where_running(self, c: Operand, loop: Loop) -> bool:
         """Whether condition `c` is a constant false in the lanes that neither broke out of

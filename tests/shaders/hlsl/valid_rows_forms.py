@@ -509,3 +509,17 @@ ROWS += [
         "    r = r;\n    r = float2(1, r.y);\n    return float4(b.y, a.y, r);", "float C = 1;\n"),
         lambda u, v: (0.6, 0.9, 1, 0.75 if u > 0.5 else 0.4)),
 ]
+
+ROWS += [
+    # a for's counter read after the loop, where lanes broke out at different counts
+    Row("a for counter read after a run-time break", ps(
+        "    for (int i = 0; i < 4; i++) { if (i * 0.25 + 0.0625 > uv.x) break; }\n"
+        "    int j;\n    for (j = 0; j < 3; j++) { if (uv.y < j * 0.25 - 0.0625) break; }\n"
+        "    return float4(i * 0.25, j * 0.25, 0, 1);"),
+        lambda u, v: (0.25 * min(int((u - 0.0625) / 0.25) + 1, 4),
+                      0.25 * next((j for j in range(3) if v < j * 0.25 - 0.0625), 3), 0, 1)),
+    Row("a for counter read after a run-time break on ps_3_0", ps(
+        "    for (int i = 0; i < 4; i++) { if (i * 0.25 + 0.0625 > uv.x) break; }\n"
+        "    return float4(i * 0.25, 0, 0, 1);"),
+        lambda u, v: (0.25 * min(int((u - 0.0625) / 0.25) + 1, 4), 0, 0, 1), target="ps_3_0"),
+]
