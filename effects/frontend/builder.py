@@ -115,8 +115,23 @@ class Builder:
             elif item[0] == "struct":
                 c = item[1]
                 structs.add(c[1].value)
-                effect.structs.append(Struct(c[1].value, self.text[c[0].start_pos:c[3].end_pos],
-                                             self.loc(c[0]), self.row_major_at(c[0].line)))
+                # a struct declared with variables ends at its body (shapes.struct_vars): its
+                # text is a declaration of its own with the `;`
+                text = self.text[c[0].start_pos:c[3].end_pos] + (";" if c[3] is c[2] else "")
+                effect.structs.append(Struct(c[1].value, text, self.loc(c[0]),
+                                             self.row_major_at(c[0].line)))
+            elif item[0] == "typedef_struct":
+                # `typedef struct [S] { ... } T;`: the struct under each name it has, its text
+                # `struct T { ... }` placed so the body keeps its place in the file
+                c = item[1]
+                body = c[3]
+                for name_tok in [t for t in (c[2], c[4]) if t is not None]:
+                    structs.add(name_tok.value)
+                    head = f"struct {name_tok.value} "
+                    at = self.loc(body)
+                    at = Location(at.path, at.line, max(1, at.column - len(head)))
+                    effect.structs.append(Struct(name_tok.value, head + body.value + ";", at,
+                                                 self.row_major_at(body.line)))
             else:
                 c = item[1]
                 first = c[0][0] if c[0] else c[1]

@@ -36,7 +36,7 @@ _TOKEN_RE = re.compile(r"""
 (?:
   (?P<NAME>[A-Za-z_][A-Za-z0-9_]*)
 | (?P<HEX>0[xX][0-9A-Fa-f]+[uUlL]*)
-| (?P<FLOAT>(?:[0-9]+\.[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?[fFhH]?|[0-9]+[eE][+-]?[0-9]+[fFhH]?|[0-9]+[fF])
+| (?P<FLOAT>(?:[0-9]+\.[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?[fFhHlL]?|[0-9]+[eE][+-]?[0-9]+[fFhHlL]?|[0-9]+[fF])
 | (?P<INT>[0-9]+[uUlL]*)
 | (?P<STRING>"(?:[^"\\\n]|\\.)*")
 | (?P<INDEX>\[[ \t]*(?:0[xX][0-9A-Fa-f]+|[0-9]+)[ \t]*\])
@@ -240,7 +240,8 @@ class EffectLexer:
                 elif kind == "LBRACE" and top and not in_ann and stmt_params and not stmt_eq:
                     end = self._balanced(start, _BRACE_SCAN_RE, "{", "function body")
                     kind, value, multiline = "FUNC_BODY", text[start:end], True
-                elif kind == "LBRACE" and prev == "NAME" and prev2 == "STRUCT":
+                elif kind == "LBRACE" and (prev == "NAME" and prev2 == "STRUCT" or prev == "STRUCT"):
+                    # `struct S { ... }`, and `typedef struct { ... } T;` (a body with no name)
                     end = self._balanced(start, _BRACE_SCAN_RE, "{", "struct")
                     kind, value, multiline = "STRUCT_BODY", text[start:end], True
 

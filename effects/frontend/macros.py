@@ -5,7 +5,8 @@ arguments with nested parentheses (an argument list may continue on the followin
 `#` stringizes and `##` pastes. The driver applies it everywhere outside comments and
 string literals, `asm { }` blocks included.
 
-Not done, on purpose: predefined macros (`__FILE__`, `__LINE__`), a function-like macro name
+Not done here: the predefined `__FILE__` and `__LINE__` (the driver, preprocess.predefined,
+replaces them per line). Not done, on purpose: a function-like macro name
 at the end of a line whose `(` is on the next line (that name is left unexpanded).
 Every limit below is a located `PreprocessError`, never a hang or a stack overflow.
 """

@@ -169,7 +169,7 @@ class _Preprocessor:
         unit = _File(path, real, lines, depth)
         out, line_map = self.out, self.smap.lines
         macros, defined = self.macros, self.macros.defined  # `defined` is never replaced, only changed
-        if not defined and "#" not in text:  # fast path: nothing to do but map lines
+        if not defined and "#" not in text and "__" not in text:  # fast path: only map lines
             out.extend(lines)
             line_map.extend(zip(repeat(path), range(1, len(lines) + 1)))
             return
@@ -185,14 +185,14 @@ class _Preprocessor:
                 match = macros.pattern().search(line)
                 if match is not None:
                     expanded, used, pieces = macros.expand_lines(lines, i, match.start(), path)
-                    out.append(expanded)
+                    out.append(predefined(expanded, path, i + 1) if "__" in expanded else expanded)
                     line_map.append((path, i + 1))
                     self.smap.expanded[len(out)] = pieces
                     if used > 1:  # an argument list ran on: its other lines stay empty
                         self.emit_blank(path, i + 2, used - 1)
                     i += used
                     continue
-            out.append(line)
+            out.append(predefined(line, path, i + 1) if "__" in line else line)
             line_map.append((path, i + 1))
             i += 1
         if unit.branches:
@@ -465,3 +465,20 @@ def preprocess(text: str, path: str = "<string>", *, defines: Mapping[str, str] 
             gc.enable()
     return Preprocessed("\n".join(pre.out), pre.smap, tuple(pre.files), tuple(pre.pack_matrix),
                         tuple(pre.smap.warning_at(m, at) for m, at in pre.warnings))
+
+
+# C's predefined macros, which fxc's preprocessor has (the reference's #line page: "the
+# predefined macros __FILE__ and __LINE__"): the line in its file (#line is not followed
+# here) and the file's name as a string. A string literal is left as it is.
+_PREDEFINED = re.compile(r'"(?:[^"\\\n]|\\.)*"|\b__(LINE|FILE)__\b')
+
+
+def predefined(line: str, path: str, number: int) -> str:
+    """`line` with __LINE__ as `number` and __FILE__ as `path` in quotes."""
+    def value(m: re.Match) -> str:
+        if m.group(1) is None:
+            return m.group(0)
+        if m.group(1) == "LINE":
+            return str(number)
+        return '"' + path.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return _PREDEFINED.sub(value, line)

@@ -64,7 +64,7 @@ class RawParam:
 
 
 INT_SUFFIX = "uUlL"
-_FLOAT_SUFFIX = "fFhH"
+_FLOAT_SUFFIX = "fFhHlL"
 
 
 def int_value(text: str) -> int:
@@ -198,6 +198,15 @@ class Shapes(Transformer):
     def func_decl(self, c): return c[-1]   # the ';': `items` keeps nothing for it
     def struct_def(self, c): return ("struct", c)
     def cbuffer(self, c): return c[4]     # its members' declarators, as `items` takes a list
+
+    def struct_vars(self, c):
+        """`struct S { ... } a, b = { ... };`: the struct (its text ends at its body), then a
+        parameter of it per declarator, as `S a, b = { ... };` declares them."""
+        struct_tok, name_tok, body = c[0], c[1], c[2]
+        return [("struct", [struct_tok, name_tok, body, body])] + [
+            RawParam([], name_tok, d[0], d[1], d[2], d[3] or [], d[4]) for d in c[3::2]]
+
+    def typedef_struct(self, c): return ("typedef_struct", c)
 
 
 _ESCAPES = {"n": "\n", "t": "\t", "r": "\r", "\\": "\\", '"': '"', "'": "'", "0": "\0"}

@@ -511,8 +511,15 @@ class _Binder:
         if t.kind == "array":
             return Value(t, elements=[self.input(t.element, element, loc, f"{name}[{k}]")  # type: ignore[arg-type]
                                       for k, element in enumerate(_array_semantics(semantic, t))])
-        usage, index = split_semantic(semantic)
         target = self.ctx.target
+        # `TEXCOORD0_centroid`: the reference's centroid modifier on a pixel input (ps_2_0
+        # and up, "Modifiers for ps_2_0 and above"), declared `dcl_centroid t0` /
+        # `dcl_texcoord0_centroid v0`
+        centroid = target.kind == "ps" and not target.rules.is_ps1 \
+            and semantic.lower().endswith("_centroid")
+        if centroid:
+            semantic = semantic[:-len("_centroid")]
+        usage, index = split_semantic(semantic)
         if target.kind == "ps" and usage == "SV_POSITION":
             usage = "VPOS"
         if target.kind == "ps" and target.rules.major >= 3 and usage in _PS3_MISC:
@@ -531,7 +538,7 @@ class _Binder:
                 # reused as the pixel input, as most XNA effects do) as long as nothing reads it
                 node = self.ctx.graph.leaf("input", ("unmapped", semantic), 4, loc)
                 return Value(t, [Operand(node.node, (min(i, 3),)) for i in range(t.size)])
-            self.dcls[reg] = declaration(reg[0], int(reg[1:]))
+            self.dcls[reg] = declaration(reg[0], int(reg[1:]), centroid=centroid)
         else:
             key = (usage, index)
             reg = None
@@ -546,7 +553,8 @@ class _Binder:
                 self.next_v += 1
                 self.input_keys[reg] = key
                 self.dcls[reg] = declaration("v", self.next_v - 1,
-                                             usage.lower().removeprefix("sv_"), index)
+                                             usage.lower().removeprefix("sv_"), index,
+                                             centroid=centroid)
         if not t.numeric:
             raise self._error(f"X4502: input '{name}' must be numeric, not '{t}'", loc)
         node = self.ctx.graph.leaf("input", ("input", reg), 4, loc)

@@ -328,12 +328,20 @@ def checked(t: HType, fail: Callable[[str], Exception], subject: str) -> HType:
 
 
 def int_literal(text: str, fail: Callable[[str], Exception], cap: int | None = None) -> int:
-    """An HLSL integer literal (`42`, `0x2A`, `7u`), its digits under literal_digits (Python
-    itself refuses more than 4,300; `cap`: that limit as a compile read it)."""
+    """An HLSL integer literal (`42`, `0x2A`, `7u`, `010` octal: the reference's Grammar
+    page), its digits under literal_digits (Python itself refuses more than 4,300; `cap`:
+    that limit as a compile read it)."""
     digits = text.rstrip("uUlL")
     if len(digits) > (cap if cap is not None else limits.get("literal_digits")):
         raise fail(limits.message("literal_digits", len(digits), "an integer literal"))
-    return int(digits, 16) if digits.lower().startswith("0x") else int(digits)
+    if digits.lower().startswith("0x"):
+        return int(digits, 16)
+    if len(digits) > 1 and digits[0] == "0":
+        if set(digits) & set("89"):
+            raise fail(f"X3000: syntax error: '{text}' is not an octal number (a leading 0 "
+                       "makes one)")
+        return int(digits, 8)
+    return int(digits)
 
 
 def literal_sizes(dims: lark.Tree, origin: Origin) -> list[int]:

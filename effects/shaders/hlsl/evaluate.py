@@ -22,7 +22,8 @@ from effects.shaders.hlsl.arith import Arith
 from effects.shaders.hlsl.budget import OverBudget, check, enter_level, leave_level, spend
 from effects.shaders.hlsl.calls import inline_call
 from effects.shaders.hlsl.expressions import _leaves as leaves, evaluate_expr
-from effects.shaders.hlsl.context import Context, FunctionDef, array_of, resolve_type
+from effects.shaders.hlsl.context import (Context, FunctionDef, array_of, resolve_type,
+                                          struct_type)
 from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.branches import (bool_register, bool_uniform, comparison,
                                             condition_error, real_if)
@@ -240,7 +241,21 @@ class Evaluator:
         pass
 
     def s_expr_stmt(self, tree: lark.Tree) -> None:
-        self.expr(tree.children[0])
+        for e in tree.children:              # `a = 1, b = 2;`: C's comma, left to right
+            self.expr(e)
+
+    def s_struct_stmt(self, tree: lark.Tree) -> None:
+        """`struct L { ... } a, b = { ... };` in a function: its type for the rest of the
+        text (as a local typedef is), then its variables declared as `L a, b = ...;` are."""
+        name_tok, *members, decls = tree.children
+        if name_tok is None:                 # `struct { ... } s;`: a type only s has
+            line, column = self.at(tree).line, self.at(tree).column
+            name_tok = lark.Token("NAME", f"(anonymous struct at {line}:{column})")
+        t = struct_type(self.ctx, lark.Tree("struct_def", [name_tok, *members]), self.origin)
+        self.ctx.typedefs[str(name_tok)] = t
+        if decls.children:
+            self.s_var_decl(lark.Tree("var_decl", [None, lark.Tree("user_type", [name_tok]),
+                                                   *decls.children]))
 
     def s_var_decl(self, tree: lark.Tree) -> None:
         mods, spec, *decls = tree.children
@@ -389,6 +404,10 @@ class Evaluator:
         return self.a.to_bool(v, self.at(tree)).comps[0]
 
     def s_for_stmt(self, tree: lark.Tree) -> None:
+        """A `for` loop. Its init's declarations outlive it, in the enclosing scope: fxc's
+        scoping (d3dx9), which compiled `for (int i = 0; ...) {} for (i = 0; ...)` and gave
+        a second `for (int i ...)` in one scope warning X3078 (its text, as real effects'
+        `#pragma warning(disable: 3078)` comments quote it) instead of a redefinition."""
         attrs, _tok, init, cond, step, body = tree.children
         self.scopes.append({})
         try:
@@ -397,6 +416,12 @@ class Evaluator:
                     if child is None:
                         continue
                     if child.data == "var_decl":
+                        for d in child.children[2:]:
+                            if str(d.children[0]) in self.scopes[-2]:
+                                self.warn(f"X3078: '{d.children[0]}': loop control variable "
+                                          "conflicts with a previous declaration in the outer "
+                                          "scope; most recent declaration will be used",
+                                          self.at(d.children[0]))
                         self.s_var_decl(child)
                     else:
                         for e in child.children:
@@ -423,7 +448,7 @@ class Evaluator:
             self._loop(tree, cond, body, step, test_first=True, why=why,
                        own=frozenset(id(v) for v in self.scopes[-1].values()))
         finally:
-            self.scopes.pop()
+            self.scopes[-2].update(self.scopes.pop())
 
     def s_while_stmt(self, tree: lark.Tree) -> None:
         self._loop(tree, tree.children[2], tree.children[3], None, test_first=True)
@@ -434,21 +459,31 @@ class Evaluator:
     def _loop(self, tree: Any, cond: Any, body: Any, step: Any, test_first: bool,
               why: str | None = None, own: frozenset[int] = frozenset()) -> None:
         """Unroll: run the body until the condition is a compile-time false. The variables
-        the for's init declares (`own`) live only in the loop, so its step sets them
-        whatever the predicate (a pixel that broke, returned or is masked off reads them
-        only under that predicate): a counter stays a constant under a run-time break, an
-        enclosing flattened if or a real loop's body, and the loop ends.
+        the for's init declares (`own`) are the loop's, so its step sets them whatever the
+        predicate (a pixel that broke, returned or is masked off reads them only under that
+        predicate): a counter stays a constant under a run-time break, an enclosing
+        flattened if or a real loop's body, and the loop ends. After it, they hold what each
+        lane left the loop with (`seen`).
 
         A loop still running after PROBE_AFTER iterations whose end the body cannot change
         (unroll.py) is run again from its start without its body: one that never ends is
         X3511 then, not after 1,024 runs of the body. A loop of exactly 1,024 iterations
         unrolls (the condition is tested before the count)."""
         start = [(var, var.value) for scope in self.scopes for var in scope.values()]
+        # the counters' values per lane, as read after the loop (the for's declarations
+        # outlive it): a lane that left the loop keeps the value it left with, though the
+        # step went on writing the counter unpredicated
+        counters = [var for var, _ in start if id(var) in own]
+        # per iteration where lanes had left: (lanes in the loop at its start, the counters
+        # before the step, lanes still in it, after the step); made into selects only when
+        # the loop ends (not for one that runs into X3511 or the work limit)
+        steps: list[tuple[Any, list[Value], Any, list[Value]]] = []
         loop = Loop()
         saved = self.mask
         self.loops.append(loop)
         try:
             for i in range(MAX_ITERATIONS + 1):
+                in_loop = self.active()
                 if i == PROBE_AFTER:          # a long loop: does it end at all? (unroll.py)
                     never = never_ends(self, tree, cond, body, step, test_first, own,
                                        MAX_ITERATIONS, start)
@@ -486,7 +521,11 @@ class Evaluator:
                 loop.continued = None
                 if self.dead():
                     break
+                p = self.active()
+                before = [var.value for var in counters]
                 self.run_step(step, own)
+                if counters and (in_loop is not None or p is not None):
+                    steps.append((in_loop, before, p, [var.value for var in counters]))
         except OverBudget:
             if why is None:
                 raise
@@ -495,6 +534,21 @@ class Evaluator:
         finally:
             self.loops.pop()
             self.mask = saved
+        if steps:
+            self._counters_as_left(counters, start, steps, tree)
+
+    def _counters_as_left(self, counters: list[Var], start: list[tuple[Var, Value]],
+                          steps: list, tree: Any) -> None:
+        """Each counter of a finished loop as each lane left it: a lane that broke out keeps
+        the value it had then, though the step went on writing the counter unpredicated."""
+        initial = {id(var): value for var, value in start}
+        loc = self.at(tree)
+        seen = [initial[id(var)] for var in counters]
+        for in_loop, before, p, after in steps:
+            seen = [self.merge(old, value, in_loop, loc) for old, value in zip(seen, before)]
+            seen = [self.merge(old, value, p, loc) for old, value in zip(seen, after)]
+        for var, value in zip(counters, seen):
+            var.value = value
 
     def _ends_where_running(self, c: Operand, loop: Loop) -> bool:
         """Whether condition `c` is a constant false in the lanes that neither broke out of

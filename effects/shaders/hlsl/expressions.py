@@ -73,8 +73,20 @@ def _start(ev: Any, tree: Any) -> Value | Generator[Any, Value, Value]:
     return handler(ev, tree)
 
 
+def _comma(ev: Any, tree: lark.Tree) -> Generator[Any, Value, Value]:
+    """`(a, b)`: C's comma operator, each evaluated in order, the value the last one's."""
+    value = None
+    for item in tree.children:
+        if isinstance(item, lark.Token):      # its opening parenthesis
+            continue
+        value = yield item
+    return value  # type: ignore[return-value]
+
+
 def _float(ev: Any, tree: lark.Tree) -> Value:
-    text = str(tree.children[0]).rstrip("fFhH")
+    # `L` is the reference's suffix for a 64-bit literal (its Grammar page): a double, which
+    # shader models 1 to 3 hold as float
+    text = str(tree.children[0]).rstrip("fFhHlL")
     base = "half" if str(tree.children[0])[-1:] in "hH" else "float"
     # located: a literal that cannot be a constant register (1e39) is refused where it is
     return Value(scalar("float" if base == "float" else "half"),
@@ -535,4 +547,5 @@ _HANDLERS = {
     "index": _index, "construct": _construct, "construct_user": _construct_user, "construct_matrix": _construct_matrix,
     "construct_vector": _construct_vector, "cast": _cast, "ternary": _ternary, "call": _call,
     "method": _method,
+    "comma": _comma,
 }

@@ -103,13 +103,19 @@ class _TypeNames:
         names = set(getattr(_LOCAL, "names", ()))
         after_typedef = False
         naming = False                         # past a typedef's first name: `, W` names one
+        after_struct = False                   # `struct L { ... }` in a function names L
         for tok in stream:
+            named, after_struct = after_struct, False
             if tok.type == "NAME":
                 if tok.value in names:
                     tok = lark.Token.new_borrow_pos("TYPENAME", tok.value, tok)
                 elif after_typedef:            # `typedef float3 V;`: V names a type from here
                     names.add(tok.value)
                     after_typedef, naming = False, True
+                elif named:
+                    names.add(tok.value)
+            elif tok.type == "STRUCT":
+                after_struct = True
             elif tok.type == "TYPEDEF":
                 after_typedef = True
             elif tok.type == "SEMICOLON":
@@ -152,6 +158,7 @@ class _Build:
     here a node is placed when asked (`start_of`), from its first token, as lark placed it."""
 
     struct_def = staticmethod(_lead("struct_def"))
+    struct_stmt = staticmethod(_lead("struct_stmt"))
     semantic = staticmethod(_lead("semantic"))
     register = staticmethod(_lead("register"))
     dims = staticmethod(_lead("dims"))

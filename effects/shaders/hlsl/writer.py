@@ -82,11 +82,12 @@ def swizzled(op: Operand, swizzle: tuple[int, ...], text: str | None = None) -> 
 
 
 def declaration(kind: str, index: int | None, usage: str | None = None, usage_index: int = 0,
-                mask: tuple[int, ...] | None = None, sampler_type: str | None = None) -> Declaration:
+                mask: tuple[int, ...] | None = None, sampler_type: str | None = None,
+                centroid: bool = False) -> Declaration:
     """`dcl_texcoord1 v1`, `dcl t0`, `dcl vPos.xy`, `dcl_2d s0` as a record."""
     reg = Operand(kind, index, text=f"{kind}{'' if index is None else index}", mask=mask,
                   swizzle_text="".join(XYZW[c] for c in mask) if mask else "")
-    return Declaration(reg, usage, usage_index, sampler_type)
+    return Declaration(reg, usage, usage_index, sampler_type, centroid=centroid)
 
 
 def write(code: Code, rules: VersionRules, entry_loc: Location
