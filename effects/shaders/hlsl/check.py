@@ -90,7 +90,9 @@ class Checker(Evaluator):
                             self.expr(e)
             self._loop(tree, cond, body, step, test_first=True)
         finally:
-            self.scopes.pop()
+            # the init's declarations outlive the loop, as fxc scoped them (evaluate.py's
+            # s_for_stmt): a later `for (i = 0; ...)` or a read of `i` after it is no error
+            self.scopes[-2].update(self.scopes.pop())
 
     def _loop(self, tree: Any, cond: Any, body: Any, step: Any, test_first: bool,
               why: str | None = None, own: frozenset[int] = frozenset()) -> None:
