@@ -9,6 +9,7 @@ from __future__ import annotations
 import hashlib
 import re
 
+import numpy as np
 import pytest
 
 import effects
@@ -118,3 +119,72 @@ def test_our_compile_gives_fxcs_constants_or_the_named_gap(name, target, hlsl, d
     mine = constant_table(ours.program, ours)
     assert sorted((c.name, c.register_set) for c in mine.constants) == \
         sorted((c.name, c.register_set) for c in theirs.constants)
+
+
+# The ps_3_0 shader (get_shader_samplers_blob) drawn: fxc's code and our compile, each with its
+# own constant table's sampler registers bound to a texture per sampler (a different image for
+# each 2D one, so that two swapped samplers show), on a sphere whose third texture coordinate
+# runs with x (for the volume and cube lookups).
+IMAGES = ["stones_base.png", "marble_vein.png", "earth_base.png"]
+
+
+def _textures_of(kinds: dict[str, str]) -> dict[str, str]:
+    """Sampler name -> texture parameter: T0, T1, ... (2D images) in declaration order, TV
+    for a volume, TC for a cube."""
+    flat = [n for n, k in kinds.items() if k not in ("sampler3D", "samplerCUBE")]
+    return {n: "TV" if k == "sampler3D" else "TC" if k == "samplerCUBE" else f"T{flat.index(n)}"
+            for n, k in kinds.items()}
+VS3 = """asm { vs_3_0 dcl_position v0 dcl_texcoord v1 dcl_position o0 dcl_texcoord o1
+    m4x4 o0, v0, c0 mov o1.xy, v1 mad o1.z, v0.x, c4.x, c4.x }"""
+INIT = [-3.2, -3.2, -3.2, 1]       # the six texels' sum, brought into range
+
+
+def _sampler_kinds(hlsl: str) -> dict[str, str]:
+    return dict((n, k) for k, n in re.findall(r"^(sampler\w*)\s+(\w+);", hlsl, re.M))
+
+
+@pytest.mark.parametrize("backend", ["numpy", "gl"])
+def test_fxcs_ps_3_0_and_ours_draw_the_same_sampler_picture(backend):
+    from effects.host.runtime import render_frame
+    from effects.shaders.asm.text import program_text
+    from tests.paths import ROOT
+
+    (name, target, hlsl, data), = [p for p in PAIRS if p[1].startswith("ps")]
+    kinds = _sampler_kinds(hlsl)
+    assert len(kinds) == 5
+    texture_of = _textures_of(kinds)
+    images = "\n".join(f'texture T{k} < string ResourceName = "{ROOT / "fxfiles" / "textures" / i}"; >;'
+                       for k, i in enumerate(IMAGES))
+    head = f"""float4x4 WorldViewProjection : WORLDVIEWPROJECTION;
+{images}
+texture3D TV < string Procedural = "noise3d:32"; >;
+textureCUBE TC < string Procedural = "sky_cube:64"; >;
+{hlsl}
+"""
+    probe = effects.load_effect(head + f"technique T {{ pass P {{ PixelShader = compile {target} "
+                                "main(); } }")
+    ours = compile_state(probe, probe.techniques[0].passes[0].state("PixelShader").value)
+    theirs = read_shader(data, name)
+    fxc_samplers = {c.name: c.register_index for c in theirs.table.constants
+                    if c.register_set == "sampler"}
+    assert set(fxc_samplers) == set(ours.samplers) == set(kinds)
+
+    def pass_(ps: str, samplers: dict[str, int], extra: str = "") -> str:
+        bound = " ".join(f"Texture[{r}] = <{texture_of[n]}>;" for n, r in samplers.items())
+        return f"""pass P {{ VertexShaderConstantF[0] = <WorldViewProjection>;
+            VertexShaderConstantF[4] = {{0.5, 0.5, 0.5, 0.5}}; VertexShader = {VS3};
+            {bound} {extra} PixelShader = {ps}; }}"""
+    init_at = next(c.register_index for c in theirs.table.constants if c.name == "init")
+    fxc = "asm { " + program_text(theirs.program) + " }"
+    effect = effects.load_effect(head + f"""
+technique Fxc {{ {pass_(fxc, fxc_samplers, f"PixelShaderConstantF[{init_at}] = <init>;")} }}
+technique Ours {{ {pass_(f"compile {target} main()", ours.samplers)} }}""")
+    frames = [render_frame(effect, "geforce6800", technique=t, size=(64, 64), backend=backend,
+                           params={"init": INIT}) for t in ("Fxc", "Ours")]
+    fxc_image, our_image = (f.image.astype(int) for f in frames)
+    assert not frames[0].warnings and not frames[1].warnings
+    drawn = fxc_image[..., 3] > 0
+    # a lit sphere, most of it between black and white (the sum of six texels minus 3.2)
+    assert drawn.mean() > 0.4
+    assert ((fxc_image[..., 0] > 0) & (fxc_image[..., 0] < 255))[drawn].mean() > 0.5
+    assert np.abs(fxc_image - our_image).max() <= 1
