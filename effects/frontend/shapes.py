@@ -68,8 +68,15 @@ _FLOAT_SUFFIX = "fFhHlL"
 
 
 def int_value(text: str) -> int:
+    """An integer literal of the effect's own syntax. A leading 0 is octal, as in HLSL code
+    (effects/shaders/hlsl/context.py int_literal): fxc's fx_2_0 binary of Wine's d3dx9 test
+    effect holds 65 and 66 for `int i_2[2] = {0101, 0102}` (tests/data/fxo/wine)."""
     text = text.strip("[] \t").rstrip(INT_SUFFIX)
-    return int(text, 16) if text[:2] in ("0x", "0X") else int(text)
+    if text[:2] in ("0x", "0X"):
+        return int(text, 16)
+    if len(text) > 1 and text[0] == "0" and not set(text) - set("01234567"):
+        return int(text, 8)
+    return int(text)
 
 
 class Shapes(Transformer):

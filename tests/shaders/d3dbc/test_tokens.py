@@ -1,5 +1,5 @@
 """Tokens worked out by hand from the format (tokens.py's sources), and fxc's own where we
-have them (SDL's fxc 10.1 shaders, tests/data/d3dbc), for one instruction of each shape; and
+have them (SDL 2's fxc 6.3 shaders, tests/data/d3dbc), for one instruction of each shape; and
 the instruction table's opcode column answers every (opcode, version) pair with its own row."""
 from __future__ import annotations
 
@@ -14,10 +14,11 @@ from tests.shaders.d3dbc.programs import block
 
 CASES = [
     # (version, statement, its tokens)
-    # fxc 10.1 (SDL's D3D9_PixelShader_Palette.h)
+    # fxc 6.3 (SDL 2's D3D9_PixelShader_YUV_JPEG, tests/data/d3dbc/sdl/SDL_shaders_d3d.c)
     ("ps_2_0", "texld r0, t0, s0", [0x03000042, 0x800F0000, 0xB0E40000, 0xA0E40800]),
-    ("ps_2_0", "mad r0.xy, r0.x, c0.x, c0.y", [0x04000004, 0x80030000, 0x80000000, 0xA0000000,
-                                               0xA0550000]),
+    ("ps_2_0", "dp2add r1.z, r0, c3, c3.z", [0x0400005A, 0x80040001, 0x80E40000, 0xA0E40003,
+                                             0xA0AA0003]),
+    ("ps_2_0", "add r0.xyz, r0, c0", [0x03000002, 0x80070000, 0x80E40000, 0xA0E40000]),
     ("ps_2_0", "dcl_2d s1", [0x0200001F, 0x90000000, 0xA00F0801]),
     ("ps_2_0", "dcl t0.xy", [0x0200001F, 0x80000000, 0xB0030000]),
     ("ps_2_0", "mov oC0, r0", [0x02000001, 0x800F0800, 0x80E40000]),

@@ -70,7 +70,7 @@ def test_mojoshader_reads_what_we_write(tmp_path, name):
 def test_mojoshader_reads_fxc_own_binary_as_we_do():
     # the binding itself checked on fxc's output (tests/data/fxo): 42 parameters, class and
     # type as fxc wrote them (MATRIX_ROWS = 2 for every matrix)
-    path = ROOT / "tests/data/fxo/wine_parameter_value_float.fxo"
+    path = ROOT / "tests/data/fxo/wine/test_effect_parameter_value_blob_float.fxo"
     run = subprocess.run([sys.executable, str(ROOT / "tests/shaders/d3dbc/mojoshader.py"),
                           str(path)], capture_output=True, text=True, timeout=120)
     got = json.loads(run.stdout)

@@ -1,7 +1,8 @@
-/* An excerpt of dlls/d3d10core/tests/device.c of the Wine project (wine-mirror/wine, commit
- * 01d435288f35d94316d4f91ae1faf6421b4e3b4b), cut down to its licence notice and, from
- * test_create_shader(), the HLSL vertex shader and the two Direct3D 9 compiles of it
- * (fxc 9.29.952.3111, vs_2_0 and vs_3_0), unchanged. */
+/* An excerpt of dlls/d3d10core/tests/d3d10core.c of Wine 8.0 (Debian source package
+ * wine 8.0~repack-4, `apt-get source wine`): lines 1-17 (its licence notice), 3720-3747
+ * (test_create_shader() and its HLSL vertex shader) and 3767-3797 (the two Direct3D 9
+ * compiles of it, fxc 9.29.952.3111, vs_2_0 and vs_3_0), byte for byte; the lines between
+ * are left out. tests/data/d3dbc/MANIFEST.md gives the sha256 of the whole file. */
 
 /*
  * Copyright 2008 Henri Verbeet for CodeWeavers
@@ -49,6 +50,7 @@ output main(const input v)
     return o;
 }
 #endif
+
     static const DWORD vs_2_0[] =
     {
         0xfffe0200, 0x002bfffe, 0x42415443, 0x0000001c, 0x00000077, 0xfffe0200, 0x00000002,
@@ -79,4 +81,3 @@ output main(const input v)
         0xe0080000, 0x90e40000, 0xa0e40003, 0x03000008, 0xe00f0001, 0xa0e40004, 0x90e40001,
         0x0000ffff,
     };
-}
