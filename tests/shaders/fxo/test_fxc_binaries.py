@@ -15,7 +15,7 @@ from effects.frontend.fxo import PC_MATRIX_ROWS
 from effects.shaders.fxo import write_effect_binary
 from tests.paths import ROOT
 
-DATA = ROOT / "tests" / "data" / "fxo" / "wine"   # from Debian's wine 8.0 (MANIFEST.md there)
+DATA = ROOT / "tests" / "data" / "fxo" / "wine"   # from Debian's wine 8.0 (tests/data/fxo/MANIFEST.md)
 # the blob whose source our writer reproduces byte for byte (parameters and an empty pass);
 # every blob's load and verdicts: tests/shaders/fxo/test_fxo_wine.py; sha256s:
 # tests/formats/test_fxo_wine_files.py
