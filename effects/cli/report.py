@@ -115,10 +115,18 @@ def _print_details(effect: Effect, profiles: Sequence[CapsProfile],
     best = meter.best() if meter is not None else None
     if meter is not None:
         size = "x".join(map(str, meter.size))
-        console.print(Text(f"fidelity: each valid technique's picture on the card against "
-                           f"{technique_name(best)} on refrast ({size}, reference back end)"
-                           if best is not None else "fidelity: no technique runs on refrast, "
-                           "so there is no best picture to measure against"), soft_wrap=True)
+        if best is not None and meter.blank is not None:
+            said = (f"fidelity: {technique_name(best)} on refrast draws nothing here (every pixel "
+                    f"the clear colour {meter.blank}), so there is no picture to measure "
+                    "against; the fidelity policy keeps file order")
+            best = None                   # no figure per technique
+        elif best is not None:
+            said = (f"fidelity: each valid technique's picture on the card against "
+                    f"{technique_name(best)} on refrast ({size}, reference back end)")
+        else:
+            said = "fidelity: no technique runs on refrast, so there is no best picture to " \
+                "measure against"
+        console.print(Text(said), soft_wrap=True)
     for profile in profiles:
         console.print(Text(f"{profile.name} ({profile.display_name or profile.name}, {profile.generation})",
                            style="bold"))

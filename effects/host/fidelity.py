@@ -109,6 +109,8 @@ class Meter:
         if best is not None:
             effect.technique(best)               # a name the effect lacks: said now, located
         self._best: tuple["Technique | None", np.ndarray | None] | None = None
+        # the best picture's one colour where it shows nothing (`blank`), once drawn
+        self._blank: tuple[int, int, int] | None = None
         self._measured: dict[tuple[int, int], tuple[Any, Likeness | None]] = {}
 
     def best(self) -> "Technique | None":
@@ -127,8 +129,23 @@ class Meter:
                 validation = select(self.effect, card).chosen
                 tech = validation.technique if validation is not None else None
             picture = self.picture(tech, card, validation) if tech is not None else None
+            if picture is not None:
+                self._blank = _shows_nothing(picture, self.scene.clear_color)
+                if self._blank is not None:
+                    picture = None        # nothing to measure against: every technique unmeasured
             self._best = (tech, picture)
         return self._best
+
+    @property
+    def blank(self) -> tuple[int, int, int] | None:
+        """The clear colour (r, g, b) where the best technique's picture is that colour
+        everywhere -- it shows nothing, so no technique is measured (`measure` gives None and
+        the fidelity order keeps file order); None otherwise. Against an empty frame every
+        technique that also draws nothing would score SSIM 1, and the cheapest of them would
+        win: a fixed-function fallback over the ps.2.0 technique a DX9 card runs (a mod's
+        effect whose host sets its colour and textures, drawn here without them)."""
+        self._reference()
+        return self._blank
 
     def picture(self, technique: "Technique", profile: "CapsProfile",
                 validation: "Validation | None" = None) -> np.ndarray | None:
@@ -169,6 +186,15 @@ class Meter:
                 found = self.measure(v.technique, v.profile, v)
                 out[i] = None if found is None else found.ssim
         return out
+
+
+def _shows_nothing(picture: np.ndarray, clear: Sequence[float]) -> tuple[int, int, int] | None:
+    """The clear colour (r, g, b) where every pixel of `picture` is that colour, else None.
+    A picture of one other colour is a look (a full-screen fill) and is measured."""
+    from effects.host.diagnostics import uniform_colour
+    colour = uniform_colour(picture)
+    target = tuple(int(round(min(max(float(c), 0.0), 1.0) * 255)) for c in tuple(clear)[:3])
+    return colour if colour is not None and colour == target else None
 
 
 # A meter holds its measures (two floats a technique and card) and the best picture

@@ -14,7 +14,9 @@ A policy is written as comma-separated parts, each at most once:
     fidelity         the technique whose picture on this card is most like the effect's best
                      technique's (SSIM, measured by the host: effects.host.fidelity); those
                      within FIDELITY_TIE of the highest SSIM are alike, and among them the
-                     least per-pixel work (`technique_work`) is drawn, then file order
+                     least per-pixel work (`technique_work`) is drawn, then file order;
+                     those not measured (not drawn, or the best picture shows nothing)
+                     follow in file order
     max-passes=N     techniques with more than N passes are not chosen
     max-cost=X       techniques whose Cost is above X (or unknown) are not chosen
 
@@ -238,7 +240,10 @@ class Selection:
                 return (-math.inf, 0.0, position)
             score = self.likeness.get(position)
             if score is None:
-                return (math.inf, float(technique_work(v)), position)
+                # unmeasured: no figure says one looks more like the best, so file order (D3DX's)
+                # decides, not the least work -- with every technique unmeasured the policy would
+                # otherwise draw the cheapest fallback on a card that runs the author's first
+                return (math.inf, 0.0, position)
             top = self._top_likeness()
             if top is not None and score >= top - FIDELITY_TIE:
                 score = top

@@ -26,8 +26,10 @@ TEXTURED = """
 texture T < string ResourceName = "t.png"; >;
 sampler S = sampler_state { Texture = <T>; };
 technique Textured { pass P0 { Sampler[0] = <S>; ColorOp[0] = SelectArg1; ColorArg1[0] = Texture; } }
-technique Flat { pass P0 { ColorOp[0] = SelectArg1; ColorArg1[0] = Diffuse; } }
+technique Flat { pass P0 { Lighting = false; ColorOp[0] = SelectArg1; ColorArg1[0] = Diffuse; } }
 """
+# Flat unlit: the mesh's white, not black on the black clear colour (a best picture that shows
+# nothing measures nothing: tests/host/test_fidelity.py)
 
 
 def _json(capsys, *args) -> dict:

@@ -10,6 +10,7 @@ import pytest
 
 import effects
 from effects.base.errors import EffectError
+from effects.cli.main import main
 from effects.d3d9.caps import load_profile
 from effects.host.fidelity import Likeness, Meter, likeness, meter_for, policy_for
 from effects.host.runtime import Runtime
@@ -91,7 +92,9 @@ def test_a_technique_that_draws_black_against_a_grey_best_by_hand():
 
 def test_a_named_best_is_measured_against_and_an_unknown_name_is_located():
     effect = effects.load_effect(FLAT)
-    meter = Meter(effect, scene={"mesh": "quad"}, size=(16, 16), best="Black")
+    # on a grey clear colour: a black frame on black would show nothing (no measure, below)
+    meter = Meter(effect, scene={"mesh": "quad", "clear": {"color": [0.25, 0.25, 0.25, 1]}},
+                  size=(16, 16), best="Black")
     assert meter.best().name == "Black"
     assert meter.measure(effect.technique("Black"), load_profile("geforce3")).ssim == 1.0
     with pytest.raises(EffectError, match="no technique named 'Shiny'"):
@@ -329,3 +332,43 @@ def test_under_the_fidelity_policy_any_language_error_is_said():
         made = select(effect, card, policy_for(effect, scene={"mesh": "quad"}))
         assert made.technique.name == "Good"
         assert "X3004: undeclared identifier 'fooo'" in made.passed_over.report()
+
+
+def test_a_best_picture_that_shows_nothing_measures_nothing_and_file_order_decides():
+    """A mod's effect whose host sets its colour (a parameter nothing sets here, so 0) draws
+    black on black: against that empty frame every fallback that also draws nothing scored
+    SSIM 1 and the least work won -- a fixed-function fallback over the ps.2.0 technique a
+    DX9 card runs. Now the best picture, every pixel the clear colour, is no measure: no
+    technique is scored and file order decides (D3DX's choice). Here the first technique, in
+    the clear colour, takes three slots and the second, the same, one."""
+    heavy = _FLAT.format(name="Heavy", v=0).replace("mov r0, c0", "mov r1, c0\n    "
+                                                     "mov r0, r1\n    mov r0, c0")
+    effect = effects.load_effect(heavy + _FLAT.format(name="Light", v=0))
+    card = load_profile("geforce3")
+    meter = Meter(effect, scene={"mesh": "quad"}, size=(16, 16))
+    assert meter.best().name == "Heavy" and meter.blank == (0, 0, 0)
+    assert meter.measure(effect.technique("Light"), card) is None
+    made = select(effect, card, "first", lazy=False).validations
+    works = {v.technique.name: technique_work(v) for v in made}
+    assert works["Light"] < works["Heavy"]
+    chosen = select(effect, card, Policy("fidelity").with_likeness(meter.likeness),
+                    validations=made)
+    assert chosen.likeness == {0: None, 1: None}
+    assert chosen.technique.name == "Heavy"
+    # a picture of one colour that is not the clear colour is a look, and is measured
+    grey = effects.load_effect(FLAT)
+    assert Meter(grey, scene={"mesh": "quad"}, size=(16, 16)).blank is None
+    grey_clear = Meter(grey, scene={"mesh": "quad", "clear": {"color": [0.5, 0.5, 0.5, 1]}},
+                       size=(16, 16))
+    assert grey_clear.blank == (128, 128, 128)
+
+
+def test_why_says_the_best_picture_shows_nothing(tmp_path, capsys):
+    path = tmp_path / "blank.fx"
+    path.write_text(_FLAT.format(name="Dark", v=0) + _FLAT.format(name="Also", v=0))
+    assert main(["validate", str(path), "-p", "geforce3", "--why", "--no-scene"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert ("fidelity: Dark on refrast draws nothing here (every pixel the clear colour "
+            "(0, 0, 0)), so there is no picture to measure against; the fidelity policy keeps "
+            "file order") in out
+    assert "SSIM" not in out and "not drawn" not in out
