@@ -1,8 +1,8 @@
 """The sixteen shaders fxc 9.29 compiled for Wine's D3DX9 constant-table tests, with their HLSL
 beside them (tests/data/d3dbc/wine/d3dx9_36_shader_excerpt.c, from Debian's wine 8.0 source:
 tests/data/d3dbc/MANIFEST.md): each reads, passes the assembly checks and names its target and
-compiler; where no constant has a default value it writes back byte for byte; and our compile of
-its HLSL either gives a constant table with the same constants in the same register sets as
+compiler; it writes back byte for byte (default values, shared names and types as fxc laid
+them out); and our compile of its HLSL either gives a constant table with the same constants in the same register sets as
 fxc's, or fails with the gap named in COMPILE_GAPS (so that list is kept current)."""
 from __future__ import annotations
 
@@ -15,6 +15,8 @@ import pytest
 import effects
 from effects.shaders.asm import check
 from effects.shaders.d3dbc import read_header, read_shader, write_program
+from effects.shaders.d3dbc.ctab import (MATRIX_COLUMNS, MATRIX_ROWS, OBJECT, SCALAR, STRUCT,
+                                        VECTOR, TypeInfo, default_size)
 from effects.shaders.d3dbc.writer import constant_table
 from effects.shaders.hlsl import compile_state
 from tests.paths import TESTS
@@ -86,16 +88,19 @@ def test_fxcs_bytecode_reads_and_checks(name, target, hlsl, data):
     assert check(binary.program) == []
 
 
-def _has_defaults(data: bytes) -> bool:
-    return any(c.default for c in read_shader(data, "t").table.constants)
+@pytest.mark.parametrize("register_set,type_,size", [
+    ("bool", TypeInfo(SCALAR, 1), 4),                                   # bool b: one DWORD
+    ("bool", TypeInfo(MATRIX_ROWS, 1, 3, 2), 24),                       # bool3x2: six
+    ("float4", TypeInfo(MATRIX_COLUMNS, 3, 4, 4), 64),                  # float4x4 held in c0-c1
+    ("int4", TypeInfo(MATRIX_ROWS, 2, 3, 2, 2), 96),                    # row_major int3x2[2]
+    ("float4", TypeInfo(STRUCT, 0, 1, 4, 1, (("f", TypeInfo(SCALAR, 3)),
+                                           ("v", TypeInfo(VECTOR, 3, 1, 3)))), 32),
+    ("sampler", TypeInfo(OBJECT, 12), 0)])
+def test_a_default_value_spans_the_whole_types_registers(register_set, type_, size):
+    assert default_size(register_set, type_) == size
 
 
-@pytest.mark.parametrize("name,target,hlsl,data", [
-    pytest.param(*p, marks=pytest.mark.xfail(
-        _has_defaults(p[3]), strict=True,
-        reason="our CTAB reader takes RegisterCount x 16 bytes of default value; fxc writes "
-               "the whole type's (a clamped float4x4's 64 bytes, a bool's 4)"))
-    for p in PAIRS], ids=IDS)
+@pytest.mark.parametrize("name,target,hlsl,data", PAIRS, ids=IDS)
 def test_fxcs_bytecode_writes_back_byte_for_byte(name, target, hlsl, data):
     binary = read_shader(data, name)
     assert write_program(binary.program, binary.table) == data
