@@ -394,6 +394,11 @@ def resolve_type(ctx: Context, tree: lark.Tree, origin: Origin, mods: Any = None
         assert t is not None
     elif kind in ("matrix_type", "vector_type"):
         t = sized_type(tree, origin)
+    elif kind == "inline_struct":             # a member `struct [S] { ... } m;`
+        name_tok, *members = tree.children
+        if name_tok is None:
+            name_tok = lark.Token("NAME", "(anonymous struct)")
+        t = struct_type(ctx, lark.Tree("struct_def", [name_tok, *members]), origin)
     else:
         name = str(tree.children[0])
         t = ctx.structs.get(name) or ctx.typedefs.get(name)
