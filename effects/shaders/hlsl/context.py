@@ -67,6 +67,8 @@ class Context:
     int_registers: dict[str, int] = field(default_factory=dict, init=False, repr=False)
     int_defs: dict[int, tuple] = field(default_factory=dict, init=False, repr=False)
     bool_registers: dict[str, int] = field(default_factory=dict, init=False, repr=False)
+    # the registers each of those takes: one per component (components.py)
+    component_counts: dict[str, int] = field(default_factory=dict, init=False, repr=False)
     global_values: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
     # the globals whose initialisers are evaluated, and the chain being evaluated now
     # (expressions._initialized): None outside one

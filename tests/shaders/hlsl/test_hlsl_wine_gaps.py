@@ -43,3 +43,85 @@ float4 PS() : COLOR { return s.f; }""", params="struct {\n  float f;\n  float f;
         effects.render(fx, "radeon9700", technique="T", size=(4, 4))
     assert "X3003: redefinition of 'f'" in str(err.value)
     assert (err.value.line, err.value.column) == (3, 9), str(err.value)
+
+
+# -- a loop counted by one component of a uniform int; an `if` on one of a uniform bool ----------
+# fxc gives such a parameter a register per component (effects/shaders/hlsl/components.py):
+# `int3 vn` is i0-i2 and `i < vn.z` is `rep i2`
+
+PS = "float4 PS(float4 c : COLOR0) : COLOR { return c; }"
+COUNTED = """
+float4 VS(float4 p : POSITION, out float4 c : COLOR0) : POSITION
+{
+    float4 acc = float4(0, 0, 0, 1);
+    int i;
+    for (i = 0; i < BOUND; i++)
+        acc.x += 0.125;
+    if (FLAG) acc.y = 0.5; else acc.z = 0.75;
+    c = acc;
+    return p;
+}
+""" + PS
+SHAPES = ("int3 vn = {1, 2, 3};\nrow_major int3x2 rn = {1, 2, 3, 4, 5, 6};\n"
+          "int3x2 cn = {1, 2, 3, 4, 5, 6};\nint an[2] = {1, 6};\n"
+          "struct {int n; int3 vn;} sn[2] = {1, 2, 3, 4, 5, 6, 7, 1};\n"
+          "bool3 vb = {true, false, true};\nstruct {bool b; bool2 v;} sb = {false, true, false};")
+
+
+@pytest.mark.parametrize("bound, flag, registers, count, flagged", [
+    # the bound, the flag, fxc's layout (first i#, the loop's i#, the if's b#), the count
+    # and the flag at the defaults above
+    ("vn.z", "vb.z", ("vn", 0, "rep i2", "if b2"), 3, True),
+    ("rn._31", "!vb.y", ("rn", 0, "rep i4", "if b1"), 5, True),     # row by row: 3 * 2 - 1
+    ("cn._31", "vb.x", ("cn", 0, "rep i4", "if b0"), 5, True),      # packing does not matter
+    ("an[1]", "sb.v.x", ("an", 0, "rep i1", "if b1"), 6, True),
+    ("sn[1].vn.y", "sb.b", ("sn", 0, "rep i6", "if b0"), 7, False),  # 4 a struct, + 1 + 1
+])
+def test_a_loop_counted_by_a_component_and_an_if_on_one(backend, bound, flag, registers, count,
+                                                         flagged):
+    from effects.shaders.hlsl import compile_shader
+    fx = effect_for(COUNTED.replace("BOUND", bound).replace("FLAG", flag),
+                    vs="compile vs_2_0 VS()", params=SHAPES)
+    shader = compile_shader(fx, "VS", "vs_2_0")
+    name, first, rep, if_b = registers
+    assert shader.int_registers == {name: first}, shader.int_registers
+    assert rep in shader.text and if_b in shader.text, shader.text
+    img = render(fx, backend)
+    want = (0.125 * count, 0.5 if flagged else 0, 0 if flagged else 0.75, 1)
+    assert np.allclose(img[4, 4], want, atol=TOL), (img[4, 4], want)
+
+
+def test_the_effect_sets_each_components_register_from_the_parameters_value(backend):
+    fx = effect_for(COUNTED.replace("BOUND", "vn.y").replace("FLAG", "vb.z"),
+                    vs="compile vs_2_0 VS()", params=SHAPES)
+    img = render(fx, backend, params={"vn": [7, 4, 1], "vb": [True, True, False]})
+    assert np.allclose(img[4, 4], (0.5, 0, 0.75, 1), atol=TOL), img[4, 4]
+
+
+def test_the_register_table_counts_up_to_the_last_component_read():
+    # fxc's table for `int3x2 ran[2]` read at ran[1]._21 (i8): 9 registers of 12 (Wine's
+    # registerset_blob_special_int); ours for this counts the same way
+    from effects.shaders.d3dbc.writer import constant_table
+    from effects.shaders.hlsl import compile_shader
+    fx = effect_for(COUNTED.replace("BOUND", "ran[1]._21").replace("FLAG", "vb.z"),
+                    vs="compile vs_3_0 VS()",
+                    params="row_major int3x2 ran[2] = {4, 5, 6, 1, 8, 1, 2, 3, 4, 7, 9, 1};\n"
+                           "bool3 vb = {true, false, true};",)
+    shader = compile_shader(fx, "VS", "vs_3_0")
+    table = {c.name: (c.register_set, c.register_index, c.register_count)
+             for c in constant_table(shader.program, shader).constants}
+    assert table == {"ran": ("int4", 0, 9), "vb": ("bool", 0, 3)}, table
+
+
+def test_a_component_bound_on_a_target_without_loops_is_x3511_at_the_loop():
+    from effects.shaders.hlsl import compile_shader
+    fx = effect_for(COUNTED.replace("BOUND", "vn.z").replace("FLAG", "vb.z"),
+                    vs="compile vs_1_1 VS()", params=SHAPES)
+    with pytest.raises(effects.EffectError) as err:
+        compile_shader(fx, "VS", "vs_1_1")
+    assert err.value.message.startswith("X3511: unable to unroll loop: its count is the "
+                                        "uniform 'vn', known only when the shader runs"), \
+        err.value.message
+    line = SHAPES.count("\n") + 1 + next(k for k, t in enumerate(COUNTED.split("\n"))
+                                         if "for (" in t) + 1
+    assert (err.value.location.line, err.value.location.column) == (line, 5)
