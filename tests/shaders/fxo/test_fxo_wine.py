@@ -26,7 +26,6 @@ BINARIES = sorted(DATA.glob("*.fxo"))
 SOURCE_REFUSED = {
     "test_effect_parameter_value_blob_object": "expected a string literal",  # string s_2[2] = {..}
     "test_effect_preshader_effect_blob": "expected ';'",       # float3(1, 2, 3)[i]: indexing a constructor
-    "test_effect_states_effect_blob": "VertexShaderConstant1",  # a scalar to a float4 register
 }
 
 # Binaries the reader refuses today, each with a located error naming what it cannot read yet

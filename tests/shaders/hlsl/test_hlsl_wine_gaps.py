@@ -125,3 +125,23 @@ def test_a_component_bound_on_a_target_without_loops_is_x3511_at_the_loop():
     line = SHAPES.count("\n") + 1 + next(k for k, t in enumerate(COUNTED.split("\n"))
                                          if "for (" in t) + 1
     assert (err.value.location.line, err.value.location.column) == (line, 5)
+
+
+# -- a shader-constant state given fewer numbers than its registers hold -------------------------
+
+def test_a_scalar_and_a_partial_constant_state_set_registers_as_d3dx_did(backend):
+    # D3DX (Wine's test_effect_states on native): a scalar sets its register's x; a value
+    # short of whole registers sets its first register and zeros the rest
+    fx = effects.load_effect("""
+technique T { pass P {
+    VertexShaderConstant1[1] = 0.5f;
+    VertexShaderConstant4[4] = {0.25, 0.75, 1, 1, 1, 1, 1, 1, 1};
+    VertexShader = asm { vs_1_1 dcl_position v0
+        mov oPos, v0
+        add oD0, c1, c5
+        mov oD0.z, c4.y
+        mov oD0.w, c4.z };
+    PixelShader = asm { ps_1_1 mov r0, v0 };
+} }""")
+    img = render(fx, backend)
+    assert np.allclose(img[4, 4], (0.5, 0, 0.75, 1), atol=TOL), img[4, 4]
