@@ -135,6 +135,7 @@ class Shapes(Transformer):
 
     def index(self, c): return _span_v("index", (c[0].value, c[2]), c[0], c[3])
     def call(self, c): return _span_v("call", (c[0].value, c[2] or []), c[0], c[3])
+    def call_index(self, c): return _span_v("expr", None, c[0], c[-1])
     def paren(self, c): return _span_v("paren", c[1], c[0], c[2])
     def angle_ref(self, c): return _span_v("ref", c[1].value, c[0], c[2])
     def list(self, c): return _span_v("list", c[1], c[0], c[2])

@@ -25,7 +25,6 @@ BINARIES = sorted(DATA.glob("*.fxo"))
 # fxc compiled them, so each is a front-end gap to close; once closed, drop it from here.
 SOURCE_REFUSED = {
     "test_effect_parameter_value_blob_object": "expected a string literal",  # string s_2[2] = {..}
-    "test_effect_preshader_effect_blob": "expected ';'",       # float3(1, 2, 3)[i]: indexing a constructor
 }
 
 # Binaries the reader refuses today, each with a located error naming what it cannot read yet

@@ -145,3 +145,31 @@ technique T { pass P {
 } }""")
     img = render(fx, backend)
     assert np.allclose(img[4, 4], (0.5, 0, 0.75, 1), atol=TOL), img[4, 4]
+
+
+# -- an element of a constructed value in a state's expression: `float3(1, 2, 3)[i]` ------------
+
+INDEXED = """int Index = 1;
+technique T { pass P {
+    PixelShaderConstantF[0] = float4(float3(0.25, 0.5, 0.75)[SUBSCRIPT], 0, 0, 1);
+    VertexShader = asm { vs_1_1 dcl_position v0
+        mov oPos, v0 };
+    PixelShader = asm { ps_2_0 mov oC0, c0 };
+} }"""
+
+
+@pytest.mark.parametrize("index", [0, 1, 2])
+def test_a_constructors_element_picked_by_a_parameter_in_a_state(backend, index):
+    fx = effects.load_effect(INDEXED.replace("SUBSCRIPT", "Index"))
+    img = effects.render(fx, "radeon9700", technique="T", backend=backend,
+                         scene={"mesh": "quad", "size": [8, 8]},
+                         params={"Index": index}).astype(np.float64) / 255
+    assert np.allclose(img[4, 4], ((0.25, 0.5, 0.75)[index], 0, 0, 1), atol=TOL), img[4, 4]
+
+
+def test_a_constructors_element_past_its_end_is_x3504_at_the_subscript():
+    fx = effects.load_effect(INDEXED.replace("SUBSCRIPT", "3"))
+    with pytest.raises(effects.EffectError) as err:
+        effects.render(fx, "radeon9700", technique="T", size=(4, 4))
+    assert "X3504: array index 3 out of bounds (the size is 3)" in str(err.value)
+    assert (err.value.line, err.value.column) == (3, 62)
