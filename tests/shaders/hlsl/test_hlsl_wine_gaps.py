@@ -173,3 +173,31 @@ def test_a_constructors_element_past_its_end_is_x3504_at_the_subscript():
         effects.render(fx, "radeon9700", technique="T", size=(4, 4))
     assert "X3504: array index 3 out of bounds (the size is 3)" in str(err.value)
     assert (err.value.line, err.value.column) == (3, 62)
+
+
+# -- a string array with an initialiser list: `string s_2[2] = {"a", "b"};` ------------------------
+
+def test_a_string_array_holds_its_strings_and_writes_to_a_binary_and_back(tmp_path):
+    from effects.shaders.fxo import write_effect_binary
+    fx = effects.load_effect('string s_2[2] = {"test1", "test2"};\nstring s = "one";\n'
+                             "technique T { pass P { } }")
+    assert [(p.name, p.value) for p in fx.parameters] == [("s_2", ["test1", "test2"]),
+                                                          ("s", "one")]
+    out = tmp_path / "s.fxo"
+    out.write_bytes(write_effect_binary(fx))
+    back = effects.load_effect(out)
+    assert [(p.name, p.value) for p in back.parameters] == [("s_2", ["test1", "test2"]),
+                                                            ("s", "one")]
+
+
+@pytest.mark.parametrize("text, message, column", [
+    ('string s_2[2] = {"test1", 2};', "'s_2' is a string array: expected a string literal, "
+                                      "found '2'", 27),
+    ('string s_2[2] = {"test1"};', "'s_2' has 2 elements, the initializer gives 1", 17),
+    ('string s_2[2] = "test1";', "'s_2' is an array: expected '{' with 2 values", 17),
+])
+def test_a_string_array_given_something_else_is_refused_where_it_is(text, message, column):
+    with pytest.raises(effects.EffectError) as err:
+        effects.load_effect(text + "\ntechnique T { pass P { } }")
+    assert err.value.message == message
+    assert (err.value.line, err.value.column) == (1, column)
