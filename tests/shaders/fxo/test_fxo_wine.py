@@ -23,8 +23,7 @@ DATA = TESTS / "data" / "fxo" / "wine"
 BINARIES = sorted(DATA.glob("*.fxo"))
 # Sources Wine kept that our HLSL front end refuses today (first error, as of this writing):
 # fxc compiled them, so each is a front-end gap to close; once closed, drop it from here.
-SOURCE_REFUSED = {
-}
+SOURCE_REFUSED: dict[str, str] = {}
 
 # Binaries the reader refuses today, each with a located error naming what it cannot read yet
 # (the reader's known gaps, issue 35's closing note): FXLC preshaders (expression states, a
