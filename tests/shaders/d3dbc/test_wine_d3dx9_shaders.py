@@ -188,3 +188,44 @@ technique Ours {{ {pass_(f"compile {target} main()", ours.samplers)} }}""")
     assert drawn.mean() > 0.4
     assert ((fxc_image[..., 0] > 0) & (fxc_image[..., 0] < 255))[drawn].mean() > 0.5
     assert np.abs(fxc_image - our_image).max() <= 1
+
+
+# The vertex shaders run side by side: fxc's bytecode (its constant table binding the
+# parameters: float4, int4 and bool registers, set by the pass as D3DX sets them) and our
+# compile of its HLSL, each lowered for a card and evaluated on one vertex by the NumPy
+# evaluator. Their POSITION has w = 0 (the programs write x and y only), so nothing of them
+# can be drawn; the output is compared instead. Hand values for two: registerset_blob_scalar
+# runs `rep i0` n = 8 times of pos.z * f * nf = 0.75 * 5.1 * 11; registerset_blob_vector
+# takes `if b2` (vb.z) and `rep i2` vn.z = 9 times of pos.z * vf.z * vnf.z = 0.75 * 5.3 * 62.
+HAND = {"registerset_blob_scalar": (8 * 0.75 * 5.1 * 11, 0, 0, 0),
+        "registerset_blob_vector": (9 * 0.75 * 5.3 * 62, 0, 0, 0)}
+VERTEX = (0.5, 0.25, 0.75, 1.0)
+
+
+def _position(effect, technique: int):
+    from backends.reference.evaluate import evaluate
+    from effects.d3d9.caps import load_profile
+    from effects.lower.passes import lower_pass
+    pp = lower_pass(effect, effect.techniques[technique], 0, load_profile("geforce6800"))
+    inputs = pp.uniform_values()
+    for item in pp.vertex.inputs:
+        if item.kind == "varying":
+            inputs[item.name] = np.array([VERTEX], np.float32)
+    return evaluate(pp.vertex, inputs, count=1).outputs["position"][0]
+
+
+@pytest.mark.parametrize("name,target,hlsl,data", [p for p in PAIRS if p[1].startswith("vs")],
+                         ids=[p[0] for p in PAIRS if p[1].startswith("vs")])
+def test_fxcs_vertex_shader_and_ours_compute_the_same_position(name, target, hlsl, data):
+    import dataclasses
+    from effects.model import BytecodeShader
+    effect = effects.load_effect(
+        f"{hlsl}\ntechnique Ours {{ pass P {{ VertexShader = compile {target} main(); }} }}\n"
+        "technique Fxc { pass P { VertexShader = NULL; } }")
+    states = effect.techniques[1].passes[0].states
+    states[0] = dataclasses.replace(states[0], value=BytecodeShader(
+        "vertex", target, "", data=data, location=states[0].location))
+    ours, fxc = _position(effect, 0), _position(effect, 1)
+    assert np.allclose(ours, fxc, rtol=1e-5, atol=1e-4), (ours, fxc)
+    if name in HAND:
+        assert np.allclose(fxc, HAND[name], rtol=1e-5), (fxc, HAND[name])
