@@ -81,8 +81,9 @@ class Bound:
 def bound_of(ev: Any, tree: lark.Tree, cond: Any, step: Any, attrs: Any = None) -> Bound | None:
     """The loop's Bound when it is `for (int i = 0; i < P; i++)` (or `++i`, `i += 1`; `i` may be
     declared before the loop) with P one component of a uniform int parameter, read through
-    literal indices, members and swizzles (components.py), or a `[loop]` for over compile-time integer bounds (count
-    0..255, start 0..255: what an integer constant holds); otherwise None."""
+    literal indices, members and swizzles (components.py), or a `[loop]` for over
+    compile-time integer bounds (count 0..255, start 0..255: what an integer constant holds);
+    otherwise None."""
     if cond is None or step is None or not isinstance(cond, lark.Tree) or cond.data != "binary":
         return None
     left, op, right = cond.children

@@ -2,8 +2,10 @@
 beside them (tests/data/d3dbc/wine/d3dx9_36_shader_excerpt.c, from Debian's wine 8.0 source:
 tests/data/d3dbc/MANIFEST.md): each reads, passes the assembly checks and names its target and
 compiler; it writes back byte for byte (default values, shared names and types as fxc laid
-them out); and our compile of its HLSL either gives a constant table with the same constants in the same register sets as
-fxc's, or fails with the gap named in COMPILE_GAPS (so that list is kept current)."""
+them out); our compile of its HLSL either gives a constant table with the same constants in
+the same register sets as fxc's (int and bool ones at fxc's registers), or fails with the gap
+named in COMPILE_GAPS (so that list is kept current); and fxc's vertex shaders and ours,
+evaluated side by side, compute the same position."""
 from __future__ import annotations
 
 import hashlib
