@@ -620,9 +620,8 @@ def _constant_states(stage: str, fx2: int) -> tuple[StateInfo, ...]:
 
 def constant_register_count(info: StateInfo, numbers: int) -> int:
     """How many registers a constant state's value of `numbers` numbers sets: one BOOL a
-    b# register, four a c# or i# register (the last one padded), or the 1-4 forms' own."""
-    if info.registers is not None:
-        return info.registers
+    b# register, four a c# or i# register (the last one padded); the 1-4 forms too, whose
+    digit only bounds the numbers (D3DX sets what the value holds: d3dx_constant_registers)."""
     if info.name.endswith("B"):
         return numbers
     return -(-numbers // 4)
@@ -1049,11 +1048,25 @@ def _coerce_constants(info: StateInfo, raw: Any, location: Location, parameters:
         array = array.astype(np.int32)
     else:
         array = _numbers(info, raw, location)
-    if info.registers is not None and array.size != 4 * info.registers:
-        raise _fail(info, f"got {array.size} value(s)", location)
-    if array.size % 4:
-        raise _fail(info, f"got {array.size} value(s), not a whole number of registers", location)
-    return array
+    if info.registers is not None and array.size > 4 * info.registers:
+        raise _fail(info, f"got {array.size} value(s), more than those registers hold", location)
+    return d3dx_constant_registers(array)
+
+
+def d3dx_constant_registers(array: np.ndarray) -> np.ndarray:
+    """A float or int shader-constant state's value as the registers D3DX sets from it (fxc
+    stores the value as written; Wine's d3dx9 test_effect_states records what native D3DX
+    did): one register per four numbers, a last partial one counting; a value that is a whole
+    number of registers sets them all; one that is not sets its first register from its first
+    four numbers and the others to zero (`{4,4,4,4, 5,5,5,5, 6}` at c4: c4 = 4s, c5 = c6 = 0).
+    The lanes a scalar leaves (`VertexShaderConstant1[1] = 3.0f`: c1.x = 3) held whatever
+    was on the stack; here zero."""
+    if array.size % 4 == 0:
+        return array
+    out = np.zeros(-(-array.size // 4) * 4, dtype=array.dtype)
+    first = min(4, array.size)
+    out[:first] = array[:first]
+    return out
 
 
 def _coerce_object(info: StateInfo, raw: Any, location: Location, parameters: Container[str]) -> Any:

@@ -325,7 +325,7 @@ class Builder:
             return Expression(self.text_of(v), self.loc(v))
         if spec.is_numeric:
             return self.numeric(spec, dims, v, name)
-        if spec.base == "string":
+        if spec.base == "string" and not dims:
             if v.kind != "str":
                 raise self.error(ParseError, f"'{name}' is a string: expected a string literal, "
                                  f"found '{self.text_of(v)[:40]}'", v)
@@ -343,6 +343,12 @@ class Builder:
     def object_value(self, spec: TypeSpec, v: V, name: str) -> Any:
         if v.kind == "null":
             return NullValue(self.loc(v))
+        if spec.base == "string":
+            # an element of `string s_2[2] = {"a", "b"}` (fxc takes string arrays)
+            if v.kind != "str":
+                raise self.error(ParseError, f"'{name}' is a string array: expected a string "
+                                 f"literal, found '{self.text_of(v)[:40]}'", v)
+            return v.data
         if spec.base == "sampler":
             if v.kind == "sampler":
                 return SamplerState([self.state(s, "sampler") for s in v.data], self.loc(v))

@@ -135,6 +135,7 @@ class Shapes(Transformer):
 
     def index(self, c): return _span_v("index", (c[0].value, c[2]), c[0], c[3])
     def call(self, c): return _span_v("call", (c[0].value, c[2] or []), c[0], c[3])
+    def call_index(self, c): return _span_v("expr", None, c[0], c[-1])
     def paren(self, c): return _span_v("paren", c[1], c[0], c[2])
     def angle_ref(self, c): return _span_v("ref", c[1].value, c[0], c[2])
     def list(self, c): return _span_v("list", c[1], c[0], c[2])
@@ -213,7 +214,21 @@ class Shapes(Transformer):
         return [("struct", [struct_tok, name_tok, body, body])] + [
             RawParam([], name_tok, d[0], d[1], d[2], d[3] or [], d[4]) for d in c[3::2]]
 
+    def anonymous_struct_vars(self, c):
+        """`struct { float f; int i; } s = { ... };` (fxc takes an unnamed struct type for
+        the variables it declares): the struct under a name no source can spell, as
+        `typedef struct { ... } NAME;` would name it, then the variables as struct_vars."""
+        struct_tok, body = c[0], c[1]
+        name_tok = Token.new_borrow_pos("NAME", anonymous_struct_name(struct_tok), struct_tok)
+        return [("typedef_struct", [None, struct_tok, None, body, name_tok, None])] + [
+            RawParam([], name_tok, d[0], d[1], d[2], d[3] or [], d[4]) for d in c[2::2]]
+
     def typedef_struct(self, c): return ("typedef_struct", c)
+
+
+def anonymous_struct_name(at: Token) -> str:
+    """The name an unnamed struct type goes by (in messages too): where it was declared."""
+    return f"__unnamed_struct_{at.line}_{at.column}"
 
 
 _ESCAPES = {"n": "\n", "t": "\t", "r": "\r", "\\": "\\", '"': '"', "'": "'", "0": "\0"}

@@ -307,13 +307,32 @@ def _assemble(effect: Effect, state: DeviceState, shader: Any, stage: str,
     # with the shader, as VertexShaderConstantI / PixelShaderConstantI would)
     family = "PixelShaderConstantI" if stage == "pixel" else "VertexShaderConstantI"
     for name, register in found.int_registers.items():
-        state.apply(StateAssignment(family, ParamRef(name), index=register, location=location))
+        _set_components(effect, state, family, name, register, found.compiled, location)
     # a bool parameter an `if b#` tests sits in its b# (VertexShaderConstantB / Pixel...)
     family = "PixelShaderConstantB" if stage == "pixel" else "VertexShaderConstantB"
     for name, register in found.bool_registers.items():
-        state.apply(StateAssignment(family, ParamRef(name), index=register, location=location))
+        _set_components(effect, state, family, name, register, found.compiled, location)
     evaluate_into(effect, state)   # expressions in those samplers' sampler_state blocks
     return found.program, found.compiled
+
+
+def _set_components(effect: Effect, state: DeviceState, family: str, name: str, register: int,
+                    compiled: Any, location: Location) -> None:
+    """An int or bool parameter into its registers, one per component from `register` (as
+    fxc laid them out: effects/shaders/hlsl/components.py), as many as the register table
+    gives it. A scalar is the parameter itself (no value: the register is left unset)."""
+    count = compiled.register_count(name) if compiled is not None else 1
+    p = effect.parameter(name)
+    if count == 1 and (p is None or (p.type.rows == 1 and p.type.cols == 1 and not p.array
+                                     and not p.type.struct)):
+        state.apply(StateAssignment(family, ParamRef(name), index=register, location=location))
+        return
+    from effects.shaders.hlsl.registers import parameter_numbers
+    numbers = parameter_numbers(effect, name)
+    if numbers is None:
+        return
+    for k in range(min(count, len(numbers))):
+        state.apply(StateAssignment(family, (numbers[k],), index=register + k, location=location))
 
 
 def _sampler_ref(name: str) -> ParamRef:
@@ -333,8 +352,9 @@ def _int_constants(state: DeviceState, shader: str, compiled: Any
     INT vec[4] = {0, 0, 1, 0}). So `loop aL, i#` runs aL = 0, 1, ... N - 1 (count, start,
     step, unused); `rep i#` reads only the count."""
     found = state.int_constants(shader)
-    for register in getattr(compiled, "int_registers", {}).values():
-        found[register] = (found.get(register, (0, 0, 0, 0))[0], 0, 1, 0)
+    for name, first in getattr(compiled, "int_registers", {}).items():
+        for register in range(first, first + compiled.register_count(name)):
+            found[register] = (found.get(register, (0, 0, 0, 0))[0], 0, 1, 0)
     return found
 
 

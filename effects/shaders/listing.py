@@ -85,8 +85,11 @@ def listing(effect: "Effect", shader: Any) -> list[str]:
                   f"//   {'-' * 24} {'-' * 5} ----"]
         rows = sorted(((f"c{c}", name, n) for name, (c, n) in shader.constants.items()),
                       key=lambda r: int(r[0][1:]))
-        rows += sorted(((f"i{k}", name, 1) for name, k in ints.items()), key=lambda r: int(r[0][1:]))
-        rows += sorted(((f"b{k}", name, 1) for name, k in bools.items()), key=lambda r: int(r[0][1:]))
+        count = getattr(shader, "register_count", lambda name: 1)
+        rows += sorted(((f"i{k}", name, count(name)) for name, k in ints.items()),
+                       key=lambda r: int(r[0][1:]))
+        rows += sorted(((f"b{k}", name, count(name)) for name, k in bools.items()),
+                       key=lambda r: int(r[0][1:]))
         rows += sorted(((f"s{s}", name, 1) for name, s in shader.samplers.items()),
                        key=lambda r: int(r[0][1:]))
         lines += [f"//   {name:<24} {reg:<5} {n:>4}" for reg, name, n in rows]

@@ -137,6 +137,7 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
     samplers: dict[str, int] = {}
     ints: dict[str, int] = {}
     bools: dict[str, int] = {}
+    counts: dict[str, int] = {}          # an int or bool parameter's registers, one a component
     types: dict = {}
     for c in table.constants:
         if c.register_set == "sampler":
@@ -149,12 +150,15 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
             constants[c.name] = (c.register_index, c.register_count)
         elif c.register_set == "int4":
             ints[c.name] = c.register_index
+            counts[c.name] = c.register_count
         elif c.register_set == "bool":
             bools[c.name] = c.register_index
+            counts[c.name] = c.register_count
     text = program_text(program)
     return program, CompiledShader("<bytecode>", program.name, text, program, constants,
                                    samplers, [value.location] * (text.count("\n") + 1),
-                                   types=types, int_registers=ints, bool_registers=bools)
+                                   types=types, int_registers=ints, bool_registers=bools,
+                                   register_counts=counts)
 
 
 def _htype(t: Any) -> Any:

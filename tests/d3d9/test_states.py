@@ -9,8 +9,9 @@ import pytest
 from effects.base.errors import Location, StateError
 from effects.model import (CompileShader, EnumValue, Expression, NullValue, ParamRef,
                            SamplerState, ShaderBlock)
-from effects.d3d9.states import (ENUMS, STATES, check_index, coerce_state_value, default_value,
-                            lookup_state, pack_color, suggest_state)
+from effects.d3d9.states import (ENUMS, STATES, check_index, coerce_state_value,
+                                 constant_register_count, default_value, lookup_state,
+                                 pack_color, suggest_state)
 
 LOC = Location("fx/test.fx", 12, 9)
 
@@ -313,6 +314,20 @@ def test_shader_constants():
     assert list(coerce("PixelShaderConstantB", (True, False, True))) == [True, False, True]
 
 
+def test_a_shader_constant_value_short_of_whole_registers_sets_them_as_d3dx_did():
+    # Wine's d3dx9 test_effect_states (fxc's binary, native D3DX): VertexShaderConstant1[1] =
+    # 3.0f gives c1.x = 3; VertexShaderConstant4[2] = 1 one register, c2.x = 1; and
+    # VertexShaderConstant4[4] = {4,4,4,4, 5,5,5,5, 6} c4 = 4s, c5 = c6 = 0, c7 untouched
+    assert list(coerce("VertexShaderConstant1", 3.0)) == [3, 0, 0, 0]
+    one = coerce("VertexShaderConstant4", 1)
+    assert list(one) == [1, 0, 0, 0]
+    assert constant_register_count(lookup_state("VertexShaderConstant4"), one.size) == 1
+    nine = coerce("VertexShaderConstant4", (4, 4, 4, 4, 5, 5, 5, 5, 6))
+    assert list(nine) == [4, 4, 4, 4] + [0] * 8
+    assert list(coerce("PixelShaderConstantF", (1, 2, 3))) == [1, 2, 3, 0]
+    assert list(coerce("VertexShaderConstantI", (5,))) == [5, 0, 0, 0]
+
+
 def test_parameters_drive_any_state():
     params = {"BlendMode", "FogAmount", "tex", "Texture", "WorldViewProj"}
     assert coerce("SrcBlend", ["BlendMode"], params) == ParamRef("BlendMode")
@@ -386,11 +401,9 @@ def test_type_errors():
         "MaterialDiffuse expects a float4 (4 numbers); got 2 value(s)"
     assert error_of("ViewTransform", tuple(range(12))) == \
         "ViewTransform expects a 4x4 matrix (16 numbers); got 12 value(s)"
-    assert error_of("VertexShaderConstant", (1.0, 2.0, 3.0)) == (
-        "VertexShaderConstant expects float shader constants (4 numbers per register); "
-        "got 3 value(s), not a whole number of registers")
-    assert error_of("PixelShaderConstant2", (1, 2, 3, 4)) == \
-        "PixelShaderConstant2 expects 2 float4 register(s) (8 numbers); got 4 value(s)"
+    assert error_of("PixelShaderConstant2", tuple(range(9))) == (
+        "PixelShaderConstant2 expects 2 float4 register(s) (8 numbers); got 9 value(s), more "
+        "than those registers hold")
     assert error_of("Lighting", NullValue()) == "Lighting expects a bool (TRUE or FALSE); got NULL"
 
 

@@ -9,8 +9,9 @@ type records (Class, Type, Rows, Columns, Elements, StructMembers, StructMemberI
 8-byte struct member records (Name, TypeInfo). Every offset counts bytes from the header's
 first byte (the DWORD after the 'CTAB' code); strings end with a NUL. fxc writes the strings
 and records after the constant array, the target and then the creator last, and pads the
-comment to whole DWORDs; a numeric type several constants share is written once, and the padding
-before a record is 0xAB bytes.
+comment to whole DWORDs; a string, a numeric type several constants share and a struct's member
+list are written once (_write_type says which), the padding before a record or a default value
+is 0xAB bytes, and a default value spans the whole type's registers (default_size).
 """
 from __future__ import annotations
 
@@ -42,6 +43,19 @@ class TypeInfo:
     elements: int = 1
     members: tuple[tuple[str, "TypeInfo"], ...] = ()
 
+    def registers(self, register_set: str) -> int:
+        """The registers the whole type takes in `register_set` (before any clamp to those the
+        shader reads): a bool register per component; a float4/int4 register per element of a
+        scalar or vector, per row of a row-major matrix, per column of a column-major one,
+        a struct its members'."""
+        if self.members:
+            one = sum(t.registers(register_set) for _, t in self.members)
+        elif register_set == "bool":
+            one = self.rows * self.columns
+        else:
+            one = {MATRIX_ROWS: self.rows, MATRIX_COLUMNS: self.columns}.get(self.cls, 1)
+        return one * max(1, self.elements)
+
     @property
     def type_name(self) -> str:
         return PARAMETER_TYPES[self.type] if self.type < len(PARAMETER_TYPES) else str(self.type)
@@ -54,7 +68,9 @@ class ConstantInfo:
     register_index: int
     register_count: int
     type: TypeInfo
-    default: bytes | None = None               # register_count * 16 bytes, when given
+    default: bytes | None = None               # when given, default_bytes() of them: fxc
+                                               # writes the whole type's value even where
+                                               # the registers are clamped to fewer
 
     @property
     def register_letter(self) -> str:
@@ -70,13 +86,26 @@ class ConstantTable:
     flags: int = 0
 
 
+def default_size(register_set: str, typ: TypeInfo) -> int:
+    """The bytes of a default value as fxc 9.29 lays it out (Wine's d3dx9 constant-table test
+    shaders show it): a DWORD per bool register, 16 bytes per float4 or int4 register, for
+    every register of the whole type, so a float4x4 clamped to c0-c1 still has 64 bytes and a
+    bool 4. A sampler has none."""
+    if register_set == "sampler":
+        return 0
+    return typ.registers(register_set) * (4 if register_set == "bool" else 16)
+
+
 # -- writing ---------------------------------------------------------------------------------
 class _Blob:
     """Bytes with offsets handed out as things are appended."""
 
     def __init__(self, size: int) -> None:
         self.data = bytearray(size)
-        self.types: dict[TypeInfo, int] = {}    # a type written once, shared (as fxc does)
+        self.types: dict[tuple[TypeInfo, bool], int] = {}  # (type, a member's?) written once
+                                                           # and shared, as fxc does
+        self.strings: dict[str, int] = {}       # and a name
+        self.members: dict[tuple, int] = {}     # and a struct's member list
 
     def align(self) -> None:
         self.data += b"\xab" * (-len(self.data) % 4)     # fxc pads with 0xAB bytes
@@ -87,7 +116,9 @@ class _Blob:
         return at
 
     def string(self, text: str) -> int:
-        return self.add(text.encode("ascii", "replace") + b"\0")
+        if text not in self.strings:
+            self.strings[text] = self.add(text.encode("ascii", "replace") + b"\0")
+        return self.strings[text]
 
 
 def write_ctab(table: ConstantTable) -> bytes:
@@ -98,6 +129,8 @@ def write_ctab(table: ConstantTable) -> bytes:
     for c in table.constants:
         name = blob.string(c.name)
         type_at = _write_type(blob, c.type)
+        if c.default:
+            blob.align()                     # fxc starts a default value on a DWORD
         default = blob.add(c.default) if c.default else 0
         records.append(struct.pack("<IHHHHII", name, REGISTER_SETS.index(c.register_set),
                                    c.register_index, c.register_count, 0, type_at, default))
@@ -110,21 +143,28 @@ def write_ctab(table: ConstantTable) -> bytes:
     return bytes(blob.data)
 
 
-def _write_type(blob: _Blob, t: TypeInfo) -> int:
-    """The offset of `t`'s record: a new one (aligned to 4 bytes) or, for a numeric type, the
-    same type's (fxc 10.1 shares float4's record among constants, never a sampler's)."""
-    if t.cls != OBJECT and t in blob.types:
-        return blob.types[t]
-    members_at = 0
-    if t.members:
-        names = [blob.string(name) for name, _ in t.members]
-        types = [_write_type(blob, mt) for _, mt in t.members]
+def _write_type(blob: _Blob, t: TypeInfo, member: bool = False) -> int:
+    """The offset of `t`'s record: a new one (aligned to 4 bytes) or, for a numeric type that
+    is no array, the same type's written before in the same scope, constants' or struct
+    members' (fxc 9.29 shares one bool among constants, one float among the members of
+    any struct, but not a constant's float with a member's, nor an array's, a struct's or
+    a sampler's record; s and s_2[2] of one struct type share its member list). A struct's
+    members go first, each name followed by its type."""
+    key = (t, member)
+    shared = t.cls not in (OBJECT, STRUCT) and t.elements <= 1
+    if shared and key in blob.types:
+        return blob.types[key]
+    members_at = blob.members.get(t.members, 0)
+    if t.members and not members_at:
+        pairs = [(blob.string(name), _write_type(blob, mt, True)) for name, mt in t.members]
         blob.align()
-        members_at = blob.add(b"".join(struct.pack("<II", a, b) for a, b in zip(names, types)))
+        members_at = blob.add(b"".join(struct.pack("<II", a, b) for a, b in pairs))
+        blob.members[t.members] = members_at
     blob.align()
     at = blob.add(struct.pack("<6HI", t.cls, t.type, t.rows, t.columns, t.elements,
                               len(t.members), members_at))
-    blob.types[t] = at
+    if shared:
+        blob.types[key] = at
     return at
 
 
@@ -193,10 +233,12 @@ def read_ctab(data: bytes, base: int, path: str) -> ConstantTable:
         if rset >= len(REGISTER_SETS):
             raise r.fail(f"constant {k}: register set {rset} is none of bool, int4, float4, "
                          "sampler", at + 4)
+        typ = r.type(type_at, 0)
         default = None
         if default_at:
-            default = bytes(r.unpack(f"<{16 * count}s", default_at, "default value")[0])
+            size = default_size(REGISTER_SETS[rset], typ)
+            default = bytes(r.unpack(f"<{size}s", default_at, "default value")[0])
         constants.append(ConstantInfo(r.string(name_at, "constant name"), REGISTER_SETS[rset],
-                                      index, count, r.type(type_at, 0), default))
+                                      index, count, typ, default))
     return ConstantTable(tuple(constants), r.string(target, "target") if target else "",
                          version, r.string(creator, "creator") if creator else "", flags)

@@ -241,11 +241,12 @@ def constant_table(program: AsmProgram, compiled: "CompiledShader | None" = None
         for name, (register, size) in compiled.constants.items():
             constants.append(ConstantInfo(name, "float4", register, size,
                                           _type_info(compiled.types.get(name), "float")))
+        # an int or bool parameter: a register per component, up to the last read
         for name, register in compiled.int_registers.items():
-            constants.append(ConstantInfo(name, "int4", register, 1,
+            constants.append(ConstantInfo(name, "int4", register, compiled.register_count(name),
                                           _type_info(compiled.types.get(name), "int")))
         for name, register in compiled.bool_registers.items():
-            constants.append(ConstantInfo(name, "bool", register, 1,
+            constants.append(ConstantInfo(name, "bool", register, compiled.register_count(name),
                                           _type_info(compiled.types.get(name), "bool")))
         for name, register in compiled.samplers.items():
             dcl = program.declaration("s", register)

@@ -2,7 +2,8 @@
 
 Which `if` stays a branch (fxc's choices, as far as its documentation and listings show):
 
-- `if (B)` / `if (!B)` with `B` a (non-static) `uniform bool` global: a *static* branch, `if b#`,
+- `if (B)` / `if (!B)` with `B` a (non-static) `uniform bool` global, or one component of one
+  (`vb.z`, `sb.vb.z`: a b# per component, components.py): a *static* branch, `if b#`,
   on every target with static flow control (vs_2_0 and up, ps_2_x, ps_3_0: flowrules.py); the
   parameter gets a b# in the register table (CompiledShader.bool_registers) and lowering sets
   it as VertexShaderConstantB / PixelShaderConstantB. Elsewhere (vs_1_1, ps_2_0/2_a/2_b) the
@@ -33,7 +34,7 @@ from typing import Any
 
 import lark
 
-from effects.shaders.hlsl.context import explicit_register
+from effects.shaders.hlsl.components import component_register, uniform_component
 from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.flowrules import (MAX_DEPTH, Effects, NotReal, TargetFlow, enter,
                                             flow_vars, leave, refusal)
@@ -42,21 +43,14 @@ from effects.shaders.hlsl.values import Value, Var, build_value, operand
 
 _ids = itertools.count()
 _COMPARE = {"<": "lt", "<=": "le", ">": "gt", ">=": "ge", "==": "eq", "!=": "ne"}
-def bool_uniform(ev: Any, cond: Any) -> tuple[str, bool] | None:
-    """(parameter, negated) when the condition is `B` or `!B` with B a uniform bool global."""
+def bool_uniform(ev: Any, cond: Any) -> tuple[str, int, bool] | None:
+    """(parameter, component, negated) when the condition is `B` or `!B` with B one component
+    of a uniform bool global (`b`, `vb.z`, `sab[1].vb.z`: components.py)."""
     negated = False
     if isinstance(cond, lark.Tree) and cond.data == "prefix" and str(cond.children[0]) == "!":
         cond, negated = cond.children[1], True
-    if not (isinstance(cond, lark.Tree) and cond.data == "var"):
-        return None
-    name = str(cond.children[0])
-    if ev.lookup(name) is not None:
-        return None
-    p = ev.ctx.effect.parameter(name)
-    if p is None or p.type.base != "bool" or p.type.rows != 1 or p.type.cols != 1 or p.array \
-            or "static" in p.storage or "const" in p.storage:
-        return None
-    return name, negated
+    found = uniform_component(ev, cond, ("bool",))
+    return None if found is None else (*found, negated)
 
 
 def comparison(ev: Any, cond: Any) -> tuple[str, list[Operand]]:
@@ -148,20 +142,10 @@ def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -
         v.value = build_value(v.type, comps)
 
 
-def bool_register(ev: Any, name: str) -> int:
-    """The b# of a bool parameter: its register(b#) binding, else the next free one."""
-    regs = ev.ctx.bool_registers
-    if name not in regs:
-        bound = explicit_register(ev.ctx, name, "b")
-        if bound is not None:
-            regs[name] = bound
-        else:
-            taken = set(regs.values())
-            k = 0
-            while k in taken:
-                k += 1
-            regs[name] = k
-    return regs[name]
+def bool_register(ev: Any, name: str, component: int = 0) -> int:
+    """The b# of a bool parameter's component: the parameter's register(b#) binding, else
+    the next free run of registers, one per component (components.py), plus `component`."""
+    return component_register(ev.ctx, name, "b") + component
 
 
 __all__ = ["TargetFlow", "bool_uniform", "comparison", "real_if", "bool_register", "enter",

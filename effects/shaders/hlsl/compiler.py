@@ -286,7 +286,8 @@ def list_program(c: Compilation) -> None:
                               code.samplers, lines, list(ctx.warnings),  # type: ignore[union-attr]
                               dict(ctx.uniforms_used), code.int_registers,  # type: ignore[union-attr]
                               code.bool_registers,  # type: ignore[union-attr]
-                              {n: p for n, p in c.preshaders.items() if n in code.constants})  # type: ignore[union-attr]
+                              {n: p for n, p in c.preshaders.items() if n in code.constants},  # type: ignore[union-attr]
+                              dict(code.register_counts))  # type: ignore[union-attr]
 
 
 # bind -> evaluate -> outputs -> (ps_1_x preshader) -> reach -> layout constants -> fuse ->

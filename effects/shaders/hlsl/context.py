@@ -67,6 +67,8 @@ class Context:
     int_registers: dict[str, int] = field(default_factory=dict, init=False, repr=False)
     int_defs: dict[int, tuple] = field(default_factory=dict, init=False, repr=False)
     bool_registers: dict[str, int] = field(default_factory=dict, init=False, repr=False)
+    # the registers each of those takes: one per component (components.py)
+    component_counts: dict[str, int] = field(default_factory=dict, init=False, repr=False)
     global_values: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
     # the globals whose initialisers are evaluated, and the chain being evaluated now
     # (expressions._initialized): None outside one
@@ -394,6 +396,11 @@ def resolve_type(ctx: Context, tree: lark.Tree, origin: Origin, mods: Any = None
         assert t is not None
     elif kind in ("matrix_type", "vector_type"):
         t = sized_type(tree, origin)
+    elif kind == "inline_struct":             # a member `struct [S] { ... } m;`
+        name_tok, *members = tree.children
+        if name_tok is None:
+            name_tok = lark.Token("NAME", "(anonymous struct)")
+        t = struct_type(ctx, lark.Tree("struct_def", [name_tok, *members]), origin)
     else:
         name = str(tree.children[0])
         t = ctx.structs.get(name) or ctx.typedefs.get(name)

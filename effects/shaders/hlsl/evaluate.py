@@ -345,10 +345,11 @@ class Evaluator:
             # a bool uniform: a static branch where the target has them (branches.py)
             b = bool_uniform(self, cond_tree)
             if b is not None and flow.static:
-                name, negated = b
+                name, component, negated = b
                 sides = (other, then) if negated else (then, other)
                 try:
-                    real_if(self, tree, ("bool", [bool_register(self, name)]), *sides, "static")
+                    real_if(self, tree, ("bool", [bool_register(self, name, component)]), *sides,
+                            "static")
                     return
                 except NotReal as err:
                     if branch:

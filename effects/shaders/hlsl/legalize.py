@@ -16,6 +16,7 @@ from effects.shaders.asm.versions import IDENTITY, PS20_SWIZZLES
 from effects.shaders.asm.program import Operand
 from effects.shaders.hlsl.allocate import allocate
 from effects.shaders.hlsl.asmcode import Instr, Reg, Src, _SAMPLER_DCL
+from effects.shaders.hlsl.components import used_counts
 from effects.shaders.hlsl.writer import Code, declaration, register, swizzled
 
 _TEXLD = {"texld", "texldp", "texldb", "texldl", "texldd"}
@@ -163,11 +164,13 @@ def code_of(cg: Any) -> Code:
         if name in read:
             dcls.append(declaration("s", k, sampler_type=_SAMPLER_DCL.get(kinds.get(name, "2d"), "2d")))
     used_c = {name: (start, cg.register_sizes.get(name, 1)) for name, start in cg.const_regs.items()}
-    ints = {name: k for name, k in getattr(cg.ctx, "int_registers", {}).items() if k in used_i}
+    counts = getattr(cg.ctx, "component_counts", {})
+    ints, int_counts = used_counts(getattr(cg.ctx, "int_registers", {}), counts, used_i)
     used_b = {s.reg.index for ins in cg.instrs if ins.opcode == "if" for s in ins.srcs
               if s.reg.kind == "b"}
-    bools = {name: k for name, k in getattr(cg.ctx, "bool_registers", {}).items() if k in used_b}
+    bools, bool_counts = used_counts(getattr(cg.ctx, "bool_registers", {}), counts, used_b)
     return Code(cg.instrs, alloc, source,
                 {r: tuple(0.0 if v is None else v for v in vals) for r, vals in cg.defs.items()},
                 {r: v for r, v in int_defs.items() if r in used_i}, dcls, samplers, used_c,
-                {n: k for n, k in samplers.items() if n in read}, ints, bools)
+                {n: k for n, k in samplers.items() if n in read}, ints, bools,
+                register_counts={**int_counts, **bool_counts})

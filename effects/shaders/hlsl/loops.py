@@ -46,6 +46,7 @@ from typing import Any
 
 import lark
 
+from effects.shaders.hlsl.components import component_register, taken_registers, uniform_component
 from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.flowrules import (DYNAMIC_TARGETS, Effects, NotReal, TargetFlow, enter,
                                             flow_vars, leave, refusal)
@@ -61,12 +62,14 @@ _ids = itertools.count()
 @dataclass(frozen=True)
 class Bound:
     """A loop that can run as real flow control: `for (int i = start; i < P; i++)` with P a
-    uniform int scalar parameter (`param`; start 0), or `[loop] for (int i = A; i < B; i++)`
-    with A, B compile-time integers (`param` None, `count` = B - A iterations)."""
+    uniform int parameter's scalar component (`param`, `component`: `n`, `vn.z`, `an[1]`;
+    start 0), or `[loop] for (int i = A; i < B; i++)` with A, B compile-time integers
+    (`param` None, `count` = B - A iterations)."""
     counter: str
     param: str | None
     start: int = 0
     count: int | None = None
+    component: int = 0
 
     def why(self) -> str:
         """What makes the loop one that cannot be unrolled (the head of an X3511 reason)."""
@@ -76,9 +79,11 @@ class Bound:
 
 
 def bound_of(ev: Any, tree: lark.Tree, cond: Any, step: Any, attrs: Any = None) -> Bound | None:
-    """The loop's Bound when it is `for (int i = 0; i < P; i++)` (or `++i`, `i += 1`) with P a
-    uniform int scalar parameter, or a `[loop]` for over compile-time integer bounds (count
-    0..255, start 0..255: what an integer constant holds); otherwise None."""
+    """The loop's Bound when it is `for (int i = 0; i < P; i++)` (or `++i`, `i += 1`; `i` may be
+    declared before the loop) with P one component of a uniform int parameter, read through
+    literal indices, members and swizzles (components.py), or a `[loop]` for over
+    compile-time integer bounds (count 0..255, start 0..255: what an integer constant holds);
+    otherwise None."""
     if cond is None or step is None or not isinstance(cond, lark.Tree) or cond.data != "binary":
         return None
     left, op, right = cond.children
@@ -93,13 +98,9 @@ def bound_of(ev: Any, tree: lark.Tree, cond: Any, step: Any, attrs: Any = None) 
     first = var.value.const_values()
     if first is None:
         return None
-    if _is_var(right) and ev.lookup(str(right.children[0])) is None:
-        bound = str(right.children[0])
-        param = ev.ctx.effect.parameter(bound)
-        if param is not None and "static" not in param.storage and \
-                param.type.base in ("int", "uint", "dword") and param.type.rows == 1 and \
-                param.type.cols == 1 and not param.array:
-            return Bound(counter, bound) if first == (0.0,) else None
+    found = uniform_component(ev, right, ("int", "uint"))
+    if found is not None:
+        return Bound(counter, found[0], component=found[1]) if first == (0.0,) else None
     asked = has_attribute(attrs, "loop") or ev.ctx.loops_for_size
     if not asked and not TargetFlow.of(ev.ctx.target).static:
         return None
@@ -249,7 +250,7 @@ def _counter_offset(counter: Operand, index: Operand) -> int | None:
 
 
 def _free_int(ctx: Any) -> int:
-    taken = set(ctx.int_registers.values()) | set(ctx.int_defs)
+    taken = taken_registers(ctx, "i")
     k = 0
     while k in taken:
         k += 1
@@ -268,12 +269,13 @@ def real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
     had = set(defs)
     fresh = bound.param is not None and bound.param not in ints
     if fresh:
-        ints[bound.param] = _free_int(ctx)
+        component_register(ctx, bound.param, "i")
     try:
         _real_loop(ev, tree, body, step, bound)
     except NotReal:
         if fresh:
             del ints[bound.param]
+            del ctx.component_counts[bound.param]
         for k in set(defs) - had:
             del defs[k]
         raise
@@ -330,7 +332,7 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
         raise
     uses_al = al is not None and al.used
     if bound.param is not None:
-        register = ctx.int_registers[bound.param]
+        register = ctx.int_registers[bound.param] + bound.component
     else:
         register = _free_int(ctx)
         s = al.stride if uses_al else 0

@@ -159,6 +159,7 @@ class _Build:
 
     struct_def = staticmethod(_lead("struct_def"))
     struct_stmt = staticmethod(_lead("struct_stmt"))
+    inline_struct = staticmethod(_lead("inline_struct"))
     semantic = staticmethod(_lead("semantic"))
     register = staticmethod(_lead("register"))
     dims = staticmethod(_lead("dims"))

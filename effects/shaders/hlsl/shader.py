@@ -77,6 +77,11 @@ class CompiledShader:
     bool_registers: dict[str, int] = field(default_factory=dict)
     # constant-table names -> what the host computes into them
     preshaders: dict[str, ShaderPreshader] = field(default_factory=dict)
+    # an int or bool parameter's registers from its first, one per component (absent: one)
+    register_counts: dict[str, int] = field(default_factory=dict)
+
+    def register_count(self, name: str) -> int:
+        return self.register_counts.get(name, 1)
 
     @property
     def stage(self) -> str:

@@ -165,7 +165,8 @@ def _encode(result: Any) -> dict:
     if type(result) is not CompiledShader:
         raise Unkeyable(type(result).__qualname__)
     known = {"function", "target", "text", "program", "constants", "samplers", "lines",
-             "warnings", "types", "int_registers", "bool_registers", "preshaders"}
+             "warnings", "types", "int_registers", "bool_registers", "preshaders",
+             "register_counts"}
     if {f.name for f in dataclasses.fields(CompiledShader)} != known:
         raise Unkeyable("CompiledShader has fields this store does not know")
     for w in result.warnings:
@@ -181,6 +182,7 @@ def _encode(result: Any) -> dict:
         "int_registers": dict(result.int_registers), "bool_registers": dict(result.bool_registers),
         "preshaders": {k: {"width": p.width, "steps": [list(step) for step in p.steps]}
                        for k, p in result.preshaders.items()},
+        "register_counts": dict(result.register_counts),
     }
 
 
@@ -218,7 +220,8 @@ def _decode(d: dict) -> Any:
                           _names(d["samplers"]), lines, warnings,
                           {k: _unhtype(t) for k, t in _checked_dict(d["types"]).items()},
                           _names(d["int_registers"]), _names(d["bool_registers"]),
-                          {k: _unpreshader(p) for k, p in _checked_dict(d["preshaders"]).items()})
+                          {k: _unpreshader(p) for k, p in _checked_dict(d["preshaders"]).items()},
+                          _names(d["register_counts"]))
 
 
 def _unpreshader(d: Any) -> Any:

@@ -46,6 +46,9 @@ class Code:
     samplers: dict[str, int] = field(default_factory=dict)
     int_registers: dict[str, int] = field(default_factory=dict)
     bool_registers: dict[str, int] = field(default_factory=dict)
+    # registers of an int or bool parameter from its first (one per component read:
+    # components.py); absent, one
+    register_counts: dict[str, int] = field(default_factory=dict)
     letters: str = XYZW                          # how masks are spelt (ps_1_x: rgba)
 
 

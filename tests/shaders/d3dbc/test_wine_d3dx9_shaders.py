@@ -1,9 +1,11 @@
 """The sixteen shaders fxc 9.29 compiled for Wine's D3DX9 constant-table tests, with their HLSL
 beside them (tests/data/d3dbc/wine/d3dx9_36_shader_excerpt.c, from Debian's wine 8.0 source:
 tests/data/d3dbc/MANIFEST.md): each reads, passes the assembly checks and names its target and
-compiler; where no constant has a default value it writes back byte for byte; and our compile of
-its HLSL either gives a constant table with the same constants in the same register sets as
-fxc's, or fails with the gap named in COMPILE_GAPS (so that list is kept current)."""
+compiler; it writes back byte for byte (default values, shared names and types as fxc laid
+them out); our compile of its HLSL either gives a constant table with the same constants in
+the same register sets as fxc's (int and bool ones at fxc's registers), or fails with the gap
+named in COMPILE_GAPS (so that list is kept current); and fxc's vertex shaders and ours,
+evaluated side by side, compute the same position."""
 from __future__ import annotations
 
 import hashlib
@@ -15,6 +17,8 @@ import pytest
 import effects
 from effects.shaders.asm import check
 from effects.shaders.d3dbc import read_header, read_shader, write_program
+from effects.shaders.d3dbc.ctab import (MATRIX_COLUMNS, MATRIX_ROWS, OBJECT, SCALAR, STRUCT,
+                                        VECTOR, TypeInfo, default_size)
 from effects.shaders.d3dbc.writer import constant_table
 from effects.shaders.hlsl import compile_state
 from tests.paths import TESTS
@@ -51,20 +55,9 @@ def _pairs() -> list[tuple[str, str, str, bytes]]:
 PAIRS = _pairs()
 IDS = [p[0] for p in PAIRS]
 # Our HLSL compiler's gaps these shaders show (fxc compiled every one): the array, and the
-# start of the error we give today.
-COMPILE_GAPS = {
-    # `struct {float f; int i;} s = ...`: an anonymous struct type in a declaration
-    "test_get_shader_constant_variables_blob": "expected a name",
-    "registerset_blob_struct": "expected a name",
-    "registerset_blob_struct_array": "expected a name",
-    "registerset_blob_struct_struct": "expected a name",
-    # `for (i = 0; i < n; i++)` with n a uniform int: fxc writes `rep i0` (vs_3_0 has it),
-    # we only unroll loops whose bounds are known
-    **{name: "X3511" for name in ("registerset_blob_scalar_array", "registerset_blob_vector",
-                                  "registerset_blob_vector_array", "registerset_blob_column",
-                                  "registerset_blob_column_array", "registerset_blob_row",
-                                  "registerset_blob_row_array", "registerset_blob_special_int")},
-}
+# start of the error we give today. None left: the anonymous structs and the loops counted by
+# a uniform int's component (`rep i2` for `i < vn.z`) compile.
+COMPILE_GAPS: dict[str, str] = {}
 
 
 def test_the_excerpt_holds_sixteen_shaders_with_the_manifests_hashes():
@@ -86,16 +79,19 @@ def test_fxcs_bytecode_reads_and_checks(name, target, hlsl, data):
     assert check(binary.program) == []
 
 
-def _has_defaults(data: bytes) -> bool:
-    return any(c.default for c in read_shader(data, "t").table.constants)
+@pytest.mark.parametrize("register_set,type_,size", [
+    ("bool", TypeInfo(SCALAR, 1), 4),                                   # bool b: one DWORD
+    ("bool", TypeInfo(MATRIX_ROWS, 1, 3, 2), 24),                       # bool3x2: six
+    ("float4", TypeInfo(MATRIX_COLUMNS, 3, 4, 4), 64),                  # float4x4 held in c0-c1
+    ("int4", TypeInfo(MATRIX_ROWS, 2, 3, 2, 2), 96),                    # row_major int3x2[2]
+    ("float4", TypeInfo(STRUCT, 0, 1, 4, 1, (("f", TypeInfo(SCALAR, 3)),
+                                           ("v", TypeInfo(VECTOR, 3, 1, 3)))), 32),
+    ("sampler", TypeInfo(OBJECT, 12), 0)])
+def test_a_default_value_spans_the_whole_types_registers(register_set, type_, size):
+    assert default_size(register_set, type_) == size
 
 
-@pytest.mark.parametrize("name,target,hlsl,data", [
-    pytest.param(*p, marks=pytest.mark.xfail(
-        _has_defaults(p[3]), strict=True,
-        reason="our CTAB reader takes RegisterCount x 16 bytes of default value; fxc writes "
-               "the whole type's (a clamped float4x4's 64 bytes, a bool's 4)"))
-    for p in PAIRS], ids=IDS)
+@pytest.mark.parametrize("name,target,hlsl,data", PAIRS, ids=IDS)
 def test_fxcs_bytecode_writes_back_byte_for_byte(name, target, hlsl, data):
     binary = read_shader(data, name)
     assert write_program(binary.program, binary.table) == data
@@ -119,6 +115,12 @@ def test_our_compile_gives_fxcs_constants_or_the_named_gap(name, target, hlsl, d
     mine = constant_table(ours.program, ours)
     assert sorted((c.name, c.register_set) for c in mine.constants) == \
         sorted((c.name, c.register_set) for c in theirs.constants)
+    # an int or bool parameter: a register per component, up to the last read, at fxc's
+    # numbers (`if b2` / `rep i8` read them: components.py)
+    assert sorted((c.name, c.register_index, c.register_count) for c in mine.constants
+                  if c.register_set in ("int4", "bool")) == \
+        sorted((c.name, c.register_index, c.register_count) for c in theirs.constants
+               if c.register_set in ("int4", "bool"))
 
 
 # The ps_3_0 shader (get_shader_samplers_blob) drawn: fxc's code and our compile, each with its
@@ -188,3 +190,44 @@ technique Ours {{ {pass_(f"compile {target} main()", ours.samplers)} }}""")
     assert drawn.mean() > 0.4
     assert ((fxc_image[..., 0] > 0) & (fxc_image[..., 0] < 255))[drawn].mean() > 0.5
     assert np.abs(fxc_image - our_image).max() <= 1
+
+
+# The vertex shaders run side by side: fxc's bytecode (its constant table binding the
+# parameters: float4, int4 and bool registers, set by the pass as D3DX sets them) and our
+# compile of its HLSL, each lowered for a card and evaluated on one vertex by the NumPy
+# evaluator. Their POSITION has w = 0 (the programs write x and y only), so nothing of them
+# can be drawn; the output is compared instead. Hand values for two: registerset_blob_scalar
+# runs `rep i0` n = 8 times of pos.z * f * nf = 0.75 * 5.1 * 11; registerset_blob_vector
+# takes `if b2` (vb.z) and `rep i2` vn.z = 9 times of pos.z * vf.z * vnf.z = 0.75 * 5.3 * 62.
+HAND = {"registerset_blob_scalar": (8 * 0.75 * 5.1 * 11, 0, 0, 0),
+        "registerset_blob_vector": (9 * 0.75 * 5.3 * 62, 0, 0, 0)}
+VERTEX = (0.5, 0.25, 0.75, 1.0)
+
+
+def _position(effect, technique: int):
+    from backends.reference.evaluate import evaluate
+    from effects.d3d9.caps import load_profile
+    from effects.lower.passes import lower_pass
+    pp = lower_pass(effect, effect.techniques[technique], 0, load_profile("geforce6800"))
+    inputs = pp.uniform_values()
+    for item in pp.vertex.inputs:
+        if item.kind == "varying":
+            inputs[item.name] = np.array([VERTEX], np.float32)
+    return evaluate(pp.vertex, inputs, count=1).outputs["position"][0]
+
+
+@pytest.mark.parametrize("name,target,hlsl,data", [p for p in PAIRS if p[1].startswith("vs")],
+                         ids=[p[0] for p in PAIRS if p[1].startswith("vs")])
+def test_fxcs_vertex_shader_and_ours_compute_the_same_position(name, target, hlsl, data):
+    import dataclasses
+    from effects.model import BytecodeShader
+    effect = effects.load_effect(
+        f"{hlsl}\ntechnique Ours {{ pass P {{ VertexShader = compile {target} main(); }} }}\n"
+        "technique Fxc { pass P { VertexShader = NULL; } }")
+    states = effect.techniques[1].passes[0].states
+    states[0] = dataclasses.replace(states[0], value=BytecodeShader(
+        "vertex", target, "", data=data, location=states[0].location))
+    ours, fxc = _position(effect, 0), _position(effect, 1)
+    assert np.allclose(ours, fxc, rtol=1e-5, atol=1e-4), (ours, fxc)
+    if name in HAND:
+        assert np.allclose(fxc, HAND[name], rtol=1e-5), (fxc, HAND[name])

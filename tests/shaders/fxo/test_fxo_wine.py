@@ -23,12 +23,7 @@ DATA = TESTS / "data" / "fxo" / "wine"
 BINARIES = sorted(DATA.glob("*.fxo"))
 # Sources Wine kept that our HLSL front end refuses today (first error, as of this writing):
 # fxc compiled them, so each is a front-end gap to close; once closed, drop it from here.
-SOURCE_REFUSED = {
-    "test_effect_parameter_value_blob_object": "expected a string literal",  # string s_2[2] = {..}
-    "test_effect_preshader_effect_blob": "expected ';'",       # float3(1, 2, 3)[i]: indexing a constructor
-    "test_effect_states_effect_blob": "VertexShaderConstant1",  # a scalar to a float4 register
-    "test_effect_variable_names_blob": "expected a name",      # struct {float e;} f; (anonymous)
-}
+SOURCE_REFUSED: dict[str, str] = {}
 
 # Binaries the reader refuses today, each with a located error naming what it cannot read yet
 # (the reader's known gaps, issue 35's closing note): FXLC preshaders (expression states, a
@@ -119,6 +114,9 @@ def _parameter(p: Parameter, with_value: bool = True) -> tuple:
         value = ""           # an uninitialised string is the empty string in a binary
     if value is None and p.type.base in ("float", "int", "bool", "half", "double"):
         value = [0.0] * (p.type.rows * p.type.cols * int(np.prod(p.array or (1,))))
+    if value is None and p.type.base in ("vertexshader", "pixelshader"):
+        # an uninitialised shader is a NULL object in a binary (each element of an array)
+        value = ["null"] * int(np.prod(p.array)) if p.array else "null"
     # a `register(c4)` binding lives in the shaders' constant tables, not in the parameter
     # table of an fx_2_0 binary
     semantic = None if p.semantic and p.semantic.startswith("register(") else p.semantic
