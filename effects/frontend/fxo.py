@@ -39,8 +39,8 @@ import numpy as np
 from effects.base import limits
 from effects.base.errors import EffectError, Location
 from effects.model import (Annotation, BytecodeShader, Effect, EnumValue, NullValue, Parameter,
-                           ParamRef, Pass, SamplerState, StateAssignment, Struct, Technique,
-                           TypeSpec)
+                           ParamRef, Pass, Preshader, SamplerState, StateAssignment, Struct,
+                           Technique, TypeSpec)
 
 MAGIC = 0xFEFF0901
 MAGIC_BYTES = struct.pack("<I", MAGIC)
@@ -533,8 +533,11 @@ class _Reader:
         if not isinstance(pending, _Pending):
             if usage == USAGE_DATA and isinstance(pending, (int, float, bool, np.ndarray,
                                                             EnumValue)):
-                raise self.fail(f"{state.name}: an expression (FXLC preshader) state; reading "
-                                "FXLC is not supported yet", data_at)
+                # an expression state: its preshader, run where a source expression is
+                # evaluated (effects.shaders.fxlc reads it)
+                state.value = Preshader(f"preshader at byte {data_at}", state.location, data,
+                                        data_at, np.asarray(pending).size)
+                return
             raise self.fail(f"resource for {state.name}, which holds no object", where + 12)
         if usage == USAGE_DATA:
             if pending.t.type not in (PT_VERTEXSHADER, PT_PIXELSHADER):
@@ -542,10 +545,26 @@ class _Reader:
                                 "state (FXLC expressions are not read yet)", data_at)
             state.value = self.shader(pending.t.type, data, data_at)
         elif usage == USAGE_SELECTOR:
-            raise self.fail(f"{state.name}: a shader array selected by an expression (FXLC); "
-                            "not read yet", data_at)
+            state.value = self.selector(state, pending, effect, data, data_at)
         else:
             raise self.fail(f"resource usage {usage} is none of D3DX's (0-2)", where + 16)
+
+    def selector(self, state: StateAssignment, pending: _Pending, effect: Effect, data: bytes,
+                 at: int) -> Preshader:
+        """`VertexShader = vs_arr[expression]`: u32 size, the array's name (size bytes), then
+        the preshader computing the index (effect.c d3dx9_parse_array_selector)."""
+        size = struct.unpack_from("<I", data)[0] if len(data) >= 4 else NONE
+        if size > len(data) - 4 or size % 4:
+            raise self.fail(f"{state.name}: an array selector's name of {size} bytes (a "
+                            f"multiple of 4 within the resource's {len(data)})", at)
+        name = data[4:4 + size].split(b"\0", 1)[0].decode("latin-1")
+        param = effect.parameter(name)
+        kind = OBJECT_BY_TYPE.get(pending.t.type, ("",))[0]
+        if param is None or not param.array or param.type.base != kind:
+            raise self.fail(f"{state.name}: the array selector names '{name[:40]}', which is no "
+                            f"array of {kind or 'objects'} the effect declares", at + 4)
+        return Preshader(f"{name}[preshader at byte {at + 4 + size}]", state.location,
+                         data[4 + size:], at + 4 + size, 1, name)
 
     def reference(self, text: str, effect: Effect, at: int) -> ParamRef:
         """`name` or `name[3]`: the parameter a state names."""
