@@ -201,7 +201,7 @@ class Preshader(Expression):
     value; 0: all). `selects`: the shader array whose element the program's value picks
     (`VertexShader = vs_arr[i]`), if any."""
 
-    data: bytes = b""
+    data: bytes = field(default=b"", repr=False)
     offset: int = 0
     components: int = 0
     selects: str | None = None

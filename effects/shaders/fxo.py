@@ -19,8 +19,8 @@ from effects.base.errors import EffectError, Location
 from effects.frontend import fxo as fmt
 from effects.frontend.fxo import TypeDef
 from effects.model import (Annotation, BytecodeShader, CompileShader, Effect, EnumValue,
-                           Expression, NullValue, Parameter, ParamRef, SamplerState, ShaderBlock,
-                           StateAssignment)
+                           Expression, NullValue, Parameter, ParamRef, Preshader, SamplerState,
+                           ShaderBlock, StateAssignment)
 
 
 class FxoEncodeError(EffectError):
@@ -412,7 +412,8 @@ def listing(effect: Effect) -> str:
                 shaders.append((f"parameter {p.name}", v))
     for label, v in shaders:
         lines += ["", f"// {label} ({v.version}) at byte {v.location.column - 1}",
-                  binary_listing(read_shader(v.data, v.location.path))]
+                  "// (a software vertex shader: not disassembled)" if v.version == "vs_3_sw"
+                  else binary_listing(read_shader(v.data, v.location.path))]
     return "\n".join(lines)
 
 
@@ -437,6 +438,10 @@ def _value_text(value: Any, prefix: str = " = ") -> str:
         return f"{prefix}sampler_state {{ {inner} }}"
     if isinstance(value, BytecodeShader):
         return f"{prefix}<{value.version} bytecode, {len(value.data)} bytes>"
+    if isinstance(value, Preshader):
+        from effects.shaders.fxlc import decode, listing
+        program = f"preshader {{ {listing(decode(value, value.location.path))} }}"
+        return prefix + (f"{value.selects}[{program}]" if value.selects else program)
     if isinstance(value, Expression):
         return prefix + value.text
     if isinstance(value, list):

@@ -113,6 +113,13 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
     from effects.shaders.hlsl.shader import CompiledShader
     from effects.shaders.asm.text import program_text
     start = value.location.column - 1 if value.location.line == 1 else 0
+    if value.version == "vs_3_sw":
+        # Direct3D 9 creates a vs_3_sw shader only on a device that processes vertices in
+        # software (D3DCREATE_SOFTWARE_VERTEXPROCESSING); D3DX loaded such an effect and its
+        # ValidateTechnique failed on a hardware device. No simulated card is a software device.
+        raise BytecodeError("a vs_3_sw shader (version token 0xFFFE03FF) runs only on a device "
+                            "created for software vertex processing, which no simulated card "
+                            f"is (at byte {start})", Location(value.location.path, 1, start + 1))
     try:
         binary = read_shader(value.data, value.location.path)
     except EffectError as err:

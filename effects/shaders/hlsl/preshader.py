@@ -98,10 +98,12 @@ def expression_value(name: str, index: int | None, value: Expression, effect: Ef
 
 def _preshader_numbers(value: Preshader, effect: Effect) -> np.ndarray:
     from effects.shaders.fxlc import numbers
+    from effects.shaders.fxlc import decode, listing
     out = numbers(value, effect, value.components or None)
     if not np.all(np.isfinite(out)):
-        raise EffectError(f"X3013: the preshader ({value.text}) does not evaluate to finite "
-                          f"numbers ({out.tolist()})", value.location)
+        shown = listing(decode(value, effect.path))
+        raise EffectError(f"X3013: the {value.text} ({shown[:200]}) does not evaluate to "
+                          f"finite numbers ({out.tolist()})", value.location)
     return out
 
 
@@ -159,7 +161,9 @@ def expression_element(effect: Effect, value: Expression) -> ParamRef | None:
 
 
 def _element(param: Any, numbers: np.ndarray, text: str, location: Location) -> ParamRef:
-    count = len(param.value) if isinstance(param.value, (list, tuple)) else 0
+    # the declared length: an array without initialiser holds NULL shaders (an fx_2_0 binary
+    # writes them as empty objects), as many as it declares
+    count = param.array[0] if param.array else 0
     if numbers.size != 1:
         raise EffectError(f"X3017: the index of {param.name} in '{text.strip()}' has "
                           f"{numbers.size} components, it takes one", location)

@@ -31,14 +31,9 @@ SOURCE_REFUSED = {
 }
 
 # Binaries the reader refuses today, each with a located error naming what it cannot read yet
-# (the reader's known gaps, issue 35's closing note): FXLC preshaders (expression states, a
-# shader array picked by an expression), a struct annotation, a null shader written as a number,
-# vs_3_sw's version token, a 9x1 object type. Each entry is a gap to close; once closed, drop it.
-BINARY_REFUSED = {
-    "test_effect_null_shader_blob": "a number where an object belongs",
-    "test_effect_states_effect_blob": "is no numeric type D3DX has",
-    "test_effect_unsupported_shader_blob": "version token 0xFFFE03FF",
-    "test_effect_variable_names_blob": "a struct annotation (not read)",
+# (none of Wine's 15 since FXLC preshaders, array selectors, struct annotations, a null shader
+# written as a number, vs_3_sw and a 9x1 state value are read). A gap found: add it here.
+BINARY_REFUSED: dict[str, str] = {
 }
 
 # Pairs where the binary's verdict is D3DX's (its preshaders run as D3DX ran them) and our
@@ -127,6 +122,8 @@ def _parameter(p: Parameter, with_value: bool = True) -> tuple:
     value = _value(p.value)
     if value is None and p.type.base == "string":
         value = ""           # an uninitialised string is the empty string in a binary
+    if value is None and p.type.base in ("vertexshader", "pixelshader"):
+        value = ["null"] * int(np.prod(p.array)) if p.array else "null"   # NULL, as D3DX has it
     if value is None and p.type.base in ("float", "int", "bool", "half", "double"):
         value = [0.0] * (p.type.rows * p.type.cols * int(np.prod(p.array or (1,))))
     # a `register(c4)` binding lives in the shaders' constant tables, not in the parameter
