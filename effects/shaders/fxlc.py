@@ -167,7 +167,14 @@ class _Words:
 def decode(value: Preshader, path: str) -> Program:
     """The program of a `Preshader` state value (its constant table, literals and
     instructions), every register checked against its table. Raises FxlcError."""
+    return decode_bytes(value.data, value.offset, path)
+
+
+def decode_bytes(data: bytes, offset: int, path: str) -> Program:
+    """The program of preshader bytes found at byte `offset` of file `path`: an expression
+    state's, or the one a shader carries in its PRES comment (fxc's constant preshader)."""
     from effects.shaders.d3dbc.ctab import read_ctab
+    value = Preshader("", data=data, offset=offset)
     w = _Words(value.data, value.offset, path)
     if len(value.data) % 4 or w.n < 1:
         raise w.fail(f"{len(value.data)} bytes are no whole number of 32-bit words", 0)
@@ -351,6 +358,13 @@ def _registers(t: Any, flat: list[float], at: list[int]) -> list[list[float]]:
         for row in (m.T if t.cls == MATRIX_COLUMNS else m):
             out.append((list(row) + [0.0] * 4)[:4])
     return out
+
+
+def written_registers(program: Program) -> list[int]:
+    """The output registers (oc#) the program writes: those D3DX set before a draw."""
+    return sorted({(ins.output.offset + j) // 4 for ins in program.instructions
+                   if ins.output.table == OUTPUT
+                   for j in range(1 if ins.op.dot else ins.components)})
 
 
 def numbers(value: Preshader, effect: Effect, components: int | None = None) -> np.ndarray:

@@ -128,24 +128,21 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
                                             f"(at byte {column - 1})"),
                         Location(value.location.path, 1, column)) from None
     program, table = binary.program, binary.table
-    for at, code, _ in binary.comments:
-        if code == "PRES":
+    pres = None
+    for at, code, body in binary.comments:
+        if code == "PRES" and pres is None:
             # fxc's preshader (a PRES comment: FXLC code, CLIT literals, its own CTAB) fills
-            # constant registers on the host before each draw; drawing without it would read
-            # zeros there, a wrong picture: refused until FXLC is evaluated
-            column = start + at + 1
-            raise BytecodeError(f"the shader carries a preshader (PRES comment: FXLC code that "
-                                f"fills constant registers on the host), which is not "
-                                f"evaluated yet (at byte {column - 1})",
-                                Location(value.location.path, 1, column))
-    if table is None or not table.constants:
+            # constant registers on the host before each draw, as D3DX ran it
+            from effects.shaders.fxlc import decode_bytes
+            pres = decode_bytes(body[4:], start + at + 8, value.location.path)
+    if (table is None or not table.constants) and pres is None:
         return program, None
     constants: dict[str, tuple[int, int]] = {}
     samplers: dict[str, int] = {}
     ints: dict[str, int] = {}
     bools: dict[str, int] = {}
     types: dict = {}
-    for c in table.constants:
+    for c in table.constants if table is not None else ():
         if c.register_set == "sampler":
             samplers[c.name] = c.register_index
             continue
@@ -161,7 +158,8 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
     text = program_text(program)
     return program, CompiledShader("<bytecode>", program.name, text, program, constants,
                                    samplers, [value.location] * (text.count("\n") + 1),
-                                   types=types, int_registers=ints, bool_registers=bools)
+                                   types=types, int_registers=ints, bool_registers=bools,
+                                   fxlc=pres)
 
 
 def _htype(t: Any) -> Any:

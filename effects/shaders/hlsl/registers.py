@@ -107,4 +107,11 @@ def constant_values(effect: Effect, shader: Any) -> dict[int, Row]:
             rows = [(rows[0][0],) * 4]
         for k in range(count):
             out[start + k] = rows[k] if k < len(rows) else (0.0, 0.0, 0.0, 0.0)
+    program = getattr(shader, "fxlc", None)
+    if program is not None:
+        # a bytecode shader's constant preshader: the registers it writes, as D3DX set them
+        from effects.shaders.fxlc import run, written_registers
+        oc = run(program, effect)
+        for k in written_registers(program):
+            out[k] = tuple(float(x) for x in oc[4 * k:4 * k + 4])  # type: ignore[assignment]
     return out

@@ -154,3 +154,24 @@ def test_the_listing_names_each_instruction_and_its_parameters():
     program = fxlc.decode(state.value, effect.path)
     assert fxlc.listing(program) == \
         "cmp oc0.xyzw, c0(opvect1).xyzw, c1(opvect2).xyzw, c2(opvect3).xyzw"
+
+
+def test_a_shaders_constant_preshader_fills_the_registers_it_writes():
+    # vs_arr2[0] = compile vs_3_0 RenderSceneVS(1, true): fxc took
+    # `g_Selector[1].y > 0.5 ? -g_Pos1 * 2 - float4(-4, -5, -6, -7)
+    #                        : -g_Pos2 * 3 - float4(-4, -5, -6, -7)` out of the shader into its
+    # PRES preshader, which writes c33
+    from effects.shaders.hlsl.registers import constant_values
+    from effects.shaders.shader_value import shader_of
+    effect = effects.load_effect(EFFECT)
+    compiled = shader_of(effect, effect.parameter("vs_arr2").value[0]).compiled
+    assert fxlc.written_registers(compiled.fxlc) == [33]
+    _set(effect, "g_Pos1", [1, 2, 3, 4])
+    # g_Selector[1].y = 10 > 0.5: -2 * (1, 2, 3, 4) + (4, 5, 6, 7)
+    assert constant_values(effect, compiled)[33] == (2, 1, 0, -1)
+    _set(effect, "g_Selector", [[0, 0, 0, 0], [10, 0, 10, 10], [0, 0, 0, 0]])
+    _set(effect, "g_Pos2", [1, 1, 1, 1])
+    # .y = 0: -3 * (1, 1, 1, 1) + (4, 5, 6, 7)
+    assert constant_values(effect, compiled)[33] == (1, 2, 3, 4)
+    # the parameters the shader reads itself keep their registers: arr2 (92, 93) at c29, c30
+    assert constant_values(effect, compiled)[29][0] == 92
