@@ -175,3 +175,29 @@ def test_a_shaders_constant_preshader_fills_the_registers_it_writes():
     assert constant_values(effect, compiled)[33] == (1, 2, 3, 4)
     # the parameters the shader reads itself keep their registers: arr2 (92, 93) at c29, c30
     assert constant_values(effect, compiled)[29][0] == 92
+
+
+@pytest.mark.parametrize("stem", ["test_effect_preshader_ops_blob", "test_effect_skip_constants_blob",
+                                  "test_effect_shared_parameters_blob",
+                                  "test_effect_states_effect_blob", "test_effect_null_shader_blob"])
+def test_a_binarys_preshaders_are_written_back_as_they_came(stem):
+    # read, written (effects compile X.fxo -o Y.fxo), read again: the same states, each
+    # preshader the same bytes (an array selector with its array), the same values
+    import re
+    from effects.frontend.fxo import read_effect_binary
+    from effects.shaders.fxo import listing, write_effect_binary
+    first = effects.load_effect(DATA / f"{stem}.fxo")
+    again = read_effect_binary(write_effect_binary(first), str(DATA / f"{stem}.fxo"))
+
+    def states(effect):
+        return [(s.name, s.index, (s.value.data, s.value.components, s.value.selects)
+                 if isinstance(s.value, Preshader) else repr(s.value).split("location")[0])
+                for t in effect.techniques for p in t.passes for s in p.states]
+    assert states(again) == states(first)
+    assert any(isinstance(s.value, Preshader) for t in again.techniques for p in t.passes
+               for s in p.states)
+
+    def techniques(effect):      # the listing's techniques, byte offsets aside
+        text = listing(effect)
+        return re.sub(r"at byte \d+", "", text[text.index("\ntechnique"):])
+    assert techniques(again) == techniques(first)
