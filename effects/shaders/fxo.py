@@ -3,9 +3,11 @@ listing of one (`effects compile --disassemble X.fxo`).
 
 The layout is effects/frontend/fxo.py's (which reads it back); every shader is written as
 Direct3D 9 bytecode with its constant table (effects.shaders.d3dbc), an HLSL shader's naming
-the parameters in its registers as fxc's does. What the format holds only as FXLC preshader
-bytecode (expression states, a shader's constant preshaders, shader arrays selected by an
-expression) is refused with a located error: this writer does not write FXLC yet.
+the parameters in its registers as fxc's does. An expression state (and a shader array
+selected by an expression) is written as the FXLC preshader fxc writes
+(effects.shaders.fxlc_compile), one a binary gave as it came. A ps_1_x shader's constant
+preshaders and a parameter initialised by an expression of others are refused with a located
+error: this writer does not write those as FXLC yet.
 """
 from __future__ import annotations
 
@@ -308,12 +310,12 @@ class _Writer:
         def resource(usage: int, raw: bytes) -> None:
             self.resources.append((technique, pass_or_param, element, state_index, usage, raw))
 
-        if isinstance(value, Preshader):           # read from a binary: written as it came
+        if isinstance(value, Expression) and not isinstance(value, Preshader):
+            # a source expression: compiled to the preshader fxc would have written
+            from effects.shaders.fxlc_compile import preshader_of
+            value = preshader_of(self.effect, info.name, value)
+        if isinstance(value, Preshader):           # (read from a binary: written as it came)
             return self.preshader_state(info, index, value, s.location, resource)
-        if isinstance(value, Expression):
-            raise self.fail(f"{s.name} = {value.text[:40]}: an expression state is FXLC "
-                            "preshader bytecode in fx_2_0, which this writer does not write yet",
-                            s.location)
         if info.type in _OBJECT_STATE_TYPES:
             if isinstance(value, NullValue) or value is None:
                 t = TypeDef(fmt.PT_INT, fmt.PC_SCALAR, "", "")

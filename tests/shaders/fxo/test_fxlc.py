@@ -201,3 +201,67 @@ def test_a_binarys_preshaders_are_written_back_as_they_came(stem):
         text = listing(effect)
         return re.sub(r"at byte \d+", "", text[text.index("\ntechnique"):])
     assert techniques(again) == techniques(first)
+
+
+SOURCE = """
+float a = 2;
+float4 v = {1, 2, 3, 4};
+float4x4 m = {1, 2, 3, 4,  5, 6, 7, 8,  9, 10, 11, 12,  13, 14, 15, 16};
+int idx = 1;
+pixelshader PS[2] = { asm { ps_2_0 def c0, 1, 0, 0, 1 mov oC0, c0 },
+                      asm { ps_2_0 def c0, 0, 1, 0, 1 mov oC0, c0 } };
+sampler S = sampler_state { MaxAnisotropy = a * 2; };
+technique T { pass P {
+    FogDensity = a * 3;
+    FogStart = 1.0 / a + v.y;
+    FogEnd = dot(v, v) - m[1].z;
+    PointSize = pow(a, 3) + abs(-v.x) + saturate(v.w);
+    PointScale_A = a > 1 ? 5 : 7;
+    LightDiffuse[0] = lerp(v, v * 2, 0.25);
+    PixelShader = (PS[idx]);
+} }
+"""
+
+
+def test_source_expression_states_are_written_as_preshaders():
+    # effects compile X.fx -o X.fxo: each expression state becomes the FXLC fxc would have
+    # written; read back, it computes what the source computes, at any parameter values
+    from effects.frontend.fxo import read_effect_binary
+    from effects.shaders.fxo import write_effect_binary
+    source = effects.load_effect(SOURCE)
+    binary = read_effect_binary(write_effect_binary(source), "src.fxo")
+    states = {s.name: s for s in binary.techniques[0].passes[0].states}
+    assert all(isinstance(s.value, Preshader) for s in states.values())
+
+    def values(effect):
+        got = {s.name: expression_value(s.name, s.index, s.value, effect)
+               for s in effect.techniques[0].passes[0].states if s.name != "PixelShader"}
+        got["PixelShader"] = expression_element(
+            effect, effect.techniques[0].passes[0].state("PixelShader").value).index
+        got["MaxAnisotropy"] = expression_value(
+            "MaxAnisotropy", None, effect.parameter("S").value.states[0].value, effect)
+        return {k: np.asarray(v, dtype=float).tolist() for k, v in got.items()}
+    # by hand at a = 2, v = (1, 2, 3, 4), m[1].z = 7 (row 1: 5, 6, 7, 8), idx = 1
+    want = {"FogDensity": 6, "FogStart": 2.5, "FogEnd": 30 - 7, "PointSize": 8 + 1 + 1,
+            "PointScale_A": 5, "LightDiffuse": [1.25, 2.5, 3.75, 5], "PixelShader": 1,
+            "MaxAnisotropy": 4}
+    assert values(binary) == values(source) == want
+    for effect in (source, binary):
+        _set(effect, "a", 0.5)
+        _set(effect, "v", [-2, 0, 0, 0.5])
+        effect.parameter("idx").value = np.int32(0)
+    # a = 0.5, v = (-2, 0, 0, 0.5): 1.5; 2 + 0; 4.25 - 7; 0.125 + 2 + 0.5; 7 (a <= 1);
+    # lerp(v, 2v, 0.25) = 1.25 v; PS[0]; 1
+    want = {"FogDensity": 1.5, "FogStart": 2, "FogEnd": -2.75, "PointSize": 2.625,
+            "PointScale_A": 7, "LightDiffuse": [-2.5, 0, 0, 0.625], "PixelShader": 0,
+            "MaxAnisotropy": 1}
+    assert values(binary) == values(source) == want
+
+
+def test_an_expression_fxlc_cannot_say_is_refused_by_the_writer_located():
+    from effects.shaders.fxo import write_effect_binary
+    effect = effects.load_effect("float3 v = {1, 0, 0};\n"
+                                 "technique T { pass P { FogDensity = length(cross(v, v)); } }")
+    with pytest.raises(effects.EffectError, match="not written as an FXLC preshader") as err:
+        write_effect_binary(effect)
+    assert err.value.line == 2
