@@ -282,11 +282,16 @@ def _register(w: _Words, k: int, end: int, tables: tuple[int, ...]) -> Register:
 # ------------------------------------------------------------------------------------------------
 # running a program
 
-def run(program: Program, effect: Effect) -> np.ndarray:
-    """The output registers' components (oc0.x, oc0.y, ...) at the parameters' current values,
-    read through `effect` (a RecordedReads view records them)."""
+# a parameter's numbers in declaration order (None: no value), read through the effect (a
+# RecordedReads view records them): effects.shaders.hlsl.preshader.parameter_numbers
+Numbers = Callable[[str], "list[float] | None"]
+
+
+def run(program: Program, effect: Effect, values: Numbers) -> np.ndarray:
+    """The output registers' components (oc0.x, oc0.y, ...) at the parameters' current values
+    (`values`)."""
     tables = {IMMEDIATE: np.asarray(program.literals, dtype=np.float64),
-              INPUT: _inputs(program, effect)}
+              INPUT: _inputs(program, effect, values)}
     for t in (TEMP, OUTPUT):
         tables[t] = np.zeros(4 * program.sizes[t], dtype=np.float32)
     sizes = program.sizes
@@ -323,17 +328,16 @@ def run(program: Program, effect: Effect) -> np.ndarray:
     return tables[OUTPUT].astype(np.float64)
 
 
-def _inputs(program: Program, effect: Effect) -> np.ndarray:
+def _inputs(program: Program, effect: Effect, values: Numbers) -> np.ndarray:
     """The input registers: each constant-table row filled from its parameter's value as fxc
     packs one (effects.shaders.hlsl.registers), a parameter without a value zeros."""
-    from effects.shaders.hlsl.registers import parameter_numbers
     regs = np.zeros(4 * program.sizes[INPUT], dtype=np.float32)
     for c in program.constants:
         if effect.parameter(c.name) is None:
             raise FxlcError(f"preshader: its constant table names '{c.name}', which the effect "
                             f"does not declare (at byte {program.ctab_at})",
                             Location(effect.path, 1, program.ctab_at + 1))
-        flat = parameter_numbers(effect, c.name) or []
+        flat = values(c.name) or []
         rows = _registers(c.type, list(flat), [0])[:c.register_count]
         for k, row in enumerate(rows):
             regs[4 * (c.register_index + k):4 * (c.register_index + k) + 4] = row
@@ -367,10 +371,11 @@ def written_registers(program: Program) -> list[int]:
                    for j in range(1 if ins.op.dot else ins.components)})
 
 
-def numbers(value: Preshader, effect: Effect, components: int | None = None) -> np.ndarray:
+def numbers(value: Preshader, effect: Effect, values: Numbers,
+            components: int | None = None) -> np.ndarray:
     """A preshader state's value: its output components, the first `components` of them (all
     when None), as D3DX copied them into the state."""
-    out = run(decode(value, effect.path), effect)
+    out = run(decode(value, effect.path), effect, values)
     return out if components is None else out[:components]
 
 

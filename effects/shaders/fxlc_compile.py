@@ -85,7 +85,11 @@ def compile_expression(effect: Effect, value: Expression) -> tuple[bytes, int]:
     origin = Origin(value.location, text)
     tree = parse(text, "initializer", origin, type_names(effect))
     ctx = Context(effect, Target("vs_3_0", VERSIONS["vs_3_0"]), host_values=False)
-    comps = Evaluator(ctx, origin).flatten_list(tree)
+    try:
+        comps = Evaluator(ctx, origin).flatten_list(tree)
+    except RecursionError:
+        from effects.shaders.hlsl.budget import out_of_stack
+        raise out_of_stack(value.location, origin.line_text(1)) from None
     registers, constants, at = {}, [], 0
     for name, t in ctx.uniforms_used.items():
         if t.base not in ("float", "half", "double", "int", "uint", "bool"):
@@ -104,18 +108,21 @@ def compile_expression(effect: Effect, value: Expression) -> tuple[bytes, int]:
     table = ConstantTable(tuple(constants), "tx", 0x46580200)
     literals = e.literals + [0.0] * (-len(e.literals) % 4)
     out = [0x46580200]
-    out += _comment(b"CTAB" + write_ctab(table))
-    out += _comment(b"CLIT" + struct.pack(f"<I{len(literals)}d", len(literals), *literals))
-    out += _comment(b"FXLC" + struct.pack(f"<{1 + len(e.words)}I", e.count, *e.words))
+    out += _comment(b"CTAB" + write_ctab(table), value.location)
+    out += _comment(b"CLIT" + struct.pack(f"<I{len(literals)}d", len(literals), *literals),
+                    value.location)
+    out += _comment(b"FXLC" + struct.pack(f"<{1 + len(e.words)}I", e.count, *e.words),
+                    value.location)
     out.append(0x0000FFFF)
     return struct.pack(f"<{len(out)}I", *out), len(comps)
 
 
-def _comment(body: bytes) -> list[int]:
+def _comment(body: bytes, location: Location) -> list[int]:
     body += b"\0" * (-len(body) % 4)
     n = len(body) // 4
     if n > 0x7FFF:
-        raise EffectError(f"a preshader comment of {n} words (at most 32767)", Location("", 1, 1))
+        raise EffectError(f"the expression's preshader needs a comment of {n} words (at most "
+                          "32767): not written as an FXLC preshader", location)
     return [0xFFFE | n << 16, *struct.unpack(f"<{n}I", body)]
 
 

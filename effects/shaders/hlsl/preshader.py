@@ -66,6 +66,23 @@ def initializer_numbers(text: str, location: Location, effect: Effect | None = N
     return out
 
 
+def parameter_numbers(effect: Effect, name: str) -> list[float] | None:
+    """A parameter's numbers in declaration order at its current value (its initialiser
+    evaluated where that is an expression), read through `effect`; None without a value."""
+    p = effect.parameter(name)
+    if p is None or p.value is None:
+        return None
+    v = p.value
+    if isinstance(v, Expression):
+        return initializer_numbers(v.text, v.location, effect, host_values=True)
+    if isinstance(v, (list, tuple)):
+        return [float(x) for x in np.asarray(v, dtype=np.float64).reshape(-1)]
+    try:
+        return [float(x) for x in np.asarray(v, dtype=np.float64).reshape(-1)]
+    except (TypeError, ValueError):
+        return None
+
+
 def state_numbers(text: str, location: Location, effect: Effect,
                   known: dict[str, np.ndarray] | None = None) -> np.ndarray:
     """A state assignment's expression evaluated with the parameters' current values: its
@@ -99,7 +116,8 @@ def expression_value(name: str, index: int | None, value: Expression, effect: Ef
 def _preshader_numbers(value: Preshader, effect: Effect) -> np.ndarray:
     from effects.shaders.fxlc import numbers
     from effects.shaders.fxlc import decode, listing
-    out = numbers(value, effect, value.components or None)
+    out = numbers(value, effect, lambda name: parameter_numbers(effect, name),
+                  value.components or None)
     if not np.all(np.isfinite(out)):
         shown = listing(decode(value, effect.path))
         raise EffectError(f"X3013: the {value.text} ({shown[:200]}) does not evaluate to "

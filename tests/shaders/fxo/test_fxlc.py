@@ -75,7 +75,8 @@ def test_the_preshader_effect_blob_reads_structs_matrices_and_relative_addressin
     # float4(dot(m4x4[5], m4x4[2]), ts3.ts[4].fv, vec3[2], float3(1, 2, 3)[1]): row 5 and
     # ts[4] lie past their tables (0, as D3DX read them)
     assert _value(effect, specular[2]).tolist() == [0, 0, 1003, 2]
-    fog = {s.name: s for s in effect.techniques[0].passes[0].states if isinstance(s.value, Preshader)}
+    fog = {s.name: s for s in effect.techniques[0].passes[0].states
+           if isinstance(s.value, Preshader)}
     assert _value(effect, fog["FogDensity"]) == 0          # ts2[0].fv
     assert _value(effect, fog["FogStart"]) == 4            # ts2[1].fv
     assert _value(effect, fog["PointScale_A"]) == 4        # ts3.ts[0].fv
@@ -177,7 +178,8 @@ def test_a_shaders_constant_preshader_fills_the_registers_it_writes():
     assert constant_values(effect, compiled)[29][0] == 92
 
 
-@pytest.mark.parametrize("stem", ["test_effect_preshader_ops_blob", "test_effect_skip_constants_blob",
+@pytest.mark.parametrize("stem", ["test_effect_preshader_ops_blob",
+                                  "test_effect_skip_constants_blob",
                                   "test_effect_shared_parameters_blob",
                                   "test_effect_states_effect_blob", "test_effect_null_shader_blob"])
 def test_a_binarys_preshaders_are_written_back_as_they_came(stem):
