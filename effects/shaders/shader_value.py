@@ -16,11 +16,11 @@ from typing import TYPE_CHECKING, Any, Mapping
 
 from effects.base.errors import Location
 from effects.model import BytecodeShader, CompileShader, ShaderBlock
+from effects.shaders.hlsl.shader import CompiledShader
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.model import Effect
     from effects.shaders.asm import AsmProgram
-    from effects.shaders.hlsl.shader import CompiledShader
 
 
 @dataclass(frozen=True)
@@ -103,6 +103,15 @@ def _bound(value: Any, program: "AsmProgram", compiled: "CompiledShader | None")
                   dict(compiled.bool_registers))
 
 
+@dataclass
+class PreshadedShader(CompiledShader):
+    """A bytecode shader with fxc's constant preshader (its PRES comment): the c# registers
+    it writes, computed on the host before each draw (hlsl.registers.constant_values runs it).
+    The compile store never holds one: it keeps HLSL results only."""
+
+    fxlc: Any = None
+
+
 def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader | None"]:
     """A bytecode shader's program, and (where its constant table names parameters, as fxc's
     and our compiler's do) a CompiledShader carrying those bindings, so its parameters load
@@ -110,7 +119,6 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
     located in the file the bytecode came from (its byte offset there)."""
     from effects.base.errors import EffectError
     from effects.shaders.d3dbc import BytecodeError, read_shader
-    from effects.shaders.hlsl.shader import CompiledShader
     from effects.shaders.asm.text import program_text
     start = value.location.column - 1 if value.location.line == 1 else 0
     if value.version == "vs_3_sw":
@@ -156,10 +164,13 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
         elif c.register_set == "bool":
             bools[c.name] = c.register_index
     text = program_text(program)
-    return program, CompiledShader("<bytecode>", program.name, text, program, constants,
-                                   samplers, [value.location] * (text.count("\n") + 1),
-                                   types=types, int_registers=ints, bool_registers=bools,
-                                   fxlc=pres)
+    made = CompiledShader if pres is None else PreshadedShader
+    compiled = made("<bytecode>", program.name, text, program, constants, samplers,
+                    [value.location] * (text.count("\n") + 1), types=types, int_registers=ints,
+                    bool_registers=bools)
+    if pres is not None:
+        compiled.fxlc = pres
+    return program, compiled
 
 
 def _htype(t: Any) -> Any:

@@ -8,7 +8,7 @@ the located program the compiler's writer (writer.py) made.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from effects.base.errors import AsmError, EffectWarning, Location
 from effects.model import ShaderBlock
@@ -77,9 +77,6 @@ class CompiledShader:
     bool_registers: dict[str, int] = field(default_factory=dict)
     # constant-table names -> what the host computes into them
     preshaders: dict[str, ShaderPreshader] = field(default_factory=dict)
-    # fxc's constant preshader of a bytecode shader (its PRES comment, effects.shaders.fxlc):
-    # the c# registers it writes, computed on the host before each draw
-    fxlc: Any = None
 
     @property
     def stage(self) -> str:
