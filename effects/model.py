@@ -192,6 +192,21 @@ class Expression:
     location: Location = _loc()
 
 
+@dataclass(frozen=True, slots=True)
+class Preshader(Expression):
+    """An expression state as an fx_2_0 binary keeps it: fxc's compiled preshader (the FXLC
+    program with its constant table and literals, `data`, at byte `offset` of the binary),
+    run on the host as a source expression is evaluated (effects.shaders.fxlc). `components`:
+    how many of its output components the state takes (the binary's type for the state's
+    value; 0: all). `selects`: the shader array whose element the program's value picks
+    (`VertexShader = vs_arr[i]`), if any."""
+
+    data: bytes = field(default=b"", repr=False)
+    offset: int = 0
+    components: int = 0
+    selects: str | None = None
+
+
 StateValue = Union["np.ndarray", str, bool, EnumValue, ParamRef, NullValue, ShaderBlock,
                    CompileShader, Expression, "SamplerState"]
 

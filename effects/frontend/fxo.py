@@ -39,8 +39,8 @@ import numpy as np
 from effects.base import limits
 from effects.base.errors import EffectError, Location
 from effects.model import (Annotation, BytecodeShader, Effect, EnumValue, NullValue, Parameter,
-                           ParamRef, Pass, SamplerState, StateAssignment, Struct, Technique,
-                           TypeSpec)
+                           ParamRef, Pass, Preshader, SamplerState, StateAssignment, Struct,
+                           Technique, TypeSpec)
 
 MAGIC = 0xFEFF0901
 MAGIC_BYTES = struct.pack("<I", MAGIC)
@@ -73,6 +73,8 @@ NUMERIC_TYPES = {"bool": PT_BOOL, "int": PT_INT, "dword": PT_INT, "half": PT_FLO
 NUMERIC_BY_TYPE = {PT_BOOL: "bool", PT_INT: "int", PT_FLOAT: "float"}
 _SPELLING = {"bool": "bool", "int": "int", "float": "float"}
 
+# vs_3_sw's version token: a software vertex shader (vs_3_0 with software processing's limits)
+VS_3_SW = 0xFFFE03FF
 # how deep struct members may nest before the binary counts as hostile
 MAX_TYPE_DEPTH = 32
 
@@ -227,7 +229,10 @@ class _Reader:
         return ident
 
     # -- types and values -------------------------------------------------------------------
-    def typedef(self, pos: int, depth: int = 0) -> tuple[TypeDef, int]:
+    def typedef(self, pos: int, depth: int = 0, state: bool = False) -> tuple[TypeDef, int]:
+        """A typedef at `pos`. A `state`'s value may be a matrix of any size (fxc writes
+        `VertexShaderConstant4[4] = {4, 4, 4, 4, 5, 5, 5, 5, 6}` as a 9x1 one); a parameter's
+        is D3DX's 1-4 by 1-4."""
         if depth > MAX_TYPE_DEPTH:
             raise self.fail(f"struct members nest more than {MAX_TYPE_DEPTH} deep", pos)
         where = pos
@@ -244,7 +249,8 @@ class _Reader:
             a, b = self.u32(pos, "a size"), self.u32(pos + 4, "a size")
             t.columns, t.rows = (a, b) if cls == PC_VECTOR else (b, a)
             pos += 8
-            if kind not in NUMERIC_BY_TYPE or not (1 <= t.rows <= 4 and 1 <= t.columns <= 4) \
+            most = len(self.data) if state and cls in (PC_MATRIX_ROWS, PC_MATRIX_COLUMNS) else 4
+            if kind not in NUMERIC_BY_TYPE or not (1 <= t.rows <= most and 1 <= t.columns <= most) \
                     or (cls == PC_SCALAR and t.rows * t.columns != 1) \
                     or (cls == PC_VECTOR and t.rows != 1):
                 raise self.fail(f"type {kind} class {cls} of {t.rows}x{t.columns} is no "
@@ -344,7 +350,8 @@ class _Reader:
             self.pending_strings.append((annotation, value))
             return annotation, pos + 8
         if t.cls == PC_STRUCT:
-            raise self.fail("a struct annotation (not read)", pos)
+            # as a struct parameter: the struct declared, the value its initializer text
+            return Annotation(self.spec(t), t.name, self.struct_value(t, value, pos), loc), pos + 8
         dims = (t.elements,) if t.elements else ()
         return Annotation(self.spec(t), t.name, self.numbers(t, value, dims), loc), pos + 8
 
@@ -402,6 +409,11 @@ class _Reader:
         token = struct.unpack_from("<I", data)[0] if len(data) >= 4 else 0
         kind = {0xFFFE: "vs", 0xFFFF: "ps"}.get(token >> 16)
         major, minor = token >> 8 & 0xFF, token & 0xFF
+        if token == VS_3_SW:
+            # D3DX loaded it (CreateVertexShader fails on a hardware device and the effect
+            # loads all the same, as Wine's unsupported_shader test shows); validation refuses
+            # it (effects.shaders.shader_value)
+            return "vs_3_sw"
         if kind is None or (major, minor) not in ((1, 0), (1, 1), (1, 2), (1, 3), (1, 4),
                                                   (2, 0), (2, 1), (3, 0)):
             raise self.fail(f"a shader object whose version token 0x{token:08X} is none of "
@@ -457,7 +469,7 @@ class _Reader:
         index = self.u32(pos + 4, "a state index")
         type_at = self.at(self.u32(pos + 8, "a state's type offset"), "a type", pos + 8)
         value_at = self.at(self.u32(pos + 12, "a state's value offset"), "a value", pos + 12)
-        t, _ = self.typedef(type_at)
+        t, _ = self.typedef(type_at, state=True)
         sampler = t.cls == PC_OBJECT and t.type in (PT_SAMPLER, PT_SAMPLER1D, PT_SAMPLER2D,
                                                     PT_SAMPLER3D, PT_SAMPLERCUBE)
         if sampler and (context == "sampler" or t.elements):
@@ -489,8 +501,10 @@ class _Reader:
         if t.cls == PC_STRUCT or (t.elements and info.type != "constants"):
             raise self.fail(f"{info.name}: a struct or array value", where)
         if info.type in ("texture", "sampler", "vertexshader", "pixelshader"):
-            # NULL: an int 0 where an object belongs (Wine d3dx_parse_state)
-            if t.type == PT_INT and t.cls == PC_SCALAR and not any(value):
+            # NULL: one number, 0, where an object belongs (Wine d3dx_parse_state); fxc writes
+            # `VertexShader = null` as an int of class MATRIX_ROWS 1x1 (Wine's null_shader blob)
+            if t.type in NUMERIC_BY_TYPE and t.rows * t.columns == 1 and not t.elements \
+                    and not any(value):
                 return NullValue(loc)
             raise self.fail(f"{info.name}: a number where an object belongs", where)
         numbers = self.numbers(t, value, (t.elements,) if t.elements else ())
@@ -533,8 +547,11 @@ class _Reader:
         if not isinstance(pending, _Pending):
             if usage == USAGE_DATA and isinstance(pending, (int, float, bool, np.ndarray,
                                                             EnumValue)):
-                raise self.fail(f"{state.name}: an expression (FXLC preshader) state; reading "
-                                "FXLC is not supported yet", data_at)
+                # an expression state: its preshader, run where a source expression is
+                # evaluated (effects.shaders.fxlc reads it)
+                state.value = Preshader(f"preshader at byte {data_at}", state.location, data,
+                                        data_at, np.asarray(pending).size)
+                return
             raise self.fail(f"resource for {state.name}, which holds no object", where + 12)
         if usage == USAGE_DATA:
             if pending.t.type not in (PT_VERTEXSHADER, PT_PIXELSHADER):
@@ -542,10 +559,26 @@ class _Reader:
                                 "state (FXLC expressions are not read yet)", data_at)
             state.value = self.shader(pending.t.type, data, data_at)
         elif usage == USAGE_SELECTOR:
-            raise self.fail(f"{state.name}: a shader array selected by an expression (FXLC); "
-                            "not read yet", data_at)
+            state.value = self.selector(state, pending, effect, data, data_at)
         else:
             raise self.fail(f"resource usage {usage} is none of D3DX's (0-2)", where + 16)
+
+    def selector(self, state: StateAssignment, pending: _Pending, effect: Effect, data: bytes,
+                 at: int) -> Preshader:
+        """`VertexShader = vs_arr[expression]`: u32 size, the array's name (size bytes), then
+        the preshader computing the index (effect.c d3dx9_parse_array_selector)."""
+        size = struct.unpack_from("<I", data)[0] if len(data) >= 4 else NONE
+        if size > len(data) - 4 or size % 4:
+            raise self.fail(f"{state.name}: an array selector's name of {size} bytes (a "
+                            f"multiple of 4 within the resource's {len(data)})", at)
+        name = data[4:4 + size].split(b"\0", 1)[0].decode("latin-1")
+        param = effect.parameter(name)
+        kind = OBJECT_BY_TYPE.get(pending.t.type, ("",))[0]
+        if param is None or not param.array or param.type.base != kind:
+            raise self.fail(f"{state.name}: the array selector names '{name[:40]}', which is no "
+                            f"array of {kind or 'objects'} the effect declares", at + 4)
+        return Preshader(f"{name}[preshader at byte {at + 4 + size}]", state.location,
+                         data[4 + size:], at + 4 + size, 1, name)
 
     def reference(self, text: str, effect: Effect, at: int) -> ParamRef:
         """`name` or `name[3]`: the parameter a state names."""

@@ -86,9 +86,9 @@ def _reads(effect: Effect, v: Any) -> Iterable[tuple[str, Any]]:
         for n in _NAME.findall(v.text):
             if n in names:
                 yield n, None
-        from effects.shaders.hlsl.preshader import shader_element
+        from effects.shaders.hlsl.preshader import expression_element
         try:
-            element = shader_element(effect, v.text, v.location)
+            element = expression_element(effect, v)
         except EffectError:
             element = None
         if element is not None:

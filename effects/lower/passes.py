@@ -271,6 +271,9 @@ def _shader(state: DeviceState, name: str) -> Any:
     if isinstance(value, NullValue) or value is None:
         return None
     if isinstance(value, ParamRef):
+        param = state.effect.parameter(value.name)
+        if param is not None and param.value is None and param.array and value.index is not None:
+            return None     # an element of a shader array declared without one: NULL, as in D3DX
         raise EffectError(f"{name} = <{value.name}>: the parameter holds no shader",
                           a.location)
     return value

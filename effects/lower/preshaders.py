@@ -17,7 +17,7 @@ from typing import Any
 
 from effects.d3d9.device import DeviceState
 from effects.model import Effect, Expression, ParamRef, StateAssignment
-from effects.shaders.hlsl.preshader import shader_element, state_value
+from effects.shaders.hlsl.preshader import expression_element, expression_value
 
 
 def evaluate_expressions(effect: Effect, state: DeviceState) -> DeviceState:
@@ -60,8 +60,8 @@ def _expression_of(effect: Effect, value: Any) -> Expression | None:
 def _evaluated(effect: Effect, assignment: StateAssignment, expression: Expression
                ) -> StateAssignment:
     if assignment.name in ("VertexShader", "PixelShader"):
-        element = shader_element(effect, expression.text, expression.location)
+        element = expression_element(effect, expression)
         if element is not None:            # `(PSArray[ShaderIndex])`: the element it picks
             return replace(assignment, value=element)
-    return replace(assignment, value=state_value(assignment.name, assignment.index,
-                                                 expression.text, expression.location, effect))
+    return replace(assignment, value=expression_value(assignment.name, assignment.index,
+                                                      expression, effect))

@@ -3,9 +3,11 @@ listing of one (`effects compile --disassemble X.fxo`).
 
 The layout is effects/frontend/fxo.py's (which reads it back); every shader is written as
 Direct3D 9 bytecode with its constant table (effects.shaders.d3dbc), an HLSL shader's naming
-the parameters in its registers as fxc's does. What the format holds only as FXLC preshader
-bytecode (expression states, a shader's constant preshaders, shader arrays selected by an
-expression) is refused with a located error: this writer does not write FXLC yet.
+the parameters in its registers as fxc's does. An expression state (and a shader array
+selected by an expression) is written as the FXLC preshader fxc writes
+(effects.shaders.fxlc_compile), one a binary gave as it came. A ps_1_x shader's constant
+preshaders and a parameter initialised by an expression of others are refused with a located
+error: this writer does not write those as FXLC yet.
 """
 from __future__ import annotations
 
@@ -19,8 +21,8 @@ from effects.base.errors import EffectError, Location
 from effects.frontend import fxo as fmt
 from effects.frontend.fxo import TypeDef
 from effects.model import (Annotation, BytecodeShader, CompileShader, Effect, EnumValue,
-                           Expression, NullValue, Parameter, ParamRef, SamplerState, ShaderBlock,
-                           StateAssignment)
+                           Expression, NullValue, Parameter, ParamRef, Preshader, SamplerState,
+                           ShaderBlock, StateAssignment)
 
 
 class FxoEncodeError(EffectError):
@@ -308,10 +310,12 @@ class _Writer:
         def resource(usage: int, raw: bytes) -> None:
             self.resources.append((technique, pass_or_param, element, state_index, usage, raw))
 
-        if isinstance(value, Expression):
-            raise self.fail(f"{s.name} = {value.text[:40]}: an expression state is FXLC "
-                            "preshader bytecode in fx_2_0, which this writer does not write yet",
-                            s.location)
+        if isinstance(value, Expression) and not isinstance(value, Preshader):
+            # a source expression: compiled to the preshader fxc would have written
+            from effects.shaders.fxlc_compile import preshader_of
+            value = preshader_of(self.effect, info.name, value)
+        if isinstance(value, Preshader):           # (read from a binary: written as it came)
+            return self.preshader_state(info, index, value, s.location, resource)
         if info.type in _OBJECT_STATE_TYPES:
             if isinstance(value, NullValue) or value is None:
                 t = TypeDef(fmt.PT_INT, fmt.PC_SCALAR, "", "")
@@ -336,6 +340,29 @@ class _Writer:
             resource(fmt.USAGE_PARAMETER, _reference(value))
         return struct.pack("<4I", info.fx2, index, *self.typed(t, raw))
 
+    def preshader_state(self, info: Any, index: int, value: Preshader, location: Location,
+                        resource: Any) -> bytes:
+        """A state a binary gave as a preshader: its type with a placeholder value, and the
+        preshader as its resource (usage 0), or, for a shader array's selector, an object
+        whose resource (usage 2) is the array's name, padded to 4, then the preshader."""
+        if value.selects is not None:
+            t = TypeDef(_OBJECT_STATE_TYPES[info.type], fmt.PC_OBJECT, "", "")
+            name = value.selects.encode("latin-1", "replace") + b"\0"
+            name += b"\0" * (-len(name) % 4)
+            resource(fmt.USAGE_SELECTOR, struct.pack("<I", len(name)) + name + value.data)
+            raw = struct.pack("<I", self.new_object())
+            return struct.pack("<4I", info.fx2, index, *self.typed(t, raw))
+        n = value.components or 1
+        if info.type == "constants":
+            # any count of numbers, as fxc types such a value (a 9x1 matrix)
+            kind = fmt.PT_INT if info.name.endswith("I") else \
+                fmt.PT_BOOL if info.name.endswith("B") else fmt.PT_FLOAT
+            t, raw = TypeDef(kind, fmt.PC_MATRIX_COLUMNS, "", "", 0, n, 1), b"\0" * (4 * n)
+        else:
+            t, raw = self.state_number(info, np.zeros(n, np.float32), location)
+        resource(fmt.USAGE_DATA, value.data)
+        return struct.pack("<4I", info.fx2, index, *self.typed(t, raw))
+
     def state_number(self, info: Any, value: Any, location: Location) -> tuple[TypeDef, bytes]:
         """The typedef and value bytes of a numeric state (a ParamRef's placeholder zeros)."""
         if info.type == "constants":
@@ -345,9 +372,10 @@ class _Writer:
                 t = TypeDef(fmt.PT_BOOL, fmt.PC_SCALAR, "", "", n if n > 1 else 0)
             else:
                 kind = fmt.PT_INT if info.name.endswith("I") else fmt.PT_FLOAT
-                if n % 4:
-                    raise self.fail(f"{info.name}: {n} numbers, not whole registers", location)
-                t = TypeDef(kind, fmt.PC_VECTOR, "", "", n // 4 if n > 4 else 0, 1, 4)
+                # whole registers as float4s; another count as fxc types it, an n x 1 matrix
+                # (`VertexShaderConstant1[1] = 3.0f` in Wine's states blob)
+                t = TypeDef(kind, fmt.PC_MATRIX_COLUMNS, "", "", 0, n, 1) if n % 4 else \
+                    TypeDef(kind, fmt.PC_VECTOR, "", "", n // 4 if n > 4 else 0, 1, 4)
         else:
             kind, cls, rows, cols = _STATE_TYPES[info.type]
             t = TypeDef(kind, cls, "", "", 0, rows, cols)
@@ -412,7 +440,8 @@ def listing(effect: Effect) -> str:
                 shaders.append((f"parameter {p.name}", v))
     for label, v in shaders:
         lines += ["", f"// {label} ({v.version}) at byte {v.location.column - 1}",
-                  binary_listing(read_shader(v.data, v.location.path))]
+                  "// (a software vertex shader: not disassembled)" if v.version == "vs_3_sw"
+                  else binary_listing(read_shader(v.data, v.location.path))]
     return "\n".join(lines)
 
 
@@ -437,6 +466,10 @@ def _value_text(value: Any, prefix: str = " = ") -> str:
         return f"{prefix}sampler_state {{ {inner} }}"
     if isinstance(value, BytecodeShader):
         return f"{prefix}<{value.version} bytecode, {len(value.data)} bytes>"
+    if isinstance(value, Preshader):
+        from effects.shaders.fxlc import decode, listing
+        program = f"preshader {{ {listing(decode(value, value.location.path))} }}"
+        return prefix + (f"{value.selects}[{program}]" if value.selects else program)
     if isinstance(value, Expression):
         return prefix + value.text
     if isinstance(value, list):

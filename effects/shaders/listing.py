@@ -34,8 +34,8 @@ def pass_listing(effect: "Effect", technique: "Technique", index: int) -> list[s
         if isinstance(value, Expression):
             # `VertexShader = (VSArray[VSIndex])`: the element the parameters pick now, as
             # validation judges it (a wrong index is the same located error)
-            from effects.shaders.hlsl.preshader import shader_element
-            element = shader_element(effect, value.text, value.location)
+            from effects.shaders.hlsl.preshader import expression_element
+            element = expression_element(effect, value)
             if element is not None:
                 picked = (f"// {state} = {value.text.strip()}: {element.name}[{element.index}] "
                           "at the parameters' current values")

@@ -16,11 +16,11 @@ from typing import TYPE_CHECKING, Any, Mapping
 
 from effects.base.errors import Location
 from effects.model import BytecodeShader, CompileShader, ShaderBlock
+from effects.shaders.hlsl.shader import CompiledShader
 
 if TYPE_CHECKING:  # pragma: no cover
     from effects.model import Effect
     from effects.shaders.asm import AsmProgram
-    from effects.shaders.hlsl.shader import CompiledShader
 
 
 @dataclass(frozen=True)
@@ -103,6 +103,15 @@ def _bound(value: Any, program: "AsmProgram", compiled: "CompiledShader | None")
                   dict(compiled.bool_registers))
 
 
+@dataclass
+class PreshadedShader(CompiledShader):
+    """A bytecode shader with fxc's constant preshader (its PRES comment): the c# registers
+    it writes, computed on the host before each draw (hlsl.registers.constant_values runs it).
+    The compile store never holds one: it keeps HLSL results only."""
+
+    fxlc: Any = None
+
+
 def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader | None"]:
     """A bytecode shader's program, and (where its constant table names parameters, as fxc's
     and our compiler's do) a CompiledShader carrying those bindings, so its parameters load
@@ -110,9 +119,15 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
     located in the file the bytecode came from (its byte offset there)."""
     from effects.base.errors import EffectError
     from effects.shaders.d3dbc import BytecodeError, read_shader
-    from effects.shaders.hlsl.shader import CompiledShader
     from effects.shaders.asm.text import program_text
     start = value.location.column - 1 if value.location.line == 1 else 0
+    if value.version == "vs_3_sw":
+        # Direct3D 9 creates a vs_3_sw shader only on a device that processes vertices in
+        # software (D3DCREATE_SOFTWARE_VERTEXPROCESSING); D3DX loaded such an effect and its
+        # ValidateTechnique failed on a hardware device. No simulated card is a software device.
+        raise BytecodeError("a vs_3_sw shader (version token 0xFFFE03FF) runs only on a device "
+                            "created for software vertex processing, which no simulated card "
+                            f"is (at byte {start})", Location(value.location.path, 1, start + 1))
     try:
         binary = read_shader(value.data, value.location.path)
     except EffectError as err:
@@ -121,17 +136,14 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
                                             f"(at byte {column - 1})"),
                         Location(value.location.path, 1, column)) from None
     program, table = binary.program, binary.table
-    for at, code, _ in binary.comments:
-        if code == "PRES":
+    pres = None
+    for at, code, body in binary.comments:
+        if code == "PRES" and pres is None:
             # fxc's preshader (a PRES comment: FXLC code, CLIT literals, its own CTAB) fills
-            # constant registers on the host before each draw; drawing without it would read
-            # zeros there, a wrong picture: refused until FXLC is evaluated
-            column = start + at + 1
-            raise BytecodeError(f"the shader carries a preshader (PRES comment: FXLC code that "
-                                f"fills constant registers on the host), which is not "
-                                f"evaluated yet (at byte {column - 1})",
-                                Location(value.location.path, 1, column))
-    if table is None or not table.constants:
+            # constant registers on the host before each draw, as D3DX ran it
+            from effects.shaders.fxlc import decode_bytes
+            pres = decode_bytes(body[4:], start + at + 8, value.location.path)
+    if (table is None or not table.constants) and pres is None:
         return program, None
     constants: dict[str, tuple[int, int]] = {}
     samplers: dict[str, int] = {}
@@ -139,7 +151,7 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
     bools: dict[str, int] = {}
     counts: dict[str, int] = {}          # an int or bool parameter's registers, one a component
     types: dict = {}
-    for c in table.constants:
+    for c in table.constants if table is not None else ():
         if c.register_set == "sampler":
             samplers[c.name] = c.register_index
             continue
@@ -155,10 +167,13 @@ def read_bytecode(value: BytecodeShader) -> tuple["AsmProgram", "CompiledShader 
             bools[c.name] = c.register_index
             counts[c.name] = c.register_count
     text = program_text(program)
-    return program, CompiledShader("<bytecode>", program.name, text, program, constants,
-                                   samplers, [value.location] * (text.count("\n") + 1),
-                                   types=types, int_registers=ints, bool_registers=bools,
-                                   register_counts=counts)
+    made = CompiledShader if pres is None else PreshadedShader
+    compiled = made("<bytecode>", program.name, text, program, constants, samplers,
+                    [value.location] * (text.count("\n") + 1), types=types, int_registers=ints,
+                    bool_registers=bools, register_counts=counts)
+    if pres is not None:
+        compiled.fxlc = pres
+    return program, compiled
 
 
 def _htype(t: Any) -> Any:

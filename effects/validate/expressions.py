@@ -72,14 +72,14 @@ class ExpressionValues:
 
     def _evaluate(self, effect: Effect, name: str, index: int | None, expression: Expression,
                   where: Location) -> Any:
-        from effects.shaders.hlsl.preshader import state_value   # lark: when needed
+        from effects.shaders.hlsl.preshader import expression_value   # lark: when needed
         info = lookup_state(name)
         shown = name if index is None or info is None or info.index == "none" else f"{name}[{index}]"
         text = _flag_names(name, info, expression.text.strip())
         view = RecordedReads(effect)
         known: dict[str, Any] = {}          # the initialisers it evaluated, for the reads below
         try:
-            number = state_value(name, index, expression.text, expression.location, view, known)
+            number = expression_value(name, index, expression, view, known)
         except EffectError as err:
             self.errors.append((shown, err))
             self.pending[where] = ""        # the error is the reason: no note besides

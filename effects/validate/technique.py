@@ -385,9 +385,9 @@ class _PassChecker(StageChecks, TextureChecks, FrameBufferChecks, ShaderChecks,
         if isinstance(value, Expression):
             # `(PSArray[ShaderIndex])`: judged as the shader the parameters pick now, as
             # D3DX's ValidateTechnique runs the preshader with the current values
-            from effects.shaders.hlsl.preshader import shader_element   # lark: when needed
+            from effects.shaders.hlsl.preshader import expression_element   # lark: when needed
             try:
-                element = shader_element(self.effect, value.text, value.location)
+                element = expression_element(self.effect, value)
             except EffectError as err:
                 self.fail(err.location, name, "a shader the parameters pick", "no shader",
                           err.message)

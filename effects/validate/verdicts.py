@@ -80,7 +80,9 @@ def load_effect(path_or_text: Any, *, strict: bool = False, **options: Any) -> E
     language error in any of the effect's shaders also fails the load (`check_language`).
     Every loader of a user's effect that honours `strict` loads through here."""
     from effects.frontend.loader import load_effect as read
+    from effects.shaders.fxlc import check_preshaders
     effect = read(path_or_text, strict=strict, **options)
+    check_preshaders(effect)        # an fx_2_0 binary's expression states, read (bad: located)
     if strict:
         check_language(effect)
     return effect

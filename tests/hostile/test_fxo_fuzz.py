@@ -76,3 +76,42 @@ def test_a_mutated_binary_is_read_or_refused_with_a_location(binaries, name, kin
 def effect_validate(effect, technique, profile):
     from effects.validate.technique import validate_technique
     return validate_technique(effect, technique, profile)
+
+
+# Wine's fxc-written blobs with preshaders (FXLC): mutations confined to the bytes from the
+# first preshader on, so they land in constant tables, literals and instructions
+FXLC_BLOBS = ("test_effect_preshader_effect_blob", "test_effect_preshader_ops_blob",
+              "test_effect_shared_parameters_blob", "test_effect_skip_constants_blob")
+FXLC_CASES = [(name, kind, seed) for name in FXLC_BLOBS for kind in ("flip", "field")
+              for seed in range(12)]
+
+
+@pytest.mark.parametrize("name,kind,seed", FXLC_CASES)
+def test_a_mutated_preshader_is_run_or_refused_with_a_location(name, kind, seed):
+    from effects.model import Preshader
+    from effects.shaders.fxlc import check_preshaders
+    from effects.shaders.hlsl.preshader import expression_element, expression_value
+    data = (ROOT / "tests" / "data" / "fxo" / "wine" / f"{name}.fxo").read_bytes()
+    start = data.find(b"FXLC") & ~3
+    tail = mutate(data[start:], kind, random.Random(f"{name}-{kind}-{seed}"))
+    data = data[:start] + tail
+    path = f"/fuzz/{name}.fxo"
+    try:
+        effect = read_effect_binary(data, path)
+        check_preshaders(effect)
+        for technique in effect.techniques:
+            for p in technique.passes:
+                for s in p.states:
+                    if isinstance(s.value, Preshader):
+                        try:
+                            if s.value.selects:
+                                expression_element(effect, s.value)
+                            else:
+                                expression_value(s.name, s.index, s.value, effect)
+                        except EffectError as err:     # located at the state
+                            assert err.location.path == path, err
+            effect_validate(effect, technique, load_profile("modern"))
+        listing(effect)
+    except EffectError as err:
+        assert err.location.path == path and err.location.line == 1, err
+        assert 1 <= err.location.column <= len(data) + 1, err

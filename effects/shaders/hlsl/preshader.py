@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from effects.base.errors import EffectError, Location
-from effects.model import Effect, ParamRef
+from effects.model import Effect, Expression, ParamRef, Preshader
 from effects.shaders.hlsl.budget import out_of_stack
 from effects.shaders.hlsl.dag import Operand, host_computable, reachable
 from effects.shaders.hlsl.parse import Origin, parse
@@ -66,6 +66,23 @@ def initializer_numbers(text: str, location: Location, effect: Effect | None = N
     return out
 
 
+def parameter_numbers(effect: Effect, name: str) -> list[float] | None:
+    """A parameter's numbers in declaration order at its current value (its initialiser
+    evaluated where that is an expression), read through `effect`; None without a value."""
+    p = effect.parameter(name)
+    if p is None or p.value is None:
+        return None
+    v = p.value
+    if isinstance(v, Expression):
+        return initializer_numbers(v.text, v.location, effect, host_values=True)
+    if isinstance(v, (list, tuple)):
+        return [float(x) for x in np.asarray(v, dtype=np.float64).reshape(-1)]
+    try:
+        return [float(x) for x in np.asarray(v, dtype=np.float64).reshape(-1)]
+    except (TypeError, ValueError):
+        return None
+
+
 def state_numbers(text: str, location: Location, effect: Effect,
                   known: dict[str, np.ndarray] | None = None) -> np.ndarray:
     """A state assignment's expression evaluated with the parameters' current values: its
@@ -83,7 +100,33 @@ def state_value(name: str, index: int | None, text: str, location: Location, eff
     judges it): one component a plain number (every typed reader takes one), more an array (a
     vector, a matrix row by row, constant registers four floats each); X3017 when the state's
     type takes another count."""
-    numbers = state_numbers(text, location, effect, known)
+    return _state_typed(name, index, state_numbers(text, location, effect, known), text, location)
+
+
+def expression_value(name: str, index: int | None, value: Expression, effect: Effect,
+                     known: dict[str, np.ndarray] | None = None) -> Any:
+    """`state_value` of any expression a state holds: source text, or the preshader an fx_2_0
+    binary compiled it to (effects.shaders.fxlc), run at the parameters' current values."""
+    if isinstance(value, Preshader):
+        return _state_typed(name, index, _preshader_numbers(value, effect), value.text,
+                            value.location)
+    return state_value(name, index, value.text, value.location, effect, known)
+
+
+def _preshader_numbers(value: Preshader, effect: Effect) -> np.ndarray:
+    from effects.shaders.fxlc import numbers
+    from effects.shaders.fxlc import decode, listing
+    out = numbers(value, effect, lambda name: parameter_numbers(effect, name),
+                  value.components or None)
+    if not np.all(np.isfinite(out)):
+        shown = listing(decode(value, effect.path))
+        raise EffectError(f"X3013: the {value.text} ({shown[:200]}) does not evaluate to "
+                          f"finite numbers ({out.tolist()})", value.location)
+    return out
+
+
+def _state_typed(name: str, index: int | None, numbers: np.ndarray, text: str,
+                 location: Location) -> Any:
     need = _SIZES.get(getattr(lookup_state(name), "type", ""))
     if need is not None and numbers.size not in need:
         shown = name if index is None else f"{name}[{index}]"
@@ -119,8 +162,26 @@ def shader_element(effect: Effect, text: str, location: Location) -> ParamRef | 
     param = effect.parameter(m.group(1))
     if param is None or not param.array or param.type.base not in _SHADER_TYPES:
         return None
-    numbers = state_numbers(m.group(2), location, effect)
-    count = len(param.value) if isinstance(param.value, (list, tuple)) else 0
+    return _element(param, state_numbers(m.group(2), location, effect), text, location)
+
+
+def expression_element(effect: Effect, value: Expression) -> ParamRef | None:
+    """`shader_element` of any expression a shader state holds: source text, or an fx_2_0
+    binary's array selector (a preshader computing the index)."""
+    if not isinstance(value, Preshader):
+        return shader_element(effect, value.text, value.location)
+    if value.selects is None:
+        return None
+    param = effect.parameter(value.selects)
+    if param is None:
+        return None
+    return _element(param, _preshader_numbers(value, effect), value.text, value.location)
+
+
+def _element(param: Any, numbers: np.ndarray, text: str, location: Location) -> ParamRef:
+    # the declared length: an array without initialiser holds NULL shaders (an fx_2_0 binary
+    # writes them as empty objects), as many as it declares
+    count = param.array[0] if param.array else 0
     if numbers.size != 1:
         raise EffectError(f"X3017: the index of {param.name} in '{text.strip()}' has "
                           f"{numbers.size} components, it takes one", location)

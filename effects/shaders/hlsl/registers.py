@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from effects.model import Effect, Expression
+from effects.model import Effect
 from effects.shaders.hlsl.types import HType
 
 Row = tuple[float, float, float, float]
@@ -47,22 +47,6 @@ def _rows(t: HType, flat: list[float]) -> tuple[list[Row], int]:
     return [], 0
 
 
-def parameter_numbers(effect: Effect, name: str) -> list[float] | None:
-    p = effect.parameter(name)
-    if p is None or p.value is None:
-        return None
-    v = p.value
-    if isinstance(v, Expression):
-        from effects.shaders.hlsl.preshader import initializer_numbers
-        return initializer_numbers(v.text, v.location, effect, host_values=True)
-    if isinstance(v, (list, tuple)):
-        return [float(x) for x in np.asarray(v, dtype=np.float64).reshape(-1)]
-    try:
-        return [float(x) for x in np.asarray(v, dtype=np.float64).reshape(-1)]
-    except (TypeError, ValueError):
-        return None
-
-
 def _register_rows(effect: Effect, shader: Any, name: str) -> list[Row]:
     """The registers of uniform `name` of `shader` at the parameters' current values, or
     what its preshader computes from them (none for a parameter without a value, or an entry
@@ -71,6 +55,7 @@ def _register_rows(effect: Effect, shader: Any, name: str) -> list[Row]:
     if name in shader.preshaders:
         flat = preshader_numbers(effect, shader, shader.preshaders[name])
     else:
+        from effects.shaders.hlsl.preshader import parameter_numbers
         flat = parameter_numbers(effect, name) if not name.startswith("$") else None
     return _rows(t, flat)[0] if (t is not None and flat is not None) else []
 
@@ -107,4 +92,12 @@ def constant_values(effect: Effect, shader: Any) -> dict[int, Row]:
             rows = [(rows[0][0],) * 4]
         for k in range(count):
             out[start + k] = rows[k] if k < len(rows) else (0.0, 0.0, 0.0, 0.0)
+    program = getattr(shader, "fxlc", None)
+    if program is not None:
+        # a bytecode shader's constant preshader: the registers it writes, as D3DX set them
+        from effects.shaders.fxlc import run, written_registers
+        from effects.shaders.hlsl.preshader import parameter_numbers
+        oc = run(program, effect, lambda name: parameter_numbers(effect, name))
+        for k in written_registers(program):
+            out[k] = tuple(float(x) for x in oc[4 * k:4 * k + 4])  # type: ignore[assignment]
     return out

@@ -128,9 +128,10 @@ def test_what_the_writer_cannot_write_is_a_located_error():
     assert got.value.location.line == 1 and "FXLC" in got.value.message
 
 
-def test_a_shader_with_an_fxc_preshader_is_refused_not_drawn_wrong():
-    # a ps_2_0 whose PRES comment (fxc's preshader: FXLC code filling c#) the host would have
-    # to run: without it the shader reads zeros, so it is refused, located at the comment
+def test_a_shader_with_a_bad_fxc_preshader_is_refused_not_drawn_wrong():
+    # a ps_2_0 whose PRES comment (fxc's preshader: FXLC code filling c#, run on the host:
+    # test_fxlc.py) holds no preshader: without it the shader would read zeros, so it is
+    # refused, located where the preshader's version token belongs
     data = bytearray(write_effect_binary(effects.load_effect(
         "technique T { pass P { PixelShader = asm { ps_2_0 mov oC0, c0 }; } }")))
     at = data.find(bytes([0x00, 0x02, 0xFF, 0xFF]))
@@ -141,7 +142,8 @@ def test_a_shader_with_an_fxc_preshader_is_refused_not_drawn_wrong():
     from effects.shaders.shader_value import shader_of
     with pytest.raises(EffectError) as got:
         shader_of(e, e.techniques[0].passes[0].state("PixelShader").value)
-    assert "preshader" in got.value.message and got.value.location.column == ctab - 4 + 1
+    assert "preshader: version token 0x0000001C" in got.value.message
+    assert got.value.location.column == ctab + 4 + 1
     from effects.d3d9.caps import load_profile
     from effects.validate.technique import validate_technique
     assert not validate_technique(e, e.techniques[0], load_profile("modern")).ok
