@@ -54,6 +54,7 @@ class Builder:
         self.param_names: set[str] = set()
         self.typedefs: dict[str, TypeSpec] = {}
         self.array_typedefs: set[str] = set()
+        self.structs: set[str] = set()          # struct types declared so far (annotations use them)
         self.built: dict[str, Parameter] = {}   # parameters so far, for `[N]` and `= m[3][2]`
         from effects.d3d9 import states  # the states table; imported late so the parser loads without it
         self.states = states
@@ -77,7 +78,7 @@ class Builder:
         path = self.pre.files[0] if self.pre.files else (
             self.smap.lines[0][0] if self.smap.lines else "<string>")
         effect = effect_type(path)
-        structs: set[str] = set()
+        structs = self.structs
         first_param: dict[str, Any] = {}
         for item in items:
             if isinstance(item, RawParam):
@@ -313,7 +314,7 @@ class Builder:
     def annotations(self, raws: list) -> list[Annotation]:
         out = []
         for type_tok, name_tok, v, raw_dims in raws:
-            spec = self.type_of(type_tok, set())
+            spec = self.type_of(type_tok, self.structs)   # fxc took `<s k[1] = {4};>`
             dims = self.dims(raw_dims, spec, v, name_tok.value) if raw_dims else ()
             out.append(Annotation(spec, name_tok.value,
                                   self.param_value(spec, dims, v, name_tok.value),

@@ -330,7 +330,7 @@ def _set_components(effect: Effect, state: DeviceState, family: str, name: str, 
                                      and not p.type.struct)):
         state.apply(StateAssignment(family, ParamRef(name), index=register, location=location))
         return
-    from effects.shaders.hlsl.registers import parameter_numbers
+    from effects.shaders.hlsl.preshader import parameter_numbers
     numbers = parameter_numbers(effect, name)
     if numbers is None:
         return

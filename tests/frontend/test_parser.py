@@ -218,6 +218,22 @@ def test_anonymous_techniques_passes_annotations_and_stray_semicolons():
     assert t1.name == "Named" and t1.passes == []
 
 
+def test_an_annotation_of_a_struct_type_declared_before_it():
+    # Wine's variable-names effect, which fxc compiled: `float i <s k[1] = {4};>;`
+    e = parse("struct s { float j; };\nfloat i < s k[1] = {4}; >;\n"
+              "technique T < s l = {5}; > { pass P < s m[1] = {6}; > { } }")
+    k = e.parameters[0].annotations[0]
+    assert (k.name, k.type.struct, k.type.base) == ("k", True, "s")
+    assert isinstance(k.value, Expression) and k.value.text == "{4}"
+    assert e.techniques[0].annotations[0].value.text == "{5}"
+    assert e.techniques[0].passes[0].annotations[0].value.text == "{6}"
+
+
+def test_an_annotation_of_an_undeclared_type_is_located():
+    with pytest.raises(Exception, match=r"<string>:2:11: error: unknown type 'u'"):
+        parse("float x;\nfloat i < u k = {4}; >;\ntechnique T { pass P { } }")
+
+
 def test_locations_point_at_names_in_the_file():
     e = parse("float x;\n\ntechnique T\n{\n  pass P\n  {\n    ZEnable = TRUE;\n  }\n}")
     t = e.techniques[0]

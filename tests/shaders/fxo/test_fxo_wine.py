@@ -92,6 +92,10 @@ def _value(value):
         return ("sampler", tuple((s.name, s.index) for s in value.states))
     if isinstance(value, NullValue):
         return "null"
+    if isinstance(value, Expression):
+        # a struct's initialiser, kept as text by both ({4} in the source, { { 4.0 } } in the
+        # binary): its numbers in order
+        return [float(x) for x in re.findall(r"[-+]?\d+\.?\d*(?:[eE][-+]?\d+)?", value.text)]
     if isinstance(value, (list, tuple)) and value and not isinstance(value[0], (int, float)):
         return [_value(v) for v in value]
     if isinstance(value, str) or value is None:
@@ -100,7 +104,8 @@ def _value(value):
 
 
 def _annotations(annotations: list[Annotation]) -> list:
-    return [(a.name, a.type.base, _value(a.value)) for a in annotations]
+    return [(a.name, "struct" if a.type.struct else a.type.base, _value(a.value))
+            for a in annotations]
 
 
 def _parameter(p: Parameter, with_value: bool = True) -> tuple:
@@ -119,14 +124,10 @@ def _parameter(p: Parameter, with_value: bool = True) -> tuple:
         value = ""           # an uninitialised string is the empty string in a binary
     if value is None and p.type.base in ("vertexshader", "pixelshader"):
         value = ["null"] * int(np.prod(p.array)) if p.array else "null"   # NULL, as D3DX has it
+    if p.type.struct and isinstance(value, list) and not any(value):
+        value = None         # an uninitialised struct is its zeros in a binary
     if value is None and p.type.base in ("float", "int", "bool", "half", "double"):
         value = [0.0] * (p.type.rows * p.type.cols * int(np.prod(p.array or (1,))))
-    if value is None and p.type.base in ("vertexshader", "pixelshader"):
-        # an uninitialised shader is a NULL object in a binary (each element of an array)
-        value = ["null"] * int(np.prod(p.array)) if p.array else "null"
-    # a `register(c4)` binding lives in the shaders' constant tables, not in the parameter
-    # table of an fx_2_0 binary
-    semantic = None if p.semantic and p.semantic.startswith("register(") else p.semantic
     return (p.name, base, p.type.rows, p.type.cols, p.array, semantic,
             _annotations(p.annotations), value)
 
