@@ -10,7 +10,10 @@ returns how many instructions it removed, so a test can show the count drop pass
   written) is `mov_sat`, where the version has the modifier;
 - `fold_into_producer`: `op vrA ...; mov[_sat] D, vrA`, vrA read nowhere else, is `op[_sat] D`
   (the `_sat` on the producing instruction; a result written straight to its destination,
-  where the version lets `op` write it: ps_2_x writes oC#/oDepth with mov only).
+  where the version lets `op` write it: ps_2_x writes oC#/oDepth with mov only). The mov may
+  spread or reorder the lanes: `dp3 r0.x ...; mov oD0, r0.x` is `dp3 oD0 ...` (a replicated
+  result fills every lane of the mask, fxc's code for `o.diffuse = dot(...)`), `add r0.xy ...;
+  mov oT0.yx, r0.xy` is the add writing oT0.yx with its sources' lanes swapped.
 
 Straight-line code only: a flow instruction (rep, loop, if, else, break ...) ends what a pass
 looks at, so a value carried round a loop or chosen by an if is never moved across one.
@@ -22,6 +25,7 @@ from typing import Any
 from effects.shaders.hlsl.asmcode import Instr, Reg, Src
 from effects.shaders.hlsl.allocate import ALIASES as _ALIASES
 from effects.shaders.hlsl.legalize import _choose, _lanes_needed
+from effects.shaders.hlsl.ops import OPS
 
 _TEXLD = frozenset({"texld", "texldp", "texldb", "texldl", "texldd"})
 # instructions whose sources a copy may be folded into: one slot, ordinary sources (texld's
@@ -36,6 +40,15 @@ _PRODUCERS = _READERS - {"mova"} | _TEXLD
 # registers read in place of a copy (ps_3_0's vPos and vFace are left where they are: vFace
 # is read by comparisons only)
 _SOURCES = frozenset({"vr", "c", "v", "t", "c_rel", "c_al"})
+# by the op table's shapes (ops.py): instructions whose one result is replicated into every lane
+# of the write mask (dp3, rcp ...: "the scalar result is replicated"), and those whose lane L
+# reads lane L of each source (add, mul ...), which can write their lanes elsewhere once their
+# sources' swizzles follow. Only the single instructions that may write any register: the
+# macros' pages ask for a temporary destination (pow: "The dest register should be a temporary
+# register"; nrm, crs, lrp, sincos; vs_1_1's frc) (allocate.ALIASES)
+_REPLICATED = frozenset(r.mnemonic for r in OPS.values()
+                        if r.shape in ("scalar", "reduce")) & _ALIASES
+_COMPONENTWISE = frozenset(r.mnemonic for r in OPS.values() if r.shape == "lanes") & _ALIASES
 
 
 def is_flow(ins: Instr) -> bool:
@@ -237,6 +250,31 @@ def _writable(rules: Any, op: str, dst: Reg) -> bool:
     return True
 
 
+def _moved(prod: Instr, mov: Instr, rules: Any) -> tuple[tuple[int, ...], list] | None:
+    """`prod`'s write mask and sources once it writes what `mov` (its one reader) copies of its
+    result, lane for lane where `mov` writes: the same instruction where the lanes agree, the
+    mask widened for a replicated result, the sources' swizzles following a lane-wise one's
+    lanes; None where the instruction cannot (a macro, or a swizzle ps_2_0 lacks)."""
+    need = _lanes_needed(mov, mov.srcs[0])
+    need = {l: need[l] for l in mov.mask}         # mov lane -> the lane of prod's result
+    if any(n not in prod.mask for n in need.values()):
+        return None
+    if all(need[l] == l for l in mov.mask) and tuple(prod.mask) == tuple(mov.mask):
+        return tuple(prod.mask), prod.srcs
+    if prod.opcode in _REPLICATED and len(prod.mask) == 1:
+        return tuple(mov.mask), prod.srcs
+    if prod.opcode not in _COMPONENTWISE or len(set(need.values())) != len(need):
+        return None
+    srcs: list = []
+    for s in prod.srcs:
+        reads = _lanes_needed(prod, s)
+        lanes = {l: reads[need[l]] for l in mov.mask}
+        if _choose(lanes, _rule(rules)) is None:
+            return None
+        srcs.append(Src(s.reg, lanes, s.negate))
+    return tuple(mov.mask), srcs
+
+
 def fold_into_producer(cg: Any) -> int:
     rules = cg.rules
     instrs: list[Instr] = cg.instrs
@@ -253,15 +291,15 @@ def fold_into_producer(cg: Any) -> int:
             continue
         i = d[0]
         prod = instrs[i]
-        if prod.opcode not in _PRODUCERS or tuple(prod.mask) != tuple(mov.mask):
+        if prod.opcode not in _PRODUCERS:
             continue
         if mov.saturate and (prod.opcode in _TEXLD or not rules.saturate):
             continue
-        need = _lanes_needed(mov, s)
-        if set(need) != set(mov.mask) or any(need[l] != l for l in mov.mask):
-            continue
         target = mov.dst
         if not _writable(rules, prod.opcode, target):
+            continue
+        moved = _moved(prod, mov, rules)
+        if moved is None:
             continue
         if prod.opcode not in _ALIASES and any(_same(r, target) for r in _read_regs(prod)):
             continue            # a macro may write its destination before its last read
@@ -270,8 +308,8 @@ def fold_into_producer(cg: Any) -> int:
                or (_writes(x) is not None and _same(_writes(x), target)) for x in between):  # type: ignore[arg-type]
             continue
         prod.dst = target
+        prod.mask, prod.srcs = moved
         prod.saturate = prod.saturate or mov.saturate
-        prod.location = prod.location
         drop.add(j)
     cg.instrs = [ins for k, ins in enumerate(instrs) if k not in drop]
     return len(drop)
