@@ -64,7 +64,7 @@ def test_a_1000_deep_nested_expression_compiles():
         text = f"({text} + 1)" if k % 2 == 0 else f"({text} * 1)"
     assert constant(f"return {text};")[0] == 500
     assert asm("return " + "-(" * 1000 + "uv.x" + ")" * 1000 + ";").splitlines()[1:] == \
-        ["dcl t0", "mov oC0, t0.x"]
+        ["dcl t0.xy", "mov oC0, t0.x"]
     # g(g(...g(0)...)) with g(x) = x / 2 + 1/2, 1,000 deep: 1 - 2^-1000, which is 1 in float64
     assert constant("return " + "g(" * 1000 + "0" + ")" * 1000 + ";",
                     "float g(float x) { return x * 0.5 + 0.5; }")[0] == 1.0
