@@ -24,8 +24,8 @@ from typing import Any
 
 from effects.shaders.hlsl.asmcode import Instr, Reg, Src
 from effects.shaders.hlsl.allocate import ALIASES as _ALIASES
-from effects.shaders.hlsl.legalize import _choose, _lanes_needed
-from effects.shaders.hlsl.ops import OPS
+from effects.shaders.hlsl.legalize import COMPONENTWISE as _COMPONENTWISE, \
+    REPLICATED as _REPLICATED, _choose, _lanes_needed
 
 _TEXLD = frozenset({"texld", "texldp", "texldb", "texldl", "texldd"})
 # instructions whose sources a copy may be folded into: one slot, ordinary sources (texld's
@@ -40,15 +40,6 @@ _PRODUCERS = _READERS - {"mova"} | _TEXLD
 # registers read in place of a copy (ps_3_0's vPos and vFace are left where they are: vFace
 # is read by comparisons only)
 _SOURCES = frozenset({"vr", "c", "v", "t", "c_rel", "c_al"})
-# by the op table's shapes (ops.py): instructions whose one result is replicated into every lane
-# of the write mask (dp3, rcp ...: "the scalar result is replicated"), and those whose lane L
-# reads lane L of each source (add, mul ...), which can write their lanes elsewhere once their
-# sources' swizzles follow. Only the single instructions that may write any register: the
-# macros' pages ask for a temporary destination (pow: "The dest register should be a temporary
-# register"; nrm, crs, lrp, sincos; vs_1_1's frc) (allocate.ALIASES)
-_REPLICATED = frozenset(r.mnemonic for r in OPS.values()
-                        if r.shape in ("scalar", "reduce")) & _ALIASES
-_COMPONENTWISE = frozenset(r.mnemonic for r in OPS.values() if r.shape == "lanes") & _ALIASES
 
 
 def is_flow(ins: Instr) -> bool:
