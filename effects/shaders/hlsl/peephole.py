@@ -254,7 +254,7 @@ def _moved(prod: Instr, mov: Instr, rules: Any) -> tuple[tuple[int, ...], list] 
         return tuple(prod.mask), prod.srcs
     if prod.opcode in _REPLICATED and len(prod.mask) == 1:
         return tuple(mov.mask), prod.srcs
-    if prod.opcode not in _COMPONENTWISE or len(set(need.values())) != len(need):
+    if prod.opcode not in _COMPONENTWISE:
         return None
     srcs: list = []
     for s in prod.srcs:

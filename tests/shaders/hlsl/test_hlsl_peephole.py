@@ -262,6 +262,19 @@ def test_the_rule_moves_a_lane_wise_result_with_its_sources_lanes():
     mov = Instr("mov", _vr(2), (0, 2), [Src(_vr(0), {0: 0, 2: 1})])
     assert len(_fold("ps_2_0", add, mov)) == 2
     assert len(_fold("ps_3_0", add, mov)) == 1          # any swizzle: add r2.xz, t0.xzy?, ..
+    # one lane spread over several: each computes it again from the same source lanes
+    add = Instr("add", _vr(0), (0,), [Src(_vr(1), {0: 0}), Src(Reg("v", 0), {0: 0})])
+    mov = Instr("mov", Reg("oC", 0), (0, 1, 2, 3), [Src(_vr(0), {}, fixed=(0, 0, 0, 0))])
+    out = _fold("ps_3_0", add, mov)
+    assert len(out) == 1 and out[0].dst == Reg("oC", 0) and out[0].mask == (0, 1, 2, 3)
+    assert [s.lanes for s in out[0].srcs] == [{0: 0, 1: 0, 2: 0, 3: 0}] * 2
+
+
+def test_a_sum_s_last_add_writes_the_colour_in_every_lane(monkeypatch):
+    src = "float4 PS(float2 uv : TEXCOORD0) : COLOR { return uv.x + uv.x + uv.x; }"
+    assert body(compiled(src, "PS", "ps_3_0")) == ["add r0.x, v0, v0", "add oC0, r0.x, v0.x"]
+    without(monkeypatch, "fold into producer")
+    assert body(compiled(src, "PS", "ps_3_0"))[-1] == "mov oC0, r0.x"
 
 
 # Wine's d3d10core test shader (tests/data/d3dbc/wine): fxc wrote `dp3 oD0, c4, v1`
