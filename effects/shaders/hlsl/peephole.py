@@ -306,10 +306,110 @@ def fold_into_producer(cg: Any) -> int:
     return len(drop)
 
 
+def _lanes_read(ins: Instr, reg: Reg) -> set[int]:
+    return {lane for s in ins.srcs if isinstance(s, Src) and _same(s.reg, reg)
+            for lane in _lanes_needed(ins, s).values()}
+
+
+def build_in_place(cg: Any) -> int:
+    """`mov C, X` whose X, read nowhere else, was built lane by lane from C's own lanes and new
+    ones (`mad X.x, ..., C.x; mov X.yzw, C; mov C, X`: a loop's carried vector with one lane
+    updated) is C updated in place (`mad C.x, ..., C.x`): X's writers write C, the copies of
+    C's own lanes and the mov are left out. Each lane of the mov written once, in straight-line
+    code, where nothing between a writer and the mov reads or writes the lanes it now writes
+    of C (the writer itself reads its sources before it writes)."""
+    instrs: list[Instr] = cg.instrs
+    defs, uses = _census(instrs)
+    drop: set[int] = set()
+    for j, mov in enumerate(instrs):
+        if mov.opcode != "mov" or mov.saturate or mov.dst is None or mov.dst.kind != "vr" \
+                or len(mov.srcs) != 1:
+            continue
+        s, c = mov.srcs[0], mov.dst
+        if s.reg.kind != "vr" or s.negate or _same(s.reg, c) or uses.get(s.reg.index) != 1:  # type: ignore[arg-type]
+            continue
+        need = _lanes_needed(mov, s)
+        if any(need[l] != l for l in mov.mask):
+            continue
+        ws = defs.get(s.reg.index, [])  # type: ignore[arg-type]
+        if not ws or ws[-1] >= j or any(k in drop for k in ws):
+            continue
+        first = ws[0]
+        lanes = [l for w in ws for l in instrs[w].mask]
+        if sorted(lanes) != sorted(mov.mask) or \
+                any(is_flow(x) for x in instrs[first:j]):
+            continue
+        same = [w for w in ws if _is_self_copy(instrs[w], c)]
+        moved = [w for w in ws if w not in same]
+        ok = all(instrs[w].opcode in _ALIASES or not _lanes_read(instrs[w], c) for w in moved)
+        for k in range(first, j):
+            x = instrs[k]
+            if k in ws:
+                continue
+            d = _writes(x)
+            if d is not None and _same(d, c):
+                ok = False                      # C changes between: the order would matter
+        for w in moved:
+            mask = set(instrs[w].mask)
+            if any(_lanes_read(instrs[k], c) & mask for k in range(w + 1, j) if k not in same):
+                ok = False
+        if not ok:
+            continue
+        for w in moved:
+            instrs[w].dst = c
+        drop.update(same)
+        drop.add(j)
+    cg.instrs = [ins for k, ins in enumerate(instrs) if k not in drop]
+    return len(drop)
+
+
+def _is_self_copy(ins: Instr, c: Reg) -> bool:
+    """`mov X.m, C.m`: C's own lanes, each where it was."""
+    if ins.opcode != "mov" or ins.saturate or len(ins.srcs) != 1:
+        return False
+    s = ins.srcs[0]
+    need = _lanes_needed(ins, s)
+    return _same(s.reg, c) and not s.negate and all(need[l] == l for l in ins.mask)
+
+
+def drop_dead_writes(cg: Any) -> int:
+    """Instructions whose temporary no kept instruction reads: what is kept is what writes an
+    output, a0 or a flow test (rep, if, break, texkill), and, back from there, what writes a
+    temporary a kept instruction reads (a mark over registers, flow-insensitive, so a value
+    read round a loop or after an if is kept). A loop counter no one reads after its loop
+    (`for (i = 0; i < n; i++)` run by `rep i0`) was carried round the loop and copied out of
+    it (`add r2.x, r2, c3.y` in the body, `mov r1.x, r2` after: Wine's registerset_blob_scalar
+    test shader, whose fxc code has neither)."""
+    instrs: list[Instr] = cg.instrs
+    writers: dict[int, list[int]] = {}
+    roots: list[int] = []
+    for i, ins in enumerate(instrs):
+        d = _writes(ins)
+        if d is not None and d.kind == "vr":
+            writers.setdefault(d.index, []).append(i)     # type: ignore[arg-type]
+        else:
+            roots.append(i)
+    kept: set[int] = set()
+    seen: set[int] = set()
+    todo = roots
+    while todo:
+        i = todo.pop()
+        if i in kept:
+            continue
+        kept.add(i)
+        for r in _read_regs(instrs[i]):
+            if r.kind == "vr" and r.index not in seen:
+                seen.add(r.index)                          # type: ignore[arg-type]
+                todo.extend(writers.get(r.index, ()))      # type: ignore[arg-type]
+    cg.instrs = [ins for i, ins in enumerate(instrs) if i in kept]
+    return len(instrs) - len(kept)
+
+
 # The passes in the order run, each to a fixed point with the others (a copy left out can
 # let a clamp become _sat, whose mov then folds into its producer).
 PASSES = (("propagate copies", propagate_copies), ("clamp to saturate", clamp_to_saturate),
-          ("fold into producer", fold_into_producer))
+          ("fold into producer", fold_into_producer), ("build in place", build_in_place),
+          ("drop dead writes", drop_dead_writes))
 
 
 ROUNDS = 2

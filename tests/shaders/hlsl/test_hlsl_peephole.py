@@ -321,3 +321,106 @@ def test_the_folded_code_draws_what_the_hlsl_says(backend, monkeypatch):
         assert np.allclose(folded[y, x], want, atol=1.5 / 255), (x, y, folded[y, x], want)
     without(monkeypatch, "fold into producer")
     assert np.abs(draw() - folded).max() == 0
+
+
+# -- loops: a dead counter, a carried vector updated in place ------------------------------------
+
+def _run(target: str, name: str, instrs: list[Instr]) -> list[Instr]:
+    cg = SimpleNamespace(instrs=instrs, rules=VERSIONS[target], defs={})
+    dict(peephole.PASSES)[name](cg)
+    return cg.instrs
+
+
+def test_the_rule_drops_what_only_feeds_itself():
+    count = Src(Reg("i", 0), {}, fixed=(0, 1, 2, 3))
+    kept = Instr("mov", _vr(1), (0, 1, 2, 3), [Src(Reg("c", 2), {0: 0, 1: 1, 2: 2, 3: 3})])
+    code = [Instr("mov", _vr(0), (0,), [Src(Reg("c", 0), {}, fixed=(0,) * 4)]),
+            kept,
+            Instr("rep", None, (), [count]),
+            Instr("add", _vr(0), (0,), [Src(_vr(0), {0: 0}), Src(Reg("c", 1), {0: 0})]),
+            Instr("endrep", None, (), []),
+            Instr("mov", _vr(2), (0,), [Src(_vr(0), {0: 0})]),       # read by nothing
+            Instr("mov", Reg("oC", 0), (0, 1, 2, 3), [Src(_vr(1), {0: 0, 1: 1, 2: 2, 3: 3})])]
+    assert [i.opcode for i in _run("ps_3_0", "drop dead writes", code)] == [
+        "mov", "rep", "endrep", "mov"]
+    # read where an output is written: kept, round the loop too
+    code[-1].srcs.append(Src(_vr(2), {0: 0}))
+    code[-1].opcode = "add"
+    assert len(_run("ps_3_0", "drop dead writes", code)) == len(code)
+
+
+def _updated(between: list[Instr]) -> list[Instr]:
+    c, x = _vr(0), _vr(1)
+    return [Instr("mad", x, (0,), [Src(Reg("v", 0), {0: 0}), Src(Reg("c", 0), {0: 0}),
+                                   Src(c, {0: 0})]),
+            *between,
+            Instr("mov", x, (1, 2, 3), [Src(c, {1: 1, 2: 2, 3: 3})]),
+            Instr("mov", c, (0, 1, 2, 3), [Src(x, {0: 0, 1: 1, 2: 2, 3: 3})])]
+
+
+def test_the_rule_updates_a_register_built_from_its_own_lanes_in_place():
+    out = _run("vs_3_0", "build in place", _updated([]))
+    assert len(out) == 1 and out[0].opcode == "mad" and out[0].dst == _vr(0)
+    # something reads the old x between: the copy stays
+    reader = Instr("add", _vr(5), (0,), [Src(_vr(0), {0: 0}), Src(Reg("c", 1), {0: 0})])
+    assert len(_run("vs_3_0", "build in place", _updated([reader]))) == 4
+    # something writes the register between: the order would matter, the copy stays
+    writer = Instr("mov", _vr(0), (2,), [Src(Reg("c", 1), {2: 2})])
+    assert len(_run("vs_3_0", "build in place", _updated([writer]))) == 4
+
+
+def test_wine_s_loop_shader_is_as_tight_as_fxc_s(monkeypatch):
+    from tests.shaders.d3dbc.test_wine_d3dx9_shaders import _pairs
+    from effects.shaders.asm.stats import compute_stats
+    from effects.shaders.d3dbc import read_shader
+    name, target, hlsl, data = next(p for p in _pairs() if p[0] == "registerset_blob_scalar")
+    assert compute_stats(read_shader(data, name).program).total_slots == 25     # fxc's
+
+    def slots() -> int:
+        effects.clear_caches()
+        return compiled(hlsl, "main", target).program.stats.total_slots
+
+    assert slots() == 24
+    without(monkeypatch, "build in place")
+    assert slots() == 28
+    without(monkeypatch, "drop dead writes")
+    assert slots() == 34
+    effects.clear_caches()
+
+
+LOOPS = """
+int n = 3; float f = 0.125; bool b = true;
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 tmp = float4(0, 0, 0, 1);
+    int i;
+    if (b) for (i = 0; i < n; i++) tmp.x += uv.x * f;
+    else for (i = 0; i < n; i++) tmp.y += uv.y * f;
+    return tmp;
+}
+technique T { pass P { PixelShader = compile ps_3_0 PS(); } }
+"""
+
+
+@pytest.mark.parametrize("b", [True, False])
+def test_the_loops_updated_in_place_draw_what_the_hlsl_says(backend, monkeypatch, b):
+    def draw():
+        effects.clear_caches()
+        img = effects.render(effects.load_effect(LOOPS), "geforce6800", technique="T",
+                             backend=backend, scene={"mesh": "quad", "size": [8, 8]},
+                             params={"b": b})
+        effects.clear_caches()
+        return img.astype(np.float64) / 255.0
+
+    text = body(compiled(LOOPS.split("technique")[0], "PS", "ps_3_0"))
+    assert text == ["if b0", "mov r0, c1", "rep i0", "mad r0.x, v0, c0, r0", "endrep", "else",
+                    "mov r1, c1", "rep i0", "mad r1.y, v0, c0.x, r1", "endrep", "mov r0, r1",
+                    "endif", "mov oC0, r0"]
+    tight = draw()
+    for x, y in ((1, 2), (6, 5)):
+        u, v = x / 8, y / 8
+        want = (3 * u * 0.125, 0, 0, 1) if b else (0, 3 * v * 0.125, 0, 1)
+        assert np.allclose(tight[y, x], want, atol=1.5 / 255), (x, y, tight[y, x], want)
+    without(monkeypatch, "build in place")
+    without(monkeypatch, "drop dead writes")
+    assert np.abs(draw() - tight).max() == 0
