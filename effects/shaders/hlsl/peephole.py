@@ -13,10 +13,15 @@ returns how many instructions it removed, so a test can show the count drop pass
   where the version lets `op` write it: ps_2_x writes oC#/oDepth with mov only). The mov may
   spread or reorder the lanes: `dp3 r0.x ...; mov oD0, r0.x` is `dp3 oD0 ...` (a replicated
   result fills every lane of the mask, fxc's code for `o.diffuse = dot(...)`), `add r0.xy ...;
-  mov oT0.yx, r0.xy` is the add writing oT0.yx with its sources' lanes swapped.
+  mov oT0.yx, r0.xy` is the add writing oT0.yx with its sources' lanes swapped;
+- `build_in_place`: a register built from another's own lanes and new ones, then copied back
+  over it (a loop's carried vector with one lane updated), is that register updated in place;
+- `drop_dead_writes`: what writes a temporary no kept instruction reads is left out (a loop
+  counter nothing reads after the loop).
 
 Straight-line code only: a flow instruction (rep, loop, if, else, break ...) ends what a pass
-looks at, so a value carried round a loop or chosen by an if is never moved across one.
+looks at, so a value carried round a loop or chosen by an if is never moved across one
+(`drop_dead_writes` marks registers over the whole program: a value read anywhere is kept).
 """
 from __future__ import annotations
 
