@@ -35,13 +35,13 @@ EXPECTED: dict[str, tuple[str, str]] = {
     "flat_sum_of_5000_literals": ("value", "def c0, 12502500, 0, 0, 0 | mov oC0, c0.x"),
     "flat_sum_of_5000_terms_that_fold": ("value", "def c0, 0.5, 0, 0, 0"),
     "nested_expression_1000_deep": ("value", "def c0, 500, 0, 0, 0"),    # 500 additions of 1
-    "negation_1000_deep": ("value", "'dcl t0 | mov oC0, t0.x'"),         # an even count
+    "negation_1000_deep": ("value", "'dcl t0.xy | mov oC0, t0.x'"),         # an even count
     "calls_nested_1000_deep_as_arguments": ("value", "def c0, 1, 0, 0, 0"),   # 1 -> 1/2 + 1/2
-    "casts_and_swizzles_1000_deep": ("value", "def c0, 0, 0, 0, 1 | dcl t0 | mov r0.xy, t0 | "
+    "casts_and_swizzles_1000_deep": ("value", "def c0, 0, 0, 0, 1 | dcl t0.xy | mov r0.xy, t0 | "
                                               "mov r0.zw, c0"),          # 500 swaps: uv
     "initializer_braces_1000_deep": ("value", "def c0, 1, 2, 3, 4"),
     "ifs_30_deep": ("value", "cmp r0.x, -t0, c0.x, c0.y"),
-    "call_chain_30_deep": ("value", "'dcl t0 | mov oC0, t0.x'"),
+    "call_chain_30_deep": ("value", "'dcl t0.xy | mov oC0, t0.x'"),
     "l_value_1000_swizzles_deep": ("value", "def c0, 3, 0, 0, 0"),
     "chained_initializers_500": ("value", "0.49925"),                  # (0.25 + 499) / 1000
     "chained_static_initializers_500_in_a_shader": ("value", "def c0, 499.25, 0, 0, 0"),

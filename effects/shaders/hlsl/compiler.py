@@ -523,6 +523,10 @@ class _Binder:
         usage, index = split_semantic(semantic)
         if target.kind == "ps" and usage == "SV_POSITION":
             usage = "VPOS"
+        # a pixel input is declared with the components of its type, as fxc did (SDL 2's
+        # ps_2_0 YUV shaders, tests/data/d3dbc: `dcl t0.xy` for a float2 TEXCOORD0, `dcl v0`
+        # for a float4 COLOR); a vertex input with all four (`dcl_normal v1` for Wine's float3)
+        width = t.size if t.kind in ("scalar", "vector") else 4
         if target.kind == "ps" and target.rules.major >= 3 and usage in _PS3_MISC:
             reg, mask = _PS3_MISC[usage]
             self.dcls[reg] = declaration(reg, None, mask=mask)
@@ -539,7 +543,8 @@ class _Binder:
                 # reused as the pixel input, as most XNA effects do) as long as nothing reads it
                 node = self.ctx.graph.leaf("input", ("unmapped", semantic), 4, loc)
                 return Value(t, [Operand(node.node, (min(i, 3),)) for i in range(t.size)])
-            self.dcls[reg] = declaration(reg[0], int(reg[1:]), centroid=centroid)
+            self._declare(reg, width, lambda mask: declaration(reg[0], int(reg[1:]), mask=mask,
+                                                             centroid=centroid))
         else:
             key = (usage, index)
             reg = None
@@ -553,14 +558,24 @@ class _Binder:
                 reg = f"v{self.next_v}"
                 self.next_v += 1
                 self.input_keys[reg] = key
-                self.dcls[reg] = declaration("v", self.next_v - 1,
-                                             usage.lower().removeprefix("sv_"), index,
-                                             centroid=centroid)
+            v = int(reg[1:])
+            self._declare(reg, width if target.kind == "ps" else 4, lambda mask: declaration(
+                "v", v, usage.lower().removeprefix("sv_"), index, mask=mask, centroid=centroid))
         if not t.numeric:
             raise self._error(f"X4502: input '{name}' must be numeric, not '{t}'", loc)
         node = self.ctx.graph.leaf("input", ("input", reg), 4, loc)
         comps = [Operand(node.node, (min(i, 3),)) for i in range(t.size)]
         return Value(t, comps)
+
+    def _declare(self, reg: str, width: int, make: Callable[[tuple[int, ...] | None], Declaration]
+                 ) -> None:
+        """Declare input `reg` with its first `width` components (all four: no mask), or more
+        where another input already bound to it declared more."""
+        old = self.dcls.get(reg)
+        if old is not None:
+            had = old.register.mask
+            width = max(width, 4 if had is None else len(had))
+        self.dcls[reg] = make(None if width >= 4 else tuple(range(width)))
 
     def outputs(self, value: Value, semantic: str | None, loc: Location, out: list[Output]) -> None:
         if value.type.kind == "struct":

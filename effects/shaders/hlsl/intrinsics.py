@@ -646,9 +646,14 @@ def _clip(ev: Any, args: list[Value], loc: Location) -> Value:
 
 
 def _ubyte4(ev: Any, args: list[Value], loc: Location) -> Value:
+    """x.zyxw * 255.001953, as fxc compiled it for shader models 1-3: one `mul r, x.zyxw, c.x`,
+    no truncation (its reference page: it "swizzles and scales"; DXC's tests of the intrinsic:
+    "no rounding is applied"). The int4 holds whole numbers for what a D3DCOLOR stream gives
+    (k / 255 scales to k + k / 130560, under 0.002 above k: a0's floor (vs_1_1 mov) and
+    round (mova) both give k), and the scale's fraction otherwise, as fxc's code did."""
     c = args[0].comps
     swz = [c[2], c[1], c[0], c[3]]
-    return Value(vector("int", 4), ev.a.trunc(_scale(ev, swz, 255.001953, loc), loc))
+    return Value(vector("int", 4), _scale(ev, swz, 255.001953, loc))
 
 
 def _frexp(ev: Any, args: list[Value], loc: Location, trees: list[Any]) -> Value:

@@ -2,7 +2,8 @@
 
 - read ports: an instruction reading more distinct registers of a kind than the version
   allows (one c# in vs_1_1, one t#/v# in ps_2_0) reads the extra ones through a mov;
-- texture coordinates and texkill operands are registers read without swizzle;
+- texture coordinates and texkill operands are registers read without swizzle; a 1D read's
+  coordinate (tex1D: x alone, on a sampler declared 2d) has its y written too (`one_d_reads`);
 - swizzles: ps_2_0 and ps_2_b take identity, replicate and three fixed swizzles only; any
   other lane selection is built into a temporary one component at a time;
 """
@@ -14,12 +15,22 @@ from effects.base import caches
 from effects.base.errors import Location
 from effects.shaders.asm.versions import IDENTITY, PS20_SWIZZLES
 from effects.shaders.asm.program import Operand
-from effects.shaders.hlsl.allocate import allocate
+from effects.shaders.hlsl.allocate import ALIASES, allocate
 from effects.shaders.hlsl.asmcode import Instr, Reg, Src, _SAMPLER_DCL
 from effects.shaders.hlsl.components import used_counts
+from effects.shaders.hlsl.ops import OPS
 from effects.shaders.hlsl.writer import Code, declaration, register, swizzled
 
 _TEXLD = {"texld", "texldp", "texldb", "texldl", "texldd"}
+# by the op table's shapes (ops.py): instructions whose one result is replicated into every lane
+# of the write mask (dp3, rcp ...: "the scalar result is replicated"), and those whose lane L
+# reads lane L of each source (add, mul ...), which can write their lanes elsewhere, or more of
+# them, once their sources' swizzles follow. Only the single instructions that may write any
+# register (allocate.ALIASES): the macros' pages ask for a temporary destination (pow: "The
+# dest register should be a temporary register"; nrm, crs, lrp, sincos; vs_1_1's frc)
+REPLICATED = frozenset(r.mnemonic for r in OPS.values()
+                       if r.shape in ("scalar", "reduce")) & ALIASES
+COMPONENTWISE = frozenset(r.mnemonic for r in OPS.values() if r.shape == "lanes") & ALIASES
 
 
 def _lanes_needed(ins: Instr, src: Src) -> dict[int, int]:
@@ -90,6 +101,8 @@ def legalize(cg: Any) -> None:
                             other.reg = tmp
                     continue
                 names.append(key)
+        if ins.opcode in _TEXLD and cg.target.kind == "ps" and _one_d(ins):
+            _second_lane(cg, out, ins)
         # texture coordinates: a register read whole
         if ins.opcode in _TEXLD and cg.target.kind == "ps" and cg.rules.major == 2:
             for k, s in enumerate(ins.srcs):
@@ -109,6 +122,69 @@ def legalize(cg: Any) -> None:
                 ins.srcs[k] = Src(tmp, {i: i for i in needed}, False)
         out.append(ins)
     cg.instrs = out
+
+
+def _one_d(ins: Instr) -> bool:
+    """A 1D read: the coordinate gives x alone (tex1D's float; the others give two or more)."""
+    s = ins.srcs[0]
+    return s.fixed is None and set(s.lanes) == {0}
+
+
+def _second_lane(cg: Any, out: list[Instr], ins: Instr) -> None:
+    """A 1D read's coordinate with a written y. The sampler is declared 2d (shader models 2-3
+    have no 1D textures: a height-1 2D one), and texld reads x and y ("Validation enforces that
+    coordinates provided to texld are sufficient for the texture dimension declared for the
+    sampler"), so y must hold a value: fxc read `v0.y` as `texld r1, v0.y, s0` (a replicate)
+    and `v0.x` as `texld r0, v0, s0` (its y declared: Wine's ps_3_0 sampler test,
+    tests/data/d3dbc/wine). ps_3_0 replicates x into y by the swizzle where y holds nothing
+    declared or written; ps_2_0's texld takes no swizzle, so t# is declared .xy and a temporary's
+    producer writes x into y as well (`mad r0.xy`), else a copy `mov r1.xy, r0.x` does (legalize
+    copies coordinates it cannot read in place, replicated alike)."""
+    s = ins.srcs[0]
+    x = s.lanes[0]
+    if s.reg.kind in ("v", "t") and x == 0 and _declared_width(cg, s.reg) >= 2:
+        return                                   # x and y declared: read as they are
+    if cg.rules.major >= 3 or s.reg.kind != "vr" or x != 0:
+        if cg.rules.major == 2 and s.reg.kind == "t" and x == 0:
+            _declare_xy(cg, s.reg)                # ps_2_0 reads t# whole, unswizzled
+            return
+        ins.srcs[0] = Src(s.reg, {0: x, 1: x}, s.negate)     # replicate (or copied so)
+        return
+    writers = [w for w in out if w.dst is not None and w.dst.kind == "vr"
+               and w.dst.index == s.reg.index and w.opcode != "texkill"]
+    if any(1 in w.mask for w in writers):
+        return                                   # y holds a value already
+    if len(writers) == 1 and _widen(writers[0]):
+        return
+    ins.srcs[0] = Src(s.reg, {0: 0, 1: 0}, s.negate)     # copied below: mov r1.xy, r0.x
+
+
+def _widen(w: Instr) -> bool:
+    """`w` (writing .x alone) writing its x into y too, where one instruction can."""
+    if tuple(w.mask) != (0,):
+        return False
+    if w.opcode in REPLICATED:
+        w.mask = (0, 1)
+        return True
+    if w.opcode not in COMPONENTWISE:
+        return False
+    w.srcs = [s if s.fixed is not None else Src(s.reg, {0: s.lanes[0], 1: s.lanes[0]}, s.negate)
+              for s in w.srcs]
+    w.mask = (0, 1)
+    return True
+
+
+def _declared_width(cg: Any, reg: Reg) -> int:
+    d = cg.inputs.get(f"{reg.kind}{reg.index}")
+    return 4 if d is None or d.register.mask is None else len(d.register.mask)
+
+
+def _declare_xy(cg: Any, reg: Reg) -> None:
+    name = f"{reg.kind}{reg.index}"
+    d = cg.inputs.get(name)
+    if d is not None and d.register.mask is not None and len(d.register.mask) < 2:
+        cg.inputs[name] = declaration(reg.kind, reg.index, d.usage, d.usage_index, mask=(0, 1),
+                                      centroid=d.centroid)
 
 
 def _copy(cg: Any, out: list[Instr], tmp: Reg, s: Src, loc: Location, rule: str) -> None:

@@ -10,10 +10,18 @@ returns how many instructions it removed, so a test can show the count drop pass
   written) is `mov_sat`, where the version has the modifier;
 - `fold_into_producer`: `op vrA ...; mov[_sat] D, vrA`, vrA read nowhere else, is `op[_sat] D`
   (the `_sat` on the producing instruction; a result written straight to its destination,
-  where the version lets `op` write it: ps_2_x writes oC#/oDepth with mov only).
+  where the version lets `op` write it: ps_2_x writes oC#/oDepth with mov only). The mov may
+  spread or reorder the lanes: `dp3 r0.x ...; mov oD0, r0.x` is `dp3 oD0 ...` (a replicated
+  result fills every lane of the mask, fxc's code for `o.diffuse = dot(...)`), `add r0.xy ...;
+  mov oT0.yx, r0.xy` is the add writing oT0.yx with its sources' lanes swapped;
+- `build_in_place`: a register built from another's own lanes and new ones, then copied back
+  over it (a loop's carried vector with one lane updated), is that register updated in place;
+- `drop_dead_writes`: what writes a temporary no kept instruction reads is left out (a loop
+  counter nothing reads after the loop).
 
 Straight-line code only: a flow instruction (rep, loop, if, else, break ...) ends what a pass
-looks at, so a value carried round a loop or chosen by an if is never moved across one.
+looks at, so a value carried round a loop or chosen by an if is never moved across one
+(`drop_dead_writes` marks registers over the whole program: a value read anywhere is kept).
 """
 from __future__ import annotations
 
@@ -21,7 +29,8 @@ from typing import Any
 
 from effects.shaders.hlsl.asmcode import Instr, Reg, Src
 from effects.shaders.hlsl.allocate import ALIASES as _ALIASES
-from effects.shaders.hlsl.legalize import _choose, _lanes_needed
+from effects.shaders.hlsl.legalize import COMPONENTWISE as _COMPONENTWISE, \
+    REPLICATED as _REPLICATED, _choose, _lanes_needed
 
 _TEXLD = frozenset({"texld", "texldp", "texldb", "texldl", "texldd"})
 # instructions whose sources a copy may be folded into: one slot, ordinary sources (texld's
@@ -237,6 +246,31 @@ def _writable(rules: Any, op: str, dst: Reg) -> bool:
     return True
 
 
+def _moved(prod: Instr, mov: Instr, rules: Any) -> tuple[tuple[int, ...], list] | None:
+    """`prod`'s write mask and sources once it writes what `mov` (its one reader) copies of its
+    result, lane for lane where `mov` writes: the same instruction where the lanes agree, the
+    mask widened for a replicated result, the sources' swizzles following a lane-wise one's
+    lanes; None where the instruction cannot (a macro, or a swizzle ps_2_0 lacks)."""
+    need = _lanes_needed(mov, mov.srcs[0])
+    need = {l: need[l] for l in mov.mask}         # mov lane -> the lane of prod's result
+    if any(n not in prod.mask for n in need.values()):
+        return None
+    if all(need[l] == l for l in mov.mask) and tuple(prod.mask) == tuple(mov.mask):
+        return tuple(prod.mask), prod.srcs
+    if prod.opcode in _REPLICATED and len(prod.mask) == 1:
+        return tuple(mov.mask), prod.srcs
+    if prod.opcode not in _COMPONENTWISE:
+        return None
+    srcs: list = []
+    for s in prod.srcs:
+        reads = _lanes_needed(prod, s)
+        lanes = {l: reads[need[l]] for l in mov.mask}
+        if _choose(lanes, _rule(rules)) is None:
+            return None
+        srcs.append(Src(s.reg, lanes, s.negate))
+    return tuple(mov.mask), srcs
+
+
 def fold_into_producer(cg: Any) -> int:
     rules = cg.rules
     instrs: list[Instr] = cg.instrs
@@ -253,15 +287,15 @@ def fold_into_producer(cg: Any) -> int:
             continue
         i = d[0]
         prod = instrs[i]
-        if prod.opcode not in _PRODUCERS or tuple(prod.mask) != tuple(mov.mask):
+        if prod.opcode not in _PRODUCERS:
             continue
         if mov.saturate and (prod.opcode in _TEXLD or not rules.saturate):
             continue
-        need = _lanes_needed(mov, s)
-        if set(need) != set(mov.mask) or any(need[l] != l for l in mov.mask):
-            continue
         target = mov.dst
         if not _writable(rules, prod.opcode, target):
+            continue
+        moved = _moved(prod, mov, rules)
+        if moved is None:
             continue
         if prod.opcode not in _ALIASES and any(_same(r, target) for r in _read_regs(prod)):
             continue            # a macro may write its destination before its last read
@@ -270,17 +304,117 @@ def fold_into_producer(cg: Any) -> int:
                or (_writes(x) is not None and _same(_writes(x), target)) for x in between):  # type: ignore[arg-type]
             continue
         prod.dst = target
+        prod.mask, prod.srcs = moved
         prod.saturate = prod.saturate or mov.saturate
-        prod.location = prod.location
         drop.add(j)
     cg.instrs = [ins for k, ins in enumerate(instrs) if k not in drop]
     return len(drop)
 
 
+def _lanes_read(ins: Instr, reg: Reg) -> set[int]:
+    return {lane for s in ins.srcs if isinstance(s, Src) and _same(s.reg, reg)
+            for lane in _lanes_needed(ins, s).values()}
+
+
+def build_in_place(cg: Any) -> int:
+    """`mov C, X` whose X, read nowhere else, was built lane by lane from C's own lanes and new
+    ones (`mad X.x, ..., C.x; mov X.yzw, C; mov C, X`: a loop's carried vector with one lane
+    updated) is C updated in place (`mad C.x, ..., C.x`): X's writers write C, the copies of
+    C's own lanes and the mov are left out. Each lane of the mov written once, in straight-line
+    code, where nothing between a writer and the mov reads or writes the lanes it now writes
+    of C (the writer itself reads its sources before it writes)."""
+    instrs: list[Instr] = cg.instrs
+    defs, uses = _census(instrs)
+    drop: set[int] = set()
+    for j, mov in enumerate(instrs):
+        if mov.opcode != "mov" or mov.saturate or mov.dst is None or mov.dst.kind != "vr" \
+                or len(mov.srcs) != 1:
+            continue
+        s, c = mov.srcs[0], mov.dst
+        if s.reg.kind != "vr" or s.negate or _same(s.reg, c) or uses.get(s.reg.index) != 1:  # type: ignore[arg-type]
+            continue
+        need = _lanes_needed(mov, s)
+        if any(need[l] != l for l in mov.mask):
+            continue
+        ws = defs.get(s.reg.index, [])  # type: ignore[arg-type]
+        if not ws or ws[-1] >= j or any(k in drop for k in ws):
+            continue
+        first = ws[0]
+        lanes = [l for w in ws for l in instrs[w].mask]
+        if sorted(lanes) != sorted(mov.mask) or \
+                any(is_flow(x) for x in instrs[first:j]):
+            continue
+        same = [w for w in ws if _is_self_copy(instrs[w], c)]
+        moved = [w for w in ws if w not in same]
+        ok = all(instrs[w].opcode in _ALIASES or not _lanes_read(instrs[w], c) for w in moved)
+        for k in range(first, j):
+            x = instrs[k]
+            if k in ws:
+                continue
+            d = _writes(x)
+            if d is not None and _same(d, c):
+                ok = False                      # C changes between: the order would matter
+        for w in moved:
+            mask = set(instrs[w].mask)
+            if any(_lanes_read(instrs[k], c) & mask for k in range(w + 1, j) if k not in same):
+                ok = False
+        if not ok:
+            continue
+        for w in moved:
+            instrs[w].dst = c
+        drop.update(same)
+        drop.add(j)
+    cg.instrs = [ins for k, ins in enumerate(instrs) if k not in drop]
+    return len(drop)
+
+
+def _is_self_copy(ins: Instr, c: Reg) -> bool:
+    """`mov X.m, C.m`: C's own lanes, each where it was."""
+    if ins.opcode != "mov" or ins.saturate or len(ins.srcs) != 1:
+        return False
+    s = ins.srcs[0]
+    need = _lanes_needed(ins, s)
+    return _same(s.reg, c) and not s.negate and all(need[l] == l for l in ins.mask)
+
+
+def drop_dead_writes(cg: Any) -> int:
+    """Instructions whose temporary no kept instruction reads: what is kept is what writes an
+    output, a0 or a flow test (rep, if, break, texkill), and, back from there, what writes a
+    temporary a kept instruction reads (a mark over registers, flow-insensitive, so a value
+    read round a loop or after an if is kept). A loop counter no one reads after its loop
+    (`for (i = 0; i < n; i++)` run by `rep i0`) was carried round the loop and copied out of
+    it (`add r2.x, r2, c3.y` in the body, `mov r1.x, r2` after: Wine's registerset_blob_scalar
+    test shader, whose fxc code has neither)."""
+    instrs: list[Instr] = cg.instrs
+    writers: dict[int, list[int]] = {}
+    roots: list[int] = []
+    for i, ins in enumerate(instrs):
+        d = _writes(ins)
+        if d is not None and d.kind == "vr":
+            writers.setdefault(d.index, []).append(i)     # type: ignore[arg-type]
+        else:
+            roots.append(i)
+    kept: set[int] = set()
+    seen: set[int] = set()
+    todo = roots
+    while todo:
+        i = todo.pop()
+        if i in kept:
+            continue
+        kept.add(i)
+        for r in _read_regs(instrs[i]):
+            if r.kind == "vr" and r.index not in seen:
+                seen.add(r.index)                          # type: ignore[arg-type]
+                todo.extend(writers.get(r.index, ()))      # type: ignore[arg-type]
+    cg.instrs = [ins for i, ins in enumerate(instrs) if i in kept]
+    return len(instrs) - len(kept)
+
+
 # The passes in the order run, each to a fixed point with the others (a copy left out can
 # let a clamp become _sat, whose mov then folds into its producer).
 PASSES = (("propagate copies", propagate_copies), ("clamp to saturate", clamp_to_saturate),
-          ("fold into producer", fold_into_producer))
+          ("fold into producer", fold_into_producer), ("build in place", build_in_place),
+          ("drop dead writes", drop_dead_writes))
 
 
 ROUNDS = 2

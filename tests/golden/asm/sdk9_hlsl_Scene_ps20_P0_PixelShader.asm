@@ -1,8 +1,8 @@
 ps_2_0
 def c4, 0.5, 1, 0, 0
-dcl t0
-dcl t1
-dcl t2
+dcl t0.xy
+dcl t1.xyz
+dcl t2.xyz
 dcl_2d s0
 nrm r0.xyz, t1
 dp3_sat r1.x, r0, c0

@@ -1,8 +1,8 @@
 ps_2_0
 def c14, 0, 1.25, -2, 3
 def c15, -0.83, 5.88235294, 0.3, 0.7
-dcl t0
-dcl t1
+dcl t0.xyz
+dcl t1.xyz
 dcl v0
 dcl_volume s0
 mul r0.xyz, t0, c0.x

@@ -2,8 +2,8 @@ ps_2_0
 def c14, 0, 3, 2, 1
 def c15, -2, 0.8, 0.83, 0.3
 def c16, 0.7, 0, 0, 0
-dcl t0
-dcl t1
+dcl t0.xyz
+dcl t1.xyz
 dcl v0
 dcl_volume s0
 mul r0.xyz, t0, c0.x

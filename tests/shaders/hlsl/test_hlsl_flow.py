@@ -366,9 +366,7 @@ def c4, 0, 0, 0, 1
 dcl_position v0
 mov r0, c4
 loop aL, i0
-add r1.xyz, r0, c0[aL]
-mov r1.w, r0
-mov r0, r1
+add r0.xyz, r0, c0[aL]
 endloop
 mov oPos, v0
 mov oD0, r0
@@ -431,7 +429,7 @@ def test_ps_3_0_indexes_constants_by_al_in_a_loop(backend, count):
     # the relative-addressing page: c# is indexed by aL in ps_3_0 (no a0 there)
     fx = load(LIGHTS_PS, "compile vs_3_0 VS()", "compile ps_3_0 PS()")
     text = compile_shader(fx, "PS", "ps_3_0").text
-    assert "loop aL, i0" in text and "mad r1.xyz, c0[aL], v0.x, r0" in text, text
+    assert "loop aL, i0" in text and "mad r0.xyz, c0[aL], v0.x, r0" in text, text
     img = draw(fx, "geforce6800", backend, {"NumLights": count})
     for x, y in ((2, 1), (4, 4), (7, 6)):
         want = lights_by_hand(count, x / 8)

@@ -46,10 +46,12 @@ def constant(body: str, pre: str = "") -> list[float]:
 def test_a_flat_sum_of_5000_terms_compiles():
     assert constant("return " + " + ".join(str(k) for k in range(1, 5001)) + ";")[0] == \
         5000 * 5001 / 2
-    # a sum the code computes: 400 terms are 399 additions, each adding the input v0
+    # a sum the code computes: 400 terms are 399 additions, each adding the input v0, the
+    # last writing the colour (its x in every lane: `add oC0, r0.x, v0.x`)
     text = asm("return " + " + ".join(["uv.x"] * 400) + ";", "ps_3_0")
     adds = [line for line in text.splitlines() if line.startswith("add ")]
-    assert len(adds) == 399 and all(line.endswith(", v0") for line in adds), adds[:2]
+    assert len(adds) == 399 and all(line.endswith(", v0") for line in adds[:-1]), adds[:2]
+    assert adds[-1] == "add oC0, r0.x, v0.x"
 
 
 def test_a_1000_deep_nested_expression_compiles():
@@ -64,7 +66,7 @@ def test_a_1000_deep_nested_expression_compiles():
         text = f"({text} + 1)" if k % 2 == 0 else f"({text} * 1)"
     assert constant(f"return {text};")[0] == 500
     assert asm("return " + "-(" * 1000 + "uv.x" + ")" * 1000 + ";").splitlines()[1:] == \
-        ["dcl t0", "mov oC0, t0.x"]
+        ["dcl t0.xy", "mov oC0, t0.x"]
     # g(g(...g(0)...)) with g(x) = x / 2 + 1/2, 1,000 deep: 1 - 2^-1000, which is 1 in float64
     assert constant("return " + "g(" * 1000 + "0" + ")" * 1000 + ";",
                     "float g(float x) { return x * 0.5 + 0.5; }")[0] == 1.0

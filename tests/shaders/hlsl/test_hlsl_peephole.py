@@ -4,13 +4,17 @@ ends: effects/shaders/hlsl/peephole.py (copies, clamp -> _sat, folding into the 
 fusion.py (mad, lrp), intrinsics' pow, legalize's temporaries and codegen's packing."""
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
 import effects
 from effects.program.backend import create_backend
 from effects.shaders.asm import check
+from effects.shaders.asm.versions import VERSIONS
 from effects.shaders.hlsl import codegen, compile_shader, peephole
+from effects.shaders.hlsl.asmcode import Instr, Reg, Src
 
 
 def compiled(functions: str, entry: str, target: str):
@@ -215,3 +219,208 @@ def test_pow_by_a_constant_that_is_no_number_is_the_located_constant_error(expon
     with pytest.raises(effects.EffectError) as err:
         compile_shader(fx, "PS", "ps_2_0")
     assert "which a ps_2_0 constant register cannot hold" in err.value.message
+
+
+# -- fold_into_producer's lanes: a replicated result spread, a lane-wise one's lanes moved --------
+
+def _fold(target: str, prod: Instr, mov: Instr) -> list[Instr]:
+    cg = SimpleNamespace(instrs=[prod, mov], rules=VERSIONS[target], defs={})
+    peephole.fold_into_producer(cg)
+    return cg.instrs
+
+
+def _vr(k: int) -> Reg:
+    return Reg("vr", k)
+
+
+def test_the_rule_writes_a_replicated_result_to_every_lane_the_copy_fills():
+    dp3 = Instr("dp3", _vr(0), (0,), [Src(Reg("c", 4), {0: 0, 1: 1, 2: 2}),
+                                      Src(Reg("v", 1), {0: 0, 1: 1, 2: 2})])
+    mov = Instr("mov", Reg("oD", 0), (0, 1, 2, 3), [Src(_vr(0), {}, fixed=(0, 0, 0, 0))])
+    for target in ("vs_1_1", "vs_2_0"):
+        out = _fold(target, dp3, mov)
+        assert len(out) == 1 and out[0].opcode == "dp3" and out[0].dst == Reg("oD", 0)
+        assert out[0].mask == (0, 1, 2, 3)
+        dp3.dst, dp3.mask = _vr(0), (0,)
+    # a result in .y read as .x is no copy of it; a macro writes a temporary only (pow's page)
+    mov.srcs = [Src(_vr(0), {}, fixed=(1, 1, 1, 1))]
+    assert len(_fold("vs_2_0", dp3, mov)) == 2
+    pow_ = Instr("pow", _vr(0), (0,), [Src(Reg("c", 0), {}, fixed=(0,) * 4)] * 2)
+    mov.srcs = [Src(_vr(0), {}, fixed=(0, 0, 0, 0))]
+    assert len(_fold("vs_2_0", pow_, mov)) == 2
+
+
+def test_the_rule_moves_a_lane_wise_result_with_its_sources_lanes():
+    mad = Instr("mad", _vr(0), (0,), [Src(Reg("t", 0), {0: 0}), Src(Reg("t", 0), {0: 0}),
+                                      Src(_vr(1), {0: 0})])
+    mov = Instr("mov", _vr(2), (3,), [Src(_vr(0), {3: 0})], saturate=True)
+    out = _fold("ps_2_0", mad, mov)
+    assert len(out) == 1 and out[0].dst == _vr(2) and out[0].mask == (3,) and out[0].saturate
+    assert [s.lanes for s in out[0].srcs] == [{3: 0}, {3: 0}, {3: 0}]
+    # ps_2_0 has no swizzle .xy?x (.y into lane 2 besides .x into lane 0): the mov stays
+    add = Instr("add", _vr(0), (0, 1), [Src(Reg("t", 0), {0: 0, 1: 1}), Src(Reg("c", 0), {0: 0, 1: 1})])
+    mov = Instr("mov", _vr(2), (0, 2), [Src(_vr(0), {0: 0, 2: 1})])
+    assert len(_fold("ps_2_0", add, mov)) == 2
+    assert len(_fold("ps_3_0", add, mov)) == 1          # any swizzle: add r2.xz, t0.xzy?, ..
+    # one lane spread over several: each computes it again from the same source lanes
+    add = Instr("add", _vr(0), (0,), [Src(_vr(1), {0: 0}), Src(Reg("v", 0), {0: 0})])
+    mov = Instr("mov", Reg("oC", 0), (0, 1, 2, 3), [Src(_vr(0), {}, fixed=(0, 0, 0, 0))])
+    out = _fold("ps_3_0", add, mov)
+    assert len(out) == 1 and out[0].dst == Reg("oC", 0) and out[0].mask == (0, 1, 2, 3)
+    assert [s.lanes for s in out[0].srcs] == [{0: 0, 1: 0, 2: 0, 3: 0}] * 2
+
+
+def test_a_sum_s_last_add_writes_the_colour_in_every_lane(monkeypatch):
+    src = "float4 PS(float2 uv : TEXCOORD0) : COLOR { return uv.x + uv.x + uv.x; }"
+    assert body(compiled(src, "PS", "ps_3_0")) == ["add r0.x, v0, v0", "add oC0, r0.x, v0.x"]
+    without(monkeypatch, "fold into producer")
+    assert body(compiled(src, "PS", "ps_3_0"))[-1] == "mov oC0, r0.x"
+
+
+# Wine's d3d10core test shader (tests/data/d3dbc/wine): fxc wrote `dp3 oD0, c4, v1`
+DOT_TO_COLOR = ("float4 light; float4x4 mat;\n"
+                "struct O { float4 position : POSITION; float4 diffuse : COLOR; };\n"
+                "O VS(float4 p : POSITION, float3 n : NORMAL) { O o; o.position = mul(p, mat);\n"
+                "o.diffuse = dot((float3)light, n); return o; }")
+
+
+@pytest.mark.parametrize("target, out", [("vs_1_1", "oD0"), ("vs_2_0", "oD0"), ("vs_3_0", "o1")])
+def test_a_dot_copied_to_an_output_is_written_there(monkeypatch, target, out):
+    assert body(compiled(DOT_TO_COLOR, "VS", target))[-1] == f"dp3 {out}, c4, v1"
+    without(monkeypatch, "fold into producer")
+    assert body(compiled(DOT_TO_COLOR, "VS", target))[-2:] == [
+        "dp3 r0.x, c4, v1", f"mov {out}, r0.x"]
+
+
+FOLDED = """
+float4 K = {0.25, 0.5, 0.125, 0.5};
+struct O { float4 p : POSITION; float2 t : TEXCOORD0; float4 c : COLOR0; };
+O VS(float4 p : POSITION, float2 uv : TEXCOORD0)
+{ O o; o.p = p; o.t = uv; o.c = dot(K.xyz, float3(uv, 1)); return o; }
+float4 PS(float2 uv : TEXCOORD0, float4 c : COLOR0) : COLOR
+{ float s = uv.x * uv.x; return float4(c.x, uv.y, 0, saturate(s * s + uv.y * K.w)); }
+technique T { pass P { VertexShader = compile vs_2_0 VS(); PixelShader = compile ps_2_0 PS(); } }
+"""
+
+
+def test_the_folded_code_draws_what_the_hlsl_says(backend, monkeypatch):
+    def draw():
+        effects.clear_caches()
+        img = effects.render(effects.load_effect(FOLDED), "radeon9700", technique="T",
+                             backend=backend, scene={"mesh": "quad", "size": [8, 8]})
+        effects.clear_caches()
+        return img.astype(np.float64) / 255.0
+
+    fx = effects.load_effect(FOLDED)
+    assert "dp3 oD0, c0, r0" in body(compile_shader(fx, "VS", "vs_2_0"))
+    assert "mad_sat r0.w, r0.x, r0.x, r1.x" in body(compile_shader(fx, "PS", "ps_2_0"))
+    folded = draw()
+    for x, y in ((1, 2), (6, 5)):
+        u, v = x / 8, y / 8
+        want = (0.25 * u + 0.5 * v + 0.125, v, 0, min(u ** 4 + v * 0.5, 1))
+        assert np.allclose(folded[y, x], want, atol=1.5 / 255), (x, y, folded[y, x], want)
+    without(monkeypatch, "fold into producer")
+    assert np.abs(draw() - folded).max() == 0
+
+
+# -- loops: a dead counter, a carried vector updated in place ------------------------------------
+
+def _run(target: str, name: str, instrs: list[Instr]) -> list[Instr]:
+    cg = SimpleNamespace(instrs=instrs, rules=VERSIONS[target], defs={})
+    dict(peephole.PASSES)[name](cg)
+    return cg.instrs
+
+
+def test_the_rule_drops_what_only_feeds_itself():
+    count = Src(Reg("i", 0), {}, fixed=(0, 1, 2, 3))
+    kept = Instr("mov", _vr(1), (0, 1, 2, 3), [Src(Reg("c", 2), {0: 0, 1: 1, 2: 2, 3: 3})])
+    code = [Instr("mov", _vr(0), (0,), [Src(Reg("c", 0), {}, fixed=(0,) * 4)]),
+            kept,
+            Instr("rep", None, (), [count]),
+            Instr("add", _vr(0), (0,), [Src(_vr(0), {0: 0}), Src(Reg("c", 1), {0: 0})]),
+            Instr("endrep", None, (), []),
+            Instr("mov", _vr(2), (0,), [Src(_vr(0), {0: 0})]),       # read by nothing
+            Instr("mov", Reg("oC", 0), (0, 1, 2, 3), [Src(_vr(1), {0: 0, 1: 1, 2: 2, 3: 3})])]
+    assert [i.opcode for i in _run("ps_3_0", "drop dead writes", code)] == [
+        "mov", "rep", "endrep", "mov"]
+    # read where an output is written: kept, round the loop too
+    code[-1].srcs.append(Src(_vr(2), {0: 0}))
+    code[-1].opcode = "add"
+    assert len(_run("ps_3_0", "drop dead writes", code)) == len(code)
+
+
+def _updated(between: list[Instr]) -> list[Instr]:
+    c, x = _vr(0), _vr(1)
+    return [Instr("mad", x, (0,), [Src(Reg("v", 0), {0: 0}), Src(Reg("c", 0), {0: 0}),
+                                   Src(c, {0: 0})]),
+            *between,
+            Instr("mov", x, (1, 2, 3), [Src(c, {1: 1, 2: 2, 3: 3})]),
+            Instr("mov", c, (0, 1, 2, 3), [Src(x, {0: 0, 1: 1, 2: 2, 3: 3})])]
+
+
+def test_the_rule_updates_a_register_built_from_its_own_lanes_in_place():
+    out = _run("vs_3_0", "build in place", _updated([]))
+    assert len(out) == 1 and out[0].opcode == "mad" and out[0].dst == _vr(0)
+    # something reads the old x between: the copy stays
+    reader = Instr("add", _vr(5), (0,), [Src(_vr(0), {0: 0}), Src(Reg("c", 1), {0: 0})])
+    assert len(_run("vs_3_0", "build in place", _updated([reader]))) == 4
+    # something writes the register between: the order would matter, the copy stays
+    writer = Instr("mov", _vr(0), (2,), [Src(Reg("c", 1), {2: 2})])
+    assert len(_run("vs_3_0", "build in place", _updated([writer]))) == 4
+
+
+def test_wine_s_loop_shader_is_as_tight_as_fxc_s(monkeypatch):
+    from tests.shaders.d3dbc.test_wine_d3dx9_shaders import _pairs
+    from effects.shaders.asm.stats import compute_stats
+    from effects.shaders.d3dbc import read_shader
+    name, target, hlsl, data = next(p for p in _pairs() if p[0] == "registerset_blob_scalar")
+    assert compute_stats(read_shader(data, name).program).total_slots == 25     # fxc's
+
+    def slots() -> int:
+        effects.clear_caches()
+        return compiled(hlsl, "main", target).program.stats.total_slots
+
+    assert slots() == 24
+    without(monkeypatch, "build in place")
+    assert slots() == 28
+    without(monkeypatch, "drop dead writes")
+    assert slots() == 34
+    effects.clear_caches()
+
+
+LOOPS = """
+int n = 3; float f = 0.125; bool b = true;
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 tmp = float4(0, 0, 0, 1);
+    int i;
+    if (b) for (i = 0; i < n; i++) tmp.x += uv.x * f;
+    else for (i = 0; i < n; i++) tmp.y += uv.y * f;
+    return tmp;
+}
+technique T { pass P { PixelShader = compile ps_3_0 PS(); } }
+"""
+
+
+@pytest.mark.parametrize("b", [True, False])
+def test_the_loops_updated_in_place_draw_what_the_hlsl_says(backend, monkeypatch, b):
+    def draw():
+        effects.clear_caches()
+        img = effects.render(effects.load_effect(LOOPS), "geforce6800", technique="T",
+                             backend=backend, scene={"mesh": "quad", "size": [8, 8]},
+                             params={"b": b})
+        effects.clear_caches()
+        return img.astype(np.float64) / 255.0
+
+    text = body(compiled(LOOPS.split("technique")[0], "PS", "ps_3_0"))
+    assert text == ["if b0", "mov r0, c1", "rep i0", "mad r0.x, v0, c0, r0", "endrep", "else",
+                    "mov r1, c1", "rep i0", "mad r1.y, v0, c0.x, r1", "endrep", "mov r0, r1",
+                    "endif", "mov oC0, r0"]
+    tight = draw()
+    for x, y in ((1, 2), (6, 5)):
+        u, v = x / 8, y / 8
+        want = (3 * u * 0.125, 0, 0, 1) if b else (0, 3 * v * 0.125, 0, 1)
+        assert np.allclose(tight[y, x], want, atol=1.5 / 255), (x, y, tight[y, x], want)
+    without(monkeypatch, "build in place")
+    without(monkeypatch, "drop dead writes")
+    assert np.abs(draw() - tight).max() == 0

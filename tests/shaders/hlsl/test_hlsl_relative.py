@@ -158,3 +158,25 @@ def test_a_skinning_palette_indexed_by_d3dcolor_blend_indices(backend, vs, ps, c
         u, v = pixel_uv(x, y)
         want = sum(np.array([u, v, 0, 1]) @ bones[i] * w for i, w in zip(idx, (0.5, .25, .125, .125)))
         assert np.allclose(img[y, x, :3], want, atol=TOL), (x, y, img[y, x], want)
+
+
+@pytest.mark.parametrize("vs", ["vs_1_1", "vs_2_0", "vs_3_0"])
+def test_d3dcolor_to_ubyte4_is_one_mul_as_fxc_wrote_it(vs):
+    import effects
+    fx = effects.load_effect(SKIN % (vs, "ps_3_0" if vs == "vs_3_0" else "ps_2_0"))
+    text = fx_asm(fx, "VS", vs)
+    # the four indices: `mul r0, c8.zyxw, c32.x` (255.001953 in a def), no truncation after
+    # it (fxc's code; it was a mul and seven instructions of trunc)
+    assert "255.001953" in text
+    muls = [line for line in text.splitlines() if line.startswith("mul ") and ".zyxw" in line]
+    assert len(muls) == 1, text
+    assert not any(line.startswith(("frc", "slt", "sge")) for line in text.splitlines()), text
+
+
+def test_every_d3dcolor_byte_scales_to_its_index_under_floor_and_round():
+    # what the mul leaves in float32 for the byte k of a D3DCOLOR stream (k / 255): k plus
+    # under 0.002, so vs_1_1's `mov a0.x` (floor) and `mova` (round) both address k
+    k = np.arange(256, dtype=np.float32)
+    scaled = (k / np.float32(255)) * np.float32(255.001953)
+    assert np.all(scaled - k >= 0) and np.all(scaled - k < 0.002)
+    assert np.array_equal(np.floor(scaled), k) and np.array_equal(np.rint(scaled), k)
