@@ -8,7 +8,8 @@ import effects
 from effects.shaders.hlsl.compiler import compile_shader
 
 
-def table(functions: str, entry: str = "VS", target: str = "vs_3_0") -> dict[str, tuple[int, int]]:
+def table(functions: str, entry: str = "VS", target: str = "vs_3_0"
+          ) -> dict[str, tuple[int, int]]:
     """parameter -> (first c#, registers) of the compiled shader's constant table."""
     fx = effects.load_effect(functions + "\ntechnique T { pass P { } }\n")
     return dict(compile_shader(fx, entry, target).constants)
@@ -84,3 +85,18 @@ def test_an_array_read_by_a_run_time_index_holds_all_of_it():
     fn = """float4 K[6]; float4 L;
 float4 VS(float4 p : POSITION, float i : TEXCOORD0) : POSITION { return p * K[i] + L; }"""
     assert table(fn, target="vs_2_0") == {"K": (0, 6), "L": (6, 1)}
+
+
+def test_fxcs_effect_binary_lays_six_matrices_out_by_size_then_declaration():
+    # fxc's ps_3_0 RenderScenePS(mb2x3row) in tests/data/fxo/wine/
+    # test_effect_preshader_effect_blob.fxo: its constant table gives the three-register
+    # m2x3column (three columns) and m3x2row (three rows) first, then the two-register ones
+    # as the .fx declares them (m2x2row, m2x2column, m2x3row, m3x2column)
+    from tests.paths import TESTS
+    fx = effects.load_effect(TESTS / "data" / "fxo" / "wine" /
+                             "test_effect_preshader_effect_blob.fx")
+    shader = compile_shader(fx, "RenderScenePS", "ps_3_0", ("mb2x3row",))
+    floats = {n: r for n, r in shader.constants.items()
+              if n.startswith("m") and not n.startswith("mb")}
+    assert floats == {"m2x3column": (0, 3), "m3x2row": (3, 3), "m2x2row": (6, 2),
+                      "m2x2column": (8, 2), "m2x3row": (10, 2), "m3x2column": (12, 2)}
