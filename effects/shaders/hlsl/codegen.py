@@ -78,7 +78,7 @@ class CodeGen:
         return Reg("c", self.const_regs[name] + offset)
 
     def _taken(self) -> set[int]:
-        taken = set(self.defs)
+        taken = set(self.defs) | self.ctx.reserved_constants
         for name, start in self.const_regs.items():
             taken.update(range(start, start + self.register_sizes.get(name, 1)))
         return taken

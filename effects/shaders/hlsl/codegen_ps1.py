@@ -337,7 +337,8 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             if not -1.0 <= v <= 1.0:
                 self.refuse(f"the literal {v:g} is outside [-1, 1], the range of {self.v} constants",
                             loc)
-        taken = {self.const_regs[n] + k for n in self.const_regs for k in range(self.sizes.get(n, 1))}
+        taken = {self.const_regs[n] + k for n in self.const_regs
+                 for k in range(self.sizes.get(n, 1))} | self.ctx.reserved_constants
         for reg, slots in self.defs.items():
             if all(slots[lane] in (None, v) for lane, v in lanes.items()):
                 for lane, v in lanes.items():

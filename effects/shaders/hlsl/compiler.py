@@ -33,7 +33,9 @@ from effects.shaders.hlsl.check import check_unit
 from effects.shaders.hlsl.codegen import CodeGen
 from effects.shaders.hlsl.legalize import code_of, legalize
 from effects.shaders.hlsl.codegen_ps1 import generate_ps1
-from effects.shaders.hlsl.context import Context, explicit_register as _explicit, load_context
+from effects.shaders.hlsl.constant_layout import first_fit, used_sizes
+from effects.shaders.hlsl.context import (Context, explicit_register as _explicit, load_context,
+                                          parameter_type)
 from effects.shaders.hlsl.dag import Node, Operand
 from effects.shaders.hlsl.flowcode import needed
 from effects.shaders.hlsl.folding import finite32
@@ -415,30 +417,27 @@ def _finite_constants(ctx: Context, nodes: list[Node], outputs: list[Output], fd
 
 
 def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int], dict[str, int]]:
-    """fxc's order: explicit register(c#) bindings, then the uniforms by first use (`nodes`:
-    what the outputs reach, in creation order)."""
-    order: list[str] = []
-    for n in nodes:
-        if n.op in ("uniform", "uniform_rel", "uniform_al") and n.key[0] not in order:
-            order.append(n.key[0])
-    sizes = {name: register_count(ctx.uniforms_used.get(name) or HType("scalar")) for name in order}
+    """fxc's float constant layout (constant_layout.py): each uniform the code reads takes
+    the registers up to the last it reads; explicit register(c#) bindings first, then the
+    rest, the largest first, first fit. `ctx.reserved_constants` gets every register an
+    explicit binding holds (its whole type's, read or not), which no literal may take."""
+    used = used_sizes(nodes, lambda name: register_count(ctx.uniforms_used.get(name)
+                                                         or HType("scalar")))
     regs: dict[str, int] = {}
-    taken: set[int] = set()
-    for name in order:
-        b = _explicit(ctx, name, "c")
-        if b is not None:
-            _within(ctx, name, b, sizes[name], "c")
-            regs[name] = b
-            taken.update(range(regs[name], regs[name] + sizes[name]))
-    for name in order:
-        if name in regs:
+    reserved: set[int] = set()
+    for p in ctx.effect.parameters:
+        b = _explicit(ctx, p.name, "c")
+        if b is None or "static" in p.storage or (p.name not in used and not p.type.is_numeric):
             continue
-        k = 0
-        while any(k + i in taken for i in range(sizes[name])):
-            k += 1
-        regs[name] = k
-        taken.update(range(k, k + sizes[name]))
-    return regs, sizes
+        full = register_count(ctx.uniforms_used.get(p.name) or parameter_type(ctx, p))
+        if p.name in used:
+            _within(ctx, p.name, b, full, "c")
+            regs[p.name] = b
+        reserved.update(range(b, b + full))
+    ctx.reserved_constants = reserved
+    declared = {p.name: k for k, p in enumerate(ctx.effect.parameters)}
+    regs.update(first_fit([n for n in used if n not in regs], used, reserved, declared))
+    return regs, used
 
 
 # fxc's refusals of a `register()` past what the target addresses (d3dx's message table:

@@ -69,6 +69,8 @@ class Context:
     bool_registers: dict[str, int] = field(default_factory=dict, init=False, repr=False)
     # the registers each of those takes: one per component (components.py)
     component_counts: dict[str, int] = field(default_factory=dict, init=False, repr=False)
+    # the c# a register(c#) binding holds, read or not, which no literal takes (constant_layout.py)
+    reserved_constants: set[int] = field(default_factory=set, init=False, repr=False)
     global_values: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
     # the globals whose initialisers are evaluated, and the chain being evaluated now
     # (expressions._initialized): None outside one

@@ -7,7 +7,7 @@ dcl_2d s0
 nrm r0.xyz, t1
 dp3_sat r1.x, r0, c0
 texld r2, t0, s0
-mad r1.xyz, c2, r1.x, c1
+mad r1.xyz, c1, r1.x, c2
 nrm r3.xyz, t2
 add r3.xyz, c0, r3
 nrm r4.xyz, r3

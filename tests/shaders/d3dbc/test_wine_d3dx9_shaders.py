@@ -2,9 +2,9 @@
 beside them (tests/data/d3dbc/wine/d3dx9_36_shader_excerpt.c, from Debian's wine 8.0 source:
 tests/data/d3dbc/MANIFEST.md): each reads, passes the assembly checks and names its target and
 compiler; it writes back byte for byte (default values, shared names and types as fxc laid
-them out); our compile of its HLSL either gives a constant table with the same constants in
-the same register sets as fxc's (int and bool ones at fxc's registers), or fails with the gap
-named in COMPILE_GAPS (so that list is kept current); and fxc's vertex shaders and ours,
+them out); our compile of its HLSL either gives a constant table with the same constants at
+fxc's register set, index and count, but those KNOWN_LAYOUT_DIFFERENCES names, or fails with
+the gap named in COMPILE_GAPS (so both are kept current); and fxc's vertex shaders and ours,
 evaluated side by side, compute the same position."""
 from __future__ import annotations
 
@@ -104,6 +104,25 @@ def _ours(hlsl: str, target: str):
     return compile_state(effect, effect.techniques[0].passes[0].state(state).value)
 
 
+# Where our constant table still differs from fxc's: (array, constant) -> (fxc's (register
+# set, index, count), ours, why). Every other constant of the sixteen has fxc's register set,
+# index and count (float ones by constant_layout.py's rules, int and bool by components.py).
+KNOWN_LAYOUT_DIFFERENCES: dict[tuple[str, str], tuple[tuple, tuple, str]] = {
+    # five samplers of one register each: fxc gave s1D s0, s2D s1, scube s2, s3D s3, s s4,
+    # neither their declaration order (s, s1D, s2D, s3D, scube) nor their first use (s1D,
+    # s3D, s, s2D, scube); one shader does not show the rule, so ours are by first use
+    ("get_shader_samplers_blob", "s"): (("sampler", 4, 1), ("sampler", 2, 1), "sampler order"),
+    ("get_shader_samplers_blob", "s2D"): (("sampler", 1, 1), ("sampler", 3, 1), "sampler order"),
+    ("get_shader_samplers_blob", "s3D"): (("sampler", 3, 1), ("sampler", 1, 1), "sampler order"),
+    ("get_shader_samplers_blob", "scube"): (("sampler", 2, 1), ("sampler", 4, 1),
+                                            "sampler order"),
+}
+
+
+def _layout(table) -> dict[str, tuple[str, int, int]]:
+    return {c.name: (c.register_set, c.register_index, c.register_count) for c in table.constants}
+
+
 @pytest.mark.parametrize("name,target,hlsl,data", PAIRS, ids=IDS)
 def test_our_compile_gives_fxcs_constants_or_the_named_gap(name, target, hlsl, data):
     if name in COMPILE_GAPS:
@@ -111,16 +130,14 @@ def test_our_compile_gives_fxcs_constants_or_the_named_gap(name, target, hlsl, d
             _ours(hlsl, target)
         return
     ours = _ours(hlsl, target)
-    theirs = read_shader(data, name).table
-    mine = constant_table(ours.program, ours)
-    assert sorted((c.name, c.register_set) for c in mine.constants) == \
-        sorted((c.name, c.register_set) for c in theirs.constants)
-    # an int or bool parameter: a register per component, up to the last read, at fxc's
-    # numbers (`if b2` / `rep i8` read them: components.py)
-    assert sorted((c.name, c.register_index, c.register_count) for c in mine.constants
-                  if c.register_set in ("int4", "bool")) == \
-        sorted((c.name, c.register_index, c.register_count) for c in theirs.constants
-               if c.register_set in ("int4", "bool"))
+    theirs = _layout(read_shader(data, name).table)
+    mine = _layout(constant_table(ours.program, ours))
+    assert set(mine) == set(theirs)
+    # every constant at fxc's register set, index and count, but those named (each of which
+    # still differs as it says)
+    differ = {(name, c): (theirs[c], mine[c]) for c in theirs if theirs[c] != mine[c]}
+    known = {k: v[:2] for k, v in KNOWN_LAYOUT_DIFFERENCES.items() if k[0] == name}
+    assert differ == known
 
 
 # The ps_3_0 shader (get_shader_samplers_blob) drawn: fxc's code and our compile, each with its

@@ -43,11 +43,13 @@ def test_reach_keeps_only_what_the_outputs_read():
     assert "mul" in {n.op for n in compilation(used, "PS", "ps_2_0", compiler.reach).nodes}
 
 
-def test_layout_constants_by_explicit_register_then_first_use():
+def test_layout_constants_by_explicit_register_then_declaration_order():
+    # one register each: A before C as declared, though the code reads C first (fxc's rules:
+    # tests/shaders/hlsl/test_constant_layout.py)
     fn = ("float4 A; float4 B : register(c5); float4 C;\n"
           "float4 PS() : COLOR { return C * A + B; }")
     c = compilation(fn, "PS", "ps_2_0", compiler.layout_constants)
-    assert c.constants == {"B": 5, "C": 0, "A": 1}
+    assert c.constants == {"B": 5, "A": 0, "C": 1}
 
 
 MAD = "float4 A; float4 B; float4 PS(float4 c : COLOR0) : COLOR { return c * A + B; }"

@@ -1,0 +1,58 @@
+"""fxc's layout of the float constants a shader reads (c#), as its output shows it.
+
+Three rules, each seen in fxc 9.29's bytecode for Wine's D3DX9 tests
+(tests/data/d3dbc/wine/d3dx9_36_shader_excerpt.c) and in the register tables vkd3d-shader's
+tests record from native d3dcompiler (its sm1-const-allocation test):
+
+- a uniform holds the registers up to the last one the code reads, not its whole type
+  (`float4x4 cf` read only at `cf._22` is c0-c1: registerset_blob_matrix_column_clamp;
+  `float3 vaf[10]` read at `vaf[8]` is c0-c8: registerset_blob_bigvec); an array read by a
+  run-time index holds all of it;
+- the uniforms are placed the largest first, those of one size in declaration order (in
+  test_get_shader_constant_variables_blob: `p` 18 registers at c0, then 6, 5, 4, 4, 2, 2, 2,
+  2, 1, 1, 1, the fours and twos and ones in the order the file declares them);
+- each goes to the first run of free registers it fits (a `register(c#)` binding holds its
+  whole type's registers, read or not, and a smaller uniform may fill a gap before it).
+
+Literal constants (`def`) take the registers after them (codegen.CodeGen.const_src).
+"""
+from __future__ import annotations
+
+from typing import Callable, Iterable
+
+from effects.shaders.hlsl.dag import Node
+
+UNIFORM_READS = ("uniform", "uniform_rel", "uniform_al")
+
+
+def used_sizes(nodes: Iterable[Node], full_size: Callable[[str], int]) -> dict[str, int]:
+    """Uniform -> the registers it holds: up to the last one read, or its whole type's
+    (`full_size`) where a run-time index (a0 or aL) reads it. In the order of first read."""
+    used: dict[str, int] = {}
+    for n in nodes:
+        if n.op not in UNIFORM_READS:
+            continue
+        name, offset = n.key
+        # a relative read's offset is the indexed array's first register: which element it
+        # reads is known only when it runs
+        last = full_size(name) if n.op != "uniform" else offset + 1
+        used[name] = max(used.get(name, 0), last)
+    return used
+
+
+def first_fit(names: list[str], sizes: dict[str, int], taken: set[int],
+              declared: dict[str, int]) -> dict[str, int]:
+    """The first register of each of `names`: the largest first (ties in declaration order,
+    `declared`: a global's position in the file; others after them, in the order given),
+    each at the lowest run of `sizes[name]` registers not in `taken` (which grows)."""
+    order = sorted(range(len(names)),
+                   key=lambda k: (-sizes[names[k]], declared.get(names[k], len(declared) + k)))
+    out: dict[str, int] = {}
+    for k in order:
+        name, size = names[k], sizes[names[k]]
+        first = 0
+        while any(first + i in taken for i in range(size)):
+            first += 1
+        out[name] = first
+        taken.update(range(first, first + size))
+    return out

@@ -1,0 +1,102 @@
+"""fxc's float constant layout (effects/shaders/hlsl/constant_layout.py), one small program per
+rule, with the registers fxc gave: each rule is read off fxc 9.29's bytecode for Wine's D3DX9
+tests (tests/data/d3dbc/wine/d3dx9_36_shader_excerpt.c; the array named) or off the register
+tables vkd3d-shader's sm1-const-allocation test records from native d3dcompiler."""
+from __future__ import annotations
+
+import effects
+from effects.shaders.hlsl.compiler import compile_shader
+
+
+def table(functions: str, entry: str = "VS", target: str = "vs_3_0"
+          ) -> dict[str, tuple[int, int]]:
+    """parameter -> (first c#, registers) of the compiled shader's constant table."""
+    fx = effects.load_effect(functions + "\ntechnique T { pass P { } }\n")
+    return dict(compile_shader(fx, entry, target).constants)
+
+
+def literal_registers(functions: str, entry: str = "VS", target: str = "vs_3_0") -> list[int]:
+    fx = effects.load_effect(functions + "\ntechnique T { pass P { } }\n")
+    return sorted(compile_shader(fx, entry, target).program.defs)
+
+
+def test_a_matrix_holds_the_columns_up_to_the_last_read():
+    # registerset_blob_matrix_column_clamp: `cf._22` is column 1, so cf is c0-c1 and f c2
+    fn = """float4x4 cf; float f;
+float4 VS(float4 p : POSITION) : POSITION { return float4(0, cf._22, f, 0); }"""
+    assert table(fn) == {"cf": (0, 2), "f": (2, 1)}
+
+
+def test_an_array_holds_the_elements_up_to_the_last_read():
+    # registerset_blob_bigvec: `float3 vaf[10]` read at vaf[8] is c0-c8 (9 registers)
+    fn = "float3 vaf[10];\nfloat4 VS(float4 p : POSITION) : POSITION { return p.y + vaf[8].x; }"
+    assert table(fn) == {"vaf": (0, 9)}
+
+
+def test_a_struct_holds_the_members_up_to_the_last_read():
+    # test_get_shader_constant_variables_blob: s_3[3] of {float f; int i;} read at s_3[2].f
+    # is 5 registers of its 6
+    fn = """struct P { float f; int i; }; P s_3[3];
+float4 VS(float4 p : POSITION) : POSITION { return p * s_3[2].f; }"""
+    assert table(fn) == {"s_3": (0, 5)}
+
+
+def test_the_largest_is_placed_first():
+    # test_get_shader_constant_variables_blob: 18, 6, 5, 4, 4, 2, 2, 2, 2, 1, 1, 1 registers
+    # from c0 up, whatever the order of declaration or use
+    fn = """float A; float4 B[2]; float4 C; float4 D[3];
+float4 VS(float4 p : POSITION) : POSITION { return A * p + B[1] + C + D[2]; }"""
+    assert table(fn) == {"D": (0, 3), "B": (3, 2), "A": (5, 1), "C": (6, 1)}
+
+
+def test_those_of_one_size_in_declaration_order_not_first_use():
+    # test_get_shader_constant_variables_blob: f_2, s_2, v, r13 (two registers each) at c37,
+    # c39, c41, c43 in the file's order, though the code reads v and r13 first; vkd3d's
+    # "declaration order is more important than instruction order"
+    fn = """float4 Z; float4 A;
+float4 VS(float4 p : POSITION) : POSITION { return A * p + Z; }"""
+    assert table(fn) == {"Z": (0, 1), "A": (1, 1)}
+
+
+def test_a_register_binding_holds_its_whole_type_and_a_smaller_one_fills_a_gap():
+    # vkd3d's sm1-const-allocation: `float4x4 a : register(c1)` read at a._11 is c1, one
+    # register in the table, but c1-c4 are held, so b[4] read at b[1] goes to c5; and an
+    # unread `float U[2] : register(c2)` leaves c0-c1, where a two-register uniform fits
+    # and a three-register one does not
+    fn = """float4x4 a : register(c1); float b[4];
+float4 VS(float4 p : POSITION) : POSITION { return float4(a._11, b[1], 0, 0); }"""
+    assert table(fn) == {"a": (1, 1), "b": (5, 2)}
+    fn = """float U[2] : register(c2); float S3[3]; float S2[2];
+float4 VS(float4 p : POSITION) : POSITION { return float4(S3[2], S2[1], 0, 0); }"""
+    assert table(fn) == {"S3": (4, 3), "S2": (0, 2)}
+
+
+def test_a_literal_takes_no_register_a_binding_holds():
+    # the def goes after what `float4x4 M : register(c0)` holds (c0-c3), though the code
+    # reads only c0
+    fn = """float4x4 M : register(c0);
+float4 VS(float4 p : POSITION) : POSITION { return p * M._11 + 2.5; }"""
+    assert table(fn) == {"M": (0, 1)}
+    assert literal_registers(fn) == [4]
+
+
+def test_an_array_read_by_a_run_time_index_holds_all_of_it():
+    # which element `K[i]` reads is known only when it runs (c[a0.x + n])
+    fn = """float4 K[6]; float4 L;
+float4 VS(float4 p : POSITION, float i : TEXCOORD0) : POSITION { return p * K[i] + L; }"""
+    assert table(fn, target="vs_2_0") == {"K": (0, 6), "L": (6, 1)}
+
+
+def test_fxcs_effect_binary_lays_six_matrices_out_by_size_then_declaration():
+    # fxc's ps_3_0 RenderScenePS(mb2x3row) in tests/data/fxo/wine/
+    # test_effect_preshader_effect_blob.fxo: its constant table gives the three-register
+    # m2x3column (three columns) and m3x2row (three rows) first, then the two-register ones
+    # as the .fx declares them (m2x2row, m2x2column, m2x3row, m3x2column)
+    from tests.paths import TESTS
+    fx = effects.load_effect(TESTS / "data" / "fxo" / "wine" /
+                             "test_effect_preshader_effect_blob.fx")
+    shader = compile_shader(fx, "RenderScenePS", "ps_3_0", ("mb2x3row",))
+    floats = {n: r for n, r in shader.constants.items()
+              if n.startswith("m") and not n.startswith("mb")}
+    assert floats == {"m2x3column": (0, 3), "m3x2row": (3, 3), "m2x2row": (6, 2),
+                      "m2x2column": (8, 2), "m2x3row": (10, 2), "m3x2column": (12, 2)}
