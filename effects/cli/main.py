@@ -94,7 +94,7 @@ def _add_best(p) -> None:
 
 
 def _add_preprocessor_options(p) -> None:
-    """-D and -I, for the commands that load one effect file."""
+    """-D and -I, for the commands that load effect files (matrix: for every file it names)."""
     p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
                    help="preprocessor macro")
     p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
@@ -186,6 +186,7 @@ def _add_matrix(sub) -> None:
     _add_scene(p, "scene for --render and the fidelity renders")
     p.add_argument("--backend", "-b", default="numpy", metavar="NAME", help="back end for --render")
     _add_batch(p)
+    _add_preprocessor_options(p)
     _add_confinement(p)
     p.set_defaults(run=_cmd_matrix)
 
@@ -232,7 +233,10 @@ def _cmd_matrix(args, console: Console) -> int:
                              scene_beside=args.scene_beside, backend=args.backend,
                              policy=args.policy, jobs=args.jobs, scheduler=args.scheduler,
                              progress=not args.json,
-                             figures=_figures(result, list(args.files), cards, names))
+                             figures=_figures(result, list(args.files), cards, names),
+                             load={"include_root": root,
+                                   "defines": tuple(_defines(args.defines).items()),
+                                   "include_dirs": tuple(args.include_dirs)})
         if not args.json:
             console.print(f"contact sheet: {len(args.files)} effects x {len(cards)} cards "
                           f"-> {args.render}", markup=False, highlight=False, soft_wrap=True)
@@ -283,10 +287,14 @@ def _matrix(args, root: str | None, console: Console) -> tuple[dict, list[str]]:
     # the fidelity order named as Policy.parse reads it (without loading it: stored rows
     # need no selection code); a bad policy is said by _made_rows, after the files' errors
     measured = args.fidelity or "fidelity" in (p.strip().lower() for p in args.policy.split(","))
+    defines = tuple(_defines(args.defines).items())
+    include_dirs = tuple(args.include_dirs)
     shared = matrix_store.shared_key(tuple(args.profile), args.policy, args.strict, root,
-                                     matrix_store.fidelity_options(measured, args.best))
+                                     matrix_store.fidelity_options(measured, args.best),
+                                     matrix_store.preprocessor_options(defines, include_dirs))
     jobs = [MatrixJob(path, tuple(args.profile), args.policy, root, args.strict, shared,
-                      measured, _scene(args, path) if measured else None, args.best)
+                      measured, _scene(args, path) if measured else None, args.best,
+                      defines, include_dirs)
             for path in args.files]
     rows = [matrix_store.stored_row(job) for job in jobs]
     todo = [job for job, row in zip(jobs, rows) if row is None]
@@ -315,7 +323,8 @@ def _made_rows(args, todo: list, console: Console) -> list:
     except EffectError:
         from effects.frontend.loader import load_effect
         for job in todo:   # a file that fails to load is reported before the card or policy
-            load_effect(job.path, include_root=job.include_root, strict=job.strict)
+            load_effect(job.path, defines=dict(job.defines), include_dirs=list(job.include_dirs),
+                        include_root=job.include_root, strict=job.strict)
         raise
     if args.scheduler is None and (len(todo) < 2 or threading.active_count() > 1):
         rows = []

@@ -60,6 +60,8 @@ class MatrixJob:
     fidelity: bool = False          # measure each card's choice against the best technique
     scene: str | None = None        # the scene the fidelity renders draw (None: the default)
     best: str | None = None         # the technique they are measured against (None: refrast's)
+    defines: tuple[tuple[str, str], ...] = ()   # -D NAME=VALUE, in order
+    include_dirs: tuple[str, ...] = ()          # -I DIR, in order
 
 
 
@@ -83,11 +85,13 @@ def _signature(path: str) -> tuple[int, ...]:
 
 
 def shared_key(profiles: tuple[str, ...], policy: str, strict: bool,
-               include_root: str | None, fidelity: tuple = ()) -> str | None:
+               include_root: str | None, fidelity: tuple = (),
+               preprocessor: tuple = ((), ())) -> str | None:
     """What every row of one command is found by besides its effect file (`MatrixJob.
     store_key`): the code, the limits, the folder, the cards and the options. None: the
     store is off, or a card is named by path (its rows are not kept). `fidelity`: what the
-    fidelity figures are measured with besides the scene (`fidelity_options`)."""
+    fidelity figures are measured with besides the scene (`fidelity_options`). `preprocessor`:
+    the -D macros and the -I folders (by their real paths)."""
     from effects.base.bundled import PROFILE_FOLDER, names_a_profile_file
     if not disk_store.enabled() or any(names_a_profile_file(n) for n in profiles):
         return None
@@ -107,9 +111,15 @@ def shared_key(profiles: tuple[str, ...], policy: str, strict: bool,
             "effects-matrix-rows", FORMAT, disk_store.fingerprint(),
             tuple((name, limits.get(name)) for name in sorted(limits.LIMITS)), os.getcwd(),
             profiles, tuple(cards), policy, strict, root,
-            None if root is None else os.path.realpath(root), fidelity))
+            None if root is None else os.path.realpath(root), fidelity, preprocessor))
     except (OSError, EffectError, disk_store.Unkeyable):
         return None
+
+
+def preprocessor_options(defines: tuple[tuple[str, str], ...],
+                         include_dirs: tuple[str, ...]) -> tuple:
+    """The shared key's part for -D and -I: the macros, and the folders by their real paths."""
+    return (tuple(defines), tuple(os.path.realpath(d) for d in include_dirs))
 
 
 def fidelity_options(measured: bool, best: str | None) -> tuple:
@@ -203,7 +213,8 @@ def keep(job: MatrixJob, found: Inputs | None, effect: Effect, row: dict,
     except OSError:
         return
     if shared_key(job.profiles, job.policy, job.strict, job.include_root,
-                  fidelity_options(job.fidelity, job.best)) != job.store_key:
+                  fidelity_options(job.fidelity, job.best),
+                  preprocessor_options(job.defines, job.include_dirs)) != job.store_key:
         return
     disk_store.write(found.name, {"row": row, "files": files})
 

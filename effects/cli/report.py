@@ -206,7 +206,9 @@ def matrix_job(job: "MatrixJob") -> dict | EffectError:
     from effects.validate.verdicts import load_effect   # strict: as D3DXCreateEffect
     found = matrix_store.inputs(job)
     try:
-        effect = load_effect(job.path, include_root=job.include_root, strict=job.strict)
+        effect = load_effect(job.path, defines=dict(job.defines),
+                             include_dirs=list(job.include_dirs),
+                             include_root=job.include_root, strict=job.strict)
         profiles = [load_profile(n) for n in (job.profiles or list_profiles())]
         with untrusted.recording() as named:
             row = matrix({job.path: effect}, profiles, job.policy, fidelity=job.fidelity,

@@ -24,8 +24,12 @@ _BACKGROUND, _INK, _FAINT = (32, 32, 36), (230, 230, 230), (150, 150, 160)
 
 def sheet_jobs(files: Sequence[str], profiles: Sequence[str], size: tuple[int, int],
                scene: str | None = None, backend: str = "numpy",
-               policy: str = "first", scene_beside: bool = True) -> list[CellJob]:
-    return [CellJob(f, p, size, scene_for(f, scene, beside=scene_beside), backend, policy)
+               policy: str = "first", scene_beside: bool = True,
+               load: Mapping[str, Any] | None = None) -> list[CellJob]:
+    """A cell job per (file, card). `load`: CellJob's load options (include_root, defines,
+    include_dirs), as the command that asked for the sheet loaded the files."""
+    return [CellJob(f, p, size, scene_for(f, scene, beside=scene_beside), backend, policy,
+                    **(load or {}))
             for f in files for p in profiles]
 
 
@@ -33,13 +37,16 @@ def render_sheet(files: Sequence[str], profiles: Sequence[str], out: str, *,
                  size: tuple[int, int] = (96, 96), scene: str | None = None,
                  scene_beside: bool = True, backend: str = "numpy", policy: str = "first", jobs: int | None = None,
                  scheduler: Any = None, progress: bool = True,
-                 figures: Mapping[tuple[str, str], Any] | None = None) -> list[Cell]:
+                 figures: Mapping[tuple[str, str], Any] | None = None,
+                 load: Mapping[str, Any] | None = None) -> list[Cell]:
     """Render every cell, compose the sheet and write it to `out` (PNG); returns the cells.
     A job is one effect's row (`render_row`): cell by cell, both workers of `--jobs 2` drew
     cards of every effect, so each paid every effect's first-cell costs, and the command was
     1.2-1.3x faster than `--jobs 1`, not 2x. `figures`: the matrix's fidelity figure of each
-    cell, by (file, card), drawn under its technique's name."""
-    rows = [sheet_jobs([f], profiles, size, scene, backend, policy, scene_beside) for f in files]
+    cell, by (file, card), drawn under its technique's name. `load`: how each file is loaded
+    (`sheet_jobs`)."""
+    rows = [sheet_jobs([f], profiles, size, scene, backend, policy, scene_beside, load)
+            for f in files]
     if progress:
         from rich.console import Console
         from rich.progress import Progress

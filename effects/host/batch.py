@@ -125,6 +125,11 @@ class CellJob:
     scene: str | None = None         # scene YAML path, or None for the default scene
     backend: str = "numpy"
     policy: str = "first"
+    # how the effect is loaded: the command's --include-root (which confines every file the
+    # render reads too: textures, meshes), -D and -I
+    include_root: str | None = None
+    defines: tuple[tuple[str, str], ...] = ()
+    include_dirs: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -146,15 +151,18 @@ def render_row(cells: Sequence[CellJob]) -> list[Cell]:
 
 
 # unbounded before; a loaded effect holds 24-144 KB (tracemalloc: the bundled ones)
-_EFFECTS = caches.declare("host.batch_effects", keys="an effect file's absolute path and "
-                          "modification time", entry_bytes=256 << 10, max_bytes=64 << 20)
+_EFFECTS = caches.declare("host.batch_effects", keys="an effect file's absolute path, "
+                          "modification time and load options", entry_bytes=256 << 10, max_bytes=64 << 20)
 
 
-def _effect(path: str):
-    """The effect at `path`, loaded once per worker (again when the file changes)."""
+def _effect(job: CellJob):
+    """The effect of `job`, loaded once per worker (again when the file changes)."""
     from effects.frontend.loader import load_effect
-    key = (os.path.abspath(path), os.stat(path).st_mtime)
-    return _EFFECTS.get_or_make(key, lambda: load_effect(path))
+    key = (os.path.abspath(job.effect), os.stat(job.effect).st_mtime, job.include_root,
+           job.defines, job.include_dirs)
+    return _EFFECTS.get_or_make(key, lambda: load_effect(
+        job.effect, defines=dict(job.defines), include_dirs=list(job.include_dirs),
+        include_root=job.include_root))
 
 
 _LOCAL = threading.local()
@@ -187,7 +195,7 @@ def render_cell(job: CellJob) -> Cell:
     from effects.base.errors import NoValidTechnique
     from effects.host.runtime import render_frame
     try:
-        effect = _effect(job.effect)
+        effect = _effect(job)
         profile = load_profile(job.profile)
         from effects.host.fidelity import policy_for   # pictures for the fidelity order only
         frame = render_frame(effect, profile, backend=_backend(job.backend), scene=job.scene,

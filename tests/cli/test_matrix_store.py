@@ -41,9 +41,12 @@ def store(tmp_path):
     disk_store.disable()
 
 
-def _job(path: str, *, profiles=(), policy="first", root=None, strict=False) -> MatrixJob:
-    return MatrixJob(path, tuple(profiles), policy, root, strict,
-                     matrix_store.shared_key(tuple(profiles), policy, strict, root))
+def _job(path: str, *, profiles=(), policy="first", root=None, strict=False, defines=(),
+         include_dirs=()) -> MatrixJob:
+    shared = matrix_store.shared_key(tuple(profiles), policy, strict, root, (),
+                                     matrix_store.preprocessor_options(defines, include_dirs))
+    return MatrixJob(path, tuple(profiles), policy, root, strict, shared,
+                     defines=defines, include_dirs=include_dirs)
 
 
 def _name(job: MatrixJob) -> str | None:
@@ -122,7 +125,8 @@ def test_a_row_is_found_by_every_input_and_only_those(tmp_path, store, monkeypat
     assert _name(_job(path)) == first
     # the options and the cards as named
     for other in (dict(policy="quality"), dict(strict=True), dict(root=str(tmp_path)),
-                  dict(profiles=("geforce3",)), dict(profiles=("geforce3", "tnt2"))):
+                  dict(profiles=("geforce3",)), dict(profiles=("geforce3", "tnt2")),
+                  dict(defines=(("X", "1"),)), dict(include_dirs=(str(tmp_path),))):
         assert _name(_job(path, **other)) not in (None, first), other
     # the path as given, and the folder it is given from
     monkeypatch.chdir(tmp_path)

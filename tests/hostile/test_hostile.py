@@ -573,3 +573,55 @@ def test_a_limit_is_raised_by_the_environment_or_in_code(monkeypatch):
     assert limits.get("literal_digits") == default
     with pytest.raises(KeyError):
         limits.set_limit("no_such_limit", 1)
+
+
+def test_the_contact_sheet_reads_files_only_inside_the_include_root(jail, capsys, monkeypatch):
+    """`matrix --render` draws each cell by loading the effect again: with --include-root, a
+    texture named outside the root is refused in the cell (its reason), never read."""
+    from PIL import Image
+    from effects.cli import sheet as sheet_module
+    drawn_cells = []
+    real = sheet_module.render_sheet
+    monkeypatch.setattr(sheet_module, "render_sheet",
+                        lambda *a, **k: drawn_cells.extend(real(*a, **k)) or drawn_cells)
+    root, outside = jail
+    Image.new("RGB", (4, 4), (0, 255, 0)).save(outside / "green.png")
+    (root / "e.fx").write_text(
+        'texture T < string ResourceName = "../outside/green.png"; >;\n'
+        "technique t { pass p { Texture[0] = <T>; ColorOp[0] = SelectArg1;\n"
+        "ColorArg1[0] = Texture; } }\n")
+    sheet = root.parent / "sheet.png"
+    code, out, err = _cli("matrix", root / "e.fx", "-p", "geforce3", "--include-root", root,
+                          "--render", sheet, "--size", "8x8", "--jobs", "1", capsys=capsys)
+    assert "Traceback" not in err
+    cell, = drawn_cells
+    assert cell.image is None and "include root" in cell.reason, cell
+    from effects.cli.sheet import sheet_jobs
+    from effects.host.batch import render_cell
+    job, = sheet_jobs([str(root / "e.fx")], ["geforce3"], (8, 8),
+                      load={"include_root": str(root)})
+    cell = render_cell(job)
+    assert cell.image is None and "include root" in cell.reason, cell
+    # the same cell without the root reads the file: the green is drawn
+    free, = sheet_jobs([str(root / "e.fx")], ["geforce3"], (8, 8))
+    drawn = render_cell(free).image
+    assert drawn is not None and (drawn[..., 1] > 200).any()
+
+
+def test_matrix_takes_d_and_i_as_validate_does(tmp_path, capsys):
+    (tmp_path / "inc").mkdir()
+    (tmp_path / "inc" / "flags.fxh").write_text("#define PASS_STATE Lighting = False;\n")
+    (tmp_path / "e.fx").write_text(
+        '#include "flags.fxh"\n'
+        "#ifdef WANT_SECOND\ntechnique second { pass p { PASS_STATE } }\n#endif\n"
+        "technique first { pass p { PASS_STATE } }\n")
+    code, out, err = _cli("matrix", tmp_path / "e.fx", "-p", "geforce3", "-I", tmp_path / "inc",
+                          "--json", capsys=capsys)
+    assert code == 0, err
+    assert json.loads(out)[str(tmp_path / "e.fx")]["geforce3"]["technique"] == "first"
+    code, out, err = _cli("matrix", tmp_path / "e.fx", "-p", "geforce3", "-I", tmp_path / "inc",
+                          "-D", "WANT_SECOND", "--json", capsys=capsys)
+    assert code == 0, err
+    assert json.loads(out)[str(tmp_path / "e.fx")]["geforce3"]["technique"] == "second"
+    code, out, err = _cli("matrix", tmp_path / "e.fx", "-p", "geforce3", capsys=capsys)
+    assert code == 2 and "flags.fxh" in err
