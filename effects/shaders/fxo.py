@@ -358,6 +358,12 @@ class _Writer:
             kind = fmt.PT_INT if info.name.endswith("I") else \
                 fmt.PT_BOOL if info.name.endswith("B") else fmt.PT_FLOAT
             t, raw = TypeDef(kind, fmt.PC_MATRIX_COLUMNS, "", "", 0, n, 1), b"\0" * (4 * n)
+        elif info.type == "color" and n in (3, 4):
+            # fxc types a colour render state as one DWORD (vkd3d's fx_2 state table:
+            # FogColor, TextureFactor, BlendFactor, BorderColor, Constant are one UINT), so its
+            # preshader gave one number; a float3/float4 expression is typed as that vector
+            # here, so the reader gets every component back (D3DX reads a vector as floats)
+            t, raw = TypeDef(fmt.PT_FLOAT, fmt.PC_VECTOR, "", "", 0, 1, n), b"\0" * (4 * n)
         else:
             t, raw = self.state_number(info, np.zeros(n, np.float32), location)
         resource(fmt.USAGE_DATA, value.data)
