@@ -244,9 +244,13 @@ class _Writer:
                 self.strings.append((ident, value.encode("latin-1", "replace") + b"\0"))
         elif t.type in (fmt.PT_VERTEXSHADER, fmt.PT_PIXELSHADER):
             self.shaders += 1
-            if isinstance(value, (ShaderBlock, CompileShader)):
+            if isinstance(value, (ShaderBlock, CompileShader, BytecodeShader)):
                 self.strings.append((ident, self.shader_bytes(value, location)))
-            elif value is not None and not isinstance(value, NullValue):
+            elif value is None or isinstance(value, NullValue):
+                # a NULL shader (`VertexShader vs[2];` declares two): an empty string entry,
+                # as fxc wrote each element of Wine's null_shader blob (read back as NULL)
+                self.strings.append((ident, b""))
+            else:
                 raise self.fail(f"'{t.name}': a shader parameter given as "
                                 f"{type(value).__name__} (not written)", location)
         return struct.pack("<I", ident)

@@ -74,3 +74,35 @@ def test_a_vector_typed_colour_value_reads_as_its_floats():
     got = typed_state_value(lookup_state("Ambient"), np.array([0.5, 0.25, 1, 1], np.float32),
                             None, None)
     assert got.tolist() == [0.5, 0.25, 1.0, 1.0]
+
+
+ARRAYS = """
+VertexShader vs_arr[2];
+PixelShader ps_arr[3] = { asm { ps_2_0 def c0, 1, 0, 0, 1 mov oC0, c0 }, NULL,
+                          asm { ps_2_0 def c0, 0, 1, 0, 1 mov oC0, c0 } };
+int i = 1;
+technique T { pass P { PixelShader = (ps_arr[i]); } }
+"""
+
+
+def test_the_null_elements_of_a_shader_array_survive_the_round_trip():
+    _, binary = _round_trip(ARRAYS)
+    assert [type(v).__name__ for v in binary.parameter("vs_arr").value] == ["NullValue"] * 2
+    assert [type(v).__name__ for v in binary.parameter("ps_arr").value] == [
+        "BytecodeShader", "NullValue", "BytecodeShader"]
+    # the pass picks the NULL element at i = 1, as the source does
+    from effects.shaders.hlsl.preshader import expression_element
+    state = binary.techniques[0].passes[0].state("PixelShader")
+    assert expression_element(binary, state.value).index == 1
+
+
+def test_a_null_shader_element_is_written_as_fxc_wrote_it():
+    # Wine's null_shader blob (fxc): `vertexshader vs_arr[2];` gives objects 1 and 2 an empty
+    # string entry each: 2 strings, 1 resource, then (1, length 0), (2, length 0)
+    import struct
+    from tests.paths import TESTS
+    entries = struct.pack("<6I", 2, 1, 1, 0, 2, 0)
+    fxc = (TESTS / "data" / "fxo" / "wine" / "test_effect_null_shader_blob.fxo").read_bytes()
+    assert entries in fxc
+    assert entries in write_effect_binary(effects.load_effect(
+        TESTS / "data" / "fxo" / "wine" / "test_effect_null_shader_blob.fx"))
