@@ -52,7 +52,7 @@ class Effect(model.Effect):
         return print_effect(self)
 
 
-def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str, str] | None = None,
+def load_effect(path_or_text: "str | bytes | os.PathLike[str]", *, defines: Mapping[str, str] | None = None,
                 include_dirs=(), include_handler: loader.IncludeHandler | None = None,
                 include_root: str | None = None, strict: bool = False) -> Effect:
     """Load an effect file (or effect source text) into an `Effect`; see

@@ -639,6 +639,11 @@ def typed_state_value(info: Any, numbers: np.ndarray, loc: Location, fail: Any) 
         if info.name.endswith("I"):
             return flat.astype(np.int32)
         return flat.astype(np.float32)
+    if kind == "color" and flat.size in (3, 4) and flat.dtype.kind == "f":
+        # a colour as three or four floats (a vector-typed colour state: fxc's Ambient in
+        # vkd3d's fx_2 state table, our writer's float4 preshader), kept as the floats the
+        # source path keeps for a colour expression (the device reads either)
+        return flat.astype(np.float32)
     if flat.size != 1:
         raise fail(f"{info.name}: {flat.size} numbers where one belongs")
     x = flat[0].item()

@@ -46,7 +46,7 @@ def read_source_file(path: str) -> str:
                                latin1_fallback=True)
 
 
-def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str, str] | None = None,
+def load_effect(path_or_text: "str | bytes | os.PathLike[str]", *, defines: Mapping[str, str] | None = None,
                 include_dirs=(), include_handler: IncludeHandler | None = None,
                 include_root: str | None = None, strict: bool = False,
                 effect_type: type[Effect] = Effect) -> Effect:
@@ -58,6 +58,15 @@ def load_effect(path_or_text: "str | os.PathLike[str]", *, defines: Mapping[str,
     from effects.frontend.parser import parse_effect
     from effects.frontend.preprocess import preprocess
 
+    if isinstance(path_or_text, (bytes, bytearray, memoryview)):
+        # an fx_2_0 binary in memory (the documented contract: a compiled .fxo path or bytes)
+        from effects.frontend import fxo
+        raw = bytes(path_or_text)
+        if not fxo.is_effect_binary(raw):
+            raise fxo.FxoError("bytes that do not start with the fx_2_0 tag (0xFEFF0901): "
+                               "pass effect source as text, a binary as bytes",
+                               Location("<bytes>", 1, 1))
+        return fxo.read_effect_binary(raw, "<bytes>", effect_type)
     source = os.fspath(path_or_text)
     if _names_a_file(source):
         path = source

@@ -31,10 +31,12 @@ bump-environment state of each stage (uniforms `bumpenv<n>` and
 `bumpenvl<n>`), the kind of texture bound to each sampler, and TTFF_PROJECTED per stage.
 A vs_3_0 shader's samplers are the vertex texture samplers 257-260 (`Sampler[257] = <s>`, or an
 HLSL vertex shader's sampler registers + 257, as D3DX binds them), bound like pixel ones.
-Fixed-function fog after a pixel shader is not lowered yet (a clear error, not a wrong picture).
+Fixed-function fog is blended after a ps_1_x/2_x pixel shader, as Direct3D 9 did, and not after
+ps_3_0 (`_fog_after_pixel_shader`); pixel (table) fog after a vertex shader is a located error.
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 import numpy as np
@@ -208,11 +210,9 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
         if lit is not None:     # the lit values by their numbers in the built program
             lighting = pixel_lighting(lit_setup, *(fb.renumbered.get(v) for v in lit))
     else:
-        if fog.source != "none":
-            raise EffectError("fog after a pixel shader is not lowered yet",
-                              state.where("FogEnable"))
         program, compiled = _assemble(effect, state, pixel_shader, "pixel",
                                       judged.get("PixelShader"))
+        fog = _fog_after_pixel_shader(fog, program, vertex_shader, state)
         ctx = asm_lower.ShaderContext(
             options, sampler_kinds={s: k for s in range(MAX_STAGES)
                                     if (k := _texture_kind(effect, state, s))},
@@ -227,6 +227,10 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
                                           PIXEL_CONSTANT_PREFIX))
         uniforms.update(_compiled_constants(effect, compiled, PIXEL_CONSTANT_PREFIX))
         uniforms.update(_bump_uniforms(state))
+        if fog.source != "none":
+            fb = Builder.resume(fragment)
+            fb.output("color0", apply_fog(fb, fb.output_value("color0"), fog, uniforms, options))
+            fragment = fb.build()
 
     needed = sorted(int(i.name[len("texcoord"):]) for i in fragment.inputs
                     if i.kind == "varying" and i.name.startswith("texcoord"))
@@ -248,6 +252,10 @@ def _lower(effect: Effect, state: DeviceState, profile: "CapsProfile",
                                       int_constants=_int_constants(state, "Vertex", compiled),
                                       bool_constants=state.bool_constants("Vertex"))
         vertex = _shader_ir(program, ctx, "vertex")
+        if fog.source == "vertex" and "fog" not in vertex.output_map:
+            raise EffectError("fog blending after the pixel shader takes its factor from the "
+                              "vertex shader's oFog, which this vertex shader does not write",
+                              state.where("FogEnable"))
         uniforms.update(_shader_constants(state, "VertexShaderConstant",
                                           asm_lower.constant_registers(program),
                                           VERTEX_CONSTANT_PREFIX))
@@ -469,6 +477,23 @@ def read_stages(effect: Effect, state: DeviceState) -> list[StageSetup]:
             constant=state.get_color("Constant", n),
             location=state.where("ColorOp", n)))
     return stages
+
+
+def _fog_after_pixel_shader(fog: FogSetup, program: "AsmProgram", vertex_shader: Any,
+                            state: DeviceState) -> FogSetup:
+    """The fog Direct3D 9 blends after a pixel shader: none after ps_3_0 (a ps_3_0 shader does
+    its own fog); after ps_1_x/2_x the fixed-function blend, whose factor comes from the
+    vertex side: the fixed-function vertex pipeline's as without a pixel shader, a vertex
+    shader's oFog whatever FogVertexMode says (wined3d's find_ps_compile_args does both)."""
+    if fog.source == "none" or program.version[0] >= 3:
+        return FogSetup()
+    if vertex_shader is None:
+        return fog
+    if fog.source == "table":
+        raise EffectError("FogTableMode (pixel fog) after a vertex shader and a pixel shader is "
+                          "not lowered yet: its factor comes from each pixel's depth, which "
+                          "the lowered pixel program does not read", state.where("FogTableMode"))
+    return replace(fog, source="vertex")
 
 
 def read_fog(state: DeviceState) -> FogSetup:

@@ -874,6 +874,20 @@ class Builder:
                 self._scopes[-1].append(key)
         return dest
 
+    @classmethod
+    def resume(cls, program: Program) -> "Builder":
+        """A builder holding `program`'s inputs, samplers, instructions and outputs, to append
+        to (fixed-function fog blended after a pixel shader's colour). Its values keep their
+        numbers; nothing emitted before is shared with what is emitted next."""
+        b = cls(program.stage)
+        b._inputs = {i.name: i for i in program.inputs}
+        b._samplers = {s.index: s for s in program.samplers}
+        b._instrs = list(program.instrs)
+        b._count = 1 + max((i.dest for i in program.instrs if i.dest is not None), default=-1)
+        b._outputs = dict(program.outputs)
+        b.clamp_colors = program.clamp_colors
+        return b
+
     def _flow(self, info: OpInfo) -> None:
         if info.flow in ("middle", "close"):
             if not self._scopes:
@@ -999,6 +1013,12 @@ class Builder:
         if name not in OUTPUTS[self.stage]:
             raise IRError(f"{name!r} is not a {self.stage} output ({OUTPUTS[self.stage]})")
         self._outputs[name] = value
+
+    def output_value(self, name: str) -> int:
+        """The value output `name` was given (a resumed program's)."""
+        if name not in self._outputs:
+            raise IRError(f"the program has no {name!r} output")
+        return self._outputs[name]
 
     def build(self, prune: bool = True) -> Program:
         """The program. `prune` drops instructions no output or kill needs (and the inputs and

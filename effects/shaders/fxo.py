@@ -244,9 +244,13 @@ class _Writer:
                 self.strings.append((ident, value.encode("latin-1", "replace") + b"\0"))
         elif t.type in (fmt.PT_VERTEXSHADER, fmt.PT_PIXELSHADER):
             self.shaders += 1
-            if isinstance(value, (ShaderBlock, CompileShader)):
+            if isinstance(value, (ShaderBlock, CompileShader, BytecodeShader)):
                 self.strings.append((ident, self.shader_bytes(value, location)))
-            elif value is not None and not isinstance(value, NullValue):
+            elif value is None or isinstance(value, NullValue):
+                # a NULL shader (`VertexShader vs[2];` declares two): an empty string entry,
+                # as fxc wrote each element of Wine's null_shader blob (read back as NULL)
+                self.strings.append((ident, b""))
+            else:
                 raise self.fail(f"'{t.name}': a shader parameter given as "
                                 f"{type(value).__name__} (not written)", location)
         return struct.pack("<I", ident)
@@ -358,6 +362,12 @@ class _Writer:
             kind = fmt.PT_INT if info.name.endswith("I") else \
                 fmt.PT_BOOL if info.name.endswith("B") else fmt.PT_FLOAT
             t, raw = TypeDef(kind, fmt.PC_MATRIX_COLUMNS, "", "", 0, n, 1), b"\0" * (4 * n)
+        elif info.type == "color" and n in (3, 4):
+            # fxc types a colour render state as one DWORD (vkd3d's fx_2 state table:
+            # FogColor, TextureFactor, BlendFactor, BorderColor, Constant are one UINT), so its
+            # preshader gave one number; a float3/float4 expression is typed as that vector
+            # here, so the reader gets every component back (D3DX reads a vector as floats)
+            t, raw = TypeDef(fmt.PT_FLOAT, fmt.PC_VECTOR, "", "", 0, 1, n), b"\0" * (4 * n)
         else:
             t, raw = self.state_number(info, np.zeros(n, np.float32), location)
         resource(fmt.USAGE_DATA, value.data)

@@ -869,3 +869,33 @@ def test_unknown_backend_is_an_effect_error_naming_it():
     with pytest.raises(UnknownBackend) as err:
         create_backend("vulkan")
     assert isinstance(err.value, EffectError) and "vulkan" in str(err.value)
+
+
+# Fog after a pixel shader (Direct3D 9: the fixed-function blend follows a ps_1_x/2_x shader,
+# not a ps_3_0 one; with a vertex shader its factor is oFog). The shader writes red, the fog
+# colour is blue.
+RED_PS2 = "PixelShader = asm { ps_2_0 def c0, 1, 0, 0, 1 mov oC0, c0 };"
+FOG_VS2 = ("VertexShader = asm { vs_2_0 dcl_position v0 def c0, 0.25, 0, 0, 0 mov oPos, v0 "
+           "mov oFog, c0.x };")
+SM3 = ("VertexShader = asm { vs_3_0 dcl_position v0 dcl_position o0 mov o0, v0 };"
+       "PixelShader = asm { ps_3_0 def c0, 1, 0, 0, 1 mov oC0, c0 };")
+
+
+@pytest.mark.parametrize("states, factor", [
+    (RED_PS2 + "FogTableMode = Linear; FogStart = 0.0; FogEnd = 1.0;", 0.5),   # z = 0.5
+    (RED_PS2 + "FogVertexMode = Linear; FogStart = 0.0; FogEnd = 2.0;", 0.75),  # per vertex
+    (RED_PS2 + FOG_VS2, 0.25),             # oFog = 0.25, FogVertexMode NONE: oFog all the same
+    (SM3 + "FogTableMode = Linear; FogStart = 0.0; FogEnd = 1.0;", 1.0),   # ps_3_0: no fog
+])
+def test_fog_after_a_pixel_shader_renders_alike(backend, states, factor):
+    program = lowered("FogEnable = TRUE; FogColor = 0x000000ff; " + states)
+    streams, idx, prim = quad(z=0.5, color0=np.tile([0, 1, 0, 1], (4, 1)))
+    image = render(backend, [(program, (streams, idx, prim))], size=(2, 2))
+    assert_close_u8(image[0, 0], u8([factor, 0, 1 - factor, 1]))
+
+
+def test_pixel_fog_after_both_shaders_is_a_located_error():
+    with pytest.raises(effects.EffectError, match="FogTableMode .pixel fog. after a vertex "
+                       "shader and a pixel shader is not lowered yet") as err:
+        lowered("FogEnable = TRUE; FogTableMode = Linear;" + RED_PS2 + FOG_VS2)
+    assert err.value.line == 1

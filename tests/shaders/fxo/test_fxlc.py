@@ -267,3 +267,31 @@ def test_an_expression_fxlc_cannot_say_is_refused_by_the_writer_located():
     with pytest.raises(effects.EffectError, match="not written as an FXLC preshader") as err:
         write_effect_binary(effect)
     assert err.value.line == 2
+
+
+def test_a_preshaders_infinities_pass_on_as_d3dx_set_them():
+    # opvect1 = (0, -0, -2.2, FLT_MAX), opvect2 = (1, 2, -3, 4). D3DX set the lights to these
+    # float32 bits (Wine's test_effect_preshader_op_expected): 1 / op, rsq, mul; 1e-2 / op
+    # (a denormal kept); dot. No refusal: the pass validates
+    effect = effects.load_effect(EFFECT)
+    diffuse, ambient = _states(effect, "LightDiffuse"), _states(effect, "LightAmbient")
+
+    def bits(state):
+        return [f"{x:08x}" for x in np.asarray(_value(effect, state), np.float32).view(np.uint32)]
+    assert bits(diffuse[0]) == ["7f800000", "ff800000", "bee8ba2e", "00200000"]
+    assert bits(diffuse[2]) == ["00000000", "80000000", "40d33334", "7f800000"]
+    assert bits(ambient[5]) == ["7f800000", "ff800000", "bb94f209", "000051ec"]
+    assert bits(ambient[6]) == ["00000000", "7f800000", "41f00000", "00000000"]
+    rsq = np.asarray(_value(effect, diffuse[1]), np.float32)
+    assert rsq[:2].tolist() == [math.inf, math.inf]
+    # the pass's only reason on a ps_3_0 card is p1's shader mix, not a value
+    verdict = effect.validate("tech0", effects.load_profile("modern"))
+    assert [r for r in verdict.reasons if "X3013" in str(r)] == []
+    assert verdict.reasons and all("pass p1" in str(r) for r in verdict.reasons)
+
+
+def test_the_same_expression_in_source_is_refused_naming_its_numbers():
+    effect = effects.load_effect("float4 v = {0, -0, -2.2, 1};\n"
+                                 "technique T { pass P { LightDiffuse[0] = 1 / v; } }")
+    verdict = effect.validate("T", effects.load_profile("modern"))
+    assert "X3013" in str(verdict.reasons[0]) and "inf" in str(verdict.reasons[0])

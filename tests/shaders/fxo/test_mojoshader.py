@@ -7,7 +7,10 @@ run). The one thing MojoShader reads differently from D3DX is named in SHADER_RE
 its readlargeobjects (mojoshader_effects.c) parses every resource of a shader state as
 bytecode, so a pass whose `VertexShader = <param>` names a shader parameter (resource usage 1,
 the parameter's name, as Wine's d3dx_parse_resource reads it) is refused with its parser's
-message; those effects must hold such a reference."""
+message; those effects must hold such a reference. fxc wrote the same reference the same way
+(resource usage 1, element NONE, the name and a NUL: Wine's effect_code and
+shared_parameters blobs), and MojoShader refuses those binaries alike
+(test_mojoshader_refuses_fxcs_own_shader_reference_alike)."""
 from __future__ import annotations
 
 import json
@@ -83,3 +86,53 @@ def test_mojoshader_reads_fxc_own_binary_as_we_do():
     # D3DXPARAMETER_DESC); MojoShader reads a matrix's two words the other way round
     assert by["f23"][2:] == [2, 3, 3, 2, 0] and by["f44_2"][2:] == [2, 3, 4, 4, 2]
     assert got["techniques"] == [["t", ["p"]]]
+
+
+def _mojoshader(path):
+    run = subprocess.run([sys.executable, str(ROOT / "tests/shaders/d3dbc/mojoshader.py"),
+                          str(path)], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr[-2000:]
+    return json.loads(run.stdout)
+
+
+@pytest.mark.parametrize("stem, reference, message", [
+    # `VertexShader = vs;`: 3 bytes, short of a version token
+    ("effect_code", b"vs", "Expected version token, got none at all."),
+    # `VertexShader = vs_arr2[0];`: "vs_a" read as a version token
+    ("test_effect_shared_parameters_blob", b"vs_arr2[0]", SHADER_REFERENCE),
+])
+def test_mojoshader_refuses_fxcs_own_shader_reference_alike(tmp_path, stem, reference, message):
+    # fxc's binary of a pass that names a shader parameter holds the resource we write for
+    # `VertexShader = <vs>`: technique 0, pass 0, element NONE, state 0 (effect_code; the
+    # shared_parameters pass's VertexShader is its state 3), usage 1 (a parameter), the name
+    # and its NUL; MojoShader parses it as bytecode and refuses the effect
+    import struct
+    from tests.paths import TESTS
+    fxc = (TESTS / "data/fxo/wine" / f"{stem}.fxo").read_bytes()
+    state = 3 if stem.startswith("test_effect_shared") else 0
+    record = struct.pack("<6I", 0, 0, 0xFFFFFFFF, state, 1, len(reference) + 1) + reference
+    assert record + b"\0" in fxc
+    assert _mojoshader(TESTS / "data/fxo/wine" / f"{stem}.fxo")["errors"] == [message]
+    # ours, of the same pass, is the same record (padded to 4 bytes as fxc's is)
+    shader = "asm { vs_1_1 dcl_position v0 mov oPos, v0 }"
+    declared = f"vs_arr2[2] = {{ {shader}, {shader} }}" if b"[" in reference else \
+        f"vs = {shader}"
+    ours = write_effect_binary(effects.load_effect(
+        f"vertexshader {declared};\n"
+        f"technique T {{ pass P {{ VertexShader = <{reference.decode()}>; }} }}"))
+    ours_record = struct.pack("<6I", 0, 0, 0xFFFFFFFF, 0, 1, len(reference) + 1) + reference
+    assert ours_record + b"\0" in ours
+    path = tmp_path / "ours.fxo"
+    path.write_bytes(ours)
+    assert _mojoshader(path)["errors"] == [message]
+
+
+def test_mojoshader_refuses_fxcs_null_shader_objects_as_ours(tmp_path):
+    # `vertexshader vs_arr[2];`: fxc gives each element an empty string entry (Wine's
+    # null_shader blob), which MojoShader compiles as bytecode and refuses; we write the same
+    from tests.paths import TESTS
+    fxc = TESTS / "data/fxo/wine/test_effect_null_shader_blob"
+    assert _mojoshader(fxc.with_suffix(".fxo"))["errors"] == [SHADER_REFERENCE]
+    path = tmp_path / "ours.fxo"
+    path.write_bytes(write_effect_binary(effects.load_effect(fxc.with_suffix(".fx"))))
+    assert _mojoshader(path)["errors"] == [SHADER_REFERENCE]

@@ -147,3 +147,14 @@ def test_a_shader_with_a_bad_fxc_preshader_is_refused_not_drawn_wrong():
     from effects.d3d9.caps import load_profile
     from effects.validate.technique import validate_technique
     assert not validate_technique(e, e.techniques[0], load_profile("modern")).ok
+
+
+def test_load_effect_takes_a_binary_as_bytes():
+    # the contract (DESIGN: `load_effect` takes a compiled .fxo path or bytes)
+    from tests.paths import TESTS
+    raw = (TESTS / "data/fxo/wine/test_effect_states_effect_blob.fxo").read_bytes()
+    effect = effects.load_effect(raw)
+    assert [t.name for t in effect.techniques] == ["tech0"] and effect.path == "<bytes>"
+    with pytest.raises(effects.EffectError, match="do not start with the fx_2_0 tag") as err:
+        effects.load_effect(b"technique T { pass P { } }")
+    assert (err.value.path, err.value.line, err.value.column) == ("<bytes>", 1, 1)
