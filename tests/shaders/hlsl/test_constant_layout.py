@@ -100,3 +100,53 @@ def test_fxcs_effect_binary_lays_six_matrices_out_by_size_then_declaration():
               if n.startswith("m") and not n.startswith("mb")}
     assert floats == {"m2x3column": (0, 3), "m3x2row": (3, 3), "m2x2row": (6, 2),
                       "m2x2column": (8, 2), "m2x3row": (10, 2), "m3x2column": (12, 2)}
+
+
+def _fxc_and_ours(entry: str, target: str, args: tuple[str, ...], fxc_array: str, k: int):
+    """(fxc's, ours) name -> (register set, first, count) for a shader of Wine's preshader
+    effect: fxc's from the .fxo (parameter `fxc_array`, element k), ours compiled from the .fx."""
+    from effects.shaders.d3dbc import read_shader
+    from effects.shaders.d3dbc.writer import constant_table
+    from tests.paths import TESTS
+    wine = TESTS / "data" / "fxo" / "wine"
+    fxo = effects.load_effect(wine / "test_effect_preshader_effect_blob.fxo")
+    theirs = read_shader(fxo.parameter(fxc_array).value[k].data, "fxc").table
+    fx = effects.load_effect(wine / "test_effect_preshader_effect_blob.fx")
+    shader = compile_shader(fx, entry, target, args)
+    ours = constant_table(shader.program, shader)
+    return ({c.name: (c.register_set, c.register_index, c.register_count, c.type.elements)
+             for c in t.constants} for t in (theirs, ours))
+
+
+def test_a_sampler_array_holds_its_elements_up_to_the_last_read_the_largest_first():
+    # RenderSceneVS reads sampler1, then samplers_array[1]: fxc gave the two-register array
+    # s0-s1 and sampler1 s2 (the floats of this shader differ: fxc made g_Selector's test a
+    # preshader)
+    fxc, ours = _fxc_and_ours("RenderSceneVS", "vs_3_0", ("1", "true"), "vs_arr2", 0)
+    samplers = {n: r for n, r in fxc.items() if r[0] == "sampler"}
+    assert samplers == {"samplers_array": ("sampler", 0, 2, 2), "sampler1": ("sampler", 2, 1, 1)}
+    assert {n: r for n, r in ours.items() if r[0] == "sampler"} == samplers
+
+
+def _samplers(functions: str, entry: str = "PS", target: str = "ps_3_0") -> dict[str, int]:
+    fx = effects.load_effect(functions + "\ntechnique T { pass P { } }\n")
+    return compile_shader(fx, entry, target).samplers
+
+
+def test_samplers_of_one_size_in_declaration_order_not_first_use():
+    # vkd3d's combined-samplers test, as native d3dcompiler ran it: sam1 read first, but
+    # 100 * tex2D(sam1) + 10 * tex2D(sam0) + tex2D(sam2) reads s1, s0, s2 (probe 102 with
+    # texture k holding k); Wine's test_constant_table: m, n, o, s at s2, s3, s4, s6
+    fn = """sampler sam0; sampler sam1; sampler sam2;
+float4 PS(float2 uv : TEXCOORD0) : COLOR {
+    return 100 * tex2D(sam1, uv) + 10 * tex2D(sam0, uv) + tex2D(sam2, uv); }"""
+    assert _samplers(fn) == {"sam0": 0, "sam1": 1, "sam2": 2}
+
+
+def test_a_sampler_register_binding_is_kept_and_the_rest_fit_around_it():
+    # Wine's test_constant_table: `sampler l : register(s5)` stays at s5 and the unbound
+    # ones take the free registers around it in declaration order
+    fn = """sampler a; sampler l : register(s1); sampler b; sampler c;
+float4 PS(float2 uv : TEXCOORD0) : COLOR {
+    return tex2D(c, uv) + tex2D(l, uv) + tex2D(b, uv) + tex2D(a, uv); }"""
+    assert _samplers(fn) == {"a": 0, "l": 1, "b": 2, "c": 3}
