@@ -118,6 +118,18 @@ def _fxc_and_ours(entry: str, target: str, args: tuple[str, ...], fxc_array: str
              for c in t.constants} for t in (theirs, ours))
 
 
+def test_fxcs_effect_binary_ps_3_0_table_is_ours_entry_for_entry():
+    # RenderScenePS(mb2x3row): six float matrices (above), g_iVect's `rep i0`, the bool
+    # matrices of `if (mb[1][1])` and `if (mb2x3column[0][0])` (b0 count 5: row by row,
+    # [1][1] is the fifth component; b5 count 1, up to the last read), and sampler1 s0,
+    # samplers_array s1 count 1 (its [0] read; its type two elements)
+    fxc, ours = _fxc_and_ours("RenderScenePS", "ps_3_0", ("mb2x3row",), "ps_arr", 0)
+    assert fxc["mb2x3row"] == ("bool", 0, 5, 1) and fxc["mb2x3column"] == ("bool", 5, 1, 1)
+    assert fxc["sampler1"] == ("sampler", 0, 1, 1)
+    assert fxc["samplers_array"] == ("sampler", 1, 1, 2)
+    assert ours == fxc
+
+
 def test_a_sampler_array_holds_its_elements_up_to_the_last_read_the_largest_first():
     # RenderSceneVS reads sampler1, then samplers_array[1]: fxc gave the two-register array
     # s0-s1 and sampler1 s2 (the floats of this shader differ: fxc made g_Selector's test a
@@ -150,3 +162,18 @@ def test_a_sampler_register_binding_is_kept_and_the_rest_fit_around_it():
 float4 PS(float2 uv : TEXCOORD0) : COLOR {
     return tex2D(c, uv) + tex2D(l, uv) + tex2D(b, uv) + tex2D(a, uv); }"""
     assert _samplers(fn) == {"a": 0, "l": 1, "b": 2, "c": 3}
+
+
+def test_bool_registers_hold_up_to_the_last_component_read():
+    # as fxc's b0 count 5 / b5 for Wine's bool2x3 matrices: a later bool goes right after the
+    # last register an earlier one's reads reach, not after all its components
+    fn = """bool4 A; bool B;
+float4 VS(float4 p : POSITION) : POSITION {
+    float4 r = p;
+    if (A.y) r = r * 2;
+    if (B) r = r + 1;
+    return r; }"""
+    fx = effects.load_effect(fn + "\ntechnique T { pass P { } }\n")
+    shader = compile_shader(fx, "VS", "vs_3_0")
+    assert shader.bool_registers == {"A": 0, "B": 2}
+    assert "if b1" in shader.text and "if b2" in shader.text
