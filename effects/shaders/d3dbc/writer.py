@@ -248,7 +248,7 @@ def constant_table(program: AsmProgram, compiled: "CompiledShader | None" = None
         for name, register in compiled.bool_registers.items():
             constants.append(ConstantInfo(name, "bool", register, compiled.register_count(name),
                                           _type_info(compiled.types.get(name), "bool")))
-        for name, (register, count) in _sampler_entries(compiled.samplers).items():
+        for name, (register, count) in compiled.sampler_table().items():
             dcl = program.declaration("s", register + count - 1)
             kind = {"cube": "samplerCUBE", "volume": "sampler3D", "2d": "sampler2D"}.get(
                 (dcl.sampler_type if dcl else None) or "", "sampler")
@@ -260,20 +260,6 @@ def constant_table(program: AsmProgram, compiled: "CompiledShader | None" = None
     # fxc lists them by name
     constants.sort(key=lambda c: c.name)
     return ConstantTable(tuple(constants), program.name, version_token(program))
-
-
-def _sampler_entries(samplers: dict[str, int]) -> dict[str, tuple[int, int]]:
-    """The table's sampler entries, name -> (first s#, count): an array's elements (`S[1]`)
-    as the array itself, from its first element's register up to the last element read, as
-    fxc lists them (`samplers_array` s0 count 2 where the code reads samplers_array[1]:
-    tests/data/fxo/wine/test_effect_preshader_effect_blob.fxo)."""
-    out: dict[str, tuple[int, int]] = {}
-    for name, register in samplers.items():
-        base, _, index = name[:-1].partition("[") if name.endswith("]") else (name, "", "0")
-        k = int(index) if index.isdigit() else 0
-        first, count = out.get(base, (register - k, 0))
-        out[base] = (first, max(count, k + 1))
-    return out
 
 
 def _type_info(htype: Any, base: str) -> TypeInfo:
