@@ -4,6 +4,8 @@ tests (tests/data/d3dbc/wine/d3dx9_36_shader_excerpt.c; the array named) or off 
 tables vkd3d-shader's sm1-const-allocation test records from native d3dcompiler."""
 from __future__ import annotations
 
+import re
+
 import effects
 from effects.shaders.hlsl.compiler import compile_shader
 
@@ -177,3 +179,16 @@ float4 VS(float4 p : POSITION) : POSITION {
     shader = compile_shader(fx, "VS", "vs_3_0")
     assert shader.bool_registers == {"A": 0, "B": 2}
     assert "if b1" in shader.text and "if b2" in shader.text
+
+
+def test_the_listing_names_a_sampler_array_as_the_constant_table_does():
+    # fxc's /Fc register table lists the array, from its first register up to the last
+    # element read, as the constant table does (samplers_array s0 2 for RenderSceneVS)
+    from effects.shaders.listing import listing
+    from tests.paths import TESTS
+    fx = effects.load_effect(TESTS / "data" / "fxo" / "wine" /
+                             "test_effect_preshader_effect_blob.fx")
+    shader = compile_shader(fx, "RenderSceneVS", "vs_3_0", ("1", "true"))
+    rows = [line.split()[1:] for line in listing(fx, shader)
+            if re.fullmatch(r"//\s+\S+\s+s\d+\s+\d+", line)]
+    assert rows == [["samplers_array", "s0", "2"], ["sampler1", "s2", "1"]]
