@@ -90,7 +90,9 @@ def listing(effect: "Effect", shader: Any) -> list[str]:
                        key=lambda r: int(r[0][1:]))
         rows += sorted(((f"b{k}", name, count(name)) for name, k in bools.items()),
                        key=lambda r: int(r[0][1:]))
-        rows += sorted(((f"s{s}", name, 1) for name, s in shader.samplers.items()),
+        table = getattr(shader, "sampler_table", None)
+        samplers = table() if table is not None else {n: (s, 1) for n, s in shader.samplers.items()}
+        rows += sorted(((f"s{s}", name, n) for name, (s, n) in samplers.items()),
                        key=lambda r: int(r[0][1:]))
         lines += [f"//   {name:<24} {reg:<5} {n:>4}" for reg, name, n in rows]
         lines.append("//")

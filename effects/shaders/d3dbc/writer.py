@@ -248,12 +248,15 @@ def constant_table(program: AsmProgram, compiled: "CompiledShader | None" = None
         for name, register in compiled.bool_registers.items():
             constants.append(ConstantInfo(name, "bool", register, compiled.register_count(name),
                                           _type_info(compiled.types.get(name), "bool")))
-        for name, register in compiled.samplers.items():
-            dcl = program.declaration("s", register)
+        for name, (register, count) in compiled.sampler_table().items():
+            dcl = program.declaration("s", register + count - 1)
             kind = {"cube": "samplerCUBE", "volume": "sampler3D", "2d": "sampler2D"}.get(
                 (dcl.sampler_type if dcl else None) or "", "sampler")
-            constants.append(ConstantInfo(name, "sampler", register, 1,
-                                          TypeInfo(OBJECT, PARAMETER_TYPES.index(kind))))
+            htype = compiled.types.get(name)
+            elements = htype.length if htype is not None and htype.kind == "array" else count
+            constants.append(ConstantInfo(name, "sampler", register, count,
+                                          TypeInfo(OBJECT, PARAMETER_TYPES.index(kind),
+                                                   elements=elements)))
     # fxc lists them by name
     constants.sort(key=lambda c: c.name)
     return ConstantTable(tuple(constants), program.name, version_token(program))

@@ -16,16 +16,18 @@ Which `if` stays a branch (fxc's choices, as far as its documentation and listin
   selects. fxc flattens small `if`s by itself and branches large ones in SM3; flattening is
   always correct and never needs a cap, so without `[branch]` we always flatten.
 
-Evaluation: each side runs once with no predicate; the variables a side changes (numeric ones;
-an array or struct changed makes it NotReal) become results: the `if` node holds the condition
+Evaluation: each side runs once with no predicate; the variables a side changes (numbers, and
+structs and arrays of them) become results: the `if` node holds the condition
 operands, the then-results and the else-results (the value before the `if` where a side
 leaves a variable alone), and each changed variable reads `if_out` nodes after it. codegen
 (flowcode.py) places the nodes used only by one side inside it. A side may return, break,
 continue and discard: the frame's 'returned' and return value and the loop's 'broken' /
 'continued' are carried like variables (flowrules.flow_vars: what follows the if runs under
 'not returned' -- an early return by predicate), and a side's discards are held by the `if`
-node, so the texkill runs inside the side. A side that changes an array or a struct, or
-returns a struct, is NotReal (a bool `if` is then flattened; `[branch]` says why).
+node, so the texkill runs inside the side. A side may change structs and arrays made of
+numbers (their numbers are results, as a loop carries them: fxc's ps_3_0 in Wine's preshader
+effect keeps `if b4` whose side changes `Output.RGBColor`); one that changes anything else,
+or returns a struct, is NotReal (a bool `if` is then flattened; `[branch]` says why).
 """
 from __future__ import annotations
 
@@ -38,7 +40,7 @@ from effects.shaders.hlsl.components import component_register, uniform_componen
 from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.flowrules import (MAX_DEPTH, Effects, NotReal, TargetFlow, enter,
                                             flow_vars, leave, refusal)
-from effects.shaders.hlsl.loops import flat, numeric_vars
+from effects.shaders.hlsl.loops import carried, components, flat, numeric_vars
 from effects.shaders.hlsl.values import Value, Var, build_value, operand
 
 _ids = itertools.count()
@@ -85,7 +87,7 @@ def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -
     [a, b]); raises NotReal with the reason it cannot be one."""
     variables = numeric_vars(ev) + flow_vars(ev)
     initial = {id(v): v.value for v in variables}
-    others = [v for v in variables if not v.type.numeric]
+    others = [v for v in variables if not carried(v.type)]
     before = {id(v): flat(v.value) for v in others}
     sides: list[dict[int, Value]] = []
     kills: list[list[Operand]] = []
@@ -110,16 +112,20 @@ def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -
         raise
     finally:
         leave(ev, kind)
-    changed = [v for v in variables if v.type.numeric and any(
+    changed = [v for v in variables if carried(v.type) and any(
         flat(side[id(v)]) != flat(initial[id(v)]) for side in sides)]
     if_id = next(_ids)
     results: list[list[Operand]] = [[], []]
     widths: list[int] = []
     for v in changed:
-        for k in range(0, v.type.size, 4):
-            widths.append(min(4, v.type.size - k))
-            for s, side in enumerate(sides):
-                results[s].append(operand(ev.g, side[id(v)].comps[k:k + 4]))
+        # a struct or an array of numbers is its numbers in declaration order, as a loop
+        # carries it (loops.components): `Output.RGBColor += ...` in a side is a result
+        per_side = [components(side[id(v)]) for side in sides]
+        size = len(per_side[0])
+        for k in range(0, size, 4):
+            widths.append(min(4, size - k))
+            for s, comps in enumerate(per_side):
+                results[s].append(operand(ev.g, comps[k:k + 4]))
     test, args = cond
     # key: (id, 'bool' or the comparison, condition operands, result groups, b#, discards
     # of the then side); args: the condition, the then- and else-results, the then- and
@@ -135,7 +141,7 @@ def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -
     k = 0
     for v in changed:
         comps: list[Operand] = []
-        for _ in range(0, v.type.size, 4):
+        for _ in range(0, len(components(v.value)), 4):
             out = ev.g.leaf("if_out", (if_id, k), widths[k], ev.at(tree), (node,))
             comps.extend(Operand(out.node, (i,)) for i in range(widths[k]))
             k += 1

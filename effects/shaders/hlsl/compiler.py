@@ -234,7 +234,8 @@ def reach(c: Compilation) -> None:
 def layout_constants(c: Compilation) -> None:
     """Constant registers in fxc's order and the samplers fixed before generation."""
     c.constants, c.sizes = _constant_registers(c.ctx, c.nodes)
-    c.samplers = _sampler_registers(c.ctx, {n.key[0] for n in c.nodes if n.op in TEXTURE})
+    c.samplers = _sampler_registers(c.ctx, {n.key[0] for n in c.nodes if n.op in TEXTURE},
+                                   not c.ps1)
     if not c.ps1:
         c.gen = CodeGen(c.ctx, c.binder.dcls, c.outputs, c.constants, c.samplers, c.sizes)
         c.gen.output_dcls = c.binder.output_dcls
@@ -286,7 +287,8 @@ def list_program(c: Compilation) -> None:
     text, lines = listing(c.program, c.generated_at)  # type: ignore[arg-type]
     c.shader = CompiledShader(c.entry, ctx.target.name, text, c.program, code.constants,  # type: ignore[union-attr, arg-type]
                               code.samplers, lines, list(ctx.warnings),  # type: ignore[union-attr]
-                              dict(ctx.uniforms_used), code.int_registers,  # type: ignore[union-attr]
+                              {**ctx.uniforms_used, **_sampler_arrays(ctx, code.samplers)},  # type: ignore[union-attr]
+                              code.int_registers,  # type: ignore[union-attr]
                               code.bool_registers,  # type: ignore[union-attr]
                               {n: p for n, p in c.preshaders.items() if n in code.constants},  # type: ignore[union-attr]
                               dict(code.register_counts))  # type: ignore[union-attr]
@@ -344,16 +346,22 @@ def _array_semantics(semantic: str, t: HType) -> list[str]:
     return [f"{usage}{index + k}" for k in range(t.length)]
 
 
-def _sampler_registers(ctx: Context, read: set[str]) -> dict[str, int]:
-    """The s# fixed before code generation: explicit register(s#) bindings, and the elements
-    of a sampler array read by constant indices (`SA[1]`), which take the array's registers
-    in order, as fxc lays an array out (its first free block, by first use, when unbound).
-    A sampler paired with a texture (`Tex.Sample(S, uv)`: `S+Tex`) takes the sampler's
-    register(s#) where it has one, else the first free register before the samplers read
-    alone, as native d3dcompiler placed the combined samplers it made for shader models 1-3
-    (vkd3d's combined-samplers shader test). Other samplers get theirs in the code
-    generator, by first use. `read`: the samplers the code reads (a sampler passed to
-    `Tex.Sample` is named without being read alone)."""
+def _sampler_registers(ctx: Context, read: set[str], every: bool = True) -> dict[str, int]:
+    """The s# of the samplers the code reads, fixed before code generation. Explicit
+    register(s#) bindings first. A sampler paired with a texture (`Tex.Sample(S, uv)`:
+    `S+Tex`) takes the sampler's register(s#) where it has one, else the first free register
+    before the samplers read alone, as native d3dcompiler placed the combined samplers it made
+    for shader models 1-3 (vkd3d's combined-samplers shader test). The rest as fxc laid out
+    the float constants (constant_layout.py): a sampler array holds the registers up to the
+    last element read (`S[1]` read alone: two), the largest first, those of one size in
+    declaration order, each at the first free run (fxc 9.29's effect in
+    tests/data/fxo/wine/test_effect_preshader_effect_blob.fxo: its vs_3_0 reads sampler1 and
+    samplers_array[1] and gives samplers_array s0-s1, sampler1 s2; its ps_3_0 reads
+    samplers_array[0] and gives sampler1 s0, samplers_array s1; d3dcompiler's, in Wine's
+    test_constant_table and vkd3d's combined-samplers test, are in declaration order, not the
+    order of use). `every` False (ps_1_x, whose code generator gives a sampler read alone
+    its stage) places the arrays alone. `read`: the samplers the code reads (a sampler passed
+    to `Tex.Sample` is named without being read alone)."""
     regs = {name: b for name in ctx.samplers_used if (b := _explicit(ctx, name, "s")) is not None}
     for name, b in regs.items():
         _within(ctx, name, b, 1, "s")
@@ -372,20 +380,38 @@ def _sampler_registers(ctx: Context, read: set[str]) -> dict[str, int]:
         if "+" in name and name not in regs:
             regs[name] = min(set(range(len(taken) + 1)) - taken)
             taken.add(regs[name])
-    blocks: dict[str, int] = {}
+    # the rest, by the name that holds the registers: an array's up to its last element read
+    sizes: dict[str, int] = {}
     for name in ctx.samplers_used:
-        if name in regs or not name.endswith("]"):
+        if name in regs or name not in read or "+" in name:
             continue
-        base, index = name[:-1].split("[", 1)
-        if base not in blocks:
-            length = ctx.effect.parameter(base).array[0]
-            k = 0
-            while any(k + i in taken for i in range(length)):
-                k += 1
-            blocks[base] = k
-            taken.update(range(k, k + length))
-        regs[name] = blocks[base] + int(index)
+        base, index = (name[:-1].split("[", 1) if name.endswith("]") else (name, None))
+        if index is None and not every:
+            continue
+        sizes[base] = max(sizes.get(base, 0), 1 if index is None else int(index) + 1)
+    declared = {p.name: k for k, p in enumerate(ctx.effect.parameters)}
+    first = first_fit(list(sizes), sizes, taken, declared)
+    for name in ctx.samplers_used:
+        if name in regs or name not in read or "+" in name:
+            continue
+        if name.endswith("]"):
+            base, index = name[:-1].split("[", 1)
+            regs[name] = first[base] + int(index)
+        elif name in first:
+            regs[name] = first[name]
     return regs
+
+
+def _sampler_arrays(ctx: Context, samplers: dict[str, int]) -> dict[str, HType]:
+    """The types of the sampler arrays whose elements the code reads, for the constant
+    table (its entry is the array, of the array's type: fxc's in
+    tests/data/fxo/wine/test_effect_preshader_effect_blob.fxo)."""
+    out: dict[str, HType] = {}
+    for name in samplers:
+        p = ctx.effect.parameter(name.split("[", 1)[0]) if name.endswith("]") else None
+        if p is not None:
+            out[p.name] = parameter_type(ctx, p)
+    return out
 
 
 def _finite_constants(ctx: Context, nodes: list[Node], outputs: list[Output], fdef: Any) -> None:

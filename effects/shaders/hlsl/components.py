@@ -21,6 +21,7 @@ from typing import Any
 
 import lark
 
+from effects.shaders.hlsl.constant_layout import first_fit
 from effects.shaders.hlsl.context import explicit_register
 from effects.shaders.hlsl.types import HType, register_count
 
@@ -49,7 +50,7 @@ def component_slots(t: HType) -> list[Slot]:
 
 
 def _literal_path(tree: Any) -> str | None:
-    """The global a chain of members, swizzles and literal indices starts from (`an[1]`,
+    """The variable a chain of members, swizzles and literal indices starts from (`an[1]`,
     `sab[1].vb.z`), else None: only such a chain is read again without side effects."""
     while isinstance(tree, lark.Tree) and tree.data in ("member", "index", "paren"):
         if tree.data == "index" and not (isinstance(tree.children[1], lark.Tree)
@@ -62,19 +63,22 @@ def _literal_path(tree: Any) -> str | None:
 
 
 def uniform_component(ev: Any, tree: Any, bases: tuple[str, ...]) -> tuple[str, int] | None:
-    """(parameter, component index) when `tree` reads one scalar component of a uniform
-    (not static, not const) global whose scalar type is one of `bases`; else None."""
-    name = _literal_path(tree)
-    if name is None or ev.lookup(name) is not None:
-        return None
-    p = ev.ctx.effect.parameter(name)
-    if p is None or "static" in p.storage or "const" in p.storage or ev.ctx.host_values:
+    """(parameter, component index) when `tree`, a chain of members, swizzles and literal
+    indices, reads one scalar component of a uniform (not static, not const) global whose
+    scalar type is one of `bases`; else None."""
+    # a local or an entry parameter read so holds what was put in it: `uniform bool2x3 mb`
+    # given `mb2x3row` by the compile (Wine's preshader effect: fxc's `if b4` for mb[1][1])
+    if _literal_path(tree) is None or ev.ctx.host_values:
         return None
     value = ev.expr(tree)
     if value.type.size != 1 or len(value.comps) != 1 or value.type.base not in bases:
         return None
     op = value.comps[0]
-    if op.node.op != "uniform" or op.node.key[0] != name or op.negate:
+    if op.node.op != "uniform" or op.negate:
+        return None
+    name = op.node.key[0]
+    p = ev.ctx.effect.parameter(name)
+    if p is None or "static" in p.storage or "const" in p.storage:
         return None
     t = ev.ctx.uniforms_used.get(name)
     if t is None:
@@ -126,5 +130,33 @@ def used_counts(registers: dict[str, int], counts: dict[str, int], used: set[int
     return firsts, sizes
 
 
+def laid_out(registers: dict[str, int], counts: dict[str, int], used: set[int],
+             fixed: set[str], declared: dict[str, int], taken: set[int]
+             ) -> tuple[dict[str, int], dict[str, int], dict[int, int]]:
+    """The int or bool parameters the code reads laid out again as fxc laid out the float
+    constants (constant_layout.py), now that the reads are known: each holds its registers up
+    to the last one read, the largest first, ties in declaration order (`declared`), each at
+    the first free run; a register(i#/b#) binding (`fixed`) stays, holding all of its
+    components, and `taken` (the `defi`s) are left alone. Wine's preshader effect shows it
+    (tests/data/fxo/wine/test_effect_preshader_effect_blob.fxo: fxc's ps_3_0 reads `if b4`,
+    mb2x3row[1][1], then `if b5`, mb2x3column[0][0]: b0 count 5 and b5 count 1, where holding
+    all six of mb2x3row's would put mb2x3column at b6). Returns each parameter's first
+    register and count, and old register -> new for those that move."""
+    taken = set(taken)
+    firsts: dict[str, int] = {}
+    sizes: dict[str, int] = {}
+    for name, first in registers.items():
+        read = [r - first for r in used if first <= r < first + counts.get(name, 1)]
+        if name in fixed:
+            firsts[name], sizes[name] = first, counts.get(name, 1)
+            taken.update(range(first, first + sizes[name]))
+        elif read:
+            sizes[name] = max(read) + 1
+    moving = [n for n in sizes if n not in firsts]
+    firsts.update(first_fit(moving, sizes, taken, declared))
+    remap = {registers[n] + k: firsts[n] + k for n in moving for k in range(sizes[n])}
+    return firsts, sizes, remap
+
+
 __all__ = ["component_register", "component_slots", "taken_registers", "uniform_component",
-           "used_counts"]
+           "laid_out", "used_counts"]

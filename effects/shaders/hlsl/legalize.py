@@ -9,6 +9,7 @@
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 from effects.base import caches
@@ -17,7 +18,8 @@ from effects.shaders.asm.versions import IDENTITY, PS20_SWIZZLES
 from effects.shaders.asm.program import Operand
 from effects.shaders.hlsl.allocate import ALIASES, allocate
 from effects.shaders.hlsl.asmcode import Instr, Reg, Src, _SAMPLER_DCL
-from effects.shaders.hlsl.components import used_counts
+from effects.shaders.hlsl.components import laid_out, used_counts
+from effects.shaders.hlsl.context import explicit_register
 from effects.shaders.hlsl.ops import OPS
 from effects.shaders.hlsl.writer import Code, declaration, register, swizzled
 
@@ -200,6 +202,33 @@ def _copy(cg: Any, out: list[Instr], tmp: Reg, s: Src, loc: Location, rule: str)
         out.append(Instr("mov", tmp, tuple(sorted(lanes)), [Src(s.reg, {}, s.negate, fixed=(src_lane,) * 4)], loc))
 
 
+# the instructions that read an int or bool parameter's register
+_READERS = {"i": ("rep", "loop"), "b": ("if",)}
+
+
+def _int_bool_tables(cg: Any, int_defs: dict[int, Any]
+                     ) -> dict[str, tuple[dict[str, int], dict[str, int]]]:
+    """The int and bool parameters laid out again now that the code's reads are known
+    (components.laid_out), their registers in the instructions renumbered: per kind, each
+    parameter's first register and the registers it holds."""
+    ctx = cg.ctx
+    counts = getattr(ctx, "component_counts", {})
+    declared = {p.name: k for k, p in enumerate(ctx.effect.parameters)}
+    out = {}
+    for kind, regs in (("i", getattr(ctx, "int_registers", {})),
+                       ("b", getattr(ctx, "bool_registers", {}))):
+        readers = [ins for ins in cg.instrs if ins.opcode in _READERS[kind]]
+        used = {s.reg.index for ins in readers for s in ins.srcs if s.reg.kind == kind}
+        fixed = {n for n in regs if explicit_register(ctx, n, kind) is not None}
+        defs = set(int_defs) & used if kind == "i" else set()
+        firsts, sizes, remap = laid_out(regs, counts, used, fixed, declared, defs)
+        for ins in readers:
+            ins.srcs = [replace(s, reg=replace(s.reg, index=remap[s.reg.index]))
+                        if s.reg.kind == kind and s.reg.index in remap else s for s in ins.srcs]
+        out[kind] = (firsts, {**counts, **sizes})
+    return out
+
+
 def code_of(cg: Any) -> Code:
     """The legalized instructions allocated (allocate.py), with the defs, the declarations of
     the inputs, outputs and samplers read and the tables of registers the pass loads, for
@@ -212,9 +241,10 @@ def code_of(cg: Any) -> Code:
         op.negate = s.negate
         return op
 
+    int_defs = getattr(cg.ctx, "int_defs", {})      # a [loop] over literal bounds (loops.py)
+    tables = _int_bool_tables(cg, int_defs)
     used_i = {s.reg.index for ins in cg.instrs if ins.opcode in ("rep", "loop") for s in ins.srcs
               if s.reg.kind == "i"}
-    int_defs = getattr(cg.ctx, "int_defs", {})      # a [loop] over literal bounds (loops.py)
     used_inputs: dict[str, None] = {}
     samplers: dict[str, int] = dict(cg.sampler_regs)
     for ins in cg.instrs:
@@ -240,11 +270,10 @@ def code_of(cg: Any) -> Code:
         if name in read:
             dcls.append(declaration("s", k, sampler_type=_SAMPLER_DCL.get(kinds.get(name, "2d"), "2d")))
     used_c = {name: (start, cg.register_sizes.get(name, 1)) for name, start in cg.const_regs.items()}
-    counts = getattr(cg.ctx, "component_counts", {})
-    ints, int_counts = used_counts(getattr(cg.ctx, "int_registers", {}), counts, used_i)
     used_b = {s.reg.index for ins in cg.instrs if ins.opcode == "if" for s in ins.srcs
               if s.reg.kind == "b"}
-    bools, bool_counts = used_counts(getattr(cg.ctx, "bool_registers", {}), counts, used_b)
+    ints, int_counts = used_counts(*tables["i"], used_i)
+    bools, bool_counts = used_counts(*tables["b"], used_b)
     return Code(cg.instrs, alloc, source,
                 {r: tuple(0.0 if v is None else v for v in vals) for r, vals in cg.defs.items()},
                 {r: v for r, v in int_defs.items() if r in used_i}, dcls, samplers, used_c,

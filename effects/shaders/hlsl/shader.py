@@ -83,6 +83,19 @@ class CompiledShader:
     def register_count(self, name: str) -> int:
         return self.register_counts.get(name, 1)
 
+    def sampler_table(self) -> dict[str, tuple[int, int]]:
+        """The register table's samplers, name -> (first s#, count): an array's elements
+        (`S[1]`) as the array itself, from its first element's register up to the last
+        element read, as fxc lists them (`samplers_array` s0 count 2 where the code reads
+        samplers_array[1]: tests/data/fxo/wine/test_effect_preshader_effect_blob.fxo)."""
+        out: dict[str, tuple[int, int]] = {}
+        for name, register in self.samplers.items():
+            base, _, index = name[:-1].partition("[") if name.endswith("]") else (name, "", "0")
+            k = int(index) if index.isdigit() else 0
+            first, count = out.get(base, (register - k, 0))
+            out[base] = (first, max(count, k + 1))
+        return out
+
     @property
     def stage(self) -> str:
         return "vertex" if self.target.startswith("vs") else "pixel"

@@ -109,11 +109,15 @@ def _ours(hlsl: str, target: str):
 # index and count (float ones by constant_layout.py's rules, int and bool by components.py).
 KNOWN_LAYOUT_DIFFERENCES: dict[tuple[str, str], tuple[tuple, tuple, str]] = {
     # five samplers of one register each: fxc gave s1D s0, s2D s1, scube s2, s3D s3, s s4,
-    # neither their declaration order (s, s1D, s2D, s3D, scube) nor their first use (s1D,
-    # s3D, s, s2D, scube); one shader does not show the rule, so ours are by first use
-    ("get_shader_samplers_blob", "s"): (("sampler", 4, 1), ("sampler", 2, 1), "sampler order"),
-    ("get_shader_samplers_blob", "s2D"): (("sampler", 1, 1), ("sampler", 3, 1), "sampler order"),
-    ("get_shader_samplers_blob", "s3D"): (("sampler", 3, 1), ("sampler", 1, 1), "sampler order"),
+    # neither their declaration order (s, s1D, s2D, s3D, scube: ours, the order fxc 9.29 gave
+    # the samplers of its effect in tests/data/fxo/wine/test_effect_preshader_effect_blob.fxo
+    # and d3dcompiler gave in Wine's test_constant_table and vkd3d's combined-samplers test),
+    # nor their first use (s1D, s3D, s, s2D, scube), nor their names' order; typed before
+    # untyped and then 2D, cube, volume would fit this shader but not d3dcompiler's (its
+    # untyped m, n, o before the sampler2D s), so no rule found fits every piece of evidence
+    ("get_shader_samplers_blob", "s"): (("sampler", 4, 1), ("sampler", 0, 1), "sampler order"),
+    ("get_shader_samplers_blob", "s1D"): (("sampler", 0, 1), ("sampler", 1, 1), "sampler order"),
+    ("get_shader_samplers_blob", "s2D"): (("sampler", 1, 1), ("sampler", 2, 1), "sampler order"),
     ("get_shader_samplers_blob", "scube"): (("sampler", 2, 1), ("sampler", 4, 1),
                                             "sampler order"),
 }
