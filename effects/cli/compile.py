@@ -124,11 +124,13 @@ def _save(path: str, payload: bytes) -> None:
 
 
 def _is_effect_binary(path: str) -> bool:
-    """Whether `path` is an fx_2_0 effect binary (by its tag, whatever its name)."""
+    """Whether `path` is an fx_2_0 effect binary, bare or in XNA's containers (by its tag,
+    whatever its name)."""
     try:
         with open(path, "rb") as f:
             head = f.read(4)
     except OSError:
         return False            # the shader reader says why it cannot be read
     from effects.frontend.fxo import is_effect_binary
-    return is_effect_binary(head)
+    from effects.frontend.xnb import is_wrapped_effect
+    return is_effect_binary(head) or is_wrapped_effect(head)

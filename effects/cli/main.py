@@ -73,7 +73,7 @@ class _Parser(argparse.ArgumentParser):
 
 def _add_validate(sub) -> None:
     p = sub.add_parser("validate", help="load an effect and tell which techniques each card can run")
-    p.add_argument("file", help="effect file (.fx, or an fx_2_0 binary .fxo)")
+    p.add_argument("file", help="effect file (.fx, or an fx_2_0 binary: .fxo, or XNA's .xnb)")
     p.add_argument("--profile", "-p", action="append", default=[], metavar="P",
                    help="caps profile name or YAML path (repeatable; default: the model summary only)")
     p.add_argument("--why", action="store_true", help="list every reason, not just the first, "
@@ -368,7 +368,7 @@ def _cmd_profiles(args, console: Console) -> int:
 
 def _add_render(sub) -> None:
     p = sub.add_parser("render", help="render an effect on a simulated card into a PNG")
-    p.add_argument("file", help="effect file (.fx, or an fx_2_0 binary .fxo)")
+    p.add_argument("file", help="effect file (.fx, or an fx_2_0 binary: .fxo, or XNA's .xnb)")
     p.add_argument("--profile", "-p", required=True, metavar="P", help="caps profile name or YAML path")
     p.add_argument("--technique", "-t", metavar="T",
                    help="render this technique, valid on the card or not (default: the card's choice)")
@@ -502,7 +502,7 @@ def _add_view(sub) -> None:
                     "window, so it needs a display (DISPLAY); without one, run it under a "
                     "virtual X server: xvfb-run -a effects view FILE.fx --exit-after 5 "
                     "--screenshot out.png.")
-    p.add_argument("file", help="effect file (.fx, or an fx_2_0 binary .fxo)")
+    p.add_argument("file", help="effect file (.fx, or an fx_2_0 binary: .fxo, or XNA's .xnb)")
     p.add_argument("--profile", "-p", metavar="P", default=None,
                    help="caps profile to start on (default: radeon9700)")
     p.add_argument("--technique", "-t", metavar="NAME", default=None,
@@ -566,7 +566,7 @@ def _cmd_view(args, console: Console) -> int:
 
 def _add_doctor(sub) -> None:
     p = sub.add_parser("doctor", help="what an effect needs from a host that it does not get")
-    p.add_argument("file", help="effect file (.fx, or an fx_2_0 binary .fxo)")
+    p.add_argument("file", help="effect file (.fx, or an fx_2_0 binary: .fxo, or XNA's .xnb)")
     p.add_argument("--profile", "-p", default="radeon9700", metavar="P",
                    help="caps profile whose selected technique is examined (default: radeon9700)")
     p.add_argument("--technique", "-t", metavar="T", help="examine this technique instead")

@@ -114,16 +114,18 @@ class TypeDef:
 
 
 def read_effect_binary(data: bytes, path: str = "<fxo>",
-                       effect_type: type[Effect] = Effect) -> Effect:
-    """Read an fx_2_0 effect binary into an Effect. Raises FxoError (located by byte)."""
+                       effect_type: type[Effect] = Effect, origin: int = 0) -> Effect:
+    """Read an fx_2_0 effect binary into an Effect. Raises FxoError (located by byte).
+    `origin`: where the effect starts in the file `path` (inside a container), so that
+    locations are the file's bytes."""
     limits.check("effect_binary_bytes", len(data), Location(path, 1, 1),
                  "the effect binary", FxoError)
-    return _Reader(bytes(data), path).read(effect_type)
+    return _Reader(bytes(data), path, origin).read(effect_type)
 
 
 class _Reader:
-    def __init__(self, data: bytes, path: str) -> None:
-        self.data, self.path = data, path
+    def __init__(self, data: bytes, path: str, origin: int = 0) -> None:
+        self.data, self.path, self.origin = data, path, origin
         self.base = 8
         self.objects: dict[int, tuple[int, bytes]] = {}   # id -> (file offset, bytes)
         self.object_count = 0
@@ -133,8 +135,13 @@ class _Reader:
         self.pending_strings: list[tuple[Annotation, Any]] = []
 
     # -- bytes ------------------------------------------------------------------------------
+    def loc(self, at: int) -> Location:
+        """Byte `at` of the effect as a location in its file (an effect inside a container,
+        XNA's .xnb, starts `origin` bytes in)."""
+        return Location(self.path, 1, self.origin + at + 1)
+
     def fail(self, message: str, at: int) -> FxoError:
-        return FxoError(f"{message} (at byte {at})", Location(self.path, 1, at + 1))
+        return FxoError(f"{message} (at byte {self.origin + at})", self.loc(at))
 
     def u32(self, at: int, what: str) -> int:
         if at < 0 or at + 4 > len(self.data):
@@ -290,7 +297,7 @@ class _Reader:
                 for _ in range(n):
                     state, pos = self.state(pos, "sampler")
                     states.append(state)
-                out.append(SamplerState(states, Location(self.path, 1, where + 1)))
+                out.append(SamplerState(states, self.loc(where)))
             else:
                 out.append(("object", self.object_id(self.u32(pos, "an object id"), pos), pos))
                 pos += 4
@@ -341,7 +348,7 @@ class _Reader:
         value_at = self.at(self.u32(pos + 4, "an annotation's value offset"), "a value", pos + 4)
         t, _ = self.typedef(type_at)
         value, _ = self.value(t, value_at, value_at)
-        loc = Location(self.path, 1, pos + 1)
+        loc = self.loc(pos)
         if t.cls == PC_OBJECT:
             if t.type != PT_STRING or t.elements:
                 raise self.fail("an annotation that is an object other than a string", pos)
@@ -369,7 +376,7 @@ class _Reader:
         # every matrix parameter, as Wine's test blobs show; the shaders' constant tables
         # carry the packing)
         storage = ("shared",) if flags & FLAG_SHARED else ()
-        loc = Location(self.path, 1, where + 1)
+        loc = self.loc(where)
         if t.cls == PC_STRUCT:
             model_value: Any = self.struct_value(t, value, where)
         elif t.cls != PC_OBJECT:
@@ -396,12 +403,12 @@ class _Reader:
 
     def shader(self, kind: int, data: bytes, offset: int) -> Any:
         if not data:
-            return NullValue(Location(self.path, 1, offset + 1))
+            return NullValue(self.loc(offset))
         stage = "vertex" if kind == PT_VERTEXSHADER else "pixel"
         version = self.shader_version(data, offset)
         if version[:2] != stage[0] + "s":
             raise self.fail(f"a {stage} shader object holds {version} bytecode", offset)
-        return BytecodeShader(stage, version, "", location=Location(self.path, 1, offset + 1),
+        return BytecodeShader(stage, version, "", location=self.loc(offset),
                               data=data)
 
     def shader_version(self, data: bytes, offset: int) -> str:
@@ -426,9 +433,9 @@ class _Reader:
         from effects.model import Expression
         name = struct_name(t)
         if name not in self.structs:
-            self.structs[name] = Struct(name, _struct_text(t), Location(self.path, 1, where + 1))
+            self.structs[name] = Struct(name, _struct_text(t), self.loc(where))
         words = np.frombuffer(raw, "<u4")
-        return Expression(_initializer(t, words, [0]), Location(self.path, 1, where + 1))
+        return Expression(_initializer(t, words, [0]), self.loc(where))
 
     # -- techniques, passes, states ---------------------------------------------------------
     def technique(self, pos: int) -> tuple[Technique, int]:
@@ -457,8 +464,8 @@ class _Reader:
                 state, pos = self.state(pos, "pass")
                 states.append(state)
             passes.append(Pass(pname or None, states, pass_annotations,
-                               Location(self.path, 1, pass_at + 1)))
-        return Technique(name or None, passes, annotations, Location(self.path, 1, where + 1)), pos
+                               self.loc(pass_at)))
+        return Technique(name or None, passes, annotations, self.loc(where)), pos
 
     def state(self, pos: int, context: str) -> tuple[StateAssignment, int]:
         from effects.d3d9.states import BY_FX2
@@ -476,7 +483,7 @@ class _Reader:
             raise self.fail("a sampler inside a sampler, or an array of them, as a state's "
                             "value", pos)
         value, _ = self.value(t, value_at, value_at)
-        loc = Location(self.path, 1, pos + 1)
+        loc = self.loc(pos)
         if info.index == "none" or context == "sampler":
             if index and info.index == "none":
                 raise self.fail(f"{info.name} takes no index; the binary gives {index}", pos + 4)
@@ -591,7 +598,7 @@ class _Reader:
         if effect.parameter(name) is None:
             raise self.fail(f"a state names parameter '{name[:40]}', which the effect does "
                             "not declare", at)
-        return ParamRef(name, True, index, Location(self.path, 1, at + 1))
+        return ParamRef(name, True, index, self.loc(at))
 
     def check_states(self, effect: Effect) -> None:
         """Every object state got its resource (else the binary is short of one)."""

@@ -30,13 +30,25 @@ def _starts_binary(path: str) -> bool:
     the name, tells a binary from source). Anything unreadable is left to the text path,
     which reports it."""
     from effects.frontend.fxo import is_effect_binary
+    from effects.frontend.xnb import is_wrapped_effect
     try:
         # O_NONBLOCK: a FIFO must not block the peek (untrusted.read_file's care)
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
         with os.fdopen(fd, "rb") as f:
-            return stat.S_ISREG(os.fstat(f.fileno()).st_mode) and is_effect_binary(f.read(4))
+            head = f.read(4)
+            return stat.S_ISREG(os.fstat(f.fileno()).st_mode) and (
+                is_effect_binary(head) or is_wrapped_effect(head))
     except (OSError, ValueError):
         return False
+
+
+def _read_binary(raw: bytes, path: str, effect_type: type[Effect]) -> Effect:
+    """An fx_2_0 binary, bare or inside XNA's containers (effects.frontend.xnb)."""
+    from effects.frontend import fxo, xnb
+    if xnb.is_wrapped_effect(raw):
+        blob, origin = xnb.unwrap(raw, path)
+        return fxo.read_effect_binary(blob, path, effect_type, origin)
+    return fxo.read_effect_binary(raw, path, effect_type)
 
 
 def read_source_file(path: str) -> str:
@@ -60,20 +72,20 @@ def load_effect(path_or_text: "str | bytes | os.PathLike[str]", *, defines: Mapp
 
     if isinstance(path_or_text, (bytes, bytearray, memoryview)):
         # an fx_2_0 binary in memory (the documented contract: a compiled .fxo path or bytes)
-        from effects.frontend import fxo
+        from effects.frontend import fxo, xnb
         raw = bytes(path_or_text)
-        if not fxo.is_effect_binary(raw):
-            raise fxo.FxoError("bytes that do not start with the fx_2_0 tag (0xFEFF0901): "
-                               "pass effect source as text, a binary as bytes",
-                               Location("<bytes>", 1, 1))
-        return fxo.read_effect_binary(raw, "<bytes>", effect_type)
+        if not fxo.is_effect_binary(raw) and not xnb.is_wrapped_effect(raw):
+            raise fxo.FxoError("bytes that do not start with the fx_2_0 tag (0xFEFF0901) or "
+                               "an XNA container's: pass effect source as text, a binary as "
+                               "bytes", Location("<bytes>", 1, 1))
+        return _read_binary(raw, "<bytes>", effect_type)
     source = os.fspath(path_or_text)
     if _names_a_file(source):
         path = source
-        if _starts_binary(path):    # an fx_2_0 binary (.fxo), whatever its name says
+        if _starts_binary(path):    # an fx_2_0 binary (.fxo, .xnb), whatever its name says
             from effects.frontend import fxo
             raw = untrusted.read_file(path, "effect binary", fxo.FxoError, "effect_binary_bytes")
-            return fxo.read_effect_binary(raw, path, effect_type)
+            return _read_binary(raw, path, effect_type)
         text = read_source_file(path)
     else:
         path, text = "<string>", source
