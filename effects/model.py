@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import sys
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Union
+from typing import TYPE_CHECKING, Any, Iterator, Union
 
 from effects.base.errors import EffectWarning, Location, UNKNOWN_LOCATION
 
@@ -390,6 +390,17 @@ class Effect:
     _compile_keys: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     # -- lookup ------------------------------------------------------------------------------
+    def every_state(self) -> Iterator[StateAssignment]:
+        """Every state assignment the effect holds: the `sampler_state` blocks of its
+        parameters (each element of an array), then each pass's states, in file order."""
+        for p in self.parameters:
+            for v in p.value if isinstance(p.value, list) else [p.value]:
+                if isinstance(v, SamplerState):
+                    yield from v.states
+        for t in self.techniques:
+            for ps in t.passes:
+                yield from ps.states
+
     def technique(self, name: str) -> Technique:
         for t in self.techniques:
             if t.name == name:

@@ -117,6 +117,12 @@ def _include_root(args) -> str | None:
     return root
 
 
+def _load_options(args) -> dict[str, tuple]:
+    """-D and -I as a matrix job and a sheet cell carry them (hashable, in order)."""
+    return {"defines": tuple(_defines(args.defines).items()),
+            "include_dirs": tuple(args.include_dirs)}
+
+
 def _defines(items: Sequence[str]) -> dict[str, str]:
     out = {}
     for item in items:
@@ -234,9 +240,7 @@ def _cmd_matrix(args, console: Console) -> int:
                              policy=args.policy, jobs=args.jobs, scheduler=args.scheduler,
                              progress=not args.json,
                              figures=_figures(result, list(args.files), cards, names),
-                             load={"include_root": root,
-                                   "defines": tuple(_defines(args.defines).items()),
-                                   "include_dirs": tuple(args.include_dirs)})
+                             load={"include_root": root, **_load_options(args)})
         if not args.json:
             console.print(f"contact sheet: {len(args.files)} effects x {len(cards)} cards "
                           f"-> {args.render}", markup=False, highlight=False, soft_wrap=True)
@@ -287,14 +291,12 @@ def _matrix(args, root: str | None, console: Console) -> tuple[dict, list[str]]:
     # the fidelity order named as Policy.parse reads it (without loading it: stored rows
     # need no selection code); a bad policy is said by _made_rows, after the files' errors
     measured = args.fidelity or "fidelity" in (p.strip().lower() for p in args.policy.split(","))
-    defines = tuple(_defines(args.defines).items())
-    include_dirs = tuple(args.include_dirs)
+    load = _load_options(args)
     shared = matrix_store.shared_key(tuple(args.profile), args.policy, args.strict, root,
                                      matrix_store.fidelity_options(measured, args.best),
-                                     matrix_store.preprocessor_options(defines, include_dirs))
+                                     matrix_store.preprocessor_options(**load))
     jobs = [MatrixJob(path, tuple(args.profile), args.policy, root, args.strict, shared,
-                      measured, _scene(args, path) if measured else None, args.best,
-                      defines, include_dirs)
+                      measured, _scene(args, path) if measured else None, args.best, **load)
             for path in args.files]
     rows = [matrix_store.stored_row(job) for job in jobs]
     todo = [job for job, row in zip(jobs, rows) if row is None]

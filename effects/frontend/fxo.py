@@ -602,23 +602,15 @@ class _Reader:
 
     def check_states(self, effect: Effect) -> None:
         """Every object state got its resource (else the binary is short of one)."""
-        def walk(states: list[StateAssignment]) -> None:
-            for s in states:
-                if isinstance(s.value, _Pending):
-                    p = s.value
-                    if p.t.type in (PT_VERTEXSHADER, PT_PIXELSHADER) and p.ident in self.objects:
-                        s.value = self.shader(p.t.type, self.objects[p.ident][1],
-                                              self.objects[p.ident][0])
-                    else:
-                        raise self.fail(f"{s.name}: the binary gives no resource for its "
-                                        "value", p.where)
-        for p in effect.parameters:
-            for v in p.value if isinstance(p.value, list) else [p.value]:
-                if isinstance(v, SamplerState):
-                    walk(v.states)
-        for t in effect.techniques:
-            for ps in t.passes:
-                walk(ps.states)
+        for s in effect.every_state():
+            if isinstance(s.value, _Pending):
+                p = s.value
+                if p.t.type in (PT_VERTEXSHADER, PT_PIXELSHADER) and p.ident in self.objects:
+                    s.value = self.shader(p.t.type, self.objects[p.ident][1],
+                                          self.objects[p.ident][0])
+                else:
+                    raise self.fail(f"{s.name}: the binary gives no resource for its value",
+                                    p.where)
 
 
 @dataclass

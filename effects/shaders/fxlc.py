@@ -37,7 +37,7 @@ from typing import Any, Callable
 import numpy as np
 
 from effects.base.errors import EffectError, Location
-from effects.model import Effect, Preshader, SamplerState
+from effects.model import Effect, Preshader
 
 VERSION_TAG = 0x4658          # 'FX', the high half of a preshader's version token
 IMMEDIATE, INPUT, OUTPUT, BOOL_OUTPUT, INT_OUTPUT, TEMP = 1, 2, 4, 5, 6, 7
@@ -411,14 +411,6 @@ def listing(program: Program) -> str:
 def check_preshaders(effect: Effect) -> None:
     """Decode every preshader state of a loaded effect (pass states, parameters' sampler
     states), so a binary with a bad one fails to load, located, as D3DXCreateEffect failed."""
-    def walk(states: list[Any]) -> None:
-        for s in states:
-            if isinstance(s.value, Preshader):
-                decode(s.value, effect.path)
-    for p in effect.parameters:
-        for v in p.value if isinstance(p.value, list) else [p.value]:
-            if isinstance(v, SamplerState):
-                walk(v.states)
-    for t in effect.techniques:
-        for ps in t.passes:
-            walk(ps.states)
+    for s in effect.every_state():
+        if isinstance(s.value, Preshader):
+            decode(s.value, effect.path)

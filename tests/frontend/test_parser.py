@@ -478,3 +478,13 @@ def test_parameter_lookups_follow_the_list_first_match_wins():
     assert e.parameter("C") is extra
     e.parameters[0].name = "Renamed"                 # renamed in place
     assert e.parameter("A") is e.parameters[1] and e.parameter("Renamed") is e.parameters[0]
+
+
+def test_every_state_walks_sampler_blocks_then_passes_in_file_order():
+    e = parse("texture T;\n"
+              "sampler S = sampler_state { Texture = <T>; MinFilter = Linear; };\n"
+              "sampler A[2] = { sampler_state { MagFilter = Point; },"
+              " sampler_state { MipFilter = None; } };\n"
+              "technique X { pass P { ZEnable = false; } pass Q { CullMode = None; } }\n")
+    assert [s.name for s in e.every_state()] == [
+        "Texture", "MinFilter", "MagFilter", "MipFilter", "ZEnable", "CullMode"]
