@@ -22,6 +22,7 @@ from __future__ import annotations
 from effects.base.errors import Location
 from effects.shaders.asm.versions import IDENTITY
 from effects.shaders.hlsl.context import Context
+from effects.shaders.hlsl.constant_layout import free_run
 from effects.shaders.hlsl.asmcode import Instr, Output, Reg, Src
 from effects.shaders.hlsl.dag import SHAPED, Node, Operand
 from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_kill, emit_loop, needed, place
@@ -84,10 +85,7 @@ class CodeGen:
         return taken
 
     def _free_constant(self, count: int) -> int:
-        taken = self._taken()
-        k = self._low if count == 1 else 0
-        while any(k + i in taken for i in range(count)):
-            k += 1
+        k = free_run(self._taken(), count, self._low if count == 1 else 0)
         if count == 1:
             self._low = k
         return k

@@ -33,7 +33,7 @@ from effects.shaders.hlsl.check import check_unit
 from effects.shaders.hlsl.codegen import CodeGen
 from effects.shaders.hlsl.legalize import code_of, legalize
 from effects.shaders.hlsl.codegen_ps1 import generate_ps1
-from effects.shaders.hlsl.constant_layout import first_fit, used_sizes
+from effects.shaders.hlsl.constant_layout import declaration_order, first_fit, used_sizes
 from effects.shaders.hlsl.context import (Context, explicit_register as _explicit, load_context,
                                           parameter_type)
 from effects.shaders.hlsl.dag import Node, Operand
@@ -389,7 +389,7 @@ def _sampler_registers(ctx: Context, read: set[str], every: bool = True) -> dict
         if index is None and not every:
             continue
         sizes[base] = max(sizes.get(base, 0), 1 if index is None else int(index) + 1)
-    declared = {p.name: k for k, p in enumerate(ctx.effect.parameters)}
+    declared = declaration_order(ctx.effect)
     first = first_fit(list(sizes), sizes, taken, declared)
     for name in ctx.samplers_used:
         if name in regs or name not in read or "+" in name:
@@ -461,7 +461,7 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
             regs[p.name] = b
         reserved.update(range(b, b + full))
     ctx.reserved_constants = reserved
-    declared = {p.name: k for k, p in enumerate(ctx.effect.parameters)}
+    declared = declaration_order(ctx.effect)
     regs.update(first_fit([n for n in used if n not in regs], used, reserved, declared))
     return regs, used
 

@@ -21,7 +21,7 @@ from typing import Any
 
 import lark
 
-from effects.shaders.hlsl.constant_layout import first_fit
+from effects.shaders.hlsl.constant_layout import first_fit, free_run
 from effects.shaders.hlsl.context import explicit_register
 from effects.shaders.hlsl.types import HType, register_count
 
@@ -108,10 +108,7 @@ def component_register(ctx: Any, name: str, kind: str) -> int:
         size = len(component_slots(t)) if t is not None else 1
         bound = explicit_register(ctx, name, kind)
         if bound is None:
-            taken = taken_registers(ctx, kind)
-            bound = 0
-            while any(bound + j in taken for j in range(size)):
-                bound += 1
+            bound = free_run(taken_registers(ctx, kind), size)
         regs[name] = bound
         ctx.component_counts[name] = size
     return regs[name]

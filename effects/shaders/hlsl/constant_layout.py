@@ -18,7 +18,7 @@ Literal constants (`def`) take the registers after them (codegen.CodeGen.const_s
 """
 from __future__ import annotations
 
-from typing import Callable, Iterable
+from typing import Any, Callable, Iterable
 
 from effects.shaders.hlsl.dag import Node
 
@@ -40,6 +40,19 @@ def used_sizes(nodes: Iterable[Node], full_size: Callable[[str], int]) -> dict[s
     return used
 
 
+def free_run(taken: set[int], size: int, start: int = 0) -> int:
+    """The first register from `start` at which `size` registers in a row are not `taken`."""
+    first = start
+    while any(first + i in taken for i in range(size)):
+        first += 1
+    return first
+
+
+def declaration_order(effect: Any) -> dict[str, int]:
+    """Each global's position in the file: the tie-break of `first_fit`."""
+    return {p.name: k for k, p in enumerate(effect.parameters)}
+
+
 def first_fit(names: list[str], sizes: dict[str, int], taken: set[int],
               declared: dict[str, int]) -> dict[str, int]:
     """The first register of each of `names`: the largest first (ties in declaration order,
@@ -50,9 +63,7 @@ def first_fit(names: list[str], sizes: dict[str, int], taken: set[int],
     out: dict[str, int] = {}
     for k in order:
         name, size = names[k], sizes[names[k]]
-        first = 0
-        while any(first + i in taken for i in range(size)):
-            first += 1
+        first = free_run(taken, size)
         out[name] = first
         taken.update(range(first, first + size))
     return out

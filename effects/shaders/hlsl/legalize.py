@@ -19,6 +19,7 @@ from effects.shaders.asm.program import Operand
 from effects.shaders.hlsl.allocate import ALIASES, allocate
 from effects.shaders.hlsl.asmcode import Instr, Reg, Src, _SAMPLER_DCL
 from effects.shaders.hlsl.components import laid_out, used_counts
+from effects.shaders.hlsl.constant_layout import declaration_order
 from effects.shaders.hlsl.context import explicit_register
 from effects.shaders.hlsl.ops import OPS
 from effects.shaders.hlsl.writer import Code, declaration, register, swizzled
@@ -213,7 +214,7 @@ def _int_bool_tables(cg: Any, int_defs: dict[int, Any]
     parameter's first register and the registers it holds."""
     ctx = cg.ctx
     counts = getattr(ctx, "component_counts", {})
-    declared = {p.name: k for k, p in enumerate(ctx.effect.parameters)}
+    declared = declaration_order(ctx.effect)
     out = {}
     for kind, regs in (("i", getattr(ctx, "int_registers", {})),
                        ("b", getattr(ctx, "bool_registers", {}))):
