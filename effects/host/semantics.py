@@ -422,10 +422,23 @@ def bind_scene(effect: Effect, scene: Scene, size: tuple[int, int] | None = None
                          ).reshape(_fit(0.0, param).shape)
             continue
         if matrix_semantic(semantic) is None and semantic in values and param.type.is_numeric:
-            if semantic in _LIGHT_SEMANTICS and not scene.light_given and param.value is not None:
+            if semantic in _LIGHT_SEMANTICS and not scene.light_given and _gives_light(param):
                 continue
             bound[param.name] = _in_space(values[semantic](param), param, semantic, m)
     return bound
+
+
+def _gives_light(param: Parameter) -> bool:
+    """Whether the file gives its own light in `param` (kept where the scene gives none): a
+    value that is not all zeros. Zeros are what fxc writes for a parameter declared without
+    one, so an fx_2_0 binary and its source bind alike; an all-zero colour or position is
+    no light to keep."""
+    if param.value is None:
+        return False
+    try:
+        return bool(np.any(np.asarray(param.value, dtype=np.float64) != 0))
+    except (TypeError, ValueError):
+        return True          # an expression or object: the file's own, whatever it gives
 
 
 # DXSAS / FX Composer: a light's or the camera's position or direction with `string Space =
