@@ -923,14 +923,24 @@ def _coerce_bool(info: StateInfo, raw: Any, location: Location, parameters: Cont
     raise _fail(info, f"got {_shown(raw)}", location)
 
 
+def _named_parameter(info: StateInfo, raw: Any, location: Location,
+                     parameters: Container[str]) -> Any:
+    """The parameter a single name refers to (None: `raw` is not one name); a name that is no
+    parameter is the state's error, as it is not a number either."""
+    name = _single_name(raw)
+    if name is None:
+        return None
+    ref = _param_ref(name, parameters, location)
+    if ref is None:
+        raise _fail(info, f"'{name}' is neither a number nor a parameter", location)
+    return ref
+
+
 def _coerce_integer(info: StateInfo, raw: Any, location: Location, parameters: Container[str]) -> Any:
     raw = _unwrap_scalar(raw)
-    name = _single_name(raw)
-    if name is not None:
-        ref = _param_ref(name, parameters, location)
-        if ref is not None:
-            return ref
-        raise _fail(info, f"'{name}' is neither a number nor a parameter", location)
+    ref = _named_parameter(info, raw, location, parameters)
+    if ref is not None:
+        return ref
     if isinstance(raw, list) and all(_integral(x) is not None for x in raw):  # `a | b`
         combined = 0
         for x in raw:
@@ -984,12 +994,9 @@ def _coerce_color(info: StateInfo, raw: Any, location: Location, parameters: Con
 
 def _coerce_float(info: StateInfo, raw: Any, location: Location, parameters: Container[str]) -> Any:
     raw = _unwrap_scalar(raw)
-    name = _single_name(raw)
-    if name is not None:
-        ref = _param_ref(name, parameters, location)
-        if ref is not None:
-            return ref
-        raise _fail(info, f"'{name}' is neither a number nor a parameter", location)
+    ref = _named_parameter(info, raw, location, parameters)
+    if ref is not None:
+        return ref
     if not _is_number(raw):
         raise _fail(info, f"got {_shown(raw)}", location)
     return float(raw)
