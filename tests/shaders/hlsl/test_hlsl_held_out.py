@@ -128,3 +128,43 @@ def test_a_constant_index_is_checked_against_the_last_register(index, last):
     assert "X4507: maximum constant register index exceeded: 'Bones' is bound to c200..c256, " \
         "vs_2_0 has c0..c255" in str(err.value), str(err.value)
     assert err.value.location.line == 3, err.value.location    # the declaration of Bones
+
+
+# -- an else-if chain selects on each comparison -------------------------------------------------
+
+CHAIN = """
+float Mode;
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 c = float4(uv, 0.25, 1);
+    if (Mode == 0) c.rgb = float3(1, 0, 0);
+    else if (Mode == 1) c.rgb = c.rgb * 0.5;
+    else if (Mode == 2) c.rgb = 1 - c.rgb;
+    return c;
+}"""
+
+
+@pytest.mark.parametrize("mode", [0, 1, 2, 3])
+def test_an_else_if_chain_renders_each_side(backend, mode):
+    fx = effect_for(CHAIN)
+    img = render(fx, backend, params={"Mode": float(mode)})
+    for x, y in ((1, 2), (6, 5)):
+        u, v = x / 8, y / 8
+        want = {0: (1, 0, 0), 1: (u / 2, v / 2, 0.125), 2: (1 - u, 1 - v, 0.75),
+                3: (u, v, 0.25)}[mode]
+        assert np.allclose(img[y, x], (*want, 1), atol=TOL), (mode, x, y, img[y, x], want)
+
+
+def test_an_else_if_chain_computes_no_flags_or_products():
+    # each `Mode == k` is a cmp on -|Mode - k| choosing between a side's value and the value
+    # before it (fxc's form): no 0/1 flag, no `1 - flag`, no product of flags. Here: abs and
+    # 2 x (add, abs) for the three differences; two movs building c; the sides' mul and add
+    # with a mov each for .w; the final mov; and the selects: 1, 2 and 3 for the three stores
+    # (a store under `not first and second` selects on the second, then on the first). 18
+    # instructions, where the flags and their products took 23.
+    text = fx_asm(effect_for(CHAIN), "PS", "ps_2_0")
+    body = [line.split()[0] for line in text.splitlines()
+            if line and not line.startswith(("ps_", "def", "dcl", "//"))]
+    assert body.count("cmp") == 6 and body.count("abs") == 3, text
+    assert body.count("mul") == 1 and body.count("add") == 3, text
+    assert len(body) == 18, (len(body), text)
