@@ -181,7 +181,13 @@ class Arith:
                              f"'{shown}')", loc)
         if opname in ("&&", "||"):
             ca, cb, t = self.broadcast(self.to_bool(a, loc), self.to_bool(b, loc), loc, opname)
-            comps = self.lanes("mul" if opname == "&&" else "max", [ca, cb], loc)
+            if opname == "&&" and self.ctx.target.has("cmp"):
+                # `a && b` as `b ? a : 0`: a compare made b selects on its difference, one cmp
+                # where the flag and a mul were two (dxwrapper's ColorKeyPixelShader: fxc
+                # `cmp r1.xyz, r2, r1, c2.y` for `tex >= low && tex <= high`)
+                comps = self.select(cb, ca, [self.const(0.0)] * len(ca), loc)
+            else:
+                comps = self.lanes("mul" if opname == "&&" else "max", [ca, cb], loc)
             return Value(t.with_base("bool"), comps)
         ca, cb, t = self.broadcast(a, b, loc, opname)
         if opname in ("<", ">", "<=", ">=", "==", "!="):

@@ -168,3 +168,33 @@ def test_an_else_if_chain_computes_no_flags_or_products():
     assert body.count("cmp") == 6 and body.count("abs") == 3, text
     assert body.count("mul") == 1 and body.count("add") == 3, text
     assert len(body) == 18, (len(body), text)
+
+
+# -- `a && b` selects on b's comparison ----------------------------------------------------------
+
+BETWEEN = """
+float4 Low = { 0.25, 0.25, 0.25, 0 };
+float4 High = { 0.75, 0.75, 0.75, 0 };
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float3 c = float3(uv, 0.5);
+    bool3 inside = c >= Low.rgb && c <= High.rgb;
+    return float4(inside, all(inside));
+}"""
+
+
+def test_and_of_two_comparisons_renders(backend):
+    img = render(effect_for(BETWEEN), backend)
+    for x, y in ((1, 4), (4, 4), (7, 4), (4, 1), (4, 7), (5, 3)):
+        inx, iny = 0.25 < x / 8 < 0.75, 0.25 < y / 8 < 0.75
+        want = (inx, iny, 1, inx and iny)
+        assert np.allclose(img[y, x], want, atol=TOL), (x, y, img[y, x], want)
+
+
+def test_and_of_two_comparisons_is_two_cmps():
+    # c - Low and High - c (two adds), a cmp making the first flag, a cmp choosing it or 0 on
+    # the second difference (no second flag, no mul), all(): two muls, and the output's movs
+    text = fx_asm(effect_for(BETWEEN), "PS", "ps_2_0")
+    body = [line.split()[0] for line in text.splitlines()
+            if line and not line.startswith(("ps_", "def", "dcl", "//"))]
+    assert body.count("cmp") == 2 and body.count("mul") == 2, text
