@@ -69,6 +69,18 @@ float4 PS(In i) : COLOR
         assert np.allclose(img[y, x], (x / 8, y / 8, 0.5, 1), atol=TOL), (x, y, img[y, x])
 
 
+def test_the_modifiers_are_words_only_at_a_member_and_a_variable_may_take_their_names(backend):
+    fx = effect_for("""
+struct In { sample float2 uv : TEXCOORD0; };
+float4 PS(In i) : COLOR
+{
+    float linear = 0.5;                 // names, where a statement starts
+    float sample = 0.25;
+    return float4(i.uv * linear, sample, 1);
+}""", ps="compile ps_3_0 PS()")
+    img = render(fx, backend)
+    assert np.allclose(img[4, 6], (6 / 16, 4 / 16, 0.25, 1), atol=TOL), img[4, 6]
+
 # -- unsigned literals ---------------------------------------------------------------------------
 
 def test_a_u_suffix_makes_an_unsigned_literal(backend):
