@@ -181,7 +181,13 @@ class Arith:
                              f"'{shown}')", loc)
         if opname in ("&&", "||"):
             ca, cb, t = self.broadcast(self.to_bool(a, loc), self.to_bool(b, loc), loc, opname)
-            comps = self.lanes("mul" if opname == "&&" else "max", [ca, cb], loc)
+            if opname == "&&" and self.ctx.target.has("cmp"):
+                # `a && b` as `b ? a : 0`: a compare made b selects on its difference, one cmp
+                # where the flag and a mul were two (dxwrapper's ColorKeyPixelShader: fxc
+                # `cmp r1.xyz, r2, r1, c2.y` for `tex >= low && tex <= high`)
+                comps = self.select(cb, ca, [self.const(0.0)] * len(ca), loc)
+            else:
+                comps = self.lanes("mul" if opname == "&&" else "max", [ca, cb], loc)
             return Value(t.with_base("bool"), comps)
         ca, cb, t = self.broadcast(a, b, loc, opname)
         if opname in ("<", ">", "<=", ">=", "==", "!="):
@@ -298,8 +304,10 @@ class Arith:
         t, f = (one, zero) if opname in (">", "<") else (zero, one)
         return self.lanes("cnd", [d, t, f], loc)
 
-    def select(self, cond: list[Operand], a: list[Operand], b: list[Operand], loc: Location) -> list[Operand]:
-        """cond ? a : b per component, for 0/1 conditions."""
+    def select(self, cond: list[Operand], a: list[Operand], b: list[Operand], loc: Location,
+               unfold: bool = False) -> list[Operand]:
+        """cond ? a : b per component, for 0/1 conditions; `unfold`: a flattened `if`'s
+        predicate (_unfold_predicate)."""
         out_a, out_b = list(a), list(b)
         if len(cond) == 1 and len(a) > 1:
             cond = cond * len(a)
@@ -319,6 +327,9 @@ class Arith:
             if t is not None and f is not None and all(t[i] == 0 and f[i] == 1 for i in lanes):
                 return split(self.op("cnd", [d, operand(self.g, out_b), operand(self.g, out_a)], loc))
         if self.ctx.target.has("cmp"):
+            unfolded = self._unfold_predicate(cond, out_a, out_b, loc) if unfold else None
+            if unfolded is not None:
+                return unfolded
             # a condition made by compare() is cmp(d, 1, 0) or cmp(d, 0, 1): select on d
             node = cond[0].node
             if all(c.node is node for c in cond) and node.op == "cmp" and not cond[0].negate:
@@ -334,6 +345,45 @@ class Arith:
             return self.lanes("lrp", [cond, out_a, out_b], loc)
         diff = self.lanes("add", [out_a, [c.neg() for c in out_b]], loc)
         return self.lanes("mad", [cond, diff, out_b], loc)
+
+    def _unfold_predicate(self, cond: list[Operand], a: list[Operand], b: list[Operand],
+                          loc: Location) -> list[Operand] | None:
+        """A flattened `if`'s predicate made of compares, as fxc selects on it: `not c` swaps
+        the sides, `p and q` (an else-if's mask) selects twice, the inner select on `q`, so
+        each compare feeds its cmp directly and no 0/1 flag or product is computed (Effekseer's
+        ApplyTextureBlending chain: fxc `cmp r1.xyz, -r7_abs.z, r2.yzww, r1` per level). Not
+        in a loop: there the unroller folds a counter by the break flags (livefold.py), which
+        an unfolded select no longer reads."""
+        p = cond[0]
+        if p.negate or any(c.sig() != p.sig() for c in cond):
+            return None
+        node = p.node
+        if node.op == "add" and node.width == 1:
+            one, x = node.args
+            if one.const_values() == (1.0,) and x.negate and self._is_flag(x.neg()):
+                return self.select([x.neg()] * len(cond), b, a, loc, unfold=True)
+        if node.op == "mul" and node.width == 1:
+            x, y = node.args
+            if self._is_flag(x) or self._is_flag(y):
+                inner = self.select([y] * len(cond), a, b, loc, unfold=True)
+                return self.select([x] * len(cond), inner, b, loc, unfold=True)
+        return None
+
+    def _is_flag(self, p: Operand) -> bool:
+        """A 0/1 scalar that compare() made (cmp(d, 1, 0) or cmp(d, 0, 1)), or `not` of one,
+        or a product of them: selects on it unfold into cmps on the compared differences."""
+        if p.negate:
+            return False
+        node = p.node
+        if node.op == "cmp":
+            t, f = node.args[1].const_values(), node.args[2].const_values()
+            return t is not None and f is not None and {t[p.swizzle[0]], f[p.swizzle[0]]} == {0.0, 1.0}
+        if node.op == "add" and node.width == 1:
+            one, x = node.args
+            return one.const_values() == (1.0,) and x.negate and self._is_flag(x.neg())
+        if node.op == "mul" and node.width == 1:
+            return all(self._is_flag(x) for x in node.args)
+        return False
 
     def to_bool(self, v: Value, loc: Location) -> Value:
         if not v.type.numeric:

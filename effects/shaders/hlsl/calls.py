@@ -14,7 +14,7 @@ from typing import Any
 import lark
 
 from effects.shaders.hlsl.budget import enter_level, leave_level, spend
-from effects.shaders.hlsl.context import FunctionDef, resolve_type
+from effects.shaders.hlsl.context import FunctionDef, centroid_semantic, resolve_type
 from effects.shaders.hlsl.lvalues import store
 from effects.shaders.hlsl.types import HType
 from effects.shaders.hlsl.values import Frame, Value
@@ -31,7 +31,7 @@ def parameters(ev: Any, fdef: FunctionDef) -> list[tuple[str, HType, str, Any, A
             "uniform" if "uniform" in words else "in"
         # (context.load_context checked the declaration: no void, repeated or const out one)
         t = _array_of(ev, fdef, resolve_type(ev.ctx, spec, fdef.origin, mods), dims, name)
-        out.append((str(name), t, direction, default, sem))
+        out.append((str(name), t, direction, default, centroid_semantic(mods, sem)))
     return out
 
 

@@ -449,6 +449,13 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
     explicit binding holds (its whole type's, read or not), which no literal may take."""
     used = used_sizes(nodes, lambda name: register_count(ctx.uniforms_used.get(name)
                                                          or HType("scalar")))
+    # the registers a constant offset reads, per uniform: where only a run-time index (a0, aL)
+    # reaches further, fxc let the binding run past the target's last register (librw's
+    # skin_VS: `float4x4 boneMatrices[64] : register(c41)` for vs_2_0, c41..c296 in its CTAB)
+    reach: dict[str, int] = {}
+    for n in nodes:
+        if n.op == "uniform":
+            reach[n.key[0]] = max(reach.get(n.key[0], 1), n.key[1] + 1)
     regs: dict[str, int] = {}
     reserved: set[int] = set()
     for p in ctx.effect.parameters:
@@ -457,7 +464,7 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
             continue
         full = register_count(ctx.uniforms_used.get(p.name) or parameter_type(ctx, p))
         if p.name in used:
-            _within(ctx, p.name, b, full, "c")
+            _within(ctx, p.name, b, reach.get(p.name, 1), "c")
             regs[p.name] = b
         reserved.update(range(b, b + full))
     ctx.reserved_constants = reserved
@@ -613,6 +620,11 @@ class _Binder:
             for element, sem in zip(value.elements, _array_semantics(semantic, value.type)):
                 self.outputs(element, sem, loc, out)
             return
+        if self.ctx.target.kind == "vs" and semantic.lower().endswith("_centroid"):
+            # a struct both stages share: the pixel side's centroid modifier means nothing to
+            # the vertex shader's output (Effekseer's ad_sprite_lit_vs: fxc 9.29 declares
+            # `centroid float4 ... : TEXCOORD0` as `dcl_texcoord o0`)
+            semantic = semantic[:-len("_centroid")]
         usage, index = split_semantic(semantic)
         usage = _SV_AS_D3D9.get(usage, usage)
         target = self.ctx.target

@@ -283,7 +283,8 @@ def struct_type(ctx: Context, tree: lark.Tree, origin: Origin) -> HType:
                 raise origin.error(f"X3003: redefinition of '{fname}'", fname)
             fields.append((str(fname), array_of(t, literal_sizes(dims, origin),
                                                 lambda m: origin.error(m, fname),
-                                                f"member '{fname}'"), semantic_text(sem)))
+                                                f"member '{fname}'"),
+                           semantic_text(centroid_semantic(mods, sem))))
             i += 3
     return checked(HType("struct", name=name, fields=tuple(fields)),
                    lambda m: origin.error(m, tree), f"struct '{name}'")
@@ -295,6 +296,20 @@ def semantic_text(tree: Any) -> str | None:
     if tree.data == "register":
         return None
     return str(tree.children[0])
+
+
+def centroid_semantic(mods: Any, tree: Any) -> Any:
+    """The semantic tree of a member or parameter declared `centroid`: its `_centroid` form,
+    which a ps_2_0+ input declares `dcl_texcoord_centroid` (Effekseer's model_unlit_ps.h:
+    fxc 9.29 wrote `dcl_texcoord_centroid v0` for `centroid float4 ... : TEXCOORD0`)."""
+    words = {str(m) for m in mods.children} if mods is not None else set()
+    if "centroid" not in words or tree is None or tree.data == "register":
+        return tree
+    token = tree.children[0]
+    if str(token).lower().endswith("_centroid"):
+        return tree
+    return lark.Tree(tree.data, [token.update(value=f"{token}_centroid"), *tree.children[1:]],
+                     tree.meta if not tree.meta.empty else None)
 
 
 def register_binding(tree: Any) -> str | None:

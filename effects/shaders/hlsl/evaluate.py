@@ -170,7 +170,8 @@ class Evaluator:
 
     def _merge(self, old: Value, new: Value, p: Operand, loc: Location) -> Value:
         if new.type.numeric:
-            return Value(new.type, self.a.select([p], new.comps, old.comps, loc))
+            return Value(new.type, self.a.select([p], new.comps, old.comps, loc,
+                                                 unfold=not self.loops))
         if new.type.kind == "struct":
             return Value(new.type, fields={k: self._merge(old.fields[k], new.fields[k], p, loc)
                                            for k in new.fields})

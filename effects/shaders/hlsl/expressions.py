@@ -94,8 +94,12 @@ def _float(ev: Any, tree: lark.Tree) -> Value:
 
 
 def _int(ev: Any, tree: lark.Tree) -> Value:
-    n = int_literal(str(tree.children[0]), lambda m: ev.error(m, tree), ev.ctx.digits_cap)
-    return Value(INT, [ev.g.const((float(n),))])
+    text = str(tree.children[0])
+    n = int_literal(text, lambda m: ev.error(m, tree), ev.ctx.digits_cap)
+    # a `u` suffix makes the literal unsigned, so integer folding treats it as uint: fxc folds
+    # `1U << 31` to 2147483648 (dxwrapper's FixUpVertexShader, whose vs_2_0 bytecode holds
+    # +2.1474836e+09), where an int shift would wrap to -2147483648
+    return Value(scalar("uint") if text[-1:] in "uU" else INT, [ev.g.const((float(n),))])
 
 
 def _bool(ev: Any, tree: lark.Tree) -> Value:

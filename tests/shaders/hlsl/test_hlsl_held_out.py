@@ -1,0 +1,212 @@
+"""Constructs that public shaders compiled by fxc use and this compiler refused or mistook
+(issue 31's held-out comparison): the D3D10 interpolation modifiers on struct members and
+parameters (`centroid` declares `dcl_texcoord_centroid`), and unsigned integer literals
+(`1U << 31` is 2147483648). Our own small shaders; values worked out by hand, drawn on both
+back ends where they render.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import effects
+from tests.shaders.hlsl.test_hlsl_render import backend, effect_for, fx_asm, render  # noqa: F401
+
+TOL = 1.5 / 255
+
+
+# -- interpolation modifiers ---------------------------------------------------------------------
+
+SHARED = """
+struct V2P
+{
+    float4 pos : POSITION;
+    centroid float4 colour : TEXCOORD0;
+    linear float2 uv : TEXCOORD1;
+    noperspective float2 scale : TEXCOORD2;
+};
+"""
+
+
+def test_centroid_declares_a_centroid_input_and_a_plain_vertex_output():
+    fx = effect_for(SHARED + """
+V2P VS(float4 p : POSITION)
+{
+    V2P o;
+    o.pos = p;
+    o.colour = float4(0.25, 0.5, 0.75, 1);
+    o.uv = p.xy;
+    o.scale = float2(2, 4);
+    return o;
+}
+float4 PS(V2P i, centroid float2 extra : TEXCOORD3) : COLOR
+{
+    return i.colour * float4(i.uv * i.scale + extra, 1, 1);
+}""", ps="compile ps_3_0 PS()", vs="compile vs_3_0 VS()")
+    ps = fx_asm(fx, "PS", "ps_3_0")
+    # the member's and the parameter's modifier: _centroid inputs; linear and noperspective
+    # are the default interpolation, declared plainly
+    decls = [line.split()[0] for line in ps.splitlines() if line.startswith("dcl_texcoord")]
+    assert decls == ["dcl_texcoord_centroid", "dcl_texcoord1", "dcl_texcoord2",
+                     "dcl_texcoord3_centroid"], ps
+    vs = fx_asm(fx, "VS", "vs_3_0")
+    # the same struct as a vertex output: no centroid there (o0 is the position)
+    assert "dcl_texcoord o1" in vs and "_centroid" not in vs, vs
+    ps2 = fx_asm(fx, "PS", "ps_2_0")
+    assert "dcl_centroid t0" in ps2 and "dcl_centroid t3.xy" in ps2, ps2
+
+
+def test_a_centroid_member_renders_its_interpolated_value(backend):
+    fx = effect_for("""
+struct In { centroid float2 uv : TEXCOORD0; };
+float4 PS(In i) : COLOR
+{
+    return float4(i.uv, 0.5, 1);
+}""", ps="compile ps_3_0 PS()")
+    img = render(fx, backend)
+    # the quad's texture coordinate at pixel (x, y) is (x / 8, y / 8)
+    for x, y in ((0, 0), (4, 2), (7, 6)):
+        assert np.allclose(img[y, x], (x / 8, y / 8, 0.5, 1), atol=TOL), (x, y, img[y, x])
+
+
+def test_the_modifiers_are_words_only_at_a_member_and_a_variable_may_take_their_names(backend):
+    fx = effect_for("""
+struct In { sample float2 uv : TEXCOORD0; };
+float4 PS(In i) : COLOR
+{
+    float linear = 0.5;                 // names, where a statement starts
+    float sample = 0.25;
+    return float4(i.uv * linear, sample, 1);
+}""", ps="compile ps_3_0 PS()")
+    img = render(fx, backend)
+    assert np.allclose(img[4, 6], (6 / 16, 4 / 16, 0.25, 1), atol=TOL), img[4, 6]
+
+# -- unsigned literals ---------------------------------------------------------------------------
+
+def test_a_u_suffix_makes_an_unsigned_literal(backend):
+    fx = effect_for("""
+float4 PS() : COLOR
+{
+    const float big = 1U << 31;          // 2147483648 (an int shift wraps to -2147483648)
+    const float wrapped = 1 << 31;
+    return float4(big / 4294967296.0,    // 0.5
+                  wrapped / -4294967296.0,   // 0.5
+                  (7u >> 1) / 4.0,       // 3 / 4
+                  1);
+}""")
+    text = fx_asm(fx, "PS", "ps_2_0")
+    assert "0.5, 0.5, 0.75, 1" in text, text
+    img = render(fx, backend)
+    assert np.allclose(img[4, 4], (0.5, 0.5, 0.75, 1), atol=TOL), img[4, 4]
+
+
+@pytest.mark.parametrize("literal", ["0x80000000u", "2147483648U"])
+def test_unsigned_literals_past_int32_keep_their_value(literal):
+    fx = effect_for(f"""
+float4 PS() : COLOR
+{{
+    return float4(({literal} >> 31) * 0.25, 0, 0, 1);   // 1 * 0.25
+}}""")
+    text = fx_asm(fx, "PS", "ps_2_0")
+    assert "0.25, 0, 0, 1" in text, text
+
+
+# -- a register-bound array past the target's last constant --------------------------------------
+
+BONES = """
+float4 Bones[100] : register(c200);     // c200..c299: past vs_2_0's c255
+float4 VS(float4 p : POSITION, float4 i : BLENDINDICES) : POSITION
+{
+    return p * Bones[%s];
+}"""
+
+
+def test_an_array_read_only_by_a_run_time_index_may_run_past_the_last_register():
+    fx = effect_for(BONES % "(int)i.x", ps="compile ps_2_0 PS()", vs="compile vs_2_0 VS()",
+                    params="float4 PS() : COLOR { return 1; }")
+    text = fx_asm(fx, "VS", "vs_2_0")
+    assert "mova a0.x" in text and "c[a0.x + 200]" in text, text
+
+
+@pytest.mark.parametrize("index, last", [("55", "c255"), ("56", "c256")])
+def test_a_constant_index_is_checked_against_the_last_register(index, last):
+    fx = effect_for(BONES % index, ps="compile ps_2_0 PS()", vs="compile vs_2_0 VS()",
+                    params="float4 PS() : COLOR { return 1; }")
+    if last == "c255":          # Bones[55] is c255, the last vs_2_0 has
+        assert "c255" in fx_asm(fx, "VS", "vs_2_0")
+        return
+    with pytest.raises(effects.EffectError) as err:
+        fx_asm(fx, "VS", "vs_2_0")
+    assert "X4507: maximum constant register index exceeded: 'Bones' is bound to c200..c256, " \
+        "vs_2_0 has c0..c255" in str(err.value), str(err.value)
+    assert err.value.location.line == 3, err.value.location    # the declaration of Bones
+
+
+# -- an else-if chain selects on each comparison -------------------------------------------------
+
+CHAIN = """
+float Mode;
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float4 c = float4(uv, 0.25, 1);
+    if (Mode == 0) c.rgb = float3(1, 0, 0);
+    else if (Mode == 1) c.rgb = c.rgb * 0.5;
+    else if (Mode == 2) c.rgb = 1 - c.rgb;
+    return c;
+}"""
+
+
+@pytest.mark.parametrize("mode", [0, 1, 2, 3])
+def test_an_else_if_chain_renders_each_side(backend, mode):
+    fx = effect_for(CHAIN)
+    img = render(fx, backend, params={"Mode": float(mode)})
+    for x, y in ((1, 2), (6, 5)):
+        u, v = x / 8, y / 8
+        want = {0: (1, 0, 0), 1: (u / 2, v / 2, 0.125), 2: (1 - u, 1 - v, 0.75),
+                3: (u, v, 0.25)}[mode]
+        assert np.allclose(img[y, x], (*want, 1), atol=TOL), (mode, x, y, img[y, x], want)
+
+
+def test_an_else_if_chain_computes_no_flags_or_products():
+    # each `Mode == k` is a cmp on -|Mode - k| choosing between a side's value and the value
+    # before it (fxc's form): no 0/1 flag, no `1 - flag`, no product of flags. Here: abs and
+    # 2 x (add, abs) for the three differences; two movs building c; the sides' mul and add
+    # with a mov each for .w; the final mov; and the selects: 1, 2 and 3 for the three stores
+    # (a store under `not first and second` selects on the second, then on the first). 18
+    # instructions, where the flags and their products took 23.
+    text = fx_asm(effect_for(CHAIN), "PS", "ps_2_0")
+    body = [line.split()[0] for line in text.splitlines()
+            if line and not line.startswith(("ps_", "def", "dcl", "//"))]
+    assert body.count("cmp") == 6 and body.count("abs") == 3, text
+    assert body.count("mul") == 1 and body.count("add") == 3, text
+    assert len(body) == 18, (len(body), text)
+
+
+# -- `a && b` selects on b's comparison ----------------------------------------------------------
+
+BETWEEN = """
+float4 Low = { 0.25, 0.25, 0.25, 0 };
+float4 High = { 0.75, 0.75, 0.75, 0 };
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float3 c = float3(uv, 0.5);
+    bool3 inside = c >= Low.rgb && c <= High.rgb;
+    return float4(inside, all(inside));
+}"""
+
+
+def test_and_of_two_comparisons_renders(backend):
+    img = render(effect_for(BETWEEN), backend)
+    for x, y in ((1, 4), (4, 4), (7, 4), (4, 1), (4, 7), (5, 3)):
+        inx, iny = 0.25 < x / 8 < 0.75, 0.25 < y / 8 < 0.75
+        want = (inx, iny, 1, inx and iny)
+        assert np.allclose(img[y, x], want, atol=TOL), (x, y, img[y, x], want)
+
+
+def test_and_of_two_comparisons_is_two_cmps():
+    # c - Low and High - c (two adds), a cmp making the first flag, a cmp choosing it or 0 on
+    # the second difference (no second flag, no mul), all(): two muls, and the output's movs
+    text = fx_asm(effect_for(BETWEEN), "PS", "ps_2_0")
+    body = [line.split()[0] for line in text.splitlines()
+            if line and not line.startswith(("ps_", "def", "dcl", "//"))]
+    assert body.count("cmp") == 2 and body.count("mul") == 2, text
