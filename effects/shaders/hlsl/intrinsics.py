@@ -11,7 +11,7 @@ from typing import Any, Callable
 
 from effects.base.errors import Location
 from effects.shaders.hlsl.dag import Operand, host_computable, reachable
-from effects.shaders.hlsl.types import BOOL, FLOAT, HType, shape_of, vector
+from effects.shaders.hlsl.types import BOOL, FLOAT, HType, builtin, shape_of, vector
 from effects.shaders.hlsl.lvalues import store
 from effects.shaders.hlsl.values import Value, component, operand, split
 
@@ -636,8 +636,20 @@ def texture_method(ev: Any, obj: Value, method: str, args: list[Value], where: A
         amount = args[2].comps[:1]
         lanes += [ev.a.const(0.0)] * (3 - n) + amount
         coord = Value(vector("float", 4), lanes)
-        return _texture(dim, variant)(ev, [pair, coord], loc)
-    return _texture(dim, variant)(ev, [pair, coord, *args[2:]], loc)
+        return _element(ev, obj, _texture(dim, variant)(ev, [pair, coord], loc))
+    return _element(ev, obj, _texture(dim, variant)(ev, [pair, coord, *args[2:]], loc))
+
+
+def _element(ev: Any, texture: Value, read: Value) -> Value:
+    """A read of a `Texture2D<float2>` is its element type: the sample's first components
+    (as the later fxc typed it); a texture declared without one returns the float4."""
+    from effects.frontend.types import texture_element
+    p = ev.ctx.effect.parameter(texture.sampler)
+    element = texture_element(p.type) if p is not None else None
+    t = builtin(element.spelling) if element is not None else None
+    if t is None:
+        return read
+    return Value(t, read.comps[:element.rows * element.cols])
 
 
 def _clip(ev: Any, args: list[Value], loc: Location) -> Value:

@@ -146,6 +146,68 @@ technique T {{ pass P {{ PixelShader = compile ps_2_0 PS(); }} }}
         assert np.allclose(img[y, x], want, atol=1.5 / 255), (x, y, img[y, x], want)
 
 
+ELEMENT = f"""
+Texture2D<float2> Tex < string UIName = "Base"; >;
+Texture2D < float > Red;
+SamplerState Samp = {POINT};
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{{
+    return float4(Tex.Sample(Samp, uv + 1.0 / 32), 0.25, 1) * Red.Sample(Samp, uv);
+}}
+technique T {{ pass P {{ PixelShader = compile ps_2_0 PS(); }} }}
+"""
+
+
+def test_a_texture_with_its_element_type_reads_that_type(backend):
+    """`Texture2D<float2>` (the later fxc's template form) reads a float2, `Texture2D<float>`
+    a float: the sample's first components. The brackets are the type's, the annotation
+    after the name still an annotation."""
+    fx = effects.load_effect(ELEMENT)
+    assert fx.parameter("Tex").type.dim == "2D" and fx.parameter("Red").type.dim == "2D"
+    assert fx.parameter("Tex").annotation("UIName").value == "Base"
+    assert effects.load_effect(fx.to_source()).parameters == fx.parameters
+    assert compile_shader(fx, "PS", "ps_2_0").samplers == {"Samp+Tex": 0, "Samp+Red": 1}
+    half = np.full((2, 2, 4), 0.5, np.float32)          # Red's .x: 0.5 everywhere
+    img = draw(fx, backend, {"Tex": make_texture(TEXELS, mips=False),
+                             "Red": make_texture(half, mips=False)})
+    for y, x in ((0, 0), (1, 6), (6, 1), (7, 7)):
+        want = np.array([*texel_at(x, y)[:2], 0.25, 1.0]) * 0.5
+        assert np.allclose(img[y, x], want, atol=1.5 / 255), (x, y, img[y, x], want)
+
+
+def test_a_texture_with_an_element_type_keeps_a_resource_name_and_passes_into_functions():
+    fx = effects.load_effect(f"""
+Texture2D<float4> Tex < string ResourceName = "stone.png"; >;
+SamplerState Samp = {POINT};
+float4 Read(Texture2D<float4> t, SamplerState s, float2 uv) {{ return t.Sample(s, uv); }}
+float4 PS(float2 uv : TEXCOORD0) : COLOR {{ return Read(Tex, Samp, uv); }}
+technique T {{ pass P {{ PixelShader = compile ps_2_0 PS(); }} }}
+""")
+    assert fx.parameter("Tex").annotation("ResourceName").value == "stone.png"
+    assert compile_shader(fx, "PS", "ps_2_0").samplers == {"Samp+Tex": 0}
+
+
+@pytest.mark.parametrize("element, message", [
+    ("float4x4", "X3521: 'Texture2D<float4x4>': the return type of a texture cannot exceed "
+                 "four components ('float4x4' has 16)"),
+    ("sampler", "X3124: 'Texture2D<sampler>': object element type cannot be an object type"),
+    ("Light", "unknown type 'Light' in 'Texture2D<Light>'"),
+])
+def test_an_element_type_a_texture_cannot_return_is_refused_where_it_is_written(element,
+                                                                                 message):
+    with pytest.raises(ParseError) as err:
+        effects.load_effect(f"float4 k;\nTexture2D<{element}> Tex;\n")
+    assert str(err.value).startswith(f"<string>:2:1: error: {message}"), str(err.value)
+
+
+def test_a_read_of_a_two_component_texture_is_no_float4():
+    fx = effects.load_effect(ELEMENT.replace("float4(Tex.Sample(Samp, uv + 1.0 / 32), 0.25, 1)",
+                                             "Tex.Sample(Samp, uv)"))
+    with pytest.raises(EffectError) as err:
+        compile_shader(fx, "PS", "ps_2_0")
+    assert "X3017: cannot implicitly convert from 'float2' to 'float4'" in str(err.value)
+
+
 def test_sample_level_bias_and_grad_are_texldl_texldb_texldd():
     fx = effects.load_effect(f"""
 Texture2D Tex;
