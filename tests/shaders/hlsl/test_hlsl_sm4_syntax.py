@@ -322,5 +322,7 @@ technique T { pass P { VertexShader = compile vs_3_0 VS(); } }
                for line in compiled.text.splitlines()), compiled.text
     with pytest.raises(EffectError) as err:
         compile_shader(fx, "Bad", "vs_3_0")
-    assert str(err.value).startswith("<string>:4:64: error: 'Height.Sample' in a vertex "
-                                     "shader: it needs a pixel shader's derivatives"), str(err.value)
+    assert str(err.value).startswith(
+        "<string>:4:64: error: X4532: cannot map expression to vertex shader instruction set: "
+        "'Height.Sample' needs a pixel shader's derivatives"), str(err.value)
+    assert err.value.language is True       # every vertex target refuses it
