@@ -205,7 +205,7 @@ class Builder:
         semantics = self.packoffset(raw)
         return Parameter(name, spec, storage, dims,
                          _semantic(semantics), self.annotations(raw.annotations), value,
-                         self.loc(raw.name), _registers(semantics))
+                         self.loc(raw.name), _registers(semantics), raw.tbuffer)
 
     def packoffset(self, raw: RawParam) -> list[str]:
         """The semantics of a declaration, a cbuffer member's `packoffset(c#)` (or

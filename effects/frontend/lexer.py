@@ -60,6 +60,7 @@ _KEYWORDS = {
     "sampler_state": "SAMPLER_STATE", "stateblock_state": "STATEBLOCK_STATE",
     "struct": "STRUCT", "null": "NULL", "true": "TRUE", "false": "FALSE",
     "typedef": "TYPEDEF", "cbuffer": "CBUFFER",
+    "tbuffer": "CBUFFER",       # the same block; shapes.cbuffer marks a tbuffer's members
 }
 STORAGE_CLASSES = ("shared", "static", "uniform", "const", "extern", "volatile",
                    "row_major", "column_major", "inline")
@@ -67,7 +68,7 @@ _KEYWORDS.update({s: "STORAGE" for s in STORAGE_CLASSES})
 # ... but HLSL's own keywords are case-sensitive: `Shared`, `Static` or `Struct` is a name
 # (naga's back/hlsl/keywords.rs lists the only case-insensitive ones, with fxc's X3086 for
 # them in strict mode: asm, decl, pass, technique and the Direct3D 10 texture types)
-_EXACT_CASE = frozenset(STORAGE_CLASSES) | {"struct", "typedef", "cbuffer"}
+_EXACT_CASE = frozenset(STORAGE_CLASSES) | {"struct", "typedef", "cbuffer", "tbuffer"}
 
 # What a brace-scan skips so that a brace inside a comment or string does not count.
 _BRACE_SCAN_RE = re.compile(r'[{}]|//[^\n]*|/\*.*?(?:\*/|\Z)|"(?:[^"\\\n]|\\.)*"', re.S)

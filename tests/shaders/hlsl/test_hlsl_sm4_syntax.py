@@ -89,9 +89,42 @@ def test_an_unclosed_cbuffer_is_named_at_the_end_of_the_file():
                                      "'}' to close the cbuffer opened at line 2"), str(err.value)
 
 
-def test_tbuffer_and_state_objects_are_still_direct3d10_effect_syntax():
+TBUFFER = """
+tbuffer Bones : register(t0)
+{
+    float4 M[2];
+    float Scale < string UIName = "scale"; >;
+};
+float4 Tint;
+float4 Reads(float2 uv : TEXCOORD0) : COLOR { return Tint * M[1]; }
+float4 PS() : COLOR { return Tint; }
+technique T { pass P { PixelShader = compile ps_2_0 PS(); } }
+"""
+
+
+def test_a_tbuffer_declares_its_members_and_a_read_of_one_is_x3546(backend):
+    """The later fxc parsed a tbuffer for every target and refused a read of its members on
+    those without texture buffers (its error list: X3546, "Reading from texture buffers is
+    unsupported on the specified target"): shader models 1-3. A function that reads none
+    compiles and draws."""
+    fx = effects.load_effect(TBUFFER)
+    assert [(p.name, p.tbuffer) for p in fx.parameters] == [("M", "Bones"), ("Scale", "Bones"),
+                                                            ("Tint", "")]
+    assert fx.parameter("Scale").annotation("UIName").value == "scale"
+    assert effects.load_effect(fx.to_source()).parameters == fx.parameters
+    for target in ("ps_2_0", "ps_3_0", "ps_1_1"):
+        with pytest.raises(EffectError) as err:
+            compile_shader(fx, "Reads", target)
+        assert str(err.value).startswith(
+            f"<string>:8:61: error: X3546: reading from texture buffers is unsupported on "
+            f"{target}: 'M' is a member of tbuffer 'Bones'"), str(err.value)
+        assert err.value.language is False       # a target's refusal: shader model 4 reads it
+    img = draw(fx, backend, {"Tint": [0.25, 0.5, 1.0, 1.0]})
+    assert np.allclose(img[4, 4], [0.25, 0.5, 1.0, 1.0], atol=1.5 / 255), img[4, 4]
+
+
+def test_state_objects_are_still_direct3d10_effect_syntax():
     for text, where, word in [
-            ("tbuffer T { float4 A; };\n", "1:1", "tbuffer"),
             ("Texture2D t;\nSamplerState S : IMMUTABLE\n{\n Filter = MIN_MAG_MIP_LINEAR;\n};\n",
              "2:1", "SamplerState")]:
         with pytest.raises(ParseError) as err:
