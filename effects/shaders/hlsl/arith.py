@@ -365,9 +365,24 @@ class Arith:
         if node.op == "mul" and node.width == 1:
             x, y = node.args
             if self._is_flag(x) or self._is_flag(y):
-                inner = self.select([y] * len(cond), a, b, loc, unfold=True)
-                return self.select([x] * len(cond), inner, b, loc, unfold=True)
+                # each distinct factor once: nested `if`s on one condition multiply its flag
+                # by itself, and selecting twice on a compare is selecting once
+                factors: dict[Any, Operand] = {}
+                for f in self._factors(p):
+                    factors.setdefault(f.sig(), f)
+                out = a
+                for f in reversed(list(factors.values())):
+                    out = self.select([f] * len(cond), out, b, loc, unfold=True)
+                return out
         return None
+
+    @staticmethod
+    def _factors(p: Operand) -> list[Operand]:
+        """The factors of a product of scalars (`p` itself where it is no product)."""
+        node = p.node
+        if p.negate or node.op != "mul" or node.width != 1:
+            return [p]
+        return [f for x in node.args for f in Arith._factors(x)]
 
     def _is_flag(self, p: Operand) -> bool:
         """A 0/1 scalar that compare() made (cmp(d, 1, 0) or cmp(d, 0, 1)), or `not` of one,
