@@ -15,14 +15,16 @@ from typing import Any
 from effects.base import caches
 from effects.base.errors import Location
 from effects.shaders.asm.versions import IDENTITY, PS20_SWIZZLES
-from effects.shaders.asm.program import Operand
+from effects.shaders.asm.program import Instruction, Operand
 from effects.shaders.hlsl.allocate import ALIASES, allocate
-from effects.shaders.hlsl.asmcode import Instr, Reg, Src, _SAMPLER_DCL
 from effects.shaders.hlsl.components import laid_out, used_counts
 from effects.shaders.hlsl.constant_layout import declaration_order
 from effects.shaders.hlsl.context import explicit_register
 from effects.shaders.hlsl.ops import OPS
-from effects.shaders.hlsl.writer import Code, declaration, register, swizzled
+from effects.shaders.hlsl.records import fixed, instruction, needed, read, same
+from effects.shaders.hlsl.writer import Code, declaration
+
+_SAMPLER_DCL = {"2d": "2d", "1d": "2d", "3d": "volume", "cube": "cube"}
 
 _TEXLD = {"texld", "texldp", "texldb", "texldl", "texldd"}
 # by the op table's shapes (ops.py): instructions whose one result is replicated into every lane
@@ -34,12 +36,6 @@ _TEXLD = {"texld", "texldp", "texldb", "texldl", "texldd"}
 REPLICATED = frozenset(r.mnemonic for r in OPS.values()
                        if r.shape in ("scalar", "reduce")) & ALIASES
 COMPONENTWISE = frozenset(r.mnemonic for r in OPS.values() if r.shape == "lanes") & ALIASES
-
-
-def _lanes_needed(ins: Instr, src: Src) -> dict[int, int]:
-    if src.fixed is not None:
-        return {i: src.fixed[i] for i in range(4)}
-    return dict(src.lanes)
 
 
 def _choose(needed: dict[int, int], rule: str) -> tuple[int, ...] | None:
@@ -77,31 +73,31 @@ def legalize(cg: Any) -> None:
     coordinates and swizzles the version lacks go through a mov into a temporary."""
     rules = cg.rules
     rule = "ps20" if rules.swizzles == "ps20" else "any"
-    out: list[Instr] = []
+    version = rules.name
+    out: list[Instruction] = []
     for ins in cg.instrs:
-        # read ports
+        # read ports (a relative constant, c[a0.x + n] or c[aL + n], is not counted here:
+        # the copy propagation that puts one in an instruction counts it, peephole._ports_ok)
         if ins.opcode not in ("texkill",):
             seen: dict[str, list[str]] = {}
             for s in ins.srcs:
-                kind = s.reg.kind
-                if kind not in rules.read_ports:
+                kind = s.kind
+                if kind not in rules.read_ports or s.relative is not None:
                     continue
                 names = seen.setdefault(kind, [])
-                key = f"{kind}{s.reg.index}"
+                key = f"{kind}{s.index}"
                 if key in names:
                     continue
                 if len(names) >= rules.read_ports[kind]:
                     tmp = cg.temp()
                     # the copy's lanes: the register's components this instruction reads
                     # (write-mask liveness: `mov r0.x, c5` for a `mad r.x, v1, c4, c5.x`)
-                    read = sorted({lane for other in ins.srcs if other.reg.kind == kind
-                                   and other.reg.index == s.reg.index
-                                   for lane in _lanes_needed(ins, other).values()})
-                    out.append(Instr("mov", tmp, tuple(read), [Src(s.reg, {i: i for i in read})],
-                                     ins.location))
-                    for other in ins.srcs:
-                        if other.reg is s.reg or (other.reg.kind == kind and other.reg.index == s.reg.index):
-                            other.reg = tmp
+                    lanes = sorted({lane for other in ins.srcs if same(other, s)
+                                    for lane in needed(other).values()})
+                    out.append(instruction("mov", tmp, tuple(lanes),
+                                           [read(s, {i: i for i in lanes})], version,
+                                           ins.location))
+                    s.kind, s.index = tmp.kind, tmp.index
                     continue
                 names.append(key)
         if ins.opcode in _TEXLD and cg.target.kind == "ps" and _one_d(ins):
@@ -109,31 +105,31 @@ def legalize(cg: Any) -> None:
         # texture coordinates: a register read whole
         if ins.opcode in _TEXLD and cg.target.kind == "ps" and cg.rules.major == 2:
             for k, s in enumerate(ins.srcs):
-                needed = _lanes_needed(ins, s)
-                if s.reg.kind in ("vr", "t") and all(v == i for i, v in needed.items()) \
-                        and not s.negate:
+                lanes = needed(s)
+                if s.kind == "s" or s.kind in ("vr", "t") and \
+                        all(v == i for i, v in lanes.items()) and not s.negate:
                     continue
                 tmp = cg.temp()
                 _copy(cg, out, tmp, s, ins.location, rule)
-                ins.srcs[k] = Src(tmp, {i: i for i in range(4)})
+                ins.srcs[k] = read(tmp, {i: i for i in range(4)})
         # swizzles
         for k, s in enumerate(ins.srcs):
-            needed = _lanes_needed(ins, s)
-            if _choose(needed, rule) is None:
+            lanes = needed(s)
+            if _choose(lanes, rule) is None:
                 tmp = cg.temp()
                 _copy(cg, out, tmp, s, ins.location, rule)
-                ins.srcs[k] = Src(tmp, {i: i for i in needed}, False)
+                ins.srcs[k] = read(tmp, {i: i for i in lanes})
         out.append(ins)
     cg.instrs = out
 
 
-def _one_d(ins: Instr) -> bool:
+def _one_d(ins: Instruction) -> bool:
     """A 1D read: the coordinate gives x alone (tex1D's float; the others give two or more)."""
     s = ins.srcs[0]
-    return s.fixed is None and set(s.lanes) == {0}
+    return s.lanes is not None and set(s.lanes) == {0}
 
 
-def _second_lane(cg: Any, out: list[Instr], ins: Instr) -> None:
+def _second_lane(cg: Any, out: list[Instruction], ins: Instruction) -> None:
     """A 1D read's coordinate with a written y. The sampler is declared 2d (shader models 2-3
     have no 1D textures: a height-1 2D one), and texld reads x and y ("Validation enforces that
     coordinates provided to texld are sufficient for the texture dimension declared for the
@@ -144,45 +140,45 @@ def _second_lane(cg: Any, out: list[Instr], ins: Instr) -> None:
     producer writes x into y as well (`mad r0.xy`), else a copy `mov r1.xy, r0.x` does (legalize
     copies coordinates it cannot read in place, replicated alike)."""
     s = ins.srcs[0]
-    x = s.lanes[0]
-    if s.reg.kind in ("v", "t") and x == 0 and _declared_width(cg, s.reg) >= 2:
+    x = s.lanes[0]  # type: ignore[index]
+    if s.kind in ("v", "t") and x == 0 and _declared_width(cg, s) >= 2:
         return                                   # x and y declared: read as they are
-    if cg.rules.major >= 3 or s.reg.kind != "vr" or x != 0:
-        if cg.rules.major == 2 and s.reg.kind == "t" and x == 0:
-            _declare_xy(cg, s.reg)                # ps_2_0 reads t# whole, unswizzled
+    if cg.rules.major >= 3 or s.kind != "vr" or x != 0:
+        if cg.rules.major == 2 and s.kind == "t" and x == 0:
+            _declare_xy(cg, s)                    # ps_2_0 reads t# whole, unswizzled
             return
-        ins.srcs[0] = Src(s.reg, {0: x, 1: x}, s.negate)     # replicate (or copied so)
+        ins.srcs[0] = read(s, {0: x, 1: x}, s.negate)     # replicate (or copied so)
         return
-    writers = [w for w in out if w.dst is not None and w.dst.kind == "vr"
-               and w.dst.index == s.reg.index and w.opcode != "texkill"]
-    if any(1 in w.mask for w in writers):
+    writers = [w for w in out if w.dst is not None and same(w.dst, s)]
+    if any(1 in w.dst.mask for w in writers):  # type: ignore[union-attr, operator]
         return                                   # y holds a value already
     if len(writers) == 1 and _widen(writers[0]):
         return
-    ins.srcs[0] = Src(s.reg, {0: 0, 1: 0}, s.negate)     # copied below: mov r1.xy, r0.x
+    ins.srcs[0] = read(s, {0: 0, 1: 0}, s.negate)     # copied below: mov r1.xy, r0.x
 
 
-def _widen(w: Instr) -> bool:
+def _widen(w: Instruction) -> bool:
     """`w` (writing .x alone) writing its x into y too, where one instruction can."""
-    if tuple(w.mask) != (0,):
+    d = w.dst
+    if d is None or tuple(d.mask) != (0,):  # type: ignore[arg-type]
         return False
     if w.opcode in REPLICATED:
-        w.mask = (0, 1)
+        d.mask = (0, 1)
         return True
     if w.opcode not in COMPONENTWISE:
         return False
-    w.srcs = [s if s.fixed is not None else Src(s.reg, {0: s.lanes[0], 1: s.lanes[0]}, s.negate)
+    w.srcs = [s if s.lanes is None else read(s, {0: s.lanes[0], 1: s.lanes[0]}, s.negate)
               for s in w.srcs]
-    w.mask = (0, 1)
+    d.mask = (0, 1)
     return True
 
 
-def _declared_width(cg: Any, reg: Reg) -> int:
+def _declared_width(cg: Any, reg: Operand) -> int:
     d = cg.inputs.get(f"{reg.kind}{reg.index}")
     return 4 if d is None or d.register.mask is None else len(d.register.mask)
 
 
-def _declare_xy(cg: Any, reg: Reg) -> None:
+def _declare_xy(cg: Any, reg: Operand) -> None:
     name = f"{reg.kind}{reg.index}"
     d = cg.inputs.get(name)
     if d is not None and d.register.mask is not None and len(d.register.mask) < 2:
@@ -190,17 +186,21 @@ def _declare_xy(cg: Any, reg: Reg) -> None:
                                       centroid=d.centroid)
 
 
-def _copy(cg: Any, out: list[Instr], tmp: Reg, s: Src, loc: Location, rule: str) -> None:
-    """tmp.lane = s.reg.<lane it needs>, one mov per source lane (replicate swizzles)."""
-    needed = _lanes_needed(Instr("mov", None, (), []), s)
-    if _choose(needed, rule) is not None:
-        out.append(Instr("mov", tmp, tuple(sorted(needed)), [Src(s.reg, needed, s.negate)], loc))
+def _copy(cg: Any, out: list[Instruction], tmp: Operand, s: Operand, loc: Location,
+          rule: str) -> None:
+    """tmp.lane = s.<lane it needs>, one mov per source lane (replicate swizzles)."""
+    lanes = needed(s)
+    version = cg.rules.name
+    if _choose(lanes, rule) is not None:
+        out.append(instruction("mov", tmp, tuple(sorted(lanes)), [read(s, lanes, s.negate)],
+                               version, loc))
         return
     by_source: dict[int, list[int]] = {}
-    for lane, src_lane in needed.items():
+    for lane, src_lane in lanes.items():
         by_source.setdefault(src_lane, []).append(lane)
-    for src_lane, lanes in by_source.items():
-        out.append(Instr("mov", tmp, tuple(sorted(lanes)), [Src(s.reg, {}, s.negate, fixed=(src_lane,) * 4)], loc))
+    for src_lane, dst_lanes in by_source.items():
+        out.append(instruction("mov", tmp, tuple(sorted(dst_lanes)),
+                               [fixed(s, (src_lane,) * 4, s.negate)], version, loc))
 
 
 # the instructions that read an int or bool parameter's register
@@ -219,64 +219,71 @@ def _int_bool_tables(cg: Any, int_defs: dict[int, Any]
     for kind, regs in (("i", getattr(ctx, "int_registers", {})),
                        ("b", getattr(ctx, "bool_registers", {}))):
         readers = [ins for ins in cg.instrs if ins.opcode in _READERS[kind]]
-        used = {s.reg.index for ins in readers for s in ins.srcs if s.reg.kind == kind}
+        used = {s.index for ins in readers for s in ins.srcs if s.kind == kind}
         fixed = {n for n in regs if explicit_register(ctx, n, kind) is not None}
         defs = set(int_defs) & used if kind == "i" else set()
         firsts, sizes, remap = laid_out(regs, counts, used, fixed, declared, defs)
         for ins in readers:
-            ins.srcs = [replace(s, reg=replace(s.reg, index=remap[s.reg.index]))
-                        if s.reg.kind == kind and s.reg.index in remap else s for s in ins.srcs]
+            ins.srcs = [replace(s, index=remap[s.index])
+                        if s.kind == kind and s.index in remap else s for s in ins.srcs]
         out[kind] = (firsts, {**counts, **sizes})
     return out
 
 
+def source_swizzle(instrs: list[Instruction], rule: str) -> None:
+    """Each source's swizzle, one the version has (`_choose`), where it read lanes."""
+    for ins in instrs:
+        for s in ins.srcs:
+            s.swizzle = _choose(needed(s), rule) or IDENTITY  # type: ignore[assignment]
+            s.lanes = None
+
+
 def code_of(cg: Any) -> Code:
-    """The legalized instructions allocated (allocate.py), with the defs, the declarations of
-    the inputs, outputs and samplers read and the tables of registers the pass loads, for
-    the writer (writer.py)."""
+    """The legalized instructions allocated (allocate.py), their swizzles chosen and samplers
+    numbered, with the defs, the declarations of the inputs, outputs and samplers read and
+    the tables of registers the pass loads, for the writer (writer.py)."""
     rule = "ps20" if cg.rules.swizzles == "ps20" else "any"
     alloc = allocate(cg.instrs)
-
-    def source(s: Src, ins: Instr) -> Operand:
-        op = swizzled(register(s.reg, alloc), _choose(_lanes_needed(ins, s), rule) or IDENTITY)
-        op.negate = s.negate
-        return op
-
+    source_swizzle(cg.instrs, rule)
     int_defs = getattr(cg.ctx, "int_defs", {})      # a [loop] over literal bounds (loops.py)
     tables = _int_bool_tables(cg, int_defs)
-    used_i = {s.reg.index for ins in cg.instrs if ins.opcode in ("rep", "loop") for s in ins.srcs
-              if s.reg.kind == "i"}
+    used_i = {s.index for ins in cg.instrs if ins.opcode in ("rep", "loop") for s in ins.srcs
+              if s.kind == "i"}
     used_inputs: dict[str, None] = {}
     samplers: dict[str, int] = dict(cg.sampler_regs)
+    read: dict[str, None] = {}
     for ins in cg.instrs:
         for s in ins.srcs:
-            if s.reg.kind in ("v", "t"):
-                used_inputs.setdefault(f"{s.reg.kind}{s.reg.index}")
-            elif s.reg.kind in ("vPos", "vFace"):    # ps_3_0's misc inputs, unindexed
-                used_inputs.setdefault(s.reg.kind)
-        if ins.sampler is not None and ins.sampler not in samplers:
-            taken = set(samplers.values())
-            k = 0
-            while k in taken:
-                k += 1
-            samplers[ins.sampler] = k
+            if s.kind in ("v", "t"):
+                used_inputs.setdefault(f"{s.kind}{s.index}")
+            elif s.kind in ("vPos", "vFace"):    # ps_3_0's misc inputs, unindexed
+                used_inputs.setdefault(s.kind)
+            elif s.kind == "s" and s.index is None:
+                name = s.text
+                read.setdefault(name)
+                if name not in samplers:
+                    taken = set(samplers.values())
+                    k = 0
+                    while k in taken:
+                        k += 1
+                    samplers[name] = k
+                s.index = samplers[name]
     dcls = []
     for name in sorted(used_inputs, key=lambda n: (n[0], int(n[1:]) if n[1:].isdigit() else -1)):
         dcls.append(cg.inputs[name] if name in cg.inputs else
                     declaration(name[0], int(name[1:])))
     dcls += getattr(cg, "output_dcls", [])
     kinds = cg.ctx.samplers_used
-    read = {i.sampler for i in cg.instrs if i.sampler is not None}
     for name, k in sorted(samplers.items(), key=lambda kv: kv[1]):
         if name in read:
             dcls.append(declaration("s", k, sampler_type=_SAMPLER_DCL.get(kinds.get(name, "2d"), "2d")))
     used_c = {name: (start, cg.register_sizes.get(name, 1)) for name, start in cg.const_regs.items()}
-    used_b = {s.reg.index for ins in cg.instrs if ins.opcode == "if" for s in ins.srcs
-              if s.reg.kind == "b"}
+    used_b = {s.index for ins in cg.instrs if ins.opcode == "if" for s in ins.srcs
+              if s.kind == "b"}
     ints, int_counts = used_counts(*tables["i"], used_i)
     bools, bool_counts = used_counts(*tables["b"], used_b)
-    return Code(cg.instrs, alloc, source,
+    return Code(cg.instrs, alloc,
                 {r: tuple(0.0 if v is None else v for v in vals) for r, vals in cg.defs.items()},
-                {r: v for r, v in int_defs.items() if r in used_i}, dcls, samplers, used_c,
-                {n: k for n, k in samplers.items() if n in read}, ints, bools,
-                register_counts={**int_counts, **bool_counts})
+                {r: v for r, v in int_defs.items() if r in used_i}, dcls, constants=used_c,
+                samplers={n: k for n, k in samplers.items() if n in read}, int_registers=ints,
+                bool_registers=bools, register_counts={**int_counts, **bool_counts})

@@ -14,7 +14,8 @@ from effects.program.backend import create_backend
 from effects.shaders.asm import check
 from effects.shaders.asm.versions import VERSIONS
 from effects.shaders.hlsl import codegen, compile_shader, peephole
-from effects.shaders.hlsl.asmcode import Instr, Reg, Src
+from effects.shaders.asm.program import Instruction as Instr, Operand as Reg
+from effects.shaders.hlsl.records import fixed, instruction, read, reg, same, written
 
 
 def compiled(functions: str, entry: str, target: str):
@@ -230,43 +231,49 @@ def _fold(target: str, prod: Instr, mov: Instr) -> list[Instr]:
 
 
 def _vr(k: int) -> Reg:
-    return Reg("vr", k)
+    return reg("vr", k)
+
+
+def _ins(opcode: str, dst: Reg | None, mask: tuple[int, ...], srcs: list[Reg],
+         saturate: bool = False) -> Instr:
+    """A generated instruction as codegen emits it (the ps_3_0 row: the passes read opcodes)."""
+    return instruction(opcode, dst, mask, srcs, "ps_3_0", saturate=saturate)
 
 
 def test_the_rule_writes_a_replicated_result_to_every_lane_the_copy_fills():
-    dp3 = Instr("dp3", _vr(0), (0,), [Src(Reg("c", 4), {0: 0, 1: 1, 2: 2}),
-                                      Src(Reg("v", 1), {0: 0, 1: 1, 2: 2})])
-    mov = Instr("mov", Reg("oD", 0), (0, 1, 2, 3), [Src(_vr(0), {}, fixed=(0, 0, 0, 0))])
+    dp3 = _ins("dp3", _vr(0), (0,), [read(reg("c", 4), {0: 0, 1: 1, 2: 2}),
+                                      read(reg("v", 1), {0: 0, 1: 1, 2: 2})])
+    mov = _ins("mov", reg("oD", 0), (0, 1, 2, 3), [fixed(_vr(0), (0, 0, 0, 0))])
     for target in ("vs_1_1", "vs_2_0"):
         out = _fold(target, dp3, mov)
-        assert len(out) == 1 and out[0].opcode == "dp3" and out[0].dst == Reg("oD", 0)
-        assert out[0].mask == (0, 1, 2, 3)
-        dp3.dst, dp3.mask = _vr(0), (0,)
+        assert len(out) == 1 and out[0].opcode == "dp3" and same(out[0].dst, reg("oD", 0))
+        assert written(out[0]) == (0, 1, 2, 3)
+        dp3.dst = Reg("vr", 0, mask=(0,))
     # a result in .y read as .x is no copy of it; a macro writes a temporary only (pow's page)
-    mov.srcs = [Src(_vr(0), {}, fixed=(1, 1, 1, 1))]
+    mov.srcs = [fixed(_vr(0), (1, 1, 1, 1))]
     assert len(_fold("vs_2_0", dp3, mov)) == 2
-    pow_ = Instr("pow", _vr(0), (0,), [Src(Reg("c", 0), {}, fixed=(0,) * 4)] * 2)
-    mov.srcs = [Src(_vr(0), {}, fixed=(0, 0, 0, 0))]
+    pow_ = _ins("pow", _vr(0), (0,), [fixed(reg("c", 0), (0,) * 4)] * 2)
+    mov.srcs = [fixed(_vr(0), (0, 0, 0, 0))]
     assert len(_fold("vs_2_0", pow_, mov)) == 2
 
 
 def test_the_rule_moves_a_lane_wise_result_with_its_sources_lanes():
-    mad = Instr("mad", _vr(0), (0,), [Src(Reg("t", 0), {0: 0}), Src(Reg("t", 0), {0: 0}),
-                                      Src(_vr(1), {0: 0})])
-    mov = Instr("mov", _vr(2), (3,), [Src(_vr(0), {3: 0})], saturate=True)
+    mad = _ins("mad", _vr(0), (0,), [read(reg("t", 0), {0: 0}), read(reg("t", 0), {0: 0}),
+                                      read(_vr(1), {0: 0})])
+    mov = _ins("mov", _vr(2), (3,), [read(_vr(0), {3: 0})], saturate=True)
     out = _fold("ps_2_0", mad, mov)
-    assert len(out) == 1 and out[0].dst == _vr(2) and out[0].mask == (3,) and out[0].saturate
+    assert len(out) == 1 and same(out[0].dst, _vr(2)) and written(out[0]) == (3,) and out[0].saturate
     assert [s.lanes for s in out[0].srcs] == [{3: 0}, {3: 0}, {3: 0}]
     # ps_2_0 has no swizzle .xy?x (.y into lane 2 besides .x into lane 0): the mov stays
-    add = Instr("add", _vr(0), (0, 1), [Src(Reg("t", 0), {0: 0, 1: 1}), Src(Reg("c", 0), {0: 0, 1: 1})])
-    mov = Instr("mov", _vr(2), (0, 2), [Src(_vr(0), {0: 0, 2: 1})])
+    add = _ins("add", _vr(0), (0, 1), [read(reg("t", 0), {0: 0, 1: 1}), read(reg("c", 0), {0: 0, 1: 1})])
+    mov = _ins("mov", _vr(2), (0, 2), [read(_vr(0), {0: 0, 2: 1})])
     assert len(_fold("ps_2_0", add, mov)) == 2
     assert len(_fold("ps_3_0", add, mov)) == 1          # any swizzle: add r2.xz, t0.xzy?, ..
     # one lane spread over several: each computes it again from the same source lanes
-    add = Instr("add", _vr(0), (0,), [Src(_vr(1), {0: 0}), Src(Reg("v", 0), {0: 0})])
-    mov = Instr("mov", Reg("oC", 0), (0, 1, 2, 3), [Src(_vr(0), {}, fixed=(0, 0, 0, 0))])
+    add = _ins("add", _vr(0), (0,), [read(_vr(1), {0: 0}), read(reg("v", 0), {0: 0})])
+    mov = _ins("mov", reg("oC", 0), (0, 1, 2, 3), [fixed(_vr(0), (0, 0, 0, 0))])
     out = _fold("ps_3_0", add, mov)
-    assert len(out) == 1 and out[0].dst == Reg("oC", 0) and out[0].mask == (0, 1, 2, 3)
+    assert len(out) == 1 and same(out[0].dst, reg("oC", 0)) and written(out[0]) == (0, 1, 2, 3)
     assert [s.lanes for s in out[0].srcs] == [{0: 0, 1: 0, 2: 0, 3: 0}] * 2
 
 
@@ -332,40 +339,40 @@ def _run(target: str, name: str, instrs: list[Instr]) -> list[Instr]:
 
 
 def test_the_rule_drops_what_only_feeds_itself():
-    count = Src(Reg("i", 0), {}, fixed=(0, 1, 2, 3))
-    kept = Instr("mov", _vr(1), (0, 1, 2, 3), [Src(Reg("c", 2), {0: 0, 1: 1, 2: 2, 3: 3})])
-    code = [Instr("mov", _vr(0), (0,), [Src(Reg("c", 0), {}, fixed=(0,) * 4)]),
+    count = fixed(reg("i", 0), (0, 1, 2, 3))
+    kept = _ins("mov", _vr(1), (0, 1, 2, 3), [read(reg("c", 2), {0: 0, 1: 1, 2: 2, 3: 3})])
+    code = [_ins("mov", _vr(0), (0,), [fixed(reg("c", 0), (0,) * 4)]),
             kept,
-            Instr("rep", None, (), [count]),
-            Instr("add", _vr(0), (0,), [Src(_vr(0), {0: 0}), Src(Reg("c", 1), {0: 0})]),
-            Instr("endrep", None, (), []),
-            Instr("mov", _vr(2), (0,), [Src(_vr(0), {0: 0})]),       # read by nothing
-            Instr("mov", Reg("oC", 0), (0, 1, 2, 3), [Src(_vr(1), {0: 0, 1: 1, 2: 2, 3: 3})])]
+            _ins("rep", None, (), [count]),
+            _ins("add", _vr(0), (0,), [read(_vr(0), {0: 0}), read(reg("c", 1), {0: 0})]),
+            _ins("endrep", None, (), []),
+            _ins("mov", _vr(2), (0,), [read(_vr(0), {0: 0})]),       # read by nothing
+            _ins("mov", reg("oC", 0), (0, 1, 2, 3), [read(_vr(1), {0: 0, 1: 1, 2: 2, 3: 3})])]
     assert [i.opcode for i in _run("ps_3_0", "drop dead writes", code)] == [
         "mov", "rep", "endrep", "mov"]
     # read where an output is written: kept, round the loop too
-    code[-1].srcs.append(Src(_vr(2), {0: 0}))
+    code[-1].srcs.append(read(_vr(2), {0: 0}))
     code[-1].opcode = "add"
     assert len(_run("ps_3_0", "drop dead writes", code)) == len(code)
 
 
 def _updated(between: list[Instr]) -> list[Instr]:
     c, x = _vr(0), _vr(1)
-    return [Instr("mad", x, (0,), [Src(Reg("v", 0), {0: 0}), Src(Reg("c", 0), {0: 0}),
-                                   Src(c, {0: 0})]),
+    return [_ins("mad", x, (0,), [read(reg("v", 0), {0: 0}), read(reg("c", 0), {0: 0}),
+                                   read(c, {0: 0})]),
             *between,
-            Instr("mov", x, (1, 2, 3), [Src(c, {1: 1, 2: 2, 3: 3})]),
-            Instr("mov", c, (0, 1, 2, 3), [Src(x, {0: 0, 1: 1, 2: 2, 3: 3})])]
+            _ins("mov", x, (1, 2, 3), [read(c, {1: 1, 2: 2, 3: 3})]),
+            _ins("mov", c, (0, 1, 2, 3), [read(x, {0: 0, 1: 1, 2: 2, 3: 3})])]
 
 
 def test_the_rule_updates_a_register_built_from_its_own_lanes_in_place():
     out = _run("vs_3_0", "build in place", _updated([]))
-    assert len(out) == 1 and out[0].opcode == "mad" and out[0].dst == _vr(0)
+    assert len(out) == 1 and out[0].opcode == "mad" and same(out[0].dst, _vr(0))
     # something reads the old x between: the copy stays
-    reader = Instr("add", _vr(5), (0,), [Src(_vr(0), {0: 0}), Src(Reg("c", 1), {0: 0})])
+    reader = _ins("add", _vr(5), (0,), [read(_vr(0), {0: 0}), read(reg("c", 1), {0: 0})])
     assert len(_run("vs_3_0", "build in place", _updated([reader]))) == 4
     # something writes the register between: the order would matter, the copy stays
-    writer = Instr("mov", _vr(0), (2,), [Src(Reg("c", 1), {2: 2})])
+    writer = _ins("mov", _vr(0), (2,), [read(reg("c", 1), {2: 2})])
     assert len(_run("vs_3_0", "build in place", _updated([writer]))) == 4
 
 
