@@ -107,7 +107,8 @@ def legalize(cg: Any) -> None:
             for k, s in enumerate(ins.srcs):
                 lanes = needed(s)
                 if s.kind == "s" or s.kind in ("vr", "t") and \
-                        all(v == i for i, v in lanes.items()) and not s.negate:
+                        all(v == i for i, v in lanes.items()) and not s.negate \
+                        and not s.modifier:
                     continue
                 tmp = cg.temp()
                 _copy(cg, out, tmp, s, ins.location, rule)
@@ -147,14 +148,14 @@ def _second_lane(cg: Any, out: list[Instruction], ins: Instruction) -> None:
         if cg.rules.major == 2 and s.kind == "t" and x == 0:
             _declare_xy(cg, s)                    # ps_2_0 reads t# whole, unswizzled
             return
-        ins.srcs[0] = read(s, {0: x, 1: x}, s.negate)     # replicate (or copied so)
+        ins.srcs[0] = _relaned(s, {0: x, 1: x})   # replicate (or copied so)
         return
     writers = [w for w in out if w.dst is not None and same(w.dst, s)]
     if any(1 in w.dst.mask for w in writers):  # type: ignore[union-attr, operator]
         return                                   # y holds a value already
     if len(writers) == 1 and _widen(writers[0]):
         return
-    ins.srcs[0] = read(s, {0: 0, 1: 0}, s.negate)     # copied below: mov r1.xy, r0.x
+    ins.srcs[0] = _relaned(s, {0: 0, 1: 0})       # copied below: mov r1.xy, r0.x
 
 
 def _widen(w: Instruction) -> bool:
@@ -167,7 +168,7 @@ def _widen(w: Instruction) -> bool:
         return True
     if w.opcode not in COMPONENTWISE:
         return False
-    w.srcs = [s if s.lanes is None else read(s, {0: s.lanes[0], 1: s.lanes[0]}, s.negate)
+    w.srcs = [s if s.lanes is None else _relaned(s, {0: s.lanes[0], 1: s.lanes[0]})
               for s in w.srcs]
     d.mask = (0, 1)
     return True
@@ -192,15 +193,23 @@ def _copy(cg: Any, out: list[Instruction], tmp: Operand, s: Operand, loc: Locati
     lanes = needed(s)
     version = cg.rules.name
     if _choose(lanes, rule) is not None:
-        out.append(instruction("mov", tmp, tuple(sorted(lanes)), [read(s, lanes, s.negate)],
+        out.append(instruction("mov", tmp, tuple(sorted(lanes)), [_relaned(s, lanes)],
                                version, loc))
         return
     by_source: dict[int, list[int]] = {}
     for lane, src_lane in lanes.items():
         by_source.setdefault(src_lane, []).append(lane)
     for src_lane, dst_lanes in by_source.items():
-        out.append(instruction("mov", tmp, tuple(sorted(dst_lanes)),
-                               [fixed(s, (src_lane,) * 4, s.negate)], version, loc))
+        copy = fixed(s, (src_lane,) * 4, s.negate)
+        copy.modifier = s.modifier
+        out.append(instruction("mov", tmp, tuple(sorted(dst_lanes)), [copy], version, loc))
+
+
+def _relaned(s: Operand, lanes: dict[int, int]) -> Operand:
+    """`s` (its sign and modifier) reading `lanes`."""
+    out = read(s, lanes, s.negate)
+    out.modifier = s.modifier
+    return out
 
 
 # the instructions that read an int or bool parameter's register

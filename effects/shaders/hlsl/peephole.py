@@ -6,6 +6,8 @@ returns how many instructions it removed, so a test can show the count drop pass
   version's read ports and swizzles allow it, nothing rewrites `src` or a0 in between) is
   left out: `mov r0, c0; mov oC0, r0` is `mov oC0, c0`, a bone row is read as `c[a0.x + n]`
   where it is used (issue 31, from fxc's listings);
+- `abs_into_sources`: `abs vrX, src` read as `src_abs` where the version has the `_abs`
+  source modifier (vs_3_0, ps_3_0), by the same rule (fxc's `cmp r1, -r0_abs.w, ...`);
 - `clamp_to_saturate`: `max x, 0` then `min 1` (clamp(x, 0, 1) where `saturate` was not
   written) is `mov_sat`, where the version has the modifier;
 - `fold_into_producer`: `op vrA ...; mov[_sat] D, vrA`, vrA read nowhere else, is `op[_sat] D`
@@ -101,24 +103,55 @@ def _compose(use: Operand, mov: Instruction) -> Operand | None:
     if use.lanes is None:
         if any(l not in mask for l in use.swizzle):
             return None
-        return fixed(src, tuple(through[l] for l in use.swizzle), use.negate != src.negate)
+        return _absolute(fixed(src, tuple(through[l] for l in use.swizzle),
+                               use.negate != src.negate), use, mov)
     if any(l not in mask for l in use.lanes.values()):
         return None
-    return read(src, {i: through[l] for i, l in use.lanes.items()}, use.negate != src.negate)
+    out = read(src, {i: through[l] for i, l in use.lanes.items()}, use.negate != src.negate)
+    return _absolute(out, use, mov)
+
+
+def _absolute(out: Operand, use: Operand, mov: Instruction) -> Operand:
+    """`out` (reading mov's source, its sign the two signs combined) with the `_abs` of the
+    read, of the source or of an `abs` in the mov's place: |-x| is |x|, so under an abs only
+    the reader's sign stays, applied after it (`-r0_abs` is -|r0|, the modifier's order)."""
+    src = mov.srcs[0]
+    if mov.opcode == "abs" or use.modifier == "abs":
+        out.modifier, out.negate = "abs", use.negate
+    else:
+        out.modifier = src.modifier
+    return out
 
 
 def propagate_copies(cg: Any) -> int:
+    return _read_in_place(cg, "mov")
+
+
+def abs_into_sources(cg: Any) -> int:
+    """`abs vrX, src` whose every reader can read `src_abs` in its place (the `_abs` source
+    modifier of vs_3_0 and ps_3_0) is left out, as propagate_copies leaves out a copy: fxc
+    wrote `cmp r1, -r0_abs.w, c0.x, c0.y` (Effekseer's sprite_unlit_ps, vs `abs r1.x, r0.w`
+    and the cmp reading r1.x)."""
+    if "abs" not in cg.rules.src_modifiers:
+        return 0
+    return _read_in_place(cg, "abs")
+
+
+def _read_in_place(cg: Any, opcode: str) -> int:
+    """`opcode vrX, src` (a mov, or an abs read as a modifier) whose readers read `src`
+    instead, left out where every reader could."""
     instrs: list[Instruction] = cg.instrs
     rules = cg.rules
     defs, uses = _census(instrs)
     drop: set[int] = set()
     for i, mov in enumerate(instrs):
-        if mov.opcode != "mov" or mov.saturate or mov.dst is None or mov.dst.kind != "vr" \
+        if mov.opcode != opcode or mov.saturate or mov.dst is None or mov.dst.kind != "vr" \
                 or len(defs.get(mov.dst.index, ())) != 1 or len(mov.srcs) != 1:  # type: ignore[arg-type]
             continue
         x = mov.dst
         source = mov.srcs[0]
-        if source.kind not in _SOURCES:
+        if source.kind not in _SOURCES or (opcode == "abs" and (
+                source.modifier is not None or source.relative is not None)):
             continue
         left = uses.get(x.index, 0)  # type: ignore[arg-type]
         for j in range(i + 1, len(instrs)):
@@ -206,7 +239,8 @@ def clamp_to_saturate(cg: Any) -> int:
             if outer.opcode != second or outer.saturate:
                 continue
             inner_src = _bound(cg, outer, lo_hi[1])
-            if inner_src is None or inner_src.kind != "vr" or inner_src.negate:
+            if inner_src is None or inner_src.kind != "vr" or inner_src.negate \
+                    or inner_src.modifier:
                 continue
             vr = inner_src.index
             d = defs.get(vr, [])  # type: ignore[arg-type]
@@ -262,7 +296,9 @@ def _moved(prod: Instruction, mov: Instruction, rules: Any
         lanes = {l: reads[need[l]] for l in mov_mask}
         if _choose(lanes, _rule(rules)) is None:
             return None
-        srcs.append(read(s, lanes, s.negate))
+        moved = read(s, lanes, s.negate)
+        moved.modifier = s.modifier
+        srcs.append(moved)
     return tuple(mov_mask), srcs
 
 
@@ -275,7 +311,7 @@ def fold_into_producer(cg: Any) -> int:
         if mov.opcode != "mov" or mov.dst is None or len(mov.srcs) != 1:
             continue
         s = mov.srcs[0]
-        if s.kind != "vr" or s.negate or uses.get(s.index) != 1:  # type: ignore[arg-type]
+        if s.kind != "vr" or s.negate or s.modifier or uses.get(s.index) != 1:  # type: ignore[arg-type]
             continue
         d = defs.get(s.index, [])  # type: ignore[arg-type]
         if len(d) != 1 or d[0] >= j or d[0] in drop:
@@ -325,7 +361,7 @@ def build_in_place(cg: Any) -> int:
                 or len(mov.srcs) != 1:
             continue
         s, c = mov.srcs[0], mov.dst
-        if s.kind != "vr" or s.negate or _same(s, c) or uses.get(s.index) != 1:  # type: ignore[arg-type]
+        if s.kind != "vr" or s.negate or s.modifier or _same(s, c) or uses.get(s.index) != 1:  # type: ignore[arg-type]
             continue
         need = needed(s)
         if any(need[l] != l for l in written(mov)):
@@ -368,7 +404,8 @@ def _is_self_copy(ins: Instruction, c: Operand) -> bool:
         return False
     s = ins.srcs[0]
     need = needed(s)
-    return _same(s, c) and not s.negate and all(need[l] == l for l in written(ins))
+    return _same(s, c) and not s.negate and not s.modifier and \
+        all(need[l] == l for l in written(ins))
 
 
 def drop_dead_writes(cg: Any) -> int:
@@ -406,7 +443,8 @@ def drop_dead_writes(cg: Any) -> int:
 
 # The passes in the order run, each to a fixed point with the others (a copy left out can
 # let a clamp become _sat, whose mov then folds into its producer).
-PASSES = (("propagate copies", propagate_copies), ("clamp to saturate", clamp_to_saturate),
+PASSES = (("propagate copies", propagate_copies), ("abs into sources", abs_into_sources),
+          ("clamp to saturate", clamp_to_saturate),
           ("fold into producer", fold_into_producer), ("build in place", build_in_place),
           ("drop dead writes", drop_dead_writes))
 

@@ -330,6 +330,70 @@ def test_the_folded_code_draws_what_the_hlsl_says(backend, monkeypatch):
     assert np.abs(draw() - folded).max() == 0
 
 
+# -- abs read as the _abs source modifier (vs_3_0, ps_3_0) ------------------------------------
+
+def _abs_then_add() -> list[Instr]:
+    # abs vr0.w, -v0.w ; add vr1, -vr0.w, c0.x
+    return [_ins("abs", _vr(0), (3,), [read(reg("v", 0), {3: 3}, True)]),
+            _ins("add", _vr(1), (0, 1, 2, 3), [fixed(_vr(0), (3, 3, 3, 3), True),
+                                               fixed(reg("c", 0), (0, 0, 0, 0))])]
+
+
+@pytest.mark.parametrize("target, kept", [("ps_3_0", 1), ("vs_3_0", 1), ("ps_2_0", 2),
+                                          ("vs_2_0", 2), ("vs_1_1", 2)])
+def test_the_rule_reads_an_abs_as_its_source_modifier(target, kept):
+    cg = SimpleNamespace(instrs=_abs_then_add(), rules=VERSIONS[target], defs={})
+    assert peephole.abs_into_sources(cg) == 2 - kept
+    if kept == 1:          # -|(-v0.w)| = -v0_abs.w: the abs's own sign goes, the reader's stays
+        (add,) = cg.instrs
+        s = add.srcs[0]
+        assert (s.kind, s.index, s.modifier, s.negate, s.swizzle) == ("v", 0, "abs", True,
+                                                                       (3, 3, 3, 3))
+    else:                  # no _abs before shader model 3: the instruction stays
+        assert [i.opcode for i in cg.instrs] == ["abs", "add"]
+
+
+def test_an_abs_read_by_an_instruction_without_modifiers_stays():
+    code = _abs_then_add()
+    code[1] = instruction("texld", _vr(1), (0, 1, 2, 3), [read(_vr(0), {0: 3, 1: 3})],
+                          "ps_3_0", sampler="S")
+    cg = SimpleNamespace(instrs=code, rules=VERSIONS["ps_3_0"], defs={})
+    assert peephole.abs_into_sources(cg) == 0 and len(cg.instrs) == 2
+
+
+ABS = """
+struct V { float4 p : POSITION; float2 t : TEXCOORD0; };
+V VS(float4 p : POSITION, float2 uv : TEXCOORD0) { V o; o.p = p; o.t = uv * 2 - 1; return o; }
+float4 PS(float2 t : TEXCOORD0) : COLOR
+{ return float4(abs(t.x) * 0.5 + abs(t.y) * 0.25, abs(t.y) > 0.5 ? 1 : 0, pow(abs(t.x), 2), 1); }
+technique T { pass P { VertexShader = compile vs_3_0 VS(); PixelShader = compile ps_3_0 PS(); } }
+"""
+
+
+def test_abs_as_a_modifier_draws_what_the_hlsl_says(backend, monkeypatch):
+    # fxc's listing of Effekseer's sprite_unlit_ps: `cmp r1, -r0_abs.w, c0.x, c0.y`
+    def draw():
+        effects.clear_caches()
+        img = effects.render(effects.load_effect(ABS), "geforce6800", technique="T",
+                             backend=backend, scene={"mesh": "quad", "size": [8, 8]})
+        effects.clear_caches()
+        return img.astype(np.float64) / 255.0
+
+    fx = effects.load_effect(ABS)
+    code = body(compile_shader(fx, "PS", "ps_3_0"))
+    assert not any(line.startswith("abs") for line in code) and "v0_abs" in " ".join(code)
+    modified = draw()
+    for x, y in ((1, 2), (6, 5), (3, 7)):
+        tx, ty = 2 * x / 8 - 1, 2 * y / 8 - 1
+        want = (abs(tx) * 0.5 + abs(ty) * 0.25, 1.0 if abs(ty) > 0.5 else 0.0, tx * tx, 1)
+        assert np.allclose(modified[y, x], want, atol=1.5 / 255), (x, y, modified[y, x], want)
+    without(monkeypatch, "abs into sources")
+    effects.clear_caches()
+    code = body(compile_shader(effects.load_effect(ABS), "PS", "ps_3_0"))
+    assert any(line.startswith("abs") for line in code)
+    assert np.abs(draw() - modified).max() == 0
+
+
 # -- loops: a dead counter, a carried vector updated in place ------------------------------------
 
 def _run(target: str, name: str, instrs: list[Instr]) -> list[Instr]:
