@@ -189,20 +189,35 @@ def _declare_xy(cg: Any, reg: Operand) -> None:
 
 def _copy(cg: Any, out: list[Instruction], tmp: Operand, s: Operand, loc: Location,
           rule: str) -> None:
-    """tmp.lane = s.<lane it needs>, one mov per source lane (replicate swizzles)."""
+    """tmp.lane = s.<lane it needs>: one mov where the version has the swizzle, else one mov
+    per component replicated, or, where that makes fewer, one plain mov of the lanes that keep
+    their own component and one per other component (ps_2_0's .xyzy: fxc's `mov r1.xyz, r0`
+    / `mov r1.w, r0.y` in Pale Moon's LayerManagerD3D9 shaders)."""
     lanes = needed(s)
     version = cg.rules.name
     if _choose(lanes, rule) is not None:
         out.append(instruction("mov", tmp, tuple(sorted(lanes)), [_relaned(s, lanes)],
                                version, loc))
         return
-    by_source: dict[int, list[int]] = {}
-    for lane, src_lane in lanes.items():
-        by_source.setdefault(src_lane, []).append(lane)
+    own = {lane: c for lane, c in lanes.items() if lane == c}
+    moved = _by_component({lane: c for lane, c in lanes.items() if lane != c})
+    by_source = _by_component(lanes)
+    if own and 1 + len(moved) < len(by_source):
+        out.append(instruction("mov", tmp, tuple(sorted(own)), [_relaned(s, own)], version,
+                               loc))
+        by_source = moved
     for src_lane, dst_lanes in by_source.items():
         copy = fixed(s, (src_lane,) * 4, s.negate)
         copy.modifier = s.modifier
         out.append(instruction("mov", tmp, tuple(sorted(dst_lanes)), [copy], version, loc))
+
+
+def _by_component(lanes: dict[int, int]) -> dict[int, list[int]]:
+    """Component -> the lanes that read it."""
+    out: dict[int, list[int]] = {}
+    for lane, c in lanes.items():
+        out.setdefault(c, []).append(lane)
+    return out
 
 
 def _relaned(s: Operand, lanes: dict[int, int]) -> Operand:

@@ -394,6 +394,50 @@ def test_abs_as_a_modifier_draws_what_the_hlsl_says(backend, monkeypatch):
     assert np.abs(draw() - modified).max() == 0
 
 
+# -- a swizzle ps_2_0 lacks, built with the fewest movs ---------------------------------------
+
+@pytest.mark.parametrize("lanes, movs", [
+    # .xyzy: the lanes that keep their component in one mov, .y into w (fxc's two movs)
+    ({0: 0, 1: 1, 2: 2, 3: 1}, [((0, 1, 2), {0: 0, 1: 1, 2: 2}), ((3,), (1, 1, 1, 1))]),
+    # .yxzw: z and w in one, then x and y each replicated
+    ({0: 1, 1: 0, 2: 2, 3: 3}, [((2, 3), {2: 2, 3: 3}), ((0,), (1, 1, 1, 1)),
+                                ((1,), (0, 0, 0, 0))]),
+    # .xxyy: a mov per component is two, as few as the plain one and another would be
+    ({0: 0, 1: 0, 2: 1, 3: 1}, [((0, 1), (0, 0, 0, 0)), ((2, 3), (1, 1, 1, 1))]),
+])
+def test_the_rule_builds_a_swizzle_with_the_fewest_movs(lanes, movs):
+    from effects.base.errors import UNKNOWN_LOCATION
+    from effects.base.errors import UNKNOWN_LOCATION
+    from effects.shaders.hlsl.legalize import _copy
+    cg = SimpleNamespace(rules=VERSIONS["ps_2_0"])
+    out: list[Instr] = []
+    _copy(cg, out, _vr(9), read(reg("t", 0), lanes), UNKNOWN_LOCATION, "ps20")
+    got = [(written(i), i.srcs[0].lanes if i.srcs[0].lanes is not None else i.srcs[0].swizzle)
+           for i in out]
+    assert got == movs and all(i.opcode == "mov" and same(i.dst, _vr(9)) for i in out)
+
+
+SWIZZLED = """
+float4 K = {0.5, 0.25, 0, 1};
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{ float4 c = float4(uv, uv.x * uv.y, 1) + K; return c.xyzy * K.x; }
+technique T { pass P { PixelShader = compile ps_2_0 PS(); } }
+"""
+
+
+def test_a_swizzle_built_in_two_movs_draws_what_the_hlsl_says(backend):
+    # Pale Moon's LayerManagerD3D9 shader as fxc wrote it: mov r1.xyz, r0 / mov r1.w, r0.y
+    fx = effects.load_effect(SWIZZLED)
+    code = body(compile_shader(fx, "PS", "ps_2_0"))
+    assert code[-4:] == ["mov r1.xyz, r0", "mov r1.w, r0.y", "mul r0, r1, c0.x", "mov oC0, r0"]
+    img = effects.render(fx, "radeon9700", technique="T", backend=backend,
+                         scene={"mesh": "quad", "size": [8, 8]}).astype(np.float64) / 255.0
+    for x, y in ((1, 2), (6, 5)):
+        u, v = x / 8, y / 8
+        want = ((u + 0.5) / 2, (v + 0.25) / 2, u * v / 2, (v + 0.25) / 2)
+        assert np.allclose(img[y, x], want, atol=1.5 / 255), (x, y, img[y, x], want)
+
+
 # -- loops: a dead counter, a carried vector updated in place ------------------------------------
 
 def _run(target: str, name: str, instrs: list[Instr]) -> list[Instr]:
