@@ -21,7 +21,7 @@ from effects.shaders.hlsl.components import laid_out, used_counts
 from effects.shaders.hlsl.constant_layout import declaration_order
 from effects.shaders.hlsl.context import explicit_register
 from effects.shaders.hlsl.ops import OPS
-from effects.shaders.hlsl.records import fixed, instruction, needed, read, same
+from effects.shaders.hlsl.records import fixed, instruction, is_flow, needed, read, reg, same
 from effects.shaders.hlsl.writer import Code, declaration
 
 _SAMPLER_DCL = {"2d": "2d", "1d": "2d", "3d": "volume", "cube": "cube"}
@@ -73,33 +73,14 @@ def legalize(cg: Any) -> None:
     coordinates and swizzles the version lacks go through a mov into a temporary."""
     rules = cg.rules
     rule = "ps20" if rules.swizzles == "ps20" else "any"
-    version = rules.name
     out: list[Instruction] = []
-    for ins in cg.instrs:
-        # read ports (a relative constant, c[a0.x + n] or c[aL + n], is not counted here:
-        # the copy propagation that puts one in an instruction counts it, peephole._ports_ok)
-        if ins.opcode not in ("texkill",):
-            seen: dict[str, list[str]] = {}
-            for s in ins.srcs:
-                kind = s.kind
-                if kind not in rules.read_ports or s.relative is not None:
-                    continue
-                names = seen.setdefault(kind, [])
-                key = f"{kind}{s.index}"
-                if key in names:
-                    continue
-                if len(names) >= rules.read_ports[kind]:
-                    tmp = cg.temp()
-                    # the copy's lanes: the register's components this instruction reads
-                    # (write-mask liveness: `mov r0.x, c5` for a `mad r.x, v1, c4, c5.x`)
-                    lanes = sorted({lane for other in ins.srcs if same(other, s)
-                                    for lane in needed(other).values()})
-                    out.append(instruction("mov", tmp, tuple(lanes),
-                                           [read(s, {i: i for i in lanes})], version,
-                                           ins.location))
-                    s.kind, s.index = tmp.kind, tmp.index
-                    continue
-                names.append(key)
+    over = [_over_ports(ins, rules) for ins in cg.instrs]
+    copies: dict[tuple[str, int], tuple[Operand, set[int]]] = {}
+    for k, ins in enumerate(cg.instrs):
+        if is_flow(ins):
+            copies.clear()                 # a copy serves the straight-line code after it
+        for kind, regs in over[k].items():
+            _read_ports(cg, out, k, kind, regs, over, copies)
         if ins.opcode in _TEXLD and cg.target.kind == "ps" and _one_d(ins):
             _second_lane(cg, out, ins)
         # texture coordinates: a register read whole
@@ -122,6 +103,75 @@ def legalize(cg: Any) -> None:
                 ins.srcs[k] = read(tmp, {i: i for i in lanes})
         out.append(ins)
     cg.instrs = out
+
+
+def _over_ports(ins: Instruction, rules: Any) -> dict[str, list[int]]:
+    """The kinds `ins` reads more registers of than the version's read ports, with those
+    registers in source order. A relative constant, c[a0.x + n] or c[aL + n], is not counted
+    here: the copy propagation that puts one in an instruction counts it (peephole._ports_ok)."""
+    if ins.opcode == "texkill":
+        return {}
+    regs: dict[str, list[int]] = {}
+    for s in ins.srcs:
+        if s.kind in rules.read_ports and s.relative is None:
+            seen = regs.setdefault(s.kind, [])
+            if s.index not in seen:
+                seen.append(s.index)  # type: ignore[arg-type]
+    return {kind: r for kind, r in regs.items() if len(r) > rules.read_ports[kind]}
+
+
+def _read_ports(cg: Any, out: list[Instruction], k: int, kind: str, regs: list[int],
+                over: list[dict[str, list[int]]],
+                copies: dict[tuple[str, int], tuple[Operand, set[int]]]) -> None:
+    """Instruction `k` reading registers `regs` of `kind`, more than the version's ports, reads
+    the extra ones from temporaries: a copy made for an earlier instruction of the same
+    straight-line code where one holds the lanes read (the registers copied are never
+    written), else a new one. The registers kept are those the fewest later instructions read
+    past their ports, so one copy serves them all (fxc's `mov r1.xyz, c7` read by three dp3
+    past vs_1_1's one constant port: the DirectX docs' preshader sample); a copy holds the
+    lanes all those read (write-mask liveness: `mov r0.x, c5` for `mad r.x, v1, c4, c5.x`)."""
+    instrs = cg.instrs
+    ins = instrs[k]
+    limit = cg.rules.read_ports[kind]
+    kept = list(regs)
+    for r in regs:
+        held = copies.get((kind, r))
+        if len(kept) > limit and held is not None and _lanes_of(ins, kind, r) <= held[1]:
+            _retarget(ins, kind, r, held[0])
+            kept.remove(r)
+    if len(kept) <= limit:
+        return
+    later: dict[int, list[int]] = {r: [] for r in kept}
+    for j in range(k, len(instrs)):
+        if j > k and is_flow(instrs[j]):
+            break
+        for r in over[j].get(kind, ()):
+            if r in later:
+                later[r].append(j)
+    keep = sorted(kept, key=lambda r: (len(later[r]), kept.index(r)))[:limit]
+    for r in kept:
+        if r in keep:
+            continue
+        lanes = set().union(*(_lanes_of(instrs[j], kind, r) for j in later[r]))
+        tmp = cg.temp()
+        out.append(instruction("mov", tmp, tuple(sorted(lanes)),
+                               [read(reg(kind, r), {i: i for i in sorted(lanes)})],
+                               cg.rules.name, ins.location))
+        copies[(kind, r)] = (tmp, lanes)
+        _retarget(ins, kind, r, tmp)
+
+
+def _lanes_of(ins: Instruction, kind: str, index: int) -> set[int]:
+    """The components of register `kind``index` that `ins` reads."""
+    return {lane for s in ins.srcs if s.kind == kind and s.index == index and s.relative is None
+            for lane in needed(s).values()}
+
+
+def _retarget(ins: Instruction, kind: str, index: int, tmp: Operand) -> None:
+    """Every source of `ins` reading register `kind``index` reads `tmp` instead."""
+    for s in ins.srcs:
+        if s.kind == kind and s.index == index and s.relative is None:
+            s.kind, s.index = tmp.kind, tmp.index
 
 
 def _one_d(ins: Instruction) -> bool:

@@ -33,7 +33,7 @@ from effects.shaders.asm.program import Instruction, Operand
 from effects.shaders.hlsl.allocate import ALIASES as _ALIASES
 from effects.shaders.hlsl.legalize import COMPONENTWISE as _COMPONENTWISE, \
     REPLICATED as _REPLICATED, _choose
-from effects.shaders.hlsl.records import fixed, needed, read, row, same as _same, written
+from effects.shaders.hlsl.records import fixed, is_flow, needed, read, row, same as _same, written
 
 _TEXLD = frozenset({"texld", "texldp", "texldb", "texldl", "texldd"})
 # instructions whose sources a copy may be folded into: one slot, ordinary sources (texld's
@@ -48,12 +48,6 @@ _PRODUCERS = _READERS - {"mova"} | _TEXLD
 # registers read in place of a copy (ps_3_0's vPos and vFace are left where they are: vFace
 # is read by comparisons only); c also as c[a0.x + n] and c[aL + n]
 _SOURCES = frozenset({"vr", "c", "v", "t"})
-
-
-def is_flow(ins: Instruction) -> bool:
-    """rep, loop, if, else, break ...: the instructions without a destination but texkill
-    (which reads its operand)."""
-    return ins.dst is None and ins.opcode != "texkill"
 
 
 def _read_regs(ins: Instruction) -> list[Operand]:

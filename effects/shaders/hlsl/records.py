@@ -78,6 +78,12 @@ def same(a: Operand, b: Operand) -> bool:
     return a.kind == b.kind and a.index == b.index and a.relative == b.relative
 
 
+def is_flow(ins: Instruction) -> bool:
+    """rep, loop, if, else, break ...: the instructions without a destination but texkill
+    (which reads its operand)."""
+    return ins.dst is None and ins.opcode != "texkill"
+
+
 def written(ins: Instruction) -> tuple[int, ...]:
     """The lanes `ins` writes (none for flow instructions and texkill)."""
     d = ins.dst

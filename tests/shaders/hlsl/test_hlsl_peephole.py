@@ -438,6 +438,74 @@ def test_a_swizzle_built_in_two_movs_draws_what_the_hlsl_says(backend):
         assert np.allclose(img[y, x], want, atol=1.5 / 255), (x, y, img[y, x], want)
 
 
+# -- one copy for every read past the read ports --------------------------------------------
+
+def _legalized(target: str, code: list[Instr]) -> list[str]:
+    from effects.shaders.hlsl.legalize import legalize, source_swizzle
+    from effects.shaders.asm.text import instruction_text
+    count = iter(range(100, 200))
+    cg = SimpleNamespace(instrs=code, rules=VERSIONS[target], temp=lambda: _vr(next(count)))
+    legalize(cg)
+    source_swizzle(cg.instrs, "any")          # as code_of hands them on
+    return [instruction_text(ins) for ins in cg.instrs]
+
+
+def _dp3(dst: int, a: int, b: int) -> Instr:
+    # dp3 vr<dst>.<dst lane>, c<a>, c<b>
+    xyz = {0: 0, 1: 1, 2: 2}
+    return _ins("dp3", _vr(9), (dst,), [read(reg("c", a), xyz), read(reg("c", b), xyz)])
+
+
+def test_the_rule_copies_the_register_three_instructions_read_once():
+    # c7 read by three dp3 past vs_1_1's one constant port: copied once, as fxc did
+    code = [_dp3(0, 7, 4), _dp3(1, 7, 5), _dp3(2, 7, 6)]
+    assert _legalized("vs_1_1", code) == [
+        "mov vr100.xyz, c7", "dp3 vr9.x, vr100, c4", "dp3 vr9.y, vr100, c5",
+        "dp3 vr9.z, vr100, c6"]
+    # vs_2_0 reads two constants at once: nothing to copy
+    code = [_dp3(0, 7, 4), _dp3(1, 7, 5), _dp3(2, 7, 6)]
+    assert len(_legalized("vs_2_0", code)) == 3
+    # a flow instruction between: the code after it makes its own copy
+    code = [_dp3(0, 7, 4), _ins("rep", None, (), [fixed(reg("i", 0), (0, 1, 2, 3))]),
+            _dp3(1, 7, 5), _ins("endrep", None, (), [])]
+    assert [t.split()[0] for t in _legalized("vs_1_1", code)] == [
+        "mov", "dp3", "rep", "mov", "dp3", "endrep"]
+
+
+def test_one_copy_serves_every_read_of_the_register_in_an_instruction():
+    # mad d, c0, c1.x, c1.y: c1 copied once (.xy), both sources read the copy
+    code = [_ins("mad", _vr(9), (0, 1, 2, 3), [read(reg("c", 0), {i: i for i in range(4)}),
+                                               fixed(reg("c", 1), (0, 0, 0, 0)),
+                                               fixed(reg("c", 1), (1, 1, 1, 1))])]
+    assert _legalized("vs_1_1", code) == ["mov vr100.xy, c1",
+                                          "mad vr9.xyzw, c0, vr100.x, vr100.y"]
+
+
+PORTS = """
+float3 Light; float3x3 Basis;
+struct O { float4 p : POSITION; float4 c : COLOR0; };
+O VS(float4 p : POSITION) { O o; o.p = p; o.c = float4(mul(Basis, Light) * 0.5 + 0.5, 1); return o; }
+float4 PS(float4 c : COLOR0) : COLOR { return c; }
+technique T { pass P { VertexShader = compile vs_1_1 VS(); PixelShader = compile ps_2_0 PS(); } }
+"""
+
+
+def test_a_constant_copied_once_draws_what_the_hlsl_says(backend):
+    fx = effects.load_effect(PORTS)
+    code = body(compile_shader(fx, "VS", "vs_1_1"))
+    assert code[:4] == ["mov r0.xyz, c3", "mul r1.xyz, c0, r0.x", "mad r1.xyz, c1, r0.y, r1",
+                        "mad r0.xyz, c2, r0.z, r1"]
+    light = [0.5, -0.25, 0.75]
+    basis = [[0.2, 0.4, 0.0], [-0.6, 0.2, 0.4], [0.0, 0.8, -0.2]]
+    img = effects.render(fx, "radeon9700", technique="T", backend=backend,
+                         scene={"mesh": "quad", "size": [8, 8]},
+                         params={"Light": light, "Basis": basis}).astype(np.float64) / 255.0
+    d = [sum(basis[r][k] * light[k] for k in range(3)) for r in range(3)]
+    want = (d[0] * 0.5 + 0.5, d[1] * 0.5 + 0.5, d[2] * 0.5 + 0.5, 1)
+    for x, y in ((1, 2), (6, 5)):
+        assert np.allclose(img[y, x], want, atol=1.5 / 255), (x, y, img[y, x], want)
+
+
 # -- loops: a dead counter, a carried vector updated in place ------------------------------------
 
 def _run(target: str, name: str, instrs: list[Instr]) -> list[Instr]:
