@@ -31,6 +31,15 @@ def body(shader) -> list[str]:
             if not line.startswith(("def", "dcl"))]
 
 
+def drawn(text: str, card: str, backend: str) -> np.ndarray:
+    """The effect drawn on an 8x8 quad, freshly compiled (after a pass was left out too)."""
+    effects.clear_caches()
+    img = effects.render(effects.load_effect(text), card, technique="T", backend=backend,
+                         scene={"mesh": "quad", "size": [8, 8]})
+    effects.clear_caches()
+    return img.astype(np.float64) / 255.0
+
+
 def without(monkeypatch, name: str) -> None:
     """Run the compiler with one peephole pass left out."""
     monkeypatch.setattr(peephole, "PASSES", tuple(p for p in peephole.PASSES if p[0] != name))
@@ -312,11 +321,7 @@ technique T { pass P { VertexShader = compile vs_2_0 VS(); PixelShader = compile
 
 def test_the_folded_code_draws_what_the_hlsl_says(backend, monkeypatch):
     def draw():
-        effects.clear_caches()
-        img = effects.render(effects.load_effect(FOLDED), "radeon9700", technique="T",
-                             backend=backend, scene={"mesh": "quad", "size": [8, 8]})
-        effects.clear_caches()
-        return img.astype(np.float64) / 255.0
+        return drawn(FOLDED, "radeon9700", backend)
 
     fx = effects.load_effect(FOLDED)
     assert "dp3 oD0, c0, r0" in body(compile_shader(fx, "VS", "vs_2_0"))
@@ -373,11 +378,7 @@ technique T { pass P { VertexShader = compile vs_3_0 VS(); PixelShader = compile
 def test_abs_as_a_modifier_draws_what_the_hlsl_says(backend, monkeypatch):
     # fxc's listing of Effekseer's sprite_unlit_ps: `cmp r1, -r0_abs.w, c0.x, c0.y`
     def draw():
-        effects.clear_caches()
-        img = effects.render(effects.load_effect(ABS), "geforce6800", technique="T",
-                             backend=backend, scene={"mesh": "quad", "size": [8, 8]})
-        effects.clear_caches()
-        return img.astype(np.float64) / 255.0
+        return drawn(ABS, "geforce6800", backend)
 
     fx = effects.load_effect(ABS)
     code = body(compile_shader(fx, "PS", "ps_3_0"))
