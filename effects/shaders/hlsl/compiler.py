@@ -27,7 +27,6 @@ from effects.shaders.asm.parser import USAGES
 # compiler (CompiledShader is importable from here as before)
 from effects.shaders.hlsl.shader import CompiledShader
 from effects.shaders.hlsl.calls import constant_parameters, parameters, return_type
-from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.budget import out_of_stack, spend
 from effects.shaders.hlsl.check import check_unit
 from effects.shaders.hlsl.codegen import CodeGen
@@ -37,7 +36,7 @@ from effects.shaders.hlsl.constant_layout import (declaration_order, first_fit, 
                                                   used_sizes)
 from effects.shaders.hlsl.context import (Context, explicit_register as _explicit, load_context,
                                           parameter_type)
-from effects.shaders.hlsl.dag import Node, Operand
+from effects.shaders.hlsl.dag import Node, Operand, Output
 from effects.shaders.hlsl.flowcode import needed
 from effects.shaders.hlsl.folding import finite32
 from effects.shaders.hlsl.ops import TEXTURE
