@@ -17,26 +17,8 @@ from typing import Any
 from effects.base.errors import EffectError, Location
 from effects.model import Effect, Expression, Preshader
 from effects.shaders import fxlc
+from effects.shaders.hlsl.ops import OPS, REDUCE
 
-# the result of each DAG op of one lane from its arguments' lanes, as FXLC instructions:
-# (FXLC op, argument positions; "neg:k" a negated argument, a number a literal); the last
-# step's result is the op's
-_LANES: dict[str, list[tuple[str, tuple]]] = {
-    "add": [("add", (0, 1))], "mul": [("mul", (0, 1))], "min": [("min", (0, 1))],
-    "max": [("max", (0, 1))], "mov": [("mov", (0,))], "frc": [("frc", (0,))],
-    "slt": [("lt", (0, 1))], "sge": [("ge", (0, 1))], "cmp": [("cmp", (0, 1, 2))],
-    "mad": [("mul", (0, 1)), ("add", ("prev", 2))],
-    "abs": [("neg", (0,)), ("max", (0, "prev"))],
-    "sat": [("max", (0, 0.0)), ("min", ("prev", 1.0))],
-    # lrp(a, b, c) = a * (b - c) + c
-    "lrp": [("neg", (2,)), ("add", (1, "prev")), ("mul", (0, "prev")), ("add", ("prev", 2))],
-    # cnd(a, b, c) = a > 0.5 ? b : c = cmp(0.5 - a, c, b)
-    "cnd": [("neg", (0,)), ("add", ("prev", 0.5)), ("cmp", ("prev", 2, 1))],
-}
-# one replicated result from the first lane of each argument
-_SCALAR = {"rcp": [("rcp", (0,))], "rsq": [("rsq", (0,))], "exp": [("exp", (0,))],
-           "log": [("log", (0,))], "pow": [("log", (0,)), ("mul", ("prev", 1)), ("exp", ("prev",))]}
-_REDUCE = {"dp3": 3, "dp4": 4, "dp2add": 2}
 _BY_NAME = {op.name: op for op in fxlc.OPS}
 
 
@@ -136,16 +118,16 @@ def _value(e: _Emitter, node: Any, lane: int, registers: dict[str, int]) -> tupl
     elif node.op == "uniform":
         name, row = node.key
         got = (fxlc.INPUT, 4 * (registers[name] + row) + lane)
-    elif node.op in _LANES or node.op in _SCALAR:
-        scalar = node.op in _SCALAR
+    elif node.op in OPS and OPS[node.op].fxlc:
+        scalar = OPS[node.op].shape == "scalar"
         args = []
         for a in node.args:
             src = _value(e, a.node, a.swizzle[0 if scalar else min(lane, len(a.swizzle) - 1)],
                          registers)
             args.append(e.emit("neg", [src]) if a.negate else src)
-        got = _steps(e, (_SCALAR if scalar else _LANES)[node.op], args)
-    elif node.op in _REDUCE:
-        n = _REDUCE[node.op]
+        got = _steps(e, OPS[node.op].fxlc, args)
+    elif node.op in REDUCE:
+        n = REDUCE[node.op]
         lanes = []
         for a in node.args[:2]:
             regs = [_value(e, a.node, a.swizzle[min(j, len(a.swizzle) - 1)], registers)
@@ -164,7 +146,7 @@ def _value(e: _Emitter, node: Any, lane: int, registers: dict[str, int]) -> tupl
     return got
 
 
-def _steps(e: _Emitter, steps: list[tuple[str, tuple]], args: list[tuple[int, int]]
+def _steps(e: _Emitter, steps: tuple, args: list[tuple[int, int]]
            ) -> tuple[int, int]:
     prev: tuple[int, int] | None = None
     for op, operands in steps:

@@ -16,6 +16,12 @@ Shapes:
 
 `ps1_lacks`: what ps_1_1-1_4 have no instruction for, as the X4532 refusal names it
 (codegen_ps1.py, ps1_analysis.py); ps_1_x emits the other `lanes` rows component-wise.
+
+`fxlc`: the op of one lane (of the first lane of each argument, for `scalar` rows) as scalar
+FXLC preshader instructions (fxlc_compile.py, which writes `FogDensity = a * 3` into fx_2_0):
+steps of (FXLC op, operands), an operand an argument's position, "prev" the step before, or a
+number (a literal); the last step's result is the op's. None: FXLC has no form of it (a
+`reduce` row is written as its products and sums).
 """
 from __future__ import annotations
 
@@ -32,6 +38,7 @@ class OpRow:
     reads: int = 0                    # reduce: lanes read of each of its two vector sources
     opaque: bool = False              # never folded, even over constants (reads, side effects)
     ps1_lacks: str | None = None      # ps_1_x has no instruction for it: what X4532 names
+    fxlc: tuple | None = None         # its FXLC steps (see the module's note)
 
     @property
     def folds(self) -> bool:
@@ -73,6 +80,25 @@ for _name, _lacks in {
     "texldl": "tex2Dlod", "texldd": "tex2Dgrad",
 }.items():
     OPS[_name] = replace(OPS[_name], ps1_lacks=_lacks)
+
+
+# FXLC lacks mad, abs, saturate, lrp, cnd and pow: each is built from the ops it has
+for _name, _steps in {
+    "add": (("add", (0, 1)),), "mul": (("mul", (0, 1)),), "min": (("min", (0, 1)),),
+    "max": (("max", (0, 1)),), "mov": (("mov", (0,)),), "frc": (("frc", (0,)),),
+    "slt": (("lt", (0, 1)),), "sge": (("ge", (0, 1)),), "cmp": (("cmp", (0, 1, 2)),),
+    "mad": (("mul", (0, 1)), ("add", ("prev", 2))),
+    "abs": (("neg", (0,)), ("max", (0, "prev"))),
+    "sat": (("max", (0, 0.0)), ("min", ("prev", 1.0))),
+    # lrp(a, b, c) = a * (b - c) + c
+    "lrp": (("neg", (2,)), ("add", (1, "prev")), ("mul", (0, "prev")), ("add", ("prev", 2))),
+    # cnd(a, b, c) = a > 0.5 ? b : c = cmp(0.5 - a, c, b)
+    "cnd": (("neg", (0,)), ("add", ("prev", 0.5)), ("cmp", ("prev", 2, 1))),
+    "rcp": (("rcp", (0,)),), "rsq": (("rsq", (0,)),), "exp": (("exp", (0,)),),
+    "log": (("log", (0,)),),
+    "pow": (("log", (0,)), ("mul", ("prev", 1)), ("exp", ("prev",))),
+}.items():
+    OPS[_name] = replace(OPS[_name], fxlc=_steps)
 
 
 def shaped(op: str) -> bool:
