@@ -546,8 +546,8 @@ def _texture(dim: str, variant: str):
         if s.type.kind != "sampler" or s.sampler is None:
             raise ev.error(f"X3013: tex{dim}{variant}: the first argument must be a sampler", loc)
         t = ev.ctx.target
-        if t.kind == "vs":
-            _vertex_read(ev, f"tex{dim}", variant, loc)
+        if t.kind == "vs" and not ev.ctx.host_values:   # a state expression is no shader:
+            _vertex_read(ev, f"tex{dim}", variant, loc)  # its read is not a constant (X3013)
         width = 4 if variant in ("proj", "bias", "lod") else n
         coord = list(args[1].comps)
         if len(coord) < width:
@@ -623,7 +623,8 @@ def texture_method(ev: Any, obj: Value, method: str, args: list[Value], where: A
         raise ev.error(f"'{method}' of an element of a texture array: shader models 1-3 pair "
                        f"a sampler with a texture declared on its own (Texture2D T;)", where)
     target = ev.ctx.target.name
-    if method in ("Sample", "SampleBias", "SampleGrad") and ev.ctx.target.kind == "vs":
+    if method in ("Sample", "SampleBias", "SampleGrad") and ev.ctx.target.kind == "vs" \
+            and not ev.ctx.host_values:
         # implicit derivatives exist only between pixels (shader model 4 allows Sample in
         # pixel shaders only); a vertex shader names its level: every vertex target refuses
         raise ev.error(f"X4532: cannot map expression to vertex shader instruction set: "
