@@ -271,6 +271,9 @@ class Parameter:
     # `: register(c4)` / `: register(ps, c1)` bindings as (profile, register), lower-case:
     # profile '' for every shader, else 'vs' / 'ps' or a target such as 'ps_2_0'
     registers: tuple[tuple[str, str], ...] = ()
+    # the tbuffer it is a member of (`tbuffer Bones { float4 M[60]; };`), '' for none: fxc
+    # read a texture buffer on shader model 4 only (X3546 for the models 1-3)
+    tbuffer: str = ""
 
     def __post_init__(self) -> None:
         # `Parameter(semantic="register(c4)")`, as code builds one: the binding it names

@@ -25,7 +25,7 @@ from effects.model import (Annotation, CompileShader, register_binding, Effect, 
 from effects.frontend.lexer import EffectLexer
 from effects.frontend.shapes import RawBlock, RawParam, RawState, V, int_value
 from effects.frontend.source import Preprocessed
-from effects.frontend.types import resolve_type, type_shape
+from effects.frontend.types import resolve_type, texture_element_error, type_shape
 
 __all__ = ["Builder"]
 
@@ -176,7 +176,8 @@ class Builder:
                              "of an array typedef is not supported (declare the array)", tok)
         spec = self.typedefs.get(tok.value) or resolve_type(tok.value, structs)
         if spec is None:
-            raise self.error(ParseError, f"unknown type '{tok.value}'", tok)
+            raise self.error(ParseError, texture_element_error(tok.value)
+                             or f"unknown type '{tok.value}'", tok)
         return spec
 
     def typedef(self, c: list, structs: set[str]) -> None:
@@ -204,7 +205,7 @@ class Builder:
         semantics = self.packoffset(raw)
         return Parameter(name, spec, storage, dims,
                          _semantic(semantics), self.annotations(raw.annotations), value,
-                         self.loc(raw.name), _registers(semantics))
+                         self.loc(raw.name), _registers(semantics), raw.tbuffer)
 
     def packoffset(self, raw: RawParam) -> list[str]:
         """The semantics of a declaration, a cbuffer member's `packoffset(c#)` (or

@@ -26,14 +26,15 @@ from dataclasses import replace
 from effects.base.errors import EffectError, EffectWarning, ParseError
 from effects.frontend.source import Preprocessed
 
-# Words only Direct3D 10/11 effects use: technique keywords, texture buffers, state objects,
+# Words only Direct3D 10/11 effects use: technique keywords, state objects,
 # and the pass-state functions. Case-sensitive, as HLSL keywords are. (The lower-case
 # `texture2D` is a D3D9 type too, so texture object names are not in the list.) Not in it:
-# `cbuffer`, `SamplerState` and `Texture2D.Sample`, which the later fxc (d3dcompiler_43/47)
+# `cbuffer`, `tbuffer` (whose members shader models 1-3 cannot read: X3546, at the read),
+# `SamplerState` and `Texture2D.Sample`, which the later fxc (d3dcompiler_43/47)
 # compiled in plain HLSL for vs_2_0-ps_3_0 as well (docs/guide/hlsl.md): a D3D10/11 *effect* is
 # told by its effect syntax. A `SamplerState S { Filter = ...; }` with a state block is a
 # Direct3D 10 state object (`_STATE_OBJECT`); `SamplerState S;` alone is a sampler.
-D3D10_WORDS = ("technique10", "technique11", "fxgroup", "tbuffer",
+D3D10_WORDS = ("technique10", "technique11", "fxgroup",
                "SamplerComparisonState", "BlendState", "DepthStencilState", "RasterizerState",
                "SetVertexShader", "SetPixelShader", "SetGeometryShader", "SetHullShader",
                "SetDomainShader", "SetComputeShader", "CompileShader", "ConstructGSWithSO")

@@ -60,6 +60,7 @@ _KEYWORDS = {
     "sampler_state": "SAMPLER_STATE", "stateblock_state": "STATEBLOCK_STATE",
     "struct": "STRUCT", "null": "NULL", "true": "TRUE", "false": "FALSE",
     "typedef": "TYPEDEF", "cbuffer": "CBUFFER",
+    "tbuffer": "CBUFFER",       # the same block; shapes.cbuffer marks a tbuffer's members
 }
 STORAGE_CLASSES = ("shared", "static", "uniform", "const", "extern", "volatile",
                    "row_major", "column_major", "inline")
@@ -67,7 +68,7 @@ _KEYWORDS.update({s: "STORAGE" for s in STORAGE_CLASSES})
 # ... but HLSL's own keywords are case-sensitive: `Shared`, `Static` or `Struct` is a name
 # (naga's back/hlsl/keywords.rs lists the only case-insensitive ones, with fxc's X3086 for
 # them in strict mode: asm, decl, pass, technique and the Direct3D 10 texture types)
-_EXACT_CASE = frozenset(STORAGE_CLASSES) | {"struct", "typedef", "cbuffer"}
+_EXACT_CASE = frozenset(STORAGE_CLASSES) | {"struct", "typedef", "cbuffer", "tbuffer"}
 
 # What a brace-scan skips so that a brace inside a comment or string does not count.
 _BRACE_SCAN_RE = re.compile(r'[{}]|//[^\n]*|/\*.*?(?:\*/|\Z)|"(?:[^"\\\n]|\\.)*"', re.S)
@@ -75,6 +76,11 @@ _PAREN_SCAN_RE = re.compile(r'[()]|//[^\n]*|/\*.*?(?:\*/|\Z)|"(?:[^"\\\n]|\\.)*"
 _GAP_RE = re.compile(r"(?:\s+|//[^\n]*|/\*.*?\*/)*", re.S)
 # `matrix<float, 4, 3>` / `vector<float, 3>`: one type-name token, written without blanks.
 _TEMPLATE_RE = re.compile(r"<\s*([A-Za-z_][A-Za-z0-9_]*)\s*(?:,\s*([0-9]+)\s*)?(?:,\s*([0-9]+)\s*)?>")
+# `Texture2D<float4>`: the later fxc's texture with its element type (types.texture_element),
+# one type-name token. One name between the brackets, so an annotation block (`Texture2D T <
+# string ResourceName = "x.png"; >`: a type, a name, `=`) is never read as one.
+_TEXTURE_TEMPLATE_RE = re.compile(r"<\s*([A-Za-z_][A-Za-z0-9_]*)\s*>")
+_TEXTURE_KINDS = frozenset({"texture1d", "texture2d", "texture3d", "texturecube"})
 # `(float4)`, `(int)`: a cast to a numeric type, read as one token when a value follows.
 _CAST_RE = re.compile(r"\(\s*((?:bool|int|uint|half|float|double|dword)(?:[1-4](?:x[1-4])?)?)\s*\)"
                       r"(?=(?:\s|//[^\n]*\n|/\*.*?\*/)*[-+!~0-9.({A-Za-z_])", re.S | re.I)
@@ -201,6 +207,10 @@ class EffectLexer:
                         (t := _TEMPLATE_RE.match(text, _GAP_RE.match(text, end).end())):
                     end = t.end()
                     value = f"{value}<{','.join(g for g in t.groups() if g)}>"
+                elif low in _TEXTURE_KINDS and \
+                        (t := _TEXTURE_TEMPLATE_RE.match(text, _GAP_RE.match(text, end).end())):
+                    end = t.end()
+                    value = f"{value}<{t.group(1)}>"
                 elif low == "asm" or low == "decl":
                     gap = _GAP_RE.match(text, end).end()
                     if text.startswith("{", gap):

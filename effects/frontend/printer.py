@@ -92,7 +92,9 @@ def _parameter(p: Parameter) -> str:
         text += " = " + format_value(p.value, 0).replace("sampler_state", "stateblock_state", 1)
     elif p.value is not None:
         text += " = " + _initializer(p.value, 0)
-    return text + ";"
+    # a tbuffer's member in a block of its own (the file's members of one tbuffer read back
+    # as the same parameters)
+    return f"tbuffer {p.tbuffer} {{ {text}; }};" if p.tbuffer else text + ";"
 
 
 def _annotations(annotations: list[Annotation], level: int) -> str:

@@ -56,11 +56,13 @@ class RawBlock:
 
 
 class RawParam:
-    __slots__ = ("storage", "type", "name", "dims", "semantic", "annotations", "value")
+    __slots__ = ("storage", "type", "name", "dims", "semantic", "annotations", "value",
+                 "tbuffer")
 
     def __init__(self, *fields: Any) -> None:
         (self.storage, self.type, self.name, self.dims, self.semantic, self.annotations,
          self.value) = fields
+        self.tbuffer = ""          # the tbuffer it is declared in (Parameter.tbuffer)
 
 
 INT_SUFFIX = "uUlL"
@@ -205,7 +207,13 @@ class Shapes(Transformer):
     def func_def(self, c): return ("function", c)
     def func_decl(self, c): return c[-1]   # the ';': `items` keeps nothing for it
     def struct_def(self, c): return ("struct", c)
-    def cbuffer(self, c): return c[4]     # its members' declarators, as `items` takes a list
+    def cbuffer(self, c):
+        """Its members' declarators, as `items` takes a list; a tbuffer's know its name."""
+        if c[0].value == "tbuffer":
+            for raw in c[4]:
+                if isinstance(raw, RawParam):
+                    raw.tbuffer = c[1].value
+        return c[4]
 
     def struct_vars(self, c):
         """`struct S { ... } a, b = { ... };`: the struct (its text ends at its body), then a

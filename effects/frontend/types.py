@@ -6,12 +6,14 @@ import re
 from effects.base import caches
 from effects.model import TypeSpec
 
-__all__ = ["type_shape", "resolve_type"]
+__all__ = ["type_shape", "resolve_type", "texture_element", "texture_element_error"]
 
 _NUMERIC_RE = re.compile(r"(bool|int|uint|half|float|double|dword)([1-4])?(?:x([1-4]))?")
 _BASE_OF = {"bool": "bool", "int": "int", "uint": "dword", "half": "half", "float": "float",
             "double": "float", "dword": "dword"}
 _TEMPLATE_RE = re.compile(r"(?:matrix|vector)<([a-z]+)(?:,([1-4]))?(?:,([1-4]))?>")
+# `Texture2D<float4>`: the later fxc's texture with the type its reads return
+_TEXTURE_TEMPLATE_RE = re.compile(r"(texture1d|texture2d|texture3d|texturecube)<([a-z0-9_]+)>")
 _OBJECT_TYPES = {
     "string": ("string", ""), "texture": ("texture", ""), "texture1d": ("texture", "1D"),
     "texture2d": ("texture", "2D"), "texture3d": ("texture", "3D"),
@@ -72,6 +74,12 @@ def _built_in(name: str) -> TypeSpec | None:
         if spec is None or not spec.is_numeric:
             return None
         return TypeSpec(spec.base, spec.rows, spec.cols, spelling=spelled)
+    texture = _TEXTURE_TEMPLATE_RE.fullmatch(low)
+    if texture:
+        if texture_element_error(name) is not None:
+            return None
+        base, dim = _OBJECT_TYPES[texture.group(1)]
+        return TypeSpec(base, dim=dim, spelling=name)
     if low == "vector":
         return TypeSpec("float", 1, 4, spelling=name)
     if low == "matrix":
@@ -87,3 +95,30 @@ def _built_in(name: str) -> TypeSpec | None:
         return TypeSpec(base, dim=dim, spelling=name)
     return None
 
+
+
+def texture_element(spec: TypeSpec) -> TypeSpec | None:
+    """The type a `Texture2D<float2>`'s reads return (float2), or None for a texture declared
+    without one (its reads return float4) and for every other type."""
+    m = _TEXTURE_TEMPLATE_RE.fullmatch(spec.spelling.lower()) if spec.base == "texture" else None
+    return _built_in(spec.spelling[spec.spelling.index("<") + 1:-1]) if m else None
+
+
+def texture_element_error(name: str) -> str | None:
+    """Why `name`, a texture with a template argument (`Texture2D<float4x4>`), is no type, as
+    the later fxc refused it (its error list: X3124 an object element type, X3521 a return type
+    over four components), or None when it is one or is not such a texture."""
+    m = _TEXTURE_TEMPLATE_RE.fullmatch(name.lower())
+    if m is None:
+        return None
+    argument = name[name.index("<") + 1:-1]
+    element = _built_in(argument)
+    if element is not None and element.is_object:
+        return f"X3124: '{name}': object element type cannot be an object type"
+    if element is None or not element.is_numeric:
+        return (f"unknown type '{argument}' in '{name}' (a texture's element type is a scalar, "
+                f"vector or matrix type: float4, float, int2 ...)")
+    if element.rows * element.cols > 4:
+        return (f"X3521: '{name}': the return type of a texture cannot exceed four components "
+                f"('{argument}' has {element.rows * element.cols})")
+    return None

@@ -115,8 +115,8 @@ def blocks_65_deep(d):
 
 @case
 def ifs_30_deep(d):
-    # 30 ifs, each with its block: 60 levels of 64; the 30 additions of 1 under one
-    # predicate (uv.x > 0) are one select: cmp of uv.x + 30
+    # 30 ifs, each with its block: 60 levels of 64; one addition under the same predicate
+    # (uv.x > 0) thirty times over is one select: cmp between uv.x and uv.x + 1
     return compiled("float s = uv.x; " + "if (s > 0) {" * 30 + "s += 1;" + "}" * 30 +
                     " return s;")
 

@@ -40,7 +40,8 @@ EXPECTED: dict[str, tuple[str, str]] = {
     "casts_and_swizzles_1000_deep": ("value", "def c0, 0, 0, 0, 1 | dcl t0.xy | mov r0.xy, t0 | "
                                               "mov r0.zw, c0"),          # 500 swaps: uv
     "initializer_braces_1000_deep": ("value", "def c0, 1, 2, 3, 4"),
-    "ifs_30_deep": ("value", "cmp r0.x, -t0, c0.x, c0.y"),
+    "ifs_30_deep": ("value", "'def c0, 1, 0, 0, 0 | dcl t0.xy | add r0.x, t0, c0.x | "
+                             "cmp r0.x, -t0, t0, r0 | mov oC0, r0.x'"),
     "call_chain_30_deep": ("value", "'dcl t0.xy | mov oC0, t0.x'"),
     "l_value_1000_swizzles_deep": ("value", "def c0, 3, 0, 0, 0"),
     "chained_initializers_500": ("value", "0.49925"),                  # (0.25 + 499) / 1000

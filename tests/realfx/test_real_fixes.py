@@ -174,7 +174,7 @@ def test_technique11_is_named_where_it_starts():
 
 
 @pytest.mark.parametrize("text, where, word", [
-    ("tbuffer tb\n{\n float4x4 W;\n};\n", "1:1", "tbuffer"),
+    ("fxgroup g\n{\n technique11 T { pass P { } }\n}\n", "1:1", "fxgroup"),
     ("texture2D t;\nSamplerState S\n{\n Filter = MIN_MAG_MIP_LINEAR;\n};\n", "2:1", "SamplerState"),
     ("BlendState B { BlendEnable[0] = FALSE; };", "1:1", "BlendState"),
 ])
@@ -190,7 +190,7 @@ def test_an_error_before_any_direct3d10_word_is_reported_as_it_was():
     assert str(err.value).startswith("<string>:1:") and "Direct3D 10" not in str(err.value)
     # a word in a string is not syntax
     with pytest.raises(ParseError) as err:
-        effects.load_effect('string s = "tbuffer";\nfloat4 a = ;\n')
+        effects.load_effect('string s = "BlendState";\nfloat4 a = ;\n')
     assert "Direct3D 10" not in str(err.value)
 
 

@@ -43,6 +43,14 @@ class _Checker(PS1Rules):
         self.errors: list[AsmError] = []
         self.out_of_range: set[str] = set()   # registers already reported: once each
         self.written: set[tuple[str, int | None]] = set()
+        # a pixel shader's temporaries by component: the reference's rule for them ("If a
+        # temporary register uses components that are not defined in previous code, shader
+        # validation will fail": the ps temporary register page), from ps_2_0, where a
+        # sampler's dcl says which coordinate components a read takes. A vertex shader's page
+        # asks only that the register be written first; ps_1_x keeps that too (a ps_1_4
+        # texld r(n), r(n) after bem takes what its stage's texture needs, which no dcl names)
+        self.written_lanes: dict[tuple[str, int | None], set[int]] = {}
+        self.by_component = program.kind == "ps" and self.rules.major >= 2
         self.written_phase: dict[tuple[str, int | None], int] = {}
         # asked for every source: the declared registers (AsmProgram.declaration's answer, the
         # first declaration of each), and whether this vertex shader declares its inputs
@@ -471,9 +479,19 @@ class _Checker(PS1Rules):
         reported: set[str] = set()
         for s in reads:
             key = (s.kind, s.index)
-            if key not in self.written and s.name not in reported:
+            if s.name in reported:
+                continue
+            if key not in self.written:
                 reported.add(s.name)
                 self.err(f"{s.name} is read before it is written", s.location)
+            elif self.by_component and s.kind == "r":
+                missing = sorted(self._lanes_read(ins, s) - self.written_lanes.get(key, set()))
+                if missing:
+                    reported.add(s.name)
+                    have = "".join("xyzw"[c] for c in sorted(self.written_lanes[key]))
+                    self.err(f"{s.name}.{''.join('xyzw'[c] for c in missing)} is read before "
+                             f"it is written (only {s.name}.{have} is written before here)",
+                             s.location)
         if self.p.kind == "ps" and self.rules.major >= 2:
             for s in ins.srcs:
                 if s.kind in ("t", "v", "s") and (s.kind, s.index) not in self.declared \
@@ -490,11 +508,40 @@ class _Checker(PS1Rules):
                     self.err(f"{s.name} is read but not declared (by a dcl_usage or the "
                              f"decl{{}} block)", s.location)
 
+    def _lanes_read(self, ins: Instruction, s: Operand) -> set[int]:
+        """The components of register `s`, a source of `ins` (or the register texkill and
+        texdepth name in the dst slot), that the instruction reads (its row's `reads`)."""
+        k = next((i for i, x in enumerate(ins.srcs) if x is s), -1)
+        if k < 0:
+            # the register texkill and texdepth name in the dst slot: texkill's a.xyz,
+            # texdepth's r5.xy
+            return {0, 1} if ins.opcode == "texdepth" else {0, 1, 2}
+        info = ins.info
+        roles = info.source_roles
+        if k < len(roles) and roles[k] == "x":
+            return {s.swizzle[3]}
+        rule = info.reads[k] if k < len(info.reads) else ""
+        if rule.startswith("coord"):
+            sampler = ins.srcs[1] if len(ins.srcs) > 1 else None
+            d = self.p.declaration("s", sampler.index) if sampler is not None else None
+            n = 2 if d is not None and d.sampler_type == "2d" else 3
+            lanes = list(range(n)) + ([3] if rule == "coord+w" else [])
+        elif rule:
+            lanes = ["xyzw".index(c) for c in rule]
+        elif ins.dst is not None:
+            lanes = list(ins.dst.components)
+        else:                       # if_gt r0.x, c0.x; break_ne: the lanes the swizzle names
+            lanes = [0, 1, 2, 3]
+        return {s.swizzle[c] for c in lanes}
+
     def _record_write(self, ins: Instruction) -> None:
         if ins.dst is None or ins.opcode in ("texkill", "texdepth"):
             return
         key = (ins.dst.kind, ins.dst.index)
         self.written.add(key)
+        # a texld writes all four components (a write mask on one is refused on its own)
+        lanes = (0, 1, 2, 3) if ins.opcode.startswith("texld") else ins.dst.components
+        self.written_lanes.setdefault(key, set()).update(lanes)
         if ins.phase is not None:
             self.written_phase.setdefault(key, ins.phase)
 

@@ -94,6 +94,12 @@ class InstrInfo:
     dst_kinds: tuple[str, ...] | None = None           # narrows the version's writable kinds
     src_kinds: tuple[tuple[str, ...] | None, ...] = ()  # per source; None = version default
     writes: str = ""               # components written when fixed ('xyz' for m3x3); '' = mask
+    # per source, the components it reads ('xyz' for dp3's); '' (or none given): the lanes the
+    # instruction writes, through the swizzle; 'coord': a texture coordinate's, by its
+    # sampler's dcl (2d: xy; cube, volume: xyz), 'coord+w' with .w (projection, bias, level).
+    # A scalar source (role x) reads the swizzle's last lane. The checker's per-component
+    # reads-before-writes (check.py) ask it.
+    reads: tuple[str, ...] = ()
     modifiers: bool = True         # takes instruction modifiers (_sat, _x2 ...)
     lowers: Lowers = NotLowered("not lowered yet")
     matrix_rows: int = 0           # m4x4 r0, v0, c4 reads c4..c7: 4
@@ -183,10 +189,11 @@ _ARITH = [
     _row("nop", 0, PS_ALL | VS, "", "arith", "nothing", slot_overrides=tuple(
         (v, 0) for v in sorted(PS1.names)), lowers=NO_CODE),
     _row("dp3", 8, PS_ALL | VS, "dss", "arith", "d = a.x*b.x + a.y*b.y + a.z*b.z (replicated)",
-         lowers=_ir("dp3")),
+         reads=("xyz", "xyz"), lowers=_ir("dp3")),
     _row("dp4", 9, PS12_13 | PS14 | PS2UP | VS, "dss", "arith",
          "d = a.x*b.x + a.y*b.y + a.z*b.z + a.w*b.w (replicated)",
-         slot_overrides=(("ps_1_2", 2), ("ps_1_3", 2)), lowers=_ir("dp4")),
+         slot_overrides=(("ps_1_2", 2), ("ps_1_3", 2)), reads=("xyzw", "xyzw"),
+         lowers=_ir("dp4")),
     # 2 slots in ps_2_0 and up by the reference; fxc counted 1 there: an HLSL Shader Compiler
     # 9.26.952.2844 ps_3_0 listing of 64 arithmetic instructions (2 pow, 1 nrm, 2 lrp) says
     # "70 arithmetic" = 64 + 2*2 (pow) + 2 (nrm) + 0 (lrp); issue 31 read the same from
@@ -205,7 +212,7 @@ _ARITH = [
          "d.r = a.r + M00(n)*b.r + M10(n)*b.g; d.g = a.g + M01(n)*b.r + M11(n)*b.g "
          "(n = destination register number, M = D3DTSS_BUMPENVMAT of stage n)",
          slots=2, dst_kinds=R, writes="xy",
-         lowers=Rewrite(rw.BEM, dst_uniform=("bumpenv", "bumpenv"))),
+         reads=("xy", "xy"), lowers=Rewrite(rw.BEM, dst_uniform=("bumpenv", "bumpenv"))),
     _row("min", 10, PS2UP | VS, "dss", "arith", "d = min(a, b) per component",
          lowers=_ir("min")),
     _row("max", 11, PS2UP | VS, "dss", "arith", "d = max(a, b) per component",
@@ -236,24 +243,25 @@ _ARITH = [
     _row("lit", 16, VS, "ds", "arith",
          "d = (1, max(a.x, 0), a.x > 0 ? max(a.y, 0)^clamp(a.w, -128, 128) : 0, 1)",
          slot_overrides=(("vs_2_0", 3), ("vs_2_x", 3), ("vs_2_a", 3), ("vs_3_0", 3)),
-         lowers=Rewrite(rw.LIT)),
-    _row("dst", 17, VS, "dss", "arith", "d = (1, a.y*b.y, a.z, b.w)", lowers=Rewrite(rw.DST)),
+         reads=("xyw",), lowers=Rewrite(rw.LIT)),
+    _row("dst", 17, VS, "dss", "arith", "d = (1, a.y*b.y, a.z, b.w)", reads=("yz", "yw"),
+         lowers=Rewrite(rw.DST)),
     _row("m3x2", 24, PS2UP | VS, "dss", "arith", "d.x = dp3(a, b[0]); d.y = dp3(a, b[1])",
-         slots=2, writes="xy", lowers=_ir("dp3"), matrix_rows=2),
+         slots=2, writes="xy", reads=("xyz", "xyz"), lowers=_ir("dp3"), matrix_rows=2),
     _row("m3x3", 23, PS2UP | VS, "dss", "arith", "d.i = dp3(a, b[i]) for i = 0..2 (b[i] = b + i)",
-         slots=3, writes="xyz", lowers=_ir("dp3"), matrix_rows=3),
+         slots=3, writes="xyz", reads=("xyz", "xyz"), lowers=_ir("dp3"), matrix_rows=3),
     _row("m3x4", 22, PS2UP | VS, "dss", "arith", "d.i = dp3(a, b[i]) for i = 0..3", slots=4,
-         writes="xyzw", lowers=_ir("dp3"), matrix_rows=4),
+         writes="xyzw", reads=("xyz", "xyz"), lowers=_ir("dp3"), matrix_rows=4),
     _row("m4x3", 21, PS2UP | VS, "dss", "arith", "d.i = dp4(a, b[i]) for i = 0..2", slots=3,
-         writes="xyz", lowers=_ir("dp4"), matrix_rows=3),
+         writes="xyz", reads=("xyzw", "xyzw"), lowers=_ir("dp4"), matrix_rows=3),
     _row("m4x4", 20, PS2UP | VS, "dss", "arith", "d.i = dp4(a, b[i]) for i = 0..3", slots=4,
-         writes="xyzw", lowers=_ir("dp4"), matrix_rows=4),
+         writes="xyzw", reads=("xyzw", "xyzw"), lowers=_ir("dp4"), matrix_rows=4),
     _row("abs", 35, PS2UP | VS2UP, "ds", "arith", "d = |a|", lowers=_ir("abs", "a")),
     _row("crs", 33, PS2UP | VS2UP, "dss", "arith", "d.xyz = cross(a.xyz, b.xyz)", slots=2,
-         lowers=_ir("crs")),
+         reads=("xyz", "xyz"), lowers=_ir("crs")),
     # nrm and pow: the reference's 3 slots, which fxc's listings count too (the lrp row's)
     _row("nrm", 36, PS2UP | VS2UP, "ds", "arith", "d = a / length(a.xyz)", slots=3,
-         lowers=_ir("nrm", "a")),
+         reads=("xyz",), lowers=_ir("nrm", "a")),
     _row("pow", 32, PS2UP | VS2UP, "dxx", "arith", "d = |a|^b (replicated)", slots=3,
          lowers=_ir("pow")),
     _row("sgn", 34, VS2UP, "dsss", "arith", "d = sign(a) per component (b, c: scratch temps)",
@@ -264,7 +272,7 @@ _ARITH = [
     _row("sincos", 37, PS3 | VS3, "dx", "arith", "d.x = cos(a), d.y = sin(a)", slots=8,
          lowers=Rewrite(rw.SINCOS)),
     _row("dp2add", 90, PS2UP, "dssx", "arith", "d = a.x*b.x + a.y*b.y + c (replicated)", slots=2,
-         lowers=Rewrite(rw.DP2ADD)),
+         reads=("xy", "xy"), lowers=Rewrite(rw.DP2ADD)),
     _row("mova", 46, VS2UP, "ds", "arith", "a0 = round_half_away_from_zero(a)",
          dst_kinds=("a",), lowers=Rewrite(rw.MOVA)),
     _row("dsx", 91, PS2X | PS3, "ds", "arith", "d = d(a)/dx (screen-space gradient)", slots=2,
@@ -327,18 +335,20 @@ _TEXTURE = [
     _row("texkill", 65, PS14, "d", "tex", "discard if any of a.xyz < 0", dst_kinds=TR,
          modifiers=False, lowers=Handler(tx.texkill)),
     _row("texkill", 65, PS2, "s", "tex", "discard if any of a.xyzw < 0", src_kinds=(TR,),
-         modifiers=False, lowers=Handler(tx.texkill)),
+         modifiers=False, reads=("xyzw",), lowers=Handler(tx.texkill)),
     _row("texkill", 65, PS3, "s", "tex", "discard if any of a.xyzw < 0", modifiers=False,
-         lowers=Handler(tx.texkill)),
+         reads=("xyzw",), lowers=Handler(tx.texkill)),
     _row("texld", 66, PS14, "ds", "tex",
          "r(n) = sample(stage n, a.xyz) (a = t# coordinates or, in phase 2, r# dependent)",
-         dst_kinds=R, src_kinds=(TR,), modifiers=False, lowers=Handler(tx.texld)),
+         dst_kinds=R, src_kinds=(TR,), modifiers=False, reads=("xyz",),
+         lowers=Handler(tx.texld)),
     _row("texcrd", 64, PS14, "ds", "tex", "r(n) = texcoord a (unclamped; .w undefined)",
          dst_kinds=R, src_kinds=(T,), lowers=Handler(tx.texcrd)),
     _row("texdepth", 87, PS14, "d", "tex", "depth = (r5.g == 0) ? 1 : sat(r5.r / r5.g)",
          dst_kinds=R, modifiers=False, lowers=Handler(tx.texdepth)),
     *[_row(name, 66, versions, "dsS", "tex", formula, control=control, dst_kinds=R,
-           src_kinds=(coords, S), lowers=Handler(partial(tx.texld, **flags)), gradient=True)
+           src_kinds=(coords, S), lowers=Handler(partial(tx.texld, **flags)), gradient=True,
+           reads=("coord" if name == "texld" else "coord+w",))
       # ps_2_x reads coordinates from t# or r#; ps_3_0 from any readable register (v#, r# ...)
       for versions, coords in ((PS2, TR), (PS3, None))
       # one opcode, D3DSIO_TEX; bits 16-17 of the token say projected (1) or biased (2)
@@ -347,9 +357,10 @@ _TEXTURE = [
           ("texldp", "d = sample(sampler b, a.xyz / a.w)", {"proj": True}, 1),
           ("texldb", "d = sample(sampler b, a.xyz, lod bias a.w)", {"bias": True}, 2))],
     _row("texldd", 93, PS2X | PS3, "dsSss", "tex", "d = sample(sampler b, a, ddx = c, ddy = e)",
-         slots=3, dst_kinds=R, src_kinds=(None, S), lowers=Handler(tx.texldd)),
+         slots=3, dst_kinds=R, src_kinds=(None, S), reads=("coord", "", "coord", "coord"),
+         lowers=Handler(tx.texldd)),
     _row("texldl", 95, PS3 | VS3, "dsS", "tex", "d = sample(sampler b, a.xyz, lod a.w)", slots=2,
-         src_kinds=(None, S), lowers=Handler(partial(tx.texld, lod=True))),
+         src_kinds=(None, S), reads=("coord+w",), lowers=Handler(partial(tx.texld, lod=True))),
 ]
 
 _FLOW = [

@@ -47,6 +47,9 @@ class Operand:
     modifier: str | None = None            # 'bias' 'bx2' 'x2' 'invert' 'dz' 'dw' 'abs'
     relative: RelativeAddress | None = None
     value: float | bool | None = None      # literal operands (def, defi, defb)
+    # a source the HLSL compiler's generators made, before legalize.source_swizzle chose its
+    # swizzle: instruction lane -> register lane read (None: `swizzle` says, as written)
+    lanes: dict[int, int] | None = field(default=None, compare=False, repr=False)
 
     @property
     def name(self) -> str:

@@ -1,5 +1,5 @@
 """The one register allocator of the HLSL compiler's code generators (codegen.py for vs_1_1 -
-ps_3_0, codegen_ps1.py for ps_1_x): virtual temporaries (`Reg('vr', n)`) onto r0, r1 ...
+ps_3_0, codegen_ps1.py for ps_1_x): virtual temporaries (kind 'vr', records.py) onto r0, r1 ...
 
 A temporary lives from the first instruction that names it to the last. Pinned temporaries
 (ps_1_x's result in r0, a ps_1_4 texld in its stage's register, a cnd condition in r0.a) take
@@ -54,8 +54,7 @@ def live_ranges(instrs: list[Any]) -> tuple[dict[int, int], dict[int, int]]:
         if d is not None and d.kind == "vr":
             first.setdefault(d.index, i)
             last[d.index] = i
-        for s in ins.srcs:
-            r = s.reg
+        for r in ins.srcs:
             if r.kind == "vr":
                 first.setdefault(r.index, i)
                 last[r.index] = i

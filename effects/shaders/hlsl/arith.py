@@ -376,8 +376,15 @@ class Arith:
         if node.op == "mul" and node.width == 1:
             x, y = node.args
             if self._is_flag(x) or self._is_flag(y):
-                inner = self.select([y] * len(cond), a, b, loc, unfold=True)
-                return self.select([x] * len(cond), inner, b, loc, unfold=True)
+                # each distinct factor once: nested `if`s on one condition multiply its flag
+                # by itself, and selecting twice on a compare is selecting once
+                factors: dict[Any, Operand] = {}
+                for f in self._factors(p):
+                    factors.setdefault(f.sig(), f)
+                out = a
+                for f in reversed(list(factors.values())):
+                    out = self.select([f] * len(cond), out, b, loc, unfold=True)
+                return out
         if node.op == "max" and node.width == 1 and self._is_flag(p):
             # `p or q` (a function's 'returned' after two returns): the outer select on p,
             # the inner on q, as fxc writes `if (p) return a; if (q) return b; return c;`
@@ -385,6 +392,14 @@ class Arith:
             inner = self.select([y] * len(cond), a, b, loc, unfold=True)
             return self.select([x] * len(cond), a, inner, loc, unfold=True)
         return None
+
+    @staticmethod
+    def _factors(p: Operand) -> list[Operand]:
+        """The factors of a product of scalars (`p` itself where it is no product)."""
+        node = p.node
+        if p.negate or node.op != "mul" or node.width != 1:
+            return [p]
+        return [f for x in node.args for f in Arith._factors(x)]
 
     def _is_flag(self, p: Operand) -> bool:
         """A 0/1 scalar that compare() made (cmp(d, 1, 0) or cmp(d, 0, 1)), or `not` of one,

@@ -23,14 +23,15 @@ from effects.base.errors import Location
 from effects.shaders.asm.versions import IDENTITY
 from effects.shaders.hlsl.context import Context
 from effects.shaders.hlsl.constant_layout import free_run
-from effects.shaders.hlsl.asmcode import Instr, Output, Reg, Src
-from effects.shaders.hlsl.dag import SHAPED, Node, Operand
+from effects.shaders.asm.program import Instruction, Operand as Register, RelativeAddress
+from effects.shaders.hlsl.dag import SHAPED, Node, Operand, Output
 from effects.shaders.hlsl.flowcode import emit_block, emit_if, emit_kill, emit_loop, needed, place
 from effects.shaders.hlsl.fusion import fuse_lrp, fuse_mad, pack_scalars, share_lit_diffuse
 from effects.shaders.hlsl.legalize import _choose, code_of, legalize
 from effects.shaders.hlsl.liveness import LiveLanes, analyse
 from effects.shaders.hlsl.ops import LANEWISE, OPS, REDUCE, SCALAR, TEXTURE, shaped
 from effects.shaders.hlsl.peephole import optimise
+from effects.shaders.hlsl.records import fix, fixed, instruction, read, reg as register, temp
 from effects.shaders.hlsl.writer import Code
 
 # how each op is emitted: the op table's rows (ops.py)
@@ -46,8 +47,8 @@ class CodeGen:
         self.rules = ctx.target.rules
         self.inputs = inputs                     # input key -> dcl line
         self.outputs = outputs
-        self.instrs: list[Instr] = []
-        self.home: dict[int, tuple[Reg, dict[int, int]]] = {}
+        self.instrs: list[Instruction] = []
+        self.home: dict[int, tuple[Register, dict[int, int]]] = {}
         self.next_vr = 0
         self.const_regs = dict(constant_registers)
         self.register_sizes = register_sizes
@@ -60,23 +61,23 @@ class CodeGen:
         self._open: list[int] = []
         self._row_of: dict[tuple[float, ...], int] = {}
         self._low = 0                  # every register below it is taken (taken only grows)
-        self.loop_regs: dict[int, list[Reg]] = {}       # loop id -> carried registers
-        self.if_regs: dict[int, list[Reg]] = {}         # if id -> result registers
+        self.loop_regs: dict[int, list[Register]] = {}  # loop id -> carried registers
+        self.if_regs: dict[int, list[Register]] = {}    # if id -> result registers
         self.a0: dict[int, tuple] | None = None         # a0 lane -> the address it holds
         self.addresses: list[tuple] = []                # relative reads' addresses (generate)
         self._address_of: dict[tuple, Operand] = {}
         self.live: LiveLanes | None = None              # write-mask liveness (liveness.py)
 
     # -- registers --------------------------------------------------------------------------
-    def temp(self) -> Reg:
+    def temp(self) -> Register:
         self.next_vr += 1
-        return Reg("vr", self.next_vr - 1)
+        return temp(self.next_vr - 1)
 
-    def uniform_reg(self, name: str, offset: int) -> Reg:
+    def uniform_reg(self, name: str, offset: int) -> Register:
         if name not in self.const_regs:
             start = self._free_constant(self.register_sizes.get(name, 1))
             self.const_regs[name] = start
-        return Reg("c", self.const_regs[name] + offset)
+        return register("c", self.const_regs[name] + offset)
 
     def _taken(self) -> set[int]:
         taken = set(self.defs) | self.ctx.reserved_constants
@@ -90,14 +91,14 @@ class CodeGen:
             self._low = k
         return k
 
-    def const_src(self, values: list[float]) -> Src:
+    def const_src(self, values: list[float]) -> Register:
         """A `def` constant holding `values` (one per instruction lane used): a lane already
         holding a single value, else a free lane of a scalar pool register, else a new one."""
         if len(set(values)) == 1:
             v = values[0]
             hit = self._lane_of.get(v)
             if hit is not None:                          # a lane already holding it
-                return Src(Reg("c", hit[0]), {}, fixed=(hit[1],) * 4)
+                return fixed(register("c", hit[0]), (hit[1],) * 4)
             while self._open:                            # a free lane of a pool register
                 reg = self._open[0]
                 slots = self.defs[reg]
@@ -107,22 +108,22 @@ class CodeGen:
                 lane = slots.index(None)
                 slots[lane] = v
                 self._lane_of.setdefault(v, (reg, lane))
-                return Src(Reg("c", reg), {}, fixed=(lane,) * 4)
+                return fixed(register("c", reg), (lane,) * 4)
             reg = self._free_constant(1)
             self.defs[reg] = [v, None, None, None]
             self._lane_of.setdefault(v, (reg, 0))
             self._open.append(reg)
-            return Src(Reg("c", reg), {}, fixed=(0,) * 4)
+            return fixed(register("c", reg), (0,) * 4)
         want = tuple(values) + (values[-1],) * (4 - len(values))
         reg = self._row_of.get(want)
         if reg is not None:
-            return Src(Reg("c", reg), {}, fixed=IDENTITY)
+            return fixed(register("c", reg), IDENTITY)
         reg = self._free_constant(1)
         self.defs[reg] = list(want)
         self._row_of[want] = reg
         for lane, x in enumerate(want):
             self._lane_of.setdefault(x, (reg, lane))
-        return Src(Reg("c", reg), {}, fixed=IDENTITY)
+        return fixed(register("c", reg), IDENTITY)
 
     # -- analysis ---------------------------------------------------------------------------
     def reachable(self) -> list[Node]:
@@ -156,28 +157,29 @@ class CodeGen:
                          lambda lanes: _choose(lanes, rule) is not None)
 
     # -- emission ---------------------------------------------------------------------------
-    def place(self, op: Operand, lanes: list[int], reduce: bool = False) -> Src:
+    def place(self, op: Operand, lanes: list[int], reduce: bool = False) -> Register:
         """A source reading operand lanes: instruction lane i reads op lane i (or, for
         reductions, source lanes 0..k-1)."""
         node = op.node
         if node.op == "const":
             vals = [node.value[op.swizzle[i]] * (-1 if op.negate else 1) for i in lanes]  # type: ignore[index]
             src = self.const_src([float(v) for v in vals])
-            if src.fixed is not None and len(set(vals)) > 1:
+            if src.lanes is None and len(set(vals)) > 1:
                 src.lanes = {i: k for k, i in enumerate(lanes)}
-                src.fixed = None
             return src
         reg, where = self.home[node.id]
-        return Src(reg, {i: where[op.swizzle[i]] for i in lanes}, op.negate)
+        return read(reg, {i: where[op.swizzle[i]] for i in lanes}, op.negate)
 
-    def home_of(self, node: Node) -> tuple[Reg, dict[int, int]]:
+    def home_of(self, node: Node) -> tuple[Register, dict[int, int]]:
         if node.id not in self.home:
             self.home[node.id] = (self.temp(), {c: c for c in range(node.width)})
         return self.home[node.id]
 
-    def emit(self, opcode: str, dst: Reg | None, mask: tuple[int, ...], srcs: list[Src],
-             loc: Location, sampler: str | None = None, saturate: bool = False) -> None:
-        self.instrs.append(Instr(opcode, dst, mask, srcs, loc, saturate, sampler))
+    def emit(self, opcode: str, dst: Register | None, mask: tuple[int, ...],
+             srcs: list[Register], loc: Location, sampler: str | None = None,
+             saturate: bool = False) -> None:
+        self.instrs.append(instruction(opcode, dst, mask, srcs, self.target.name, loc, saturate,
+                                       sampler))
 
     def generate(self) -> Code:
         """The generator's passes in order (compiler.py runs them one by one)."""
@@ -215,7 +217,7 @@ class CodeGen:
         """peephole.py's rewrites of the emitted instructions: what each removed."""
         return optimise(self)
 
-    def _move(self, reg: Reg, value: Operand, loc: Location) -> None:
+    def _move(self, reg: Register, value: Operand, loc: Location) -> None:
         lanes = [(c, c) for c in range(value.width)]
         self.emit("mov", reg, tuple(range(value.width)), [self._lanewise(value, lanes)], loc)
 
@@ -226,16 +228,16 @@ class CodeGen:
                 continue
             reg = self.home_of(p)[0]
             self._coalesce_into(p.args, reg, p.location, lambda lane: lane, shared=True)
-        self.out_regs: dict[str, Reg] = {}
+        self.out_regs: dict[str, Register] = {}
         for o in self.outputs:
             # vertex shaders compute straight into the output; oC# and oDepth take a mov
-            reg = Reg(*_split_reg(o.register)) if self.target.kind == "vs" else self.temp()
+            reg = register(*_split_reg(o.register)) if self.target.kind == "vs" else self.temp()
             self.out_regs[o.register] = reg
             self._coalesce_into(tuple(o.comps), reg, o.location, lambda lane: lane,
                                 shared=reg.kind == "vr")
         self._gather_loose()
 
-    def _coalesce_into(self, comps: tuple[Operand, ...], reg: Reg, loc: Location, lane_of,
+    def _coalesce_into(self, comps: tuple[Operand, ...], reg: Register, loc: Location, lane_of,
                        shared: bool = False) -> None:
         """Give the nodes that make `comps` their lanes of `reg` as home, so they compute in
         place. `shared`: `reg` is a temporary, which other instructions can read too, so a
@@ -286,7 +288,7 @@ class CodeGen:
         if op == "const":
             return
         if op == "input":
-            self.home[n.id] = (Reg(*_split_reg(n.key[1])), {c: c for c in range(4)})
+            self.home[n.id] = (register(*_split_reg(n.key[1])), {c: c for c in range(4)})
             return
         if op == "uniform":
             self.home[n.id] = (self.uniform_reg(*n.key), {c: c for c in range(4)})
@@ -296,7 +298,8 @@ class CodeGen:
             return
         if op == "uniform_al":               # c[aL + n], read where it is used (flowcode.py)
             base = self.uniform_reg(*n.key).index
-            self.home[n.id] = (Reg("c_al", base), {c: c for c in range(4)})
+            self.home[n.id] = (register("c", base, RelativeAddress("aL", 0, 0)),
+                               {c: c for c in range(4)})
             return
         if op == "kill" and n.block is not None:
             emit_kill(self, n)         # inside a branch side or a loop body
@@ -340,14 +343,16 @@ class CodeGen:
             widths = SHAPED[op][0]
             srcs = [self.place(a, list(range(w))) for a, w in zip(n.args, widths)]
             for s in srcs:
-                s.lanes = {i: s.lanes[i] for i in s.lanes}
+                if s.lanes is not None:
+                    s.lanes = dict(s.lanes)
             mask = tuple(sorted(where[c] for c in range(n.width)))
             if op == "sincos":
                 if self.rules.major < 3:
                     srcs += [self.const_src([-1.5500992e-06, -2.1701389e-05, 0.0026041667, 0.00026041668]),
                              self.const_src([-0.020833334, -0.125, 1.0, 0.5])]
-                    srcs[1].fixed, srcs[2].fixed = IDENTITY, IDENTITY
-                srcs[0].fixed = (srcs[0].lanes[0],) * 4
+                    fix(srcs[1], IDENTITY)
+                    fix(srcs[2], IDENTITY)
+                fix(srcs[0], (srcs[0].lanes[0],) * 4)  # type: ignore[index]
             self.emit(op, reg, mask, srcs, n.location)
             return
         if op in _REDUCE:
@@ -355,15 +360,16 @@ class CodeGen:
             srcs = [self.place(a, list(range(k))) for a in n.args[:2]]
             if op == "dp2add":
                 srcs.append(self.place(n.args[2], [0]))
-                srcs[2].fixed = (srcs[2].lanes.get(0, 0),) * 4 if srcs[2].fixed is None else srcs[2].fixed
+                if srcs[2].lanes is not None:
+                    fix(srcs[2], (srcs[2].lanes.get(0, 0),) * 4)
             mask = tuple(sorted(lane for _, lane in lanes_out))
             self.emit(op, reg, mask, srcs, n.location)
             return
         if op in _SCALAR:
             srcs = [self.place(a, [0]) for a in n.args]
             for s in srcs:
-                if s.fixed is None:
-                    s.fixed = (s.lanes[0],) * 4
+                if s.lanes is not None:
+                    fix(s, (s.lanes[0],) * 4)
             mask = tuple(sorted(lane for _, lane in lanes_out))
             self.emit(op, reg, mask, srcs, n.location)
             return
@@ -407,35 +413,37 @@ class CodeGen:
                                      [(i, t) for i, t in enumerate(targets)])
             else:
                 src = self.place(address, [0])
-                if src.fixed is None:
-                    src.fixed = (src.lanes[0],) * 4
-            self.emit("mov" if self.rules.major == 1 else "mova", Reg("a", 0),
+                if src.lanes is not None:
+                    fix(src, (src.lanes[0],) * 4)
+            self.emit("mov" if self.rules.major == 1 else "mova", register("a", 0),
                       tuple(sorted(targets)), [src], n.location)
             for a, t in zip(group, targets):
                 lanes[t] = a.sig()              # insertion order: the oldest first
             self.a0 = lanes
         base = self.uniform_reg(n.key[0], n.key[1]).index
         reg, _ = self.home_of(n)
-        read = tuple(sorted(self.live.of(n))) if self.live is not None else (0, 1, 2, 3)
-        self.emit("mov", reg, read, [Src(Reg("c_rel", base, lane), {i: i for i in read})],
-                  n.location)
+        lanes_read = tuple(sorted(self.live.of(n))) if self.live is not None else (0, 1, 2, 3)
+        self.emit("mov", reg, lanes_read,
+                  [read(register("c", base, RelativeAddress("a", 0, lane)),
+                        {i: i for i in lanes_read})], n.location)
 
-    def _lanewise(self, a: Operand, lanes_out: list[tuple[int, int]]) -> Src:
+    def _lanewise(self, a: Operand, lanes_out: list[tuple[int, int]]) -> Register:
         node = a.node
         if node.op == "const":
             return self._const_lanes({lane: node.value[a.swizzle[min(c, a.width - 1)]]  # type: ignore[index]
                                       * (-1 if a.negate else 1) for c, lane in lanes_out})
         reg, where = self.home[node.id]
-        return Src(reg, {lane: where[a.swizzle[min(c, a.width - 1)]] for c, lane in lanes_out}, a.negate)
+        return read(reg, {lane: where[a.swizzle[min(c, a.width - 1)]] for c, lane in lanes_out},
+                    a.negate)
 
-    def _const_lanes(self, vals: dict[int, float]) -> Src:
+    def _const_lanes(self, vals: dict[int, float]) -> Register:
         """A constant source giving each destination lane its value: one replicated register
         when they agree, else a register holding them lane by lane (the rest repeat one)."""
         if len(set(vals.values())) == 1:
             return self.const_src([next(iter(vals.values()))])
         full = [vals.get(l, next(iter(vals.values()))) for l in range(4)]
         src = self.const_src([float(x) for x in full])
-        src.lanes, src.fixed = {l: l for l in vals}, None
+        src.lanes = {l: l for l in vals}
         return src
 
     def _source_key(self, c: Operand) -> tuple:
@@ -449,16 +457,16 @@ class CodeGen:
             return (c.node.id, c.negate)
         return (home[0].kind, home[0].index, c.negate)
 
-    def _gather(self, items: list[tuple[int, Operand]]) -> Src:
+    def _gather(self, items: list[tuple[int, Operand]]) -> Register:
         first = items[0][1]
         if first.node.op == "const":
             return self._const_lanes({lane: c.const_values()[0] for lane, c in items})  # type: ignore[index]
         reg = self.home[first.node.id][0]
-        return Src(reg, {lane: self.home[c.node.id][1][c.swizzle[0]] for lane, c in items},
-                   first.negate)
+        return read(reg, {lane: self.home[c.node.id][1][c.swizzle[0]] for lane, c in items},
+                    first.negate)
 
     def output(self, o: Output) -> None:
-        final = Reg(*_split_reg(o.register))
+        final = register(*_split_reg(o.register))
         reg = self.out_regs[o.register]
         comps = list(o.comps)
         if o.register.startswith("oC"):
@@ -470,7 +478,7 @@ class CodeGen:
             home = self.home.get(first.id)
             if home is not None and all(c.node is first and not c.negate for c in comps) \
                     and home[0].kind in ("vr", "t", "v"):
-                src = Src(home[0], {l: home[1][c.swizzle[0]] for l, c in enumerate(comps)})
+                src = read(home[0], {l: home[1][c.swizzle[0]] for l, c in enumerate(comps)})
                 self.emit("mov", final, (0, 1, 2, 3) if o.register.startswith("oC") else (0,),
                           [src], o.location)
                 return
@@ -481,7 +489,7 @@ class CodeGen:
             self.emit("mov", reg, tuple(l for l, _ in items), [self._gather(items)], o.location)
         if self.target.kind == "ps":
             mask = (0, 1, 2, 3) if o.register.startswith("oC") else (0,)
-            self.emit("mov", final, mask, [Src(reg, {l: l for l in mask})], o.location)
+            self.emit("mov", final, mask, [read(reg, {l: l for l in mask})], o.location)
 
 
 def _split_reg(name: str) -> tuple[str, int | None]:

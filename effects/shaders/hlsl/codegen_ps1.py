@@ -24,15 +24,16 @@ from __future__ import annotations
 
 from effects.base.errors import Location, UNKNOWN_LOCATION
 from effects.shaders.hlsl.allocate import RegisterConflict
-from effects.shaders.hlsl.asmcode import Instr, Output, Reg
+from effects.shaders.asm.program import Instruction, Operand as Register
 from effects.shaders.hlsl.context import Context
-from effects.shaders.hlsl.dag import Node, Operand, reachable
+from effects.shaders.hlsl.dag import Node, Operand, Output, reachable
 from effects.shaders.hlsl.ops import PS1_LACKS, PS1_LANEWISE
 from effects.shaders.hlsl.parse import HlslError
 from effects.shaders.hlsl.ps1_analysis import Ps1Analysis, State, combine, readers_of
-from effects.shaders.hlsl.ps1_asm import FULL, Home, Ps1Emit, Src
+from effects.shaders.hlsl.ps1_asm import Home, Ps1Emit
 from effects.shaders.hlsl.ps1_idioms import power_of_two
 from effects.shaders.hlsl.ps1_textures import Ps1Textures
+from effects.shaders.hlsl.records import FULL, instruction, reg, replicated, temp
 from effects.shaders.hlsl.writer import Code
 
 
@@ -64,7 +65,8 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             raise AssertionError from clash  # pragma: no cover
 
     def _generate(self, out_direct: bool) -> Code:
-        self.instrs: list[Instr] = []
+        self.instrs: list[Instruction] = []
+        self.optional: set[int] = set()
         self.home: dict[int, Home] = {}
         self.defs: dict[int, list[float | None]] = {}
         self.precolor: dict[int, int] = {}
@@ -72,7 +74,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         self.next_vr = 0
         self.samplers: dict[str, int] = {}
         self.sampled: set[tuple[str, int]] = set()     # (sampler, phase) read
-        self.carried_alpha: dict[int, Reg] = {}         # phase-1 read -> its .a across phase
+        self.carried_alpha: dict[int, Register] = {}         # phase-1 read -> its .a across phase
         self.used_uniforms: set[str] = set()
         self.extracted: dict[tuple, Home] = {}   # _extract's and _rearranged's temporaries
         self.phase = 2
@@ -91,7 +93,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         self.cnd_pins = self._conditions_into_r0(nodes)
         p1 = self._p1 = self._phase_one(nodes)
         carried = self._reads_of_one_sampler(nodes, p1)
-        self.out_home = Home(Reg("vr", self.temp(out.location, pin=0 if out_direct else None)))
+        self.out_home = Home(temp(self.temp(out.location, pin=0 if out_direct else None)))
         pending = self._coalesce_output(comps, out.location)
         live = self._live(comps)
         arith = [n for n in nodes if self._emitted(n) and n.id in live]
@@ -106,7 +108,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             for n in arith:
                 if n.id in p1:
                     self.compute(n)
-            self.instrs.append(Instr("phase", None, (), [], texture=True))
+            self.instrs.append(self.record("phase", None, (), [], UNKNOWN_LOCATION))
             self.phase = 2
         self._textures([n for n in tex if n.id not in p1],
                        {k: w for k, w in values.items() if k not in self._input_homes})
@@ -115,9 +117,15 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
                 self.compute(n)
         self.assemble_lanes(self.out_home, pending, out.location)
         if not out_direct:
-            self.instrs.append(Instr("mov", Reg("vr", self.temp(out.location, pin=0)), FULL,
-                                   [Src(self.out_home.reg)], out.location))
+            self.instrs.append(self.record("mov", temp(self.temp(out.location, pin=0)), FULL,
+                                       [replicated(self.out_home.reg)], out.location))
         return self._code()
+
+    def record(self, opcode: str, dst: Register | None, mask: tuple[int, ...],
+               srcs: list[Register], loc: Location, saturate: bool = False,
+               shift: int = 0) -> Instruction:
+        """An instruction of this version (records.instruction)."""
+        return instruction(opcode, dst, mask, srcs, self.v, loc, saturate, shift=shift)
 
     def temp(self, loc: Location, pin: int | None = None) -> int:
         self.next_vr += 1
@@ -142,9 +150,9 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         home = self.home.get(n.id)
         if home is None:
             if n.id in self.cnd_pins:     # a cnd condition: r0.a only (so .b may be read)
-                home = Home(Reg("vr", self.temp(n.location, pin=0)), n.width == 1, self.phase, mask=(3,))
+                home = Home(temp(self.temp(n.location, pin=0)), n.width == 1, self.phase, mask=(3,))
             else:
-                home = Home(Reg("vr", self.temp(n.location)), n.width == 1, self.phase)
+                home = Home(temp(self.temp(n.location)), n.width == 1, self.phase)
             self.home[n.id] = home
         if op == "pack":   # a vector built of parts has no expression of its own: say where
             loc = n.location if n.location.line else next(          # it is read
@@ -181,7 +189,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             self.fail(op, n.location)
         if op == "add" and self.ps14:
             op, srcs = _sub_for_negated_constant(op, srcs)
-        self.emit(Instr(op, home.reg, mask, srcs, n.location, saturate=sat, shift=shift))
+        self.emit(self.record(op, home.reg, mask, srcs, n.location, saturate=sat, shift=shift))
 
     def _cnd(self, n: Node, home: Home, mask: tuple[int, ...], shift: int, sat: bool) -> None:
         """ps_1_1-1_3: cnd d, r0.a, a, b -- the condition is r0.a, one value for all lanes
@@ -195,14 +203,15 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         held = self.home.get(cond.node.id)
         if held is not None and held.reg.kind == "vr" and self.precolor.get(held.reg.index) == 0 \
                 and cond.node.id in self.cnd_pins and not mod and not cond.negate:
-            test = Src(held.reg, 3)
+            test = replicated(held.reg, 3)
         else:
-            r0 = Reg("vr", self.temp(n.location, pin=0))
-            self.emit(Instr("mov", r0, (3,), [self.read(n.args[0], {3: 0}, n.location)], n.location))
-            test = Src(r0, 3)
+            r0 = temp(self.temp(n.location, pin=0))
+            self.emit(self.record("mov", r0, (3,), [self.read(n.args[0], {3: 0}, n.location)],
+                              n.location))
+            test = replicated(r0, 3)
         need = {lane: (0 if n.width == 1 else lane) for lane in mask if n.width == 1 or lane < n.width}
         srcs = [test] + [self.read(a, need, n.location) for a in n.args[1:]]
-        self.emit(Instr("cnd", home.reg, mask, srcs, n.location, saturate=sat, shift=shift))
+        self.emit(self.record("cnd", home.reg, mask, srcs, n.location, saturate=sat, shift=shift))
 
     def _scaled(self, n: Node) -> tuple[Operand, Operand | None, int] | None:
         """mul by a literal outside [-1, 1]: (y, the literal scaled into range or None, shift)."""
@@ -222,37 +231,37 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
                     return y, g.const(tuple(v / 2 ** s for v in vals)), s
         return None
 
-    def emit(self, ins: Instr) -> None:
+    def emit(self, ins: Instruction) -> None:
         """Append, reading extra constants/inputs through a mov when an instruction reads more
         distinct registers of a kind than the version's read ports allow."""
         for kind in ("c", "v", "t"):
             limit = self.rules.read_ports.get(kind)
             seen: list[int | None] = []
             for k, s in enumerate(ins.srcs):
-                if s.reg.kind != kind or s.reg.index in seen:
+                if s.kind != kind or s.index in seen:
                     continue
                 if limit is not None and len(seen) >= limit:
+                    # this source reads the copy (a later one of the same register, its own)
                     vr = self.temp(ins.location)
-                    self.instrs.append(Instr("mov", Reg("vr", vr), FULL, [Src(s.reg)], ins.location))
-                    for other in ins.srcs:
-                        if other.reg == s.reg:
-                            other.reg = Reg("vr", vr)
+                    self.instrs.append(self.record("mov", temp(vr), FULL, [replicated(s)], ins.location))
+                    s.kind, s.index = "vr", vr
                     continue
-                seen.append(s.reg.index)
+                seen.append(s.index)
         self.instrs.append(ins)
 
     # -- sources --------------------------------------------------------------------------------
-    def read(self, op: Operand, need: dict[int, int], loc: Location) -> Src:
+    def read(self, op: Operand, need: dict[int, int], loc: Location) -> Register:
         """A source giving, at instruction lane L, component need[L] of `op`."""
         base, mod = self.resolve(op)
         comps = {lane: base.swizzle[min(c, base.width - 1)] for lane, c in need.items()}
         return self.read_resolved(base, mod, comps, loc)
 
-    def read_resolved(self, base: Operand, mod: str, comps: dict[int, int], loc: Location) -> Src:
+    def read_resolved(self, base: Operand, mod: str, comps: dict[int, int],
+                      loc: Location) -> Register:
         node = base.node
         if node.op == "const":
             sign = -1.0 if base.negate else 1.0
-            return Src(self.def_reg({lane: sign * node.value[c] for lane, c in comps.items()}, loc))  # type: ignore[index]
+            return replicated(self.def_reg({lane: sign * node.value[c] for lane, c in comps.items()}, loc))  # type: ignore[index]
         home = self._home_of(node, loc)
         neg = base.negate
         if self.ps14 and home.reg.kind == "v" and self.phase == 1:
@@ -262,15 +271,15 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         across = self.ps14 and home.phase == 1 and self.phase == 2
         if across and node.id in self.carried_alpha and 3 in comps.values():
             if set(comps.values()) == {3}:
-                return Src(self.carried_alpha[node.id], 2, mod, neg)
+                return replicated(self.carried_alpha[node.id], 2, mod, neg)
             home, across = self._rejoin(node, loc), False
         if home.scalar:
-            return Src(home.reg, 2 if across and 3 in comps else None, mod, neg)
+            return replicated(home.reg, 2 if across and 3 in comps else None, mod, neg)
         if all(lane == c for lane, c in comps.items()):
             if across and 3 in comps:
                 self.refuse(f"{self.v} keeps only .rgb of a register across phase; this reads the .a "
                             "of a value computed before the dependent read", loc)
-            return Src(home.reg, None, mod, neg)
+            return replicated(home.reg, None, mod, neg)
         picked = set(comps.values())
         if len(picked) == 1:
             k = picked.pop()
@@ -278,10 +287,10 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             if k == 3 or (k == 2 and set(comps) == {3}) or self.ps14:
                 if across and k == 3:
                     self.refuse(f"{self.v} keeps only .rgb of a register across phase", loc)
-                return Src(home.reg, k, mod, neg)
-            return Src(self._extract(node, k, home, loc).reg, None, mod, neg)
+                return replicated(home.reg, k, mod, neg)
+            return replicated(self._extract(node, k, home, loc).reg, None, mod, neg)
         if self.ps14 and not across:
-            return Src(self._rearranged(node, comps, home, mod, neg, loc).reg)
+            return replicated(self._rearranged(node, comps, home, mod, neg, loc).reg)
         order = "".join("xyzw"[comps[lane]] for lane in sorted(comps))
         self.fail(f"swizzle .{order} (ps_1_x sources take .rgba, .a or .b only)", loc)
         raise AssertionError  # pragma: no cover
@@ -297,11 +306,11 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
             vr = self.temp(loc)
             own = tuple(lane for lane, c in sorted(comps.items()) if lane == c)
             if own:
-                self.emit(Instr("mov", Reg("vr", vr), own, [Src(home.reg, None, mod, neg)], loc))
+                self.emit(self.record("mov", temp(vr), own, [replicated(home.reg, None, mod, neg)], loc))
             for k in sorted({c for lane, c in comps.items() if lane != c}):
                 lanes = tuple(lane for lane, c in sorted(comps.items()) if lane != c and c == k)
-                self.emit(Instr("mov", Reg("vr", vr), lanes, [Src(home.reg, k, mod, neg)], loc))
-            self.extracted[key] = Home(Reg("vr", vr), False, self.phase)  # type: ignore[index]
+                self.emit(self.record("mov", temp(vr), lanes, [replicated(home.reg, k, mod, neg)], loc))
+            self.extracted[key] = Home(temp(vr), False, self.phase)  # type: ignore[index]
         return self.extracted[key]  # type: ignore[index]
 
     def _extract(self, node: Node, k: int, home: Home, loc: Location) -> Home:
@@ -310,18 +319,18 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         if key not in self.extracted:
             vr = self.temp(loc)
             unit = self.def_reg({i: 1.0 if i == k else 0.0 for i in range(3)}, loc)
-            self.emit(Instr("dp3", Reg("vr", vr), FULL, [Src(home.reg), Src(unit)], loc))
-            self.extracted[key] = Home(Reg("vr", vr), True, self.phase)
+            self.emit(self.record("dp3", temp(vr), FULL, [replicated(home.reg), replicated(unit)], loc))
+            self.extracted[key] = Home(temp(vr), True, self.phase)
         return self.extracted[key]
 
     def _home_of(self, node: Node, loc: Location) -> Home:
         if node.id in self.home:
             return self.home[node.id]
         if node.op == "input":
-            reg = node.key[1]
-            if reg.startswith("v"):
-                return Home(Reg("v", int(reg[1:])))
-            return self._input_homes[reg]
+            name = node.key[1]
+            if name.startswith("v"):
+                return Home(reg("v", int(name[1:])))
+            return self._input_homes[name]
         if node.op == "uniform":
             name, row = node.key
             index = self.const_regs[name] + row
@@ -329,21 +338,21 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
                 self.refuse(f"'{name.lstrip('$')}' is in c{index}; {self.v} has c0-c7", loc)
             self.used_uniforms.add(name)
             t = self.ctx.uniforms_used.get(name)
-            return Home(Reg("c", index), t is not None and t.kind == "scalar")
+            return Home(reg("c", index), t is not None and t.kind == "scalar")
         raise HlslError(f"internal: no register holds the value of this {node.op}", loc)
 
-    def def_reg(self, lanes: dict[int, float], loc: Location) -> Reg:
+    def def_reg(self, lanes: dict[int, float], loc: Location) -> Register:
         for v in lanes.values():
             if not -1.0 <= v <= 1.0:
                 self.refuse(f"the literal {v:g} is outside [-1, 1], the range of {self.v} constants",
                             loc)
         taken = {self.const_regs[n] + k for n in self.const_regs
                  for k in range(self.sizes.get(n, 1))} | self.ctx.reserved_constants
-        for reg, slots in self.defs.items():
+        for k, slots in self.defs.items():
             if all(slots[lane] in (None, v) for lane, v in lanes.items()):
                 for lane, v in lanes.items():
                     slots[lane] = v
-                return Reg("c", reg)
+                return reg("c", k)
         free = next((k for k in range(8) if k not in taken and k not in self.defs), None)
         if free is None:
             self.refuse(f"{self.v} has 8 constant registers; this literal needs a ninth", loc)
@@ -351,7 +360,7 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         for lane, v in lanes.items():
             slots[lane] = v
         self.defs[free] = slots  # type: ignore[index]
-        return Reg("c", free)  # type: ignore[arg-type]
+        return reg("c", free)
 
     # -- vectors from parts -----------------------------------------------------------------------
     def assemble_lanes(self, home: Home, items: list[tuple[int, Operand]], loc: Location) -> None:
@@ -372,44 +381,44 @@ class Ps1CodeGen(Ps1Analysis, Ps1Textures, Ps1Emit):
         if self.ps14:
             for key, comps in groups.items():
                 base, mod = bases[key]
-                self.emit(Instr("mov", dst, tuple(sorted(comps)), [self.read_resolved(
+                self.emit(self.record("mov", dst, tuple(sorted(comps)), [self.read_resolved(
                     _whole(base), mod, comps, loc)], loc))
             if consts:
-                self.emit(Instr("mov", dst, tuple(sorted(consts)), [Src(self.def_reg(consts, loc))], loc))
+                self.emit(self.record("mov", dst, tuple(sorted(consts)), [replicated(self.def_reg(consts, loc))], loc))
             return
         if len(groups) == 1 and not consts and set(next(iter(groups.values()))) == set(FULL):
             key, comps = next(iter(groups.items()))
             base, mod = bases[key]
-            self.emit(Instr("mov", dst, FULL, [self.read_resolved(_whole(base), mod, comps, loc)], loc))
+            self.emit(self.record("mov", dst, FULL, [self.read_resolved(_whole(base), mod, comps, loc)], loc))
             return
         alpha = [(k, c) for k, c in groups.items() if 3 in c]
         if 3 in consts:
-            self.emit(Instr("mov", dst, (3,), [Src(self.def_reg({3: consts.pop(3)}, loc))], loc))
+            self.emit(self.record("mov", dst, (3,), [replicated(self.def_reg({3: consts.pop(3)}, loc))], loc))
         for key, comps in alpha:
             base, mod = bases[key]
-            self.emit(Instr("mov", dst, (3,), [self.read_resolved(_whole(base), mod, {3: comps.pop(3)}, loc)], loc))
+            self.emit(self.record("mov", dst, (3,), [self.read_resolved(_whole(base), mod, {3: comps.pop(3)}, loc)], loc))
         rgb = [(k, c) for k, c in groups.items() if c]
         if not rgb:
             if consts:
-                self.emit(Instr("mov", dst, (0, 1, 2), [Src(self.def_reg(consts, loc))], loc))
+                self.emit(self.record("mov", dst, (0, 1, 2), [replicated(self.def_reg(consts, loc))], loc))
             return
         if len(rgb) == 1 and not consts:
             key, comps = rgb[0]
             base, mod = bases[key]
-            self.emit(Instr("mov", dst, (0, 1, 2), [self.read_resolved(_whole(base), mod, comps, loc)], loc))
+            self.emit(self.record("mov", dst, (0, 1, 2), [self.read_resolved(_whole(base), mod, comps, loc)], loc))
             return
         for i, (key, comps) in enumerate(rgb):
             base, mod = bases[key]
             src = self.read_resolved(_whole(base), mod, comps, loc)
-            select = Src(self.def_reg({lane: 1.0 if lane in comps else 0.0 for lane in range(3)}, loc))
+            select = replicated(self.def_reg({lane: 1.0 if lane in comps else 0.0 for lane in range(3)}, loc))
             if i == 0:
                 if consts:
-                    fill = Src(self.def_reg({lane: consts.get(lane, 0.0) for lane in range(3)}, loc))
-                    self.emit(Instr("mad", dst, (0, 1, 2), [src, select, fill], loc))
+                    fill = replicated(self.def_reg({lane: consts.get(lane, 0.0) for lane in range(3)}, loc))
+                    self.emit(self.record("mad", dst, (0, 1, 2), [src, select, fill], loc))
                 else:
-                    self.emit(Instr("mul", dst, (0, 1, 2), [src, select], loc))
+                    self.emit(self.record("mul", dst, (0, 1, 2), [src, select], loc))
             else:
-                self.emit(Instr("mad", dst, (0, 1, 2), [src, select, Src(dst)], loc))
+                self.emit(self.record("mad", dst, (0, 1, 2), [src, select, replicated(dst)], loc))
 
 
 def _whole(base: Operand) -> Operand:
@@ -417,13 +426,14 @@ def _whole(base: Operand) -> Operand:
     return Operand(base.node, tuple(range(max(base.node.width, 1))), base.negate)
 
 
-def _sub_for_negated_constant(op: str, srcs: list[Src]) -> tuple[str, list[Src]]:
+def _sub_for_negated_constant(op: str, srcs: list[Register]) -> tuple[str, list[Register]]:
     # ps_1_4 takes no modifier on c#: a - c is `sub`
     a, b = srcs
-    if a.reg.kind == "c" and a.neg and not b.neg:
+    if a.kind == "c" and a.negate and not b.negate:
         a, b = b, a
-    if b.reg.kind == "c" and b.neg:
-        return "sub", [a, Src(b.reg, b.lane, b.mod, False)]
+    if b.kind == "c" and b.negate:
+        b.negate = False
+        return "sub", [a, b]
     return op, srcs
 
 

@@ -27,16 +27,16 @@ from effects.shaders.asm.parser import USAGES
 # compiler (CompiledShader is importable from here as before)
 from effects.shaders.hlsl.shader import CompiledShader
 from effects.shaders.hlsl.calls import constant_parameters, parameters, return_type
-from effects.shaders.hlsl.asmcode import Output
 from effects.shaders.hlsl.budget import out_of_stack, spend
 from effects.shaders.hlsl.check import check_unit
 from effects.shaders.hlsl.codegen import CodeGen
 from effects.shaders.hlsl.legalize import code_of, legalize
 from effects.shaders.hlsl.codegen_ps1 import generate_ps1
-from effects.shaders.hlsl.constant_layout import declaration_order, first_fit, used_sizes
+from effects.shaders.hlsl.constant_layout import (declaration_order, first_fit, overlap,
+                                                  used_sizes)
 from effects.shaders.hlsl.context import (Context, explicit_register as _explicit, load_context,
                                           parameter_type)
-from effects.shaders.hlsl.dag import Node, Operand
+from effects.shaders.hlsl.dag import Node, Operand, Output
 from effects.shaders.hlsl.flowcode import needed
 from effects.shaders.hlsl.folding import finite32
 from effects.shaders.hlsl.ops import TEXTURE
@@ -365,16 +365,21 @@ def _sampler_registers(ctx: Context, read: set[str], every: bool = True) -> dict
     regs = {name: b for name in ctx.samplers_used if (b := _explicit(ctx, name, "s")) is not None}
     for name, b in regs.items():
         _within(ctx, name, b, 1, "s")
+    # what each bound sampler the code reads holds: an array up to its last element read,
+    # a sampler paired with a texture its own register (S alone and S+Tex are two samplers)
+    spans: dict[str, tuple[int, int]] = {}
     for name, b in regs.items():
-        other = next((o for o, c in regs.items() if c == b and o != name and o in read), None)
-        other = other if name in read else None
-        if other is not None and "+" in name + other:
-            where = ctx.effect.parameter(name.split("+")[0].split("[")[0])
-            first, second = sorted((name, other))
-            raise HlslError(f"X4500: overlapping register semantics: '{first}' and '{second}' "
-                            f"are both bound to s{b} (a sampler read with two textures, or "
-                            f"alone and with a texture, is two samplers on shader models 1-3)",
-                            where.location if where is not None else UNKNOWN_LOCATION)
+        if name not in read:
+            continue
+        holder, k = name, 0
+        if "+" not in name and name.endswith("]"):
+            holder, index = name[:-1].split("[", 1)
+            k = int(index)
+        first, size = spans.get(holder, (b - k, 0))
+        spans[holder] = (first, max(size, k + 1))
+    declared = declaration_order(ctx.effect)
+    ordered = sorted(spans, key=lambda h: (declared.get(h.split("+")[0], len(declared)), h))
+    _no_overlap(ctx, [(h, *spans[h]) for h in ordered], "s")
     taken = set(regs.values())
     for name in ctx.samplers_used:
         if "+" in name and name not in regs:
@@ -389,7 +394,6 @@ def _sampler_registers(ctx: Context, read: set[str], every: bool = True) -> dict
         if index is None and not every:
             continue
         sizes[base] = max(sizes.get(base, 0), 1 if index is None else int(index) + 1)
-    declared = declaration_order(ctx.effect)
     first = first_fit(list(sizes), sizes, taken, declared)
     for name in ctx.samplers_used:
         if name in regs or name not in read or "+" in name:
@@ -442,6 +446,23 @@ def _finite_constants(ctx: Context, nodes: list[Node], outputs: list[Output], fd
             check(c, o.location)
 
 
+def _no_overlap(ctx: Context, spans: list[tuple[str, int, int]], kind: str) -> None:
+    """fxc's X4500 (its words: "overlapping register semantics not yet implemented 'c0'"):
+    two variables the code reads, bound by `register()` to registers that overlap in what
+    each reads. The binding is the file's, so every target refuses it: a language error.
+    `spans`: (name, first register, registers read) in declaration order."""
+    clash = overlap(spans)
+    if clash is None:
+        return
+    first, second, r = clash
+    param = ctx.effect.parameter(second.split("+")[0].split("[")[0])
+    why = (" (a sampler read with two textures, or alone and with a texture, is two samplers "
+           "on shader models 1-3)" if "+" in first + second else "")
+    raise HlslError(f"X4500: overlapping register semantics not yet implemented '{kind}{r}': "
+                    f"'{first}' and '{second}' are both bound to {kind}{r}{why}",
+                    param.location if param is not None else UNKNOWN_LOCATION)
+
+
 def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int], dict[str, int]]:
     """fxc's float constant layout (constant_layout.py): each uniform the code reads takes
     the registers up to the last it reads; explicit register(c#) bindings first, then the
@@ -467,6 +488,7 @@ def _constant_registers(ctx: Context, nodes: list[Node]) -> tuple[dict[str, int]
             _within(ctx, p.name, b, reach.get(p.name, 1), "c")
             regs[p.name] = b
         reserved.update(range(b, b + full))
+    _no_overlap(ctx, [(name, b, used[name]) for name, b in regs.items()], "c")
     ctx.reserved_constants = reserved
     declared = declaration_order(ctx.effect)
     regs.update(first_fit([n for n in used if n not in regs], used, reserved, declared))

@@ -48,6 +48,20 @@ def free_run(taken: set[int], size: int, start: int = 0) -> int:
     return first
 
 
+def overlap(spans: Iterable[tuple[str, int, int]]) -> tuple[str, str, int] | None:
+    """The first register two of `spans` (name, first register, count; in fxc's order: the
+    file's) both hold, as (the earlier's name, the later's, the register), or None. fxc
+    refused two variables the code reads whose `register()` bindings overlap in the registers
+    they use (X4500, every target)."""
+    owner: dict[int, str] = {}
+    for name, first, size in spans:
+        for r in range(first, first + size):
+            if r in owner:
+                return owner[r], name, r
+            owner[r] = name
+    return None
+
+
 def declaration_order(effect: Any) -> dict[str, int]:
     """Each global's position in the file: the tie-break of `first_fit`."""
     return {p.name: k for k, p in enumerate(effect.parameters)}

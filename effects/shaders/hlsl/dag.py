@@ -90,6 +90,15 @@ OPAQUE = _OPAQUE
 _RANGES = [tuple(range(n)) for n in range(5)]
 
 
+@dataclass
+class Output:
+    """An entry point's output: the register it is written to ('oPos' 'oC0' 'oT1' ...) and
+    the operands that make its components."""
+    register: str
+    comps: list[Operand]
+    location: Location = UNKNOWN_LOCATION
+
+
 class Graph:
     """Builds nodes, folding constants and sharing identical ones."""
 

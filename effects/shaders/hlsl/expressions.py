@@ -147,6 +147,13 @@ def global_value(ev: Any, name: str, where: Any) -> Value:
         flat = (flat + [0.0] * n)[:n]
         value = build_value(t, [ev.g.const((float(x),)) for x in flat])
     else:
+        if param.tbuffer:
+            # fxc's X3546, "reading from texture buffers is unsupported on the specified
+            # target" (its error list): a texture buffer is shader model 4's
+            raise ev.error(f"X3546: reading from texture buffers is unsupported on "
+                           f"{ctx.target.name}: '{name}' is a member of tbuffer "
+                           f"'{param.tbuffer}' (shader model 4 reads texture buffers; a "
+                           f"cbuffer's members are uniforms on every target)", where)
         value = uniform_value(ev, name, t, 0)
         ctx.uniforms_used.setdefault(name, t)
     cache[name] = value

@@ -25,9 +25,10 @@ from __future__ import annotations
 from typing import Any
 
 from effects.shaders.asm.versions import IDENTITY
-from effects.shaders.hlsl.asmcode import Reg, Src
+from effects.shaders.asm.program import Operand as Register
 from effects.shaders.hlsl.dag import Node, Operand, reachable
 from effects.shaders.hlsl.parse import HlslError
+from effects.shaders.hlsl.records import fix, fixed, read, reg
 
 Label = tuple | None
 _GRADIENT = {"tex", "texldp", "texldb", "dsx", "dsy"}
@@ -192,13 +193,13 @@ def place(cg: Any, nodes: list[Node]) -> dict[Label, list[Node]]:
 def emit_kill(cg: Any, n: Node) -> None:
     """texkill of a discard's operand (its four lanes, the last repeated)."""
     src_op = n.args[0]
-    reg = cg.temp()
+    temp = cg.temp()
     width = src_op.width
     src = cg.place(src_op, [min(i, width - 1) for i in range(4)])
-    if src.fixed is None:
+    if src.lanes is not None:
         src.lanes = {i: src.lanes.get(min(i, width - 1), 0) for i in range(4)}
-    cg.emit("mov", reg, (0, 1, 2, 3), [src], n.location)
-    cg.emit("texkill", reg, (0, 1, 2, 3), [], n.location)
+    cg.emit("mov", temp, (0, 1, 2, 3), [src], n.location)
+    cg.emit("texkill", None, (), [fixed(temp, IDENTITY)], n.location)
 
 
 def emit_block(cg: Any, label: Label) -> None:
@@ -206,10 +207,10 @@ def emit_block(cg: Any, label: Label) -> None:
         cg.node(n)
 
 
-def _scalar(cg: Any, op: Operand) -> Src:
+def _scalar(cg: Any, op: Operand) -> Register:
     src = cg.place(op, [0])
-    if src.fixed is None:
-        src.fixed = (src.lanes[0],) * 4
+    if src.lanes is not None:
+        fix(src, (src.lanes[0],) * 4)
     return src
 
 
@@ -221,25 +222,25 @@ def emit_loop(cg: Any, n: Node) -> None:
     phis = cg.loop_phis.get(loop_id, {})
     inits, results = n.args[:count], n.args[count:2 * count]
     live = range(count) if n.live is None else n.live   # live_nodes: the groups kept
-    carried: list[Reg] = []
+    carried: list[Register] = []
     for k in range(count):
-        reg = cg.temp()
-        carried.append(reg)
+        home = cg.temp()
+        carried.append(home)
         if k not in live:
             continue
         if k in phis:
-            cg.home[phis[k].id] = (reg, {c: c for c in range(phis[k].width)})
-        cg._move(reg, inits[k], n.location)
+            cg.home[phis[k].id] = (home, {c: c for c in range(phis[k].width)})
+        cg._move(home, inits[k], n.location)
     cg.loop_regs[loop_id] = carried
     cg.a0 = None                          # the body may load a0 itself
-    count_src = Src(Reg("i", register), {}, fixed=IDENTITY)
+    count_src = fixed(reg("i", register), IDENTITY)
     if uses_al:
-        cg.emit("loop", None, (), [Src(Reg("aL", None), {}, fixed=IDENTITY), count_src],
+        cg.emit("loop", None, (), [fixed(reg("aL"), IDENTITY), count_src],
                 n.location)
     else:
         cg.emit("rep", None, (), [count_src], n.location)
     emit_block(cg, ("loop", loop_id))
-    staged: list[Operand | Reg | None] = []
+    staged: list[Operand | Register | None] = []
     for k, res in enumerate(results):
         if k not in live:
             staged.append(None)
@@ -251,14 +252,14 @@ def emit_loop(cg: Any, n: Node) -> None:
             staged.append(tmp)
         else:
             staged.append(res)
-    for reg, res, width in zip(carried, staged, [r.width for r in results]):
+    for home, res, width in zip(carried, staged, [r.width for r in results]):
         if res is None:
             continue
-        if isinstance(res, Reg):
-            cg.emit("mov", reg, tuple(range(width)), [Src(res, {c: c for c in range(width)})],
+        if isinstance(res, Register):
+            cg.emit("mov", home, tuple(range(width)), [read(res, {c: c for c in range(width)})],
                     n.location)
         else:
-            cg._move(reg, res, n.location)
+            cg._move(home, res, n.location)
     if has_break:
         cg.emit("break_ne", None, (), [_scalar(cg, n.args[2 * count]),
                                        cg.const_src([0.0])], n.location)
@@ -277,22 +278,22 @@ def emit_if(cg: Any, n: Node) -> None:
     cg.if_regs[if_id] = regs
     before = not cg.blocks.get(("else", if_id))
     if before:
-        for reg, res in zip(regs, else_res):
-            cg._move(reg, res, n.location)
+        for home, res in zip(regs, else_res):
+            cg._move(home, res, n.location)
     if test == "bool":
-        cg.emit("if", None, (), [Src(Reg("b", breg), {}, fixed=IDENTITY)], n.location)
+        cg.emit("if", None, (), [fixed(reg("b", breg), IDENTITY)], n.location)
     else:
         cg.emit(f"if_{test}", None, (), [_scalar(cg, c) for c in conds], n.location)
     cg.a0 = None
     emit_block(cg, ("then", if_id))
-    for reg, res in zip(regs, then_res):
-        cg._move(reg, res, n.location)
+    for home, res in zip(regs, then_res):
+        cg._move(home, res, n.location)
     if not before:
         cg.emit("else", None, (), [], n.location)
         cg.a0 = None
         emit_block(cg, ("else", if_id))
-        for reg, res in zip(regs, else_res):
-            cg._move(reg, res, n.location)
+        for home, res in zip(regs, else_res):
+            cg._move(home, res, n.location)
     cg.emit("endif", None, (), [], n.location)
     cg.a0 = None
 

@@ -11,7 +11,7 @@ from typing import Any, Callable
 
 from effects.base.errors import Location
 from effects.shaders.hlsl.dag import Operand, host_computable, reachable
-from effects.shaders.hlsl.types import BOOL, FLOAT, HType, shape_of, vector
+from effects.shaders.hlsl.types import BOOL, FLOAT, HType, builtin, shape_of, vector
 from effects.shaders.hlsl.lvalues import store
 from effects.shaders.hlsl.values import Value, component, operand, split
 
@@ -546,9 +546,8 @@ def _texture(dim: str, variant: str):
         if s.type.kind != "sampler" or s.sampler is None:
             raise ev.error(f"X3013: tex{dim}{variant}: the first argument must be a sampler", loc)
         t = ev.ctx.target
-        if t.rules.is_ps1 or t.kind == "vs" and t.rules.major < 3:
-            if t.kind == "vs":
-                raise ev.error(f"{t.name} cannot sample textures (vertex texture fetch needs vs_3_0)", loc)
+        if t.kind == "vs":
+            _vertex_read(ev, f"tex{dim}", variant, loc)
         width = 4 if variant in ("proj", "bias", "lod") else n
         coord = list(args[1].comps)
         if len(coord) < width:
@@ -567,6 +566,31 @@ def _texture(dim: str, variant: str):
         r = ev.g.leaf(op, (s.sampler, kind), 4, loc, (operand(ev.g, coord),) + extra)
         return Value(vector("float", 4), split(r))
     return f
+
+
+# fxc's vertex shader code generator has only texldl (vs_3_0) for a texture read: any other
+# read is "cannot map expression to vertex shader instruction set" (X4532, fxc 9.29 for
+# tex1D in a vs_3_0 function: the DirectX SDK's Skinning10 sample compiled for vs_3_0). A read
+# whose level comes from the pixel's derivatives (tex2D, tex2Dbias, tex2Dproj; texld, texldb,
+# texldp) or from gradients (tex2Dgrad: texldd) is refused by every vertex target: a language
+# error; tex2Dlod only by the vertex targets before vs_3_0.
+_VERTEX_READS = {"lod": "texldl"}
+
+
+def _vertex_read(ev: Any, family: str, variant: str, loc: Location) -> None:
+    """Refuse a texture read (`family` tex2D ..., `variant` '', 'lod' ...) that the vertex
+    target `ev.ctx.target` cannot make."""
+    t = ev.ctx.target
+    call = family + variant
+    prefix = "X4532: cannot map expression to vertex shader instruction set"
+    if variant not in _VERTEX_READS:
+        raise ev.error(f"{prefix}: {call} needs a pixel shader (the level of its read comes "
+                       f"from {'gradients' if variant == 'grad' else 'derivatives'} between "
+                       f"pixels); a vertex shader reads a level it names with {family}lod "
+                       f"(texldl, vs_3_0)", loc, language=True)
+    if not t.has(_VERTEX_READS[variant]):
+        raise ev.error(f"{prefix}: {t.name} cannot sample textures ({call}: vertex texture "
+                       f"fetch needs vs_3_0)", loc)
 
 
 # The later fxc's texture methods on shader models 2-3 (d3dcompiler_43/47 for ps_2_0-ps_3_0,
@@ -599,12 +623,12 @@ def texture_method(ev: Any, obj: Value, method: str, args: list[Value], where: A
         raise ev.error(f"'{method}' of an element of a texture array: shader models 1-3 pair "
                        f"a sampler with a texture declared on its own (Texture2D T;)", where)
     target = ev.ctx.target.name
-    if method in ("Sample", "SampleBias") and ev.ctx.target.kind == "vs":
+    if method in ("Sample", "SampleBias", "SampleGrad") and ev.ctx.target.kind == "vs":
         # implicit derivatives exist only between pixels (shader model 4 allows Sample in
-        # pixel shaders only); a vertex shader names its level
-        raise ev.error(f"'{obj.sampler}.{method}' in a vertex shader: it needs a pixel "
-                       f"shader's derivatives; a {target} reads a level with SampleLevel "
-                       f"(texldl)", where)
+        # pixel shaders only); a vertex shader names its level: every vertex target refuses
+        raise ev.error(f"X4532: cannot map expression to vertex shader instruction set: "
+                       f"'{obj.sampler}.{method}' needs a pixel shader's derivatives; a "
+                       f"{target} reads a level with SampleLevel (texldl)", where, language=True)
     if method in _SM4_METHODS:
         raise ev.error(f"'{obj.sampler}.{method}' needs shader model 4 (vs_4_0/ps_4_0): "
                        f"{target} has no instruction for it (the texture methods shader "
@@ -636,8 +660,20 @@ def texture_method(ev: Any, obj: Value, method: str, args: list[Value], where: A
         amount = args[2].comps[:1]
         lanes += [ev.a.const(0.0)] * (3 - n) + amount
         coord = Value(vector("float", 4), lanes)
-        return _texture(dim, variant)(ev, [pair, coord], loc)
-    return _texture(dim, variant)(ev, [pair, coord, *args[2:]], loc)
+        return _element(ev, obj, _texture(dim, variant)(ev, [pair, coord], loc))
+    return _element(ev, obj, _texture(dim, variant)(ev, [pair, coord, *args[2:]], loc))
+
+
+def _element(ev: Any, texture: Value, read: Value) -> Value:
+    """A read of a `Texture2D<float2>` is its element type: the sample's first components
+    (as the later fxc typed it); a texture declared without one returns the float4."""
+    from effects.frontend.types import texture_element
+    p = ev.ctx.effect.parameter(texture.sampler)
+    element = texture_element(p.type) if p is not None else None
+    t = builtin(element.spelling) if element is not None else None
+    if t is None:
+        return read
+    return Value(t, read.comps[:element.rows * element.cols])
 
 
 def _clip(ev: Any, args: list[Value], loc: Location) -> Value:

@@ -13,7 +13,8 @@ from effects.base.errors import Location
 from effects.shaders.hlsl.dag import Node, Operand
 from effects.shaders.hlsl.parse import HlslError
 from effects.shaders.hlsl.ops import PS1_LACKS
-from effects.shaders.hlsl.ps1_asm import FULL, Home
+from effects.shaders.hlsl.ps1_asm import Home
+from effects.shaders.hlsl.records import FULL
 from effects.shaders.hlsl.ps1_idioms import power_of_two, source_idiom
 
 @dataclass

@@ -1,38 +1,29 @@
-"""ps_1_x sources and homes, co-issue pairing, and the code handed to the writer.
+"""ps_1_x homes, co-issue pairing, and the code handed to the writer.
 
-codegen_ps1 emits `Instr` records (asmcode's, with ps_1_x sources) on virtual registers (kind
-'vr'); this mixin pairs them for co-issue and has the one allocator (allocate.py) give them
-r0-r1 (r0-r5 in ps_1_4), with the result pinned to r0 and, in ps_1_4, each texld destination
-pinned to its stage; the writer (writer.py) makes the assembler's records of them.
+codegen_ps1 emits the assembler's records (records.py: `replicated` sources, one lane and a
+modifier) on virtual registers (kind 'vr'); this mixin pairs them for co-issue and has the one
+allocator (allocate.py) give them r0-r1 (r0-r5 in ps_1_4), with the result pinned to r0 and,
+in ps_1_4, each texld destination pinned to its stage; the writer (writer.py) renames them.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 from effects.base.errors import Location, UNKNOWN_LOCATION
-from effects.shaders.asm.program import Operand
+from effects.shaders.asm.program import Instruction, Operand
 from effects.shaders.asm.ps1_rules import coissue_split
 from effects.shaders.hlsl.allocate import OutOfRegisters, allocate
-from effects.shaders.hlsl.asmcode import Instr, Reg
 from effects.shaders.hlsl.parse import HlslError
-from effects.shaders.hlsl.writer import Code, register, swizzled
+from effects.shaders.hlsl.records import same, written
+from effects.shaders.hlsl.writer import Code
 
 RGBA = "rgba"
-FULL = (0, 1, 2, 3)
-
-
-@dataclass
-class Src:
-    reg: Reg
-    lane: int | None = None        # a replicated lane (.a, .b; .r/.g in ps_1_4); None: as held
-    mod: str = ""                  # bx2 | bias | x2 | invert
-    neg: bool = False
 
 
 @dataclass
 class Home:
-    reg: Reg
+    reg: Operand
     scalar: bool = False           # replicated in every lane
     phase: int = 2
     lanes: int = 4                 # lanes that hold the value (texcrd: .rgb)
@@ -42,7 +33,8 @@ class Home:
 class Ps1Emit:
     """Mixin of Ps1CodeGen, which holds these."""
 
-    instrs: list[Instr]
+    instrs: list[Instruction]
+    optional: set[int]             # id() of moves left out when nothing reads their result
     precolor: dict[int, int]
     vr_loc: dict[int, Location]
     defs: dict[int, list[float | None]]
@@ -61,12 +53,12 @@ class Ps1Emit:
             return
         prev = None
         for ins in self.instrs:
-            if prev is not None and not ins.texture and not prev.texture and not prev.coissue \
-                    and coissue_split(prev.mask, ins.mask) \
-                    and (0, 1, 2) in (tuple(prev.mask), tuple(ins.mask)) \
+            if prev is not None and ins.is_arithmetic and prev.is_arithmetic \
+                    and not prev.coissue and coissue_split(written(prev), written(ins)) \
+                    and (0, 1, 2) in (written(prev), written(ins)) \
                     and not _cnd_coissued_on_colour(ins, self.rules) \
-                    and all(s.reg != prev.dst for s in ins.srcs) \
-                    and all(s.reg != ins.dst for s in prev.srcs):
+                    and not any(same(s, prev.dst) for s in ins.srcs) \
+                    and not any(same(s, ins.dst) for s in prev.srcs):
                 ins.coissue = True
                 prev = None
                 continue
@@ -75,8 +67,8 @@ class Ps1Emit:
     def _code(self) -> Code:
         """Instructions nothing reads left out, co-issue pairs made, then the temporaries
         allocated (allocate.py: pinned ones first; r0-r1, r0-r5 in ps_1_4), for the writer."""
-        read = {s.reg.index for ins in self.instrs for s in ins.srcs if s.reg.kind == "vr"}
-        self.instrs = [ins for ins in self.instrs if not ins.optional or
+        read = {s.index for ins in self.instrs for s in ins.srcs if s.kind == "vr"}
+        self.instrs = [ins for ins in self.instrs if id(ins) not in self.optional or
                        (ins.dst is not None and ins.dst.index in read)]
         self._pair()
         count = self.rules.registers["r"]
@@ -92,25 +84,12 @@ class Ps1Emit:
                             self.vr_loc.get(full.vr, UNKNOWN_LOCATION)) from None
         constants = {n: (self.const_regs[n], self.sizes.get(n, 1)) for n in self.const_regs
                      if n in self.used_uniforms}
-        return Code(self.instrs, alloc, ps1_source(alloc),
+        return Code(self.instrs, alloc,
                     {r: tuple(0.0 if v is None else v for v in vals) for r, vals in self.defs.items()},
                     constants=constants, samplers=dict(self.samplers), letters=RGBA)
 
 
-def ps1_source(alloc: dict[int, int]) -> Callable[[Src, Instr], Operand]:
-    """The writer's reading of a ps_1_x source: its register, `.a`/`.b` for a replicated
-    lane (spelt in rgba, as ps_1_x code is written), its modifier and sign."""
-    def source(s: Src, ins: Instr) -> Operand:
-        op = register(s.reg, alloc)
-        if s.lane is not None:
-            swizzled(op, (s.lane,) * 4, RGBA[s.lane])
-        op.modifier = s.mod or None
-        op.negate = s.neg
-        return op
-    return source
-
-
-def _cnd_coissued_on_colour(ins: Instr, rules: Any) -> bool:
+def _cnd_coissued_on_colour(ins: Instruction, rules: Any) -> bool:
     # a co-issued cnd writing .rgb in ps_1_1-1_3 always returns its first choice
     # (docs/reference/semantics.md 2.4)
-    return rules.is_ps11_13 and ins.opcode == "cnd" and tuple(ins.mask) != (3,)
+    return rules.is_ps11_13 and ins.opcode == "cnd" and written(ins) != (3,)

@@ -10,10 +10,11 @@ from __future__ import annotations
 from typing import Any
 
 from effects.base.errors import EffectWarning, Location, UNKNOWN_LOCATION
-from effects.shaders.hlsl.asmcode import Instr, Reg
+from effects.shaders.asm.program import Instruction, Operand as Register
 from effects.shaders.hlsl.dag import Node
 from effects.shaders.hlsl.parse import HlslError
-from effects.shaders.hlsl.ps1_asm import FULL, Home, Src
+from effects.shaders.hlsl.ps1_asm import Home
+from effects.shaders.hlsl.records import FULL, reg as register, replicated, temp
 
 
 class Ps1Textures:
@@ -24,11 +25,12 @@ class Ps1Textures:
     ps14: bool
     phase: int
     home: dict[int, Home]
-    instrs: list[Instr]
+    instrs: list[Instruction]
+    optional: set[int]
     samplers: dict[str, int]
     sampled: set[tuple[str, int]]
     explicit_samplers: dict[str, int]
-    carried_alpha: dict[int, Reg]
+    carried_alpha: dict[int, Register]
     readers: dict[int, list[tuple[Node | None, Any]]]
     _input_homes: dict[str, Home]
 
@@ -39,15 +41,16 @@ class Ps1Textures:
             m = int(reg[1:])
             if self.ps14:
                 vr = self.temp(UNKNOWN_LOCATION)
-                self.instrs.append(Instr("texcrd", Reg("vr", vr), (0, 1, 2), [Src(Reg("t", m))], texture=True))
-                self._input_homes[reg] = Home(Reg("vr", vr), phase=self.phase, lanes=3)
+                self.instrs.append(self.record("texcrd", temp(vr), (0, 1, 2), [replicated(register("t", m))],
+                                           UNKNOWN_LOCATION))
+                self._input_homes[reg] = Home(temp(vr), phase=self.phase, lanes=3)
                 continue
             if any(self.home.get(t.id) and self.home[t.id].reg.kind == "t" and self.home[t.id].reg.index == m
                    for t in tex):
                 self.refuse(f"TEXCOORD{m} is both sampled and read as a value; {self.v} loads each "
                             f"t register once (tex or texcoord)", self._input_loc(reg, reader=True))
-            self.instrs.append(Instr("texcoord", Reg("t", m), FULL, [], texture=True))
-            self._input_homes[reg] = Home(Reg("t", m))
+            self.instrs.append(self.record("texcoord", register("t", m), FULL, [], UNKNOWN_LOCATION))
+            self._input_homes[reg] = Home(register("t", m))
             # a located warning: the value read is clamped, unlike in HLSL
             warning = EffectWarning(f"{self.v} reads TEXCOORD{m} as a value through texcoord, which "
                                     "clamps it to [0, 1]", self._input_loc(reg))
@@ -72,25 +75,25 @@ class Ps1Textures:
             if m < 0 or mod or coord.negate or coord.swizzle != tuple(range(coord.width)):
                 self.fail("texture read at this coordinate: ps_1_1-1_3 sample stage # at TEXCOORD# "
                           "as interpolated (no swizzle, modifier or colour input)", n.location)
-            stage, dst = m, Reg("t", m)
-            ins = Instr("tex", dst, FULL, [], n.location, texture=True)
+            stage, dst = m, register("t", m)
+            ins = self.record("tex", dst, FULL, [], n.location)
         else:
             taken = set(self.samplers.values()) | {s for s in self.explicit_samplers.values()}
             stage = self.samplers.get(name, explicit if explicit is not None else next(
                 (k for k in range(6) if k not in taken), 6))
             if stage > 5:
                 self.refuse(f"{self.v} has 6 texture stages; this is the 7th texture read", n.location)
-            dst = Reg("vr", self.temp(n.location, pin=stage))
+            dst = temp(self.temp(n.location, pin=stage))
             if coord.node.op == "input":
                 if not coord.node.key[1].startswith("t"):
                     self.fail("texture read at colour-input coordinates", n.location)
-                src = Src(Reg("t", int(coord.node.key[1][1:])))
+                src = replicated(register("t", int(coord.node.key[1][1:])))
             else:
                 home = self.home.get(coord.node.id)
                 if home is None or mod or coord.negate or coord.swizzle != tuple(range(coord.width)):
                     self.fail("dependent read at coordinates with a swizzle or modifier", n.location)
-                src = Src(home.reg)
-            ins = Instr("texld", dst, FULL, [src], n.location, texture=True)
+                src = replicated(home.reg)
+            ins = self.record("texld", dst, FULL, [src], n.location)
         if explicit is not None and explicit != stage:
             self.refuse(f"sampler '{name}' is bound to s{explicit}, but {self.v} samples it at "
                         f"stage {stage}", n.location)
@@ -113,15 +116,17 @@ class Ps1Textures:
         left out if phase 2 does not read it."""
         stage = self.home[n.id].reg
         rgb, alpha = self.temp(n.location), self.temp(n.location)
-        self.emit(Instr("mov", Reg("vr", rgb), (0, 1, 2), [Src(stage)], n.location, optional=True))
-        self.emit(Instr("mov", Reg("vr", alpha), (0, 1, 2), [Src(stage, 3)], n.location, optional=True))
-        self.home[n.id] = Home(Reg("vr", rgb), phase=1)
-        self.carried_alpha[n.id] = Reg("vr", alpha)
+        for vr, lane in ((rgb, None), (alpha, 3)):
+            ins = self.record("mov", temp(vr), (0, 1, 2), [replicated(stage, lane)], n.location)
+            self.optional.add(id(ins))
+            self.emit(ins)
+        self.home[n.id] = Home(temp(rgb), phase=1)
+        self.carried_alpha[n.id] = temp(alpha)
 
     def _rejoin(self, node: Node, loc: Location) -> Home:
         """Phase 2: a carried read whole again (.rgb and its .a from where they crossed)."""
-        whole = Reg("vr", self.temp(loc))
-        self.emit(Instr("mov", whole, (0, 1, 2), [Src(self.home[node.id].reg)], loc))
-        self.emit(Instr("mov", whole, (3,), [Src(self.carried_alpha.pop(node.id), 2)], loc))
+        whole = temp(self.temp(loc))
+        self.emit(self.record("mov", whole, (0, 1, 2), [replicated(self.home[node.id].reg)], loc))
+        self.emit(self.record("mov", whole, (3,), [replicated(self.carried_alpha.pop(node.id), 2)], loc))
         self.home[node.id] = Home(whole, phase=2)
         return self.home[node.id]

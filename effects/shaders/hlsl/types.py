@@ -95,6 +95,9 @@ FLOAT, INT, BOOL, VOID = scalar("float"), scalar("int"), scalar("bool"), HType("
 def builtin(name: str) -> HType | None:
     """The type a built-in name spells (`float4x3`, `half2`, `sampler2D`, `matrix`)."""
     low = name.lower()
+    if "<" in low:              # `Texture2D<float4>` (its element type: frontend.types)
+        low = low.split("<", 1)[0].rstrip()
+        return HType("texture", TEXTURE_KINDS[low]) if low in TEXTURE_KINDS else None
     if low in SAMPLER_KINDS:
         return HType("sampler", SAMPLER_KINDS[low])
     if low in TEXTURE_KINDS:

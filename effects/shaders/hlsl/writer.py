@@ -1,47 +1,40 @@
-"""The one writer of the HLSL compiler: the code generators' instructions (asmcode.Instr on
-allocated temporaries) as the assembler's own records, an `AsmProgram` of `Instruction`,
-`Operand`, `Declaration` and `ConstantDef` (effects/shaders/asm/program.py), which the
+"""The one writer of the HLSL compiler. The code generators emit the assembler's own records
+(`Instruction`, `Operand`: effects/shaders/asm/program.py, made by records.py) on virtual
+temporaries; once they are allocated, the writer renames each temporary to its r#, spells each
+operand, and adds the `def` constants and the declarations, making an `AsmProgram` that the
 assembler's checks, the slot counts and the lowering read as they read a hand-written shader.
-No text is parsed: text is printed from the records for listings (`listing`, in the HLSL
-compiler's spelling: effects/shaders/asm/text.py).
+No record is converted and no text is parsed: text is printed from the records for listings
+(`listing`, in the HLSL compiler's spelling: effects/shaders/asm/text.py).
 
-Both generators hand their sources over in their own form: vs_1_1-ps_3_0's `Src` (the lanes an
-instruction reads, set to a swizzle the version has by `legalize.source_swizzle`) and ps_1_x's
-(`ps1_asm.Src`: one replicated lane, a source modifier). A `mov` of a temporary into the same
-register, as read, is left out (the allocation made it a copy onto itself), and an instruction
-co-issued with it stands alone.
+A `mov` of a temporary into the same register, as read, is left out (the allocation made it a
+copy onto itself), and an instruction co-issued with it stands alone.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Callable
 
 from effects.base.errors import Location, UNKNOWN_LOCATION
-from effects.shaders.asm.instructions import COMPARISONS, lookup, rows_named
-from effects.shaders.asm.program import (AsmProgram, ConstantDef, Declaration, Instruction,
-                                         Operand, RelativeAddress)
+from effects.shaders.asm.instructions import lookup, rows_named
+from effects.shaders.asm.program import AsmProgram, ConstantDef, Declaration, Instruction, Operand
 from effects.shaders.asm.text import LISTING, canonical_swizzle_text, listing_number, program_lines
 from effects.shaders.asm.versions import IDENTITY, VersionRules
-from effects.shaders.hlsl.asmcode import Instr, Reg
 from effects.shaders.hlsl.parse import HlslError
 
 XYZW = "xyzw"
-RGBA = "rgba"
 
 
 @dataclass
 class Code:
-    """What a code generator made, allocated: the instructions, their registers, the
-    constants it defined and the declarations of what it reads, and the tables the pass
-    needs (parameter -> first c# and count, sampler -> s#, int -> i#, bool -> b#)."""
+    """What a code generator made, allocated: the instructions (their swizzles chosen and
+    samplers numbered), their temporaries' registers, the constants it defined and the
+    declarations of what it reads, and the tables the pass needs (parameter -> first c# and
+    count, sampler -> s#, int -> i#, bool -> b#)."""
 
-    instrs: list[Instr]
-    alloc: dict[int, int]
-    source: Callable[[Any, Instr], Operand]      # a generator's source record as an Operand
+    instrs: list[Instruction]
+    alloc: dict[int, int]                        # virtual temporary -> r#
     defs: dict[int, tuple[float, ...]] = field(default_factory=dict)
     int_defs: dict[int, tuple[int, ...]] = field(default_factory=dict)
     dcls: list[Declaration] = field(default_factory=list)
-    sampler_of: dict[str, int] = field(default_factory=dict)     # sampler named by an Instr
     constants: dict[str, tuple[int, int]] = field(default_factory=dict)
     samplers: dict[str, int] = field(default_factory=dict)
     int_registers: dict[str, int] = field(default_factory=dict)
@@ -52,36 +45,7 @@ class Code:
     letters: str = XYZW                          # how masks are spelt (ps_1_x: rgba)
 
 
-def register(reg: Reg, alloc: dict[int, int]) -> Operand:
-    """A generator's register as an operand: a temporary as its r#, c_rel as c[a0.? + n],
-    c_al as c[aL + n]. (Built positionally: one per operand of every compiled instruction.)"""
-    kind = reg.kind
-    if kind == "vr":
-        index = alloc[reg.index]  # type: ignore[index]
-        return Operand("r", index, UNKNOWN_LOCATION, _NAMES.get(index) or f"r{index}")
-    if kind == "c_rel":
-        return Operand("c", reg.index, UNKNOWN_LOCATION, f"c{reg.index}",
-                       relative=RelativeAddress("a", 0, reg.lane))
-    if kind == "c_al":
-        return Operand("c", reg.index, UNKNOWN_LOCATION, f"c{reg.index}",
-                       relative=RelativeAddress("aL", 0, 0))
-    return Operand(kind, reg.index, UNKNOWN_LOCATION,
-                   f"{kind}{'' if reg.index is None else reg.index}")
-
-
-_NAMES = {k: f"r{k}" for k in range(32)}
 _SWIZZLE_TEXT: dict[tuple[int, ...], str] = {}
-
-
-def swizzled(op: Operand, swizzle: tuple[int, ...], text: str | None = None) -> Operand:
-    """`op` reading `swizzle`, spelt `text` (ps_1_x's letters), else in its shortest form."""
-    op.swizzle = swizzle = tuple(swizzle)  # type: ignore[assignment]
-    if text is None:
-        text = _SWIZZLE_TEXT.get(swizzle)
-        if text is None:
-            text = _SWIZZLE_TEXT[swizzle] = canonical_swizzle_text(swizzle)
-    op.swizzle_text = text
-    return op
 
 
 def declaration(kind: str, index: int | None, usage: str | None = None, usage_index: int = 0,
@@ -125,7 +89,8 @@ def write(code: Code, rules: VersionRules, entry_loc: Location
             prog.phase_locations.append(entry_loc)
             phase = 2
             continue
-        record = instruction(code, ins, rules, entry_loc)
+        generated = ins.location
+        record = finish(code, ins, rules, entry_loc)
         if _copy_onto_itself(record):
             dropped = True
             continue
@@ -134,47 +99,60 @@ def write(code: Code, rules: VersionRules, entry_loc: Location
         dropped = False
         record.phase = phase
         prog.instructions.append(record)
-        generated_at[id(record)] = ins.location
+        generated_at[id(record)] = generated
     return prog, generated_at
 
 
-def instruction(code: Code, ins: Instr, rules: VersionRules, entry_loc: Location) -> Instruction:
-    base, _, suffix = ins.opcode.partition("_")
-    comparison = suffix if suffix in COMPARISONS else None
-    if not comparison:
-        base = ins.opcode
-    srcs = [code.source(s, ins) for s in ins.srcs]
-    operands: list[Operand] = []
-    if ins.dst is not None:
-        dst = register(ins.dst, code.alloc)
-        mask = tuple(ins.mask)
+def finish(code: Code, ins: Instruction, rules: VersionRules, entry_loc: Location
+           ) -> Instruction:
+    """`ins` as the assembler has it, in place: its temporaries renamed to the registers
+    allocated, each operand spelt, a full mask as none, the row of the version's table, located
+    at its HLSL line."""
+    alloc = code.alloc
+    for op in ins.srcs:
+        if op.kind == "vr":
+            op.kind, op.index = "r", alloc[op.index]  # type: ignore[index]
+        op.text = op.name
+        if not op.swizzle_text:
+            op.swizzle_text = _swizzle_text(op.swizzle)
+    dst = ins.dst
+    if dst is not None:
+        if dst.kind == "vr":
+            dst.kind, dst.index = "r", alloc[dst.index]  # type: ignore[index]
+        dst.text = dst.name
+        mask = tuple(dst.mask) if dst.mask is not None else IDENTITY
         if list(mask) != sorted(set(mask)):
             raise HlslError(f"internal: the generated {rules.name} code writes the mask "
                             f"{mask} of {dst.name}", ins.location or entry_loc)
-        if mask != (0, 1, 2, 3):
+        if mask == IDENTITY:
+            dst.mask = None
+        else:
             dst.mask = mask
             dst.swizzle_text = "".join(code.letters[c] for c in mask)
-        operands.append(dst)
-    info = lookup(base, rules.name)
+    info = lookup(ins.opcode, rules.name)
     if info is None:        # a generator bug: the checks say the version lacks it
-        info = next((r for r in rows_named(base) if len(r.operands) ==
-                     len(operands) + len(srcs) + (ins.sampler is not None)), None)
+        info = next((r for r in rows_named(ins.opcode)
+                     if len(r.operands) == len(ins.operands)), None)
         if info is None:
-            raise HlslError(f"internal: the generated {rules.name} code uses '{base}'",
+            raise HlslError(f"internal: the generated {rules.name} code uses '{ins.opcode}'",
                             ins.location or entry_loc)
-    if ins.sampler is not None:
-        k = code.sampler_of[ins.sampler]
-        srcs.insert(1, Operand("s", k, text=f"s{k}"))
-    if operands and not info.has_dst:      # ps_2_0's texkill names its register as a source
-        srcs.insert(0, swizzled(operands.pop(), IDENTITY, ""))
-        srcs[0].mask = None
+    ins.info = info
+    if dst is not None and not info.has_dst:   # ps_2_0's texkill names its register as a source
+        dst.mask, dst.swizzle_text = None, ""
+        ins.srcs.insert(0, dst)
+        ins.dst = None
     loc = ins.location if ins.location.line else entry_loc
-    record = Instruction(base, operands[0] if operands else None, srcs, info, loc,
-                         shift=ins.shift, saturate=ins.saturate, coissue=ins.coissue,
-                         comparison=comparison)
-    for op in record.operands:
+    ins.location = loc
+    for op in ins.operands:
         op.location = loc
-    return record
+    return ins
+
+
+def _swizzle_text(swizzle: tuple[int, ...]) -> str:
+    text = _SWIZZLE_TEXT.get(swizzle)
+    if text is None:
+        text = _SWIZZLE_TEXT[swizzle] = canonical_swizzle_text(swizzle)
+    return text
 
 
 def _at(op: Operand, loc: Location) -> Operand:

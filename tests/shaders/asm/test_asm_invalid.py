@@ -129,7 +129,7 @@ INVALID = [
     ("texld after arithmetic", lines("ps.1.4", "mov r1, c0", "texld r0, t0", "mul r0, r0, r1"),
      ["12:1: texld must come before the arithmetic instructions of its phase (phase 2)"]),
     ("bem in phase 2", lines("ps.1.4", "texld r0, t0", "phase", "texld r1, t1",
-                             "bem r2.rg, r0, r1", "mov r0, r2"),
+                             "bem r2.rg, r0, r1", "mov r0.rg, r2"),
      ["14:1: bem is allowed only in phase 1 of ps_1_4"]),
     ("t read by arithmetic in ps14", lines("ps.1.4", "mov r0, t0"),
      ["11:9: t0 can be read only by texld and texcrd in ps_1_4"]),
@@ -224,6 +224,22 @@ INVALID = [
      ["12:13: r1 is read before it is written"]),
     ("vs temp read before written", lines("vs.1.1", "mov oPos, r0"),
      ["11:11: r0 is read before it is written"]),
+    # a pixel shader's temporaries by component (the reference's ps temporary register page)
+    ("ps20 component read before written", lines("ps_2_0", "mov r0.x, c0", "add r1, r0, c1",
+                                                 "mov oC0, r1"),
+     ["12:9: r0.yzw is read before it is written (only r0.x is written before here)"]),
+    ("ps20 dp3 reads xyz", lines("ps_2_0", "mov r0.xy, c0", "dp3 r1, r0, c1", "mov oC0, r1"),
+     ["12:9: r0.z is read before it is written (only r0.xy is written before here)"]),
+    ("ps30 swizzle names the unwritten lane", lines("ps_3_0", "mov r0.xy, c0",
+                                                    "mov r1.xy, r0.yz", "mov r1.zw, c0",
+                                                    "mov oC0, r1"),
+     ["12:12: r0.z is read before it is written (only r0.xy is written before here)"]),
+    ("ps20 texld 2d reads its sampler's xy", lines("ps_2_0", "dcl_cube s0", "mov r0.xy, c0",
+                                                   "texld r1, r0, s0", "mov oC0, r1"),
+     ["13:11: r0.z is read before it is written (only r0.xy is written before here)"]),
+    ("ps20 texldp reads w", lines("ps_2_0", "dcl_2d s0", "mov r0.xy, c0",
+                                  "texldp r1, r0, s0", "mov oC0, r1"),
+     ["13:12: r0.w is read before it is written (only r0.xy is written before here)"]),
     ("no r0 write in ps11", lines("ps.1.1", "tex t0", "mov r1, t0"),
      ["10:9: the shader never writes r0, its output colour"]),
     ("no oC0 write in ps20", lines("ps_2_0", "dcl t0", "mov r0, t0"),
@@ -259,6 +275,24 @@ def test_dependent_read_levels_follow_each_component():
                                  "texld r2, r1, s0", "texld r3, r2, s0", "texld r4, r3, s1",
                                  "mov oC0, r4")))
     assert list(chain.read_levels.values()) == [1, 2, 3, 4]
+
+
+@pytest.mark.parametrize("src", [
+    # each reads only components written before it
+    lines("ps_2_0", "mov r0.x, c0", "add r1.x, r0, c1", "mov r1.yzw, c1", "mov oC0, r1"),
+    lines("ps_2_0", "mov r0.x, c0", "rcp r1, r0.x", "mov oC0, r1"),
+    lines("ps_2_0", "mov r0.xyz, c0", "dp3 r1, r0, c1", "nrm r2.xyz, r0", "mov r2.w, r1.x",
+          "mov oC0, r2"),
+    lines("ps_2_0", "dcl_2d s0", "mov r0.xy, c0", "texld r1, r0, s0", "mov oC0, r1"),
+    lines("ps_2_0", "dcl_2d s0", "mov r0.xy, c0", "mov r0.w, c1.x", "texldb r1, r0, s0",
+          "mov oC0, r1"),
+    lines("ps_3_0", "mov r0.xy, c0", "mov r1, r0.xyyy", "mov oC0, r1"),
+    # a vertex shader's temporary: the register written first is enough (its page); ps_1_x's
+    lines("vs_1_1", "dcl_position v0", "mov r0.x, v0", "mov oPos, r0"),
+    lines("ps.1.4", "texld r1, t0", "mov r0.rgb, r1", "mov r0.a, r0"),
+])
+def test_reads_of_components_written_before_them_pass(src):
+    assert problems(src) == []
 
 
 def test_dp4_takes_two_slots_in_ps12():

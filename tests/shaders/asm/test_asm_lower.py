@@ -95,8 +95,9 @@ ARITH = [
     ("frc r0, r2", (0.0, 0.0, 0.5, 0.0)),
     ("abs r0, c0", (0.5, 0.25, 2.0, 0.75)),
     ("nrm r0, r2", np.array(C2) / np.sqrt(1.25)),     # w scaled as well
-    ("crs r0.xyz, c0, c1", (-0.25 * -1.0 - 2.0 * 0.5, 2.0 * 0.25 - 0.5 * -1.0,
-                            0.5 * 0.5 - (-0.25) * 0.25, 0.0)),
+    # r0.w written too: a ps_2_0 shader reads no component before it is written (check.py)
+    ("crs r0.xyz, c0, c1\nmov r0.w, c2.y", (-0.25 * -1.0 - 2.0 * 0.5, 2.0 * 0.25 - 0.5 * -1.0,
+                                           0.5 * 0.5 - (-0.25) * 0.25, 0.0)),
     ("dp2add r0, c0, c1, r2.z", (0.125 - 0.125 + 0.5,) * 4),
     ("mov r0, -c0.wzyx", (-0.75, -2.0, 0.25, -0.5)),
 ]
@@ -116,9 +117,9 @@ def test_vs20_sgn_is_minus_one_zero_or_one():
 
 
 def test_ps20_sincos_writes_cos_and_sin():
-    prog = ps("ps_2_0\nmov r1, c0\nsincos r0.xy, r1.x, c1, c2\nmov oC0, r0")
+    prog = ps("ps_2_0\nmov r1, c0\nsincos r0.xy, r1.x, c1, c2\nmov r0.zw, c0.y\nmov oC0, r0")
     got = out(prog, {"c0": (np.pi / 3, 0, 0, 0), "c1": C1, "c2": C2})
-    assert got == approx((0.5, np.sqrt(3) / 2, 0.0, 0.0))   # zw keep r0's initial zeros
+    assert got == approx((0.5, np.sqrt(3) / 2, 0.0, 0.0))   # zw: c0.y
 
 
 def test_ps20_constants_are_not_clamped_but_ps11_reads_are():

@@ -186,6 +186,34 @@ def test_an_else_if_chain_computes_no_flags_or_products():
                for line in text.splitlines() if line.startswith("cmp")), text
 
 
+
+NESTED = """
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    float s = uv.x - 0.5;
+    if (s > 0) { if (uv.y > 0.5) { if (s > 0) { s += 1; } } }
+    return float4(s, uv.y, 0, 1);
+}"""
+
+
+def test_nested_ifs_on_one_condition_select_on_it_once():
+    # the store stands under (s > 0) * (uv.y > 0.5) * (s > 0): selecting on each distinct
+    # compare once is one cmp on s (the repeated factor) and one on 0.5 - uv.y, so two cmps;
+    # a select per factor was three
+    text = fx_asm(effect_for(NESTED), "PS", "ps_2_0")
+    body = [line.split()[0] for line in text.splitlines()
+            if line and not line.startswith(("ps_", "def", "dcl", "//"))]
+    assert body.count("cmp") == 2, text
+
+
+def test_nested_ifs_on_one_condition_render(backend):
+    img = render(effect_for(NESTED), backend)
+    for x, y in ((1, 2), (6, 2), (6, 6), (1, 6)):
+        u, v = x / 8, y / 8
+        s = u - 0.5
+        want = (min(max(s + 1 if s > 0 and v > 0.5 else s, 0), 1), v, 0, 1)
+        assert np.allclose(img[y, x], want, atol=TOL), (x, y, img[y, x], want)
+
 # -- `a && b` selects on b's comparison ----------------------------------------------------------
 
 BETWEEN = """

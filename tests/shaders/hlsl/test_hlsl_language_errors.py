@@ -160,6 +160,43 @@ def test_a_refusal_for_the_target_is_not_a_language_error(code):
         compile_shader(fx, "PS", compiles)
 
 
+# register() bindings that overlap in what the code reads (X4500), and their neighbours that do
+# not: a variable holds the registers up to the last one read (constant_layout.py)
+OVERLAPS = [
+    ("float4 A : register(c0); float4 B : register(c0);", "A + B", "c0", None),
+    ("sampler A : register(s0); sampler B : register(s0);", "tex2D(A, uv) * tex2D(B, uv)",
+     "s0", None),
+    ("float4 A[2] : register(c0); float4 B : register(c1);", "A[1] + B", "c1", None),
+    ("float4 A[2] : register(c0); float4 B : register(c1);", "A[0] + B", None,
+     {"A": (0, 1), "B": (1, 1)}),
+    ("float4 A : register(c0); float4 B : register(c0);", "A", None, {"A": (0, 1)}),
+    ("sampler A : register(s1); sampler B[2] : register(s0);",
+     "tex2D(A, uv) + tex2D(B[1], uv)", "s1", None),
+    ("sampler A : register(s1); sampler B[2] : register(s0);",
+     "tex2D(A, uv) + tex2D(B[0], uv)", None, {"A": (1, 1), "B": (0, 1)}),
+]
+
+
+@pytest.mark.parametrize("globals_, expression, register, table", OVERLAPS)
+def test_bindings_that_overlap_in_what_the_code_reads_are_refused_for_every_target(
+        globals_, expression, register, table):
+    functions = (f"{globals_}\nfloat4 PS(float2 uv : TEXCOORD0) : COLOR\n{{\n"
+                 f"    return {expression};\n}}")
+    for target in ("ps_2_0", "ps_3_0"):
+        fx = effects.load_effect(functions + TECHNIQUE)
+        if register is None:
+            shader = compile_shader(fx, "PS", target)
+            got = {**shader.constants, **shader.sampler_table()}
+            assert {k: got[k] for k in table} == table
+            continue
+        err = compile_error(functions, target)
+        assert err.message == (f"X4500: overlapping register semantics not yet implemented "
+                               f"'{register}': 'A' and 'B' are both bound to {register}")
+        # located at the later declaration's name
+        at = (err.location.line, err.location.column)
+        assert err.language is True and at == (1, globals_.index(" B") + 2)
+
+
 def test_the_flag_is_set_where_the_error_is_made_and_a_raise_may_say():
     assert HlslError("X3004: undeclared identifier 'a'").language is True
     assert HlslError("X3512: array index must be a literal expression").language is False

@@ -10,7 +10,8 @@ from effects.model import ShaderBlock
 from effects.shaders.asm import assemble, check
 from effects.shaders.hlsl import compiler
 from effects.shaders.hlsl.compiler import PASSES, Compilation, run_passes
-from effects.shaders.hlsl.legalize import _choose, _lanes_needed
+from effects.shaders.hlsl.legalize import _choose
+from effects.shaders.hlsl.records import needed
 
 
 def compilation(functions: str, entry: str, target: str, until) -> Compilation:
@@ -80,16 +81,16 @@ def test_legalize_builds_a_swizzle_ps_2_0_lacks():
     fn = "float4 K; float4 PS(float4 c : COLOR0) : COLOR { return c * K.xwzy; }"
     c = compilation(fn, "PS", "ps_2_0", compiler.optimise)
     rule = "ps20"
-    assert any(_choose(_lanes_needed(i, s), rule) is None for i in c.gen.instrs for s in i.srcs)
+    assert any(_choose(needed(s), rule) is None for i in c.gen.instrs for s in i.srcs)
     before = len(c.gen.instrs)
     compiler.legalize_code(c)
     assert len(c.gen.instrs) > before
-    assert all(_choose(_lanes_needed(i, s), rule) is not None for i in c.gen.instrs for s in i.srcs)
+    assert all(_choose(needed(s), rule) is not None for i in c.gen.instrs for s in i.srcs)
 
 
 def test_allocate_gives_every_temporary_a_register_of_the_version():
     c = compilation(MAD, "PS", "ps_2_0", compiler.allocate_registers)
-    temps = {s.reg.index for i in c.code.instrs for s in i.srcs if s.reg.kind == "vr"}
+    temps = {s.index for i in c.code.instrs for s in i.srcs if s.kind == "vr"}
     assert temps and set(c.code.alloc) >= temps and max(c.code.alloc.values()) < 12
     assert c.code.constants == {"A": (0, 1), "B": (1, 1)}
 

@@ -14,7 +14,8 @@ from effects.program.backend import create_backend
 from effects.shaders.asm import check
 from effects.shaders.asm.versions import VERSIONS
 from effects.shaders.hlsl import codegen, compile_shader, peephole
-from effects.shaders.hlsl.asmcode import Instr, Reg, Src
+from effects.shaders.asm.program import Instruction as Instr, Operand as Reg
+from effects.shaders.hlsl.records import fixed, instruction, read, reg, same, written
 
 
 def compiled(functions: str, entry: str, target: str):
@@ -28,6 +29,15 @@ def body(shader) -> list[str]:
     """The instructions (no version, def or dcl lines)."""
     return [line for line in shader.text.splitlines()[1:]
             if not line.startswith(("def", "dcl"))]
+
+
+def drawn(text: str, card: str, backend: str) -> np.ndarray:
+    """The effect drawn on an 8x8 quad, freshly compiled (after a pass was left out too)."""
+    effects.clear_caches()
+    img = effects.render(effects.load_effect(text), card, technique="T", backend=backend,
+                         scene={"mesh": "quad", "size": [8, 8]})
+    effects.clear_caches()
+    return img.astype(np.float64) / 255.0
 
 
 def without(monkeypatch, name: str) -> None:
@@ -230,43 +240,49 @@ def _fold(target: str, prod: Instr, mov: Instr) -> list[Instr]:
 
 
 def _vr(k: int) -> Reg:
-    return Reg("vr", k)
+    return reg("vr", k)
+
+
+def _ins(opcode: str, dst: Reg | None, mask: tuple[int, ...], srcs: list[Reg],
+         saturate: bool = False) -> Instr:
+    """A generated instruction as codegen emits it (the ps_3_0 row: the passes read opcodes)."""
+    return instruction(opcode, dst, mask, srcs, "ps_3_0", saturate=saturate)
 
 
 def test_the_rule_writes_a_replicated_result_to_every_lane_the_copy_fills():
-    dp3 = Instr("dp3", _vr(0), (0,), [Src(Reg("c", 4), {0: 0, 1: 1, 2: 2}),
-                                      Src(Reg("v", 1), {0: 0, 1: 1, 2: 2})])
-    mov = Instr("mov", Reg("oD", 0), (0, 1, 2, 3), [Src(_vr(0), {}, fixed=(0, 0, 0, 0))])
+    dp3 = _ins("dp3", _vr(0), (0,), [read(reg("c", 4), {0: 0, 1: 1, 2: 2}),
+                                      read(reg("v", 1), {0: 0, 1: 1, 2: 2})])
+    mov = _ins("mov", reg("oD", 0), (0, 1, 2, 3), [fixed(_vr(0), (0, 0, 0, 0))])
     for target in ("vs_1_1", "vs_2_0"):
         out = _fold(target, dp3, mov)
-        assert len(out) == 1 and out[0].opcode == "dp3" and out[0].dst == Reg("oD", 0)
-        assert out[0].mask == (0, 1, 2, 3)
-        dp3.dst, dp3.mask = _vr(0), (0,)
+        assert len(out) == 1 and out[0].opcode == "dp3" and same(out[0].dst, reg("oD", 0))
+        assert written(out[0]) == (0, 1, 2, 3)
+        dp3.dst = Reg("vr", 0, mask=(0,))
     # a result in .y read as .x is no copy of it; a macro writes a temporary only (pow's page)
-    mov.srcs = [Src(_vr(0), {}, fixed=(1, 1, 1, 1))]
+    mov.srcs = [fixed(_vr(0), (1, 1, 1, 1))]
     assert len(_fold("vs_2_0", dp3, mov)) == 2
-    pow_ = Instr("pow", _vr(0), (0,), [Src(Reg("c", 0), {}, fixed=(0,) * 4)] * 2)
-    mov.srcs = [Src(_vr(0), {}, fixed=(0, 0, 0, 0))]
+    pow_ = _ins("pow", _vr(0), (0,), [fixed(reg("c", 0), (0,) * 4)] * 2)
+    mov.srcs = [fixed(_vr(0), (0, 0, 0, 0))]
     assert len(_fold("vs_2_0", pow_, mov)) == 2
 
 
 def test_the_rule_moves_a_lane_wise_result_with_its_sources_lanes():
-    mad = Instr("mad", _vr(0), (0,), [Src(Reg("t", 0), {0: 0}), Src(Reg("t", 0), {0: 0}),
-                                      Src(_vr(1), {0: 0})])
-    mov = Instr("mov", _vr(2), (3,), [Src(_vr(0), {3: 0})], saturate=True)
+    mad = _ins("mad", _vr(0), (0,), [read(reg("t", 0), {0: 0}), read(reg("t", 0), {0: 0}),
+                                      read(_vr(1), {0: 0})])
+    mov = _ins("mov", _vr(2), (3,), [read(_vr(0), {3: 0})], saturate=True)
     out = _fold("ps_2_0", mad, mov)
-    assert len(out) == 1 and out[0].dst == _vr(2) and out[0].mask == (3,) and out[0].saturate
+    assert len(out) == 1 and same(out[0].dst, _vr(2)) and written(out[0]) == (3,) and out[0].saturate
     assert [s.lanes for s in out[0].srcs] == [{3: 0}, {3: 0}, {3: 0}]
     # ps_2_0 has no swizzle .xy?x (.y into lane 2 besides .x into lane 0): the mov stays
-    add = Instr("add", _vr(0), (0, 1), [Src(Reg("t", 0), {0: 0, 1: 1}), Src(Reg("c", 0), {0: 0, 1: 1})])
-    mov = Instr("mov", _vr(2), (0, 2), [Src(_vr(0), {0: 0, 2: 1})])
+    add = _ins("add", _vr(0), (0, 1), [read(reg("t", 0), {0: 0, 1: 1}), read(reg("c", 0), {0: 0, 1: 1})])
+    mov = _ins("mov", _vr(2), (0, 2), [read(_vr(0), {0: 0, 2: 1})])
     assert len(_fold("ps_2_0", add, mov)) == 2
     assert len(_fold("ps_3_0", add, mov)) == 1          # any swizzle: add r2.xz, t0.xzy?, ..
     # one lane spread over several: each computes it again from the same source lanes
-    add = Instr("add", _vr(0), (0,), [Src(_vr(1), {0: 0}), Src(Reg("v", 0), {0: 0})])
-    mov = Instr("mov", Reg("oC", 0), (0, 1, 2, 3), [Src(_vr(0), {}, fixed=(0, 0, 0, 0))])
+    add = _ins("add", _vr(0), (0,), [read(_vr(1), {0: 0}), read(reg("v", 0), {0: 0})])
+    mov = _ins("mov", reg("oC", 0), (0, 1, 2, 3), [fixed(_vr(0), (0, 0, 0, 0))])
     out = _fold("ps_3_0", add, mov)
-    assert len(out) == 1 and out[0].dst == Reg("oC", 0) and out[0].mask == (0, 1, 2, 3)
+    assert len(out) == 1 and same(out[0].dst, reg("oC", 0)) and written(out[0]) == (0, 1, 2, 3)
     assert [s.lanes for s in out[0].srcs] == [{0: 0, 1: 0, 2: 0, 3: 0}] * 2
 
 
@@ -305,11 +321,7 @@ technique T { pass P { VertexShader = compile vs_2_0 VS(); PixelShader = compile
 
 def test_the_folded_code_draws_what_the_hlsl_says(backend, monkeypatch):
     def draw():
-        effects.clear_caches()
-        img = effects.render(effects.load_effect(FOLDED), "radeon9700", technique="T",
-                             backend=backend, scene={"mesh": "quad", "size": [8, 8]})
-        effects.clear_caches()
-        return img.astype(np.float64) / 255.0
+        return drawn(FOLDED, "radeon9700", backend)
 
     fx = effects.load_effect(FOLDED)
     assert "dp3 oD0, c0, r0" in body(compile_shader(fx, "VS", "vs_2_0"))
@@ -323,6 +335,178 @@ def test_the_folded_code_draws_what_the_hlsl_says(backend, monkeypatch):
     assert np.abs(draw() - folded).max() == 0
 
 
+# -- abs read as the _abs source modifier (vs_3_0, ps_3_0) ------------------------------------
+
+def _abs_then_add() -> list[Instr]:
+    # abs vr0.w, -v0.w ; add vr1, -vr0.w, c0.x
+    return [_ins("abs", _vr(0), (3,), [read(reg("v", 0), {3: 3}, True)]),
+            _ins("add", _vr(1), (0, 1, 2, 3), [fixed(_vr(0), (3, 3, 3, 3), True),
+                                               fixed(reg("c", 0), (0, 0, 0, 0))])]
+
+
+@pytest.mark.parametrize("target, kept", [("ps_3_0", 1), ("vs_3_0", 1), ("ps_2_0", 2),
+                                          ("vs_2_0", 2), ("vs_1_1", 2)])
+def test_the_rule_reads_an_abs_as_its_source_modifier(target, kept):
+    cg = SimpleNamespace(instrs=_abs_then_add(), rules=VERSIONS[target], defs={})
+    assert peephole.abs_into_sources(cg) == 2 - kept
+    if kept == 1:          # -|(-v0.w)| = -v0_abs.w: the abs's own sign goes, the reader's stays
+        (add,) = cg.instrs
+        s = add.srcs[0]
+        assert (s.kind, s.index, s.modifier, s.negate, s.swizzle) == ("v", 0, "abs", True,
+                                                                       (3, 3, 3, 3))
+    else:                  # no _abs before shader model 3: the instruction stays
+        assert [i.opcode for i in cg.instrs] == ["abs", "add"]
+
+
+def test_an_abs_read_by_an_instruction_without_modifiers_stays():
+    code = _abs_then_add()
+    code[1] = instruction("texld", _vr(1), (0, 1, 2, 3), [read(_vr(0), {0: 3, 1: 3})],
+                          "ps_3_0", sampler="S")
+    cg = SimpleNamespace(instrs=code, rules=VERSIONS["ps_3_0"], defs={})
+    assert peephole.abs_into_sources(cg) == 0 and len(cg.instrs) == 2
+
+
+ABS = """
+struct V { float4 p : POSITION; float2 t : TEXCOORD0; };
+V VS(float4 p : POSITION, float2 uv : TEXCOORD0) { V o; o.p = p; o.t = uv * 2 - 1; return o; }
+float4 PS(float2 t : TEXCOORD0) : COLOR
+{ return float4(abs(t.x) * 0.5 + abs(t.y) * 0.25, abs(t.y) > 0.5 ? 1 : 0, pow(abs(t.x), 2), 1); }
+technique T { pass P { VertexShader = compile vs_3_0 VS(); PixelShader = compile ps_3_0 PS(); } }
+"""
+
+
+def test_abs_as_a_modifier_draws_what_the_hlsl_says(backend, monkeypatch):
+    # fxc's listing of Effekseer's sprite_unlit_ps: `cmp r1, -r0_abs.w, c0.x, c0.y`
+    def draw():
+        return drawn(ABS, "geforce6800", backend)
+
+    fx = effects.load_effect(ABS)
+    code = body(compile_shader(fx, "PS", "ps_3_0"))
+    assert not any(line.startswith("abs") for line in code) and "v0_abs" in " ".join(code)
+    modified = draw()
+    for x, y in ((1, 2), (6, 5), (3, 7)):
+        tx, ty = 2 * x / 8 - 1, 2 * y / 8 - 1
+        want = (abs(tx) * 0.5 + abs(ty) * 0.25, 1.0 if abs(ty) > 0.5 else 0.0, tx * tx, 1)
+        assert np.allclose(modified[y, x], want, atol=1.5 / 255), (x, y, modified[y, x], want)
+    without(monkeypatch, "abs into sources")
+    effects.clear_caches()
+    code = body(compile_shader(effects.load_effect(ABS), "PS", "ps_3_0"))
+    assert any(line.startswith("abs") for line in code)
+    assert np.abs(draw() - modified).max() == 0
+
+
+# -- a swizzle ps_2_0 lacks, built with the fewest movs ---------------------------------------
+
+@pytest.mark.parametrize("lanes, movs", [
+    # .xyzy: the lanes that keep their component in one mov, .y into w (fxc's two movs)
+    ({0: 0, 1: 1, 2: 2, 3: 1}, [((0, 1, 2), {0: 0, 1: 1, 2: 2}), ((3,), (1, 1, 1, 1))]),
+    # .yxzw: z and w in one, then x and y each replicated
+    ({0: 1, 1: 0, 2: 2, 3: 3}, [((2, 3), {2: 2, 3: 3}), ((0,), (1, 1, 1, 1)),
+                                ((1,), (0, 0, 0, 0))]),
+    # .xxyy: a mov per component is two, as few as the plain one and another would be
+    ({0: 0, 1: 0, 2: 1, 3: 1}, [((0, 1), (0, 0, 0, 0)), ((2, 3), (1, 1, 1, 1))]),
+])
+def test_the_rule_builds_a_swizzle_with_the_fewest_movs(lanes, movs):
+    from effects.base.errors import UNKNOWN_LOCATION
+    from effects.base.errors import UNKNOWN_LOCATION
+    from effects.shaders.hlsl.legalize import _copy
+    cg = SimpleNamespace(rules=VERSIONS["ps_2_0"])
+    out: list[Instr] = []
+    _copy(cg, out, _vr(9), read(reg("t", 0), lanes), UNKNOWN_LOCATION, "ps20")
+    got = [(written(i), i.srcs[0].lanes if i.srcs[0].lanes is not None else i.srcs[0].swizzle)
+           for i in out]
+    assert got == movs and all(i.opcode == "mov" and same(i.dst, _vr(9)) for i in out)
+
+
+SWIZZLED = """
+float4 K = {0.5, 0.25, 0, 1};
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{ float4 c = float4(uv, uv.x * uv.y, 1) + K; return c.xyzy * K.x; }
+technique T { pass P { PixelShader = compile ps_2_0 PS(); } }
+"""
+
+
+def test_a_swizzle_built_in_two_movs_draws_what_the_hlsl_says(backend):
+    # Pale Moon's LayerManagerD3D9 shader as fxc wrote it: mov r1.xyz, r0 / mov r1.w, r0.y
+    fx = effects.load_effect(SWIZZLED)
+    code = body(compile_shader(fx, "PS", "ps_2_0"))
+    assert code[-4:] == ["mov r1.xyz, r0", "mov r1.w, r0.y", "mul r0, r1, c0.x", "mov oC0, r0"]
+    img = effects.render(fx, "radeon9700", technique="T", backend=backend,
+                         scene={"mesh": "quad", "size": [8, 8]}).astype(np.float64) / 255.0
+    for x, y in ((1, 2), (6, 5)):
+        u, v = x / 8, y / 8
+        want = ((u + 0.5) / 2, (v + 0.25) / 2, u * v / 2, (v + 0.25) / 2)
+        assert np.allclose(img[y, x], want, atol=1.5 / 255), (x, y, img[y, x], want)
+
+
+# -- one copy for every read past the read ports --------------------------------------------
+
+def _legalized(target: str, code: list[Instr]) -> list[str]:
+    from effects.shaders.hlsl.legalize import legalize, source_swizzle
+    from effects.shaders.asm.text import instruction_text
+    count = iter(range(100, 200))
+    cg = SimpleNamespace(instrs=code, rules=VERSIONS[target], temp=lambda: _vr(next(count)))
+    legalize(cg)
+    source_swizzle(cg.instrs, "any")          # as code_of hands them on
+    return [instruction_text(ins) for ins in cg.instrs]
+
+
+def _dp3(dst: int, a: int, b: int) -> Instr:
+    # dp3 vr<dst>.<dst lane>, c<a>, c<b>
+    xyz = {0: 0, 1: 1, 2: 2}
+    return _ins("dp3", _vr(9), (dst,), [read(reg("c", a), xyz), read(reg("c", b), xyz)])
+
+
+def test_the_rule_copies_the_register_three_instructions_read_once():
+    # c7 read by three dp3 past vs_1_1's one constant port: copied once, as fxc did
+    code = [_dp3(0, 7, 4), _dp3(1, 7, 5), _dp3(2, 7, 6)]
+    assert _legalized("vs_1_1", code) == [
+        "mov vr100.xyz, c7", "dp3 vr9.x, vr100, c4", "dp3 vr9.y, vr100, c5",
+        "dp3 vr9.z, vr100, c6"]
+    # vs_2_0 reads two constants at once: nothing to copy
+    code = [_dp3(0, 7, 4), _dp3(1, 7, 5), _dp3(2, 7, 6)]
+    assert len(_legalized("vs_2_0", code)) == 3
+    # a flow instruction between: the code after it makes its own copy
+    code = [_dp3(0, 7, 4), _ins("rep", None, (), [fixed(reg("i", 0), (0, 1, 2, 3))]),
+            _dp3(1, 7, 5), _ins("endrep", None, (), [])]
+    assert [t.split()[0] for t in _legalized("vs_1_1", code)] == [
+        "mov", "dp3", "rep", "mov", "dp3", "endrep"]
+
+
+def test_one_copy_serves_every_read_of_the_register_in_an_instruction():
+    # mad d, c0, c1.x, c1.y: c1 copied once (.xy), both sources read the copy
+    code = [_ins("mad", _vr(9), (0, 1, 2, 3), [read(reg("c", 0), {i: i for i in range(4)}),
+                                               fixed(reg("c", 1), (0, 0, 0, 0)),
+                                               fixed(reg("c", 1), (1, 1, 1, 1))])]
+    assert _legalized("vs_1_1", code) == ["mov vr100.xy, c1",
+                                          "mad vr9.xyzw, c0, vr100.x, vr100.y"]
+
+
+PORTS = """
+float3 Light; float3x3 Basis;
+struct O { float4 p : POSITION; float4 c : COLOR0; };
+O VS(float4 p : POSITION) { O o; o.p = p; o.c = float4(mul(Basis, Light) * 0.5 + 0.5, 1); return o; }
+float4 PS(float4 c : COLOR0) : COLOR { return c; }
+technique T { pass P { VertexShader = compile vs_1_1 VS(); PixelShader = compile ps_2_0 PS(); } }
+"""
+
+
+def test_a_constant_copied_once_draws_what_the_hlsl_says(backend):
+    fx = effects.load_effect(PORTS)
+    code = body(compile_shader(fx, "VS", "vs_1_1"))
+    assert code[:4] == ["mov r0.xyz, c3", "mul r1.xyz, c0, r0.x", "mad r1.xyz, c1, r0.y, r1",
+                        "mad r0.xyz, c2, r0.z, r1"]
+    light = [0.5, -0.25, 0.75]
+    basis = [[0.2, 0.4, 0.0], [-0.6, 0.2, 0.4], [0.0, 0.8, -0.2]]
+    img = effects.render(fx, "radeon9700", technique="T", backend=backend,
+                         scene={"mesh": "quad", "size": [8, 8]},
+                         params={"Light": light, "Basis": basis}).astype(np.float64) / 255.0
+    d = [sum(basis[r][k] * light[k] for k in range(3)) for r in range(3)]
+    want = (d[0] * 0.5 + 0.5, d[1] * 0.5 + 0.5, d[2] * 0.5 + 0.5, 1)
+    for x, y in ((1, 2), (6, 5)):
+        assert np.allclose(img[y, x], want, atol=1.5 / 255), (x, y, img[y, x], want)
+
+
 # -- loops: a dead counter, a carried vector updated in place ------------------------------------
 
 def _run(target: str, name: str, instrs: list[Instr]) -> list[Instr]:
@@ -332,40 +516,40 @@ def _run(target: str, name: str, instrs: list[Instr]) -> list[Instr]:
 
 
 def test_the_rule_drops_what_only_feeds_itself():
-    count = Src(Reg("i", 0), {}, fixed=(0, 1, 2, 3))
-    kept = Instr("mov", _vr(1), (0, 1, 2, 3), [Src(Reg("c", 2), {0: 0, 1: 1, 2: 2, 3: 3})])
-    code = [Instr("mov", _vr(0), (0,), [Src(Reg("c", 0), {}, fixed=(0,) * 4)]),
+    count = fixed(reg("i", 0), (0, 1, 2, 3))
+    kept = _ins("mov", _vr(1), (0, 1, 2, 3), [read(reg("c", 2), {0: 0, 1: 1, 2: 2, 3: 3})])
+    code = [_ins("mov", _vr(0), (0,), [fixed(reg("c", 0), (0,) * 4)]),
             kept,
-            Instr("rep", None, (), [count]),
-            Instr("add", _vr(0), (0,), [Src(_vr(0), {0: 0}), Src(Reg("c", 1), {0: 0})]),
-            Instr("endrep", None, (), []),
-            Instr("mov", _vr(2), (0,), [Src(_vr(0), {0: 0})]),       # read by nothing
-            Instr("mov", Reg("oC", 0), (0, 1, 2, 3), [Src(_vr(1), {0: 0, 1: 1, 2: 2, 3: 3})])]
+            _ins("rep", None, (), [count]),
+            _ins("add", _vr(0), (0,), [read(_vr(0), {0: 0}), read(reg("c", 1), {0: 0})]),
+            _ins("endrep", None, (), []),
+            _ins("mov", _vr(2), (0,), [read(_vr(0), {0: 0})]),       # read by nothing
+            _ins("mov", reg("oC", 0), (0, 1, 2, 3), [read(_vr(1), {0: 0, 1: 1, 2: 2, 3: 3})])]
     assert [i.opcode for i in _run("ps_3_0", "drop dead writes", code)] == [
         "mov", "rep", "endrep", "mov"]
     # read where an output is written: kept, round the loop too
-    code[-1].srcs.append(Src(_vr(2), {0: 0}))
+    code[-1].srcs.append(read(_vr(2), {0: 0}))
     code[-1].opcode = "add"
     assert len(_run("ps_3_0", "drop dead writes", code)) == len(code)
 
 
 def _updated(between: list[Instr]) -> list[Instr]:
     c, x = _vr(0), _vr(1)
-    return [Instr("mad", x, (0,), [Src(Reg("v", 0), {0: 0}), Src(Reg("c", 0), {0: 0}),
-                                   Src(c, {0: 0})]),
+    return [_ins("mad", x, (0,), [read(reg("v", 0), {0: 0}), read(reg("c", 0), {0: 0}),
+                                   read(c, {0: 0})]),
             *between,
-            Instr("mov", x, (1, 2, 3), [Src(c, {1: 1, 2: 2, 3: 3})]),
-            Instr("mov", c, (0, 1, 2, 3), [Src(x, {0: 0, 1: 1, 2: 2, 3: 3})])]
+            _ins("mov", x, (1, 2, 3), [read(c, {1: 1, 2: 2, 3: 3})]),
+            _ins("mov", c, (0, 1, 2, 3), [read(x, {0: 0, 1: 1, 2: 2, 3: 3})])]
 
 
 def test_the_rule_updates_a_register_built_from_its_own_lanes_in_place():
     out = _run("vs_3_0", "build in place", _updated([]))
-    assert len(out) == 1 and out[0].opcode == "mad" and out[0].dst == _vr(0)
+    assert len(out) == 1 and out[0].opcode == "mad" and same(out[0].dst, _vr(0))
     # something reads the old x between: the copy stays
-    reader = Instr("add", _vr(5), (0,), [Src(_vr(0), {0: 0}), Src(Reg("c", 1), {0: 0})])
+    reader = _ins("add", _vr(5), (0,), [read(_vr(0), {0: 0}), read(reg("c", 1), {0: 0})])
     assert len(_run("vs_3_0", "build in place", _updated([reader]))) == 4
     # something writes the register between: the order would matter, the copy stays
-    writer = Instr("mov", _vr(0), (2,), [Src(Reg("c", 1), {2: 2})])
+    writer = _ins("mov", _vr(0), (2,), [read(reg("c", 1), {2: 2})])
     assert len(_run("vs_3_0", "build in place", _updated([writer]))) == 4
 
 

@@ -7,20 +7,11 @@ from effects.base.errors import Location
 from effects.model import ShaderBlock
 from effects.shaders.asm import assemble, check
 from effects.shaders.asm.versions import VERSIONS
-from effects.shaders.hlsl.asmcode import Instr, Reg, Src
-from effects.shaders.hlsl.ps1_asm import Src as Ps1Src, ps1_source
-from effects.shaders.hlsl.writer import Code, declaration, listing, register, swizzled, write
+from effects.shaders.hlsl.records import FULL, fixed, instruction, reg, replicated, temp
+from effects.shaders.hlsl.writer import Code, declaration, listing, write
 
 HERE = Location("w.fx", 7, 1)
 ENTRY = Location("w.fx", 3, 1)
-
-
-def _ps20_source(alloc):
-    def source(s, ins):
-        op = swizzled(register(s.reg, alloc), tuple(s.fixed or (0, 1, 2, 3)))
-        op.negate = s.negate
-        return op
-    return source
 
 
 def _same_as_assembled(program, text, target):
@@ -33,17 +24,21 @@ def _same_as_assembled(program, text, target):
 
 
 def test_ps_2_0_code_as_records_and_its_listing():
-    instrs = [Instr("texld", Reg("vr", 0), (0, 1, 2, 3), [Src(Reg("t", 0), {})], HERE,
-                    sampler="Tex"),
-              Instr("mul", Reg("vr", 1), (0, 1, 2), [Src(Reg("vr", 0), {}),
-                                                    Src(Reg("c", 1), {}, True, fixed=(0, 0, 0, 0))], HERE),
-              Instr("mov", Reg("vr", 1), (3,), [Src(Reg("c", 0), {}, fixed=(3, 3, 3, 3))], HERE),
-              Instr("mov", Reg("vr", 2), (0, 1, 2, 3), [Src(Reg("vr", 1), {})], HERE),
-              Instr("mov", Reg("oC", 0), (0, 1, 2, 3), [Src(Reg("vr", 2), {})], HERE, saturate=True)]
+    # as legalize.code_of hands them over: swizzles chosen, the sampler numbered
+    vr = temp
+    instrs = [instruction("texld", vr(0), FULL, [fixed(reg("t", 0), FULL)], "ps_2_0", HERE,
+                          sampler="Tex"),
+              instruction("mul", vr(1), (0, 1, 2), [fixed(vr(0), FULL),
+                                                    fixed(reg("c", 1), (0, 0, 0, 0), True)],
+                          "ps_2_0", HERE),
+              instruction("mov", vr(1), (3,), [fixed(reg("c", 0), (3, 3, 3, 3))], "ps_2_0", HERE),
+              instruction("mov", vr(2), FULL, [fixed(vr(1), FULL)], "ps_2_0", HERE),
+              instruction("mov", reg("oC", 0), FULL, [fixed(vr(2), FULL)], "ps_2_0", HERE,
+                          saturate=True)]
+    instrs[0].srcs[1].index = 0
     alloc = {0: 0, 1: 0, 2: 0}     # vr2 = vr1 in r0: `mov r0, r0` is left out
-    code = Code(instrs, alloc, _ps20_source(alloc), defs={0: (0.5, 0.25, 0.0, 1.0)},
-                dcls=[declaration("t", 0), declaration("s", 0, sampler_type="2d")],
-                sampler_of={"Tex": 0})
+    code = Code(instrs, alloc, defs={0: (0.5, 0.25, 0.0, 1.0)},
+                dcls=[declaration("t", 0), declaration("s", 0, sampler_type="2d")])
     program, generated_at = write(code, VERSIONS["ps_2_0"], ENTRY)
     assert check(program) == []
     text, lines = listing(program, generated_at)
@@ -56,13 +51,14 @@ def test_ps_2_0_code_as_records_and_its_listing():
 
 
 def test_ps_1_1_code_keeps_its_letters_modifiers_and_co_issue():
-    instrs = [Instr("tex", Reg("t", 0), (0, 1, 2, 3), [], HERE),
-              Instr("mul", Reg("vr", 0), (0, 1, 2), [Ps1Src(Reg("t", 0)), Ps1Src(Reg("c", 0), None, "bx2")],
-                    HERE, shift=1, saturate=True),
-              Instr("mov", Reg("vr", 0), (3,), [Ps1Src(Reg("t", 0), 2, "invert")], HERE, coissue=True)]
+    t0, c0 = reg("t", 0), reg("c", 0)
+    instrs = [instruction("tex", t0, FULL, [], "ps_1_1", HERE),
+              instruction("mul", temp(0), (0, 1, 2), [replicated(t0), replicated(c0, None, "bx2")],
+                          "ps_1_1", HERE, saturate=True, shift=1),
+              instruction("mov", temp(0), (3,), [replicated(t0, 2, "invert")], "ps_1_1", HERE)]
+    instrs[2].coissue = True
     alloc = {0: 0}
-    source = ps1_source(alloc)
-    program, generated_at = write(Code(instrs, alloc, source, letters="rgba"), VERSIONS["ps_1_1"], ENTRY)
+    program, generated_at = write(Code(instrs, alloc, letters="rgba"), VERSIONS["ps_1_1"], ENTRY)
     assert check(program) == []
     text, _ = listing(program, generated_at)
     assert text == "ps_1_1\ntex t0\nmul_x2_sat r0.rgb, t0, c0_bx2\n+mov r0.a, 1-t0.b\n"
@@ -71,10 +67,10 @@ def test_ps_1_1_code_keeps_its_letters_modifiers_and_co_issue():
 
 
 def test_a_copy_onto_itself_is_left_out_and_its_co_issued_pair_stands_alone():
-    instrs = [Instr("mov", Reg("vr", 1), (0, 1, 2), [Ps1Src(Reg("vr", 0))], HERE),
-              Instr("mov", Reg("vr", 1), (3,), [Ps1Src(Reg("c", 0), 3)], HERE, coissue=True)]
+    instrs = [instruction("mov", temp(1), (0, 1, 2), [replicated(temp(0))], "ps_1_1", HERE),
+              instruction("mov", temp(1), (3,), [replicated(reg("c", 0), 3)], "ps_1_1", HERE)]
+    instrs[1].coissue = True
     alloc = {0: 0, 1: 0}
-    program, _ = write(Code(instrs, alloc, ps1_source(alloc), letters="rgba"),
-                       VERSIONS["ps_1_1"], ENTRY)
+    program, _ = write(Code(instrs, alloc, letters="rgba"), VERSIONS["ps_1_1"], ENTRY)
     assert [(i.opcode, i.coissue) for i in program.instructions] == [("mov", False)]
     assert program.instructions[0].srcs[0].swizzle_text == "a"
