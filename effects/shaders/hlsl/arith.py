@@ -314,8 +314,19 @@ class Arith:
         consts = [c.const_values() for c in cond]
         if all(v is not None for v in consts):
             return [x if v[0] else y for v, x, y in zip(consts, out_a, out_b)]  # type: ignore[index]
-        if all(x.sig() == y.sig() for x, y in zip(out_a, out_b)):
+        same = [x.sig() == y.sig() for x, y in zip(out_a, out_b)]
+        if all(same):
             return out_a
+        if any(same) and len(cond) == len(out_a):
+            # select only the components the sides disagree on (`c.rgb = ...` under a
+            # condition leaves c.a as it was): fxc's `cmp r1.xyz, ...` writes those lanes
+            idx = [i for i, s in enumerate(same) if not s]
+            picked = self.select([cond[i] for i in idx], [out_a[i] for i in idx],
+                                 [out_b[i] for i in idx], loc, unfold)
+            out = list(out_a)
+            for i, v in zip(idx, picked):
+                out[i] = v
+            return out
         node = cond[0].node
         if node.op == "cnd" and all(c.node is node and not c.negate for c in cond):
             # a condition made by cnd_compare is cnd(d, 1, 0) or cnd(d, 0, 1): select on d
@@ -374,6 +385,12 @@ class Arith:
                 for f in reversed(list(factors.values())):
                     out = self.select([f] * len(cond), out, b, loc, unfold=True)
                 return out
+        if node.op == "max" and node.width == 1 and self._is_flag(p):
+            # `p or q` (a function's 'returned' after two returns): the outer select on p,
+            # the inner on q, as fxc writes `if (p) return a; if (q) return b; return c;`
+            x, y = node.args
+            inner = self.select([y] * len(cond), a, b, loc, unfold=True)
+            return self.select([x] * len(cond), a, inner, loc, unfold=True)
         return None
 
     @staticmethod
@@ -396,7 +413,7 @@ class Arith:
         if node.op == "add" and node.width == 1:
             one, x = node.args
             return one.const_values() == (1.0,) and x.negate and self._is_flag(x.neg())
-        if node.op == "mul" and node.width == 1:
+        if node.op in ("mul", "max") and node.width == 1:
             return all(self._is_flag(x) for x in node.args)
         return False
 

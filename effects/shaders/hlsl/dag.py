@@ -108,6 +108,8 @@ class Graph:
         # nodes asked for (shared or not) and components copied: the compile's work so far,
         # which the evaluator holds to limits.py's hlsl_work (budget.py)
         self.work = 0
+        # dag._prune's results: (node, condition, side, depth) -> the node on that side
+        self.pruned: dict[tuple, Operand] = {}
 
     def _new(self, node: Node, sig: tuple) -> Node:
         self.work += 1
@@ -132,6 +134,17 @@ class Graph:
                            tuple(range(len(values))))
         node = self._new(node, sig)
         return Operand(node, tuple(range(len(values))))
+
+    def pack(self, comps: list[Operand]) -> Operand:
+        """One operand holding `comps` (one lane each) as its lanes: a swizzle of one node
+        when they share it, a constant when all are constants, otherwise a `pack` of them."""
+        first = comps[0]
+        if all(c.node is first.node and c.negate == first.negate for c in comps):
+            return Operand(first.node, tuple(c.swizzle[0] for c in comps), first.negate)
+        values = [c.const_values() for c in comps]
+        if all(v is not None for v in values):
+            return self.const(tuple(v[0] for v in values))  # type: ignore[index]
+        return self.leaf("pack", None, len(comps), args=tuple(comps))
 
     def leaf(self, op: str, key: Any, width: int, location: Location = UNKNOWN_LOCATION,
              args: tuple[Operand, ...] = ()) -> Operand:
@@ -221,4 +234,53 @@ def _simplify(g: Graph, op: str, args: list[Operand], consts: list[Any]) -> Oper
             return args[2]
     if op in ("cmp", "cnd") and args[1].sig() == args[2].sig():
         return args[1]
+    if op == "cmp" and _scalar(args[0]):
+        d = Operand(args[0].node, args[0].swizzle[:1], args[0].negate)
+        a = _prune(g, args[1], d, 1, _PRUNE_DEPTH)
+        b = _prune(g, args[2], d, 2, _PRUNE_DEPTH)
+        if a.sig() != args[1].sig() or b.sig() != args[2].sig():
+            return g.op("cmp", [args[0], a, b])
     return None
+
+
+# how deep _prune looks into a select's side: a chain of flattened returns or else-ifs,
+# and the arithmetic a side does on the value before it, reach the same test again within
+# this; bounded so that a select costs bounded work
+_PRUNE_DEPTH = 6
+
+
+def _scalar(x: Operand) -> bool:
+    """Whether every lane of `x` is the same component (a scalar condition, replicated)."""
+    return all(i == x.swizzle[0] for i in x.swizzle)
+
+
+def _prune(g: Graph, x: Operand, d: Operand, side: int, depth: int) -> Operand:
+    """`x` as cmp(d, ...) sees it on its side `side` (1: d >= 0, 2: d < 0), for a scalar `d`:
+    a cmp on the same `d` inside it takes that side too, through the arithmetic between.
+    A flattened `if (p) return a; if (q) return b;` reselects on p under p, and an else side
+    computes from the value the then side stored under p (Effekseer's ApplyTextureBlending:
+    fxc's one cmp per level). Not through gradients or texture reads (their neighbours may
+    take the other side), nor leaves other than a pack of components."""
+    node = x.node
+    if depth == 0 or (node.op in OPAQUE and node.op != "pack") or not node.args:
+        return x
+    key = (node.id, d.sig(), side, depth)
+    done = g.pruned.get(key)
+    if done is None:
+        test = node.args[0]
+        if node.op == "cmp" and test.node is d.node and test.negate == d.negate and \
+                all(i == d.swizzle[0] for i in test.swizzle):
+            done = _prune(g, node.args[side], d, side, depth - 1)
+        else:
+            args = [_prune(g, a, d, side, depth - 1) for a in node.args]
+            if all(a.sig() == b.sig() for a, b in zip(args, node.args)):
+                done = Operand(node, tuple(range(node.width)))
+            elif node.op == "pack":           # a value put together from components
+                done = g.pack(args)
+            else:
+                done = g.op(node.op, args, node.width, node.location)
+        g.pruned[key] = done
+    if done.node is node:
+        return x
+    out = done.pick(x.swizzle)
+    return out.neg() if x.negate else out

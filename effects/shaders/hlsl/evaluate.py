@@ -133,6 +133,15 @@ class Evaluator:
             return q  # type: ignore[return-value]
         if q is None:
             return p
+        if q.node.op == "mul" and not q.negate and q.swizzle == (0,):
+            # p or (a and not p) is p or a: a return or break after an earlier one runs under
+            # 'not returned', and the flag it adds need not say so again (a later select on
+            # 'not returned' then unfolds into one cmp per return, arith._unfold_predicate)
+            a, b = q.node.args
+            if _complements(p, b):
+                return self.g.op("max", [p, a], 1)
+            if _complements(p, a):
+                return self.g.op("max", [p, b], 1)
         return self.g.op("max", [p, q], 1)
 
     def _not(self, p: Operand | None) -> Operand | None:

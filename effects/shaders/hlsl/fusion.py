@@ -15,7 +15,8 @@ many it rewrote.
 """
 from __future__ import annotations
 
-from typing import Callable
+import itertools
+from typing import Any, Callable
 
 from effects.shaders.hlsl.dag import Node, Operand
 from effects.shaders.hlsl.ops import LANEWISE, OPAQUE
@@ -174,12 +175,32 @@ def _redirect(nodes: list[Node], roots: list[list[Operand]],
 def pack_scalars(nodes: list[Node], roots: list[list[Operand]],
                  swizzle_ok: Callable[[dict[int, int]], bool]) -> int:
     """One-lane component-wise nodes of one op whose arguments are lanes of the same nodes
-    (or one constant), `mul(a.x, 3)` and `mul(a.y, 3)`, become one vector node, `mul(a.xy,
-    3)`, whose lanes their readers read (fxc's `mul r0.xy` before `mova a0.xy`; issue 31's
+    (or constants), `mul(a.x, 3)` and `mul(a.y, 3)`, become one vector node, `mul(a.xy, 3)`,
+    whose lanes their readers read (fxc's `mul r0.xy` before `mova a0.xy`; issue 31's
     swizzle-aware packing). Up to four a node; the node made first takes the others' place,
-    so every reader still comes after it. Code without flow control only (a node's block
+    so every reader still comes after it. Constants that differ between the members become
+    one vector constant: `x - 1`, `x - 2`, `x - 3` are `add r0.xyz, x, c(-1, -2, -3)` and
+    `k < x` for seven k two `slt` (fxc's listings, Effekseer's blend-type tests and
+    dxwrapper's texCount). Repeated while it packs, so that the readers of packed lanes
+    (`abs` of each difference) pack too. Code without flow control only (a node's block
     follows its readers there: flowcode.place). `swizzle_ok`: whether the target reads a
     source with that lane map (ps_2_0's fixed swizzles). `roots` as in share_lit_diffuse."""
+    done = 0
+    while True:
+        swap = _pack_once(nodes, swizzle_ok)
+        if not swap:
+            return done
+        done += _redirect(nodes, roots, swap)
+        nodes = [n for n in nodes if n.id not in swap]
+
+
+# ids of the vector constants pack_scalars makes: below every Graph node's (creation order
+# puts them before their readers; code generation places a constant by its values)
+_const_ids = itertools.count(-1, -1)
+
+
+def _pack_once(nodes: list[Node], swizzle_ok: Callable[[dict[int, int]], bool]
+               ) -> dict[int, tuple[Node, int]]:
     groups: dict[tuple, list[Node]] = {}
     for n in nodes:
         if n.width != 1 or n.op not in LANEWISE or n.op in OPAQUE or n.coalesced:
@@ -188,12 +209,10 @@ def pack_scalars(nodes: list[Node], roots: list[list[Operand]],
         for a in n.args:
             if a.width != 1:
                 break
-            # a constant argument: the same value in every member (read replicated; a new
-            # constant node would come after the nodes that read it)
-            key.append(("const", a.const_values()) if a.node.op == "const" else
-                       (a.node.id, a.negate))
+            key.append("const" if a.node.op == "const" else (a.node.id, a.negate))
         else:
-            groups.setdefault(tuple(key), []).append(n)
+            if any(k != "const" for k in key[1:]):     # something to compute
+                groups.setdefault(tuple(key), []).append(n)
     swap: dict[int, tuple[Node, int]] = {}
     for members in groups.values():
         while len(members) > 1:
@@ -204,7 +223,13 @@ def pack_scalars(nodes: list[Node], roots: list[list[Operand]],
             args: list[Operand] = []
             for p, a in enumerate(first.args):
                 if a.node.op == "const":
-                    args.append(Operand(a.node, (a.swizzle[0],) * len(chunk), a.negate))
+                    values = tuple(m.args[p].const_values()[0] for m in chunk)  # type: ignore[index]
+                    if len(set(values)) == 1:   # read replicated
+                        args.append(Operand(a.node, (a.swizzle[0],) * len(chunk), a.negate))
+                    else:
+                        made = Node("const", (), len(chunk), value=tuple(v + 0.0 for v in values),
+                                    location=a.node.location, id=next(_const_ids))
+                        args.append(Operand(made, tuple(range(len(chunk)))))
                     continue
                 lanes = {i: m.args[p].swizzle[0] for i, m in enumerate(chunk)}
                 if not swizzle_ok(lanes):
@@ -215,4 +240,4 @@ def pack_scalars(nodes: list[Node], roots: list[list[Operand]],
                 first.args, first.width = tuple(args), len(chunk)
                 for i, m in enumerate(chunk[1:], 1):
                     swap[m.id] = (first, i)
-    return _redirect(nodes, roots, swap)
+    return swap

@@ -48,15 +48,8 @@ def split(op: Operand) -> list[Operand]:
 
 
 def operand(g: Graph, comps: list[Operand]) -> Operand:
-    """One operand holding `comps` as its lanes: a swizzle of one node when they share it,
-    a constant when all are constants, otherwise a `pack` of them."""
-    first = comps[0]
-    if all(c.node is first.node and c.negate == first.negate for c in comps):
-        return Operand(first.node, tuple(c.swizzle[0] for c in comps), first.negate)
-    values = [c.const_values() for c in comps]
-    if all(v is not None for v in values):
-        return g.const(tuple(v[0] for v in values))  # type: ignore[index]
-    return g.leaf("pack", None, len(comps), args=tuple(comps))
+    """One operand holding `comps` as its lanes (Graph.pack)."""
+    return g.pack(comps)
 
 
 def splat(op: Operand, n: int) -> Operand:

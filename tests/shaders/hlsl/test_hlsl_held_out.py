@@ -169,17 +169,21 @@ def test_an_else_if_chain_renders_each_side(backend, mode):
 
 def test_an_else_if_chain_computes_no_flags_or_products():
     # each `Mode == k` is a cmp on -|Mode - k| choosing between a side's value and the value
-    # before it (fxc's form): no 0/1 flag, no `1 - flag`, no product of flags. Here: abs and
-    # 2 x (add, abs) for the three differences; two movs building c; the sides' mul and add
-    # with a mov each for .w; the final mov; and the selects: 1, 2 and 3 for the three stores
-    # (a store under `not first and second` selects on the second, then on the first). 18
-    # instructions, where the flags and their products took 23.
+    # before it (fxc's form): no 0/1 flag, no `1 - flag`, no product of flags. Here: |Mode|,
+    # and Mode - 1, Mode - 2 in one add and one abs (fusion.pack_scalars: fxc's `add r7.xyz,
+    # -r4_abs.yxww, c5.x`); two movs building c.rgb; the sides' mul and add, each on c as it
+    # was before the chain (an else side is computed where the tests before it were false,
+    # dag._prune); one cmp per level on .rgb alone (.a is the same on both sides); .a's mov
+    # and the final mov. 12 instructions, where the flags and their products took 23, the
+    # levels reselecting the ones before them 18, and a difference each 14.
     text = fx_asm(effect_for(CHAIN), "PS", "ps_2_0")
     body = [line.split()[0] for line in text.splitlines()
             if line and not line.startswith(("ps_", "def", "dcl", "//"))]
-    assert body.count("cmp") == 6 and body.count("abs") == 3, text
-    assert body.count("mul") == 1 and body.count("add") == 3, text
-    assert len(body) == 18, (len(body), text)
+    assert body.count("cmp") == 3 and body.count("abs") == 2, text
+    assert body.count("mul") == 1 and body.count("add") == 2, text
+    assert len(body) == 12, (len(body), text)
+    assert all(line.startswith("cmp r") and line.split()[1].endswith(".xyz,")
+               for line in text.splitlines() if line.startswith("cmp")), text
 
 
 
@@ -238,3 +242,108 @@ def test_and_of_two_comparisons_is_two_cmps():
     body = [line.split()[0] for line in text.splitlines()
             if line and not line.startswith(("ps_", "def", "dcl", "//"))]
     assert body.count("cmp") == 2 and body.count("mul") == 2, text
+
+
+# -- early returns select on each comparison -----------------------------------------------------
+
+# joeyballentine/librw's toon ps_3_0 (ToonGainLimit and friends) returns early from a function
+# in several places; fxc writes each `if (p) return a;` as one cmp on p's difference
+LIMIT = """
+float Limit(float l, float d)
+{
+    if (d > 0.5) return (1 - l) / d;
+    if (d < -0.5) return -l / d;
+    return 0.25;
+}
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    return float4(Limit(uv.y, uv.x * 2 - 1), 0, 0, 1);
+}"""
+
+
+def test_early_returns_render_each_return(backend):
+    img = render(effect_for(LIMIT), backend)
+    # d = 2u - 1 at pixel x (u = x / 8), l = v = y / 8; x = 2 and 6 sit on the boundaries
+    for x, y, want in ((0, 4, 0.5 / 1.0),            # d = -1: -l/d
+                       (1, 2, 0.25 / 0.75),           # d = -0.75
+                       (3, 5, 0.25), (4, 1, 0.25),    # -0.5 < d < 0.5: the last return
+                       (7, 4, 0.5 / 0.75),            # d = 0.75: (1 - l)/d
+                       (7, 6, 0.25 / 0.75)):
+        assert np.allclose(img[y, x], (want, 0, 0, 1), atol=TOL), (x, y, img[y, x], want)
+
+
+def test_early_returns_are_one_cmp_each():
+    # d (mad); 0.5 - d and d + 0.5 (two adds); 1 - l, rcp d and the two quotients' muls; a cmp
+    # per return that is not the last (fxc's form): no 0/1 flag for 'returned', no max of
+    # flags, no `1 - returned`; then the output's two movs. 11, where the flags took 18.
+    text = fx_asm(effect_for(LIMIT), "PS", "ps_2_0")
+    body = [line.split()[0] for line in text.splitlines()
+            if line and not line.startswith(("ps_", "def", "dcl", "//"))]
+    assert body.count("cmp") == 2 and "max" not in body, text
+    assert len(body) == 11, (len(body), text)
+
+
+def test_a_cmp_inside_a_cmp_on_the_same_difference_takes_the_same_side():
+    from effects.shaders.hlsl.dag import Graph
+    g = Graph()
+    d, a, b, c = (g.leaf("uniform", (name, 0), 1) for name in "DABC")
+    e = g.leaf("uniform", ("E", 0), 1)
+    # d >= 0 ? (d >= 0 ? a : b) : c is d >= 0 ? a : c; and on the other side, through a cmp on
+    # another difference: d >= 0 ? c : (e >= 0 ? (d >= 0 ? a : b) : c) is d >= 0 ? c : (e >= 0 ? b : c)
+    inner = g.op("cmp", [d, a, b])
+    pruned = g.op("cmp", [d, inner, c]).node
+    assert [x.sig() for x in pruned.args] == [d.sig(), a.sig(), c.sig()]
+    outer = g.op("cmp", [d, c, g.op("cmp", [e, inner, c])]).node
+    assert outer.args[0].sig() == d.sig() and outer.args[1].sig() == c.sig()
+    assert [x.sig() for x in outer.args[2].node.args] == [e.sig(), b.sig(), c.sig()]
+    # a different difference (or its negation) is left alone: -d >= 0 is not d < 0 at d = 0
+    kept = g.op("cmp", [d.neg(), inner, c]).node
+    assert kept.args[1].node is inner.node
+
+
+# -- compares of one value against several constants: one vector op ------------------------------
+
+# dxwrapper's FixUpMultiStageVertexShader tests `texCount > k` for seven k (fxc: two slt on a
+# vector of the k); Effekseer's blend-type chains test `blendType == k` for three
+STEPS = """
+float Mode;
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    return float4(Mode > 1, Mode > 2, Mode > 3, Mode > 0.5) * uv.x;
+}"""
+
+
+@pytest.mark.parametrize("mode, flags", [(2.5, (1, 1, 0, 1)), (0.75, (0, 0, 0, 1)),
+                                         (3.5, (1, 1, 1, 1)), (0.25, (0, 0, 0, 0))])
+def test_compares_against_several_constants_render(backend, mode, flags):
+    img = render(effect_for(STEPS), backend, params={"Mode": mode})
+    for x, y in ((2, 1), (6, 5)):
+        want = tuple(f * x / 8 for f in flags)
+        assert np.allclose(img[y, x], want, atol=TOL), (mode, x, y, img[y, x], want)
+
+
+def test_compares_against_several_constants_are_one_add_and_one_cmp():
+    # (1, 2, 3, 0.5) - Mode in one add, the four flags in one cmp, the mul, the output's mov:
+    # 4 instructions where a difference and a cmp per compare took 10
+    text = fx_asm(effect_for(STEPS), "PS", "ps_2_0")
+    body = [line.split()[0] for line in text.splitlines()
+            if line and not line.startswith(("ps_", "def", "dcl", "//"))]
+    assert body == ["add", "cmp", "mul", "mov"], text
+
+
+def test_one_lane_ops_differing_in_a_constant_pack_into_one_with_a_vector_constant():
+    from effects.shaders.hlsl.dag import Graph, reachable
+    from effects.shaders.hlsl.fusion import pack_scalars
+    g = Graph()
+    x = g.leaf("uniform", ("X", 0), 1)
+    diffs = [g.op("add", [x, g.const((-k,))]) for k in (1.0, 2.0, 3.0)]
+    absd = [g.op("abs", [d]) for d in diffs]
+    roots = [list(absd)]
+    nodes = reachable([a.node for a in absd])
+    assert pack_scalars(nodes, roots, lambda lanes: True) == 4     # 2 adds, then 2 abs
+    add, = {a.node.args[0].node for a in roots[0]}
+    assert add.op == "add" and add.width == 3
+    assert add.args[0].sig() == (x.node.id, (0, 0, 0), False)       # x read replicated
+    assert add.args[1].node.value == (-1.0, -2.0, -3.0)           # the constants, one vector
+    assert [a.swizzle for a in roots[0]] == [(0,), (1,), (2,)]    # each abs a lane of one
+    assert len({a.node.id for a in roots[0]}) == 1

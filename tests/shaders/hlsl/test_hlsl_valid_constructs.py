@@ -98,10 +98,15 @@ float4 PS(float2 uv : TEXCOORD0) : COLOR
 
 
 def test_a_chain_too_long_for_ps_2_0_is_a_card_reason_not_an_error():
+    # three run-time reads of 24 registers: a cmp per register each (104 slots; two reads of
+    # 20 fit in 64 once the index's differences are computed four at a time, pack_scalars)
     fx = effect_for("""
-float4 PS(float2 uv : TEXCOORD0) : COLOR { return Big[uv.x * 20] * Big[uv.y * 20]; }
+float4 PS(float2 uv : TEXCOORD0) : COLOR
+{
+    return Big[uv.x * 24] * Big[uv.y * 24] + Big[uv.x * uv.y * 24];
+}
 float4 Plain(float2 uv : TEXCOORD0) : COLOR { return uv.xyxy; }
-technique Fallback { pass P { PixelShader = compile ps_2_0 Plain(); } }""", params="float4 Big[20];")
+technique Fallback { pass P { PixelShader = compile ps_2_0 Plain(); } }""", params="float4 Big[24];")
     radeon = fx.validate("T", effects.load_profile("radeon9700"))
     assert not radeon.ok
     assert any("64 arithmetic instruction slots" in r.message for r in radeon.reasons), radeon.reasons
