@@ -28,9 +28,9 @@ DECLARED = [
     "reference.clip_planes", "reference.demand", "reference.flow", "reference.levels",
     "reference.pyramids", "reference.split", "reference.steps", "reference.varyings_read",
     "shaders.asm.programs", "shaders.asm.registers", "shaders.asm.swizzles",
-    "shaders.hlsl.compiles", "shaders.hlsl.declaration_loads", "shaders.hlsl.field_names",
+    "shaders.hlsl.builtin_types", "shaders.hlsl.compiles", "shaders.hlsl.declaration_loads", "shaders.hlsl.field_names",
     "shaders.hlsl.identifiers", "shaders.hlsl.lanes", "shaders.hlsl.stored", "shaders.hlsl.trees",
-    "shaders.hlsl.unit_checks",
+    "shaders.hlsl.types", "shaders.hlsl.unit_checks",
     "validate.enum_spellings",
 ]
 

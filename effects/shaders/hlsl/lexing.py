@@ -20,6 +20,9 @@ import lark
 from lark.lexer import ContextualLexer, LexerState, UnlessCallback
 
 _Match = Callable[[str, int, int], Any]
+# Token(...) is a wrapper that checks for a deprecated keyword and calls this; a token per
+# lexeme, so called directly where this lark has it
+_NEW_TOKEN: Callable[..., lark.Token] = getattr(lark.Token, "_future_new", lark.Token)
 
 
 class FastContextualLexer(ContextualLexer):
@@ -43,7 +46,7 @@ class FastContextualLexer(ContextualLexer):
         counter = lexer_state.line_ctr
         pos, line, line_start = counter.char_pos, counter.line, counter.line_start_pos
         table = self.table
-        token_type = lark.Token
+        new_token = _NEW_TOKEN
         last = lexer_state.last_token
         while pos < end:
             match, keywords, callbacks, ignore = table[parser_state.position]
@@ -63,7 +66,7 @@ class FastContextualLexer(ContextualLexer):
             retype = keywords.get(kind)
             if retype is not None:
                 kind = retype.get(value, kind)
-            tok = token_type(kind, value, pos, line, pos - line_start + 1)
+            tok = new_token(kind, value, pos, line, pos - line_start + 1)
             if newlines:
                 line += newlines
                 line_start = pos + value.rindex("\n") + 1
