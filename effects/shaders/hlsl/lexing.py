@@ -48,8 +48,9 @@ class FastContextualLexer(ContextualLexer):
         table = self.table
         new_token = _NEW_TOKEN
         last = lexer_state.last_token
+        states = parser_state.state_stack     # the parser's own list: its top is `position`
         while pos < end:
-            match, keywords, callbacks, ignore = table[parser_state.position]
+            match, keywords, callbacks, ignore = table[states[-1]]
             m = match(text, pos, end)
             if m is None:
                 break                           # lark's loop raises its error from here
