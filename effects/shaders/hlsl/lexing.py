@@ -9,15 +9,27 @@ parser spends on the same tokens. Here one loop does what they did, with the sam
 the same tokens, types and positions, in the same states. Where nothing matches, lark's own
 loop takes over at that place, so an error is the exception lark raises.
 
+The alternation is also tried by the lexeme's first character: Python's `re` tries a state's
+alternatives one by one (forty and more), so a state's pattern is narrowed, per first
+character, to the terminals that can start with it, in lark's order (the same first match:
+the others cannot match there). Which characters a terminal can start with is read from its
+pattern's parse; where that is not plain, every character.
+
 Plugged in through lark's `_plugins` option (the way lark-cython replaces lark's parts), so the
 parse table stays lark's and `cache=True` still holds it.
 """
 from __future__ import annotations
 
+import re
 from typing import Any, Callable, Iterator
 
 import lark
 from lark.lexer import ContextualLexer, LexerState, UnlessCallback
+
+try:
+    from re import _parser as _sre            # the regular expressions' own parser
+except ImportError:                           # Python 3.10 names it so
+    import sre_parse as _sre                  # type: ignore[no-redef]
 
 _Match = Callable[[str, int, int], Any]
 # Token(...) is a wrapper that checks for a deprecated keyword and calls this; a token per
@@ -30,9 +42,10 @@ class FastContextualLexer(ContextualLexer):
 
     def __init__(self, conf: Any, states: dict[int, Any], always_accept: Any = ()) -> None:
         super().__init__(conf, states, always_accept)
-        # per basic lexer (states that accept the same terminals share one): its compiled
-        # pattern's match, {type: {text: keyword type}}, the other callbacks, the ignored types
-        made: dict[int, tuple[_Match, dict[str, dict[str, str]], dict[str, Any], frozenset]] = {}
+        # per basic lexer (states that accept the same terminals share one): its patterns' match
+        # by first character (_Narrowed), {type: {text: keyword type}}, the other callbacks,
+        # the ignored types
+        made: dict[int, tuple[_Narrowed, dict[str, dict[str, str]], dict[str, Any], frozenset]] = {}
         self.table = {}
         for state, basic in self.lexers.items():
             entry = made.get(id(basic))
@@ -50,7 +63,10 @@ class FastContextualLexer(ContextualLexer):
         last = lexer_state.last_token
         states = parser_state.state_stack     # the parser's own list: its top is `position`
         while pos < end:
-            match, keywords, callbacks, ignore = table[states[-1]]
+            narrowed, keywords, callbacks, ignore = table[states[-1]]
+            match = narrowed.get(text[pos])
+            if match is None:
+                match = narrowed.add(text[pos])
             m = match(text, pos, end)
             if m is None:
                 break                           # lark's loop raises its error from here
@@ -86,14 +102,12 @@ class FastContextualLexer(ContextualLexer):
             yield from super().lex(lexer_state, parser_state)
 
 
-def _entry(basic: Any) -> tuple[_Match, dict[str, dict[str, str]], dict[str, Any], frozenset]:
+def _entry(basic: Any) -> tuple[_Narrowed, dict[str, dict[str, str]], dict[str, Any], frozenset]:
     """What the loop needs of one of lark's basic lexers. lark matches the state's terminals as
     one alternation in its order (its Scanner); a keyword string that NAME's pattern also
     matches is left out of it and a NAME equal to it retyped (UnlessCallback's `fullmatch` of
     plain strings, a dictionary here)."""
-    scanner = basic.scanner
-    pattern = "|".join(f"(?P<{t.name}>{t.pattern.to_regexp()})" for t in scanner.terminals)
-    match = basic.re.compile(pattern, basic.g_regex_flags).match
+    narrowed = _Narrowed(basic)               # (lark makes `callback` with the scanner)
     keywords: dict[str, dict[str, str]] = {}
     callbacks: dict[str, Any] = {}
     for kind, callback in basic.callback.items():
@@ -102,7 +116,121 @@ def _entry(basic: Any) -> tuple[_Match, dict[str, dict[str, str]], dict[str, Any
             callbacks[kind] = callback
         else:
             keywords[kind] = words
-    return match, keywords, callbacks, basic.ignore_types
+    return narrowed, keywords, callbacks, basic.ignore_types
+
+
+class _Narrowed(dict):
+    """{first character: the match of the state's terminals that can start with it}, filled
+    as characters are met (a state meets few). A character outside ASCII, or with global
+    flags, takes the whole alternation."""
+
+    def __init__(self, basic: Any) -> None:
+        super().__init__()
+        self.terminals = list(basic.scanner.terminals)
+        self.flags = basic.g_regex_flags
+        self.compile = basic.re.compile
+        self.whole = self._match(self.terminals)
+
+    def add(self, char: str) -> _Match:
+        if self.flags or not char.isascii():
+            match = self.whole
+        else:
+            starting = [t for t in self.terminals if _can_start(t.pattern.to_regexp(), char)]
+            match = self._match(starting) if starting else self.whole
+        self[char] = match
+        return match
+
+    def _match(self, terminals: list) -> _Match:
+        key = (tuple(t.name for t in terminals), self.flags)
+        match = _MATCHES.get(key)
+        if match is None:
+            pattern = "|".join(f"(?P<{t.name}>{t.pattern.to_regexp()})" for t in terminals)
+            match = _MATCHES[key] = self.compile(pattern, self.flags).match
+        return match
+
+
+# one compiled alternation per terminal list, shared by the states and characters that have it
+_MATCHES: dict[tuple, _Match] = {}
+_FIRSTS: dict[str, frozenset[str] | None] = {}
+
+
+def _can_start(regexp: str, char: str) -> bool:
+    first = _FIRSTS.get(regexp, False)
+    if first is False:
+        try:
+            found, nullable = _first(_sre.parse(regexp))
+        except Exception:                 # a form this reading does not know: any character
+            found, nullable = None, True
+        first = _FIRSTS[regexp] = None if found is None or nullable else frozenset(found)
+    return first is None or char in first
+
+
+_ASCII = [chr(k) for k in range(128)]
+_CATEGORIES = {"CATEGORY_DIGIT": r"\d", "CATEGORY_NOT_DIGIT": r"\D", "CATEGORY_SPACE": r"\s",
+               "CATEGORY_NOT_SPACE": r"\S", "CATEGORY_WORD": r"\w", "CATEGORY_NOT_WORD": r"\W"}
+_REPEATS = ("MAX_REPEAT", "MIN_REPEAT", "POSSESSIVE_REPEAT")
+
+
+def _first(items: Any) -> tuple[set[str] | None, bool]:
+    """(the ASCII characters a match of the parsed sequence `items` can start with, whether
+    it can match nothing); None for the characters where a form is not worked out here."""
+    out: set[str] = set()
+    for op, arg in items:
+        found, nullable = _first_of(str(op), arg)
+        if found is None:
+            return None, True
+        out |= found
+        if not nullable:
+            return out, False
+    return out, True
+
+
+def _first_of(op: str, arg: Any) -> tuple[set[str] | None, bool]:
+    if op == "LITERAL":
+        return {chr(arg)} if arg < 128 else set(), False
+    if op == "NOT_LITERAL":
+        return {c for c in _ASCII if ord(c) != arg}, False
+    if op == "IN":
+        return _in_set(arg), False
+    if op in ("ASSERT", "ASSERT_NOT", "AT"):       # they consume nothing
+        return set(), True
+    if op == "SUBPATTERN":
+        _group, add_flags, del_flags, sub = arg
+        return _first(sub) if not (add_flags or del_flags) else (None, True)
+    if op == "BRANCH":
+        out: set[str] = set()
+        nullable = False
+        for alternative in arg[1]:
+            found, empty = _first(alternative)
+            if found is None:
+                return None, True
+            out |= found
+            nullable = nullable or empty
+        return out, nullable
+    if op in _REPEATS:
+        low, _high, sub = arg
+        found, empty = _first(sub)
+        return found, empty or low == 0
+    return None, True
+
+
+def _in_set(items: Any) -> set[str] | None:
+    """The ASCII characters of a character class `[...]`."""
+    negate = False
+    tests: list[Callable[[str], bool]] = []
+    for op, arg in items:
+        op = str(op)
+        if op == "NEGATE":
+            negate = True
+        elif op == "LITERAL":
+            tests.append(lambda c, k=arg: ord(c) == k)
+        elif op == "RANGE":
+            tests.append(lambda c, r=arg: r[0] <= ord(c) <= r[1])
+        elif op == "CATEGORY" and str(arg) in _CATEGORIES:
+            tests.append(re.compile(_CATEGORIES[str(arg)]).fullmatch)
+        else:
+            return None
+    return {c for c in _ASCII if any(t(c) for t in tests) != negate}
 
 
 def _plain_strings(callback: Any) -> dict[str, str] | None:

@@ -59,6 +59,8 @@ def test_tokens_types_and_positions():
     "float f() { float x = 1 }",              # a token the state does not take
     "float f() { matrix<float, 4, 4.5> m; }",
     "float f() { /* open",
+    "float f() { // caf\u00e9\n  return 1; }",   # outside ASCII: the whole alternation
+    "float f() { return \u00e9; }",
 ])
 def test_same_tokens_and_errors_as_larks_loop(text):
     results = []
