@@ -42,16 +42,7 @@ class FastContextualLexer(ContextualLexer):
 
     def __init__(self, conf: Any, states: dict[int, Any], always_accept: Any = ()) -> None:
         super().__init__(conf, states, always_accept)
-        # per basic lexer (states that accept the same terminals share one): its patterns' match
-        # by first character (_Narrowed), {type: {text: keyword type}}, the other callbacks,
-        # the ignored types
-        made: dict[int, tuple[_Narrowed, dict[str, dict[str, str]], dict[str, Any], frozenset]] = {}
-        self.table = {}
-        for state, basic in self.lexers.items():
-            entry = made.get(id(basic))
-            if entry is None:
-                entry = made[id(basic)] = _entry(basic)
-            self.table[state] = entry
+        self.table = _Table(self.lexers)
 
     def lex(self, lexer_state: LexerState, parser_state: Any) -> Iterator[lark.Token]:
         text_slice = lexer_state.text
@@ -102,6 +93,26 @@ class FastContextualLexer(ContextualLexer):
             yield from super().lex(lexer_state, parser_state)
 
 
+class _Table(dict):
+    """{parser state: what the loop needs of its basic lexer}, made when the state is first
+    met (lark makes a basic lexer's pattern then too: most states never lex). Per basic lexer
+    (states that accept the same terminals share one): its patterns' match by first character
+    (_Narrowed), {type: {text: keyword type}}, the other callbacks, the ignored types."""
+
+    def __init__(self, lexers: dict[int, Any]) -> None:
+        super().__init__()
+        self.lexers = lexers
+        self.made: dict[int, tuple] = {}
+
+    def __missing__(self, state: int) -> tuple:
+        basic = self.lexers[state]
+        entry = self.made.get(id(basic))
+        if entry is None:
+            entry = self.made[id(basic)] = _entry(basic)
+        self[state] = entry
+        return entry
+
+
 def _entry(basic: Any) -> tuple[_Narrowed, dict[str, dict[str, str]], dict[str, Any], frozenset]:
     """What the loop needs of one of lark's basic lexers. lark matches the state's terminals as
     one alternation in its order (its Scanner); a keyword string that NAME's pattern also
@@ -122,22 +133,20 @@ def _entry(basic: Any) -> tuple[_Narrowed, dict[str, dict[str, str]], dict[str, 
 class _Narrowed(dict):
     """{first character: the match of the state's terminals that can start with it}, filled
     as characters are met (a state meets few). A character outside ASCII, or with global
-    flags, takes the whole alternation."""
+    flags, or one no terminal starts with (lark's loop then reports it), takes the whole
+    alternation."""
 
     def __init__(self, basic: Any) -> None:
         super().__init__()
         self.terminals = list(basic.scanner.terminals)
         self.flags = basic.g_regex_flags
         self.compile = basic.re.compile
-        self.whole = self._match(self.terminals)
 
     def add(self, char: str) -> _Match:
-        if self.flags or not char.isascii():
-            match = self.whole
-        else:
+        starting = self.terminals
+        if not self.flags and char.isascii():
             starting = [t for t in self.terminals if _can_start(t.pattern.to_regexp(), char)]
-            match = self._match(starting) if starting else self.whole
-        self[char] = match
+        match = self[char] = self._match(starting or self.terminals)
         return match
 
     def _match(self, terminals: list) -> _Match:
