@@ -64,22 +64,19 @@ class FastContextualLexer(ContextualLexer):
             value = m.group()
             kind = m.lastgroup
             after = m.end()
+            start, column = pos, pos - line_start + 1
             newlines = value.count("\n")
+            if newlines:
+                line += newlines
+                line_start = pos + value.rindex("\n") + 1
+            pos = after
             if kind in ignore:
-                if newlines:
-                    line += newlines
-                    line_start = pos + value.rindex("\n") + 1
-                pos = after
                 continue
             retype = keywords.get(kind)
             if retype is not None:
                 kind = retype.get(value, kind)
-            tok = new_token(kind, value, pos, line, pos - line_start + 1)
-            if newlines:
-                line += newlines
-                line_start = pos + value.rindex("\n") + 1
-            tok.end_line, tok.end_column, tok.end_pos = line, after - line_start + 1, after
-            pos = after
+            tok = new_token(kind, value, start, line - newlines, column, line,
+                            after - line_start + 1, after)
             if callbacks:
                 callback = callbacks.get(tok.type)
                 if callback is not None:
