@@ -141,12 +141,12 @@ class Graph:
         if width is None:
             width = shaped[1] if shaped else max(a.width for a in args)  # type: ignore[index]
         consts = [a.const_values() for a in args]
-        if op not in OPAQUE and all(c is not None for c in consts):
+        if op not in OPAQUE and None not in consts:
             return self.const(tuple(fold(op, consts, width)), location)
         simplified = _simplify(self, op, args, consts)
         if simplified is not None:
             return simplified
-        sig = (op, width, tuple(a.sig() for a in args))
+        sig = (op, width, tuple([a.sig() for a in args]))
         node = self._index.get(sig)
         if node is None:
             node = self._new(Node(op, tuple(args), width, location=location), sig)

@@ -44,18 +44,24 @@ def component(op: Operand, i: int) -> Operand:
 
 
 def split(op: Operand) -> list[Operand]:
-    return [component(op, i) for i in range(op.width)]
+    # component() per lane, inlined: every operator's result is split into its lanes
+    node, negate = op.node, op.negate
+    return [Operand(node, (lane,), negate) for lane in op.swizzle]
 
 
 def operand(g: Graph, comps: list[Operand]) -> Operand:
     """One operand holding `comps` as its lanes: a swizzle of one node when they share it,
     a constant when all are constants, otherwise a `pack` of them."""
     first = comps[0]
-    if all(c.node is first.node and c.negate == first.negate for c in comps):
-        return Operand(first.node, tuple(c.swizzle[0] for c in comps), first.negate)
+    node, negate = first.node, first.negate
+    for c in comps:                     # (a loop, not all(...): asked per operator)
+        if c.node is not node or c.negate != negate:
+            break
+    else:
+        return Operand(node, tuple([c.swizzle[0] for c in comps]), negate)
     values = [c.const_values() for c in comps]
-    if all(v is not None for v in values):
-        return g.const(tuple(v[0] for v in values))  # type: ignore[index]
+    if None not in values:
+        return g.const(tuple([v[0] for v in values]))  # type: ignore[index]
     return g.leaf("pack", None, len(comps), args=tuple(comps))
 
 
