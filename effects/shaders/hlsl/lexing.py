@@ -26,6 +26,8 @@ from typing import Any, Callable, Iterator
 import lark
 from lark.lexer import ContextualLexer, LexerState, UnlessCallback
 
+from effects.base import caches
+
 try:
     from re import _parser as _sre            # the regular expressions' own parser
 except ImportError:                           # Python 3.10 names it so
@@ -110,7 +112,8 @@ class _Table(dict):
         return entry
 
 
-def _entry(basic: Any) -> tuple[_Narrowed, dict[str, dict[str, str]], dict[str, Any], frozenset]:
+def _entry(basic: Any) -> tuple["_Narrowed", dict[str, dict[str, str]], dict[str, Any],
+                               frozenset]:
     """What the loop needs of one of lark's basic lexers. lark matches the state's terminals as
     one alternation in its order (its Scanner); a keyword string that NAME's pattern also
     matches is left out of it and a NAME equal to it retyped (UnlessCallback's `fullmatch` of
@@ -129,9 +132,10 @@ def _entry(basic: Any) -> tuple[_Narrowed, dict[str, dict[str, str]], dict[str, 
 
 class _Narrowed(dict):
     """{first character: the match of the state's terminals that can start with it}, filled
-    as characters are met (a state meets few). A character outside ASCII, or with global
-    flags, or one no terminal starts with (lark's loop then reports it), takes the whole
-    alternation."""
+    as characters are met (a state meets few; a dispatch table of the lexer, as lark keeps
+    its scanners on its basic lexers, the compiled patterns held by `_alternation`). A
+    character outside ASCII, or with global flags, or one no terminal starts with (lark's
+    loop then reports it), takes the whole alternation."""
 
     def __init__(self, basic: Any) -> None:
         super().__init__()
@@ -147,28 +151,34 @@ class _Narrowed(dict):
         return match
 
     def _match(self, terminals: list) -> _Match:
-        key = (tuple(t.name for t in terminals), self.flags)
-        match = _MATCHES.get(key)
-        if match is None:
-            pattern = "|".join(f"(?P<{t.name}>{t.pattern.to_regexp()})" for t in terminals)
-            match = _MATCHES[key] = self.compile(pattern, self.flags).match
-        return match
+        return _alternation(tuple((t.name, t.pattern.to_regexp()) for t in terminals),
+                            self.flags, self.compile)
 
 
 # one compiled alternation per terminal list, shared by the states and characters that have it
-_MATCHES: dict[tuple, _Match] = {}
-_FIRSTS: dict[str, frozenset[str] | None] = {}
+# (a grammar makes a few dozen: ~1 ms of `re` compiling each, ~20 KB held)
+@caches.memo("shaders.hlsl.lexer_patterns", keys="terminal names and patterns, regex flags, "
+             "the regex module's compile", entry_bytes=20 << 10, max_bytes=256 * (20 << 10))
+def _alternation(terminals: tuple[tuple[str, str], ...], flags: int,
+                 compile_: Callable[..., Any]) -> _Match:
+    return compile_("|".join(f"(?P<{name}>{regexp})" for name, regexp in terminals),
+                    flags).match
 
 
 def _can_start(regexp: str, char: str) -> bool:
-    first = _FIRSTS.get(regexp, False)
-    if first is False:
-        try:
-            found, nullable = _first(_sre.parse(regexp))
-        except Exception:                 # a form this reading does not know: any character
-            found, nullable = None, True
-        first = _FIRSTS[regexp] = None if found is None or nullable else frozenset(found)
+    first = _first_characters(regexp)
     return first is None or char in first
+
+
+@caches.memo("shaders.hlsl.first_characters", keys="a terminal's pattern", entry_bytes=1024,
+             max_bytes=512 * 1024)
+def _first_characters(regexp: str) -> frozenset[str] | None:
+    """The ASCII characters a match of `regexp` can start with; None: any."""
+    try:
+        found, nullable = _first(_sre.parse(regexp))
+    except Exception:                     # a form this reading does not know: any character
+        return None
+    return None if found is None or nullable else frozenset(found)
 
 
 _ASCII = [chr(k) for k in range(128)]
@@ -241,7 +251,8 @@ def _in_set(items: Any) -> set[str] | None:
 
 def _plain_strings(callback: Any) -> dict[str, str] | None:
     """{text: type} of an UnlessCallback whose strings carry no flags (with no global flags
-    either, a fullmatch of one is equality; the first string wins, as in lark's alternation); None for any other callback, which the loop calls as lark did."""
+    either, a fullmatch of one is equality; the first string wins, as in lark's alternation);
+    None for any other callback, which the loop calls as lark did."""
     if type(callback) is not UnlessCallback:
         return None
     words: dict[str, str] = {}
