@@ -28,9 +28,11 @@ DECLARED = [
     "reference.clip_planes", "reference.demand", "reference.flow", "reference.levels",
     "reference.pyramids", "reference.split", "reference.steps", "reference.varyings_read",
     "shaders.asm.programs", "shaders.asm.registers", "shaders.asm.swizzles",
-    "shaders.hlsl.compiles", "shaders.hlsl.declaration_loads", "shaders.hlsl.field_names",
-    "shaders.hlsl.identifiers", "shaders.hlsl.lanes", "shaders.hlsl.stored", "shaders.hlsl.trees",
-    "shaders.hlsl.unit_checks",
+    "shaders.hlsl.builtin_types", "shaders.hlsl.compiles", "shaders.hlsl.declaration_loads",
+    "shaders.hlsl.field_names",
+    "shaders.hlsl.first_characters", "shaders.hlsl.identifiers", "shaders.hlsl.lanes",
+    "shaders.hlsl.lexer_patterns", "shaders.hlsl.stored", "shaders.hlsl.trees",
+    "shaders.hlsl.types", "shaders.hlsl.unit_checks",
     "validate.enum_spellings",
 ]
 

@@ -179,7 +179,7 @@ def _check_declaration(ctx: Context, fdef: FunctionDef, earlier: Any) -> None:
         seen.add(str(name))
     if _has_body(tree) and not _spells_void(tree.children[1]):
         body = tree.children[-1]
-        if next(body.find_data("return_stmt"), None) is None:
+        if not _contains(body, "return_stmt"):
             raise origin.error(f"X3080: '{fdef.name}': function must return a value", tree)
         if not _always_returns(body):
             # from memory (fxc's code and text not found in a stored source); a language
@@ -236,7 +236,19 @@ def _always_returns(root: Any) -> bool:
 
 
 def _returns_in(stmt: Any) -> bool:
-    return isinstance(stmt, lark.Tree) and next(stmt.find_data("return_stmt"), None) is not None
+    return isinstance(stmt, lark.Tree) and _contains(stmt, "return_stmt")
+
+
+def _contains(tree: lark.Tree, data: str) -> bool:
+    """Whether a node below `tree` (or it) is a `data` node. Last statements first, where a
+    body's return usually is: lark's find_data lists every node of the tree before the first."""
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        if node.data == data:
+            return True
+        stack.extend(c for c in node.children if isinstance(c, lark.Tree))
+    return False
 
 
 def _spells_void(ret: lark.Tree) -> bool:

@@ -139,11 +139,15 @@ class Graph:
         """One operand holding `comps` (one lane each) as its lanes: a swizzle of one node
         when they share it, a constant when all are constants, otherwise a `pack` of them."""
         first = comps[0]
-        if all(c.node is first.node and c.negate == first.negate for c in comps):
-            return Operand(first.node, tuple(c.swizzle[0] for c in comps), first.negate)
+        node, negate = first.node, first.negate
+        for c in comps:                     # (a loop, not all(...): asked per operator)
+            if c.node is not node or c.negate != negate:
+                break
+        else:
+            return Operand(node, tuple([c.swizzle[0] for c in comps]), negate)
         values = [c.const_values() for c in comps]
-        if all(v is not None for v in values):
-            return self.const(tuple(v[0] for v in values))  # type: ignore[index]
+        if None not in values:
+            return self.const(tuple([v[0] for v in values]))  # type: ignore[index]
         return self.leaf("pack", None, len(comps), args=tuple(comps))
 
     def leaf(self, op: str, key: Any, width: int, location: Location = UNKNOWN_LOCATION,
@@ -163,12 +167,12 @@ class Graph:
         if width is None:
             width = shaped[1] if shaped else max(a.width for a in args)  # type: ignore[index]
         consts = [a.const_values() for a in args]
-        if op not in OPAQUE and all(c is not None for c in consts):
+        if op not in OPAQUE and None not in consts:
             return self.const(tuple(fold(op, consts, width)), location)
         simplified = _simplify(self, op, args, consts)
         if simplified is not None:
             return simplified
-        sig = (op, width, tuple(a.sig() for a in args))
+        sig = (op, width, tuple([a.sig() for a in args]))
         node = self._index.get(sig)
         if node is None:
             node = self._new(Node(op, tuple(args), width, location=location), sig)

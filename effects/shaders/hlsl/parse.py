@@ -14,6 +14,7 @@ import lark
 
 from effects.base import caches
 from effects.base.errors import EffectError, EffectWarning, Location, through_expansion
+from effects.shaders.hlsl.lexing import FastContextualLexer
 
 
 # fxc's errors that no target compiles past: the program is not HLSL (syntax, types, names,
@@ -249,7 +250,8 @@ def parser() -> lark.Lark:
                                 start=["function_def", "struct_def", "typedef_decl",
                                        "initializer"], postlex=_TypeNames(),
                                 maybe_placeholders=True,
-                                transformer=_Build(), cache=True)
+                                transformer=_Build(), cache=True,
+                                _plugins={"ContextualLexer": FastContextualLexer})
         return _PARSER
 
 

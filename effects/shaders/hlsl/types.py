@@ -8,6 +8,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
+from effects.base import caches
+
 # Conversion rank: an operation between two bases takes the higher one (fxc's rule).
 RANKS = {"bool": 0, "int": 1, "uint": 2, "dword": 2, "half": 3, "float": 4, "double": 5}
 SAMPLER_KINDS = {"sampler": "2d", "sampler1d": "1d", "sampler2d": "2d", "sampler3d": "3d",
@@ -61,6 +63,8 @@ class HType:
         return self.rows * self.cols
 
     def with_base(self, base: str) -> "HType":
+        if self.kind in ("scalar", "vector", "matrix"):
+            return _numeric(self.kind, base, self.rows, self.cols)
         return HType(self.kind, base, self.rows, self.cols)
 
     def __str__(self) -> str:
@@ -77,23 +81,34 @@ class HType:
         return self.kind if self.kind != "sampler" else "sampler"
 
 
+# The evaluator asks for a numeric type per operator and per value (thousands per function);
+# a type is frozen and equal by its fields, so one object per shape serves them all
+@caches.memo("shaders.hlsl.types", keys="a numeric type's kind, base, rows and columns",
+             entry_bytes=256, max_bytes=512 * 256)
+def _numeric(kind: str, base: str, rows: int, cols: int) -> HType:
+    return HType(kind, base, rows, cols)
+
+
 def scalar(base: str = "float") -> HType:
-    return HType("scalar", base)
+    return _numeric("scalar", base, 1, 1)
 
 
 def vector(base: str, n: int) -> HType:
-    return scalar(base) if n == 1 else HType("vector", base, 1, n)
+    return _numeric("scalar", base, 1, 1) if n == 1 else _numeric("vector", base, 1, n)
 
 
 def matrix(base: str, rows: int, cols: int) -> HType:
-    return HType("matrix", base, rows, cols)
+    return _numeric("matrix", base, rows, cols)
 
 
 FLOAT, INT, BOOL, VOID = scalar("float"), scalar("int"), scalar("bool"), HType("void")
 
 
+@caches.memo("shaders.hlsl.builtin_types", keys="a type's name", entry_bytes=256,
+             max_bytes=512 * 256)
 def builtin(name: str) -> HType | None:
-    """The type a built-in name spells (`float4x3`, `half2`, `sampler2D`, `matrix`)."""
+    """The type a built-in name spells (`float4x3`, `half2`, `sampler2D`, `matrix`; kept per
+    name, as `_numeric` keeps shapes)."""
     low = name.lower()
     if "<" in low:              # `Texture2D<float4>` (its element type: frontend.types)
         low = low.split("<", 1)[0].rstrip()

@@ -44,7 +44,9 @@ def component(op: Operand, i: int) -> Operand:
 
 
 def split(op: Operand) -> list[Operand]:
-    return [component(op, i) for i in range(op.width)]
+    # component() per lane, inlined: every operator's result is split into its lanes
+    node, negate = op.node, op.negate
+    return [Operand(node, (lane,), negate) for lane in op.swizzle]
 
 
 def operand(g: Graph, comps: list[Operand]) -> Operand:
