@@ -110,6 +110,9 @@ class Graph:
         self.work = 0
         # dag._prune's results: (node, condition, side, depth) -> the node on that side
         self.pruned: dict[tuple, Operand] = {}
+        # (node, condition, side) -> the depth to which _prune found nothing to take there:
+        # no shallower look finds anything either
+        self.unpruned: dict[tuple, int] = {}
 
     def _new(self, node: Node, sig: tuple) -> Node:
         self.work += 1
@@ -268,7 +271,10 @@ def _prune(g: Graph, x: Operand, d: Operand, side: int, depth: int) -> Operand:
     node = x.node
     if depth == 0 or (node.op in OPAQUE and node.op != "pack") or not node.args:
         return x
-    key = (node.id, d.sig(), side, depth)
+    plain = (node.id, d.sig(), side)
+    if g.unpruned.get(plain, 0) >= depth:
+        return x
+    key = plain + (depth,)
     done = g.pruned.get(key)
     if done is None:
         test = node.args[0]
@@ -285,6 +291,7 @@ def _prune(g: Graph, x: Operand, d: Operand, side: int, depth: int) -> Operand:
                 done = g.op(node.op, args, node.width, node.location)
         g.pruned[key] = done
     if done.node is node:
+        g.unpruned[plain] = max(g.unpruned.get(plain, 0), depth)
         return x
     out = done.pick(x.swizzle)
     return out.neg() if x.negate else out
