@@ -393,13 +393,15 @@ class Arith:
             return self.select([x] * len(cond), a, inner, loc, unfold=True)
         return None
 
-    @staticmethod
-    def _factors(p: Operand) -> list[Operand]:
-        """The factors of a product of scalars (`p` itself where it is no product)."""
+    def _factors(self, p: Operand) -> list[Operand]:
+        """The factors a predicate's product unfolds into: a one-lane product with a flag
+        among its two factors splits into theirs (as selecting on each in turn would), any
+        other operand is one factor."""
         node = p.node
-        if p.negate or node.op != "mul" or node.width != 1:
+        if p.negate or node.op != "mul" or node.width != 1 or \
+                not any(self._is_flag(x) for x in node.args):
             return [p]
-        return [f for x in node.args for f in Arith._factors(x)]
+        return [f for x in node.args for f in self._factors(x)]
 
     def _is_flag(self, p: Operand) -> bool:
         """A 0/1 scalar that compare() made (cmp(d, 1, 0) or cmp(d, 0, 1)), or `not` of one,
