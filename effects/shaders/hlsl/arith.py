@@ -12,9 +12,9 @@ from typing import Any, Callable
 
 from effects.base.errors import Location
 from effects.shaders.hlsl.context import Context
-from effects.shaders.hlsl.dag import Operand, can_fold, fold
+from effects.shaders.hlsl.dag import Operand, can_fold, complement_of, fold
 from effects.shaders.hlsl.folding import bitwise, truncate
-from effects.shaders.hlsl.values import Value, component, operand, split
+from effects.shaders.hlsl.values import Value, component, split
 from effects.shaders.hlsl.types import HType, common_base, shape_of, vector
 
 
@@ -68,7 +68,7 @@ class Arith:
             if can_fold(name):
                 width = max(len(v) for v in values)
                 return split(self.g.const(tuple(fold(name, values, width)), loc))
-        ops = [operand(self.g, comps) for comps in comps_list]
+        ops = [self.g.pack(comps) for comps in comps_list]
         return split(self.op(name, ops, loc))
 
     def scalar_lanes(self, name: str, comps_list: list[list[Operand]], loc: Location) -> list[Operand]:
@@ -334,9 +334,9 @@ class Arith:
             lanes = [c.swizzle[0] for c in cond]
             d = node.args[0].pick(tuple(lanes))
             if t is not None and f is not None and all(t[i] == 1 and f[i] == 0 for i in lanes):
-                return split(self.op("cnd", [d, operand(self.g, out_a), operand(self.g, out_b)], loc))
+                return split(self.op("cnd", [d, self.g.pack(out_a), self.g.pack(out_b)], loc))
             if t is not None and f is not None and all(t[i] == 0 and f[i] == 1 for i in lanes):
-                return split(self.op("cnd", [d, operand(self.g, out_b), operand(self.g, out_a)], loc))
+                return split(self.op("cnd", [d, self.g.pack(out_b), self.g.pack(out_a)], loc))
         if self.ctx.target.has("cmp"):
             unfolded = self._unfold_predicate(cond, out_a, out_b, loc) if unfold else None
             if unfolded is not None:
@@ -348,9 +348,9 @@ class Arith:
                 lanes = [c.swizzle[0] for c in cond]
                 d = node.args[0].pick(tuple(lanes))
                 if t is not None and f is not None and all(t[i] == 1 and f[i] == 0 for i in lanes):
-                    return split(self.op("cmp", [d, operand(self.g, out_a), operand(self.g, out_b)], loc))
+                    return split(self.op("cmp", [d, self.g.pack(out_a), self.g.pack(out_b)], loc))
                 if t is not None and f is not None and all(t[i] == 0 and f[i] == 1 for i in lanes):
-                    return split(self.op("cmp", [d, operand(self.g, out_b), operand(self.g, out_a)], loc))
+                    return split(self.op("cmp", [d, self.g.pack(out_b), self.g.pack(out_a)], loc))
             return self.lanes("cmp", [[c.neg() for c in cond], out_b, out_a], loc)
         if self.ctx.target.has("lrp") and self.ctx.target.kind == "vs":
             return self.lanes("lrp", [cond, out_a, out_b], loc)
@@ -369,10 +369,10 @@ class Arith:
         if p.negate or any(c.sig() != p.sig() for c in cond):
             return None
         node = p.node
-        if node.op == "add" and node.width == 1:
-            one, x = node.args
-            if one.const_values() == (1.0,) and x.negate and self._is_flag(x.neg()):
-                return self.select([x.neg()] * len(cond), b, a, loc, unfold=True)
+        if node.width == 1:
+            x = complement_of(p)
+            if x is not None and self._is_flag(x):
+                return self.select([x] * len(cond), b, a, loc, unfold=True)
         if node.op == "mul" and node.width == 1:
             x, y = node.args
             if self._is_flag(x) or self._is_flag(y):
@@ -413,8 +413,8 @@ class Arith:
             t, f = node.args[1].const_values(), node.args[2].const_values()
             return t is not None and f is not None and {t[p.swizzle[0]], f[p.swizzle[0]]} == {0.0, 1.0}
         if node.op == "add" and node.width == 1:
-            one, x = node.args
-            return one.const_values() == (1.0,) and x.negate and self._is_flag(x.neg())
+            x = complement_of(p)
+            return x is not None and self._is_flag(x)
         if node.op in ("mul", "max") and node.width == 1:
             return all(self._is_flag(x) for x in node.args)
         return False

@@ -41,7 +41,7 @@ from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.flowrules import (MAX_DEPTH, Effects, NotReal, TargetFlow, enter,
                                             flow_vars, leave, refusal)
 from effects.shaders.hlsl.loops import carried, components, flat, numeric_vars
-from effects.shaders.hlsl.values import Value, Var, build_value, operand
+from effects.shaders.hlsl.values import Value, Var, build_value
 
 _ids = itertools.count()
 _COMPARE = {"<": "lt", "<=": "le", ">": "gt", ">=": "ge", "==": "eq", "!=": "ne"}
@@ -125,7 +125,7 @@ def real_if(ev: Any, tree: Any, cond: tuple, then: Any, other: Any, kind: str) -
         for k in range(0, size, 4):
             widths.append(min(4, size - k))
             for s, comps in enumerate(per_side):
-                results[s].append(operand(ev.g, comps[k:k + 4]))
+                results[s].append(ev.g.pack(comps[k:k + 4]))
     test, args = cond
     # key: (id, 'bool' or the comparison, condition operands, result groups, b#, discards
     # of the then side); args: the condition, the then- and else-results, the then- and

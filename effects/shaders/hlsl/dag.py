@@ -184,6 +184,15 @@ class Graph:
         return Operand(node, tuple(range(width)))
 
 
+def complement_of(x: Operand) -> Operand | None:
+    """The `p` that `x` is `1 - p` of (a predicate's `not`, as the evaluator builds it:
+    add(1, -p)), or None."""
+    n = x.node
+    if x.negate or n.op != "add" or len(n.args) != 2 or n.args[0].const_values() != (1.0,):
+        return None
+    return n.args[1].neg()
+
+
 def can_fold(op: str) -> bool:
     """Whether `fold` computes `op` (a preshader runs these on the host)."""
     return op not in OPAQUE and op in FOLDS

@@ -24,7 +24,7 @@ from effects.shaders.hlsl.calls import inline_call
 from effects.shaders.hlsl.expressions import _leaves as leaves, evaluate_expr
 from effects.shaders.hlsl.context import (Context, FunctionDef, array_of, resolve_type,
                                           struct_type)
-from effects.shaders.hlsl.dag import Operand
+from effects.shaders.hlsl.dag import Operand, complement_of
 from effects.shaders.hlsl.branches import (bool_register, bool_uniform, comparison,
                                             condition_error, real_if)
 from effects.shaders.hlsl.flowrules import DYNAMIC_TARGETS, NotReal, TargetFlow
@@ -34,8 +34,7 @@ from effects.shaders.hlsl.switch import NO_CODE, switch_statement
 from effects.shaders.hlsl.types import HType, scalar
 from effects.shaders.hlsl.livefold import fold_assuming_zero
 from effects.shaders.hlsl.unroll import never_ends
-from effects.shaders.hlsl.values import (Frame, Loop, Value, Var, build_value, count_components,
-                                          operand)
+from effects.shaders.hlsl.values import Frame, Loop, Value, Var, build_value, count_components
 
 MAX_ITERATIONS = 1024
 PROBE_AFTER = 8          # most loops end sooner: they never pay for unroll.never_ends
@@ -616,7 +615,7 @@ class Evaluator:
         if p is not None:
             comps = self.a.select([p], comps, [self.g.const((0.0,))] * len(comps), loc)
         for k in range(0, len(comps), 4):          # a texkill tests one register
-            op = operand(self.g, comps[k:k + 4])
+            op = self.g.pack(comps[k:k + 4])
             self.ctx.kills.append(self.g.leaf("kill", None, op.width, loc, (op,)))
 
     # -- expressions live in expressions.py --------------------------------------------------
@@ -640,9 +639,8 @@ def _numbers(v: Value) -> list[Operand]:
 
 def _complements(p: Operand, q: Operand) -> bool:
     """Whether `q` is `Evaluator._not(p)`: 1 - p."""
-    n = q.node
-    return n.op == "add" and len(n.args) == 2 and q.swizzle == (0,) and not q.negate and \
-        n.args[0].const_values() == (1.0,) and n.args[1].sig() == p.neg().sig()
+    c = complement_of(q) if q.swizzle == (0,) else None
+    return c is not None and c.sig() == p.sig()
 
 
 def _block_in_frame(self: Evaluator, body: lark.Tree) -> None:

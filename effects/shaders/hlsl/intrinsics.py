@@ -13,7 +13,7 @@ from effects.base.errors import Location
 from effects.shaders.hlsl.dag import Operand, host_computable, reachable
 from effects.shaders.hlsl.types import BOOL, FLOAT, HType, builtin, shape_of, vector
 from effects.shaders.hlsl.lvalues import store
-from effects.shaders.hlsl.values import Value, component, operand, split
+from effects.shaders.hlsl.values import Value, component, split
 
 
 def _float(v: Value) -> HType:
@@ -166,9 +166,9 @@ def dot(ev: Any, a: list[Operand], b: list[Operand], loc: Location) -> Operand:
     if n == 1:
         return ev.a.op("mul", [a[0], b[0]], loc)
     if n in (3, 4):
-        return ev.a.op(f"dp{n}", [operand(ev.g, a), operand(ev.g, b)], loc)
+        return ev.a.op(f"dp{n}", [ev.g.pack(a), ev.g.pack(b)], loc)
     if n == 2 and ev.ctx.target.has("dp2add"):
-        return ev.a.op("dp2add", [operand(ev.g, a), operand(ev.g, b), ev.a.const(0.0)], loc)
+        return ev.a.op("dp2add", [ev.g.pack(a), ev.g.pack(b), ev.a.const(0.0)], loc)
     acc = ev.a.op("mul", [a[0], b[0]], loc)
     for x, y in zip(a[1:], b[1:]):
         acc = ev.a.op("mad", [x, y, acc], loc)
@@ -194,7 +194,7 @@ def _distance(ev: Any, args: list[Value], loc: Location) -> Value:
 def _normalize(ev: Any, args: list[Value], loc: Location) -> Value:
     c = args[0].comps
     if len(c) == 3 and ev.ctx.target.has("nrm"):
-        return Value(args[0].type, split(ev.a.op("nrm", [operand(ev.g, c)], loc)))
+        return Value(args[0].type, split(ev.a.op("nrm", [ev.g.pack(c)], loc)))
     inv = _rsq(ev, [dot(ev, c, c, loc)], loc)[0]
     return Value(_float(args[0]), ev.a.lanes("mul", [c, [inv] * len(c)], loc))
 
@@ -202,7 +202,7 @@ def _normalize(ev: Any, args: list[Value], loc: Location) -> Value:
 def _cross(ev: Any, args: list[Value], loc: Location) -> Value:
     a, b = args[0].comps[:3], args[1].comps[:3]
     if ev.ctx.target.has("crs"):
-        return Value(vector("float", 3), split(ev.a.op("crs", [operand(ev.g, a), operand(ev.g, b)], loc)))
+        return Value(vector("float", 3), split(ev.a.op("crs", [ev.g.pack(a), ev.g.pack(b)], loc)))
     p = lambda v, s: [v[i] for i in s]
     first = ev.a.lanes("mul", [p(a, (1, 2, 0)), p(b, (2, 0, 1))], loc)
     return Value(vector("float", 3),
@@ -492,7 +492,7 @@ def _lit(ev: Any, args: list[Value], loc: Location) -> Value:
         # in the power clamp to +-127.9961. The diffuse term stays max(n.l, 0): where the
         # specular term is not read the lit goes unused (one max, not a lit and its operand's
         # movs); where it is, codegen reads the lit's .y for it (fusion.share_lit_diffuse)
-        lit = split(ev.a.op("lit", [operand(ev.g, [ndl, ndh, m, m])], loc))
+        lit = split(ev.a.op("lit", [ev.g.pack([ndl, ndh, m, m])], loc))
         one = ev.a.const(1.0)
         return Value(vector("float", 4), [one, ev.a.op("max", [ndl, ev.a.const(0.0)], loc),
                                           lit[2], one])
@@ -560,10 +560,10 @@ def _texture(dim: str, variant: str):
             raise ev.error(f"{t.name} has no {op} (tex{dim}{variant})", loc)
         extra: tuple[Operand, ...] = ()
         if variant == "grad":
-            extra = (operand(ev.g, (args[2].comps + [ev.a.const(0.0)] * 4)[:4]),
-                     operand(ev.g, (args[3].comps + [ev.a.const(0.0)] * 4)[:4]))
+            extra = (ev.g.pack((args[2].comps + [ev.a.const(0.0)] * 4)[:4]),
+                     ev.g.pack((args[3].comps + [ev.a.const(0.0)] * 4)[:4]))
         ev.ctx.samplers_used.setdefault(s.sampler, kind)
-        r = ev.g.leaf(op, (s.sampler, kind), 4, loc, (operand(ev.g, coord),) + extra)
+        r = ev.g.leaf(op, (s.sampler, kind), 4, loc, (ev.g.pack(coord),) + extra)
         return Value(vector("float", 4), split(r))
     return f
 
@@ -736,7 +736,7 @@ def _dst(ev: Any, args: list[Value], loc: Location) -> Value:
     a, b = args[0].comps, args[1].comps
     if ev.ctx.target.has("dst"):
         return Value(vector("float", 4),
-                     split(ev.a.op("dst", [operand(ev.g, a), operand(ev.g, b)], loc)))
+                     split(ev.a.op("dst", [ev.g.pack(a), ev.g.pack(b)], loc)))
     yy = ev.a.op("mul", [a[1], b[1]], loc, 1)
     return Value(vector("float", 4), [ev.a.const(1.0), yy, a[2], b[3]])
 

@@ -51,8 +51,7 @@ from effects.shaders.hlsl.dag import Operand
 from effects.shaders.hlsl.flowrules import (DYNAMIC_TARGETS, Effects, NotReal, TargetFlow, enter,
                                             flow_vars, leave, refusal)
 from effects.shaders.hlsl.types import HType
-from effects.shaders.hlsl.values import (Loop, Value, Var, build_value, count_components,
-                                        operand)
+from effects.shaders.hlsl.values import Loop, Value, Var, build_value, count_components
 
 _ids = itertools.count()
 
@@ -358,7 +357,7 @@ def _real_loop(ev: Any, tree: Any, body: Any, step: Any, bound: Bound) -> None:
 
 def _groups(ev: Any, value: Value, count: int) -> list[Operand]:
     comps = components(value)
-    return [operand(ev.g, comps[k * 4:k * 4 + 4]) for k in range(count)]
+    return [ev.g.pack(comps[k * 4:k * 4 + 4]) for k in range(count)]
 
 
 def _run_body(ev: Any, tree: Any, body: Any, step: Any, bound: Bound

@@ -49,11 +49,6 @@ def split(op: Operand) -> list[Operand]:
     return [Operand(node, (lane,), negate) for lane in op.swizzle]
 
 
-def operand(g: Graph, comps: list[Operand]) -> Operand:
-    """One operand holding `comps` as its lanes (Graph.pack)."""
-    return g.pack(comps)
-
-
 def splat(op: Operand, n: int) -> Operand:
     return Operand(op.node, (op.swizzle[0],) * n, op.negate) if op.width == 1 else op
 
