@@ -35,7 +35,7 @@ from effects.shaders.hlsl.codegen_ps1 import generate_ps1
 from effects.shaders.hlsl.constant_layout import (declaration_order, first_fit, overlap,
                                                   used_sizes)
 from effects.shaders.hlsl.context import (Context, explicit_register as _explicit, load_context,
-                                          parameter_type)
+                                          parameter_type, sampler_element)
 from effects.shaders.hlsl.dag import Node, Operand, Output
 from effects.shaders.hlsl.flowcode import needed
 from effects.shaders.hlsl.folding import finite32
@@ -371,10 +371,8 @@ def _sampler_registers(ctx: Context, read: set[str], every: bool = True) -> dict
     for name, b in regs.items():
         if name not in read:
             continue
-        holder, k = name, 0
-        if "+" not in name and name.endswith("]"):
-            holder, index = name[:-1].split("[", 1)
-            k = int(index)
+        holder, index = sampler_element(name) if "+" not in name else (name, None)
+        k = index or 0
         first, size = spans.get(holder, (b - k, 0))
         spans[holder] = (first, max(size, k + 1))
     declared = declaration_order(ctx.effect)
@@ -390,17 +388,17 @@ def _sampler_registers(ctx: Context, read: set[str], every: bool = True) -> dict
     for name in ctx.samplers_used:
         if name in regs or name not in read or "+" in name:
             continue
-        base, index = (name[:-1].split("[", 1) if name.endswith("]") else (name, None))
+        base, index = sampler_element(name)
         if index is None and not every:
             continue
-        sizes[base] = max(sizes.get(base, 0), 1 if index is None else int(index) + 1)
+        sizes[base] = max(sizes.get(base, 0), 1 if index is None else index + 1)
     first = first_fit(list(sizes), sizes, taken, declared)
     for name in ctx.samplers_used:
         if name in regs or name not in read or "+" in name:
             continue
-        if name.endswith("]"):
-            base, index = name[:-1].split("[", 1)
-            regs[name] = first[base] + int(index)
+        base, index = sampler_element(name)
+        if index is not None:
+            regs[name] = first[base] + index
         elif name in first:
             regs[name] = first[name]
     return regs

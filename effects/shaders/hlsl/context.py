@@ -481,15 +481,22 @@ def uniform_count(ctx: Context, t: HType) -> int:
     return register_count(t)
 
 
+def sampler_element(name: str) -> tuple[str, int | None]:
+    """`S[k]`, an element of a sampler array as the intrinsics name it, as ('S', k); any other
+    name as (name, None)."""
+    if name.endswith("]") and "[" in name:
+        base, index = name[:-1].split("[", 1)
+        return base, int(index)
+    return name, None
+
+
 def explicit_register(ctx: Context, name: str, kind: str) -> int | None:
     """The number of a parameter's `: register(c4)` binding of that kind for the target (4),
     else None; `S[k]`, an element of a sampler array, is the array's register + k. The number's
     digits are under literal_digits."""
     name = name.split("+", 1)[0]      # `S+Tex`, a sampler paired with a texture: S's binding
-    base, k = name, 0
-    if name.endswith("]") and "[" in name:
-        base, index = name[:-1].split("[", 1)
-        k = int(index)
+    base, index = sampler_element(name)
+    k = index or 0
     p = ctx.effect.parameter(base)
     register = None if p is None else p.register_for(ctx.target.name, kind)
     if register is None:
